@@ -1,0 +1,36 @@
+// Engine errors: one typed status for every kind of bad input or failure, carried by one exception.
+// Nothing else leaves the engine: OCCT's Standard_Failure and std exceptions are translated at its
+// edge.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace mas {
+
+enum class ErrorCode {
+    InvalidArgument,      // a parameter out of its range (zero step, zero normal, NaN, ...)
+    EmptyInput,           // an empty file, a shape or mesh with nothing in it
+    ReadFailed,           // a file that does not exist, cannot be read or is truncated
+    UnsupportedFormat,    // a file extension the engine does not read
+    NotASolid,            // a face, a wire, an open shell where a closed solid is expected
+    MultipleSolids,       // several solids where exactly one is expected
+    OpenMesh,             // a triangle mesh with holes or non-manifold edges
+    NonFiniteCoordinate,  // NaN or infinite coordinates in the input
+    GeometryFailure,      // the geometry kernel failed on valid-looking input
+    Cancelled,            // the caller cancelled a long computation
+};
+
+// Stable lower-case name of a code, e.g. "open_mesh"; used by the Python binding and the CLI.
+const char* to_string(ErrorCode code);
+
+class Error : public std::runtime_error {
+public:
+    Error(ErrorCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
+    ErrorCode code() const { return code_; }
+
+private:
+    ErrorCode code_;
+};
+
+}  // namespace mas

@@ -1,0 +1,59 @@
+// Triangle meshes: the indexed triangle set every cross-section is cut from, and its checks.
+// Core stage (Eigen only): the OCCT side tessellates solids into this, the readers fill it from
+// files.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace mas {
+
+// An indexed triangle set. Triangles are counter-clockwise seen from outside (outward normals), as
+// OCCT's tessellation of a solid and a well-formed STL give them; vertices are shared between
+// triangles so that edges are topological (the slicer chains section segments through shared
+// edges).
+struct TriangleMesh {
+    std::vector<Eigen::Vector3d> vertices;   // mm
+    std::vector<Eigen::Vector3i> triangles;  // indices into vertices, CCW seen from outside
+
+    bool empty() const { return triangles.empty(); }
+};
+
+// What check_mesh() found. A closed (watertight, 2-manifold, consistently oriented) mesh has
+// boundary_edges == non_manifold_edges == inconsistent_edges == 0.
+struct MeshReport {
+    std::size_t vertices = 0;
+    std::size_t triangles = 0;
+    std::size_t non_finite_vertices = 0;   // vertices with a NaN or infinite coordinate
+    std::size_t degenerate_triangles = 0;  // triangles with a repeated vertex index
+    std::size_t boundary_edges = 0;        // edges used by one triangle only (holes)
+    std::size_t non_manifold_edges = 0;    // edges used by more than two triangles
+    std::size_t inconsistent_edges = 0;  // edges traversed in the same direction by both triangles
+    double volume_mm3 = 0.0;  // signed volume (divergence theorem); > 0 for outward normals
+
+    bool closed() const {
+        return boundary_edges == 0 && non_manifold_edges == 0 && inconsistent_edges == 0;
+    }
+};
+
+MeshReport check_mesh(const TriangleMesh& mesh);
+
+// Throws mas::Error (EmptyInput, NonFiniteCoordinate, OpenMesh) unless the mesh is a closed,
+// consistently oriented surface with finite coordinates. `what` names the input in the message.
+// A closed mesh with inward normals (negative volume) is flipped in place rather than rejected.
+void require_closed_mesh(TriangleMesh& mesh, const std::string& what);
+
+// Merges vertices closer than `tolerance_mm` (STL and OFF soups repeat vertices per triangle) and
+// drops triangles that collapse. Returns the number of vertices removed.
+std::size_t weld_vertices(TriangleMesh& mesh, double tolerance_mm);
+
+Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh);
+
+// Geomview OFF reader (the CGAL data sets used by the benchmarks). Polygons with more than three
+// corners are fanned into triangles. Throws mas::Error(ReadFailed / EmptyInput /
+// NonFiniteCoordinate).
+TriangleMesh read_off(const std::string& path);
+
+}  // namespace mas

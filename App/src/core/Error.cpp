@@ -1,0 +1,31 @@
+#include "mas/Error.hpp"
+
+namespace mas {
+
+const char* to_string(ErrorCode code) {
+    switch (code) {
+        case ErrorCode::InvalidArgument:
+            return "invalid_argument";
+        case ErrorCode::EmptyInput:
+            return "empty_input";
+        case ErrorCode::ReadFailed:
+            return "read_failed";
+        case ErrorCode::UnsupportedFormat:
+            return "unsupported_format";
+        case ErrorCode::NotASolid:
+            return "not_a_solid";
+        case ErrorCode::MultipleSolids:
+            return "multiple_solids";
+        case ErrorCode::OpenMesh:
+            return "open_mesh";
+        case ErrorCode::NonFiniteCoordinate:
+            return "non_finite_coordinate";
+        case ErrorCode::GeometryFailure:
+            return "geometry_failure";
+        case ErrorCode::Cancelled:
+            return "cancelled";
+    }
+    return "unknown";
+}
+
+}  // namespace mas

@@ -1,0 +1,203 @@
+// Triangle mesh checks, welding and the OFF reader.
+#include "mas/Mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+#include "mas/Error.hpp"
+
+namespace mas {
+
+namespace {
+
+bool finite(const Eigen::Vector3d& p) { return p.allFinite(); }
+
+}  // namespace
+
+MeshReport check_mesh(const TriangleMesh& mesh) {
+    MeshReport r;
+    r.vertices = mesh.vertices.size();
+    r.triangles = mesh.triangles.size();
+    for (const auto& v : mesh.vertices)
+        if (!finite(v)) ++r.non_finite_vertices;
+
+    // Every undirected edge with the directions it is used in: +1 for (lo, hi), -1 for (hi, lo).
+    struct EdgeUse {
+        std::uint64_t key;
+        int direction;
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(mesh.triangles.size() * 3);
+    const auto n = static_cast<int>(mesh.vertices.size());
+    for (const auto& t : mesh.triangles) {
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
+            ++r.degenerate_triangles;
+            continue;
+        }
+        if (t.minCoeff() < 0 || t.maxCoeff() >= n) {
+            ++r.degenerate_triangles;
+            continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+            const auto a = static_cast<std::uint32_t>(t[k]);
+            const auto b = static_cast<std::uint32_t>(t[(k + 1) % 3]);
+            const auto lo = std::min(a, b), hi = std::max(a, b);
+            uses.push_back({(std::uint64_t(lo) << 32) | hi, a < b ? 1 : -1});
+        }
+        const Eigen::Vector3d& p0 = mesh.vertices[t[0]];
+        const Eigen::Vector3d& p1 = mesh.vertices[t[1]];
+        const Eigen::Vector3d& p2 = mesh.vertices[t[2]];
+        r.volume_mm3 += p0.dot(p1.cross(p2)) / 6.0;
+    }
+    std::sort(uses.begin(), uses.end(),
+              [](const EdgeUse& x, const EdgeUse& y) { return x.key < y.key; });
+    for (std::size_t i = 0; i < uses.size();) {
+        std::size_t j = i;
+        int sum = 0;
+        while (j < uses.size() && uses[j].key == uses[i].key) sum += uses[j++].direction;
+        const std::size_t count = j - i;
+        if (count == 1)
+            ++r.boundary_edges;
+        else if (count > 2)
+            ++r.non_manifold_edges;
+        else if (sum != 0)
+            ++r.inconsistent_edges;
+        i = j;
+    }
+    return r;
+}
+
+void require_closed_mesh(TriangleMesh& mesh, const std::string& what) {
+    if (mesh.triangles.empty() || mesh.vertices.empty())
+        throw Error(ErrorCode::EmptyInput, what + ": the mesh has no triangles");
+    const MeshReport r = check_mesh(mesh);
+    if (r.non_finite_vertices > 0)
+        throw Error(ErrorCode::NonFiniteCoordinate,
+                    what + ": " + std::to_string(r.non_finite_vertices) +
+                        " vertices have NaN or infinite coordinates");
+    if (!r.closed()) {
+        std::ostringstream msg;
+        msg << what << ": the mesh is not a closed solid (" << r.boundary_edges
+            << " boundary edges, " << r.non_manifold_edges << " non-manifold edges, "
+            << r.inconsistent_edges << " edges with inconsistent orientation)";
+        throw Error(ErrorCode::OpenMesh, msg.str());
+    }
+    if (r.degenerate_triangles == r.triangles)
+        throw Error(ErrorCode::EmptyInput, what + ": every triangle of the mesh is degenerate");
+    if (r.volume_mm3 < 0.0)  // closed and consistent, but inside out
+        for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+}
+
+std::size_t weld_vertices(TriangleMesh& mesh, double tolerance_mm) {
+    if (!(tolerance_mm > 0.0) || !std::isfinite(tolerance_mm))
+        throw Error(ErrorCode::InvalidArgument, "weld tolerance must be positive");
+    struct CellHash {
+        std::size_t operator()(const std::array<std::int64_t, 3>& c) const {
+            return std::size_t(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+        }
+    };
+    std::unordered_map<std::array<std::int64_t, 3>, std::vector<int>, CellHash> grid;
+    grid.reserve(mesh.vertices.size());
+    std::vector<int> remap(mesh.vertices.size());
+    std::vector<Eigen::Vector3d> kept;
+    kept.reserve(mesh.vertices.size());
+    const double tol2 = tolerance_mm * tolerance_mm;
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        const Eigen::Vector3d& p = mesh.vertices[i];
+        const std::array<std::int64_t, 3> c{std::int64_t(std::floor(p.x() / tolerance_mm)),
+                                            std::int64_t(std::floor(p.y() / tolerance_mm)),
+                                            std::int64_t(std::floor(p.z() / tolerance_mm))};
+        int found = -1;
+        for (int dx = -1; dx <= 1 && found < 0; ++dx)
+            for (int dy = -1; dy <= 1 && found < 0; ++dy)
+                for (int dz = -1; dz <= 1 && found < 0; ++dz) {
+                    auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+                    if (it == grid.end()) continue;
+                    for (int k : it->second)
+                        if ((kept[k] - p).squaredNorm() <= tol2) {
+                            found = k;
+                            break;
+                        }
+                }
+        if (found < 0) {
+            found = static_cast<int>(kept.size());
+            kept.push_back(p);
+            grid[c].push_back(found);
+        }
+        remap[i] = found;
+    }
+    const std::size_t removed = mesh.vertices.size() - kept.size();
+    std::vector<Eigen::Vector3i> tris;
+    tris.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles) {
+        const Eigen::Vector3i m(remap[t[0]], remap[t[1]], remap[t[2]]);
+        if (m[0] != m[1] && m[1] != m[2] && m[2] != m[0]) tris.push_back(m);
+    }
+    mesh.vertices = std::move(kept);
+    mesh.triangles = std::move(tris);
+    return removed;
+}
+
+Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh) {
+    Eigen::AlignedBox3d box;
+    for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) box.extend(mesh.vertices[t[k]]);
+    return box;
+}
+
+TriangleMesh read_off(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
+    // Comments (#...) may appear anywhere; strip them while tokenising.
+    std::stringstream body;
+    for (std::string line; std::getline(in, line);) {
+        const auto hash = line.find('#');
+        if (hash != std::string::npos) line.erase(hash);
+        body << line << '\n';
+    }
+    std::string header;
+    if (!(body >> header)) throw Error(ErrorCode::EmptyInput, path + ": the file is empty");
+    if (header != "OFF")
+        throw Error(ErrorCode::ReadFailed, path + ": not an OFF file (header '" + header + "')");
+    long nv = -1, nf = -1, ne = -1;
+    if (!(body >> nv >> nf >> ne) || nv < 0 || nf < 0)
+        throw Error(ErrorCode::ReadFailed, path + ": bad OFF counts line");
+    TriangleMesh mesh;
+    mesh.vertices.resize(static_cast<std::size_t>(nv));
+    for (auto& v : mesh.vertices) {
+        std::string x, y, z;  // read as text so that "nan" parses instead of failing the stream
+        if (!(body >> x >> y >> z))
+            throw Error(ErrorCode::ReadFailed, path + ": truncated OFF file (vertices)");
+        try {
+            v = {std::stod(x), std::stod(y), std::stod(z)};
+        } catch (const std::exception&) {
+            throw Error(ErrorCode::ReadFailed, path + ": bad vertex coordinate '" + x + "'");
+        }
+        if (!v.allFinite())
+            throw Error(ErrorCode::NonFiniteCoordinate,
+                        path + ": a vertex has NaN or infinite coordinates");
+    }
+    mesh.triangles.reserve(static_cast<std::size_t>(nf));
+    for (long f = 0; f < nf; ++f) {
+        int k = 0;
+        if (!(body >> k) || k < 3)
+            throw Error(ErrorCode::ReadFailed, path + ": truncated OFF file (faces)");
+        std::vector<int> idx(static_cast<std::size_t>(k));
+        for (int& i : idx)
+            if (!(body >> i) || i < 0 || i >= nv)
+                throw Error(ErrorCode::ReadFailed, path + ": bad vertex index in a face");
+        // Per-face colours may follow on the same line; skip the rest of it.
+        std::string rest;
+        std::getline(body, rest);
+        for (int j = 1; j + 1 < k; ++j) mesh.triangles.emplace_back(idx[0], idx[j], idx[j + 1]);
+    }
+    if (mesh.triangles.empty()) throw Error(ErrorCode::EmptyInput, path + ": no faces");
+    return mesh;
+}
+
+}  // namespace mas

@@ -1,0 +1,113 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+
+#include "mas/Error.hpp"
+#include "mas/Mesh.hpp"
+#include "test_parts.hpp"
+
+using mas::ErrorCode;
+
+namespace {
+
+ErrorCode code_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const mas::Error& e) {
+        return e.code();
+    }
+    ADD_FAILURE() << "no mas::Error thrown";
+    return ErrorCode::Cancelled;
+}
+
+std::string temp_file(const std::string& name, const std::string& text) {
+    const std::string path = ::testing::TempDir() + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+}  // namespace
+
+TEST(MeshCheck, BoxIsClosedWithExactVolume) {
+    const auto r = mas::check_mesh(mas::test::box_mesh(1, 2, 3, 10, 20, 30));
+    EXPECT_TRUE(r.closed());
+    EXPECT_EQ(r.boundary_edges, 0u);
+    EXPECT_NEAR(r.volume_mm3, 6000.0, 1e-9);
+}
+
+TEST(MeshCheck, MissingTriangleLeavesThreeBoundaryEdges) {
+    auto m = mas::test::box_mesh(0, 0, 0, 1, 1, 1);
+    m.triangles.pop_back();
+    const auto r = mas::check_mesh(m);
+    EXPECT_EQ(r.boundary_edges, 3u);
+    EXPECT_FALSE(r.closed());
+    EXPECT_EQ(code_of([&] { mas::require_closed_mesh(m, "box"); }), ErrorCode::OpenMesh);
+}
+
+TEST(MeshCheck, FlippedTriangleIsInconsistent) {
+    auto m = mas::test::box_mesh(0, 0, 0, 1, 1, 1);
+    std::swap(m.triangles[0][1], m.triangles[0][2]);
+    EXPECT_EQ(mas::check_mesh(m).inconsistent_edges, 3u);
+    EXPECT_EQ(code_of([&] { mas::require_closed_mesh(m, "box"); }), ErrorCode::OpenMesh);
+}
+
+TEST(MeshCheck, NanVertexIsRejectedByName) {
+    auto m = mas::test::box_mesh(0, 0, 0, 1, 1, 1);
+    m.vertices[3].x() = std::numeric_limits<double>::quiet_NaN();
+    try {
+        mas::require_closed_mesh(m, "part.stl");
+        FAIL();
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::NonFiniteCoordinate);
+        EXPECT_NE(std::string(e.what()).find("part.stl"), std::string::npos);
+    }
+}
+
+TEST(MeshCheck, EmptyMeshIsEmptyInput) {
+    mas::TriangleMesh m;
+    EXPECT_EQ(code_of([&] { mas::require_closed_mesh(m, "x"); }), ErrorCode::EmptyInput);
+}
+
+TEST(MeshCheck, InsideOutMeshIsFlippedNotRejected) {
+    auto m = mas::test::box_mesh(0, 0, 0, 2, 2, 2);
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    EXPECT_LT(mas::check_mesh(m).volume_mm3, 0.0);
+    mas::require_closed_mesh(m, "box");
+    EXPECT_NEAR(mas::check_mesh(m).volume_mm3, 8.0, 1e-12);
+}
+
+TEST(MeshWeld, TriangleSoupBecomesClosed) {
+    const auto indexed = mas::test::box_mesh(0, 0, 0, 1, 1, 1);
+    mas::TriangleMesh soup;
+    for (const auto& t : indexed.triangles) {
+        const int base = static_cast<int>(soup.vertices.size());
+        for (int k = 0; k < 3; ++k) soup.vertices.push_back(indexed.vertices[t[k]]);
+        soup.triangles.emplace_back(base, base + 1, base + 2);
+    }
+    EXPECT_FALSE(mas::check_mesh(soup).closed());
+    EXPECT_EQ(mas::weld_vertices(soup, 1e-9), 36u - 8u);
+    EXPECT_TRUE(mas::check_mesh(soup).closed());
+}
+
+TEST(ReadOff, ReadsQuadsAsTriangles) {
+    const auto path = temp_file(
+        "quad.off", "OFF\n# a unit square\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    const auto m = mas::read_off(path);
+    EXPECT_EQ(m.vertices.size(), 4u);
+    EXPECT_EQ(m.triangles.size(), 2u);
+}
+
+TEST(ReadOff, BadFilesNameTheProblem) {
+    EXPECT_EQ(code_of([] { mas::read_off("/nonexistent/x.off"); }), ErrorCode::ReadFailed);
+    EXPECT_EQ(code_of([] { mas::read_off(temp_file("empty.off", "")); }), ErrorCode::EmptyInput);
+    EXPECT_EQ(code_of([] { mas::read_off(temp_file("trunc.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n")); }),
+              ErrorCode::ReadFailed);
+    EXPECT_EQ(
+        code_of([] {
+            mas::read_off(temp_file("nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"));
+        }),
+        ErrorCode::NonFiniteCoordinate);
+}

@@ -1,0 +1,97 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mas/Polygon2.hpp"
+
+namespace {
+
+mas::Polygon2 rect(double x0, double y0, double x1, double y1) {
+    return {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
+}
+
+mas::Regions2 region(const mas::Polygon2& outer) { return {mas::Region2{outer, {}}}; }
+
+}  // namespace
+
+TEST(Polygon, SignedAreaFollowsOrientation) {
+    auto p = rect(0, 0, 4, 3);
+    EXPECT_DOUBLE_EQ(mas::signed_area(p), 12.0);
+    std::reverse(p.points.begin(), p.points.end());
+    EXPECT_DOUBLE_EQ(mas::signed_area(p), -12.0);
+}
+
+TEST(Polygon, RegionCentroidAccountsForHoles) {
+    // 10 x 10 square with a 2 x 2 hole in its right half: centroid moves left.
+    mas::Region2 r{rect(0, 0, 10, 10), {rect(6, 4, 8, 6)}};
+    std::reverse(r.holes[0].points.begin(), r.holes[0].points.end());
+    EXPECT_DOUBLE_EQ(mas::area(r), 96.0);
+    const Eigen::Vector2d c = mas::centroid(r);
+    EXPECT_NEAR(c.x(), (100.0 * 5 - 4.0 * 7) / 96.0, 1e-12);
+    EXPECT_NEAR(c.y(), 5.0, 1e-12);
+    EXPECT_FALSE(mas::contains(r, {7, 5}));
+    EXPECT_TRUE(mas::contains(r, {2, 5}));
+}
+
+TEST(Polygon, RegionsFromLoopsNestHolesInSmallestOuter) {
+    auto big = rect(0, 0, 100, 100), hole = rect(10, 10, 90, 90), island = rect(40, 40, 60, 60);
+    std::reverse(hole.points.begin(), hole.points.end());
+    const auto regions = mas::regions_from_loops({island, hole, big});
+    ASSERT_EQ(regions.size(), 2u);
+    EXPECT_EQ(regions[0].holes.size(), 1u);  // the big square carries the hole
+    EXPECT_DOUBLE_EQ(mas::area(regions[0]), 10000.0 - 6400.0);
+    EXPECT_TRUE(regions[1].holes.empty());
+    EXPECT_DOUBLE_EQ(mas::area(regions[1]), 400.0);
+}
+
+TEST(PolygonBoolean, UpperMinusOverlapIsEmptyWhenContained) {  // paper Eq. 2, second case
+    const auto lower = region(rect(0, 0, 10, 10)), upper = region(rect(2, 2, 8, 8));
+    EXPECT_TRUE(mas::difference(upper, mas::intersection(upper, lower)).empty());
+}
+
+TEST(PolygonBoolean, UpperMinusOverlapIsUpperWhenDisjoint) {  // Eq. 2, first case
+    const auto lower = region(rect(0, 0, 10, 10)), upper = region(rect(20, 0, 30, 10));
+    const auto d = mas::difference(upper, mas::intersection(upper, lower));
+    EXPECT_NEAR(mas::area(d), 100.0, 1e-9);
+}
+
+TEST(PolygonBoolean, UpperMinusOverlapGivesThePartsThatStickOut) {  // Eq. 2, third case
+    const auto lower = region(rect(0, 0, 10, 10)), upper = region(rect(-5, 2, 15, 8));
+    const auto d = mas::difference(upper, mas::intersection(upper, lower));
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_NEAR(mas::area(d[0]), 30.0, 1e-9);
+    EXPECT_NEAR(mas::area(d[1]), 30.0, 1e-9);
+    const double cx0 = mas::centroid(d[0]).x(), cx1 = mas::centroid(d[1]).x();
+    EXPECT_NEAR(std::min(cx0, cx1), -2.5, 1e-9);
+    EXPECT_NEAR(std::max(cx0, cx1), 12.5, 1e-9);
+}
+
+TEST(PolygonBoolean, DifferenceCanMakeAHole) {
+    const auto d = mas::difference(region(rect(0, 0, 10, 10)), region(rect(4, 4, 6, 6)));
+    ASSERT_EQ(d.size(), 1u);
+    ASSERT_EQ(d[0].holes.size(), 1u);
+    EXPECT_GT(mas::signed_area(d[0].outer), 0.0);
+    EXPECT_LT(mas::signed_area(d[0].holes[0]), 0.0);
+    EXPECT_NEAR(mas::area(d), 96.0, 1e-9);
+}
+
+TEST(PolygonBoolean, UnionMergesOverlaps) {
+    EXPECT_NEAR(mas::area(mas::union_of(region(rect(0, 0, 2, 1)), region(rect(1, 0, 3, 1)))), 3.0,
+                1e-9);
+}
+
+TEST(PolygonOffset, SquareGrowsByRoundedCorners) {
+    const double r = 1.0, tol = 1e-4;
+    const auto grown = mas::offset(region(rect(0, 0, 10, 10)), r, mas::JoinType::Round, tol);
+    ASSERT_EQ(grown.size(), 1u);
+    // Exact: 100 + 4*10*r + pi r^2; the arcs are polygons within `tol` inside the true arcs.
+    const double exact = 100.0 + 40.0 * r + M_PI * r * r;
+    EXPECT_LE(mas::area(grown), exact + 1e-9);
+    EXPECT_GE(mas::area(grown), exact - 2.0 * M_PI * r * tol - 1e-9);
+}
+
+TEST(PolygonOffset, ShrinkingPastHalfWidthLeavesNothing) {
+    EXPECT_TRUE(mas::offset(region(rect(0, 0, 10, 4)), -2.1).empty());
+    EXPECT_NEAR(mas::area(mas::offset(region(rect(0, 0, 10, 4)), -1.0, mas::JoinType::Miter)), 16.0,
+                1e-9);
+}

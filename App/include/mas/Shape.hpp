@@ -1,0 +1,105 @@
+// The OCCT side of the engine behind a plain handle: reading parts (BREP text, STEP, IGES, BREP,
+// STL files), checking them, tessellating solids for the section kernel, and OCCT's exact section
+// as the reference the mesh path is checked against. No OCCT type appears in this header.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mas/Mesh.hpp"
+#include "mas/Section.hpp"
+
+namespace mas {
+
+// What a shape is made of.
+struct ShapeInfo {
+    int solids = 0;
+    int shells = 0;
+    int faces = 0;
+    int edges = 0;
+    int free_faces = 0;  // faces not inside any solid
+    int free_edges = 0;  // edges not inside any face
+    double volume_mm3 = 0.0;
+    Eigen::AlignedBox3d bounds;
+};
+
+// An immutable OCCT shape. Copies share the same geometry.
+class Shape {
+public:
+    Shape();
+    ~Shape();
+    Shape(const Shape&);
+    Shape& operator=(const Shape&);
+
+    // BREP text as FreeCAD's Shape.exportBrepToString() writes it. Throws
+    // Error(EmptyInput/ReadFailed).
+    static Shape from_brep_string(const std::string& brep);
+    std::string to_brep_string() const;
+
+    bool is_null() const;
+    ShapeInfo info() const;
+
+    // Throws Error(NotASolid / MultipleSolids / EmptyInput) unless the shape holds exactly one
+    // closed solid; `what` names the input in the message. Returns that solid. A lone closed shell
+    // (some exporters write solids so) counts as the solid it bounds; an inside-out solid comes
+    // back turned right side out.
+    Shape single_solid(const std::string& what) const;
+
+    struct Impl;
+    const Impl& impl() const { return *impl_; }
+    explicit Shape(std::shared_ptr<const Impl> impl);
+
+private:
+    std::shared_ptr<const Impl> impl_;
+};
+
+// Chordal deflection used to tessellate a solid before cutting it. The absolute deflection is the
+// largest distance between a facet and the exact surface, so mesh sections differ from exact ones
+// by at most about that much along their boundary.
+struct TessellationParams {
+    // mm; <= 0 means "derive from the part": 0.05% of the bounding-box diagonal, clamped to
+    // [0.005, 0.1] mm (0.01 mm on a 20 mm part, 0.1 mm on a 200 mm-plus part).
+    double deflection_mm = 0.0;
+    double angular_deflection_rad = 0.35;  // ~20 degrees, bounds facet normals on tight curves
+};
+
+double effective_deflection(const Shape& solid, const TessellationParams& params);
+
+// Tessellates one closed solid into a closed, outward-oriented, welded triangle mesh.
+// Throws Error(NotASolid, ...) as single_solid() does, Error(GeometryFailure) if meshing fails.
+TriangleMesh tessellate(const Shape& shape, const TessellationParams& params = {});
+
+// A part read from a file or handed over by FreeCAD: either a BREP shape or a triangle mesh.
+struct Model {
+    enum class Kind { Solid, Mesh };
+    Kind kind = Kind::Solid;
+    Shape shape;        // for Kind::Solid
+    TriangleMesh mesh;  // for Kind::Mesh (an STL or OFF file, a FreeCAD Mesh)
+    std::string name;   // file name or caller-given name, for messages
+};
+
+// Reads .step/.stp, .iges/.igs, .brep/.brp (OCCT's readers), .stl (OCCT's RWStl, vertices welded)
+// and .off. Throws Error(ReadFailed / EmptyInput / UnsupportedFormat / NonFiniteCoordinate).
+Model read_model(const std::string& path);
+
+// The closed triangle mesh the section kernel cuts for a model: the tessellation of a solid, or the
+// checked mesh itself. Throws the errors of tessellate() and require_closed_mesh().
+TriangleMesh model_mesh(const Model& model, const TessellationParams& params = {});
+
+// OCCT's exact section (BRepAlgoAPI_Section, edges joined into wires, wires into faces, areas and
+// centroids from BRepGProp): the reference for checking the mesh kernel, about 100x slower. Loops
+// are discretised with `loop_deflection_mm` for the 2-D regions.
+std::vector<Section> exact_sections(const Shape& solid, const std::vector<Plane>& planes,
+                                    double loop_deflection_mm = 0.01);
+
+}  // namespace mas
+
+namespace mas {
+
+// OCCT's readers print progress and warnings to standard output through its default messenger.
+// A command-line program whose standard output is data calls this once at start to drop them.
+void silence_occt_console();
+
+}  // namespace mas

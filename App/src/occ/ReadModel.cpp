@@ -1,0 +1,230 @@
+// Reading parts from files: STEP, IGES and BREP through OCCT's readers into a Shape, STL and OFF
+// into a TriangleMesh; and the one closed triangle mesh the section kernel cuts for either kind.
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <Bnd_Box.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Reader.hxx>
+#include <Poly_Triangulation.hxx>
+#include <RWStl.hxx>
+#include <STEPControl_Reader.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <system_error>
+
+#include "ShapeImpl.hpp"
+
+namespace mas {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+int count_of(const TopoDS_Shape& s, TopAbs_ShapeEnum type) {
+    TopTools_IndexedMapOfShape map;
+    TopExp::MapShapes(s, type, map);
+    return map.Extent();
+}
+
+// STEP and IGES share XSControl_Reader: read, translate every root, take them as one shape.
+template <class Reader>
+TopoDS_Shape read_exchange(const std::string& path, const char* format) {
+    Reader reader;
+    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+        throw Error(ErrorCode::ReadFailed, path + ": unreadable or truncated " + format + " file");
+    reader.TransferRoots();
+    TopoDS_Shape shape = reader.OneShape();
+    if (shape.IsNull())
+        throw Error(ErrorCode::EmptyInput, path + ": the " + format + " file holds no shape");
+    return shape;
+}
+
+// OCCT's IGES reader accepts a truncated file and its translator then dereferences the entities
+// that are missing (a segmentation fault on a B-rep IGES cut in its parameter section). IGES
+// states its own length: the last line, the Terminate section, counts the lines of the Start,
+// Global, Directory and Parameter sections. Check those counts before OCCT sees the file.
+void require_complete_iges(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
+    std::map<char, long> lines;  // per section letter (column 73 of the 80-column records)
+    std::string terminate;
+    for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.size() < 73) continue;
+        ++lines[line[72]];
+        if (line[72] == 'T') terminate = line;
+    }
+    if (terminate.empty())
+        throw Error(ErrorCode::ReadFailed,
+                    path + ": truncated or not an IGES file (no Terminate section)");
+    for (std::size_t field = 0; field < 4; ++field) {
+        const char section = terminate[8 * field];
+        long expected = -1;
+        try {
+            expected = std::stol(terminate.substr(8 * field + 1, 7));
+        } catch (const std::exception&) {
+        }
+        if (std::string("SGDP").find(section) == std::string::npos || expected < 0)
+            throw Error(ErrorCode::ReadFailed, path + ": malformed IGES Terminate section");
+        if (lines[section] != expected)
+            throw Error(ErrorCode::ReadFailed, path + ": truncated IGES file (" +
+                                                   std::to_string(lines[section]) +
+                                                   " lines in section " + section + ", " +
+                                                   std::to_string(expected) + " announced)");
+    }
+}
+
+// IGES usually carries a solid as loose trimmed surfaces (OCCT's own writer does so by default):
+// sew them into shells so that a closed part reaches single_solid() as one closed shell. The
+// tolerance, 1e-5 of the part's size, closes the gaps an exporter's rounding leaves and nothing
+// wider.
+TopoDS_Shape sew_faces(const TopoDS_Shape& shape) {
+    if (count_of(shape, TopAbs_SOLID) > 0 || count_of(shape, TopAbs_FACE) < 2) return shape;
+    Bnd_Box box;
+    BRepBndLib::Add(shape, box, Standard_False);
+    const double diagonal = box.IsVoid() ? 0.0 : std::sqrt(box.SquareExtent());
+    BRepBuilderAPI_Sewing sewing(std::max(1e-6, 1e-5 * diagonal));
+    sewing.Add(shape);
+    sewing.Perform();
+    const TopoDS_Shape sewn = sewing.SewedShape();
+    return sewn.IsNull() ? shape : sewn;
+}
+
+TopoDS_Shape read_brep_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
+    return occ::read_brep(in, path);
+}
+
+// RWStl reads as many facets as a truncated STL holds and reports success; the cut then shows up
+// later, as a mesh with holes. Say "truncated" instead: a binary STL is exactly 84 bytes plus 50
+// per facet announced in its header, an ASCII one ends with "endsolid".
+void require_complete_stl(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.size() >= 84) {
+        const auto* p = reinterpret_cast<const unsigned char*>(bytes.data()) + 80;
+        const std::uint64_t facets =
+            p[0] | (p[1] << 8) | (p[2] << 16) | (std::uint64_t(p[3]) << 24);
+        if (bytes.size() == 84 + 50 * facets) return;  // a complete binary STL
+    }
+    const auto first = bytes.find_first_not_of(" \t\r\n");
+    if (first != std::string::npos && bytes.compare(first, 5, "solid") == 0) {
+        const auto last = bytes.find_last_not_of(" \t\r\n");
+        const auto line = bytes.rfind('\n', last);
+        const std::string tail = bytes.substr(line == std::string::npos ? 0 : line + 1);
+        if (tail.find("endsolid") != std::string::npos) return;  // a complete ASCII STL
+        throw Error(ErrorCode::ReadFailed, path + ": truncated ASCII STL file (no 'endsolid')");
+    }
+    throw Error(ErrorCode::ReadFailed,
+                path + ": truncated or not an STL file (its size does not match its facet count)");
+}
+
+// RWStl's ASCII parser gives up on a "nan" or "inf" coordinate in some positions (and reads it in
+// others): when it fails, look for one, so the message names the real problem.
+bool ascii_stl_has_non_finite(const std::string& path) {
+    std::ifstream in(path);
+    for (std::string word; in >> word;) {
+        if (word != "vertex") continue;
+        for (int k = 0; k < 3; ++k) {
+            std::string number;
+            if (!(in >> number)) return false;
+            char* end = nullptr;
+            const double v = std::strtod(number.c_str(), &end);
+            if (end != number.c_str() && !std::isfinite(v)) return true;
+        }
+    }
+    return false;
+}
+
+TriangleMesh read_stl(const std::string& path) {
+    require_complete_stl(path);
+    // RWStl reads ASCII and binary STL and merges coincident nodes, so the mesh comes out welded.
+    const Handle(Poly_Triangulation) tri = RWStl::ReadFile(path.c_str());
+    if (tri.IsNull()) {
+        if (ascii_stl_has_non_finite(path))
+            throw Error(ErrorCode::NonFiniteCoordinate,
+                        path + ": a vertex has NaN or infinite coordinates");
+        throw Error(ErrorCode::ReadFailed, path + ": unreadable or truncated STL file");
+    }
+    TriangleMesh mesh;
+    mesh.vertices.reserve(tri->NbNodes());
+    for (int i = 1; i <= tri->NbNodes(); ++i) {
+        const gp_Pnt p = tri->Node(i);
+        mesh.vertices.emplace_back(p.X(), p.Y(), p.Z());
+        if (!mesh.vertices.back().allFinite())
+            throw Error(ErrorCode::NonFiniteCoordinate,
+                        path + ": a vertex has NaN or infinite coordinates");
+    }
+    mesh.triangles.reserve(tri->NbTriangles());
+    for (int t = 1; t <= tri->NbTriangles(); ++t) {
+        int a, b, c;
+        tri->Triangle(t).Get(a, b, c);
+        mesh.triangles.emplace_back(a - 1, b - 1, c - 1);
+    }
+    if (mesh.triangles.empty()) throw Error(ErrorCode::EmptyInput, path + ": no triangles");
+    return mesh;
+}
+
+}  // namespace
+
+Model read_model(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw Error(ErrorCode::ReadFailed, path + ": no such file");
+    if (!fs::is_regular_file(path, ec)) throw Error(ErrorCode::ReadFailed, path + ": not a file");
+    if (fs::file_size(path, ec) == 0 && !ec)
+        throw Error(ErrorCode::EmptyInput, path + ": the file is empty");
+
+    const std::string ext = lower_extension(path);
+    Model model;
+    model.name = fs::path(path).filename().string();
+    try {
+        if (ext == ".step" || ext == ".stp") {
+            model.shape = occ::wrap(read_exchange<STEPControl_Reader>(path, "STEP"));
+        } else if (ext == ".iges" || ext == ".igs") {
+            require_complete_iges(path);
+            model.shape = occ::wrap(sew_faces(read_exchange<IGESControl_Reader>(path, "IGES")));
+        } else if (ext == ".brep" || ext == ".brp") {
+            model.shape = occ::wrap(read_brep_file(path));
+        } else if (ext == ".stl") {
+            model.kind = Model::Kind::Mesh;
+            model.mesh = read_stl(path);
+        } else if (ext == ".off") {
+            model.kind = Model::Kind::Mesh;
+            model.mesh = read_off(path);
+        } else {
+            throw Error(ErrorCode::UnsupportedFormat,
+                        path + ": unsupported file type '" + ext +
+                            "' (expected .step, .stp, .iges, .igs, .brep, .brp, .stl or .off)");
+        }
+    } catch (const Standard_Failure& e) {
+        throw Error(ErrorCode::ReadFailed, occ::failure_message(path, e));
+    }
+    return model;
+}
+
+TriangleMesh model_mesh(const Model& model, const TessellationParams& params) {
+    const std::string what = model.name.empty() ? std::string("model") : model.name;
+    if (model.kind == Model::Kind::Solid) return occ::tessellate(model.shape, params, what);
+    TriangleMesh mesh = model.mesh;
+    require_closed_mesh(mesh, what);
+    return mesh;
+}
+
+}  // namespace mas

@@ -1,0 +1,149 @@
+#include "test_parts.hpp"
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <Bnd_Box.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <cmath>
+#include <gp_Ax2.hxx>
+#include <gp_Pln.hxx>
+#include <sstream>
+
+namespace mas::test {
+
+Shape from_occt(const TopoDS_Shape& s) {
+    std::ostringstream out;
+    BRepTools::Write(s, out);
+    return Shape::from_brep_string(out.str());
+}
+
+TopoDS_Shape to_occt(const Shape& shape) {
+    std::istringstream in(shape.to_brep_string());
+    TopoDS_Shape s;
+    BRep_Builder builder;
+    BRepTools::Read(s, in, builder);
+    return s;
+}
+
+namespace {
+
+TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, double dz) {
+    return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
+}
+
+TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+    BRepAlgoAPI_Fuse f(a, b);
+    f.SimplifyResult();
+    return f.Shape();
+}
+
+}  // namespace
+
+Shape box(double x0, double y0, double z0, double dx, double dy, double dz) {
+    return from_occt(occ_box(x0, y0, z0, dx, dy, dz));
+}
+
+TriangleMesh box_mesh(double x0, double y0, double z0, double dx, double dy, double dz) {
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i)
+        m.vertices.emplace_back(x0 + (i & 1 ? dx : 0), y0 + (i & 2 ? dy : 0),
+                                z0 + (i & 4 ? dz : 0));
+    // Corner index bits: 1 = +x, 2 = +y, 4 = +z. Each face as two CCW triangles seen from outside.
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+        m.triangles.emplace_back(q[0], q[1], q[2]);
+        m.triangles.emplace_back(q[0], q[2], q[3]);
+    }
+    return m;
+}
+
+Shape cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double radius,
+               double height) {
+    const gp_Ax2 ax(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z()));
+    return from_occt(BRepPrimAPI_MakeCylinder(ax, radius, height).Shape());
+}
+
+Shape l_block() {
+    return from_occt(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(20, 0, 40, 50, 20, 20)));
+}
+
+Shape plate_with_hole() {
+    const TopoDS_Shape plate = occ_box(0, 0, 0, 60, 40, 10);
+    const TopoDS_Shape hole =
+        BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(30, 20, -1), gp_Dir(0, 0, 1)), 8, 12).Shape();
+    return from_occt(BRepAlgoAPI_Cut(plate, hole).Shape());
+}
+
+Shape two_posts() {
+    const TopoDS_Shape base = occ_box(0, 0, 0, 40, 10, 5);
+    const TopoDS_Shape posts = fuse(occ_box(0, 0, 5, 10, 10, 25), occ_box(30, 0, 5, 10, 10, 25));
+    return from_occt(fuse(base, posts));
+}
+
+Shape torus(double major_radius, double minor_radius) {
+    return from_occt(
+        BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), major_radius, minor_radius)
+            .Shape());
+}
+
+Shape single_face() {
+    return from_occt(
+        BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 0, 10, 0, 10).Face());
+}
+
+Shape two_boxes() {
+    BRep_Builder b;
+    TopoDS_Compound c;
+    b.MakeCompound(c);
+    b.Add(c, occ_box(0, 0, 0, 10, 10, 10));
+    b.Add(c, occ_box(20, 0, 0, 10, 10, 10));
+    return from_occt(c);
+}
+
+Shape sphere(double radius) {
+    return from_occt(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), radius).Shape());
+}
+
+namespace {
+
+// The box's faces in a new shell, all but the one lying on z = `skip_z` (NaN keeps all six).
+TopoDS_Shell shell_of_box(double x0, double y0, double z0, double dx, double dy, double dz,
+                          double skip_z) {
+    BRep_Builder b;
+    TopoDS_Shell shell;
+    b.MakeShell(shell);
+    const TopoDS_Shape solid = occ_box(x0, y0, z0, dx, dy, dz);
+    for (TopExp_Explorer x(solid, TopAbs_FACE); x.More(); x.Next()) {
+        Bnd_Box box;
+        BRepBndLib::Add(x.Current(), box);
+        double a0, b0, c0, a1, b1, c1;
+        box.Get(a0, b0, c0, a1, b1, c1);
+        if (std::abs(c0 - skip_z) < 1e-3 && std::abs(c1 - skip_z) < 1e-3) continue;
+        b.Add(shell, x.Current());
+    }
+    return shell;
+}
+
+}  // namespace
+
+Shape box_shell(double x0, double y0, double z0, double dx, double dy, double dz) {
+    return from_occt(shell_of_box(x0, y0, z0, dx, dy, dz, std::nan("")));
+}
+
+Shape open_box_shell(double x0, double y0, double z0, double dx, double dy, double dz) {
+    return from_occt(shell_of_box(x0, y0, z0, dx, dy, dz, z0 + dz));
+}
+
+}  // namespace mas::test

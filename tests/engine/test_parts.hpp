@@ -1,0 +1,44 @@
+// Test parts with known geometry, built with OCCT primitives and handed to the engine as BREP text
+// (the same border FreeCAD uses), plus exact triangle meshes for the core-only tests.
+#pragma once
+
+#include <Eigen/Core>
+#include <TopoDS_Shape.hxx>
+
+#include "mas/Mesh.hpp"
+#include "mas/Shape.hpp"
+
+namespace mas::test {
+
+// Axis-aligned box [x0, x0 + dx] x [y0, y0 + dy] x [z0, z0 + dz].
+Shape box(double x0, double y0, double z0, double dx, double dy, double dz);
+// Exact 12-triangle mesh of the same box, outward oriented.
+TriangleMesh box_mesh(double x0, double y0, double z0, double dx, double dy, double dz);
+// Cylinder of `radius` and `height` whose base centre is `base` and axis `axis` (unit).
+Shape cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double radius,
+               double height);
+// Paper Fig. 7: a 20 x 20 x 60 column on z = 0 with a 50 x 20 x 20 arm on its top reaching +X:
+// column [0,20]x[0,20]x[0,60], arm [20,70]x[0,20]x[40,60].
+Shape l_block();
+// 60 x 40 x 10 plate [0,60]x[0,40]x[0,10] with a vertical through hole of radius 8 at (30, 20).
+Shape plate_with_hole();
+// Two 10 x 10 posts on one 40 x 10 x 5 base plate [0,40]x[0,10]x[0,5]: posts
+// [0,10]x[0,10]x[5,30] and [30,40]x[0,10]x[5,30]; one solid, two regions above z = 5.
+Shape two_posts();
+// Torus with its axis along Z through the origin.
+Shape torus(double major_radius, double minor_radius);
+// A shape made of one planar face (not a solid) and a compound of two disjoint boxes.
+Shape single_face();
+Shape two_boxes();
+// Sphere of `radius` centred on the origin (two poles: degenerated edges).
+Shape sphere(double radius);
+// The six faces of box(x0, .., dz) as a closed shell with no solid around it, and the same shell
+// with its top face (z = z0 + dz) left out: an open shell.
+Shape box_shell(double x0, double y0, double z0, double dx, double dy, double dz);
+Shape open_box_shell(double x0, double y0, double z0, double dx, double dy, double dz);
+
+// Between the engine's Shape and OCCT, through BREP text as FreeCAD hands shapes over.
+Shape from_occt(const TopoDS_Shape& shape);
+TopoDS_Shape to_occt(const Shape& shape);
+
+}  // namespace mas::test

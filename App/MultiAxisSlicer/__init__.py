@@ -1,0 +1,507 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Multi-Axis Slicer: cross-sections of solids and meshes, for scripts and FreeCAD.
+
+The scripting API over the C++ engine (the compiled module ``MultiAxisSlicer._engine``). It runs in
+FreeCAD (GUI or ``freecadcmd``) and in a plain Python 3.11 script; FreeCAD types (``Part.Shape``,
+``Mesh.Mesh``, document objects, ``FreeCAD.Vector``) are used when FreeCAD is importable::
+
+    import MultiAxisSlicer as mas
+    for s in mas.sections(App.ActiveDocument.Box, normal=(0, 0, 1), step=2.0):
+        print(s.origin, s.area, s.centroid)
+
+Errors:
+  * ``EngineError`` (a ``RuntimeError``) for a part the engine cannot use; ``error.code`` names the
+    problem (``not_a_solid``, ``multiple_solids``, ``open_mesh``, ``non_finite_coordinate``,
+    ``empty_input``, ``read_failed``, ``unsupported_format``, ``invalid_argument``, ...) and
+    ``str(error)`` says what and where.
+  * ``ValueError`` / ``TypeError`` for bad parameters (``step <= 0``, a zero or NaN normal,
+    ``None``).
+  * ``EngineUnavailableError`` when the compiled engine is missing: importing this package always
+    works, the functions that need the engine raise it with the build command.
+
+Nothing here modifies the caller's shape, mesh or document object: solids cross into the engine as
+BREP text, meshes as coordinate arrays.
+"""
+
+import math
+import numbers
+import os
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "EngineError",
+    "EngineUnavailableError",
+    "Region",
+    "Section",
+    "deflection",
+    "engine_available",
+    "engine_missing_message",
+    "exact_sections",
+    "make_sections",
+    "parallel_planes",
+    "read",
+    "section",
+    "sections",
+    "to_engine_mesh",
+]
+
+BUILD_COMMAND = "./tools/setup.sh install"
+
+try:
+    from . import _engine
+except ImportError as _error:  # not built yet, or built against another Python/OCCT
+    _engine = None
+    _engine_import_error = _error
+else:
+    _engine_import_error = None
+
+try:  # FreeCAD is optional: results use FreeCAD.Vector when it is there, tuples otherwise
+    import FreeCAD as _FreeCAD
+except ImportError:
+    _FreeCAD = None
+
+
+class EngineUnavailableError(RuntimeError):
+    """The compiled engine ``MultiAxisSlicer/_engine.so`` is missing or does not load."""
+
+
+if _engine is not None:
+    EngineError = _engine.EngineError
+else:
+
+    class EngineError(RuntimeError):
+        """An engine failure or bad input: ``code`` names it, ``str(error)`` explains it."""
+
+        code = "internal"
+        message = ""
+
+
+def _engine_error(code, message):
+    error = EngineError(message)
+    error.code = code
+    error.message = message
+    return error
+
+
+def engine_available():
+    """True if the compiled engine loaded, so that the functions of this package work."""
+    return _engine is not None
+
+
+def engine_missing_message():
+    """Why the engine is unavailable and how to build it; an empty string when it is available."""
+    if _engine is not None:
+        return ""
+    folder = os.path.dirname(os.path.abspath(__file__))
+    built = any(n.startswith("_engine.") and n.endswith((".so", ".pyd"))
+                for n in os.listdir(folder))
+    problem = (
+        "does not load ({})".format(_engine_import_error)
+        if built
+        else "is not built (no _engine.so in {})".format(folder)
+    )
+    return (
+        "Multi-Axis Slicer: the compiled engine {}. Build and install it from the add-on's source "
+        "folder with: {}".format(problem, BUILD_COMMAND)
+    )
+
+
+def _require_engine():
+    if _engine is None:
+        raise EngineUnavailableError(engine_missing_message())
+    return _engine
+
+
+# ---- parameters ----------------------------------------------------------------------------------
+
+
+def _vector3(value, name):
+    """(x, y, z) floats from a FreeCAD.Vector, a tuple or a list; TypeError otherwise."""
+    if value is None:
+        raise TypeError("{} must be 3 numbers, got None".format(name))
+    if all(hasattr(value, a) for a in ("x", "y", "z")):
+        coords = (value.x, value.y, value.z)
+    else:
+        try:
+            coords = tuple(value)
+        except TypeError:
+            raise TypeError(
+                "{} must be 3 numbers, got {}".format(name, type(value).__name__)
+            ) from None
+    if len(coords) != 3 or not all(
+        isinstance(c, numbers.Real) and not isinstance(c, bool) for c in coords
+    ):
+        raise TypeError("{} must be 3 numbers, got {!r}".format(name, value))
+    return tuple(float(c) for c in coords)
+
+
+def _direction(value, name="normal"):
+    v = _vector3(value, name)
+    if not all(math.isfinite(c) for c in v):
+        raise ValueError("{} has NaN or infinite coordinates: {}".format(name, v))
+    if math.sqrt(sum(c * c for c in v)) <= 1e-12:
+        raise ValueError("{} is the zero vector".format(name))
+    return v
+
+
+def _point(value, name):
+    v = _vector3(value, name)
+    if not all(math.isfinite(c) for c in v):
+        raise ValueError("{} has NaN or infinite coordinates: {}".format(name, v))
+    return v
+
+
+def _length(value, name, allow_zero=False):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        value = getattr(value, "Value", value)  # a FreeCAD Quantity in mm
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError("{} must be a number of millimetres, got {!r}".format(name, value))
+    value = float(value)
+    if not math.isfinite(value) or value < 0.0 or (value == 0.0 and not allow_zero):
+        raise ValueError(
+            "{} must be a {} number of millimetres, got {}".format(
+                name, "non-negative" if allow_zero else "positive", value
+            )
+        )
+    return value
+
+
+def _deflection_mm(deflection):
+    """None or 0 -> 0.0 (the engine derives it from the part's size)."""
+    if deflection is None:
+        return 0.0
+    return _length(deflection, "deflection", allow_zero=True)
+
+
+# ---- turning whatever the caller has into the engine's types -------------------------------------
+
+
+def _is_part_shape(obj):
+    # not hasattr(obj, "ShapeType"): a null Part.Shape raises a FreeCAD error on reading it
+    return hasattr(obj, "exportBrepToString") and hasattr(obj, "isNull")
+
+
+def _is_fc_mesh(obj):
+    return hasattr(obj, "Topology") and hasattr(obj, "CountFacets")
+
+
+def _is_document_object(obj):
+    return hasattr(obj, "TypeId") and hasattr(obj, "Document") and hasattr(obj, "Name")
+
+
+def _label(obj):
+    label = getattr(obj, "Label", None) or getattr(obj, "Name", None)
+    return "'{}'".format(label) if label else "the object"
+
+
+def _engine_shape_from_part(shape, what):
+    if shape.isNull():
+        raise _engine_error("empty_input", "{}: the shape is empty".format(what))
+    return _require_engine().Shape.from_brep_string(shape.exportBrepToString())
+
+
+def _engine_mesh_from_fc_mesh(mesh, what):
+    if mesh.CountFacets == 0:
+        raise _engine_error("empty_input", "{}: the mesh has no triangles".format(what))
+    points, facets = mesh.Topology  # points with the mesh's placement applied
+    vertices = [c for p in points for c in (p.x, p.y, p.z)]
+    triangles = [i for f in facets for i in f]
+    return _require_engine().Mesh.from_arrays(vertices, triangles)
+
+
+def _model(obj, what=None):
+    """("solid", engine Shape) or ("mesh", engine Mesh) for anything the API accepts."""
+    eng = _require_engine()
+    if obj is None:
+        raise TypeError(
+            "expected a solid or a closed mesh (Part.Shape, Mesh.Mesh, document object or file "
+            "path), got None"
+        )
+    if isinstance(obj, eng.Shape):
+        return "solid", obj, what or "shape"
+    if isinstance(obj, eng.Mesh):
+        return "mesh", obj, what or "mesh"
+    if isinstance(obj, (str, bytes, os.PathLike)):
+        path = os.fsdecode(obj)
+        kind, part = eng.read_model(path)
+        return kind, part, what or os.path.basename(path)
+    if _is_part_shape(obj):
+        what = what or ("the given {}".format(obj.ShapeType) if not obj.isNull() else "the shape")
+        return "solid", _engine_shape_from_part(obj, what), what
+    if _is_fc_mesh(obj):
+        what = what or "the mesh"
+        return "mesh", _engine_mesh_from_fc_mesh(obj, what), what
+    if _is_document_object(obj):
+        what = what or _label(obj)
+        if obj.isDerivedFrom("Mesh::Feature"):
+            return _model(obj.Mesh, what)
+        shape = getattr(obj, "Shape", None)
+        if shape is None:
+            try:
+                import Part
+
+                shape = Part.getShape(obj)  # App::Link and other shape-less containers
+            except Exception:
+                shape = None
+        if shape is None or not _is_part_shape(shape):
+            raise TypeError("{} ({}) has no shape or mesh".format(what, obj.TypeId))
+        return _model(shape, what)
+    raise TypeError(
+        "expected a solid or a closed mesh (Part.Shape, Mesh.Mesh, document object or file path), "
+        "got {}".format(type(obj).__name__)
+    )
+
+
+def to_engine_mesh(obj, deflection=None):
+    """The closed triangle mesh (an engine ``Mesh``) the section kernel cuts for ``obj``.
+
+    ``obj`` may be a ``Part.Shape`` holding exactly one closed solid (a compound of one solid is
+    fine), a closed ``Mesh.Mesh``, a FreeCAD document object with such a ``Shape`` or ``Mesh``, a
+    file path (.step/.stp, .iges/.igs, .brep/.brp, .stl, .off), or an engine ``Shape``/``Mesh``.
+    Solids are tessellated with chordal ``deflection`` mm (None or 0: derived from the part's size,
+    see ``deflection()``). Meshes are checked and copied: an inside-out mesh is flipped in the copy.
+
+    Raises EngineError (not_a_solid for a face, shell or wire; multiple_solids; open_mesh;
+    non_finite_coordinate; empty_input; read_failed; unsupported_format), TypeError for anything
+    else, ValueError for a negative or NaN deflection.
+    """
+    d = _deflection_mm(deflection)
+    kind, part, what = _model(obj)
+    eng = _engine
+    if kind == "solid":
+        return eng.tessellate(part.single_solid(what), d)
+    return eng.make_closed(part, what)
+
+
+def deflection(shape, deflection=None):
+    """The chordal deflection (mm) a solid is tessellated with: ``deflection`` if given and > 0,
+    else 0.05% of the part's bounding-box diagonal clamped to [0.005, 0.1] mm.
+
+    A mesh section's boundary lies within about this distance of the exact section, so a section's
+    area differs from the exact one by at most about deflection x perimeter. ``shape`` is anything
+    ``to_engine_mesh`` accepts as a solid; a mesh raises TypeError (it is used as it is).
+    """
+    d = _deflection_mm(deflection)
+    kind, part, what = _model(shape)
+    if kind != "solid":
+        raise TypeError(
+            "{} is a mesh: it is cut as it is, no tessellation deflection applies".format(what))
+    return _engine.effective_deflection(part.single_solid(what), d)
+
+
+def read(path):
+    """Reads a part file: an engine ``Shape`` for .step/.stp, .iges/.igs, .brep/.brp, an engine
+    ``Mesh`` for .stl and .off. Both can be passed to every function here;
+    ``Shape.to_brep_string()`` gives BREP text for ``Part.Shape().importBrepFromString()``.
+
+    Raises EngineError read_failed / empty_input / unsupported_format / non_finite_coordinate.
+    """
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise TypeError("path must be a file name, got {}".format(type(path).__name__))
+    return _require_engine().read_model(os.fsdecode(path))[1]
+
+
+# ---- results -------------------------------------------------------------------------------------
+
+
+def _as_vector(p):
+    return _FreeCAD.Vector(*p) if _FreeCAD is not None else tuple(p)
+
+
+def _as_list(p):
+    return [float(c) for c in p]
+
+
+class Region:
+    """One connected piece of a section: an outer loop and the holes inside it.
+
+    Attributes: ``area`` (mm², outer minus holes), ``centroid`` (area centroid, on the plane),
+    ``bounds`` ((min, max) corners of the outer loop), ``outer`` (the outer loop, counter-clockwise
+    seen from the side the normal points to), ``holes`` (list of loops, clockwise), ``loops``
+    (outer first, then holes). Points are FreeCAD.Vector when FreeCAD is importable, else tuples;
+    a loop's last point is not repeated.
+    """
+
+    __slots__ = ("area", "_centroid", "_bounds", "_loops")
+
+    def __init__(self, data):
+        self.area = data["area"]
+        self._centroid = data["centroid"]
+        self._bounds = data["bounds"]
+        self._loops = data["loops"]
+
+    @property
+    def centroid(self):
+        return _as_vector(self._centroid)
+
+    @property
+    def bounds(self):
+        if self._bounds is None:
+            return None
+        return (_as_vector(self._bounds[0]), _as_vector(self._bounds[1]))
+
+    @property
+    def loops(self):
+        return [[_as_vector(p) for p in loop] for loop in self._loops]
+
+    @property
+    def outer(self):
+        return [_as_vector(p) for p in self._loops[0]] if self._loops else []
+
+    @property
+    def holes(self):
+        return [[_as_vector(p) for p in loop] for loop in self._loops[1:]]
+
+    def to_dict(self):
+        """JSON-ready plain data."""
+        return {
+            "area": self.area,
+            "centroid": _as_list(self._centroid),
+            "bounds": None
+            if self._bounds is None
+            else {"min": _as_list(self._bounds[0]), "max": _as_list(self._bounds[1])},
+            "outer": [_as_list(p) for p in self._loops[0]] if self._loops else [],
+            "holes": [[_as_list(p) for p in loop] for loop in self._loops[1:]],
+        }
+
+    def __repr__(self):
+        return "<MultiAxisSlicer.Region area={:.6g} mm2 holes={}>".format(
+            self.area, max(len(self._loops) - 1, 0)
+        )
+
+
+class Section:
+    """Everything one plane cuts out of a part.
+
+    Attributes: ``origin`` and ``normal`` (unit) of the plane, ``area`` (mm², all regions),
+    ``centroid`` (area centroid of all regions; the plane's origin when
+    empty), ``regions`` (list of ``Region``, largest first), ``open_chains`` (segment chains that
+    did not close: 0 for a closed part). Points are FreeCAD.Vector when FreeCAD is importable.
+    """
+
+    __slots__ = ("area", "open_chains", "regions", "_origin", "_normal", "_centroid")
+
+    def __init__(self, data):
+        self._origin = data["origin"]
+        self._normal = data["normal"]
+        self._centroid = data["centroid"]
+        self.area = data["area"]
+        self.open_chains = data["open_chains"]
+        self.regions = [Region(r) for r in data["regions"]]
+
+    @property
+    def origin(self):
+        return _as_vector(self._origin)
+
+    @property
+    def normal(self):
+        return _as_vector(self._normal)
+
+    @property
+    def centroid(self):
+        return _as_vector(self._centroid)
+
+    def empty(self):
+        """True if the plane misses the part."""
+        return not self.regions
+
+    def to_dict(self):
+        """JSON-ready plain data (lists and floats)."""
+        return {
+            "origin": _as_list(self._origin),
+            "normal": _as_list(self._normal),
+            "area": self.area,
+            "centroid": _as_list(self._centroid),
+            "open_chains": self.open_chains,
+            "regions": [r.to_dict() for r in self.regions],
+        }
+
+    def __repr__(self):
+        return "<MultiAxisSlicer.Section origin={} area={:.6g} mm2 regions={}>".format(
+            tuple(round(c, 6) for c in self._origin), self.area, len(self.regions)
+        )
+
+
+# ---- sections ------------------------------------------------------------------------------------
+
+
+def _planes(planes):
+    """[(origin, normal), ...] as tuples, checked."""
+    if planes is None:
+        raise TypeError("planes must be a list of (origin, normal) pairs, got None")
+    out = []
+    for i, plane in enumerate(planes):
+        try:
+            origin, normal = plane
+        except (TypeError, ValueError):
+            raise TypeError(
+                "planes[{}] must be an (origin, normal) pair, got {!r}".format(i, plane)
+            ) from None
+        out.append(
+            (_point(origin, "planes[{}] origin".format(i)),
+             _direction(normal, "planes[{}] normal".format(i)))
+        )
+    return out
+
+
+def parallel_planes(obj, normal=(0, 0, 1), step=1.0, deflection=None):
+    """[(origin, normal), ...]: planes ``step`` mm apart across ``obj`` along ``normal``, each in
+    the middle of its slab (the planes ``sections()`` cuts). Points are FreeCAD.Vector if
+    available."""
+    n = _direction(normal)
+    step = _length(step, "step")
+    mesh = to_engine_mesh(obj, deflection)
+    return [(_as_vector(o), _as_vector(v)) for o, v in _engine.parallel_planes(mesh, n, step)]
+
+
+def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None):
+    """Cross-sections of a solid or closed mesh by parallel planes ``step`` mm apart along
+    ``normal``, across the part's whole extent, each plane in the middle of its slab.
+
+    ``obj``: see ``to_engine_mesh``. Returns a list of ``Section``, in order along the normal.
+    Raises ValueError for ``step <= 0`` or a zero/NaN ``normal``, TypeError for a wrong type, and
+    EngineError (with ``code``) for a part the engine cannot cut.
+    """
+    n = _direction(normal)
+    step = _length(step, "step")
+    mesh = to_engine_mesh(obj, deflection)
+    planes = _engine.parallel_planes(mesh, n, step)
+    return [Section(d) for d in _engine.slice(mesh, planes, True)]
+
+
+def section(obj, origin, normal, deflection=None):
+    """The cross-section of a solid or closed mesh by one plane through ``origin`` with ``normal``.
+    An empty ``Section`` if the plane misses the part."""
+    plane = (_point(origin, "origin"), _direction(normal))
+    mesh = to_engine_mesh(obj, deflection)
+    return Section(_engine.slice(mesh, [plane], True)[0])
+
+
+def exact_sections(shape, planes, loop_deflection=0.01):
+    """OCCT's exact sections of a solid (no tessellation), as ``Section`` objects: the reference the
+    mesh-based ``sections()`` is checked against, about 100x slower.
+
+    ``shape``: a solid as ``to_engine_mesh`` accepts it (not a mesh). ``planes``: [(origin, normal),
+    ...], e.g. from ``parallel_planes()``. Region loops are discretised within ``loop_deflection``
+    mm; areas and centroids are exact.
+    """
+    planes = _planes(planes)
+    loop_deflection = _length(loop_deflection, "loop_deflection")
+    kind, part, what = _model(shape)
+    if kind != "solid":
+        raise TypeError("exact_sections() needs a solid; {} is a mesh".format(what))
+    solid = part.single_solid(what)
+    return [Section(d) for d in _engine.exact_sections(solid, planes, loop_deflection)]
+
+
+# ---- document objects ----------------------------------------------------------------------------
+
+
+def make_sections(source, normal=(0, 0, 1), step=5.0, deflection=0.0, name="Sections", doc=None):
+    """Adds a parametric ``Sections`` object (FreeCAD only) cutting the document object ``source``
+    and returns it; recompute the document to compute it. See ``MultiAxisSlicer.features``."""
+    from . import features
+
+    return features.make_sections(source, normal=normal, step=step, deflection=deflection,
+                                  name=name, doc=doc)

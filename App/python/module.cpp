@@ -1,0 +1,564 @@
+// Boost.Python module `MultiAxisSlicer._engine`: the engine's stages as plain Python calls.
+// Thin on purpose: Python values in, engine structs through, plain tuples/lists/dicts out. Errors
+// leave as one exception class, EngineError(code, message); the GIL is released around engine work.
+#include "mas/Error.hpp"
+#include "mas/Mesh.hpp"
+#include "mas/Section.hpp"
+#include "mas/Shape.hpp"
+
+// Boost 1.74's Boost.Python still includes deprecated Boost headers; keep the build output quiet.
+#define BOOST_BIND_GLOBAL_PLACEHOLDERS
+#define BOOST_ALLOW_DEPRECATED_HEADERS
+#include <boost/python.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace bp = boost::python;
+
+namespace {
+
+// ---- errors
+// ---------------------------------------------------------------------------------------
+
+PyObject* engine_error_type = nullptr;  // MultiAxisSlicer._engine.EngineError, owned by the module
+
+// Raises EngineError(message) with `code` and `message` attributes. Messages may carry file names
+// in any encoding: undecodable bytes are replaced rather than turning into a UnicodeDecodeError.
+void set_engine_error(const char* code, const std::string& message) {
+    PyObject* text = PyUnicode_DecodeUTF8(message.data(), Py_ssize_t(message.size()), "replace");
+    if (!text) return;  // MemoryError already set
+    PyObject* exc = PyObject_CallOneArg(engine_error_type, text);
+    if (exc) {
+        PyObject* code_obj = PyUnicode_FromString(code);
+        if (code_obj) {
+            PyObject_SetAttrString(exc, "code", code_obj);
+            Py_DECREF(code_obj);
+        }
+        PyObject_SetAttrString(exc, "message", text);
+        PyErr_SetObject(engine_error_type, exc);
+        Py_DECREF(exc);
+    }
+    Py_DECREF(text);
+}
+
+void translate_engine_error(const mas::Error& e) {
+    set_engine_error(mas::to_string(e.code()), e.what());
+}
+
+// Anything else the engine lets through is a bug on our side, reported as such rather than
+// crashing.
+void translate_std_exception(const std::exception& e) {
+    set_engine_error("internal", std::string("internal engine error: ") + e.what());
+}
+
+// Calls function(argument). When it *returns* an exception instance, raises that exception with no
+// Python traceback. FreeCAD prints the traceback of any exception a document object's execute()
+// raises; for bad input (an open mesh, a face instead of a solid) the message is all the user
+// needs. Exceptions the function raises itself (bugs) propagate unchanged, traceback included.
+bp::object call_quietly(const bp::object& function, const bp::object& argument) {
+    bp::object result = function(argument);
+    if (PyExceptionInstance_Check(result.ptr())) {
+        PyException_SetTraceback(result.ptr(), Py_None);
+        PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(result.ptr())), result.ptr());
+        bp::throw_error_already_set();
+    }
+    return result;
+}
+
+[[noreturn]] void invalid_argument(const std::string& message) {
+    throw mas::Error(mas::ErrorCode::InvalidArgument, message);
+}
+
+// ---- the GIL
+// ---------------------------------------------------------------------------------------
+
+// Lets other Python threads (FreeCAD's GUI among them) run while the engine works. No Python object
+// may be touched while an instance is alive: convert inputs before, outputs after.
+class GilRelease {
+public:
+    GilRelease() : state_(PyEval_SaveThread()) {}
+    ~GilRelease() { PyEval_RestoreThread(state_); }
+    GilRelease(const GilRelease&) = delete;
+    GilRelease& operator=(const GilRelease&) = delete;
+
+private:
+    PyThreadState* state_;
+};
+
+// ---- conversions
+// ---------------------------------------------------------------------------------
+
+// A new reference to a list/tuple view of any sequence or iterable; invalid_argument otherwise.
+bp::handle<> fast_sequence(const bp::object& value, const std::string& what) {
+    PyObject* seq = PySequence_Fast(value.ptr(), "");
+    if (!seq) {
+        PyErr_Clear();
+        invalid_argument(what + " must be a sequence, not '" + Py_TYPE(value.ptr())->tp_name + "'");
+    }
+    return bp::handle<>(seq);
+}
+
+double number_at(PyObject* item, const std::string& what, Py_ssize_t index) {
+    const double x = PyFloat_AsDouble(item);
+    if (x == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        invalid_argument(what + "[" + std::to_string(index) + "] is not a number but '" +
+                         Py_TYPE(item)->tp_name + "'");
+    }
+    return x;
+}
+
+// Three numbers from a tuple, a list or anything iterable (a FreeCAD.Vector converts on the Python
+// side).
+Eigen::Vector3d vector3(const bp::object& value, const std::string& what) {
+    bp::handle<> seq = fast_sequence(value, what);
+    if (PySequence_Fast_GET_SIZE(seq.get()) != 3)
+        invalid_argument(what + " must have 3 coordinates, got " +
+                         std::to_string(PySequence_Fast_GET_SIZE(seq.get())));
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    return {number_at(items[0], what, 0), number_at(items[1], what, 1),
+            number_at(items[2], what, 2)};
+}
+
+double finite_number(double x, const std::string& what) {
+    if (!std::isfinite(x))
+        invalid_argument(what + " must be a finite number, got " + std::to_string(x));
+    return x;
+}
+
+bp::tuple to_py(const Eigen::Vector3d& p) { return bp::make_tuple(p.x(), p.y(), p.z()); }
+
+// ((xmin, ymin, zmin), (xmax, ymax, zmax)), or None for an empty box.
+bp::object to_py(const Eigen::AlignedBox3d& box) {
+    if (box.isEmpty()) return bp::object();
+    return bp::make_tuple(to_py(box.min()), to_py(box.max()));
+}
+
+// [(origin, normal), ...] -> planes; each plane is checked by mas::make_plane (zero normal, NaN).
+std::vector<mas::Plane> planes_from_py(const bp::object& value) {
+    bp::handle<> seq = fast_sequence(value, "planes");
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    std::vector<mas::Plane> planes;
+    planes.reserve(std::size_t(n));
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        const std::string what = "planes[" + std::to_string(i) + "]";
+        bp::handle<> pair = fast_sequence(bp::object(bp::handle<>(bp::borrowed(items[i]))), what);
+        if (PySequence_Fast_GET_SIZE(pair.get()) != 2)
+            invalid_argument(what + " must be an (origin, normal) pair");
+        PyObject** on = PySequence_Fast_ITEMS(pair.get());
+        const Eigen::Vector3d origin =
+            vector3(bp::object(bp::handle<>(bp::borrowed(on[0]))), what + " origin");
+        const Eigen::Vector3d normal =
+            vector3(bp::object(bp::handle<>(bp::borrowed(on[1]))), what + " normal");
+        try {
+            planes.push_back(mas::make_plane(origin, normal));
+        } catch (const mas::Error& e) {
+            throw mas::Error(e.code(), what + ": " + e.what());
+        }
+    }
+    return planes;
+}
+
+bp::tuple plane_to_py(const mas::Plane& plane) {
+    return bp::make_tuple(to_py(plane.origin), to_py(plane.normal));
+}
+
+// One section as plain data: the regions carry their loops in 3-D, outer loop first.
+bp::dict section_to_py(const mas::Section& section) {
+    bp::dict out;
+    out["origin"] = to_py(section.plane.origin);
+    out["normal"] = to_py(section.plane.normal);
+    out["area"] = section.area;
+    out["centroid"] = to_py(section.centroid);
+    out["open_chains"] = section.open_chains;
+    bp::list regions;
+    for (std::size_t r = 0; r < section.regions.size(); ++r) {
+        const mas::SectionRegion& region = section.regions[r];
+        bp::dict d;
+        d["area"] = region.area;
+        d["centroid"] = to_py(region.centroid);
+        d["bounds"] = to_py(region.bounds);
+        bp::list loops;
+        for (const auto& loop : section.loops_3d(r)) {
+            bp::list points;
+            for (const auto& p : loop) points.append(to_py(p));
+            loops.append(points);
+        }
+        d["loops"] = loops;
+        regions.append(d);
+    }
+    out["regions"] = regions;
+    return out;
+}
+
+bp::list sections_to_py(const std::vector<mas::Section>& sections) {
+    bp::list out;
+    for (const auto& s : sections) out.append(section_to_py(s));
+    return out;
+}
+
+mas::TessellationParams tessellation_params(double deflection, double angular_deflection) {
+    mas::TessellationParams params;
+    params.deflection_mm = finite_number(deflection, "deflection");  // <= 0: derived from the part
+    params.angular_deflection_rad = finite_number(angular_deflection, "angular_deflection");
+    if (!(params.angular_deflection_rad > 0.0))
+        invalid_argument("angular_deflection must be positive");
+    return params;
+}
+
+// ---- stage: shapes (OCCT behind a handle)
+// ----------------------------------------------------------
+
+mas::Shape shape_from_brep_string(const std::string& brep) {
+    GilRelease nogil;
+    return mas::Shape::from_brep_string(brep);
+}
+
+std::string shape_to_brep_string(const mas::Shape& shape) {
+    GilRelease nogil;
+    return shape.to_brep_string();
+}
+
+bp::dict shape_info(const mas::Shape& shape) {
+    mas::ShapeInfo info;
+    {
+        GilRelease nogil;
+        info = shape.info();
+    }
+    bp::dict d;
+    d["solids"] = info.solids;
+    d["shells"] = info.shells;
+    d["faces"] = info.faces;
+    d["edges"] = info.edges;
+    d["free_faces"] = info.free_faces;
+    d["free_edges"] = info.free_edges;
+    d["volume_mm3"] = info.volume_mm3;
+    d["bounds"] = to_py(info.bounds);
+    return d;
+}
+
+mas::Shape shape_single_solid(const mas::Shape& shape, const std::string& what) {
+    GilRelease nogil;
+    return shape.single_solid(what);
+}
+
+std::string shape_repr(const mas::Shape& shape) {
+    if (shape.is_null()) return "<MultiAxisSlicer._engine.Shape null>";
+    const mas::ShapeInfo info = shape.info();
+    return "<MultiAxisSlicer._engine.Shape solids=" + std::to_string(info.solids) +
+           " faces=" + std::to_string(info.faces) + ">";
+}
+
+void bind_shape() {
+    bp::class_<mas::Shape>("Shape",
+                           "An immutable OCCT shape (copies share geometry). Create it with "
+                           "Shape.from_brep_string(text) or read_model(path).",
+                           bp::no_init)
+        .def("from_brep_string", &shape_from_brep_string, bp::arg("brep"),
+             "Shape from BREP text, as FreeCAD's Part.Shape.exportBrepToString() writes it.")
+        .staticmethod("from_brep_string")
+        .def("to_brep_string", &shape_to_brep_string,
+             "BREP text; Part.Shape().importBrepFromString(text) reads it back.")
+        .def("is_null", &mas::Shape::is_null)
+        .def("info", &shape_info,
+             "dict: solids, shells, faces, edges, free_faces, free_edges, volume_mm3, bounds "
+             "((min), (max)) or None.")
+        .def("single_solid", &shape_single_solid, bp::arg("what"),
+             "The one closed solid in the shape; EngineError not_a_solid / multiple_solids / "
+             "empty_input otherwise. `what` names the input in the message.")
+        .def("__repr__", &shape_repr);
+}
+
+// ---- stage: triangle meshes
+// ------------------------------------------------------------------------
+
+// A mesh from flat arrays [x0, y0, z0, x1, ...] and [a0, b0, c0, a1, ...]: every value is checked
+// here, so the engine never sees a NaN vertex or an index out of range.
+mas::TriangleMesh mesh_from_arrays(const bp::object& vertices, const bp::object& triangles) {
+    mas::TriangleMesh mesh;
+    {
+        bp::handle<> seq = fast_sequence(vertices, "vertices");
+        const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+        if (n % 3 != 0)
+            invalid_argument("vertices must be a flat sequence of x, y, z values; its length " +
+                             std::to_string(n) + " is not a multiple of 3");
+        PyObject** items = PySequence_Fast_ITEMS(seq.get());
+        mesh.vertices.reserve(std::size_t(n / 3));
+        for (Py_ssize_t i = 0; i < n; i += 3) {
+            const Eigen::Vector3d p(number_at(items[i], "vertices", i),
+                                    number_at(items[i + 1], "vertices", i + 1),
+                                    number_at(items[i + 2], "vertices", i + 2));
+            if (!p.allFinite())
+                throw mas::Error(
+                    mas::ErrorCode::NonFiniteCoordinate,
+                    "vertex " + std::to_string(i / 3) + " has a NaN or infinite coordinate");
+            mesh.vertices.push_back(p);
+        }
+    }
+    {
+        bp::handle<> seq = fast_sequence(triangles, "triangles");
+        const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+        if (n % 3 != 0)
+            invalid_argument(
+                "triangles must be a flat sequence of vertex indices a, b, c; its "
+                "length " +
+                std::to_string(n) + " is not a multiple of 3");
+        PyObject** items = PySequence_Fast_ITEMS(seq.get());
+        const long long vertex_count = static_cast<long long>(mesh.vertices.size());
+        mesh.triangles.reserve(std::size_t(n / 3));
+        Eigen::Vector3i t;
+        for (Py_ssize_t i = 0; i < n; ++i) {
+            const long long index = PyLong_AsLongLong(items[i]);
+            if (index == -1 && PyErr_Occurred()) {
+                PyErr_Clear();
+                invalid_argument("triangles[" + std::to_string(i) + "] is not an integer but '" +
+                                 Py_TYPE(items[i])->tp_name + "'");
+            }
+            if (index < 0 || index >= vertex_count)
+                invalid_argument("triangles[" + std::to_string(i) + "] = " + std::to_string(index) +
+                                 " is not a vertex index (there are " +
+                                 std::to_string(vertex_count) + " vertices)");
+            t[int(i % 3)] = int(index);
+            if (i % 3 == 2) mesh.triangles.push_back(t);
+        }
+    }
+    return mesh;
+}
+
+std::size_t mesh_vertex_count(const mas::TriangleMesh& mesh) { return mesh.vertices.size(); }
+std::size_t mesh_triangle_count(const mas::TriangleMesh& mesh) { return mesh.triangles.size(); }
+
+bp::list mesh_vertices(const mas::TriangleMesh& mesh) {
+    bp::list out;
+    for (const auto& p : mesh.vertices) out.append(to_py(p));
+    return out;
+}
+
+bp::list mesh_triangles(const mas::TriangleMesh& mesh) {
+    bp::list out;
+    for (const auto& t : mesh.triangles) out.append(bp::make_tuple(t[0], t[1], t[2]));
+    return out;
+}
+
+bp::dict mesh_check(const mas::TriangleMesh& mesh) {
+    mas::MeshReport r;
+    {
+        GilRelease nogil;
+        r = mas::check_mesh(mesh);
+    }
+    bp::dict d;
+    d["vertices"] = r.vertices;
+    d["triangles"] = r.triangles;
+    d["non_finite_vertices"] = r.non_finite_vertices;
+    d["degenerate_triangles"] = r.degenerate_triangles;
+    d["boundary_edges"] = r.boundary_edges;
+    d["non_manifold_edges"] = r.non_manifold_edges;
+    d["inconsistent_edges"] = r.inconsistent_edges;
+    d["volume_mm3"] = r.volume_mm3;
+    d["closed"] = r.closed();
+    return d;
+}
+
+bp::object mesh_bounds(const mas::TriangleMesh& mesh) { return to_py(mas::bounding_box(mesh)); }
+
+std::string mesh_repr(const mas::TriangleMesh& mesh) {
+    return "<MultiAxisSlicer._engine.Mesh vertices=" + std::to_string(mesh.vertices.size()) +
+           " triangles=" + std::to_string(mesh.triangles.size()) + ">";
+}
+
+// A checked copy: closed, finite, outward-oriented (an inside-out copy is flipped); the argument
+// itself is never changed.
+mas::TriangleMesh make_closed(const mas::TriangleMesh& mesh, const std::string& what) {
+    mas::TriangleMesh copy = mesh;
+    GilRelease nogil;
+    mas::require_closed_mesh(copy, what);
+    return copy;
+}
+
+void bind_mesh() {
+    bp::class_<mas::TriangleMesh>(
+        "Mesh",
+        "An indexed triangle mesh (mm), triangles counter-clockwise seen "
+        "from outside. Create it with Mesh.from_arrays(), tessellate() or "
+        "read_model().",
+        bp::no_init)
+        .def("from_arrays", &mesh_from_arrays, (bp::arg("vertices"), bp::arg("triangles")),
+             "Mesh from a flat sequence of vertex coordinates [x0, y0, z0, x1, ...] and a flat "
+             "sequence of vertex indices [a0, b0, c0, ...]. EngineError invalid_argument on wrong "
+             "lengths, non-numbers or indices out of range, non_finite_coordinate on NaN/inf.")
+        .staticmethod("from_arrays")
+        .def("vertex_count", &mesh_vertex_count)
+        .def("triangle_count", &mesh_triangle_count)
+        .def("vertices", &mesh_vertices, "[(x, y, z), ...]")
+        .def("triangles", &mesh_triangles, "[(a, b, c), ...]")
+        .def("check", &mesh_check,
+             "dict: vertices, triangles, non_finite_vertices, degenerate_triangles, "
+             "boundary_edges, non_manifold_edges, inconsistent_edges, volume_mm3, closed.")
+        .def("bounds", &mesh_bounds, "((xmin, ymin, zmin), (xmax, ymax, zmax)), None if empty.")
+        .def("__repr__", &mesh_repr);
+
+    bp::def("make_closed", &make_closed, (bp::arg("mesh"), bp::arg("what") = "mesh"),
+            "A checked copy of `mesh`: EngineError empty_input / open_mesh / non_finite_coordinate "
+            "unless it is a closed, consistently oriented surface; an inside-out mesh is flipped.");
+}
+
+// ---- stage: reading parts
+// ------------------------------------------------------------------------
+
+bp::tuple read_model(const std::string& path) {
+    mas::Model model;
+    {
+        GilRelease nogil;
+        model = mas::read_model(path);
+    }
+    if (model.kind == mas::Model::Kind::Solid)
+        return bp::make_tuple("solid", bp::object(model.shape));
+    return bp::make_tuple("mesh", bp::object(model.mesh));
+}
+
+mas::TriangleMesh model_mesh(const std::string& path, double deflection,
+                             double angular_deflection) {
+    const mas::TessellationParams params = tessellation_params(deflection, angular_deflection);
+    GilRelease nogil;
+    return mas::model_mesh(mas::read_model(path), params);
+}
+
+void bind_read() {
+    bp::def("read_model", &read_model, bp::arg("path"),
+            "(kind, part) from a .step/.stp, .iges/.igs, .brep/.brp, .stl or .off file: "
+            "('solid', Shape) or ('mesh', Mesh). EngineError read_failed / empty_input / "
+            "unsupported_format / non_finite_coordinate.");
+    bp::def("model_mesh", &model_mesh,
+            (bp::arg("path"), bp::arg("deflection") = 0.0, bp::arg("angular_deflection") = 0.35),
+            "The closed mesh the section kernel cuts for the part in a file: a solid is "
+            "tessellated, a mesh is checked.");
+}
+
+// ---- stage: tessellation
+// -------------------------------------------------------------------------
+
+double effective_deflection(const mas::Shape& shape, double deflection, double angular_deflection) {
+    const mas::TessellationParams params = tessellation_params(deflection, angular_deflection);
+    GilRelease nogil;
+    return mas::effective_deflection(shape, params);
+}
+
+mas::TriangleMesh tessellate(const mas::Shape& shape, double deflection,
+                             double angular_deflection) {
+    const mas::TessellationParams params = tessellation_params(deflection, angular_deflection);
+    GilRelease nogil;
+    return mas::tessellate(shape, params);
+}
+
+void bind_tessellate() {
+    bp::def("effective_deflection", &effective_deflection,
+            (bp::arg("shape"), bp::arg("deflection") = 0.0, bp::arg("angular_deflection") = 0.35),
+            "Chordal deflection (mm) tessellate() uses: `deflection` if > 0, else derived from "
+            "the part's size.");
+    bp::def(
+        "tessellate", &tessellate,
+        (bp::arg("shape"), bp::arg("deflection") = 0.0, bp::arg("angular_deflection") = 0.35),
+        "Closed, outward-oriented triangle mesh of the shape's one solid; deflection <= 0 means "
+        "automatic. EngineError not_a_solid / multiple_solids / geometry_failure.");
+}
+
+// ---- stage: cross-sections of a mesh
+// ---------------------------------------------------------------
+
+bp::list parallel_planes(const mas::TriangleMesh& mesh, const bp::object& normal, double step) {
+    const Eigen::Vector3d n = vector3(normal, "normal");
+    std::vector<mas::Plane> planes;
+    {
+        GilRelease nogil;
+        planes = mas::parallel_planes(mesh, n, step);
+    }
+    bp::list out;
+    for (const auto& p : planes) out.append(plane_to_py(p));
+    return out;
+}
+
+bp::list slice(const mas::TriangleMesh& mesh, const bp::object& planes_py, bool build_regions) {
+    const std::vector<mas::Plane> planes = planes_from_py(planes_py);
+    mas::SliceParams params;
+    params.build_regions = build_regions;
+    std::vector<mas::Section> sections;
+    {
+        GilRelease nogil;
+        sections = mas::slice_mesh(mesh, planes, params);
+    }
+    return sections_to_py(sections);
+}
+
+void bind_section() {
+    bp::def(
+        "parallel_planes", &parallel_planes, (bp::arg("mesh"), bp::arg("normal"), bp::arg("step")),
+        "[(origin, normal), ...]: planes `step` mm apart across the mesh along `normal`, each in "
+        "the middle of its slab. EngineError invalid_argument on a bad step or normal.");
+    bp::def(
+        "slice", &slice, (bp::arg("mesh"), bp::arg("planes"), bp::arg("build_regions") = true),
+        "Cuts a closed mesh by planes [(origin, normal), ...]; one dict per plane: origin, normal, "
+        "area (mm^2), centroid, open_chains, regions [{area, centroid, bounds, loops}] where "
+        "loops[0] is the outer loop and the rest are holes, each [(x, y, z), ...].");
+}
+
+// ---- stage: OCCT's exact sections (the reference)
+// ------------------------------------------------
+
+bp::list exact_sections(const mas::Shape& shape, const bp::object& planes_py,
+                        double loop_deflection) {
+    const std::vector<mas::Plane> planes = planes_from_py(planes_py);
+    finite_number(loop_deflection, "loop_deflection");
+    if (!(loop_deflection > 0.0)) invalid_argument("loop_deflection must be positive");
+    std::vector<mas::Section> sections;
+    {
+        GilRelease nogil;
+        sections = mas::exact_sections(shape, planes, loop_deflection);
+    }
+    return sections_to_py(sections);
+}
+
+void bind_exact_section() {
+    bp::def(
+        "exact_sections", &exact_sections,
+        (bp::arg("shape"), bp::arg("planes"), bp::arg("loop_deflection") = 0.01),
+        "OCCT's exact sections of a solid, as dicts like slice() returns; loops are discretised "
+        "within `loop_deflection` mm. About 100x slower than slice().");
+}
+
+}  // namespace
+
+BOOST_PYTHON_MODULE(_engine) {
+    bp::scope module;
+    module.attr("__doc__") =
+        "Multi-Axis Slicer's C++ engine. Use the MultiAxisSlicer package; this module is its "
+        "low-level layer.";
+
+    bp::dict class_attrs;
+    class_attrs["code"] = "internal";
+    class_attrs["message"] = "";
+    class_attrs["__doc__"] =
+        "An engine failure or bad input: `code` is a stable name such as 'open_mesh', "
+        "'not_a_solid' or 'invalid_argument'; `message` (= str(error)) says what and where.";
+    engine_error_type = PyErr_NewException("MultiAxisSlicer._engine.EngineError",
+                                           PyExc_RuntimeError, class_attrs.ptr());
+    if (!engine_error_type) bp::throw_error_already_set();
+    module.attr("EngineError") = bp::object(bp::handle<>(bp::borrowed(engine_error_type)));
+
+    // Boost.Python tries the most recently registered translator first: the specific one goes last.
+    bp::register_exception_translator<std::exception>(&translate_std_exception);
+    bp::register_exception_translator<mas::Error>(&translate_engine_error);
+
+    bp::def(
+        "call_quietly", &call_quietly, (bp::arg("function"), bp::arg("argument")),
+        "function(argument); if that returns an exception instance, raises it without a Python "
+        "traceback (FreeCAD reports a document object's recompute error by its message alone).");
+
+    bind_shape();
+    bind_mesh();
+    bind_read();
+    bind_tessellate();
+    bind_section();
+    bind_exact_section();
+}

@@ -1,0 +1,146 @@
+"""The multiaxis-slicer command-line program on real files: exact sections, JSON, and bad input.
+
+Run by ctest with MAS_CLI (the program) and MAS_TEST_DATA (tests/data) in the environment.
+"""
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+CLI = os.environ.get("MAS_CLI", "multiaxis-slicer")
+DATA = os.environ.get("MAS_TEST_DATA", os.path.join(os.path.dirname(__file__), "..", "data"))
+
+
+def run(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
+
+
+def box_stl(x, y, z, drop_last=False, nan=False):
+    """ASCII STL of the box [0,x]x[0,y]x[0,z], 12 outward triangles (optionally broken)."""
+    c = [(x * (i & 1), y * ((i >> 1) & 1), z * ((i >> 2) & 1)) for i in range(8)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    tris = [t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+    if drop_last:
+        tris = tris[:-1]
+    lines = ["solid box"]
+    for k, t in enumerate(tris):
+        lines.append(" facet normal 0 0 0\n  outer loop")
+        for i in t:
+            p = c[i]
+            if nan and k == 0 and i == t[0]:
+                p = ("nan", p[1], p[2])
+            lines.append("   vertex %s %s %s" % p)
+        lines.append("  endloop\n endfacet")
+    lines.append("endsolid box")
+    return "\n".join(lines) + "\n"
+
+
+class CliSections(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, name, text):
+        path = os.path.join(self.tmp.name, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def json_sections(self, *args):
+        r = run("sections", *args, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return json.loads(r.stdout)
+
+    def test_box_step_sections_are_the_footprint(self):
+        doc = self.json_sections(os.path.join(DATA, "box_10x20x30.step"), "--step", "5")
+        self.assertEqual(doc["kind"], "solid")
+        self.assertEqual(len(doc["sections"]), 6)
+        for i, s in enumerate(doc["sections"]):
+            self.assertAlmostEqual(s["offset_mm"], 2.5 + 5 * i, places=9)
+            self.assertAlmostEqual(s["area_mm2"], 200.0, places=6)
+            self.assertEqual(len(s["regions"]), 1)
+            for got, want in zip(s["centroid"], (5, 10, 2.5 + 5 * i)):
+                self.assertAlmostEqual(got, want, places=9)
+
+    def test_sideways_normal_on_brep_l_block(self):
+        # Along +X: x < 20 cuts column and arm together (20 x 60); beyond, the arm alone (20 x 20).
+        doc = self.json_sections(os.path.join(DATA, "l_block.brep"), "--normal", "1,0,0",
+                                 "--step", "10")
+        self.assertEqual(len(doc["sections"]), 7)
+        self.assertEqual(doc["normal"], [1, 0, 0])
+        areas = [s["area_mm2"] for s in doc["sections"]]
+        for a, want in zip(areas, [1200, 1200, 400, 400, 400, 400, 400]):
+            self.assertAlmostEqual(a, want, places=6)
+
+    def test_iges_and_stl_read_too(self):
+        iges = self.json_sections(os.path.join(DATA, "l_block.iges"), "--step", "20")
+        self.assertAlmostEqual(iges["sections"][2]["area_mm2"], 1400.0, places=6)  # z = 50: arm
+        stl = self.json_sections(self.write("box.stl", box_stl(10, 20, 30)), "--step", "10")
+        self.assertEqual(stl["kind"], "mesh")
+        self.assertEqual(stl["triangles"], 12)
+        self.assertEqual([round(s["area_mm2"], 9) for s in stl["sections"]], [200.0] * 3)
+
+    def test_cylinder_within_deflection(self):
+        doc = self.json_sections(os.path.join(DATA, "cylinder_r10_h40.stp"), "--step", "10",
+                                 "--deflection", "0.01")
+        self.assertEqual(doc["deflection_mm"], 0.01)
+        for s in doc["sections"]:
+            exact = math.pi * 100
+            self.assertLessEqual(s["area_mm2"], exact + 1e-9)
+            self.assertGreaterEqual(s["area_mm2"], exact - 2 * math.pi * 10 * 0.01)
+
+    def test_text_output_and_json_file(self):
+        box = os.path.join(DATA, "box_10x20x30.step")
+        r = run("sections", box, "--step", "10")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = [l.split() for l in r.stdout.splitlines() if not l.startswith("#")]
+        self.assertEqual(len(rows), 3)
+        self.assertEqual(rows[1][:4], ["15.0000", "1", "0", "200.0000"])
+        out = os.path.join(self.tmp.name, "s.json")
+        r = run("sections", box, "--step", "10", "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            self.assertEqual(len(json.load(f)["sections"]), 3)
+
+    def expect_error(self, args, exit_code, *words):
+        r = run(*args)
+        self.assertEqual(r.returncode, exit_code, r.stdout + r.stderr)
+        lines = r.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, r.stderr)
+        for w in words:
+            self.assertIn(w, lines[0])
+        self.assertEqual(r.stdout, "")
+
+    def test_bad_input_gives_one_line_and_non_zero_exit(self):
+        box = os.path.join(DATA, "box_10x20x30.step")
+        self.expect_error(["sections", os.path.join(self.tmp.name, "missing.step")], 1,
+                          "read_failed", "missing.step")
+        self.expect_error(["sections", self.write("empty.step", "")], 1, "empty")
+        with open(box) as f:
+            truncated = f.read()[:2000]
+        self.expect_error(["sections", self.write("cut.step", truncated)], 1, "cut.step")
+        self.expect_error(["sections", self.write("holes.stl", box_stl(1, 1, 1, drop_last=True))],
+                          1, "open_mesh", "boundary edges")
+        self.expect_error(["sections", self.write("nan.stl", box_stl(1, 1, 1, nan=True))], 1,
+                          "non_finite")
+        self.expect_error(["sections", self.write("part.xyz", "x")], 1, "unsupported")
+        self.expect_error(["sections", box, "--step", "0"], 2, "--step", "positive")
+        self.expect_error(["sections", box, "--step", "-2"], 2, "--step")
+        self.expect_error(["sections", box, "--step", "nan"], 2, "--step")
+        self.expect_error(["sections", box, "--normal", "0,0,0"], 2, "zero vector")
+        self.expect_error(["sections", box, "--normal", "1,2"], 2, "X,Y,Z")
+        self.expect_error(["sections"], 2, "FILE")
+        self.expect_error(["explode", box], 2, "unknown command")
+
+    def test_help(self):
+        r = run("--help")
+        self.assertEqual(r.returncode, 0)
+        self.assertIn("sections", r.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,21 @@
+# Regenerates the CAD fixtures in tests/data (run from the repository root):
+#   freecadcmd tests/data/make_test_data.py
+# box_10x20x30.step   box [0,10]x[0,20]x[0,30]
+# l_block.brep        paper Fig. 7: column [0,20]x[0,20]x[0,60] + arm [20,70]x[0,20]x[40,60]
+# l_block.iges        the same
+# cylinder_r10_h40.stp  cylinder of radius 10, height 40 on the XY plane, axis Z through (0,0)
+import os
+
+import FreeCAD
+import Part
+
+here = os.path.join(os.getcwd(), "tests", "data")
+V = FreeCAD.Vector
+
+Part.makeBox(10, 20, 30).exportStep(os.path.join(here, "box_10x20x30.step"))
+l_block = Part.makeBox(20, 20, 60).fuse(Part.makeBox(50, 20, 20, V(20, 0, 40))).removeSplitter()
+l_block = l_block.Solids[0]
+l_block.exportBrep(os.path.join(here, "l_block.brep"))
+l_block.exportIges(os.path.join(here, "l_block.iges"))
+Part.makeCylinder(10, 40).exportStep(os.path.join(here, "cylinder_r10_h40.stp"))
+print("test data written to", here)

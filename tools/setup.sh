@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Multi-Axis Slicer set-up: installs the Debian packages it needs (only those missing), configures
+# with FreeCAD's Python, builds, and then, by mode:
+#   install  installs the workbench into ~/.local/share/FreeCAD/Mod/MultiAxisSlicer
+#   demo     install, then run the main job headless on the bundled example part (results in out/)
+#   test     build and run every test (ctest: engine, CLI, freecadcmd, GUI under Xvfb)
+#   build    build only
+# Idempotent: run it again after a pull.
+set -euo pipefail
+mode=${1:-install}
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${MAS_BUILD_DIR:-$root/build}
+jobs=$(nproc 2>/dev/null || echo 2)
+
+packages=(
+  build-essential cmake pkg-config
+  freecad
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
+  libocct-data-exchange-dev
+  libboost-python-dev libeigen3-dev libpolyclipping-dev libtbb-dev
+  libgtest-dev libbenchmark-dev
+  linuxcnc-uspace xvfb xauth
+)
+
+install_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "setup: installing ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+configure_and_build() {
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3.11
+  cmake --build "$build" -j "$jobs"
+}
+
+install_addon() {
+  local mod="$HOME/.local/share/FreeCAD/Mod/MultiAxisSlicer"
+  rm -rf "$mod"
+  cmake --install "$build" --prefix "$mod" >/dev/null
+  echo "setup: workbench installed in $mod"
+}
+
+install_packages
+configure_and_build
+case "$mode" in
+  build) ;;
+  install) install_addon ;;
+  demo)
+    install_addon
+    mkdir -p "$root/out"
+    (cd "$root" && MAS_EXAMPLE="$root/examples/bracket.step" MAS_OUT="$root/out" \
+      freecadcmd "$root/tools/main_job.py" 2>&1 | tee "$root/out/main_job.log")
+    grep -q "main job: done" "$root/out/main_job.log"
+    ;;
+  test)
+    cd "$build"
+    ctest --output-on-failure -j 1
+    ;;
+  *) echo "usage: tools/setup.sh [install|demo|test|build]" >&2; exit 2 ;;
+esac

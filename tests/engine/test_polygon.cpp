@@ -95,3 +95,28 @@ TEST(PolygonOffset, ShrinkingPastHalfWidthLeavesNothing) {
     EXPECT_NEAR(mas::area(mas::offset(region(rect(0, 0, 10, 4)), -1.0, mas::JoinType::Miter)), 16.0,
                 1e-9);
 }
+
+TEST(PolygonSimplify, CornersStayEvenBesideNearDuplicatePoints) {
+    // A slice just above a box's bottom edge: points a hair off each corner, mid-edge points.
+    const mas::Polygon2 p{
+        {{0.000333, 0}, {10, 0}, {10, 1.3}, {10, 20}, {0.6, 20}, {0, 20}, {0, 0.000667}, {0, 0}}};
+    const auto s = mas::simplify(p, 0.02);
+    EXPECT_EQ(s.points.size(), 4u);
+    EXPECT_DOUBLE_EQ(mas::signed_area(s), 200.0);
+}
+
+TEST(PolygonSimplify, FacetedCircleLosesPointsWithinTolerance) {
+    mas::Polygon2 circle;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i)
+        circle.points.emplace_back(10 * std::cos(2 * M_PI * i / n),
+                                   10 * std::sin(2 * M_PI * i / n));
+    const double tol = 0.01;
+    const auto s = mas::simplify(circle, tol);
+    EXPECT_LT(s.points.size(), 200u);
+    EXPECT_GT(mas::signed_area(s), 0.0);
+    // Every dropped point lies within tol of the simplified outline: the area loss is at most
+    // perimeter x tol.
+    EXPECT_LE(mas::signed_area(circle) - mas::signed_area(s), 2 * M_PI * 10 * tol);
+    EXPECT_GE(mas::signed_area(circle) - mas::signed_area(s), 0.0);
+}

@@ -47,6 +47,13 @@ Regions2 intersection(const Regions2& a, const Regions2& b);
 Regions2 difference(const Regions2& a, const Regions2& b);
 Regions2 union_of(const Regions2& a, const Regions2& b);
 
+// Simplifies a closed polygon: drops a point where the outline turns by less than 15 degrees if
+// every point dropped since the last kept one lies within `tolerance_mm` of the new edge. Corners
+// stay, so exact outlines stay exact; faceted curves lose most of their points. Keeps orientation
+// and at least three points.
+Polygon2 simplify(const Polygon2& polygon, double tolerance_mm);
+Region2 simplify(const Region2& region, double tolerance_mm);
+
 enum class JoinType { Miter, Round, Square };
 
 // Grows (delta > 0) or shrinks (delta < 0) regions by `delta_mm`. Round joins approximate arcs

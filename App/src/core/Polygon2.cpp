@@ -110,6 +110,63 @@ bool contains(const Region2& region, const Eigen::Vector2d& point) {
     return true;
 }
 
+namespace {
+
+double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+    const Eigen::Vector2d e = b - a;
+    const double len2 = e.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((p - a).dot(e) / len2, 0.0, 1.0) : 0.0;
+    return (a + t * e - p).norm();
+}
+
+}  // namespace
+
+Polygon2 simplify(const Polygon2& polygon, double tolerance_mm) {
+    const auto& p = polygon.points;
+    const std::size_t n = p.size();
+    if (n <= 3 || !(tolerance_mm > 0.0)) return polygon;
+    // Start at a corner (the sharpest turn), so the walk never begins inside a run to drop.
+    const double cos_limit = std::cos(15.0 * M_PI / 180.0);
+    auto turn_cos = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                        const Eigen::Vector2d& c) {
+        const Eigen::Vector2d u = b - a, v = c - b;
+        const double nu = u.norm(), nv = v.norm();
+        return nu > 0.0 && nv > 0.0 ? u.dot(v) / (nu * nv) : 1.0;
+    };
+    std::size_t start = 0;
+    double sharpest = 2.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double c = turn_cos(p[(i + n - 1) % n], p[i], p[(i + 1) % n]);
+        if (c < sharpest) {
+            sharpest = c;
+            start = i;
+        }
+    }
+    Polygon2 out;
+    out.points.push_back(p[start]);
+    std::size_t run_begin = 1;  // first dropped point of the current run, as an offset from start
+    for (std::size_t k = 1; k < n; ++k) {
+        const Eigen::Vector2d& cur = p[(start + k) % n];
+        const Eigen::Vector2d& next = p[(start + k + 1) % n];
+        bool drop = turn_cos(out.points.back(), cur, next) >= cos_limit;
+        for (std::size_t j = run_begin; drop && j <= k; ++j)
+            drop = segment_distance(p[(start + j) % n], out.points.back(), next) <= tolerance_mm;
+        if (!drop) {
+            out.points.push_back(cur);
+            run_begin = k + 1;
+        }
+    }
+    if (out.points.size() < 3) return polygon;
+    return out;
+}
+
+Region2 simplify(const Region2& region, double tolerance_mm) {
+    Region2 out{simplify(region.outer, tolerance_mm), {}};
+    for (const auto& h : region.holes) out.holes.push_back(simplify(h, tolerance_mm));
+    return out;
+}
+
 Regions2 regions_from_loops(std::vector<Polygon2> loops, double min_area_mm2) {
     struct Outer {
         std::size_t loop;

@@ -1,0 +1,122 @@
+// Centroidal axis (paper Sec. 3, Fig. 9): centroids of planar cross-sections marched along the
+// part from its base, turning among +-X, +-Y, +-Z where the part turns, with branch topology.
+//
+// Readings of the paper chosen here (each tested in tests/engine/test_axis.cpp):
+// - Every outer loop of a section is its own node (Sec. 3.1). A section region continues the
+//   track of the lower region it overlaps most, projected along the march direction (Eq. 2).
+//   A lower region overlapped by several upper regions splits: each becomes a new branch in the
+//   same direction, child of the lower one's branch. Upper regions overlapping no lower region
+//   of the march belong to other geometry and are left to the search that reaches them.
+// - Eq. 2 on a region U over its lower region(s) L: the parts of U - L, dA_k, whose centre G_k lies
+//   farther than `distance_threshold` outside L (2-D distance on the plane), and farther than an
+//   eighth of L's size (sqrt of its area: smaller stick-outs are bumps on a large section's
+//   surface, which made organic meshes sprout hundreds of branches), start new branches;
+//   the rest of U continues the march. The new direction is the one of +-X, +-Y, +-Z closest to
+//   G_k - C (C the lower centroid; Sec. 3.2.1); the first plane of the new branch is at Eq. 4's
+//   location: the lower boundary's extent T along the new direction, plus eps.
+// - GetSweepBody / B = B - Bs (Sec. 3.2.4) as bookkeeping on the sections, not a solid Boolean:
+//   each node sweeps a slab, its region extruded from its plane to the next one along the march
+//   direction. Every later section first subtracts the slabs it crosses (all directions are
+//   axis-aligned, so a slab meets a plane in its own region or in a union of rectangles). Search
+//   is branch-first: a new branch is searched to its end before its father's march continues,
+//   so the father's later sections no longer see the branch's material, and no part of the solid
+//   is searched twice. The slabs' volumes add up to the part's volume (tested).
+// - FindConnectingLink: a branch that turned is tied to the node of its father branch nearest to
+//   its first node; a branch born of a split is tied to the lower node it split from.
+// - C1 breaks (Sec. 3.2.3): a link whose direction turns more than `break_angle` from the link
+//   that arrives at its start node, unless that link is itself a break (then the turn only
+//   undoes the connector between two sections' centroids: one break, not two).
+// - Section loops are simplified to step / 100 before any Boolean (corners kept: simplify()).
+// - Marches in one direction all read the same sections, cut once on a grid (the part's lowest
+//   offset along the direction + eps + k step): a turned branch starts at the first grid plane at
+//   or past Eq. 4's location, at most one step on.
+// - Several regions in the very first section (a part standing on several feet) each root a tree:
+//   the result is a forest with one tree per foot.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "mas/Mesh.hpp"
+#include "mas/Polygon2.hpp"
+
+namespace mas {
+
+struct AxisParams {
+    // Distance between consecutive sections (paper: inc), mm. <= 0: derived from the part
+    // (derive_axis_step): half its thinnest wall, within [diagonal / 2000, diagonal / 20].
+    double step_mm = 0.0;
+    // A stick-out area whose centre lies farther than this outside the lower section starts a new
+    // branch (paper: d), mm. <= 0: twice the step ("much greater than the step", Sec. 3.2.1).
+    double distance_threshold_mm = 0.0;
+    double eps_mm = 0.001;  // paper's epsilon: the first plane sits this far inside, mm
+    double break_angle_deg =
+        30.0;  // links turning more than this from their predecessor are breaks
+    // Height of the plane the part stands on, mm. NaN: the part's lowest point. A part whose
+    // lowest point is above this plane (by more than eps) does not touch it: an error.
+    double base_z_mm = std::numeric_limits<double>::quiet_NaN();
+    double min_region_area_mm2 = 1e-6;  // smaller section regions are slivers, ignored
+    std::size_t max_nodes = 200000;     // guard against runaway searches
+};
+
+struct AxisNode {
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();  // centroid of the region, mm
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // the section plane's normal (march dir.)
+    double area = 0.0;                                   // region area, mm^2 (after B - Bs)
+    double offset = 0.0;                                 // normal . point on the plane, mm
+    double thickness = 0.0;  // length of the slab this node sweeps along `normal`, mm
+    int branch = -1;
+    int incoming_link = -1;  // the link ending at this node, -1 for a root node
+    Region2 region;          // the region in PlaneFrame(normal) coordinates
+};
+
+struct AxisLink {
+    enum class Kind {
+        Step,        // consecutive nodes of one march (also from a lower node to a split branch)
+        Connecting,  // FindConnectingLink: father-branch node to the first node of a turned branch
+    };
+    int start = -1, end = -1;  // node indices
+    Kind kind = Kind::Step;
+    bool is_break = false;  // C1 break: turns more than break_angle from the preceding link
+    double turn_deg = 0.0;  // angle to the link arriving at `start` (0 for a root's first link)
+};
+
+struct AxisBranch {
+    int parent = -1;  // father branch, -1 for a root
+    Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+    std::vector<int> nodes;  // in marching order
+    int parent_node = -1;    // the father's node the first node links to (-1 for a root)
+    int first_link = -1;     // that link
+    int depth = 0;           // 0 for roots
+};
+
+struct CentroidalAxis {
+    std::vector<AxisNode> nodes;
+    std::vector<AxisLink> links;
+    std::vector<AxisBranch> branches;
+    AxisParams params;                 // with derived values filled in
+    double searched_volume_mm3 = 0.0;  // sum of the nodes' slabs (area x thickness)
+    std::size_t sections_cut = 0;      // planes cut from the mesh, for the record
+};
+
+// Half the part's thinnest wall (the paper's inc is the smallest distance between two surfaces
+// that do not meet; half of it cuts every wall at least twice): the wall is the minimum over
+// sections along X, Y and Z (16 planes each) of 2 x area / perimeter of every region (the width
+// of a long strip, the radius of a disc), and the result is clamped to [diagonal / 2000,
+// diagonal / 20].
+double derive_axis_step(const TriangleMesh& mesh);
+
+// Throws mas::Error: InvalidArgument for bad parameters (a step that is not positive and finite,
+// or larger than the part's height), InvalidArgument when the part does not touch base_z,
+// EmptyInput for an empty mesh, Cancelled via throw_on_cancel. `mesh` must be closed.
+CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params = {},
+                               const std::function<void()>& throw_on_cancel = {});
+
+// Distance from a point to a region in the same 2-D frame: 0 inside, else to the nearest edge of
+// the outer loop (holes count as outside: a point in a hole is at its distance to the hole edge).
+double distance_to_region(const Region2& region, const Eigen::Vector2d& point);
+
+}  // namespace mas

@@ -1,0 +1,665 @@
+// Centroidal axis search (paper Sec. 3.2, Fig. 9): branch-first marches of cross-sections along
+// +-X, +-Y, +-Z with swept-slab bookkeeping for B = B - Bs. See the header for the readings chosen.
+#include "mas/CentroidalAxis.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#include "mas/Error.hpp"
+#include "mas/Section.hpp"
+
+namespace mas {
+
+double distance_to_region(const Region2& region, const Eigen::Vector2d& point) {
+    if (contains(region, point)) return 0.0;
+    double best = std::numeric_limits<double>::infinity();
+    auto edges = [&](const Polygon2& loop) {
+        const auto& p = loop.points;
+        for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+            const Eigen::Vector2d e = p[i] - p[j];
+            const double len2 = e.squaredNorm();
+            const double t = len2 > 0.0 ? std::clamp((point - p[j]).dot(e) / len2, 0.0, 1.0) : 0.0;
+            best = std::min(best, (p[j] + t * e - point).norm());
+        }
+    };
+    edges(region.outer);
+    for (const auto& h : region.holes) edges(h);
+    return best;
+}
+
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+Vector3d axis_vector(int axis, double sign) {
+    Vector3d v = Vector3d::Zero();
+    v[axis] = sign;
+    return v;
+}
+
+int axis_index(const Vector3d& n) {
+    int a = 0;
+    n.cwiseAbs().maxCoeff(&a);
+    return a;
+}
+
+// The one of +-X, +-Y, +-Z closest in angle to v (paper Sec. 3.2.1).
+Vector3d closest_axis(const Vector3d& v) {
+    const int a = axis_index(v);
+    return axis_vector(a, v[a] >= 0.0 ? 1.0 : -1.0);
+}
+
+double perimeter(const Polygon2& p) {
+    double len = 0.0;
+    for (std::size_t i = 0, j = p.points.size() - 1; i < p.points.size(); j = i++)
+        len += (p.points[i] - p.points[j]).norm();
+    return len;
+}
+
+// Intervals where the line {q[coord] = value} runs inside the region (even-odd over all loops).
+std::vector<std::pair<double, double>> line_intervals(const Region2& r, int coord, double value) {
+    const int other = 1 - coord;
+    std::vector<double> xs;
+    auto cross = [&](const Polygon2& loop) {
+        const auto& p = loop.points;
+        for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+            if ((p[i][coord] > value) == (p[j][coord] > value)) continue;
+            const double t = (value - p[j][coord]) / (p[i][coord] - p[j][coord]);
+            xs.push_back(p[j][other] + t * (p[i][other] - p[j][other]));
+        }
+    };
+    cross(r.outer);
+    for (const auto& h : r.holes) cross(h);
+    std::sort(xs.begin(), xs.end());
+    std::vector<std::pair<double, double>> out;
+    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+        if (xs[i + 1] > xs[i]) out.emplace_back(xs[i], xs[i + 1]);
+    return out;
+}
+
+// What one node has swept: its region extruded along `normal` over [h0, h1) (offsets n.p).
+struct Slab {
+    Vector3d normal;
+    double h0 = 0.0, h1 = 0.0;
+    Region2 region;  // PlaneFrame(normal) coordinates
+    Eigen::AlignedBox3d box;
+    int branch = -1;  // the branch whose node swept it (-1: not swept by a node)
+};
+
+// A slab cut by a perpendicular plane: the band [s0, s1] along the slab's axis `ia`, times the
+// intervals `t` along the third axis `it`, all on the plane's coordinate `pib` along axis `ib`.
+struct Strip {
+    double s0 = 0.0, s1 = 0.0;
+    std::vector<std::pair<double, double>> t;
+};
+
+Region2 oriented(Region2 r) {
+    if (signed_area(r.outer) < 0.0) std::reverse(r.outer.points.begin(), r.outer.points.end());
+    for (auto& h : r.holes)
+        if (signed_area(h) > 0.0) std::reverse(h.points.begin(), h.points.end());
+    return r;
+}
+
+struct StripAxes {
+    int ia, ib, it;
+    double pib;
+};
+
+StripAxes strip_axes(const Slab& s, const Vector3d& n, double c) {
+    const int ib = axis_index(n), ia = axis_index(s.normal);
+    return {ia, ib, 3 - ia - ib, c * n[ib]};
+}
+
+// The plane {n.p = c} is an axis-aligned line in the perpendicular slab's 2-D frame.
+Strip perpendicular_strip(const Slab& s, const StripAxes& ax) {
+    const PlaneFrame sf(s.normal);
+    const int coord = std::abs(sf.u[ax.ib]) > 0.5 ? 0 : 1;
+    const double line = ax.pib * (coord == 0 ? sf.u[ax.ib] : sf.v[ax.ib]);
+    const double to_it = coord == 0 ? sf.v[ax.it] : sf.u[ax.it];  // 2-D other coordinate -> it
+    const double a0 = s.h0 * s.normal[ax.ia], a1 = s.h1 * s.normal[ax.ia];
+    Strip strip{std::min(a0, a1), std::max(a0, a1), {}};
+    for (const auto& [w0, w1] : line_intervals(s.region, coord, line))
+        strip.t.emplace_back(std::min(w0 * to_it, w1 * to_it), std::max(w0 * to_it, w1 * to_it));
+    std::sort(strip.t.begin(), strip.t.end());
+    return strip;
+}
+
+// Outlines of stacked strips as few simple polygons: consecutive strips of one branch that each
+// hold one interval overlapping the previous one form a staircase. (Handing Clipper a rectangle
+// per strip, all sharing edges, was most of the axis' cost on scanned meshes.)
+Regions2 strips_to_regions(std::vector<Strip> strips, const StripAxes& ax,
+                           const PlaneFrame& frame) {
+    std::sort(strips.begin(), strips.end(),
+              [](const Strip& a, const Strip& b) { return a.s0 < b.s0; });
+    auto point = [&](double s, double t) {
+        Vector3d p;
+        p[ax.ia] = s;
+        p[ax.it] = t;
+        p[ax.ib] = ax.pib;
+        return frame.to_2d(p);
+    };
+    Regions2 out;
+    auto emit = [&](const std::vector<std::pair<double, double>>& left,
+                    const std::vector<std::pair<double, double>>& right) {
+        Polygon2 poly;
+        for (const auto& [s, t] : left) poly.points.push_back(point(s, t));
+        for (auto it = right.rbegin(); it != right.rend(); ++it)
+            poly.points.push_back(point(it->first, it->second));
+        if (signed_area(poly) < 0.0) std::reverse(poly.points.begin(), poly.points.end());
+        out.push_back(Region2{std::move(poly), {}});
+    };
+    std::vector<std::pair<double, double>> left, right;  // (s, t) corners of the open staircase
+    double last_s1 = 0.0, last_l = 0.0, last_r = 0.0;
+    for (const auto& strip : strips) {
+        if (strip.t.size() != 1) {
+            for (const auto& [l, r] : strip.t)
+                emit({{strip.s0, l}, {strip.s1, l}}, {{strip.s0, r}, {strip.s1, r}});
+            continue;
+        }
+        const auto [l, r] = strip.t.front();
+        const bool continues =
+            !left.empty() && std::abs(strip.s0 - last_s1) <= 1e-9 && l < last_r && r > last_l;
+        if (!continues && !left.empty()) {
+            emit(left, right);
+            left.clear();
+            right.clear();
+        }
+        left.emplace_back(strip.s0, l);
+        left.emplace_back(strip.s1, l);
+        right.emplace_back(strip.s0, r);
+        right.emplace_back(strip.s1, r);
+        last_s1 = strip.s1;
+        last_l = l;
+        last_r = r;
+    }
+    if (!left.empty()) emit(left, right);
+    return out;
+}
+
+// The part of slab `s` lying on the plane {n.p = c}, in PlaneFrame(n) coordinates. All normals
+// are axis-aligned: a parallel slab gives its region, a perpendicular one rectangles.
+Regions2 slab_cut(const Slab& s, const Vector3d& n, double c, const PlaneFrame& frame) {
+    const double along = s.normal.dot(n);
+    if (std::abs(along) <= 0.5) {
+        const StripAxes ax = strip_axes(s, n, c);
+        return strips_to_regions({perpendicular_strip(s, ax)}, ax, frame);
+    }
+    const double h = along > 0 ? c : -c;  // the plane's offset in the slab's terms
+    if (h < s.h0 || h >= s.h1) return {};
+    if (along > 0) return {s.region};
+    // Opposite normals: same plane, mirrored frame.
+    const PlaneFrame from(s.normal);
+    const Plane plane{s.normal * h, s.normal};
+    auto reframe = [&](const Polygon2& p) {
+        Polygon2 q;
+        for (const auto& x : p.points) q.points.push_back(frame.to_2d(from.to_3d(x, plane)));
+        return q;
+    };
+    Region2 r{reframe(s.region.outer), {}};
+    for (const auto& h2 : s.region.holes) r.holes.push_back(reframe(h2));
+    return {oriented(std::move(r))};
+}
+
+Regions2 keep_larger(Regions2 regions, double min_area) {
+    regions.erase(std::remove_if(regions.begin(), regions.end(),
+                                 [&](const Region2& r) { return area(r) <= min_area; }),
+                  regions.end());
+    std::stable_sort(regions.begin(), regions.end(),
+                     [](const Region2& a, const Region2& b) { return area(a) > area(b); });
+    return regions;
+}
+
+class Search {
+public:
+    Search(const TriangleMesh& mesh, const AxisParams& params, const std::function<void()>& cancel)
+        : mesh_(mesh), p_(params), cancel_(cancel) {}
+
+    CentroidalAxis run(double base_z) {
+        Task root;
+        root.direction = Vector3d::UnitZ();
+        root.start = base_z + p_.eps_mm;
+        root.slab_start = base_z;
+        search(root, 0);
+        connect_turned_branches();
+        mark_breaks();
+        CentroidalAxis axis;
+        axis.nodes = std::move(nodes_);
+        axis.links = std::move(links_);
+        axis.branches = std::move(branches_);
+        axis.params = p_;
+        axis.sections_cut = sections_cut_;
+        for (const auto& n : axis.nodes) axis.searched_volume_mm3 += n.area * n.thickness;
+        return axis;
+    }
+
+private:
+    // One march: a direction, its first plane, and where it comes from.
+    struct Task {
+        Vector3d direction;
+        double start = 0.0;       // offset of the first plane
+        double slab_start = 0.0;  // the first node sweeps from here (Eq. 4's T, or the base)
+        int parent_branch = -1;
+        int father_node = -1;  // lower node the stick-out was found over (-1 for the root)
+        bool constrained = false;
+        Slab constraint;  // the stick-out dA_k swept between the lower and the upper plane
+    };
+    struct Track {
+        int branch;
+        int node;
+        Region2 region;
+        Eigen::AlignedBox2d box;
+    };
+
+    // The sections of one of the six directions, cut once on a fixed grid: planes at
+    // lo + eps + k step, lo the mesh's lowest offset along the direction. Every march in that
+    // direction reads them, so the kernel's batch path does all the cutting.
+    struct Grid {
+        Vector3d normal;
+        double origin = 0.0;  // offset of plane 0
+        double hi = 0.0;      // the mesh's highest offset along the normal
+        // Per plane: its regions, simplified to step / 100 (the axis is a coarse descriptor;
+        // Booleans on faceted loops with hundreds of points were most of its cost), largest
+        // first, and their 3-D boxes grown by a hair. Corners are kept, so exact outlines stay
+        // exact.
+        std::vector<Regions2> regions;
+        std::vector<std::vector<Eigen::AlignedBox3d>> boxes;
+        std::size_t count = 0;
+        bool ready = false;
+    };
+
+    // Section regions of grid plane k minus everything already swept (B - Bs). Only slabs whose
+    // box meets a region's box can take anything away: a march's slabs far along another
+    // direction are skipped without being cut.
+    Regions2 unswept(const Grid& g, std::size_t k) const {
+        const Regions2& regions = g.regions[k];
+        if (regions.empty()) return {};
+        const Vector3d& n = g.normal;
+        const double c = offset(g, k);
+        const PlaneFrame frame(n);
+        Regions2 swept;
+        std::map<int, std::pair<StripAxes, std::vector<Strip>>> strips;  // per branch
+        for (const auto& slab : slabs_) {
+            bool meets = false;
+            for (const auto& box : g.boxes[k]) meets = meets || slab.box.intersects(box);
+            if (!meets) continue;
+            if (std::abs(slab.normal.dot(n)) > 0.5) {
+                for (auto& r : slab_cut(slab, n, c, frame)) swept.push_back(std::move(r));
+                continue;
+            }
+            const StripAxes ax = strip_axes(slab, n, c);
+            auto& group = strips.try_emplace(slab.branch, ax, std::vector<Strip>{}).first->second;
+            group.second.push_back(perpendicular_strip(slab, ax));
+        }
+        for (auto& [branch, group] : strips)
+            for (auto& r : strips_to_regions(std::move(group.second), group.first, frame))
+                swept.push_back(std::move(r));
+        if (swept.empty()) return regions;
+        return keep_larger(difference(regions, swept), p_.min_region_area_mm2);
+    }
+
+    int new_branch(const Vector3d& dir, int parent, int parent_node) {
+        AxisBranch b;
+        b.direction = dir;
+        b.parent = parent;
+        b.parent_node = parent_node;
+        b.depth = parent >= 0 ? branches_[parent].depth + 1 : 0;
+        branches_.push_back(b);
+        return static_cast<int>(branches_.size()) - 1;
+    }
+
+    int add_node(const Region2& region, const Vector3d& n, double offset, double slab_from,
+                 double slab_to, int branch) {
+        if (nodes_.size() >= p_.max_nodes)
+            throw Error(ErrorCode::GeometryFailure,
+                        "centroidal axis: more than " + std::to_string(p_.max_nodes) +
+                            " nodes; the step is too small for this part");
+        const PlaneFrame frame(n);
+        const Plane plane{n * offset, n};
+        AxisNode node;
+        node.position = frame.to_3d(centroid(region), plane);
+        node.normal = n;
+        node.area = area(region);
+        node.offset = offset;
+        node.thickness = slab_to - slab_from;
+        node.branch = branch;
+        node.region = region;
+        Slab slab{n, slab_from, slab_to, region, {}, branch};
+        for (const auto& q : region.outer.points) {
+            const Vector3d p = frame.to_3d(q, plane);
+            slab.box.extend(p + n * (slab_from - offset));
+            slab.box.extend(p + n * (slab_to - offset));
+        }
+        slabs_.push_back(std::move(slab));
+        nodes_.push_back(std::move(node));
+        const int id = static_cast<int>(nodes_.size()) - 1;
+        branches_[branch].nodes.push_back(id);
+        return id;
+    }
+
+    int add_link(int start, int end, AxisLink::Kind kind) {
+        links_.push_back(AxisLink{start, end, kind, false, 0.0});
+        const int id = static_cast<int>(links_.size()) - 1;
+        nodes_[end].incoming_link = id;
+        return id;
+    }
+
+    Grid& grid(const Vector3d& n) {
+        const int key = 2 * axis_index(n) + (n[axis_index(n)] > 0 ? 0 : 1);
+        Grid& g = grids_[std::size_t(key)];
+        if (g.ready) return g;
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const auto& v : mesh_.vertices) {
+            lo = std::min(lo, n.dot(v));
+            hi = std::max(hi, n.dot(v));
+        }
+        if (key == 4) lo = p_.base_z_mm;  // +Z: the base plane the part stands on
+        g.normal = n;
+        g.origin = lo + p_.eps_mm;
+        g.hi = hi;
+        const auto count =
+            static_cast<std::size_t>(std::max(0.0, std::floor((hi - g.origin) / p_.step_mm))) + 1;
+        std::vector<Plane> planes(count);
+        for (std::size_t k = 0; k < count; ++k) planes[k] = Plane{n * offset(g, k), n};
+        const std::vector<Section> sections = slice_mesh(mesh_, planes, {}, cancel_);
+        g.count = count;
+        g.regions.resize(count);
+        g.boxes.resize(count);
+        const double tol = p_.step_mm / 100.0;
+        for (std::size_t k = 0; k < count; ++k) {
+            Regions2 rs;
+            for (const auto& r : sections[k].regions) {
+                rs.push_back(simplify(r.shape, tol));
+                Eigen::AlignedBox3d box = r.bounds;
+                box.min().array() -= 1e-6;
+                box.max().array() += 1e-6;
+                g.boxes[k].push_back(box);
+            }
+            g.regions[k] = keep_larger(std::move(rs), p_.min_region_area_mm2);
+        }
+        g.ready = true;
+        sections_cut_ += count;
+        return g;
+    }
+
+    double offset(const Grid& g, std::size_t k) const { return g.origin + double(k) * p_.step_mm; }
+
+    void search(const Task& task, int depth) {
+        if (depth > 1000)
+            throw Error(ErrorCode::GeometryFailure, "centroidal axis: branches nested too deep");
+        const Vector3d n = task.direction;
+        const Grid& g = grid(n);
+        // Eq. 4's location, moved up to the next plane of the grid (at most one step on; the
+        // first node's slab reaches back to T, so nothing between is left unswept).
+        const double first_k = std::ceil((task.start - g.origin) / p_.step_mm - 1e-9);
+        if (first_k >= double(g.count)) return;
+        const std::size_t k0 = static_cast<std::size_t>(std::max(0.0, first_k));
+        const std::size_t count = g.count;
+        auto offset_of = [&](std::size_t k) { return offset(g, k); };
+        auto slab_end = [&](std::size_t k) { return std::min(offset_of(k + 1), g.hi); };
+
+        // First section: the regions the stick-out reaches (every region for the root).
+        Regions2 first = unswept(g, k0);
+        if (task.constrained) {
+            const PlaneFrame frame(n);
+            const Regions2 reach = slab_cut(task.constraint, n, offset_of(k0), frame);
+            first.erase(std::remove_if(first.begin(), first.end(),
+                                       [&](const Region2& r) {
+                                           return area(intersection({r}, reach)) <=
+                                                  p_.min_region_area_mm2;
+                                       }),
+                        first.end());
+        }
+        std::vector<Track> tracks;
+        for (const auto& region : first) {
+            const int b = new_branch(n, task.parent_branch, task.father_node);
+            const int node = add_node(region, n, offset_of(k0), task.slab_start, slab_end(k0), b);
+            tracks.push_back({b, node, region, bounds(region)});
+        }
+
+        for (std::size_t k = k0 + 1; k < count && !tracks.empty(); ++k) {
+            if (cancel_) cancel_();
+            const Regions2 upper = unswept(g, k);
+            // Each upper region continues the track it overlaps most (Eq. 2's projection).
+            // The overlap is read off U - L (area(U) - area(U - L)), which Eq. 2 needs anyway:
+            // one Boolean per pair instead of two.
+            std::vector<int> owner(upper.size(), -1);
+            std::vector<std::vector<int>> overlapping(upper.size());
+            std::vector<Regions2> stick_out(upper.size());
+            for (std::size_t j = 0; j < upper.size(); ++j) {
+                double best = p_.min_region_area_mm2;
+                const Eigen::AlignedBox2d box = bounds(upper[j]);
+                const double upper_area = area(upper[j]);
+                for (std::size_t t = 0; t < tracks.size(); ++t) {
+                    if (!box.intersects(tracks[t].box)) continue;
+                    Regions2 d = difference({upper[j]}, {tracks[t].region});
+                    const double a = upper_area - area(d);
+                    if (a <= p_.min_region_area_mm2) continue;
+                    overlapping[j].push_back(static_cast<int>(t));
+                    if (overlapping[j].size() == 1) stick_out[j] = std::move(d);
+                    if (a > best) {
+                        best = a;
+                        owner[j] = static_cast<int>(t);
+                    }
+                }
+                if (overlapping[j].size() > 1) {  // merging tracks: U minus all of them
+                    Regions2 lower;
+                    for (int o : overlapping[j]) lower.push_back(tracks[std::size_t(o)].region);
+                    stick_out[j] = difference({upper[j]}, lower);
+                }
+            }
+            std::vector<Track> next;
+            std::vector<Task> children;
+            for (std::size_t t = 0; t < tracks.size(); ++t) {
+                Regions2 pieces;
+                for (std::size_t j = 0; j < upper.size(); ++j) {
+                    if (owner[j] != static_cast<int>(t)) continue;
+                    Regions2 lower;
+                    for (int o : overlapping[j]) lower.push_back(tracks[std::size_t(o)].region);
+                    for (auto& piece : classify(upper[j], stick_out[j], lower, tracks[t], n,
+                                                offset_of(k - 1), offset_of(k), children))
+                        pieces.push_back(std::move(piece));
+                }
+                pieces = keep_larger(std::move(pieces), p_.min_region_area_mm2);
+                const int lower_node = tracks[t].node;
+                for (std::size_t i = 0; i < pieces.size(); ++i) {
+                    // One piece continues the branch; several mean the branch splits.
+                    const int b = pieces.size() == 1 ? tracks[t].branch
+                                                     : new_branch(n, tracks[t].branch, lower_node);
+                    const int node =
+                        add_node(pieces[i], n, offset_of(k), offset_of(k), slab_end(k), b);
+                    const int link = add_link(lower_node, node, AxisLink::Kind::Step);
+                    if (branches_[b].first_link < 0 && branches_[b].nodes.size() == 1)
+                        branches_[b].first_link = link;
+                    next.push_back({b, node, pieces[i], bounds(pieces[i])});
+                }
+            }
+            tracks = std::move(next);
+            // Branch-first: every branch found here is searched to its end before this march
+            // goes on, so that the march's later sections no longer see its material.
+            for (const auto& child : children) search(child, depth + 1);
+        }
+    }
+
+    // Eq. 2 on one upper region over its lower region(s), given U - L: returns what continues
+    // this march and queues a new branch for every stick-out whose centre lies beyond the
+    // distance threshold.
+    Regions2 classify(const Region2& upper, const Regions2& stick_out, const Regions2& lower,
+                      const Track& track, const Vector3d& n, double lower_offset,
+                      double upper_offset, std::vector<Task>& children) {
+        if (stick_out.empty()) return {upper};  // Eq. 2: empty, same direction
+        const PlaneFrame frame(n);
+        const Plane upper_plane{n * upper_offset, n};
+        const Vector3d c_lower = nodes_[std::size_t(track.node)].position;
+        // "Much greater than the step" (d), and more than an eighth of the lower section's size:
+        // a stick-out centred closer than that is a bump on a large section's surface, not a turn.
+        const double threshold = std::max(p_.distance_threshold_mm, std::sqrt(area(lower)) / 8.0);
+        Regions2 far;
+        for (const auto& da : stick_out) {
+            if (area(da) <= p_.min_region_area_mm2) continue;
+            const Vector2d g = centroid(da);
+            double dist = std::numeric_limits<double>::infinity();
+            for (const auto& l : lower) dist = std::min(dist, distance_to_region(l, g));
+            if (dist <= threshold) continue;
+            const Vector3d dir = closest_axis(frame.to_3d(g, upper_plane) - c_lower);
+            if (std::abs(dir.dot(n)) > 0.5) continue;  // still along the march: no turn
+            // Eq. 4: the new march starts just beyond the lower boundary's extent T along dir.
+            double t_max = -std::numeric_limits<double>::infinity();
+            const Plane lower_plane{n * lower_offset, n};
+            for (const auto& q : track.region.outer.points)
+                t_max = std::max(t_max, dir.dot(frame.to_3d(q, lower_plane)));
+            Task child;
+            child.direction = dir;
+            child.start = t_max + p_.eps_mm;
+            child.slab_start = t_max;
+            child.parent_branch = track.branch;
+            child.father_node = track.node;
+            child.constrained = true;
+            // The new march keeps the regions of its first section that meet the stick-out swept
+            // from the lower plane to one step above the upper one: a strip one plane thick
+            // could miss a region that starts a hair above the plane on a faceted surface.
+            child.constraint = Slab{n, lower_offset, upper_offset + p_.step_mm, da, {}};
+            children.push_back(std::move(child));
+            far.push_back(da);
+        }
+        if (far.empty()) return {upper};
+        return difference({upper}, far);
+    }
+
+    // FindConnectingLink: a turned branch's first node links to the nearest node of its father
+    // branch (the father's march may have gone on past the place the turn was found).
+    void connect_turned_branches() {
+        for (auto& b : branches_) {
+            if (b.parent < 0 || b.nodes.empty() || b.first_link >= 0) continue;
+            const int first = b.nodes.front();
+            int best = b.parent_node;
+            double best_d = std::numeric_limits<double>::infinity();
+            for (int f : branches_[std::size_t(b.parent)].nodes) {
+                const double d =
+                    (nodes_[std::size_t(f)].position - nodes_[std::size_t(first)].position).norm();
+                if (d < best_d) {
+                    best_d = d;
+                    best = f;
+                }
+            }
+            b.parent_node = best;
+            b.first_link = add_link(best, first, AxisLink::Kind::Connecting);
+        }
+    }
+
+    // Links are made in search order, so a link's predecessor is always marked before it.
+    void mark_breaks() {
+        const double limit = p_.break_angle_deg;
+        std::vector<int> order(links_.size());
+        std::iota(order.begin(), order.end(), 0);
+        // Predecessors first: by the depth of the link's start node in the node tree.
+        std::vector<int> depth(nodes_.size(), -1);
+        std::function<int(int)> node_depth = [&](int n) -> int {
+            if (depth[std::size_t(n)] >= 0) return depth[std::size_t(n)];
+            const int in = nodes_[std::size_t(n)].incoming_link;
+            return depth[std::size_t(n)] =
+                       in < 0 ? 0 : node_depth(links_[std::size_t(in)].start) + 1;
+        };
+        for (std::size_t n = 0; n < nodes_.size(); ++n) node_depth(int(n));
+        std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+            return depth[std::size_t(links_[std::size_t(a)].start)] <
+                   depth[std::size_t(links_[std::size_t(b)].start)];
+        });
+        for (int li : order) {
+            AxisLink& l = links_[std::size_t(li)];
+            const int pred = nodes_[std::size_t(l.start)].incoming_link;
+            if (pred < 0) continue;
+            const AxisLink& p = links_[std::size_t(pred)];
+            const Vector3d a =
+                nodes_[std::size_t(p.end)].position - nodes_[std::size_t(p.start)].position;
+            const Vector3d b =
+                nodes_[std::size_t(l.end)].position - nodes_[std::size_t(l.start)].position;
+            if (a.norm() == 0.0 || b.norm() == 0.0) continue;
+            const double cosang = std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0);
+            l.turn_deg = std::acos(cosang) * 180.0 / M_PI;
+            // A link right after a break only turns back from the connector between two
+            // sections' centroids (a split's lower node to a post's first node, say): one break.
+            l.is_break = l.turn_deg > limit && !p.is_break;
+        }
+    }
+
+    const TriangleMesh& mesh_;
+    AxisParams p_;
+    const std::function<void()>& cancel_;
+    std::vector<AxisNode> nodes_;
+    std::vector<AxisLink> links_;
+    std::vector<AxisBranch> branches_;
+    std::vector<Slab> slabs_;
+    std::array<Grid, 6> grids_;
+    std::size_t sections_cut_ = 0;
+};
+
+}  // namespace
+
+double derive_axis_step(const TriangleMesh& mesh) {
+    const Eigen::AlignedBox3d box = bounding_box(mesh);
+    const double diag = box.diagonal().norm();
+    if (!(diag > 0.0)) throw Error(ErrorCode::EmptyInput, "the part has no extent");
+    std::vector<Plane> planes;
+    for (int axis = 0; axis < 3; ++axis) {
+        const Vector3d n = axis_vector(axis, 1.0);
+        const double lo = box.min()[axis], hi = box.max()[axis];
+        for (int i = 0; i < 16; ++i)
+            planes.push_back(Plane{n * (lo + (i + 0.5) * (hi - lo) / 16), n});
+    }
+    double width = std::numeric_limits<double>::infinity();
+    for (const auto& s : slice_mesh(mesh, planes))
+        for (const auto& r : s.regions) {
+            double per = perimeter(r.shape.outer);
+            for (const auto& h : r.shape.holes) per += perimeter(h);
+            if (per > 0.0 && r.area > 0.0) width = std::min(width, 2.0 * r.area / per);
+        }
+    if (!std::isfinite(width)) width = diag / 10.0;
+    return std::clamp(width / 2.0, diag / 2000.0, diag / 20.0);
+}
+
+CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
+                               const std::function<void()>& throw_on_cancel) {
+    if (mesh.empty()) throw Error(ErrorCode::EmptyInput, "centroidal axis: the mesh is empty");
+    AxisParams p = params;
+    auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+    if (!std::isfinite(p.step_mm) || !std::isfinite(p.distance_threshold_mm))
+        throw Error(ErrorCode::InvalidArgument,
+                    "centroidal axis: step and distance threshold must be finite");
+    if (!positive(p.eps_mm))
+        throw Error(ErrorCode::InvalidArgument, "centroidal axis: eps must be positive");
+    if (!std::isfinite(p.break_angle_deg) || p.break_angle_deg < 0.0 || p.break_angle_deg > 180.0)
+        throw Error(ErrorCode::InvalidArgument,
+                    "centroidal axis: break angle must be between 0 and 180 degrees");
+    if (!(p.min_region_area_mm2 >= 0.0))
+        throw Error(ErrorCode::InvalidArgument,
+                    "centroidal axis: minimum region area must be >= 0");
+    const Eigen::AlignedBox3d box = bounding_box(mesh);
+    const double height = box.max().z() - box.min().z();
+    if (p.step_mm <= 0.0) p.step_mm = derive_axis_step(mesh);
+    if (p.step_mm >= height) {
+        std::ostringstream msg;
+        msg << "centroidal axis: step " << p.step_mm << " mm is not smaller than the part's height "
+            << height << " mm";
+        throw Error(ErrorCode::InvalidArgument, msg.str());
+    }
+    if (p.distance_threshold_mm <= 0.0) p.distance_threshold_mm = 2.0 * p.step_mm;
+    double base = box.min().z();
+    if (std::isfinite(p.base_z_mm)) {
+        if (std::abs(base - p.base_z_mm) > p.eps_mm) {
+            std::ostringstream msg;
+            msg << "centroidal axis: the part does not stand on its base plane z = " << p.base_z_mm
+                << " mm (its lowest point is at z = " << base << " mm)";
+            throw Error(ErrorCode::InvalidArgument, msg.str());
+        }
+        base = p.base_z_mm;
+    }
+    p.base_z_mm = base;
+    return Search(mesh, p, throw_on_cancel).run(base);
+}
+
+}  // namespace mas

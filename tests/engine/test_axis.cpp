@@ -1,0 +1,374 @@
+// Centroidal axis (paper Sec. 3): exact expectations on parts with known axes, invariants over
+// every test part, bad input.
+#include <gtest/gtest.h>
+
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepTools.hxx>
+#include <StlAPI_Writer.hxx>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Error.hpp"
+#include "mas/Shape.hpp"
+#include "test_parts.hpp"
+
+using Eigen::Vector3d;
+
+namespace {
+
+constexpr double kDeflection = 0.02;  // mm, for every tessellated test part
+constexpr double kGrid = 1e-5;        // mm, the grid polygon Booleans snap to (PolygonBoolean.cpp)
+
+mas::Shape from_occt(const TopoDS_Shape& s) {
+    std::ostringstream out;
+    BRepTools::Write(s, out);
+    return mas::Shape::from_brep_string(out.str());
+}
+
+TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, double dz) {
+    return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
+}
+
+TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+    BRepAlgoAPI_Fuse f(a, b);
+    f.SimplifyResult();
+    return f.Shape();
+}
+
+// A T: column [0,20]x[0,20]x[0,60] with a crossbar [-30,50]x[0,20]x[40,60] reaching both ways.
+mas::Shape t_block() {
+    return from_occt(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(-30, 0, 40, 80, 20, 20)));
+}
+
+// A block [0,40]x[0,20]x[0,10] carrying a cylinder along X (radius 8, axis y = 10, z = 16, sunk
+// 2 mm into the block) that reaches 30 mm past the block on both sides, x in [-30, 70].
+TopoDS_Shape occ_cylinder_on_block() {
+    const TopoDS_Shape cyl =
+        BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-30, 10, 16), gp_Dir(1, 0, 0)), 8, 100).Shape();
+    return fuse(occ_box(0, 0, 0, 40, 20, 10), cyl);
+}
+
+mas::TriangleMesh mesh_of(const mas::Shape& s, double deflection = kDeflection) {
+    mas::TessellationParams p;
+    p.deflection_mm = deflection;
+    return mas::tessellate(s, p);
+}
+
+// Ray parity along a direction no test part's edges line up with.
+bool inside(const mas::TriangleMesh& m, const Vector3d& p) {
+    const Vector3d dir = Vector3d(1.0, 0.000123, 0.000457).normalized();
+    int hits = 0;
+    for (const auto& t : m.triangles) {
+        const Vector3d a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+        const Vector3d e1 = b - a, e2 = c - a, h = dir.cross(e2);
+        const double det = e1.dot(h);
+        if (std::abs(det) < 1e-14) continue;
+        const Vector3d s = p - a;
+        const double u = s.dot(h) / det;
+        if (u < 0 || u > 1) continue;
+        const Vector3d q = s.cross(e1);
+        const double v = dir.dot(q) / det;
+        if (v < 0 || u + v > 1) continue;
+        if (e2.dot(q) / det > 0) ++hits;
+    }
+    return hits % 2 == 1;
+}
+
+// Branches that are children of `parent`, by direction.
+std::vector<int> children(const mas::CentroidalAxis& a, int parent) {
+    std::vector<int> out;
+    for (std::size_t b = 0; b < a.branches.size(); ++b)
+        if (a.branches[b].parent == parent) out.push_back(int(b));
+    return out;
+}
+
+// Every axis must satisfy these, whatever the part.
+void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& mesh,
+                       bool centroids_inside = true) {
+    ASSERT_FALSE(a.nodes.empty());
+    // The branch structure is a forest rooted at the base: parents come first, nodes belong to
+    // exactly the branch that lists them.
+    for (std::size_t b = 0; b < a.branches.size(); ++b) {
+        const auto& br = a.branches[b];
+        EXPECT_LT(br.parent, int(b));
+        EXPECT_FALSE(br.nodes.empty());
+        for (int n : br.nodes) EXPECT_EQ(a.nodes[std::size_t(n)].branch, int(b));
+        if (br.parent < 0) {
+            EXPECT_EQ(br.first_link, -1);
+            EXPECT_NEAR(a.nodes[std::size_t(br.nodes.front())].offset,
+                        a.params.base_z_mm + a.params.eps_mm, 1e-12);
+        } else {
+            ASSERT_GE(br.first_link, 0);
+            const auto& l = a.links[std::size_t(br.first_link)];
+            EXPECT_EQ(l.end, br.nodes.front());
+            EXPECT_EQ(a.nodes[std::size_t(l.start)].branch, br.parent);  // tied to its father
+        }
+    }
+    // Each node but a root's first has exactly one incoming link; step links join nodes one step
+    // apart along their march.
+    std::map<int, int> incoming;
+    for (const auto& l : a.links) {
+        ++incoming[l.end];
+        const auto& s = a.nodes[std::size_t(l.start)];
+        const auto& e = a.nodes[std::size_t(l.end)];
+        if (l.kind == mas::AxisLink::Kind::Step) {
+            EXPECT_TRUE(s.normal.isApprox(e.normal));
+            EXPECT_NEAR(e.offset - s.offset, a.params.step_mm, 1e-9);
+        }
+    }
+    for (std::size_t n = 0; n < a.nodes.size(); ++n) {
+        const bool root_start = a.branches[std::size_t(a.nodes[n].branch)].parent < 0 &&
+                                a.branches[std::size_t(a.nodes[n].branch)].nodes.front() == int(n);
+        EXPECT_EQ(incoming[int(n)], root_start ? 0 : 1) << "node " << n;
+        if (centroids_inside) {
+            EXPECT_TRUE(inside(mesh, a.nodes[n].position))
+                << "node " << n << " at " << a.nodes[n].position.transpose();
+        }
+    }
+    // No region searched twice, none missed: the swept slabs fill the part's volume. Slabs use the
+    // section at their lower plane, so each one is off by at most |A_next - A| x step / 2... x 2
+    // bounded below by the change to the next node; sections are exact up to the deflection.
+    double slab_error = 0.0;
+    for (const auto& l : a.links)
+        if (l.kind == mas::AxisLink::Kind::Step)
+            slab_error +=
+                std::abs(a.nodes[std::size_t(l.end)].area - a.nodes[std::size_t(l.start)].area) *
+                a.params.step_mm;
+    const double volume = mas::check_mesh(mesh).volume_mm3;
+    EXPECT_NEAR(a.searched_volume_mm3, volume, slab_error + 1e-6 * volume);
+}
+
+}  // namespace
+
+TEST(CentroidalAxis, BoxIsOneVerticalBranchThroughItsCentre) {
+    const auto mesh = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    mas::AxisParams p;
+    p.step_mm = 2.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 1u);
+    EXPECT_TRUE(a.branches[0].direction.isApprox(Vector3d::UnitZ()));
+    ASSERT_EQ(a.nodes.size(), 15u);  // planes at 0.001, 2.001, ..., 28.001
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        EXPECT_NEAR((a.nodes[i].position - Vector3d(5, 10, 0.001 + 2.0 * i)).norm(), 0.0, 1e-9);
+        EXPECT_NEAR(a.nodes[i].area, 200.0, 1e-9);
+    }
+    EXPECT_EQ(a.links.size(), 14u);
+    for (const auto& l : a.links) EXPECT_FALSE(l.is_break);
+    EXPECT_NEAR(a.searched_volume_mm3, 6000.0, 1e-9);
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, LBlockRisesThenTurnsIntoTheArm) {
+    const auto mesh = mesh_of(mas::test::l_block());
+    mas::AxisParams p;
+    p.step_mm = 2.5;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 2u);
+    // The column: +Z all the way up, on its centre line, 20 x 20 even beside the arm.
+    const auto& column = a.branches[0];
+    EXPECT_TRUE(column.direction.isApprox(Vector3d::UnitZ()));
+    EXPECT_EQ(column.nodes.size(), 24u);
+    for (int n : column.nodes) {
+        EXPECT_NEAR(a.nodes[n].position.x(), 10.0, 1e-6);
+        EXPECT_NEAR(a.nodes[n].position.y(), 10.0, 1e-6);
+        EXPECT_NEAR(a.nodes[n].area, 400.0, 1e-3);
+    }
+    // The arm: +X from just past the column, on the arm's centre line (y = 10, z = 50).
+    const auto& arm = a.branches[1];
+    EXPECT_EQ(arm.parent, 0);
+    EXPECT_TRUE(arm.direction.isApprox(Vector3d::UnitX()));
+    EXPECT_NEAR(a.nodes[arm.nodes.front()].position.x(), 20.001, 1e-9);
+    EXPECT_EQ(arm.nodes.size(), 20u);
+    for (int n : arm.nodes) {
+        EXPECT_NEAR(a.nodes[n].position.y(), 10.0, 1e-6);
+        EXPECT_NEAR(a.nodes[n].position.z(), 50.0, 1e-6);
+        EXPECT_NEAR(a.nodes[n].area, 400.0, 1e-6);
+    }
+    // Tied to the column node at the arm's height by a C1 break.
+    const auto& tie = a.links[arm.first_link];
+    EXPECT_EQ(tie.kind, mas::AxisLink::Kind::Connecting);
+    EXPECT_TRUE(tie.is_break);
+    // 90 degrees, but for eps: the arm's first plane is 0.001 mm past the column, the column's
+    // node 0.001 mm above z = 50.
+    EXPECT_NEAR(tie.turn_deg, 90.0 + std::atan2(0.001, 10.001) * 180.0 / M_PI, 1e-9);
+    EXPECT_NEAR(a.nodes[tie.start].position.z(), 50.001, 1e-9);
+    int breaks = 0;
+    for (const auto& l : a.links) breaks += l.is_break;
+    EXPECT_EQ(breaks, 1);
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, TBranchesBothWaysFromOneFatherNode) {
+    const auto mesh = mesh_of(t_block());
+    mas::AxisParams p;
+    p.step_mm = 2.5;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const auto kids = children(a, 0);
+    ASSERT_EQ(kids.size(), 2u);
+    std::set<double> xs;
+    for (int b : kids) {
+        const auto& br = a.branches[b];
+        EXPECT_NEAR(std::abs(br.direction.x()), 1.0, 0.0);
+        xs.insert(br.direction.x());
+        for (int n : br.nodes) {
+            EXPECT_NEAR(a.nodes[n].position.y(), 10.0, 1e-6);
+            EXPECT_NEAR(a.nodes[n].position.z(), 50.0, 1e-6);
+        }
+        EXPECT_EQ(br.nodes.size(), 12u);  // 30 mm of arm at 2.5 mm
+    }
+    EXPECT_EQ(xs, (std::set<double>{-1.0, 1.0}));
+    EXPECT_EQ(a.links[a.branches[kids[0]].first_link].start,
+              a.links[a.branches[kids[1]].first_link].start);
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, CylinderOnABlockTurnsIntoPlusAndMinusX) {
+    const auto mesh = mesh_of(from_occt(occ_cylinder_on_block()));
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const auto kids = children(a, 0);
+    ASSERT_EQ(kids.size(), 2u);
+    std::set<double> dirs;
+    for (int b : kids) {
+        const auto& br = a.branches[b];
+        dirs.insert(br.direction.x());
+        EXPECT_NEAR(br.direction.norm(), 1.0, 0.0);
+        // Where the cylinder leaves the block: x = 40 going +X, x = 0 going -X.
+        const double start = a.nodes[br.nodes.front()].position.x();
+        EXPECT_NEAR(start, br.direction.x() > 0 ? 40.001 : -0.001, 1e-9);
+        EXPECT_EQ(br.nodes.size(), 30u);
+        // On the cylinder's axis, within the tessellation's deflection.
+        for (int n : br.nodes) {
+            EXPECT_NEAR(a.nodes[n].position.y(), 10.0, kDeflection);
+            EXPECT_NEAR(a.nodes[n].position.z(), 16.0, kDeflection);
+        }
+    }
+    EXPECT_EQ(dirs, (std::set<double>{-1.0, 1.0}));
+    // The block's march goes on up through the cylinder's middle, x in [0, 40] (to within the
+    // polygon Booleans' 1e-5 mm grid).
+    for (int n : a.branches[0].nodes) EXPECT_NEAR(a.nodes[n].position.x(), 20.0, kGrid);
+    EXPECT_EQ(a.branches[0].nodes.size(), 24u);  // up to the cylinder's top, z = 24
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, TwoPostsOnAPlateAreTwoBranches) {
+    const auto mesh = mesh_of(mas::test::two_posts());
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const auto kids = children(a, 0);
+    ASSERT_EQ(kids.size(), 2u);
+    std::vector<double> xs;
+    for (int b : kids) {
+        const auto& br = a.branches[b];
+        EXPECT_TRUE(br.direction.isApprox(Vector3d::UnitZ()));
+        const auto& first = a.nodes[br.nodes.front()];
+        xs.push_back(first.position.x());
+        EXPECT_NEAR(first.area, 100.0, 1e-6);
+        // Split from the plate's last node, one step below.
+        const auto& tie = a.links[br.first_link];
+        EXPECT_EQ(tie.kind, mas::AxisLink::Kind::Step);
+        EXPECT_EQ(tie.start, a.branches[0].nodes.back());
+    }
+    std::sort(xs.begin(), xs.end());
+    EXPECT_NEAR(xs[0], 5.0, kGrid);
+    EXPECT_NEAR(xs[1], 35.0, kGrid);
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, BrepAndStlOfOnePartGiveOneAxisWithinTheDeflection) {
+    const TopoDS_Shape occ = occ_cylinder_on_block();
+    const auto fine = mesh_of(from_occt(occ), 0.01);
+    // The same geometry through an STL file, tessellated coarser by another path.
+    const std::string stl = ::testing::TempDir() + "cylinder_on_block.stl";
+    {
+        mas::TessellationParams tp;
+        tp.deflection_mm = 0.05;
+        const auto coarse = mas::tessellate(from_occt(occ), tp);
+        std::ofstream out(stl);
+        out << "solid part\n";
+        for (const auto& t : coarse.triangles) {
+            out << "facet normal 0 0 0\nouter loop\n";
+            for (int k = 0; k < 3; ++k) {
+                const auto& v = coarse.vertices[t[k]];
+                out << "vertex " << std::setprecision(17) << v.x() << " " << v.y() << " " << v.z()
+                    << "\n";
+            }
+            out << "endloop\nendfacet\n";
+        }
+        out << "endsolid part\n";
+    }
+    const auto from_stl = mas::model_mesh(mas::read_model(stl));
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto a = mas::centroidal_axis(fine, p), b = mas::centroidal_axis(from_stl, p);
+    ASSERT_EQ(a.branches.size(), b.branches.size());
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    // Branches matched by direction (their order may follow tiny area differences).
+    for (const auto& ba : a.branches) {
+        int match = 0;
+        for (const auto& bb : b.branches) {
+            if (!ba.direction.isApprox(bb.direction) || ba.nodes.size() != bb.nodes.size())
+                continue;
+            ++match;
+            for (std::size_t i = 0; i < ba.nodes.size(); ++i)
+                EXPECT_LE((a.nodes[ba.nodes[i]].position - b.nodes[bb.nodes[i]].position).norm(),
+                          0.01 + 0.05);
+        }
+        EXPECT_EQ(match, 1);
+    }
+}
+
+TEST(CentroidalAxis, DerivedStepIsHalfTheThinnestWallWithinClamps) {
+    // 200 x 100 x 10 plate: its thinnest sections are the 100 x 10 strips, 2A/P = 2000/220.
+    const auto plate = mas::test::box_mesh(0, 0, 0, 200, 100, 10);
+    const double wall = 2.0 * 1000.0 / 220.0;
+    EXPECT_NEAR(mas::derive_axis_step(plate), wall / 2.0, 1e-9);
+    const auto a = mas::centroidal_axis(plate);
+    EXPECT_NEAR(a.params.step_mm, wall / 2.0, 1e-9);
+    EXPECT_NEAR(a.params.distance_threshold_mm, wall, 1e-9);
+    // A 0.2 mm wire 400 mm long: held at diagonal / 2000; a cube: at most diagonal / 20.
+    const auto wire = mas::test::box_mesh(0, 0, 0, 0.2, 0.2, 400);
+    EXPECT_NEAR(mas::derive_axis_step(wire), std::sqrt(0.08 + 160000.0) / 2000.0, 1e-12);
+    const auto cube = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
+    EXPECT_NEAR(mas::derive_axis_step(cube), std::sqrt(300.0) / 20.0, 1e-12);
+}
+
+TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
+    const auto mesh = mas::test::box_mesh(0, 0, 5, 10, 10, 10);
+    auto expect_error = [&](mas::AxisParams p, const std::string& word) {
+        try {
+            mas::centroidal_axis(mesh, p);
+            ADD_FAILURE() << "no error for " << word;
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+        }
+    };
+    mas::AxisParams p;
+    p.step_mm = 12.0;
+    expect_error(p, "height");
+    p = {};
+    p.step_mm = std::nan("");
+    expect_error(p, "finite");
+    p = {};
+    p.eps_mm = -1.0;
+    expect_error(p, "eps");
+    p = {};
+    p.break_angle_deg = 270.0;
+    expect_error(p, "break angle");
+    p = {};
+    p.base_z_mm = 0.0;  // the box floats 5 mm above it
+    expect_error(p, "does not stand on its base plane");
+    p.base_z_mm = 5.0;
+    EXPECT_NO_THROW(mas::centroidal_axis(mesh, p));
+    EXPECT_THROW(mas::centroidal_axis(mas::TriangleMesh{}), mas::Error);
+}

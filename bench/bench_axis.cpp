@@ -1,0 +1,117 @@
+// Centroidal axis benchmark (issue 3): axis time on the test parts (tessellation included) and on
+// CGAL's closed meshes, side by side in one run with CGAL's mean-curvature-flow skeleton, the
+// medial-axis-class skeleton the paper's centroidal axis is meant to beat. Run by hand:
+// `build/bench/mas_bench_axis build/bench-data` (tools/setup.sh bench does everything).
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepTools.hxx>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Shape.hpp"
+
+#ifdef MAS_HAVE_CGAL
+// In its own file: CGAL and OCCT headers cannot meet (OCCT's Handle macro).
+double cgal_skeleton_ms(const mas::TriangleMesh& mesh, std::size_t& skeleton_vertices);
+#endif
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double time_ms(int runs, const std::function<void()>& f) {
+    std::vector<double> t;
+    for (int i = 0; i < runs; ++i) {
+        const auto start = Clock::now();
+        f();
+        t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    }
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+mas::Shape from_occt(const TopoDS_Shape& s) {
+    std::ostringstream out;
+    BRepTools::Write(s, out);
+    return mas::Shape::from_brep_string(out.str());
+}
+
+TopoDS_Shape box(double x0, double y0, double z0, double dx, double dy, double dz) {
+    return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
+}
+
+TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+    BRepAlgoAPI_Fuse f(a, b);
+    f.SimplifyResult();
+    return f.Shape();
+}
+
+void report(const std::string& name, const mas::TriangleMesh& mesh, double tessellation_ms,
+            bool with_cgal) {
+    mas::CentroidalAxis axis;
+    const double ms = time_ms(5, [&] { axis = mas::centroidal_axis(mesh); });
+    int breaks = 0;
+    for (const auto& l : axis.links) breaks += l.is_break;
+    std::printf(
+        "%-18s %7zu tris | axis %7.2f ms (+ tessellation %6.2f ms) step %.3f mm: %5zu nodes, %4zu "
+        "branches, %3d breaks, %5zu sections",
+        name.c_str(), mesh.triangles.size(), ms, tessellation_ms, axis.params.step_mm,
+        axis.nodes.size(), axis.branches.size(), breaks, axis.sections_cut);
+#ifdef MAS_HAVE_CGAL
+    if (with_cgal) {
+        std::size_t sv = 0;
+        const double cgal = cgal_skeleton_ms(mesh, sv);
+        std::printf(" | CGAL skeleton %8.1f ms (%zu vertices): x%.0f", cgal, sv,
+                    cgal / (ms + tessellation_ms));
+    }
+#else
+    (void)with_cgal;
+#endif
+    std::printf("\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string data = argc > 1 ? argv[1] : "build/bench-data";
+#ifndef MAS_HAVE_CGAL
+    std::printf("(built without CGAL: install libcgal-dev and reconfigure for the comparison)\n");
+#endif
+    std::printf("== test parts: axis including tessellation (target < 50 ms each) ==\n");
+    const std::vector<std::pair<std::string, TopoDS_Shape>> parts = {
+        {"box", box(0, 0, 0, 10, 20, 30)},
+        {"L-block", fuse(box(0, 0, 0, 20, 20, 60), box(20, 0, 40, 50, 20, 20))},
+        {"T-block", fuse(box(0, 0, 0, 20, 20, 60), box(-30, 0, 40, 80, 20, 20))},
+        {"cylinder on block",
+         fuse(box(0, 0, 0, 40, 20, 10),
+              BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-30, 10, 16), gp_Dir(1, 0, 0)), 8, 100)
+                  .Shape())},
+        {"two posts",
+         fuse(box(0, 0, 0, 40, 10, 5), fuse(box(0, 0, 5, 10, 10, 25), box(30, 0, 5, 10, 10, 25)))},
+    };
+    for (const auto& [name, occ] : parts) {
+        const mas::Shape shape = from_occt(occ);
+        mas::TriangleMesh mesh;
+        const double tess = time_ms(5, [&] { mesh = mas::tessellate(shape); });
+        report(name, mesh, tess, true);
+    }
+    std::printf(
+        "\n== CGAL meshes: centroidal axis vs CGAL mean-curvature skeleton (target x100) ==\n");
+    for (const char* name : {"bunny00", "fandisk_large", "armadillo"}) {
+        try {
+            auto mesh = mas::read_off(data + "/" + name + ".off");
+            mas::require_closed_mesh(mesh, name);
+            report(name, mesh, 0.0, true);
+        } catch (const std::exception& e) {
+            std::printf("%-18s skipped: %s\n", name, e.what());
+        }
+    }
+    return 0;
+}

@@ -1,15 +1,19 @@
 // multiaxis-slicer: the engine on STEP / IGES / BREP / STL / OFF files, outside FreeCAD.
-// Sub-commands grow with the pipeline; for now `sections` prints cross-section areas and centroids.
+// Sub-commands grow with the pipeline: `sections` (cross-section areas and centroids), `axis` (the
+// centroidal axis).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "mas/CentroidalAxis.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
@@ -19,13 +23,20 @@ namespace {
 const char* kUsage =
     "usage: multiaxis-slicer sections FILE [--normal X,Y,Z] [--step MM] [--deflection MM]\n"
     "                                      [--json [OUT.json]]\n"
+    "       multiaxis-slicer axis FILE [--step MM] [--distance-threshold MM] [--eps MM]\n"
+    "                                  [--break-angle DEG] [--base-z MM] [--deflection MM]\n"
+    "                                  [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
     "\n"
     "sections   cut the part with parallel planes STEP mm apart along NORMAL (default 0,0,1 and\n"
     "           1 mm), each in the middle of its slab, and print every section's area (mm^2),\n"
-    "           region count and centroid; --json writes the same as JSON to OUT.json or stdout.\n"
+    "           region count and centroid.\n"
+    "axis       the part's centroidal axis (Ruan et al. Sec. 3): nodes, links and branches.\n"
+    "           --step and --distance-threshold default to values derived from the part (0),\n"
+    "           --eps to 0.001 mm, --break-angle to 30 degrees, --base-z to the part's lowest z.\n"
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
+    "--json     write JSON instead of text, to OUT.json or standard output\n"
     "--deflection MM  chordal deflection for tessellating a solid (default: derived from its "
     "size)\n";
 
@@ -84,68 +95,96 @@ std::string quoted(const std::string& text) {
     return out + "\"";
 }
 
-struct SectionsArgs {
+// A command line: FILE, --json [OUT], and `--name value` options a command allows.
+struct Args {
     std::string file;
-    Eigen::Vector3d normal{0, 0, 1};
-    double step_mm = 1.0;
-    double deflection_mm = 0.0;
     bool json = false;
     std::string json_path;  // empty: stdout
+    std::map<std::string, std::string> options;
+
+    bool has(const std::string& name) const { return options.count(name) > 0; }
+    double number(const std::string& name, double fallback) const {
+        return has(name) ? parse_number(options.at(name), name) : fallback;
+    }
 };
 
-SectionsArgs parse_sections(const std::vector<std::string>& args) {
-    SectionsArgs a;
+Args parse_args(const std::vector<std::string>& args, const std::set<std::string>& allowed) {
+    Args a;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
-        auto value = [&](const std::string& name) -> const std::string& {
-            if (i + 1 >= args.size()) throw UsageError(name + " needs a value");
-            return args[++i];
-        };
-        if (arg == "--normal")
-            a.normal = parse_vector(value(arg), "--normal");
-        else if (arg == "--step")
-            a.step_mm = parse_number(value(arg), "--step");
-        else if (arg == "--deflection")
-            a.deflection_mm = parse_number(value(arg), "--deflection");
-        else if (arg == "--json") {
+        if (arg == "--json") {
             a.json = true;
             // FILE comes first; after it, a following non-option argument is the output path.
             if (!a.file.empty() && i + 1 < args.size() && args[i + 1].rfind("-", 0) != 0)
                 a.json_path = args[++i];
-        } else if (arg.rfind("--", 0) == 0)
+        } else if (allowed.count(arg)) {
+            if (i + 1 >= args.size()) throw UsageError(arg + " needs a value");
+            a.options[arg] = args[++i];
+        } else if (arg.rfind("--", 0) == 0) {
             throw UsageError("unknown option " + arg);
-        else if (a.file.empty())
+        } else if (a.file.empty()) {
             a.file = arg;
-        else
+        } else {
             throw UsageError("unexpected argument '" + arg + "'");
+        }
     }
     if (a.file.empty()) throw UsageError("no input FILE given");
-    if (!(a.step_mm > 0.0)) throw UsageError("--step must be positive, got " + num(a.step_mm));
-    if (a.deflection_mm < 0.0)
-        throw UsageError("--deflection must be positive (or 0 for automatic)");
-    if (a.normal.norm() < 1e-12) throw UsageError("--normal must not be the zero vector");
     return a;
 }
 
-int run_sections(const std::vector<std::string>& args) {
-    const SectionsArgs a = parse_sections(args);
-    const mas::Model model = mas::read_model(a.file);
+// The part's closed mesh and the deflection it was tessellated with (0 for a mesh file).
+struct Part {
+    mas::Model model;
+    double deflection_mm = 0.0;
+    mas::TriangleMesh mesh;
+
+    const char* kind() const { return model.kind == mas::Model::Kind::Solid ? "solid" : "mesh"; }
+};
+
+Part load_part(const Args& a) {
+    const double deflection = a.number("--deflection", 0.0);
+    if (deflection < 0.0) throw UsageError("--deflection must be positive (or 0 for automatic)");
+    Part part;
+    part.model = mas::read_model(a.file);
     mas::TessellationParams tp;
-    tp.deflection_mm = a.deflection_mm;
-    const double deflection =
-        model.kind == mas::Model::Kind::Solid ? mas::effective_deflection(model.shape, tp) : 0.0;
-    const mas::TriangleMesh mesh = mas::model_mesh(model, tp);
-    const auto planes = mas::parallel_planes(mesh, a.normal, a.step_mm);
+    tp.deflection_mm = deflection;
+    if (part.model.kind == mas::Model::Kind::Solid)
+        part.deflection_mm = mas::effective_deflection(part.model.shape, tp);
+    part.mesh = mas::model_mesh(part.model, tp);
+    return part;
+}
+
+void write_output(const Args& a, const std::string& text) {
+    if (a.json && !a.json_path.empty()) {
+        std::ofstream file(a.json_path);
+        if (!(file << text))
+            throw mas::Error(mas::ErrorCode::ReadFailed, a.json_path + ": cannot write the file");
+    } else {
+        std::cout << text;
+    }
+}
+
+int run_sections(const std::vector<std::string>& args) {
+    const Args a = parse_args(args, {"--normal", "--step", "--deflection"});
+    const double step_mm = a.number("--step", 1.0);
+    if (!(step_mm > 0.0)) throw UsageError("--step must be positive, got " + num(step_mm));
+    const Eigen::Vector3d normal = a.has("--normal")
+                                       ? parse_vector(a.options.at("--normal"), "--normal")
+                                       : Eigen::Vector3d(0, 0, 1);
+    if (normal.norm() < 1e-12) throw UsageError("--normal must not be the zero vector");
+    const Part part = load_part(a);
+    const mas::TriangleMesh& mesh = part.mesh;
+    const double deflection = part.deflection_mm;
+    const auto planes = mas::parallel_planes(mesh, normal, step_mm);
     const auto sections = mas::slice_mesh(mesh, planes);
     const Eigen::Vector3d n = planes.front().normal;
 
     std::ostringstream out;
     if (a.json) {
-        out << "{\n  \"file\": " << quoted(a.file)
-            << ",\n  \"kind\": " << quoted(model.kind == mas::Model::Kind::Solid ? "solid" : "mesh")
+        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
             << ",\n  \"triangles\": " << mesh.triangles.size()
             << ",\n  \"deflection_mm\": " << num(deflection) << ",\n  \"normal\": " << vec(n)
-            << ",\n  \"step_mm\": " << num(a.step_mm) << ",\n  \"sections\": [";
+            << ",\n  \"step_mm\": " << num(step_mm) << ",\n  \"sections\": [";
         for (std::size_t i = 0; i < sections.size(); ++i) {
             const auto& s = sections[i];
             out << (i ? "," : "") << "\n    {\"offset_mm\": " << num(n.dot(s.plane.origin))
@@ -161,11 +200,11 @@ int run_sections(const std::vector<std::string>& args) {
         }
         out << "\n  ]\n}\n";
     } else {
-        out << "# " << a.file << ": " << (model.kind == mas::Model::Kind::Solid ? "solid" : "mesh")
-            << ", " << mesh.triangles.size() << " triangles";
+        out << "# " << a.file << ": " << part.kind() << ", " << mesh.triangles.size()
+            << " triangles";
         if (deflection > 0.0) out << ", deflection " << num(deflection) << " mm";
         out << "\n# normal " << num(n.x()) << "," << num(n.y()) << "," << num(n.z()) << ", step "
-            << num(a.step_mm) << " mm, " << sections.size() << " sections\n";
+            << num(step_mm) << " mm, " << sections.size() << " sections\n";
         out << "# offset_mm regions holes area_mm2 centroid_x centroid_y centroid_z\n";
         for (const auto& s : sections) {
             std::size_t holes = 0;
@@ -175,13 +214,89 @@ int run_sections(const std::vector<std::string>& args) {
                 << s.centroid.y() << " " << s.centroid.z() << "\n";
         }
     }
-    if (a.json && !a.json_path.empty()) {
-        std::ofstream file(a.json_path);
-        if (!(file << out.str()))
-            throw mas::Error(mas::ErrorCode::ReadFailed, a.json_path + ": cannot write the file");
+    write_output(a, out.str());
+    return 0;
+}
+
+const char* link_kind(mas::AxisLink::Kind k) {
+    return k == mas::AxisLink::Kind::Connecting ? "connecting" : "step";
+}
+
+int run_axis(const std::vector<std::string>& args) {
+    const Args a = parse_args(args, {"--step", "--distance-threshold", "--eps", "--break-angle",
+                                     "--base-z", "--deflection"});
+    mas::AxisParams p;
+    p.step_mm = a.number("--step", 0.0);
+    p.distance_threshold_mm = a.number("--distance-threshold", 0.0);
+    p.eps_mm = a.number("--eps", p.eps_mm);
+    p.break_angle_deg = a.number("--break-angle", p.break_angle_deg);
+    p.base_z_mm = a.number("--base-z", p.base_z_mm);
+    if (p.step_mm < 0.0) throw UsageError("--step must be positive (or 0 for derived)");
+    if (p.distance_threshold_mm < 0.0)
+        throw UsageError("--distance-threshold must be positive (or 0 for twice the step)");
+    const Part part = load_part(a);
+    const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, p);
+    const mas::AxisParams& used = axis.params;
+
+    std::ostringstream out;
+    if (a.json) {
+        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
+            << ",\n  \"triangles\": " << part.mesh.triangles.size()
+            << ",\n  \"deflection_mm\": " << num(part.deflection_mm)
+            << ",\n  \"params\": {\"step_mm\": " << num(used.step_mm)
+            << ", \"distance_threshold_mm\": " << num(used.distance_threshold_mm)
+            << ", \"eps_mm\": " << num(used.eps_mm)
+            << ", \"break_angle_deg\": " << num(used.break_angle_deg)
+            << ", \"base_z_mm\": " << num(used.base_z_mm) << "}"
+            << ",\n  \"searched_volume_mm3\": " << num(axis.searched_volume_mm3)
+            << ",\n  \"nodes\": [";
+        for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
+            const auto& n = axis.nodes[i];
+            out << (i ? "," : "") << "\n    {\"position\": " << vec(n.position)
+                << ", \"normal\": " << vec(n.normal) << ", \"area_mm2\": " << num(n.area)
+                << ", \"offset_mm\": " << num(n.offset)
+                << ", \"thickness_mm\": " << num(n.thickness) << ", \"branch\": " << n.branch
+                << "}";
+        }
+        out << "\n  ],\n  \"links\": [";
+        for (std::size_t i = 0; i < axis.links.size(); ++i) {
+            const auto& l = axis.links[i];
+            out << (i ? "," : "") << "\n    {\"start\": " << l.start << ", \"end\": " << l.end
+                << ", \"kind\": " << quoted(link_kind(l.kind))
+                << ", \"is_break\": " << (l.is_break ? "true" : "false")
+                << ", \"turn_deg\": " << num(l.turn_deg) << "}";
+        }
+        out << "\n  ],\n  \"branches\": [";
+        for (std::size_t i = 0; i < axis.branches.size(); ++i) {
+            const auto& b = axis.branches[i];
+            out << (i ? "," : "") << "\n    {\"parent\": " << b.parent
+                << ", \"direction\": " << vec(b.direction) << ", \"nodes\": [";
+            for (std::size_t k = 0; k < b.nodes.size(); ++k) out << (k ? ", " : "") << b.nodes[k];
+            out << "], \"parent_node\": " << b.parent_node << ", \"first_link\": " << b.first_link
+                << ", \"depth\": " << b.depth << "}";
+        }
+        out << "\n  ]\n}\n";
     } else {
-        std::cout << out.str();
+        int breaks = 0;
+        for (const auto& l : axis.links) breaks += l.is_break;
+        out << "# " << a.file << ": " << part.kind() << ", " << part.mesh.triangles.size()
+            << " triangles\n# step " << num(used.step_mm) << " mm, distance threshold "
+            << num(used.distance_threshold_mm) << " mm: " << axis.nodes.size() << " nodes, "
+            << axis.links.size() << " links (" << breaks << " breaks), " << axis.branches.size()
+            << " branches\n# branch parent parent_node direction nodes first_node last_node\n";
+        for (std::size_t i = 0; i < axis.branches.size(); ++i) {
+            const auto& b = axis.branches[i];
+            const auto& first = axis.nodes[std::size_t(b.nodes.front())].position;
+            const auto& last = axis.nodes[std::size_t(b.nodes.back())].position;
+            out << i << " " << b.parent << " " << b.parent_node << " " << num(b.direction.x())
+                << "," << num(b.direction.y()) << "," << num(b.direction.z()) << " "
+                << b.nodes.size() << std::fixed << std::setprecision(4) << " " << first.x() << ","
+                << first.y() << "," << first.z() << " " << last.x() << "," << last.y() << ","
+                << last.z() << "\n"
+                << std::defaultfloat;
+        }
     }
+    write_output(a, out.str());
     return 0;
 }
 
@@ -203,6 +318,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (command == "sections") return run_sections(args);
+        if (command == "axis") return run_axis(args);
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& e) {
         std::cerr << "multiaxis-slicer: " << e.what() << " (see multiaxis-slicer --help)\n";

@@ -136,6 +136,47 @@ class CliSections(unittest.TestCase):
         self.expect_error(["sections"], 2, "FILE")
         self.expect_error(["explode", box], 2, "unknown command")
 
+    def test_axis_of_the_l_block_turns_into_the_arm(self):
+        r = run("axis", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(doc["params"]["step_mm"], 2.5)
+        self.assertEqual(doc["params"]["distance_threshold_mm"], 5)
+        self.assertEqual([b["direction"] for b in doc["branches"]], [[0, 0, 1], [1, 0, 0]])
+        self.assertEqual([len(b["nodes"]) for b in doc["branches"]], [24, 20])
+        self.assertEqual(doc["branches"][1]["parent"], 0)
+        arm = [doc["nodes"][i]["position"] for i in doc["branches"][1]["nodes"]]
+        for p in arm:
+            self.assertAlmostEqual(p[1], 10.0, places=6)
+            self.assertAlmostEqual(p[2], 50.0, places=6)
+        breaks = [l for l in doc["links"] if l["is_break"]]
+        self.assertEqual(len(breaks), 1)
+        self.assertEqual(breaks[0]["kind"], "connecting")
+        self.assertAlmostEqual(doc["searched_volume_mm3"], 44000.0, places=6)
+        out = os.path.join(self.tmp.name, "axis.json")
+        r = run("axis", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            self.assertEqual(json.load(f), doc)
+
+    def test_axis_text_summary_lists_branches(self):
+        r = run("axis", os.path.join(DATA, "box_10x20x30.step"), "--step", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = [l.split() for l in r.stdout.splitlines() if not l.startswith("#")]
+        self.assertEqual(rows, [["0", "-1", "-1", "0,0,1", "15", "5.0000,10.0000,0.0010",
+                                 "5.0000,10.0000,28.0010"]])
+
+    def test_axis_bad_input(self):
+        box = os.path.join(DATA, "box_10x20x30.step")
+        self.expect_error(["axis", box, "--step", "40"], 1, "invalid_argument", "height")
+        self.expect_error(["axis", box, "--step", "-1"], 2, "--step")
+        self.expect_error(["axis", box, "--base-z", "-5"], 1, "does not stand on its base plane")
+        self.expect_error(["axis", box, "--break-angle", "400"], 1, "break angle")
+        self.expect_error(["axis", os.path.join(DATA, "two_boxes.step")], 1, "multiple_solids")
+        self.expect_error(["axis", self.write("open.stl", box_stl(1, 1, 1, drop_last=True))], 1,
+                          "open_mesh")
+        self.expect_error(["axis", box, "--normal", "1,0,0"], 2, "unknown option")
+
     def test_help(self):
         r = run("--help")
         self.assertEqual(r.returncode, 0)

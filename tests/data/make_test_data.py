@@ -4,6 +4,7 @@
 # l_block.brep        paper Fig. 7: column [0,20]x[0,20]x[0,60] + arm [20,70]x[0,20]x[40,60]
 # l_block.iges        the same
 # cylinder_r10_h40.stp  cylinder of radius 10, height 40 on the XY plane, axis Z through (0,0)
+# two_boxes.step       see the end of this file
 import os
 
 import FreeCAD
@@ -19,3 +20,7 @@ l_block.exportBrep(os.path.join(here, "l_block.brep"))
 l_block.exportIges(os.path.join(here, "l_block.iges"))
 Part.makeCylinder(10, 40).exportStep(os.path.join(here, "cylinder_r10_h40.stp"))
 print("test data written to", here)
+
+# two_boxes.step       two separate boxes in one file (several solids where one is expected)
+two = Part.makeCompound([Part.makeBox(10, 10, 10), Part.makeBox(10, 10, 10, V(20, 0, 0))])
+two.exportStep(os.path.join(here, "two_boxes.step"))

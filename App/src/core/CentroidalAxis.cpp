@@ -130,10 +130,12 @@ Strip perpendicular_strip(const Slab& s, const StripAxes& ax) {
 }
 
 // Outlines of stacked strips as few simple polygons: consecutive strips of one branch that each
-// hold one interval overlapping the previous one form a staircase. (Handing Clipper a rectangle
+// hold one interval overlapping the previous one form one band, whose sides run straight from
+// each strip's start to the next one's (exact for prisms, closer to the true surface than a
+// staircase elsewhere), simplified to `tolerance` like the sections. (Handing Clipper a rectangle
 // per strip, all sharing edges, was most of the axis' cost on scanned meshes.)
-Regions2 strips_to_regions(std::vector<Strip> strips, const StripAxes& ax,
-                           const PlaneFrame& frame) {
+Regions2 strips_to_regions(std::vector<Strip> strips, const StripAxes& ax, const PlaneFrame& frame,
+                           double tolerance) {
     std::sort(strips.begin(), strips.end(),
               [](const Strip& a, const Strip& b) { return a.s0 < b.s0; });
     auto point = [&](double s, double t) {
@@ -151,12 +153,21 @@ Regions2 strips_to_regions(std::vector<Strip> strips, const StripAxes& ax,
         for (auto it = right.rbegin(); it != right.rend(); ++it)
             poly.points.push_back(point(it->first, it->second));
         if (signed_area(poly) < 0.0) std::reverse(poly.points.begin(), poly.points.end());
-        out.push_back(Region2{std::move(poly), {}});
+        out.push_back(Region2{simplify(poly, tolerance), {}});
     };
-    std::vector<std::pair<double, double>> left, right;  // (s, t) corners of the open staircase
+    std::vector<std::pair<double, double>> left, right;  // (s, t) corners of the open band
     double last_s1 = 0.0, last_l = 0.0, last_r = 0.0;
+    auto close_band = [&] {
+        if (left.empty()) return;
+        left.emplace_back(last_s1, last_l);
+        right.emplace_back(last_s1, last_r);
+        emit(left, right);
+        left.clear();
+        right.clear();
+    };
     for (const auto& strip : strips) {
         if (strip.t.size() != 1) {
+            close_band();
             for (const auto& [l, r] : strip.t)
                 emit({{strip.s0, l}, {strip.s1, l}}, {{strip.s0, r}, {strip.s1, r}});
             continue;
@@ -164,20 +175,14 @@ Regions2 strips_to_regions(std::vector<Strip> strips, const StripAxes& ax,
         const auto [l, r] = strip.t.front();
         const bool continues =
             !left.empty() && std::abs(strip.s0 - last_s1) <= 1e-9 && l < last_r && r > last_l;
-        if (!continues && !left.empty()) {
-            emit(left, right);
-            left.clear();
-            right.clear();
-        }
+        if (!continues) close_band();
         left.emplace_back(strip.s0, l);
-        left.emplace_back(strip.s1, l);
         right.emplace_back(strip.s0, r);
-        right.emplace_back(strip.s1, r);
         last_s1 = strip.s1;
         last_l = l;
         last_r = r;
     }
-    if (!left.empty()) emit(left, right);
+    close_band();
     return out;
 }
 
@@ -187,7 +192,7 @@ Regions2 slab_cut(const Slab& s, const Vector3d& n, double c, const PlaneFrame& 
     const double along = s.normal.dot(n);
     if (std::abs(along) <= 0.5) {
         const StripAxes ax = strip_axes(s, n, c);
-        return strips_to_regions({perpendicular_strip(s, ax)}, ax, frame);
+        return strips_to_regions({perpendicular_strip(s, ax)}, ax, frame, 0.0);
     }
     const double h = along > 0 ? c : -c;  // the plane's offset in the slab's terms
     if (h < s.h0 || h >= s.h1) return {};
@@ -296,8 +301,19 @@ private:
             group.second.push_back(perpendicular_strip(slab, ax));
         }
         for (auto& [branch, group] : strips)
-            for (auto& r : strips_to_regions(std::move(group.second), group.first, frame))
+            for (auto& r : strips_to_regions(std::move(group.second), group.first, frame, 1e-9))
                 swept.push_back(std::move(r));
+        // Only what overlaps a region's 2-D box can take anything away from it.
+        std::vector<Eigen::AlignedBox2d> region_boxes;
+        for (const auto& r : regions) region_boxes.push_back(bounds(r));
+        swept.erase(std::remove_if(swept.begin(), swept.end(),
+                                   [&](const Region2& r) {
+                                       const Eigen::AlignedBox2d b = bounds(r);
+                                       for (const auto& rb : region_boxes)
+                                           if (b.intersects(rb)) return false;
+                                       return true;
+                                   }),
+                    swept.end());
         if (swept.empty()) return regions;
         return keep_larger(difference(regions, swept), p_.min_region_area_mm2);
     }

@@ -4,6 +4,8 @@
 #   install  installs the workbench into ~/.local/share/FreeCAD/Mod/MultiAxisSlicer
 #   demo     install, then run the main job headless on the bundled example part (results in out/)
 #   test     build and run every test (ctest: engine, CLI, freecadcmd, GUI under Xvfb)
+#   bench    also install libcgal-dev (for the comparison with CGAL's skeleton), fetch CGAL's
+#            test meshes and run the benchmark programs (figures in out/bench_*.txt)
 #   build    build only
 # Idempotent: run it again after a pull.
 set -euo pipefail
@@ -47,6 +49,7 @@ install_addon() {
   echo "setup: workbench installed in $mod"
 }
 
+[ "$mode" = bench ] && packages+=(libcgal-dev)
 install_packages
 configure_and_build
 case "$mode" in
@@ -63,5 +66,12 @@ case "$mode" in
     cd "$build"
     ctest --output-on-failure -j 1
     ;;
-  *) echo "usage: tools/setup.sh [install|demo|test|build]" >&2; exit 2 ;;
+  bench)
+    mkdir -p "$root/out"
+    [ -f "$build/bench-data/bunny00.off" ] || "$root/tools/fetch_bench_data.sh" "$build/bench-data"
+    echo "setup: $(nproc) cores; benchmark figures go to out/bench_sections.txt, out/bench_axis.txt"
+    "$build/bench/mas_bench" "$build/bench-data" | tee "$root/out/bench_sections.txt"
+    "$build/bench/mas_bench_axis" "$build/bench-data" | tee "$root/out/bench_axis.txt"
+    ;;
+  *) echo "usage: tools/setup.sh [install|demo|test|bench|build]" >&2; exit 2 ;;
 esac

@@ -13,11 +13,13 @@
 #include "mas/Section.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numeric>
 #include <thread>
 
@@ -69,20 +71,22 @@ std::uint64_t edge_key(int a, int b) {
     return (std::uint64_t(lo) << 32) | hi;
 }
 
-// A segment of a section: it enters the facet through mesh edge `from` and leaves through `to`,
-// running counter-clockwise (material on its left) seen from above the plane.
+// A segment of a section: it enters the facet through mesh edge `from` at 2-D point `p` and
+// leaves through `to`, running counter-clockwise (material on its left) seen from above the plane.
+// The point is computed while the facet's vertices are in cache; chaining needs only the keys.
 struct Segment {
     std::uint64_t from, to;
+    Eigen::Vector2d p;
 };
 
 // Where the plane at height d crosses the edge (a, b) of the mesh, in 2-D. Computed from the edge's
-// endpoints in a fixed order, so both facets sharing the edge produce the same point.
-Eigen::Vector2d crossing(std::uint64_t key, double d, const std::vector<double>& h,
+// endpoints in a fixed order (lower index first), so both facets sharing the edge produce the
+// same point.
+Eigen::Vector2d crossing(int a, int b, double d, const std::vector<double>& h,
                          const std::vector<Eigen::Vector2d>& uv) {
-    const auto a = static_cast<std::size_t>(key >> 32);
-    const auto b = static_cast<std::size_t>(key & 0xffffffffu);
-    const double t = (d - h[a]) / (h[b] - h[a]);
-    return uv[a] + t * (uv[b] - uv[a]);
+    if (a > b) std::swap(a, b);
+    const double t = (d - h[std::size_t(a)]) / (h[std::size_t(b)] - h[std::size_t(a)]);
+    return uv[std::size_t(a)] + t * (uv[std::size_t(b)] - uv[std::size_t(a)]);
 }
 
 // Open-addressing map from a segment's `from` key to its index, rebuilt per plane.
@@ -122,9 +126,7 @@ private:
 };
 
 // Chains the segments of one plane into loops, then regions.
-void build_regions(const Segment* segs, std::size_t n, double d, const std::vector<double>& h,
-                   const std::vector<Eigen::Vector2d>& uv, const SliceParams& params,
-                   Section& out) {
+void build_regions(const Segment* segs, std::size_t n, const SliceParams& params, Section& out) {
     KeyIndex index;
     index.build(segs, n);
     std::vector<char> used(n, 0);
@@ -137,7 +139,7 @@ void build_regions(const Segment* segs, std::size_t n, double d, const std::vect
         bool closed = false;
         while (true) {
             used[cur] = 1;
-            const Eigen::Vector2d p = crossing(segs[cur].from, d, h, uv);
+            const Eigen::Vector2d& p = segs[cur].p;
             if (loop.points.empty() || (p - loop.points.back()).squaredNorm() > merge2)
                 loop.points.push_back(p);
             if (segs[cur].to == segs[start].from) {
@@ -179,32 +181,34 @@ void build_regions(const Segment* segs, std::size_t n, double d, const std::vect
     out.centroid = total > 0.0 ? Eigen::Vector3d(moment / total) : out.plane.origin;
 }
 
-// Area and centroid of one plane straight from its segments (Green's theorem), no chaining.
-void totals_from_segments(const Segment* segs, std::size_t n, double d,
-                          const std::vector<double>& h, const std::vector<Eigen::Vector2d>& uv,
-                          Section& out) {
-    if (n == 0) {
-        out.centroid = out.plane.origin;
-        return;
+// The crossing of facet t with the plane at height d, as a segment running from the edge where
+// the facet goes down through the plane to the edge where it comes back up. Walking the facet's
+// edges in order (CCW from outside), with an outward facet normal nt, n x nt points along the
+// CCW section boundary, which runs from the "down" edge's crossing to the "up" edge's.
+struct Crossing {
+    int down_a, down_b, up_a, up_b;
+};
+
+Crossing cross_facet(const Eigen::Vector3i& t, double d, const std::vector<double>& h) {
+    Crossing c{0, 0, 0, 0};
+    for (int e = 0; e < 3; ++e) {
+        const int a = t[e], b = t[(e + 1) % 3];
+        const bool a_below = h[std::size_t(a)] < d, b_below = h[std::size_t(b)] < d;
+        if (a_below == b_below) continue;
+        if (b_below) {
+            c.down_a = a;
+            c.down_b = b;
+        } else {
+            c.up_a = a;
+            c.up_b = b;
+        }
     }
-    const Eigen::Vector2d ref = crossing(segs[0].from, d, h, uv);
-    double area2 = 0.0;
-    Eigen::Vector2d m = Eigen::Vector2d::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
-        const Eigen::Vector2d a = crossing(segs[i].from, d, h, uv) - ref;
-        const Eigen::Vector2d b = crossing(segs[i].to, d, h, uv) - ref;
-        const double c = a.x() * b.y() - b.x() * a.y();
-        area2 += c;
-        m += (a + b) * c;
-    }
-    out.area = 0.5 * area2;
-    const PlaneFrame frame(out.plane.normal);
-    out.centroid =
-        area2 != 0.0 ? frame.to_3d(ref + m / (3.0 * area2), out.plane) : out.plane.origin;
+    return c;
 }
 
 // Slices the mesh by planes that all share `normal`; `offsets[k]` is n.origin of plane
-// `which[k]`, sorted ascending.
+// `which[k]`, sorted ascending. Every step is parallel and its result independent of thread
+// timing: facets in fixed chunks, planes in fixed batches.
 void slice_group(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
                  const std::vector<double>& offsets, const std::vector<std::size_t>& which,
                  const SliceParams& params, const std::function<void()>& check_cancel,
@@ -222,92 +226,124 @@ void slice_group(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
 
     const std::size_t nt = mesh.triangles.size();
     const std::size_t np = offsets.size();
-    // Chunks of facets; fewer, larger ones when there are very many planes, so that the
-    // (chunk, plane) count table stays under ~16 M entries.
+    // Fewer, larger chunks when there are very many planes, so that the (chunk, plane) tables
+    // stay under ~16 M entries.
     const std::size_t chunk = std::max<std::size_t>(
         kChunk, std::size_t(double(nt) * double(std::max<std::size_t>(np, 1)) / 16e6) + 1);
     const std::size_t nchunks = (nt + chunk - 1) / chunk;
     // Planes at heights d with hmin < d <= hmax cut the facet (a vertex on a plane is above it).
     auto plane_range = [&](const Eigen::Vector3i& t, std::size_t& first, std::size_t& last) {
-        const double a = h[t[0]], b = h[t[1]], c = h[t[2]];
+        const double a = h[std::size_t(t[0])], b = h[std::size_t(t[1])], c = h[std::size_t(t[2])];
         const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
         first = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), lo) - offsets.begin());
         last = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), hi) - offsets.begin());
     };
+    auto for_chunks = [&](const auto& body) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nchunks, 1), [&](const auto& r) {
+            for (std::size_t c = r.begin(); c != r.end(); ++c)
+                body(c, c * chunk, std::min(nt, (c + 1) * chunk));
+        });
+    };
 
-    // Pass 1: how many segments each chunk gives each plane.
-    std::vector<std::uint32_t> counts(nchunks * np, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nchunks, 1), [&](const auto& r) {
-        for (std::size_t c = r.begin(); c != r.end(); ++c) {
-            std::uint32_t* row = counts.data() + c * np;
-            const std::size_t end = std::min(nt, (c + 1) * chunk);
-            for (std::size_t i = c * chunk; i < end; ++i) {
-                std::size_t first, last;
-                plane_range(mesh.triangles[i], first, last);
-                for (std::size_t k = first; k < last; ++k) ++row[k];
-            }
-        }
-    });
-    check_cancel();
-    // Where each (plane, chunk) block starts: planes outermost, chunks in order inside.
-    std::vector<std::size_t> plane_begin(np + 1, 0);
-    std::vector<std::size_t> cursor(nchunks * np);
-    std::size_t total = 0;
-    for (std::size_t k = 0; k < np; ++k) {
-        plane_begin[k] = total;
-        for (std::size_t c = 0; c < nchunks; ++c) {
-            cursor[c * np + k] = total;
-            total += counts[c * np + k];
-        }
-    }
-    plane_begin[np] = total;
-    counts.clear();
-    counts.shrink_to_fit();
-
-    // Pass 2: write the segments.
-    std::vector<Segment> segs(total);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nchunks, 1), [&](const auto& r) {
-        for (std::size_t c = r.begin(); c != r.end(); ++c) {
-            std::size_t* cur = cursor.data() + c * np;
-            const std::size_t end = std::min(nt, (c + 1) * chunk);
-            for (std::size_t i = c * chunk; i < end; ++i) {
+    if (!params.build_regions) {
+        // Totals only: area and first moments per (chunk, plane) straight from the crossings
+        // (Green's theorem about a fixed point near the part), no segments stored, no chaining.
+        const Eigen::Vector2d ref = nv > 0 ? uv.front() : Eigen::Vector2d::Zero();
+        std::vector<Eigen::Vector3d> acc(nchunks * np, Eigen::Vector3d::Zero());
+        for_chunks([&](std::size_t c, std::size_t begin, std::size_t end) {
+            Eigen::Vector3d* row = acc.data() + c * np;
+            for (std::size_t i = begin; i < end; ++i) {
                 const Eigen::Vector3i& t = mesh.triangles[i];
                 std::size_t first, last;
                 plane_range(t, first, last);
                 for (std::size_t k = first; k < last; ++k) {
-                    const double d = offsets[k];
-                    // Walking the facet's edges in order (CCW from outside), one goes from above
-                    // to below the plane ("down") and one from below to above ("up"). With an
-                    // outward facet normal nt, n x nt points along the CCW section boundary,
-                    // which runs from the down edge's crossing to the up edge's.
-                    std::uint64_t down = 0, up = 0;
-                    for (int e = 0; e < 3; ++e) {
-                        const int a = t[e], b = t[(e + 1) % 3];
-                        const bool a_below = h[a] < d, b_below = h[b] < d;
-                        if (a_below == b_below) continue;
-                        if (b_below)
-                            down = edge_key(a, b);
-                        else
-                            up = edge_key(a, b);
-                    }
-                    segs[cur[k]++] = Segment{down, up};
+                    const Crossing x = cross_facet(t, offsets[k], h);
+                    const Eigen::Vector2d a = crossing(x.down_a, x.down_b, offsets[k], h, uv) - ref;
+                    const Eigen::Vector2d b = crossing(x.up_a, x.up_b, offsets[k], h, uv) - ref;
+                    const double cr = a.x() * b.y() - b.x() * a.y();
+                    row[k] += Eigen::Vector3d(cr, (a.x() + b.x()) * cr, (a.y() + b.y()) * cr);
                 }
             }
+        });
+        check_cancel();
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 64), [&](const auto& r) {
+            for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+                for (std::size_t c = 0; c < nchunks; ++c) sum += acc[c * np + k];
+                Section& s = out[which[k]];
+                s.area = 0.5 * sum.x();
+                s.centroid = sum.x() != 0.0
+                                 ? frame.to_3d(ref + sum.tail<2>() / (3.0 * sum.x()), s.plane)
+                                 : s.plane.origin;
+            }
+        });
+        return;
+    }
+
+    // Regions: planes go in batches of kBatch, each batch on its own thread with reusable
+    // buffers, so memory stays bounded and is touched once (allocating and first touching all
+    // segments at once, 64 MB for 1000 planes through 1M facets, cost more than the cutting).
+    // A batch's facets come from buckets by the first plane each facet reaches, plus the few
+    // facets spanning more than kBatch planes, which every batch checks.
+    constexpr std::size_t kBatch = 64;
+    std::vector<std::uint32_t> first_plane(nt), last_plane(nt);
+    for_chunks([&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            std::size_t first, last;
+            plane_range(mesh.triangles[i], first, last);
+            first_plane[i] = std::uint32_t(first);
+            last_plane[i] = std::uint32_t(last);
         }
     });
     check_cancel();
+    std::vector<std::size_t> bucket_start(np + 2, 0);
+    std::vector<std::uint32_t> long_facets;
+    for (std::size_t i = 0; i < nt; ++i) {
+        if (first_plane[i] >= last_plane[i]) continue;
+        if (last_plane[i] - first_plane[i] > kBatch)
+            long_facets.push_back(std::uint32_t(i));
+        else
+            ++bucket_start[first_plane[i] + 2];
+    }
+    for (std::size_t k = 2; k < bucket_start.size(); ++k) bucket_start[k] += bucket_start[k - 1];
+    std::vector<std::uint32_t> bucket(bucket_start.back());
+    for (std::size_t i = 0; i < nt; ++i)
+        if (first_plane[i] < last_plane[i] && last_plane[i] - first_plane[i] <= kBatch)
+            bucket[bucket_start[first_plane[i] + 1]++] = std::uint32_t(i);
+    // bucket_start[k] .. bucket_start[k + 1] now hold the facets whose first plane is k.
 
-    // Pass 3: per plane, loops and regions (or totals only).
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 1), [&](const auto& r) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-            Section& s = out[which[k]];
-            const Segment* first = segs.data() + plane_begin[k];
-            const std::size_t n = plane_begin[k + 1] - plane_begin[k];
-            if (params.build_regions)
-                build_regions(first, n, offsets[k], h, uv, params, s);
-            else
-                totals_from_segments(first, n, offsets[k], h, uv, s);
-            if (k % 64 == 0) check_cancel();
+    struct Buffers {
+        std::vector<std::vector<Segment>> per_plane = std::vector<std::vector<Segment>>(kBatch);
+    };
+    tbb::enumerable_thread_specific<Buffers> buffers;
+    const std::size_t nbatches = (np + kBatch - 1) / kBatch;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nbatches, 1), [&](const auto& r) {
+        Buffers& buf = buffers.local();
+        for (std::size_t batch = r.begin(); batch != r.end(); ++batch) {
+            const std::size_t k0 = batch * kBatch, k1 = std::min(np, k0 + kBatch);
+            for (auto& v : buf.per_plane) v.clear();
+            auto cut = [&](std::uint32_t i) {
+                const Eigen::Vector3i& t = mesh.triangles[i];
+                const std::size_t from = std::max<std::size_t>(first_plane[i], k0);
+                const std::size_t to = std::min<std::size_t>(last_plane[i], k1);
+                for (std::size_t k = from; k < to; ++k) {
+                    const Crossing x = cross_facet(t, offsets[k], h);
+                    buf.per_plane[k - k0].push_back(
+                        Segment{edge_key(x.down_a, x.down_b), edge_key(x.up_a, x.up_b),
+                                crossing(x.down_a, x.down_b, offsets[k], h, uv)});
+                }
+            };
+            // Short facets reaching this batch start at most kBatch planes before it.
+            const std::size_t lo = k0 > kBatch ? k0 - kBatch : 0;
+            for (std::size_t j = bucket_start[lo]; j < bucket_start[k1]; ++j)
+                if (last_plane[bucket[j]] > k0) cut(bucket[j]);
+            for (std::uint32_t i : long_facets)
+                if (first_plane[i] < k1 && last_plane[i] > k0) cut(i);
+            for (std::size_t k = k0; k < k1; ++k) {
+                const auto& v = buf.per_plane[k - k0];
+                build_regions(v.data(), v.size(), params, out[which[k]]);
+            }
+            if (batch % 4 == 0) check_cancel();
         }
     });
 }

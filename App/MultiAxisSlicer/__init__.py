@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Multi-Axis Slicer: cross-sections of solids and meshes, for scripts and FreeCAD.
+"""Multi-Axis Slicer: cross-sections and centroidal axes of solids and meshes, for scripts and
+FreeCAD.
 
 The scripting API over the C++ engine (the compiled module ``MultiAxisSlicer._engine``). It runs in
 FreeCAD (GUI or ``freecadcmd``) and in a plain Python 3.11 script; FreeCAD types (``Part.Shape``,
@@ -8,6 +9,7 @@ FreeCAD (GUI or ``freecadcmd``) and in a plain Python 3.11 script; FreeCAD types
     import MultiAxisSlicer as mas
     for s in mas.sections(App.ActiveDocument.Box, normal=(0, 0, 1), step=2.0):
         print(s.origin, s.area, s.centroid)
+    axis = mas.centroidal_axis(App.ActiveDocument.Box, step=2.0)   # see MultiAxisSlicer.axis
 
 Errors:
   * ``EngineError`` (a ``RuntimeError``) for a part the engine cannot use; ``error.code`` names the
@@ -30,6 +32,10 @@ import os
 __version__ = "0.1.0"
 
 __all__ = [
+    "AxisBranch",
+    "AxisLink",
+    "AxisNode",
+    "CentroidalAxis",
     "EngineError",
     "EngineUnavailableError",
     "Region",
@@ -37,7 +43,9 @@ __all__ = [
     "deflection",
     "engine_available",
     "engine_missing_message",
+    "centroidal_axis",
     "exact_sections",
+    "make_centroidal_axis",
     "make_sections",
     "parallel_planes",
     "read",
@@ -505,3 +513,20 @@ def make_sections(source, normal=(0, 0, 1), step=5.0, deflection=0.0, name="Sect
 
     return features.make_sections(source, normal=normal, step=step, deflection=deflection,
                                   name=name, doc=doc)
+
+
+def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, break_angle=30.0,
+                         deflection=0.0, name="CentroidalAxis", doc=None):
+    """Adds a parametric ``CentroidalAxis`` object (FreeCAD only) over the document object
+    ``source`` and returns it; recompute the document to compute it. 0 for ``step``,
+    ``distance_threshold`` or ``deflection`` means derived from the part. See
+    ``MultiAxisSlicer.features``."""
+    from . import features
+
+    return features.make_centroidal_axis(source, step=step, distance_threshold=distance_threshold,
+                                         eps=eps, break_angle=break_angle, deflection=deflection,
+                                         name=name, doc=doc)
+
+
+# The centroidal axis (after the helpers above, which it uses).
+from .axis import AxisBranch, AxisLink, AxisNode, CentroidalAxis, centroidal_axis  # noqa: E402

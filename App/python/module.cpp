@@ -1,6 +1,7 @@
 // Boost.Python module `MultiAxisSlicer._engine`: the engine's stages as plain Python calls.
 // Thin on purpose: Python values in, engine structs through, plain tuples/lists/dicts out. Errors
 // leave as one exception class, EngineError(code, message); the GIL is released around engine work.
+#include "mas/CentroidalAxis.hpp"
 #include "mas/Error.hpp"
 #include "mas/Mesh.hpp"
 #include "mas/Section.hpp"
@@ -11,6 +12,7 @@
 #define BOOST_ALLOW_DEPRECATED_HEADERS
 #include <boost/python.hpp>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -527,6 +529,113 @@ void bind_exact_section() {
         "within `loop_deflection` mm. About 100x slower than slice().");
 }
 
+// ---- stage: centroidal axis
+// ----------------------------------------------------------------------
+
+const char* link_kind(mas::AxisLink::Kind kind) {
+    return kind == mas::AxisLink::Kind::Connecting ? "connecting" : "step";
+}
+
+// The axis as plain data; node regions stay in the engine (the Python side has no use for them).
+bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
+    bp::list nodes;
+    for (const auto& n : axis.nodes) {
+        bp::dict d;
+        d["position"] = to_py(n.position);
+        d["normal"] = to_py(n.normal);
+        d["area"] = n.area;
+        d["offset"] = n.offset;
+        d["thickness"] = n.thickness;
+        d["branch"] = n.branch;
+        d["incoming_link"] = n.incoming_link;
+        nodes.append(d);
+    }
+    bp::list links;
+    for (const auto& l : axis.links) {
+        bp::dict d;
+        d["start"] = l.start;
+        d["end"] = l.end;
+        d["kind"] = link_kind(l.kind);
+        d["is_break"] = l.is_break;
+        d["turn_deg"] = l.turn_deg;
+        links.append(d);
+    }
+    bp::list branches;
+    for (const auto& b : axis.branches) {
+        bp::dict d;
+        d["parent"] = b.parent;
+        d["direction"] = to_py(b.direction);
+        bp::list members;
+        for (int n : b.nodes) members.append(n);
+        d["nodes"] = members;
+        d["parent_node"] = b.parent_node;
+        d["first_link"] = b.first_link;
+        d["depth"] = b.depth;
+        branches.append(d);
+    }
+    bp::dict params;
+    params["step_mm"] = axis.params.step_mm;
+    params["distance_threshold_mm"] = axis.params.distance_threshold_mm;
+    params["eps_mm"] = axis.params.eps_mm;
+    params["break_angle_deg"] = axis.params.break_angle_deg;
+    params["base_z_mm"] = axis.params.base_z_mm;
+    params["min_region_area_mm2"] = axis.params.min_region_area_mm2;
+    bp::dict out;
+    out["nodes"] = nodes;
+    out["links"] = links;
+    out["branches"] = branches;
+    out["params"] = params;
+    out["searched_volume_mm3"] = axis.searched_volume_mm3;
+    out["sections_cut"] = axis.sections_cut;
+    return out;
+}
+
+bp::dict centroidal_axis(const mas::TriangleMesh& mesh, double step, double distance_threshold,
+                         double eps, double break_angle, double base_z, double min_region_area) {
+    mas::AxisParams params;
+    params.step_mm = finite_number(step, "step");  // <= 0: derived from the part
+    params.distance_threshold_mm = finite_number(distance_threshold, "distance_threshold");
+    params.eps_mm = finite_number(eps, "eps");
+    params.break_angle_deg = finite_number(break_angle, "break_angle");
+    if (std::isinf(base_z))
+        invalid_argument("base_z must be a finite number (or NaN: the part's lowest point)");
+    params.base_z_mm = base_z;
+    params.min_region_area_mm2 = finite_number(min_region_area, "min_region_area");
+    mas::CentroidalAxis axis;
+    {
+        GilRelease nogil;
+        axis = mas::centroidal_axis(mesh, params);
+    }
+    return axis_to_py(axis);
+}
+
+double derive_axis_step(const mas::TriangleMesh& mesh) {
+    GilRelease nogil;
+    return mas::derive_axis_step(mesh);
+}
+
+void bind_axis() {
+    bp::def(
+        "centroidal_axis", &centroidal_axis,
+        (bp::arg("mesh"), bp::arg("step") = 0.0, bp::arg("distance_threshold") = 0.0,
+         bp::arg("eps") = 0.001, bp::arg("break_angle") = 30.0,
+         bp::arg("base_z") = std::numeric_limits<double>::quiet_NaN(),
+         bp::arg("min_region_area") = 1e-6),
+        "The centroidal axis of a closed mesh (make_closed() or tessellate() give one), lengths "
+        "in mm, angles in degrees: step <= 0 is derived from the part, distance_threshold <= 0 "
+        "is twice the step, base_z NaN is the part's lowest point. Returns a dict: nodes "
+        "[{position, normal, area, offset, thickness, branch, incoming_link}], links [{start, "
+        "end, kind ('step' | 'connecting'), is_break, turn_deg}], branches [{parent, direction, "
+        "nodes, parent_node, first_link, depth}], params (the values used: step_mm, "
+        "distance_threshold_mm, eps_mm, break_angle_deg, base_z_mm, min_region_area_mm2), "
+        "searched_volume_mm3, sections_cut. EngineError invalid_argument on NaN or out-of-range "
+        "parameters, a step not smaller than the part's height, or a part that does not stand "
+        "on base_z; empty_input for an empty mesh.");
+    bp::def("derive_axis_step", &derive_axis_step, bp::arg("mesh"),
+            "The step (mm) centroidal_axis() derives when none is given: half the part's thinnest "
+            "wall, within [diagonal / 2000, diagonal / 20].");
+}
+
 }  // namespace
 
 BOOST_PYTHON_MODULE(_engine) {
@@ -561,4 +670,5 @@ BOOST_PYTHON_MODULE(_engine) {
     bind_tessellate();
     bind_section();
     bind_exact_section();
+    bind_axis();
 }

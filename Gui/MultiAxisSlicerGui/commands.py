@@ -21,18 +21,20 @@ def _selected_part():
     return None
 
 
-class SectionsCommand:
-    """Cross-sections of the selected solid or mesh, as a parametric Sections object."""
+class _PartCommand:
+    """A command making one parametric object over the selected solid or mesh, in one transaction
+    (undo removes it). A subclass sets NAME, TRANSACTION, ICON, TOOLTIP and defines make()."""
 
-    NAME = "MultiAxisSlicer_Sections"
-    TRANSACTION = "Cross-sections"
+    NAME = ""
+    TRANSACTION = ""  # also the menu text
+    ICON = ""
+    TOOLTIP = ""
 
     def GetResources(self):
         return {
-            "Pixmap": MultiAxisSlicerGui.icon_path("Sections.svg"),
-            "MenuText": "Cross-sections",
-            "ToolTip": "Cut the selected solid or closed mesh by parallel planes "
-                       "(a parametric Sections object: set Normal, Step, Deflection)",
+            "Pixmap": MultiAxisSlicerGui.icon_path(self.ICON),
+            "MenuText": self.TRANSACTION,
+            "ToolTip": self.TOOLTIP,
         }
 
     def IsActive(self):
@@ -40,6 +42,9 @@ class SectionsCommand:
             return _selected_part() is not None
         except Exception:  # IsActive runs on every GUI update: never let it raise
             return False
+
+    def make(self, source, doc):
+        raise NotImplementedError
 
     def Activated(self):
         source = _selected_part()
@@ -49,21 +54,52 @@ class SectionsCommand:
         if not mas.engine_available():
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
             return
-        import MultiAxisSlicer.features as features
-
         doc = source.Document
         doc.openTransaction(self.TRANSACTION)
         try:
-            obj = features.make_sections(source, doc=doc)
+            obj = self.make(source, doc)
             doc.recompute()
         except Exception as error:  # creating the object failed: leave nothing behind
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(
-                "Cross-sections of '{}' failed: {}".format(source.Label, error))
+                "{} of '{}' failed: {}".format(self.TRANSACTION, source.Label, error))
             return
         doc.commitTransaction()
         if not obj.isValid():  # the object stays so that its parameters can be fixed
             MultiAxisSlicerGui.show_error("{}: {}".format(obj.Label, obj.getStatusString()))
 
 
+class SectionsCommand(_PartCommand):
+    """Cross-sections of the selected solid or mesh, as a parametric Sections object."""
+
+    NAME = "MultiAxisSlicer_Sections"
+    TRANSACTION = "Cross-sections"
+    ICON = "Sections.svg"
+    TOOLTIP = ("Cut the selected solid or closed mesh by parallel planes "
+               "(a parametric Sections object: set Normal, Step, Deflection)")
+
+    def make(self, source, doc):
+        import MultiAxisSlicer.features as features
+
+        return features.make_sections(source, doc=doc)
+
+
+class CentroidalAxisCommand(_PartCommand):
+    """The centroidal axis of the selected solid or mesh, as a parametric CentroidalAxis object.
+    Computing it takes milliseconds: no progress dialog."""
+
+    NAME = "MultiAxisSlicer_CentroidalAxis"
+    TRANSACTION = "Centroidal axis"
+    ICON = "CentroidalAxis.svg"
+    TOOLTIP = ("Centroidal axis of the selected solid or closed mesh: section centroids from its "
+               "base up, branching where the part branches, C1 breaks in red (a parametric "
+               "CentroidalAxis object: set Step, DistanceThreshold, BreakAngle, Deflection)")
+
+    def make(self, source, doc):
+        import MultiAxisSlicer.features as features
+
+        return features.make_centroidal_axis(source, doc=doc)
+
+
 FreeCADGui.addCommand(SectionsCommand.NAME, SectionsCommand())
+FreeCADGui.addCommand(CentroidalAxisCommand.NAME, CentroidalAxisCommand())

@@ -21,11 +21,46 @@ import MultiAxisSlicerGui.view_providers as view_providers
 
 WORKBENCH = "MultiAxisSlicerWorkbench"
 COMMAND = "MultiAxisSlicer_Sections"
+AXIS_COMMAND = "MultiAxisSlicer_CentroidalAxis"
 TOOLBAR = "Multi-Axis Slicer"
 
 
 def process_events():
     QtGui.QApplication.processEvents()
+
+
+def save_screenshot(test, doc, name, see_through=True):
+    """With MAS_SCREENSHOT_DIR set, saves the 3D view (the sources see-through unless told
+    otherwise) and the whole main window there."""
+    folder = os.environ.get("MAS_SCREENSHOT_DIR")
+    if not folder:
+        return
+    os.makedirs(folder, exist_ok=True)
+    FreeCADGui.Selection.clearSelection()
+    if see_through:
+        for o in doc.Objects:
+            if not o.TypeId.startswith("Part::FeaturePython"):
+                o.ViewObject.Transparency = 70  # the test's own document, for the picture only
+    view = FreeCADGui.getDocument(doc.Name).ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    process_events()
+    path = os.path.join(folder, name)
+    view.saveImage(path, 1000, 750, "White")
+    test.assertTrue(os.path.getsize(path) > 0)
+    # The whole window, with the 3D view pasted in: under Xvfb a widget grab leaves the OpenGL
+    # view blank.
+    window = os.path.join(folder, "window_" + name)
+    main = FreeCADGui.getMainWindow()
+    picture = main.grab()
+    viewer = view.graphicsView()
+    corner = viewer.mapTo(main, QtCore.QPoint(0, 0))
+    view.saveImage(window, viewer.width(), viewer.height(), "White")
+    painter = QtGui.QPainter(picture)
+    painter.drawImage(corner, QtGui.QImage(window))
+    painter.end()
+    picture.save(window)
+    FreeCAD.Console.PrintMessage("screenshots: {}, {}\n".format(path, window))
 
 
 class TestWorkbench(unittest.TestCase):
@@ -42,6 +77,12 @@ class TestWorkbench(unittest.TestCase):
         self.assertTrue(toolbar.isVisible())
         texts = [a.text() for a in toolbar.actions()]
         self.assertIn("Cross-sections", texts)
+        self.assertIn("Centroidal axis", texts)
+        action = [a for a in toolbar.actions() if a.text() == "Centroidal axis"][0]
+        self.assertFalse(action.icon().isNull())
+        menu = [m for m in FreeCADGui.getMainWindow().menuBar().actions() if m.text() == TOOLBAR]
+        self.assertEqual(len(menu), 1)
+        self.assertIn("Centroidal axis", [a.text() for a in menu[0].menu().actions()])
         workbench = FreeCADGui.getWorkbench(WORKBENCH)
         self.assertTrue(workbench.Icon.endswith("MultiAxisSlicer.svg"))
         self.assertTrue(os.path.isfile(workbench.Icon), workbench.Icon)
@@ -125,35 +166,179 @@ class TestSectionsCommand(unittest.TestCase):
         self.save_screenshot("sections_oblique.png")
 
     def save_screenshot(self, name):
-        """The 3D view with the sources see-through, and the whole main window."""
-        folder = os.environ.get("MAS_SCREENSHOT_DIR")
-        if not folder:
-            return
-        os.makedirs(folder, exist_ok=True)
+        save_screenshot(self, self.doc, name)
+
+
+def l_block():
+    """Fig. 7's L: a 20 x 20 x 60 column with a 50 mm arm [20, 70] x [0, 20] x [40, 60]."""
+    import Part
+
+    column = Part.makeBox(20, 20, 60)
+    arm = Part.makeBox(50, 20, 20, FreeCAD.Vector(20, 0, 40))
+    return column.fuse(arm).removeSplitter()
+
+
+def same_colour(a, b):
+    return all(abs(x - y) <= 1.0 / 255 for x, y in zip(a[:3], b[:3]))  # stored in 8 bits
+
+
+class TestCentroidalAxisCommand(unittest.TestCase):
+    def setUp(self):
+        FreeCADGui.activateWorkbench(WORKBENCH)
+        self.doc = FreeCAD.newDocument("MasGuiAxis")
+        self.part = self.doc.addObject("Part::Feature", "L")
+        self.part.Shape = l_block()
+        self.doc.recompute()
         FreeCADGui.Selection.clearSelection()
-        for o in self.doc.Objects:
-            if not o.TypeId.startswith("Part::FeaturePython"):
-                o.ViewObject.Transparency = 70  # the test's own document, for the picture only
-        view = FreeCADGui.getDocument(self.doc.Name).ActiveView
-        view.viewIsometric()
-        view.fitAll()
         process_events()
-        path = os.path.join(folder, name)
-        view.saveImage(path, 1000, 750, "White")
-        self.assertTrue(os.path.getsize(path) > 0)
-        # The whole window, with the 3D view pasted in: under Xvfb a widget grab leaves the OpenGL
-        # view blank.
-        window = os.path.join(folder, "window_" + name)
-        main = FreeCADGui.getMainWindow()
-        picture = main.grab()
-        viewer = view.graphicsView()
-        corner = viewer.mapTo(main, QtCore.QPoint(0, 0))
-        view.saveImage(window, viewer.width(), viewer.height(), "White")
-        painter = QtGui.QPainter(picture)
-        painter.drawImage(corner, QtGui.QImage(window))
-        painter.end()
-        picture.save(window)
-        FreeCAD.Console.PrintMessage("screenshots: {}, {}\n".format(path, window))
+
+    def tearDown(self):
+        FreeCADGui.Selection.clearSelection()
+        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                            "MultiAxisSlicerError"):
+            box.close()
+        FreeCAD.closeDocument(self.doc.Name)
+        process_events()
+
+    def command(self):
+        return FreeCADGui.Command.get(AXIS_COMMAND)
+
+    def run_command(self):
+        FreeCADGui.Selection.addSelection(self.part)
+        FreeCADGui.runCommand(AXIS_COMMAND)
+        process_events()
+        return self.doc.getObject("CentroidalAxis")
+
+    def check_edge_colours(self, obj):
+        """Ordinary links in LineColor, break links in BreakLineColor, one colour per edge."""
+        vobj = obj.ViewObject
+        colours = vobj.LineColorArray
+        self.assertEqual(len(colours), len(obj.Shape.Edges))
+        for i, colour in enumerate(colours):
+            want = vobj.BreakLineColor if i >= obj.BreakEdgeStart else vobj.LineColor
+            self.assertTrue(same_colour(colour, want), "edge {}: {} != {}".format(i, colour, want))
+
+    def test_command_needs_one_selected_part(self):
+        self.assertFalse(self.command().isActive())
+        FreeCADGui.Selection.addSelection(self.part)
+        self.assertTrue(self.command().isActive())
+
+    def test_command_creates_an_axis_with_breaks_in_their_own_colour(self):
+        before = self.part.Shape.exportBrepToString()
+        obj = self.run_command()
+        self.assertIsNotNone(obj, "the command made no CentroidalAxis object")
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertIs(obj.Source, self.part)
+        self.assertEqual(obj.BranchCount, 2)  # derived step: the column and the arm
+        self.assertEqual(obj.BreakCount, 1)
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        self.assertTrue(self.part.ViewObject.Visibility)
+        vobj = obj.ViewObject
+        self.assertTrue(vobj.Visibility)
+        self.assertTrue(vobj.Proxy.getIcon().endswith("CentroidalAxis.svg"))
+        self.assertTrue(os.path.isfile(vobj.Proxy.getIcon()))
+        self.assertEqual(vobj.PointSize, view_providers.AXIS_POINT_SIZE)
+        self.assertTrue(same_colour(vobj.LineColor, view_providers.AXIS_LINE_COLOR))
+        self.assertTrue(same_colour(vobj.BreakLineColor, view_providers.AXIS_BREAK_COLOR))
+        self.assertTrue(vobj.DrawOnTop)
+        self.check_edge_colours(obj)
+        self.assertIn("Centroidal axis", self.doc.UndoNames)
+
+        obj.Step = 2.5  # more edges: the colours follow
+        self.doc.recompute()
+        process_events()
+        self.assertEqual(obj.NodeCount, 44)
+        self.check_edge_colours(obj)
+        vobj.LineColor = (0.0, 0.6, 0.0)  # FreeCAD resets the per-edge colours; they come back
+        process_events()
+        self.check_edge_colours(obj)
+        vobj.LineColor = view_providers.AXIS_LINE_COLOR
+        process_events()
+        save_screenshot(self, self.doc, "axis_l_block.png", see_through=False)
+        save_screenshot(self, self.doc, "axis_l_block_see_through.png")
+
+        self.doc.undo()
+        process_events()
+        self.assertIsNone(self.doc.getObject("CentroidalAxis"))
+
+    def test_command_on_a_face_shows_the_engine_message(self):
+        import Part
+
+        self.part.Shape = Part.makePlane(10, 10)
+        self.doc.recompute()
+        obj = self.run_command()
+        self.assertIsNotNone(obj)  # it stays, so that its Source can be fixed
+        self.assertIn("Invalid", obj.State)
+        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                                     "MultiAxisSlicerError")
+                 if b.isVisible()]
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("not a solid", boxes[0].text())
+
+    def test_view_settings_survive_save_and_reopen(self):
+        obj = self.run_command()
+        obj.Step = 2.5
+        self.doc.recompute()
+        vobj = obj.ViewObject
+        vobj.BreakLineColor = (1.0, 0.5, 0.0)
+        vobj.DrawOnTop = False
+        self.assertEqual(vobj.Proxy._depth.function.getValue(), vobj.Proxy._depth.LESS)
+        folder = tempfile.mkdtemp(prefix="mas_gui_axis_")
+        try:
+            path = os.path.join(folder, "axis.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+            process_events()
+            obj = self.doc.getObject("CentroidalAxis")
+            self.part = self.doc.getObject("L")
+            vobj = obj.ViewObject
+            self.assertIsInstance(vobj.Proxy, view_providers.ViewProviderCentroidalAxis)
+            self.assertTrue(same_colour(vobj.BreakLineColor, (1.0, 0.5, 0.0)))
+            self.assertFalse(vobj.DrawOnTop)
+            self.assertEqual(vobj.Proxy._depth.function.getValue(), vobj.Proxy._depth.LESS)
+            self.check_edge_colours(obj)
+            obj.Step = 5.0
+            self.doc.recompute()
+            process_events()
+            self.check_edge_colours(obj)
+        finally:
+            shutil.rmtree(folder)
+
+    def test_a_document_made_without_the_gui_gets_its_colours(self):
+        import MultiAxisSlicer.features as features
+
+        folder = tempfile.mkdtemp(prefix="mas_gui_axis_")
+        try:
+            path = os.path.join(folder, "axis.FCStd")
+            script = os.path.join(folder, "make.py")
+            with open(script, "w") as f:
+                f.write(textwrap.dedent("""
+                    import FreeCAD, Part
+                    import MultiAxisSlicer as mas
+                    doc = FreeCAD.newDocument("Headless")
+                    part = doc.addObject("Part::Feature", "L")
+                    part.Shape = Part.makeBox(20, 20, 60).fuse(
+                        Part.makeBox(50, 20, 20, FreeCAD.Vector(20, 0, 40))).removeSplitter()
+                    mas.make_centroidal_axis(part, step=2.5)
+                    doc.recompute()
+                    doc.saveAs({!r})
+                """.format(path)))
+            result = subprocess.run(["freecadcmd", script], capture_output=True, text=True,
+                                    timeout=120)
+            self.assertTrue(os.path.isfile(path), result.stdout + result.stderr)
+            doc = FreeCAD.openDocument(path)
+            try:
+                process_events()
+                obj = doc.getObject("CentroidalAxis")
+                self.assertIsInstance(obj.Proxy, features.CentroidalAxisFeature)
+                self.assertIsInstance(obj.ViewObject.Proxy,
+                                      view_providers.ViewProviderCentroidalAxis)
+                self.check_edge_colours(obj)
+            finally:
+                FreeCAD.closeDocument(doc.Name)
+        finally:
+            shutil.rmtree(folder)
 
 
 # Run by a second FreeCAD GUI, on a copy of the add-on without the compiled engine.

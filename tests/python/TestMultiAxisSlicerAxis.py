@@ -1,0 +1,569 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The centroidal axis through the scripting API and the CentroidalAxis document object, inside
+freecadcmd.
+
+Run: freecadcmd -t TestMultiAxisSlicerAxis (tests/run_freecad_test.sh does it against the add-on
+staged in the build tree). The parts are planar, so their tessellation is exact and the expected
+values are those of the engine's own test (tests/engine/test_axis.cpp).
+"""
+
+import json
+import math
+import os
+import shutil
+import subprocess
+import tempfile
+import textwrap
+import unittest
+
+import FreeCAD
+import Mesh
+import Part
+
+import MultiAxisSlicer as mas
+import MultiAxisSlicer.features as features
+
+V = FreeCAD.Vector
+EPS = 0.001  # mm, the default eps: a march's first plane lies this far inside the part
+# The arm's first node is 0.001 mm past the column, the column node it hangs on 0.001 mm above
+# z = 50: the connecting link turns a hair more than 90 degrees from the column.
+L_BREAK_TURN = 90.0 + math.degrees(math.atan2(0.001, 10.001))
+
+
+def box_10_20_30():
+    """A 10 x 20 x 30 mm box with its corner at (1, 2, 3)."""
+    return Part.makeBox(10, 20, 30, V(1, 2, 3))
+
+
+def l_block():
+    """Fig. 7's L: a 20 x 20 x 60 column with a 50 mm arm [20, 70] x [0, 20] x [40, 60] at its
+    top, one solid with no seam faces."""
+    column = Part.makeBox(20, 20, 60)
+    arm = Part.makeBox(50, 20, 20, V(20, 0, 40))
+    return column.fuse(arm).removeSplitter()
+
+
+def fc_mesh(shape, deflection=0.1):
+    return Mesh.Mesh(shape.tessellate(deflection))
+
+
+def open_box_mesh():
+    mesh = fc_mesh(box_10_20_30())
+    mesh.removeFacets([0])
+    return mesh
+
+
+class AxisTest(unittest.TestCase):
+    def assertVectorAlmostEqual(self, a, b, places=9):
+        for i in range(3):
+            self.assertAlmostEqual(a[i], b[i], places=places, msg="{} != {}".format(a, b))
+
+    def assertRaisesEngineError(self, code, func, *args, **kwargs):
+        with self.assertRaises(mas.EngineError) as cm:
+            func(*args, **kwargs)
+        self.assertEqual(cm.exception.code, code, str(cm.exception))
+        self.assertTrue(str(cm.exception), "an engine error needs a message")
+        return cm.exception
+
+    def check_l_block_axis(self, axis):
+        """The engine test's expectations for the L at step 2.5 mm."""
+        self.assertEqual(len(axis.branches), 2)
+        column, arm = axis.branches
+        self.assertEqual(column.parent, -1)
+        self.assertVectorAlmostEqual(column.direction, (0, 0, 1))
+        self.assertEqual(len(column.nodes), 24)
+        for i in column.nodes:
+            node = axis.nodes[i]
+            self.assertAlmostEqual(node.position.x, 10.0, places=6)
+            self.assertAlmostEqual(node.position.y, 10.0, places=6)
+            self.assertAlmostEqual(node.area, 400.0, delta=1e-3)
+            self.assertEqual(node.branch, 0)
+        # The arm: +X from just past the column, on its centre line y = 10, z = 50.
+        self.assertEqual(arm.parent, 0)
+        self.assertEqual(arm.depth, 1)
+        self.assertVectorAlmostEqual(arm.direction, (1, 0, 0))
+        self.assertEqual(len(arm.nodes), 20)
+        self.assertAlmostEqual(axis.nodes[arm.nodes[0]].position.x, 20.0 + EPS, places=9)
+        for i in arm.nodes:
+            node = axis.nodes[i]
+            self.assertAlmostEqual(node.position.y, 10.0, places=6)
+            self.assertAlmostEqual(node.position.z, 50.0, places=6)
+            self.assertAlmostEqual(node.area, 400.0, places=6)
+            self.assertVectorAlmostEqual(node.normal, (1, 0, 0))
+            self.assertEqual(node.branch, 1)
+        # One C1 break: the link tying the arm to the column node at the arm's height.
+        breaks = axis.break_links()
+        self.assertEqual(len(breaks), 1)
+        tie = axis.links[arm.first_link]
+        self.assertIs(breaks[0], tie)
+        self.assertEqual(tie.kind, "connecting")
+        self.assertEqual(tie.end, arm.nodes[0])
+        self.assertEqual(tie.start, arm.parent_node)
+        self.assertIn(tie.start, column.nodes)
+        self.assertAlmostEqual(axis.nodes[tie.start].position.z, 50.0 + EPS, places=9)
+        self.assertAlmostEqual(tie.turn, L_BREAK_TURN, places=6)
+        self.assertEqual(len(axis.links), len(axis.nodes) - 1)  # a tree
+        self.assertAlmostEqual(axis.searched_volume, 20 * 20 * 60 + 50 * 20 * 20, delta=1e-3)
+
+
+class TestAxisOfABox(AxisTest):
+    def test_engine_is_available(self):
+        self.assertTrue(mas.engine_available(), mas.engine_missing_message())
+
+    def test_box_axis_is_one_vertical_branch_through_its_centre(self):
+        axis = mas.centroidal_axis(box_10_20_30(), step=2.0)
+        self.assertEqual(len(axis.branches), 1)
+        [branch] = axis.branches
+        self.assertEqual(branch.parent, -1)
+        self.assertEqual(branch.parent_node, -1)
+        self.assertEqual(branch.first_link, -1)
+        self.assertIsInstance(branch.direction, FreeCAD.Vector)
+        self.assertVectorAlmostEqual(branch.direction, (0, 0, 1))
+        # Planes at z = 3.001, 5.001, ..., 31.001 on the line through the box's centre (6, 12).
+        self.assertEqual(len(axis.nodes), 15)
+        self.assertEqual(branch.nodes, list(range(15)))
+        for i, node in enumerate(axis.nodes):
+            self.assertIsInstance(node.position, FreeCAD.Vector)
+            self.assertVectorAlmostEqual(node.position, (6, 12, 3 + EPS + 2.0 * i))
+            self.assertVectorAlmostEqual(node.normal, (0, 0, 1))
+            self.assertAlmostEqual(node.area, 200.0, places=9)  # the footprint
+            self.assertAlmostEqual(node.offset, 3 + EPS + 2.0 * i, places=9)
+            self.assertEqual(node.branch, 0)
+        self.assertAlmostEqual(axis.nodes[0].thickness, 2.0 + EPS, places=9)  # from the base
+        self.assertAlmostEqual(axis.nodes[-1].thickness, 2.0 - EPS, places=9)  # to the top
+        self.assertEqual(len(axis.links), 14)
+        for i, link in enumerate(axis.links):
+            self.assertEqual((link.start, link.end), (i, i + 1))
+            self.assertEqual(link.kind, "step")
+            self.assertFalse(link.is_break)
+            self.assertAlmostEqual(link.turn, 0.0, places=9)
+        self.assertEqual(axis.break_links(), [])
+        self.assertAlmostEqual(axis.searched_volume, 6000.0, places=9)
+        self.assertEqual(axis.kind, "solid")
+        self.assertEqual(axis.params["step_mm"], 2.0)
+        self.assertEqual(axis.params["distance_threshold_mm"], 4.0)
+        self.assertEqual(axis.params["eps_mm"], EPS)
+        self.assertEqual(axis.params["break_angle_deg"], 30.0)
+        self.assertEqual(axis.params["base_z_mm"], 3.0)
+        self.assertEqual(axis.params["deflection_mm"], mas.deflection(box_10_20_30()))
+
+    def test_derived_step_and_threshold(self):
+        # The box's thinnest wall is its 10 x 20 section (2 x area / perimeter = 6.67 mm); half
+        # of it is more than diagonal / 20, which caps the step.
+        axis = mas.centroidal_axis(box_10_20_30())
+        step = math.sqrt(10 ** 2 + 20 ** 2 + 30 ** 2) / 20.0
+        self.assertAlmostEqual(axis.params["step_mm"], step, places=12)
+        self.assertAlmostEqual(axis.params["distance_threshold_mm"], 2.0 * step, places=12)
+        self.assertEqual(len(axis.nodes), math.floor((30.0 - EPS) / step) + 1)
+        mesh = mas.to_engine_mesh(box_10_20_30())
+        self.assertAlmostEqual(mas._engine.derive_axis_step(mesh), step, places=12)
+
+    def test_explicit_parameters_are_used(self):
+        axis = mas.centroidal_axis(box_10_20_30(), step=5.0, distance_threshold=7.0, eps=0.01,
+                                   break_angle=45.0, base_z=3.0, deflection=0.05)
+        self.assertEqual(axis.params, {"step_mm": 5.0, "distance_threshold_mm": 7.0,
+                                       "eps_mm": 0.01, "break_angle_deg": 45.0, "base_z_mm": 3.0,
+                                       "deflection_mm": 0.05})
+        self.assertAlmostEqual(axis.nodes[0].position.z, 3.01, places=9)
+        self.assertEqual(len(axis.nodes), 6)
+
+    def test_quantities_are_accepted(self):
+        axis = mas.centroidal_axis(box_10_20_30(), step=FreeCAD.Units.Quantity("2 mm"),
+                                   break_angle=FreeCAD.Units.Quantity("45 deg"))
+        self.assertEqual(axis.params["step_mm"], 2.0)
+        self.assertEqual(axis.params["break_angle_deg"], 45.0)
+
+
+class TestAxisOfAnLBlock(AxisTest):
+    def test_l_block_rises_then_turns_into_the_arm(self):
+        self.check_l_block_axis(mas.centroidal_axis(l_block(), step=2.5))
+
+    def test_mesh_of_the_l_block_gives_the_same_axis(self):
+        from_shape = mas.centroidal_axis(l_block(), step=2.5)
+        axis = mas.centroidal_axis(fc_mesh(l_block()), step=2.5)
+        self.assertEqual(axis.kind, "mesh")
+        self.assertEqual(axis.params["deflection_mm"], 0.0)
+        self.check_l_block_axis(axis)
+        self.assertEqual(len(axis.nodes), len(from_shape.nodes))
+        for a, b in zip(axis.nodes, from_shape.nodes):
+            self.assertVectorAlmostEqual(a.position, b.position, places=6)
+
+    def test_document_object_and_file_inputs(self):
+        folder = tempfile.mkdtemp(prefix="mas_axis_")
+        doc = FreeCAD.newDocument("MasAxisInputs")
+        try:
+            part = doc.addObject("Part::Feature", "L")
+            part.Shape = l_block()
+            self.check_l_block_axis(mas.centroidal_axis(part, step=2.5))
+            path = os.path.join(folder, "l.brep")
+            l_block().exportBrep(path)
+            self.check_l_block_axis(mas.centroidal_axis(path, step=2.5))
+        finally:
+            FreeCAD.closeDocument(doc.Name)
+            shutil.rmtree(folder)
+
+    def test_to_dict_is_json_ready_and_matches_the_attributes(self):
+        axis = mas.centroidal_axis(l_block(), step=2.5)
+        d = axis.to_dict()
+        self.assertEqual(json.loads(json.dumps(d, allow_nan=False)), d)
+        self.assertEqual(set(d), {"kind", "triangles", "deflection_mm", "params",
+                                  "searched_volume_mm3", "nodes", "links", "branches"})
+        self.assertEqual(set(d["params"]), {"step_mm", "distance_threshold_mm", "eps_mm",
+                                            "break_angle_deg", "base_z_mm"})
+        self.assertEqual(d["params"]["step_mm"], 2.5)
+        self.assertEqual(d["deflection_mm"], axis.params["deflection_mm"])
+        self.assertEqual(d["searched_volume_mm3"], axis.searched_volume)
+        self.assertEqual(len(d["nodes"]), 44)
+        self.assertEqual(set(d["nodes"][0]), {"position", "normal", "area_mm2", "offset_mm",
+                                              "thickness_mm", "branch"})
+        self.assertEqual(set(d["links"][0]), {"start", "end", "kind", "is_break", "turn_deg"})
+        self.assertEqual(set(d["branches"][0]), {"parent", "direction", "nodes", "parent_node",
+                                                 "first_link", "depth"})
+        for node, n in zip(axis.nodes, d["nodes"]):
+            self.assertEqual(n["position"], [node.position.x, node.position.y, node.position.z])
+            self.assertEqual(n["area_mm2"], node.area)
+        arm = d["branches"][1]
+        self.assertEqual(arm["direction"], [1.0, 0.0, 0.0])
+        self.assertEqual(arm["parent"], 0)
+        self.assertEqual(d["links"][arm["first_link"]]["kind"], "connecting")
+        self.assertTrue(d["links"][arm["first_link"]]["is_break"])
+
+    def test_to_dict_matches_the_command_line_json(self):
+        addon = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__))))
+        program = os.path.join(addon, "multiaxis-slicer")
+        self.assertTrue(os.path.isfile(program), "no command-line program at " + program)
+        folder = tempfile.mkdtemp(prefix="mas_axis_cli_")
+        try:
+            path = os.path.join(folder, "l.brep")
+            out = os.path.join(folder, "axis.json")
+            l_block().exportBrep(path)
+            result = subprocess.run([program, "axis", path, "--step", "2.5", "--json", out],
+                                    capture_output=True, text=True, timeout=120)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            with open(out) as f:
+                cli = json.load(f)
+            ours = mas.centroidal_axis(path, step=2.5).to_dict()
+        finally:
+            shutil.rmtree(folder)
+        self.assertEqual(cli.pop("file"), path)
+        self.assertEqual(set(cli), set(ours))
+
+        def same(a, b, where):  # the program prints 15 significant digits
+            if isinstance(a, dict):
+                self.assertEqual(set(a), set(b), where)
+                for k in a:
+                    same(a[k], b[k], where + "." + k)
+            elif isinstance(a, list):
+                self.assertEqual(len(a), len(b), where)
+                for i, (x, y) in enumerate(zip(a, b)):
+                    same(x, y, "{}[{}]".format(where, i))
+            elif isinstance(a, float) or isinstance(b, float):
+                self.assertAlmostEqual(a, b, delta=1e-12 * max(1.0, abs(b)), msg=where)
+            else:
+                self.assertEqual(a, b, where)
+
+        same(cli, ours, "axis")
+
+
+class TestAxisBadInput(AxisTest):
+    def test_none_and_unsupported_types_are_type_errors(self):
+        with self.assertRaisesRegex(TypeError, "None"):
+            mas.centroidal_axis(None)
+        with self.assertRaisesRegex(TypeError, "int"):
+            mas.centroidal_axis(42)
+
+    def test_face_is_not_a_solid(self):
+        e = self.assertRaisesEngineError("not_a_solid", mas.centroidal_axis,
+                                         Part.makePlane(10, 10))
+        self.assertIn("Face", str(e))
+
+    def test_two_solids_are_rejected(self):
+        two = Part.makeCompound([box_10_20_30(), Part.makeBox(5, 5, 5, V(50, 0, 0))])
+        e = self.assertRaisesEngineError("multiple_solids", mas.centroidal_axis, two)
+        self.assertIn("2 solids", str(e))
+
+    def test_open_mesh_is_rejected(self):
+        e = self.assertRaisesEngineError("open_mesh", mas.centroidal_axis, open_box_mesh())
+        self.assertIn("boundary edges", str(e))
+
+    def test_bad_step_is_a_value_error(self):
+        for step in (0, -1.0, float("nan"), float("inf")):
+            with self.assertRaisesRegex(ValueError, "step"):
+                mas.centroidal_axis(box_10_20_30(), step=step)
+        with self.assertRaisesRegex(TypeError, "step"):
+            mas.centroidal_axis(box_10_20_30(), step="1")
+
+    def test_step_not_smaller_than_the_part_is_named(self):
+        e = self.assertRaisesEngineError("invalid_argument", mas.centroidal_axis, box_10_20_30(),
+                                         step=40.0)
+        self.assertIn("height", str(e))
+        self.assertIn("40", str(e))
+
+    def test_other_bad_parameters_are_value_errors(self):
+        nan = float("nan")
+        cases = [("distance_threshold", dict(distance_threshold=nan)),
+                 ("distance_threshold", dict(distance_threshold=-1.0)),
+                 ("eps", dict(eps=0.0)), ("eps", dict(eps=nan)),
+                 ("break_angle", dict(break_angle=nan)), ("break_angle", dict(break_angle=200.0)),
+                 ("break_angle", dict(break_angle=-1.0)),
+                 ("base_z", dict(base_z=nan)), ("base_z", dict(base_z=float("-inf"))),
+                 ("deflection", dict(deflection=-0.1))]
+        for name, kwargs in cases:
+            with self.assertRaisesRegex(ValueError, name, msg=str(kwargs)):
+                mas.centroidal_axis(box_10_20_30(), **kwargs)
+
+    def test_part_not_standing_on_its_base_plane(self):
+        e = self.assertRaisesEngineError("invalid_argument", mas.centroidal_axis, box_10_20_30(),
+                                         base_z=0.0)
+        self.assertIn("does not stand on its base plane", str(e))
+        self.assertEqual(mas.centroidal_axis(box_10_20_30(), base_z=3.0).params["base_z_mm"], 3.0)
+
+    def test_engine_rejects_nan_parameters(self):
+        mesh = mas.to_engine_mesh(box_10_20_30())
+        nan = float("nan")
+        for name in ("step", "distance_threshold", "eps", "break_angle", "min_region_area"):
+            e = self.assertRaisesEngineError("invalid_argument", mas._engine.centroidal_axis, mesh,
+                                             **{name: nan})
+            self.assertIn(name, str(e))
+        self.assertRaisesEngineError("invalid_argument", mas._engine.centroidal_axis, mesh,
+                                     base_z=float("inf"))
+        self.assertRaisesEngineError("invalid_argument", mas._engine.centroidal_axis, mesh,
+                                     eps=-1.0)
+
+    def test_inputs_are_not_modified(self):
+        shape = l_block()
+        shape.Placement = FreeCAD.Placement(V(1, 2, 3), FreeCAD.Rotation())
+        before = shape.exportBrepToString()
+        mas.centroidal_axis(shape, step=2.5)
+        self.assertEqual(shape.exportBrepToString(), before)
+        mesh = fc_mesh(l_block())
+        topology = mesh.Topology
+        mas.centroidal_axis(mesh, step=2.5)
+        self.assertEqual(mesh.Topology, topology)
+
+
+def _write(folder, name, text):
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(textwrap.dedent(text))
+    return path
+
+
+class TestAxisWithoutFreeCAD(AxisTest):
+    def test_plain_python_uses_tuples(self):
+        app_dir = os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__)))
+        folder = tempfile.mkdtemp(prefix="mas_plain_axis_")
+        try:
+            script = _write(folder, "script.py", """
+                import json, sys
+                assert "FreeCAD" not in sys.modules
+                import MultiAxisSlicer as mas
+                v = [0,0,0, 1,0,0, 1,1,0, 0,1,0, 0,0,4, 1,0,4, 1,1,4, 0,1,4]
+                t = [0,2,1, 0,3,2, 4,5,6, 4,6,7, 0,1,5, 0,5,4, 1,2,6, 1,6,5, 2,3,7, 2,7,6,
+                     3,0,4, 3,4,7]
+                axis = mas.centroidal_axis(mas._engine.Mesh.from_arrays(v, t), step=1.0)
+                n = axis.nodes[1]
+                print("RESULT", len(axis.nodes), n.position, type(n.position).__name__,
+                      axis.branches[0].direction)
+                json.dumps(axis.to_dict())
+            """)
+            env = dict(os.environ, PYTHONPATH=app_dir)
+            result = subprocess.run(["/usr/bin/python3.11", script], env=env, capture_output=True,
+                                    text=True, timeout=120)
+        finally:
+            shutil.rmtree(folder)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("RESULT 4 (0.5, 0.5, 1.001) tuple (0.0, 0.0, 1.0)", result.stdout)
+
+
+class TestCentroidalAxisObject(AxisTest):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("MasAxis")
+        self.part = self.doc.addObject("Part::Feature", "L")
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        self.folder = tempfile.mkdtemp(prefix="mas_axis_doc_")
+
+    def tearDown(self):
+        for name in list(FreeCAD.listDocuments()):
+            if name.startswith("MasAxis"):
+                FreeCAD.closeDocument(name)
+        shutil.rmtree(self.folder)
+
+    def check_l_block_object(self, obj):
+        """The L at Step 2.5 mm: 44 nodes, 43 links of which the last edge is the break."""
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.Proxy.Type, "MultiAxisSlicer::CentroidalAxis")
+        self.assertEqual(obj.NodeCount, 44)
+        self.assertEqual(obj.BranchCount, 2)
+        self.assertEqual(obj.BreakCount, 1)
+        self.assertEqual(obj.UsedStep.Value, 2.5)
+        self.assertEqual(obj.UsedDistanceThreshold.Value, 5.0)
+        self.assertAlmostEqual(obj.SearchedVolume.Value, 44000.0, delta=1e-3)
+        edges = obj.Shape.Edges
+        self.assertEqual(len(edges), 43)
+        self.assertEqual(obj.BreakEdgeStart, 42)  # ordinary links first, then the break
+        tie = edges[obj.BreakEdgeStart]
+        ends = sorted((tuple(round(c, 9) for c in v.Point) for v in tie.Vertexes))
+        self.assertEqual(ends, [(10.0, 10.0, 50.0 + EPS), (20.0 + EPS, 10.0, 50.0)])
+        for edge in edges[:obj.BreakEdgeStart]:  # step links: one step apart
+            self.assertAlmostEqual(edge.Length, 2.5, places=6)
+        self.assertEqual(len(obj.Shape.Vertexes), 44 + 2 * 43)  # nodes, then the edges' ends
+        self.assertEqual(obj.Shape.Faces, [])
+        bb = obj.Shape.BoundBox
+        self.assertAlmostEqual(bb.XMin, 10.0, places=6)
+        self.assertAlmostEqual(bb.ZMin, EPS, places=9)
+
+    def test_recompute_computes_the_axis(self):
+        obj = mas.make_centroidal_axis(self.part, step=2.5)
+        self.assertEqual(obj.Epsilon.Value, EPS)
+        self.assertEqual(obj.BreakAngle.Value, 30.0)
+        self.assertEqual(obj.DistanceThreshold.Value, 0.0)
+        self.assertEqual(obj.Deflection.Value, 0.0)
+        self.doc.recompute()
+        self.check_l_block_object(obj)
+
+    def test_default_step_is_derived_and_changing_it_recomputes(self):
+        obj = mas.make_centroidal_axis(self.part)
+        self.assertEqual(obj.Step.Value, 0.0)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        diagonal = math.sqrt(70 ** 2 + 20 ** 2 + 60 ** 2)
+        self.assertAlmostEqual(obj.UsedStep.Value, diagonal / 20.0, places=9)
+        self.assertEqual(obj.BranchCount, 2)
+        coarse = obj.NodeCount
+        obj.Step = 2.5
+        self.doc.recompute()
+        self.assertNotEqual(obj.NodeCount, coarse)
+        self.check_l_block_object(obj)
+
+    def test_source_is_not_modified(self):
+        before = self.part.Shape.exportBrepToString()
+        obj = mas.make_centroidal_axis(self.part, step=2.5)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid())
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        self.assertNotIn("Touched", self.part.State)
+        self.assertEqual(self.part.InList, [obj])
+
+    def test_mesh_source(self):
+        mesh = self.doc.addObject("Mesh::Feature", "LMesh")
+        mesh.Mesh = fc_mesh(l_block())
+        obj = mas.make_centroidal_axis(mesh, step=2.5)
+        self.doc.recompute()
+        self.check_l_block_object(obj)
+
+    def test_save_close_reopen_recompute(self):
+        obj = mas.make_centroidal_axis(self.part, step=2.5, distance_threshold=6.0,
+                                       break_angle=40.0, deflection=0.02)
+        self.doc.recompute()
+        path = os.path.join(self.folder, "axis.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+
+        doc = FreeCAD.openDocument(path)
+        obj = doc.getObject("CentroidalAxis")
+        self.assertIsNotNone(obj)
+        self.assertIsInstance(obj.Proxy, features.CentroidalAxisFeature)
+        self.assertIs(obj.Source, doc.getObject("L"))
+        self.assertEqual(obj.Step.Value, 2.5)
+        self.assertEqual(obj.DistanceThreshold.Value, 6.0)
+        self.assertEqual(obj.BreakAngle.Value, 40.0)
+        self.assertEqual(obj.Deflection.Value, 0.02)
+        self.assertEqual(obj.NodeCount, 44)
+        self.assertEqual(len(obj.Shape.Edges), 43)  # the shape is saved with the document
+        obj.touch()
+        doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.NodeCount, 44)
+        self.assertEqual(obj.BreakCount, 1)
+        obj.Step = 5.0
+        doc.recompute()
+        self.assertEqual(obj.NodeCount, 12 + 10)  # column z < 60, arm x in (20, 70)
+        doc.save()  # saving a restored proxy works too
+
+    def test_undo_removes_the_object(self):
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("Centroidal axis")
+        obj = mas.make_centroidal_axis(self.part, step=2.5)
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        name = obj.Name
+        self.assertIsNotNone(self.doc.getObject(name))
+        self.doc.undo()
+        self.assertIsNone(self.doc.getObject(name))
+        self.assertIsNotNone(self.doc.getObject("L"))
+        self.doc.redo()
+        self.assertIsNotNone(self.doc.getObject(name))
+
+    def test_face_source_marks_the_object_with_the_engine_message(self):
+        face = self.doc.addObject("Part::Feature", "Face")
+        face.Shape = Part.makePlane(10, 10)
+        obj = mas.make_centroidal_axis(face)
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("not a solid", obj.getStatusString())
+        self.assertIn("Face", obj.getStatusString())
+        # FreeCAD keeps running and the object recovers once its input is fixed.
+        obj.Source = self.part
+        obj.Step = 2.5
+        self.doc.recompute()
+        self.check_l_block_object(obj)
+
+    def test_open_mesh_source_marks_the_object(self):
+        mesh = self.doc.addObject("Mesh::Feature", "Open")
+        mesh.Mesh = open_box_mesh()
+        obj = mas.make_centroidal_axis(mesh)
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("boundary edges", obj.getStatusString())
+
+    def test_bad_parameters_mark_the_object(self):
+        obj = mas.make_centroidal_axis(self.part)
+        obj.Step = 100.0
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("height", obj.getStatusString())
+        obj.Step = 2.5
+        obj.Epsilon = 0.0
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("eps", obj.getStatusString())
+        obj.Source = None
+        self.doc.recompute()
+        self.assertIn("Source is not set", obj.getStatusString())
+
+    def test_make_rejects_bad_parameters_before_adding_anything(self):
+        names = [o.Name for o in self.doc.Objects]
+        with self.assertRaisesRegex(ValueError, "step"):
+            mas.make_centroidal_axis(self.part, step=-1.0)
+        with self.assertRaisesRegex(ValueError, "break_angle"):
+            mas.make_centroidal_axis(self.part, break_angle=181.0)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_failing_recompute_prints_the_message_without_a_traceback(self):
+        script = _write(self.folder, "fail.py", """
+            import FreeCAD, Mesh, Part
+            import MultiAxisSlicer as mas
+            doc = FreeCAD.newDocument("Fail")
+            face = doc.addObject("Part::Feature", "Face")
+            face.Shape = Part.makePlane(10, 10)
+            a = mas.make_centroidal_axis(face)
+            mesh = doc.addObject("Mesh::Feature", "Open")
+            m = Mesh.Mesh(Part.makeBox(10, 10, 10).tessellate(0.1))
+            m.removeFacets([0])
+            mesh.Mesh = m
+            b = mas.make_centroidal_axis(mesh)
+            doc.recompute()
+            print("STATES", a.State, b.State)
+        """)
+        result = subprocess.run(["freecadcmd", script], capture_output=True, text=True, timeout=120)
+        output = result.stdout + result.stderr
+        self.assertIn("STATES ['Invalid'] ['Invalid']", output.replace("'Touched', ", ""))
+        self.assertIn("not a solid", output)
+        self.assertIn("boundary edges", output)
+        self.assertNotIn("Traceback", output)
+
+
+if __name__ == "__main__":
+    unittest.main()

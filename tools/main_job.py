@@ -1,6 +1,6 @@
 # The README's main job, run headless by `tools/setup.sh demo` (freecadcmd tools/main_job.py):
 # the whole pipeline on the bundled example part, results under out/. Today the pipeline ends at
-# cross-sections; each stage added to the product extends this job.
+# the centroidal axis; each stage added to the product extends this job.
 #   MAS_EXAMPLE  the part (default examples/bracket.step)
 #   MAS_OUT      the output folder (default out/)
 import json
@@ -46,17 +46,29 @@ def main():
             c = s.centroid
             f.write("%.3f %d %d %.4f %.4f %.4f %.4f\n"
                     % (s.origin[2], len(s.regions), holes, s.area, c[0], c[1], c[2]))
-    # The same as a FreeCAD document: the part and a parametric Sections object on it.
+    # The centroidal axis (paper Sec. 3), in the command line's JSON layout.
+    start = time.perf_counter()
+    axis = mas.centroidal_axis(shape)
+    axis_seconds = time.perf_counter() - start
+    axis_doc = dict(axis.to_dict(), file=os.path.basename(example), seconds=axis_seconds)
+    with open(os.path.join(out, "axis.json"), "w") as f:
+        json.dump(axis_doc, f, indent=1)
+    breaks = sum(1 for link in axis.links if link.is_break)
+    # The same as a FreeCAD document: the part with parametric Sections and CentroidalAxis objects.
     doc = FreeCAD.newDocument("MainJob")
     part = doc.addObject("Part::Feature", "Bracket")
     part.Shape = shape
-    obj = mas.make_sections(part, normal=(0, 0, 1), step=step, doc=doc)
+    objects = [mas.make_sections(part, normal=(0, 0, 1), step=step, doc=doc),
+               mas.make_centroidal_axis(part, doc=doc)]
     doc.recompute()
-    if obj.State and "Invalid" in obj.State:
-        raise RuntimeError("Sections object failed to recompute: %s" % obj.State)
+    for obj in objects:
+        if obj.State and "Invalid" in obj.State:
+            raise RuntimeError("%s failed to recompute: %s" % (obj.Label, obj.State))
     doc.saveAs(os.path.join(out, "bracket.FCStd"))
     print("main job: %d sections of %s in %.1f ms; wrote %s" % (len(sections), summary["part"],
                                                                 1e3 * seconds, out))
+    print("main job: centroidal axis in %.1f ms: %d nodes, %d branches, %d break links"
+          % (1e3 * axis_seconds, len(axis.nodes), len(axis.branches), breaks))
     print("main job: done")
 
 

@@ -5,6 +5,7 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
 #include <StlAPI_Writer.hxx>
 #include <cmath>
@@ -371,4 +372,17 @@ TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     p.base_z_mm = 5.0;
     EXPECT_NO_THROW(mas::centroidal_axis(mesh, p));
     EXPECT_THROW(mas::centroidal_axis(mas::TriangleMesh{}), mas::Error);
+}
+
+TEST(CentroidalAxis, DerivedStepIgnoresTinySectionsOfRoundedTips) {
+    // A 100 x 10 x 10 bar with a ball of radius 4 sitting half out of its top face. The plane
+    // nearest the ball's top cuts a disc of radius 1.8 (the old rule's step: 0.9), but the walls
+    // are the bar's 100 x 10 strips: half of their 2A/P = 2000 / 220. Strips crossing the ball
+    // carry its bump, whose arc adds relatively more perimeter than area: their 2A/P is lower,
+    // by under 1% here (arc of a 4 mm ball on a 220 mm perimeter).
+    BRepPrimAPI_MakeSphere ball(gp_Pnt(50, 5, 10), 4.0);
+    const auto mesh = mesh_of(from_occt(fuse(occ_box(0, 0, 0, 100, 10, 10), ball.Shape())));
+    const double strip = 2000.0 / 220.0 / 2.0;
+    EXPECT_LE(mas::derive_axis_step(mesh), strip + 1e-9);
+    EXPECT_GE(mas::derive_axis_step(mesh), 0.99 * strip);
 }

@@ -103,10 +103,11 @@ struct CentroidalAxis {
 };
 
 // Half the part's thinnest wall (the paper's inc is the smallest distance between two surfaces
-// that do not meet; half of it cuts every wall at least twice): the wall is the minimum over
-// sections along X, Y and Z (16 planes each) of 2 x area / perimeter of every region (the width
-// of a long strip, the radius of a disc), and the result is clamped to [diagonal / 2000,
-// diagonal / 20].
+// that do not meet; half of it cuts every wall at least twice). A wall is measured as
+// 2 x area / perimeter (the width of a long strip) of the elongated regions (P^2 / A >= 21, about
+// 3:1 and thinner) among sections along X, Y and Z (16 planes each); compact regions count only
+// when no section has an elongated one, since a plane grazing a rounded tip cuts a tiny disc that
+// says nothing about wall thickness. Clamped to [diagonal / 2000, diagonal / 20].
 double derive_axis_step(const TriangleMesh& mesh);
 
 // Throws mas::Error: InvalidArgument for bad parameters (a step that is not positive and finite,

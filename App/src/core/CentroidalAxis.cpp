@@ -627,13 +627,24 @@ double derive_axis_step(const TriangleMesh& mesh) {
         for (int i = 0; i < 16; ++i)
             planes.push_back(Plane{n * (lo + (i + 0.5) * (hi - lo) / 16), n});
     }
-    double width = std::numeric_limits<double>::infinity();
+    // A wall shows as an elongated region (a strip); a compact one (a disc, a square) is a wall
+    // only when nothing elongated is cut at all: a plane grazing a rounded tip cuts a tiny compact
+    // region whose 2A/P says nothing about how thick the part is there.
+    double wall = std::numeric_limits<double>::infinity();
+    double compact = std::numeric_limits<double>::infinity();
     for (const auto& s : slice_mesh(mesh, planes))
         for (const auto& r : s.regions) {
             double per = perimeter(r.shape.outer);
             for (const auto& h : r.shape.holes) per += perimeter(h);
-            if (per > 0.0 && r.area > 0.0) width = std::min(width, 2.0 * r.area / per);
+            if (!(per > 0.0 && r.area > 0.0)) continue;
+            const double width = 2.0 * r.area / per;
+            // P^2 / A is 4 pi for a disc, 16 for a square, 21.3 for a 3:1 rectangle.
+            if (per * per / r.area >= 21.0)
+                wall = std::min(wall, width);
+            else
+                compact = std::min(compact, width);
         }
+    double width = std::isfinite(wall) ? wall : compact;
     if (!std::isfinite(width)) width = diag / 10.0;
     return std::clamp(width / 2.0, diag / 2000.0, diag / 20.0);
 }

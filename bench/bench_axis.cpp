@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Shape.hpp"
 
@@ -24,34 +25,10 @@ double cgal_skeleton_ms(const mas::TriangleMesh& mesh, std::size_t& skeleton_ver
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double time_ms(int runs, const std::function<void()>& f) {
-    std::vector<double> t;
-    for (int i = 0; i < runs; ++i) {
-        const auto start = Clock::now();
-        f();
-        t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-    }
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
-}
-
-mas::Shape from_occt(const TopoDS_Shape& s) {
-    std::ostringstream out;
-    BRepTools::Write(s, out);
-    return mas::Shape::from_brep_string(out.str());
-}
-
-TopoDS_Shape box(double x0, double y0, double z0, double dx, double dy, double dz) {
-    return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
-}
-
-TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
-    BRepAlgoAPI_Fuse f(a, b);
-    f.SimplifyResult();
-    return f.Shape();
-}
+using mas::bench::box;
+using mas::bench::from_occt;
+using mas::bench::fuse;
+using mas::bench::time_ms;
 
 void report(const std::string& name, const mas::TriangleMesh& mesh, double tessellation_ms,
             bool with_cgal) {

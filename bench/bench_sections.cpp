@@ -27,30 +27,14 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-// Median wall time of `runs` calls, in milliseconds.
-double time_ms(int runs, const std::function<void()>& f) {
-    std::vector<double> t;
-    for (int i = 0; i < runs; ++i) {
-        const auto start = Clock::now();
-        f();
-        t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-    }
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
-}
-
-mas::Shape from_occt(const TopoDS_Shape& s) {
-    std::ostringstream out;
-    BRepTools::Write(s, out);
-    return mas::Shape::from_brep_string(out.str());
-}
+using mas::bench::from_occt;
+using mas::bench::time_ms;
 
 // A closed torus mesh with nu x nv quads (2 nu nv triangles), axis along Z.
 mas::TriangleMesh torus_mesh(double R, double r, int nu, int nv) {
@@ -170,8 +154,9 @@ double exact_ms_per_plane_polyhedral(const mas::TriangleMesh& mesh, int nplanes)
     return t / double(planes.size());
 }
 
-// A bracket of about 30 faces: base plate with two holes, an upright with a hole, a round boss.
-TopoDS_Shape bracket() {
+// A bracket: base plate with two holes, an upright with a hole, a round boss (16 faces); with
+// `extra` it also gets a slot, two more holes and a second boss (about 30 faces).
+TopoDS_Shape bracket(bool extra) {
     TopoDS_Shape s = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 80, 40, 10).Shape();
     s = BRepAlgoAPI_Fuse(s, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 10), 12, 40, 50).Shape()).Shape();
     for (double x : {35.0, 65.0})
@@ -227,17 +212,18 @@ int main(int argc, char** argv) {
     }
 
     std::printf("\n== mesh path (tessellation included) vs OCCT exact section, same solid ==\n");
-    report_exact_vs_mesh("bracket", from_occt(bracket()), 100, 5);
+    report_exact_vs_mesh("bracket", from_occt(bracket(false)), 100, 5);
+    report_exact_vs_mesh("bracket+ (~30 faces)", from_occt(bracket(true)), 100, 5);
     report_exact_vs_mesh("torus R40 r12", from_occt(BRepPrimAPI_MakeTorus(40, 12).Shape()), 100, 5);
 
-    std::printf("\n== OCCT exact section of the CGAL meshes as polyhedral BREP (5 planes) ==\n");
-    for (const char* name : {"bunny00", "fandisk_large"}) {
+    std::printf("\n== OCCT exact section of a CGAL mesh as polyhedral BREP (2 planes) ==\n");
+    for (const char* name : {"fandisk_large"}) {
         try {
             auto mesh = mas::read_off(data + "/" + name + ".off");
             mas::require_closed_mesh(mesh, name);
             const auto planes = planes_across(mesh, {0, 0, 1}, 1000);
             const double t_mesh = time_ms(5, [&] { mas::slice_mesh(mesh, planes); });
-            const double exact = exact_ms_per_plane_polyhedral(mesh, 5);
+            const double exact = exact_ms_per_plane_polyhedral(mesh, 2);
             std::printf("%-22s exact %.1f ms/plane vs mesh %.4f ms/plane: x%.0f\n", name, exact,
                         t_mesh / planes.size(), exact / (t_mesh / planes.size()));
         } catch (const std::exception& e) {

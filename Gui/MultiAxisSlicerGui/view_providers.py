@@ -8,7 +8,24 @@ SECTION_LINE_COLOR = (1.0, 0.45, 0.0)  # orange
 SECTION_LINE_WIDTH = 2.0
 
 
-class ViewProviderSections:
+class _Stateless:
+    """A view provider proxy with nothing to save (colours are view properties): 0.20.2 calls
+    __getstate__/__setstate__, 0.21.2 and later dumps/loads."""
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+
+class ViewProviderSections(_Stateless):
     """Tree icon and line style of a ``Sections`` object. The source stays as it is (visible, not
     claimed as a child): the sections are read against the part."""
 
@@ -25,19 +42,6 @@ class ViewProviderSections:
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("Sections.svg")
 
-    # Nothing to save (colours are view properties). 0.20.2 calls __getstate__/__setstate__,
-    # 0.21.2 and later dumps/loads.
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
 
 
 # The centroidal axis: nodes as dots, links as lines, C1 breaks in red. It lies inside its part,
@@ -55,7 +59,7 @@ def _same_colours(a, b):
         abs(x - y) <= 1.0 / 512 for ca, cb in zip(a, b) for x, y in zip(ca[:3], cb[:3]))
 
 
-class ViewProviderCentroidalAxis:
+class ViewProviderCentroidalAxis(_Stateless):
     """Tree icon and style of a ``CentroidalAxis`` object: nodes as points (PointColor,
     PointSize), links as lines (LineColor, LineWidth), C1 break links in BreakLineColor.
 
@@ -125,17 +129,3 @@ class ViewProviderCentroidalAxis:
 
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("CentroidalAxis.svg")
-
-    # Nothing to save (colours are view properties). 0.20.2 calls __getstate__/__setstate__,
-    # 0.21.2 and later dumps/loads.
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None

@@ -27,21 +27,9 @@ namespace {
 constexpr double kDeflection = 0.02;  // mm, for every tessellated test part
 constexpr double kGrid = 1e-5;        // mm, the grid polygon Booleans snap to (PolygonBoolean.cpp)
 
-mas::Shape from_occt(const TopoDS_Shape& s) {
-    std::ostringstream out;
-    BRepTools::Write(s, out);
-    return mas::Shape::from_brep_string(out.str());
-}
-
-TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, double dz) {
-    return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
-}
-
-TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
-    BRepAlgoAPI_Fuse f(a, b);
-    f.SimplifyResult();
-    return f.Shape();
-}
+using mas::test::from_occt;
+using mas::test::fuse;
+using mas::test::occ_box;
 
 // A T: column [0,20]x[0,20]x[0,60] with a crossbar [-30,50]x[0,20]x[40,60] reaching both ways.
 mas::Shape t_block() {

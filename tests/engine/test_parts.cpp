@@ -36,8 +36,6 @@ TopoDS_Shape to_occt(const Shape& shape) {
     return s;
 }
 
-namespace {
-
 TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, double dz) {
     return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
 }
@@ -47,8 +45,6 @@ TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
     f.SimplifyResult();
     return f.Shape();
 }
-
-}  // namespace
 
 Shape box(double x0, double y0, double z0, double dx, double dy, double dz) {
     return from_occt(occ_box(x0, y0, z0, dx, dy, dz));

@@ -170,6 +170,17 @@ TopoDS_Shape bracket(bool extra) {
     s = BRepAlgoAPI_Fuse(
             s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(50, 20, 10), gp_Dir(0, 0, 1)), 8, 15).Shape())
             .Shape();
+    if (!extra) return s;
+    s = BRepAlgoAPI_Cut(s, BRepPrimAPI_MakeBox(gp_Pnt(20, 5, -1), 8, 6, 12).Shape()).Shape();
+    for (double y : {8.0, 32.0})
+        s = BRepAlgoAPI_Cut(
+                s,
+                BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(72, y, -1), gp_Dir(0, 0, 1)), 3, 12).Shape())
+                .Shape();
+    s = BRepAlgoAPI_Fuse(
+            s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(30, 30, 10), gp_Dir(0, 0, 1)), 5, 20).Shape())
+            .Shape();
+    s = BRepAlgoAPI_Fuse(s, BRepPrimAPI_MakeBox(gp_Pnt(66, 0, 10), 14, 4, 12).Shape()).Shape();
     return s;
 }
 

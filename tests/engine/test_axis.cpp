@@ -374,3 +374,26 @@ TEST(CentroidalAxis, DerivedStepIgnoresTinySectionsOfRoundedTips) {
     EXPECT_LE(mas::derive_axis_step(mesh), strip + 1e-9);
     EXPECT_GE(mas::derive_axis_step(mesh), 0.99 * strip);
 }
+
+TEST(CentroidalAxis, LugNearTheEndOfALongWallTurnsTheWayItSticksOut) {
+    // A standing wall [0,80]x[0,10]x[0,40] with a lug [10,25]x[10,30]x[30,40] on its +Y face near
+    // one end. From the wall's centroid (40, 5) the lug's centre (17.5, 20) lies mostly along -X,
+    // which would send the search past the end of the wall; the lug leaves the wall through its
+    // +Y face, so the branch goes +Y, on the lug's centre line.
+    const auto mesh =
+        mesh_of(from_occt(fuse(occ_box(0, 0, 0, 80, 10, 40), occ_box(10, 10, 30, 15, 20, 10))));
+    mas::AxisParams p;
+    p.step_mm = 2.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const auto kids = children(a, 0);
+    ASSERT_EQ(kids.size(), 1u);
+    const auto& lug = a.branches[std::size_t(kids[0])];
+    EXPECT_TRUE(lug.direction.isApprox(Vector3d::UnitY()));
+    EXPECT_EQ(lug.nodes.size(), 10u);  // y = 10.001 ... 28.001
+    for (int n : lug.nodes) {
+        EXPECT_NEAR(a.nodes[std::size_t(n)].position.x(), 17.5, kGrid);
+        EXPECT_NEAR(a.nodes[std::size_t(n)].position.z(), 35.0, kGrid);
+        EXPECT_NEAR(a.nodes[std::size_t(n)].area, 150.0, 1e-6);
+    }
+    expect_invariants(a, mesh);
+}

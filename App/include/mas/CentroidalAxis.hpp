@@ -12,8 +12,11 @@
 //   eighth of L's size (sqrt of its area: smaller stick-outs are bumps on a large section's
 //   surface, which made organic meshes sprout hundreds of branches), start new branches;
 //   the rest of U continues the march. The new direction is the one of +-X, +-Y, +-Z closest to
-//   G_k - C (C the lower centroid; Sec. 3.2.1); the first plane of the new branch is at Eq. 4's
-//   location: the lower boundary's extent T along the new direction, plus eps.
+//   G_k - E, E the point of L's boundary nearest to G_k, plus the step along the march (the
+//   paper's Sec. 3.2.1 says G_k - C, C the lower centroid; that sends a lug sticking out
+//   sideways near the end of a long wall along the wall, past the part, so its material is never
+//   searched); the first plane of the new branch is at Eq. 4's location: the lower boundary's
+//   extent T along the new direction, plus eps.
 // - GetSweepBody / B = B - Bs (Sec. 3.2.4) as bookkeeping on the sections, not a solid Boolean:
 //   each node sweeps a slab, its region extruded from its plane to the next one along the march
 //   direction. Every later section first subtracts the slabs it crosses (all directions are

@@ -14,21 +14,35 @@
 
 namespace mas {
 
-double distance_to_region(const Region2& region, const Eigen::Vector2d& point) {
-    if (contains(region, point)) return 0.0;
+namespace {
+
+// The point of the region's boundary (outer loop or holes) nearest to `point`.
+Eigen::Vector2d nearest_boundary_point(const Region2& region, const Eigen::Vector2d& point) {
     double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d nearest = point;
     auto edges = [&](const Polygon2& loop) {
         const auto& p = loop.points;
         for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
             const Eigen::Vector2d e = p[i] - p[j];
             const double len2 = e.squaredNorm();
             const double t = len2 > 0.0 ? std::clamp((point - p[j]).dot(e) / len2, 0.0, 1.0) : 0.0;
-            best = std::min(best, (p[j] + t * e - point).norm());
+            const Eigen::Vector2d q = p[j] + t * e;
+            if ((q - point).norm() < best) {
+                best = (q - point).norm();
+                nearest = q;
+            }
         }
     };
     edges(region.outer);
     for (const auto& h : region.holes) edges(h);
-    return best;
+    return nearest;
+}
+
+}  // namespace
+
+double distance_to_region(const Region2& region, const Eigen::Vector2d& point) {
+    if (contains(region, point)) return 0.0;
+    return (nearest_boundary_point(region, point) - point).norm();
 }
 
 namespace {
@@ -274,13 +288,16 @@ private:
         std::vector<Regions2> regions;
         std::vector<std::vector<Eigen::AlignedBox3d>> boxes;
         std::size_t count = 0;
+        std::vector<char> chunk_cut;  // per chunk of kGridChunk planes: cut yet?
         bool ready = false;
     };
+    static constexpr std::size_t kGridChunk = 16;
 
     // Section regions of grid plane k minus everything already swept (B - Bs). Only slabs whose
     // box meets a region's box can take anything away: a march's slabs far along another
     // direction are skipped without being cut.
-    Regions2 unswept(const Grid& g, std::size_t k) const {
+    Regions2 unswept(Grid& g, std::size_t k) {
+        cut_chunk(g, k);
         const Regions2& regions = g.regions[k];
         if (regions.empty()) return {};
         const Vector3d& n = g.normal;
@@ -364,6 +381,8 @@ private:
         return id;
     }
 
+    // The grid of direction n: its planes are laid out at once, their sections cut on demand in
+    // chunks of kGridChunk planes (a short branch along X needs a few of X's planes, not all).
     Grid& grid(const Vector3d& n) {
         const int key = 2 * axis_index(n) + (n[axis_index(n)] > 0 ? 0 : 1);
         Grid& g = grids_[std::size_t(key)];
@@ -377,29 +396,38 @@ private:
         g.normal = n;
         g.origin = lo + p_.eps_mm;
         g.hi = hi;
-        const auto count =
+        g.count =
             static_cast<std::size_t>(std::max(0.0, std::floor((hi - g.origin) / p_.step_mm))) + 1;
-        std::vector<Plane> planes(count);
-        for (std::size_t k = 0; k < count; ++k) planes[k] = Plane{n * offset(g, k), n};
+        g.regions.resize(g.count);
+        g.boxes.resize(g.count);
+        g.chunk_cut.assign((g.count + kGridChunk - 1) / kGridChunk, 0);
+        g.ready = true;
+        return g;
+    }
+
+    // Cuts the chunk of grid planes holding plane k, unless it is cut already.
+    void cut_chunk(Grid& g, std::size_t k) {
+        const std::size_t chunk = k / kGridChunk;
+        if (g.chunk_cut[chunk]) return;
+        const std::size_t first = chunk * kGridChunk, last = std::min(g.count, first + kGridChunk);
+        std::vector<Plane> planes;
+        for (std::size_t i = first; i < last; ++i)
+            planes.push_back(Plane{g.normal * offset(g, i), g.normal});
         const std::vector<Section> sections = slice_mesh(mesh_, planes, {}, cancel_);
-        g.count = count;
-        g.regions.resize(count);
-        g.boxes.resize(count);
         const double tol = p_.step_mm / 100.0;
-        for (std::size_t k = 0; k < count; ++k) {
+        for (std::size_t i = first; i < last; ++i) {
             Regions2 rs;
-            for (const auto& r : sections[k].regions) {
+            for (const auto& r : sections[i - first].regions) {
                 rs.push_back(simplify(r.shape, tol));
                 Eigen::AlignedBox3d box = r.bounds;
                 box.min().array() -= 1e-6;
                 box.max().array() += 1e-6;
-                g.boxes[k].push_back(box);
+                g.boxes[i].push_back(box);
             }
-            g.regions[k] = keep_larger(std::move(rs), p_.min_region_area_mm2);
+            g.regions[i] = keep_larger(std::move(rs), p_.min_region_area_mm2);
         }
-        g.ready = true;
-        sections_cut_ += count;
-        return g;
+        g.chunk_cut[chunk] = 1;
+        sections_cut_ += last - first;
     }
 
     double offset(const Grid& g, std::size_t k) const { return g.origin + double(k) * p_.step_mm; }
@@ -408,7 +436,7 @@ private:
         if (depth > 1000)
             throw Error(ErrorCode::GeometryFailure, "centroidal axis: branches nested too deep");
         const Vector3d n = task.direction;
-        const Grid& g = grid(n);
+        Grid& g = grid(n);
         // Eq. 4's location, moved up to the next plane of the grid (at most one step on; the
         // first node's slab reaches back to T, so nothing between is left unswept).
         const double first_k = std::ceil((task.start - g.origin) / p_.step_mm - 1e-9);
@@ -510,7 +538,6 @@ private:
         if (stick_out.empty()) return {upper};  // Eq. 2: empty, same direction
         const PlaneFrame frame(n);
         const Plane upper_plane{n * upper_offset, n};
-        const Vector3d c_lower = nodes_[std::size_t(track.node)].position;
         // "Much greater than the step" (d), and more than an eighth of the lower section's size:
         // a stick-out centred closer than that is a bump on a large section's surface, not a turn.
         const double threshold = std::max(p_.distance_threshold_mm, std::sqrt(area(lower)) / 8.0);
@@ -519,9 +546,21 @@ private:
             if (area(da) <= p_.min_region_area_mm2) continue;
             const Vector2d g = centroid(da);
             double dist = std::numeric_limits<double>::infinity();
-            for (const auto& l : lower) dist = std::min(dist, distance_to_region(l, g));
+            Vector2d exit = g;  // where the stick-out leaves the lower section
+            for (const auto& l : lower) {
+                const double d = distance_to_region(l, g);
+                if (d < dist) {
+                    dist = d;
+                    exit = nearest_boundary_point(l, g);
+                }
+            }
             if (dist <= threshold) continue;
-            const Vector3d dir = closest_axis(frame.to_3d(g, upper_plane) - c_lower);
+            // The turn follows the way the stick-out leaves the lower section: from the nearest
+            // point of its boundary to G. (The paper's G - C sends a lug near the end of a long
+            // wall along the wall, past the part, and its material is never searched.)
+            const Vector3d dir =
+                closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane) +
+                             n * (upper_offset - lower_offset));
             if (std::abs(dir.dot(n)) > 0.5) continue;  // still along the march: no turn
             // Eq. 4: the new march starts just beyond the lower boundary's extent T along dir.
             double t_max = -std::numeric_limits<double>::infinity();

@@ -1,0 +1,100 @@
+// Decomposition (paper Sec. 4.1): the part split into a tree of sub-components where its centroidal
+// axis turns or branches, each with the base face it is built from and its build direction.
+//
+// Reading of the paper chosen here (each tested in tests/engine/test_decompose.cpp). It makes
+// every sub-component buildable from its base face along its direction, with no unsupported
+// overhang at the junction:
+// - Axis branches are walked in tree order (a father branch first). Every non-root branch b
+//   (turned, C1 break, or born of a split) asks for a cut between its father and itself. D is b's
+//   march direction (axis-aligned), not the raw link vector: for a split the link is a sideways
+//   connector between two centroids, and a cut perpendicular to D is what lets the child be built
+//   along D on top of the father. Pos_start is the start of b's first link (the father's node),
+//   Pos_end b's first node.
+// - Candidate splitting faces, on the CURRENT father solid: planar faces (1) whose normal is within
+//   face_angle_deg of +-D (the paper says L_pre; D is read instead, for the reason above), (2)
+//   with a concave edge on their boundary (interior angle over 180 + concave_angle_deg degrees,
+//   from the two faces' normals at the edge's midpoint), (3) meeting Eq. 5 along D: the outer
+//   wire's Proj_min or Proj_max along D lies in [D.Pos_start, D.Pos_end] (+- projection_tolerance).
+//   The one whose plane lies nearest the junction (b's first plane minus half a step) wins.
+// - The father is split by the chosen face's whole plane. The child is the piece containing
+//   Pos_end, on the +D side; every other piece goes back into the father (fused, seams removed).
+//   The child's base face is its face on the plane; build_direction = minus its outward normal
+//   (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The L-block, seen along Y:
+//
+//          z ^   +------:-------------+
+//            |   |      :    child    |   D = +X. The column's face x = 20 has normal +X (1),
+//            |   |  o---:-->o  (arm)  |   a concave edge c with the arm's underside (2), and
+//            |   |      c-------------+   Eq. 5 holds: 20 in [10, 20.001] (3). The plane x = 20
+//            |   | root |                 (dotted) cuts; the arm's base face lies on it, outward
+//            |   |      |                 normal -X: built along +X, on the column's side.
+//            |   +------+                 o: Pos_start (column node), Pos_end (arm's 1st node)
+//            +------------------> x
+//
+// - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
+//   cut by the same split: the components are those of one split per sibling, for one Boolean.
+// - No planar face meets the criteria (a round boss on a round body): the SectionPlane rule (our
+//   documented replacement for the paper's silhouette-edge method) cuts at the plane perpendicular
+//   to D where b's march started (its first node's offset minus the axis' eps): Eq. 4's extent of
+//   the father's section, or up to a step past it where the axis snapped the branch to its section
+//   grid. The same piece selection follows. What lies between the father's surface and that plane
+//   (a sliver of a round boss on a round body) stays in the father.
+// - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
+//   several pieces, is skipped: the branch's material stays in its father, nothing is recorded.
+// - Several roots (a part on several feet) share the one root component.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Shape.hpp"
+
+namespace mas {
+
+struct DecomposeParams {
+    // Criterion (1): a splitting face's normal is within this angle of +-D, degrees.
+    double face_angle_deg = 10.0;
+    // Criterion (2): an edge is concave when the solid's interior angle there exceeds 180 degrees
+    // by more than this, degrees (tangent edges, e.g. of fillets, are not concave).
+    double concave_angle_deg = 1.0;
+    // Criterion (3): slack on Eq. 5's interval [D.Pos_start, D.Pos_end], mm.
+    double projection_tolerance_mm = 0.01;
+    // Cut at the plane where a branch's march started when no planar face qualifies.
+    bool section_plane_fallback = true;
+};
+
+struct Component {
+    enum class SplitRule {
+        Root,          // the part's base component (what remains after every split)
+        PlanarFace,    // cut at the plane of a face meeting the three criteria
+        SectionPlane,  // fallback: cut at the plane where the branch's march started
+    };
+    Shape solid;      // one closed solid
+    int parent = -1;  // index of the father component, -1 for the root
+    Eigen::Vector3d build_direction = Eigen::Vector3d::UnitZ();  // unit; reverse of base_normal
+    bool has_base_face = false;  // false for the root (it stands on the build plate)
+    Shape base_face;             // the child's planar face on the splitting plane; null for root
+    // A point on the base face (its centroid) and its outward unit normal, mm. For the root: the
+    // centre of the bottom of its bounding box and -build_direction.
+    Eigen::Vector3d base_origin = Eigen::Vector3d::Zero();
+    Eigen::Vector3d base_normal = -Eigen::Vector3d::UnitZ();
+    int branch = -1;      // the axis branch that made this component (the root's: 0)
+    int break_link = -1;  // that branch's first link (the break, turn or split), -1 for the root
+    SplitRule rule = SplitRule::Root;
+    double volume_mm3 = 0.0;
+};
+
+struct Decomposition {
+    std::vector<Component> components;  // tree order: a father before its children; [0] is root
+};
+
+// Splits `solid` along `axis` (computed for this solid). Throws mas::Error: NotASolid /
+// MultipleSolids / EmptyInput as Shape::single_solid, InvalidArgument for bad parameters or an
+// axis computed for a different part, GeometryFailure when OCCT fails on the input itself,
+// whatever `throw_on_cancel` throws. The input shape is never modified.
+Decomposition decompose(const Shape& solid, const CentroidalAxis& axis,
+                        const DecomposeParams& params = {},
+                        const std::function<void()>& throw_on_cancel = {});
+
+}  // namespace mas

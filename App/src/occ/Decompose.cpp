@@ -1,0 +1,516 @@
+// Decomposition (paper Sec. 4.1) on OCCT: splitting faces found on the BREP, the father split by
+// the face's plane with BRepAlgoAPI_Splitter, the other pieces fused back. See Decompose.hpp.
+#include "mas/Decompose.hpp"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepAlgoAPI_Splitter.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepClass_FaceClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
+#include <Geom2d_Curve.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "ShapeImpl.hpp"
+
+namespace mas {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+using Eigen::Vector3d;
+
+Vector3d vec(const gp_Vec& v) { return {v.X(), v.Y(), v.Z()}; }
+Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
+Vector3d vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
+gp_Pnt pnt(const Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+double volume_of(const TopoDS_Shape& s) {
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(s, props);
+    return props.Mass();
+}
+
+Eigen::AlignedBox3d bounds_of(const TopoDS_Shape& s) {
+    Bnd_Box box;
+    BRepBndLib::AddOptimal(s, box, Standard_False, Standard_False);
+    double x0, y0, z0, x1, y1, z1;
+    box.Get(x0, y0, z0, x1, y1, z1);
+    return {Vector3d(x0, y0, z0), Vector3d(x1, y1, z1)};
+}
+
+// Outward unit normal of a face at (u, v): the surface normal, turned for a reversed face.
+bool face_normal(const TopoDS_Face& face, double u, double v, Vector3d& n) {
+    BRepAdaptor_Surface s(face, Standard_False);
+    gp_Pnt p;
+    gp_Vec du, dv;
+    s.D1(u, v, p, du, dv);
+    const gp_Vec c = du.Crossed(dv);
+    if (c.Magnitude() < 1e-12) return false;
+    n = vec(c).normalized();
+    if (face.Orientation() == TopAbs_REVERSED) n = -n;
+    return true;
+}
+
+// The planar faces' data the criteria need.
+struct PlanarFace {
+    TopoDS_Face face;
+    Vector3d normal;  // outward
+    Vector3d point;   // on the plane
+};
+
+bool planar(const TopoDS_Face& face, PlanarFace& out) {
+    BRepAdaptor_Surface s(face, Standard_False);
+    if (s.GetType() != GeomAbs_Plane) return false;
+    const gp_Pln pln = s.Plane();
+    out.face = face;
+    out.normal = vec(pln.Axis().Direction());
+    if (face.Orientation() == TopAbs_REVERSED) out.normal = -out.normal;
+    out.point = vec(pln.Location());
+    return true;
+}
+
+// Criterion (2): does the planar face `f` of `solid` have a concave edge? At the edge's midpoint,
+// d1 is the direction into f across the edge (perpendicular to the edge, in f's plane); the other
+// face's outward normal n2 leans towards d1 at a concave edge. The signed angle
+// atan2(n2.d1, n2.n1) is the interior angle minus 180 degrees.
+bool has_concave_edge(const PlanarFace& f, const TopTools_IndexedDataMapOfShapeListOfShape& e2f,
+                      double min_angle_rad) {
+    for (TopExp_Explorer x(f.face, TopAbs_EDGE); x.More(); x.Next()) {
+        const TopoDS_Edge& edge = TopoDS::Edge(x.Current());
+        if (BRep_Tool::Degenerated(edge)) continue;
+        const int idx = e2f.FindIndex(edge);
+        if (idx == 0) continue;
+        TopoDS_Face other;
+        for (TopTools_ListOfShape::Iterator it(e2f(idx)); it.More(); it.Next())
+            if (!it.Value().IsSame(f.face)) other = TopoDS::Face(it.Value());
+        if (other.IsNull()) continue;  // a seam
+        BRepAdaptor_Curve c(edge);
+        const double t = 0.5 * (c.FirstParameter() + c.LastParameter());
+        gp_Pnt p;
+        gp_Vec tangent;
+        c.D1(t, p, tangent);
+        if (tangent.Magnitude() < 1e-12) continue;
+        Vector3d T = vec(tangent).normalized();
+        if (edge.Orientation() == TopAbs_REVERSED) T = -T;
+        Vector3d d1 = f.normal.cross(T).normalized();
+        // The face lies on the left of its edges seen from outside; check on the face itself, in
+        // case of an unusual orientation, and turn d1 if the probe lands outside.
+        const double probe =
+            std::max(1e-4, 1e-3 * (c.LastParameter() - c.FirstParameter()) * tangent.Magnitude());
+        BRepClass_FaceClassifier inside(f.face, pnt(vec(p) + probe * d1), 1e-7);
+        if (inside.State() == TopAbs_OUT) d1 = -d1;
+        // The other face's normal at the same point of the edge, from its pcurve.
+        double f0, f1;
+        const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(edge, other, f0, f1);
+        if (pc.IsNull()) continue;
+        const gp_Pnt2d uv = pc->Value(t);
+        Vector3d n2;
+        if (!face_normal(other, uv.X(), uv.Y(), n2)) continue;
+        const double signed_angle = std::atan2(n2.dot(d1), n2.dot(f.normal));
+        if (signed_angle > min_angle_rad) return true;
+    }
+    return false;
+}
+
+// Eq. 5's Proj_min and Proj_max of the face's outer wire along D.
+void projection_range(const TopoDS_Face& face, const Vector3d& D, double& lo, double& hi) {
+    lo = std::numeric_limits<double>::infinity();
+    hi = -lo;
+    const TopoDS_Wire wire = BRepTools::OuterWire(face);
+    Bnd_Box box;
+    BRepBndLib::AddOptimal(wire, box, Standard_False, Standard_False);
+    // D is axis-aligned in practice, but a box's corners bound any direction's range.
+    double x0, y0, z0, x1, y1, z1;
+    box.Get(x0, y0, z0, x1, y1, z1);
+    for (int i = 0; i < 8; ++i) {
+        const Vector3d c(i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
+        lo = std::min(lo, c.dot(D));
+        hi = std::max(hi, c.dot(D));
+    }
+}
+
+TopoDS_Shape unify(const TopoDS_Shape& s) {
+    ShapeUpgrade_UnifySameDomain u(s, Standard_True, Standard_True, Standard_False);
+    u.Build();
+    return u.Shape();
+}
+
+std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& s) {
+    std::vector<TopoDS_Shape> out;
+    for (TopExp_Explorer x(s, TopAbs_SOLID); x.More(); x.Next()) out.push_back(x.Current());
+    return out;
+}
+
+bool contains(const TopoDS_Shape& solid, const Vector3d& p) {
+    BRepClass3d_SolidClassifier c(solid, pnt(p), 1e-7);
+    return c.State() == TopAbs_IN;
+}
+
+struct Child {
+    TopoDS_Shape solid;
+    TopoDS_Face base;
+    Vector3d base_origin, base_normal;
+};
+
+// Splits `father` by the plane (point, normal n) and takes as children the pieces containing the
+// `inner` points on the +n side (one each, a piece at most once; a point without a piece gets a
+// null child). Every other piece goes back into the father (fused, seams removed). False when
+// OCCT fails or when the pieces do not leave the father in one solid.
+bool split_by_plane(const TopoDS_Shape& father, const Vector3d& point, const Vector3d& n,
+                    const std::vector<Vector3d>& inner, std::vector<Child>& children,
+                    TopoDS_Shape& father_out) {
+    try {
+        const Eigen::AlignedBox3d b = bounds_of(father);
+        const double r = 2.0 * b.diagonal().norm() + 1.0;
+        const Vector3d c = b.center();
+        const Vector3d origin = c - n * n.dot(c - point);
+        const gp_Pln pln(pnt(origin), gp_Dir(n.x(), n.y(), n.z()));
+        const TopoDS_Face tool = BRepBuilderAPI_MakeFace(pln, -r, r, -r, r).Face();
+
+        BRepAlgoAPI_Splitter splitter;
+        TopTools_ListOfShape args, tools;
+        args.Append(father);
+        tools.Append(tool);
+        splitter.SetArguments(args);
+        splitter.SetTools(tools);
+        splitter.SetNonDestructive(Standard_True);
+        splitter.Build();
+        if (!splitter.IsDone() || splitter.HasErrors()) return false;
+        const auto pieces = solids_of(splitter.Shape());
+        if (pieces.size() < 2) return false;
+
+        std::vector<bool> taken(pieces.size(), false);
+        children.assign(inner.size(), Child{});
+        const double tol = 1e-6 * (1.0 + b.diagonal().norm());
+        int found = 0;
+        for (std::size_t k = 0; k < inner.size(); ++k) {
+            std::size_t piece = pieces.size();
+            for (std::size_t i = 0; i < pieces.size() && piece == pieces.size(); ++i)
+                if (!taken[i] && contains(pieces[i], inner[k])) piece = i;
+            if (piece == pieces.size()) continue;
+            GProp_GProps props;
+            BRepGProp::VolumeProperties(pieces[piece], props);
+            if (n.dot(vec(props.CentreOfMass()) - point) <= 0.0) continue;
+            const auto solids = solids_of(unify(pieces[piece]));
+            if (solids.size() != 1) continue;
+            Child child;
+            child.solid = solids.front();
+            // The base face: the child's largest face on the plane, facing -n.
+            double best_area = 0.0;
+            for (TopExp_Explorer x(child.solid, TopAbs_FACE); x.More(); x.Next()) {
+                PlanarFace pf;
+                if (!planar(TopoDS::Face(x.Current()), pf)) continue;
+                if (pf.normal.dot(-n) < 1.0 - 1e-9) continue;
+                if (std::abs(n.dot(pf.point - point)) > tol) continue;
+                GProp_GProps fp;
+                BRepGProp::SurfaceProperties(pf.face, fp);
+                if (fp.Mass() <= best_area) continue;
+                best_area = fp.Mass();
+                child.base = pf.face;
+                child.base_origin = vec(fp.CentreOfMass());
+                child.base_normal = pf.normal;
+            }
+            if (child.base.IsNull()) continue;
+            taken[piece] = true;
+            children[k] = child;
+            ++found;
+        }
+        if (found == 0) return false;
+
+        TopTools_ListOfShape rest;
+        for (std::size_t i = 0; i < pieces.size(); ++i)
+            if (!taken[i]) rest.Append(pieces[i]);
+        TopoDS_Shape father_new;
+        if (rest.Extent() == 1) {
+            father_new = rest.First();
+        } else {
+            BRepAlgoAPI_Fuse fuse;
+            TopTools_ListOfShape first;
+            first.Append(rest.First());
+            rest.RemoveFirst();
+            fuse.SetArguments(first);
+            fuse.SetTools(rest);
+            fuse.SetNonDestructive(Standard_True);
+            fuse.Build();
+            if (!fuse.IsDone() || fuse.HasErrors()) return false;
+            father_new = fuse.Shape();
+        }
+        const auto father_solids = solids_of(unify(father_new));
+        if (father_solids.size() != 1) return false;
+        father_out = father_solids.front();
+        return true;
+    } catch (const Standard_Failure&) {
+        return false;  // a split OCCT cannot perform: the branches stay in their father
+    }
+}
+
+// The axis must belong to this solid: its nodes inside the solid's box grown by a step, its
+// swept volume the solid's volume within 5%.
+void check_axis(const CentroidalAxis& axis, const Eigen::AlignedBox3d& box, double volume) {
+    const std::string what =
+        "decompose: the axis was computed for a different part than the one given";
+    if (axis.nodes.empty() || axis.branches.empty())
+        throw Error(ErrorCode::InvalidArgument, "decompose: the centroidal axis is empty");
+    // Indices first: everything below follows them.
+    const auto node_ok = [&](int n) { return n >= 0 && std::size_t(n) < axis.nodes.size(); };
+    for (const auto& l : axis.links)
+        if (!node_ok(l.start) || !node_ok(l.end))
+            throw Error(ErrorCode::InvalidArgument, "decompose: the axis has a dangling link");
+    for (std::size_t b = 0; b < axis.branches.size(); ++b) {
+        const auto& br = axis.branches[b];
+        bool ok = br.parent < int(b) && !br.nodes.empty() &&
+                  std::all_of(br.nodes.begin(), br.nodes.end(), node_ok) &&
+                  br.first_link < int(axis.links.size());
+        if (ok && br.parent >= 0)
+            ok = br.first_link >= 0 && axis.links[std::size_t(br.first_link)].end == br.nodes[0];
+        if (!ok)
+            throw Error(ErrorCode::InvalidArgument,
+                        "decompose: the axis' branch " + std::to_string(b) +
+                            " is malformed (a father after it, no nodes or a dangling link)");
+    }
+    const double grow = std::max(axis.params.step_mm, 0.0) + 1e-6;
+    const Eigen::AlignedBox3d grown(box.min() - Vector3d::Constant(grow),
+                                    box.max() + Vector3d::Constant(grow));
+    for (const auto& n : axis.nodes)
+        if (!grown.contains(n.position))
+            throw Error(ErrorCode::InvalidArgument,
+                        what + " (a node lies outside the part's bounding box)");
+    if (std::abs(axis.searched_volume_mm3 - volume) > 0.05 * volume)
+        throw Error(ErrorCode::InvalidArgument,
+                    what + " (it sweeps " + std::to_string(axis.searched_volume_mm3) +
+                        " mm^3, the part has " + std::to_string(volume) + " mm^3)");
+}
+
+void check_params(const DecomposeParams& p) {
+    if (!(p.face_angle_deg >= 0.0 && p.face_angle_deg < 90.0))
+        throw Error(ErrorCode::InvalidArgument, "decompose: face angle must be in [0, 90) degrees");
+    if (!(p.concave_angle_deg >= 0.0 && p.concave_angle_deg < 180.0))
+        throw Error(ErrorCode::InvalidArgument,
+                    "decompose: concave angle must be in [0, 180) degrees");
+    if (!(p.projection_tolerance_mm >= 0.0 && std::isfinite(p.projection_tolerance_mm)))
+        throw Error(ErrorCode::InvalidArgument,
+                    "decompose: projection tolerance must be finite and not negative");
+}
+
+struct Work {
+    TopoDS_Shape solid;
+    Component c;
+};
+
+// Where a branch asks to be cut from its father, and by which plane.
+struct Plan {
+    Component::SplitRule rule = Component::SplitRule::PlanarFace;
+    Vector3d point, normal;  // the splitting plane; normal . D > 0
+    Vector3d pos_end;        // the branch's first node
+};
+
+class Decomposer {
+public:
+    Decomposer(const CentroidalAxis& axis, const DecomposeParams& params)
+        : axis_(axis),
+          params_(params),
+          cos_face_(std::cos(params.face_angle_deg * kPi / 180.0)),
+          min_concave_(params.concave_angle_deg * kPi / 180.0) {}
+
+    // The splitting plane for branch b on the father solid `fs` (edge-face map `e2f`): the
+    // criteria's face nearest the junction, else the section plane; false for none.
+    bool plan(std::size_t b, const TopoDS_Shape& fs,
+              const TopTools_IndexedDataMapOfShapeListOfShape& e2f, Plan& out) const {
+        const AxisBranch& br = axis_.branches[b];
+        const AxisLink& link = axis_.links[std::size_t(br.first_link)];
+        const Vector3d D = br.direction.normalized();
+        const Vector3d pos_start = axis_.nodes[std::size_t(link.start)].position;
+        const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
+        out.pos_end = first.position;
+        const double lo_span = std::min(D.dot(pos_start), D.dot(out.pos_end));
+        const double hi_span = std::max(D.dot(pos_start), D.dot(out.pos_end));
+        const double tol = params_.projection_tolerance_mm;
+        const double junction = first.offset - 0.5 * axis_.params.step_mm;
+        double best = std::numeric_limits<double>::infinity();
+        PlanarFace chosen;
+        for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {
+            PlanarFace pf;
+            if (!planar(TopoDS::Face(x.Current()), pf)) continue;
+            if (std::abs(pf.normal.dot(D)) < cos_face_) continue;  // (1)
+            double lo, hi;
+            projection_range(pf.face, D, lo, hi);
+            const auto in_span = [&](double v) { return v >= lo_span - tol && v <= hi_span + tol; };
+            if (!in_span(lo) && !in_span(hi)) continue;              // (3)
+            if (!has_concave_edge(pf, e2f, min_concave_)) continue;  // (2)
+            const double d = std::abs(D.dot(pf.point) - junction);
+            if (d < best) {
+                best = d;
+                chosen = pf;
+            }
+        }
+        if (!chosen.face.IsNull()) {
+            out.rule = Component::SplitRule::PlanarFace;
+            out.point = chosen.point;
+            out.normal = chosen.normal.dot(D) > 0 ? chosen.normal : -chosen.normal;
+            return true;
+        }
+        if (!params_.section_plane_fallback) return false;
+        out.rule = Component::SplitRule::SectionPlane;
+        out.point = D * (first.offset - axis_.params.eps_mm);
+        out.normal = D;
+        return true;
+    }
+
+    static bool same_plane(const Plan& a, const Plan& b, double tol) {
+        return a.rule == b.rule && a.normal.dot(b.normal) > 1.0 - 1e-12 &&
+               std::abs(a.normal.dot(b.point - a.point)) < tol;
+    }
+
+private:
+    const CentroidalAxis& axis_;
+    const DecomposeParams& params_;
+    double cos_face_, min_concave_;
+};
+
+}  // namespace
+
+Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
+                        const DecomposeParams& params,
+                        const std::function<void()>& throw_on_cancel) {
+    check_params(params);
+    const Shape checked = input.single_solid("decompose");
+    std::vector<Work> work;
+    try {
+        // Work on a copy: OCCT's algorithms must never touch the caller's shape.
+        const TopoDS_Shape solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
+        const Eigen::AlignedBox3d box = bounds_of(solid);
+        check_axis(axis, box, volume_of(solid));
+        const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
+
+        Work root;
+        root.solid = solid;
+        root.c.branch = 0;
+        root.c.build_direction = axis.branches.front().direction.normalized();
+        root.c.base_normal = -root.c.build_direction;
+        root.c.base_origin = Vector3d(box.center().x(), box.center().y(), box.min().z());
+        work.push_back(root);
+
+        const Decomposer decomposer(axis, params);
+        const std::size_t nb = axis.branches.size();
+        // The component holding each branch's material; -1 until the branch is handled.
+        std::vector<int> holder(nb, -1);
+        const auto splits = [&](std::size_t b) {
+            const AxisBranch& br = axis.branches[b];
+            return br.parent >= 0 && br.first_link >= 0 && !br.nodes.empty();
+        };
+        // The father component of branch b: its parent branch's holder, or whichever component
+        // now holds b's first node (an earlier whole-plane split may have moved it), newest
+        // first; -1 for none.
+        const auto father_of = [&](std::size_t b) {
+            const int h = holder[std::size_t(axis.branches[b].parent)];
+            const Vector3d& p = axis.nodes[std::size_t(axis.branches[b].nodes.front())].position;
+            if (h >= 0 && contains(work[std::size_t(h)].solid, p)) return h;
+            for (int k = int(work.size()) - 1; k >= 0; --k)
+                if (contains(work[std::size_t(k)].solid, p)) return k;
+            return -1;
+        };
+
+        for (std::size_t b = 0; b < nb; ++b) {
+            if (holder[b] >= 0) continue;  // cut with an earlier sibling
+            if (throw_on_cancel) throw_on_cancel();
+            if (!splits(b)) {
+                holder[b] = 0;
+                continue;
+            }
+            const int father = father_of(b);
+            if (father < 0) {
+                holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
+                continue;
+            }
+            holder[b] = father;
+            const TopoDS_Shape fs = work[std::size_t(father)].solid;
+            TopTools_IndexedDataMapOfShapeListOfShape e2f;
+            TopExp::MapShapesAndAncestors(fs, TopAbs_EDGE, TopAbs_FACE, e2f);
+            Plan p;
+            if (!decomposer.plan(b, fs, e2f, p)) continue;
+
+            // Later siblings in the same father that choose the same plane are cut in the same
+            // split: one Boolean instead of one per sibling (a plate with many posts), with the
+            // components each would get from its own split of the reduced father.
+            std::vector<std::size_t> group{b};
+            std::vector<Vector3d> inner{p.pos_end};
+            for (std::size_t c = b + 1; c < nb; ++c) {
+                if (holder[c] >= 0 || !splits(c)) continue;
+                const int cp = axis.branches[c].parent;
+                if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch
+                if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end()) continue;
+                if (father_of(c) != father) continue;
+                Plan q;
+                if (!decomposer.plan(c, fs, e2f, q) || !Decomposer::same_plane(p, q, plane_tol))
+                    continue;
+                group.push_back(c);
+                inner.push_back(q.pos_end);
+            }
+            if (throw_on_cancel) throw_on_cancel();
+
+            std::vector<Child> children;
+            TopoDS_Shape father_new;
+            if (!split_by_plane(fs, p.point, p.normal, inner, children, father_new)) continue;
+            work[std::size_t(father)].solid = father_new;
+            for (std::size_t k = 0; k < group.size(); ++k) {
+                const std::size_t g = group[k];
+                if (children[k].solid.IsNull()) {
+                    // No piece of its own: left for its own pass (its material may now sit in a
+                    // sibling's piece or back in the father).
+                    if (k > 0) holder[g] = -1;
+                    continue;
+                }
+                Work child;
+                child.solid = children[k].solid;
+                child.c.parent = father;
+                child.c.branch = int(g);
+                child.c.break_link = axis.branches[g].first_link;
+                child.c.rule = p.rule;
+                child.c.has_base_face = true;
+                child.c.base_face = occ::wrap(children[k].base);
+                child.c.base_origin = children[k].base_origin;
+                child.c.base_normal = children[k].base_normal;
+                child.c.build_direction = -children[k].base_normal;
+                holder[g] = int(work.size());
+                work.push_back(child);
+            }
+        }
+    } catch (const Standard_Failure& e) {
+        throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
+    }
+
+    Decomposition out;
+    try {
+        for (auto& w : work) {
+            w.c.solid = occ::wrap(w.solid);
+            w.c.volume_mm3 = volume_of(w.solid);
+            out.components.push_back(w.c);
+        }
+    } catch (const Standard_Failure& e) {
+        throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
+    }
+    return out;
+}
+
+}  // namespace mas

@@ -1,0 +1,416 @@
+// Decomposition (paper Sec. 4.1): exact components of parts whose splits are known, invariants
+// over every part, the fallback rule, bad input.
+#include <gtest/gtest.h>
+
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
+#include <cmath>
+#include <string>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Decompose.hpp"
+#include "mas/Error.hpp"
+#include "mas/Shape.hpp"
+#include "test_parts.hpp"
+
+using Eigen::Vector3d;
+using mas::test::from_occt;
+using mas::test::to_occt;
+using Rule = mas::Component::SplitRule;
+
+namespace {
+
+constexpr double kDeflection = 0.02;  // mm, tessellation of every test part for its axis
+
+TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, double dz) {
+    return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
+}
+
+TopoDS_Shape occ_cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
+    return BRepPrimAPI_MakeCylinder(
+               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
+               r, h)
+        .Shape();
+}
+
+TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+    BRepAlgoAPI_Fuse f(a, b);
+    f.SimplifyResult();
+    return f.Shape();
+}
+
+double volume(const TopoDS_Shape& s) {
+    GProp_GProps p;
+    BRepGProp::VolumeProperties(s, p);
+    return p.Mass();
+}
+
+Eigen::AlignedBox3d bounds(const mas::Shape& s) { return s.info().bounds; }
+
+bool near_box(const mas::Shape& s, const Vector3d& lo, const Vector3d& hi, double tol = 1e-6) {
+    const auto b = bounds(s);
+    return (b.min() - lo).norm() < tol && (b.max() - hi).norm() < tol;
+}
+
+mas::CentroidalAxis axis_of(const mas::Shape& part, double step) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    mas::AxisParams ap;
+    ap.step_mm = step;
+    return mas::centroidal_axis(mas::tessellate(part, tp), ap);
+}
+
+// A T: column [0,20]x[0,20]x[0,60] with a crossbar [-30,50]x[0,20]x[40,60] reaching both ways.
+mas::Shape t_block() {
+    return from_occt(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(-30, 0, 40, 80, 20, 20)));
+}
+
+// Block [0,40]^3 with a horizontal boss of radius 8 along +X from x = 40 to 70 at y = z = 20.
+mas::Shape block_with_boss() {
+    return from_occt(
+        fuse(occ_box(0, 0, 0, 40, 40, 40), occ_cylinder({40, 20, 20}, Vector3d::UnitX(), 8, 30)));
+}
+
+// The hinge (issue 4, paper Fig. 15), standing up so that the axis' +Z march meets the lugs and
+// bosses as sideways stick-outs: a wall [0,80]x[0,10]x[0,40]; two lugs [20,30]x[10,40]x[20,40]
+// and [50,60]x[10,40]x[20,40] reaching +Y; two bosses of radius 6 reaching 15 mm along -Y from
+// the wall's y = 0 face, axes at (x, z) = (30, 30) and (50, 30). The stick-outs sit near the
+// wall's middle on purpose: the axis turns a stick-out towards the axis direction nearest
+// G_k - C (C the wall's centroid, x = 40), so a lug near the wall's end (x in [10, 25]) would be
+// sent along -X, past the part, and its material lost to the axis.
+mas::Shape hinge() {
+    TopoDS_Shape s = occ_box(0, 0, 0, 80, 10, 40);
+    s = fuse(s, occ_box(20, 10, 20, 10, 30, 20));
+    s = fuse(s, occ_box(50, 10, 20, 10, 30, 20));
+    s = fuse(s, occ_cylinder({30, 0, 30}, -Vector3d::UnitY(), 6, 15));
+    s = fuse(s, occ_cylinder({50, 0, 30}, -Vector3d::UnitY(), 6, 15));
+    return from_occt(s);
+}
+
+// A vertical cylinder (r 20, h 40, axis on z) with a horizontal boss (r 6) along +X from its axis
+// to x = 40 at z = 20: no planar face borders the junction.
+mas::Shape cylinder_with_boss() {
+    return from_occt(fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 20, 40),
+                          occ_cylinder({0, 0, 20}, Vector3d::UnitX(), 6, 40)));
+}
+
+// Every decomposition must satisfy these, whatever the part.
+void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
+    ASSERT_FALSE(d.components.empty());
+    const double part_volume = part.info().volume_mm3;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < d.components.size(); ++i) {
+        const auto& c = d.components[i];
+        SCOPED_TRACE("component " + std::to_string(i));
+        // Tree order, root first.
+        if (i == 0) {
+            EXPECT_EQ(c.parent, -1);
+            EXPECT_EQ(c.rule, Rule::Root);
+            EXPECT_FALSE(c.has_base_face);
+            EXPECT_TRUE(c.base_face.is_null());
+        } else {
+            EXPECT_GE(c.parent, 0);
+            EXPECT_LT(c.parent, int(i));
+            EXPECT_NE(c.rule, Rule::Root);
+            EXPECT_TRUE(c.has_base_face);
+            EXPECT_GE(c.branch, 1);
+            EXPECT_GE(c.break_link, 0);
+        }
+        // One valid closed solid, its volume as recorded.
+        const TopoDS_Shape s = to_occt(c.solid);
+        EXPECT_TRUE(BRepCheck_Analyzer(s).IsValid());
+        EXPECT_NO_THROW(c.solid.single_solid("component"));
+        EXPECT_NEAR(volume(s), c.volume_mm3, 1e-9 * part_volume);
+        EXPECT_GT(c.volume_mm3, 0.0);
+        sum += c.volume_mm3;
+        EXPECT_NEAR(c.build_direction.norm(), 1.0, 1e-12);
+        EXPECT_TRUE(c.build_direction.isApprox(-c.base_normal, 1e-12));
+        if (i > 0) {
+            // The base face lies on the component and touches its father.
+            const TopoDS_Shape face = to_occt(c.base_face);
+            BRepExtrema_DistShapeShape to_father(face, to_occt(d.components[c.parent].solid));
+            ASSERT_TRUE(to_father.IsDone());
+            EXPECT_NEAR(to_father.Value(), 0.0, 1e-6);
+            BRepExtrema_DistShapeShape to_self(face, s);
+            ASSERT_TRUE(to_self.IsDone());
+            EXPECT_NEAR(to_self.Value(), 0.0, 1e-6);
+        }
+        // No two components overlap.
+        for (std::size_t j = 0; j < i; ++j) {
+            const double common =
+                volume(BRepAlgoAPI_Common(s, to_occt(d.components[j].solid)).Shape());
+            EXPECT_NEAR(common, 0.0, 1e-6 * part_volume) << "with component " << j;
+        }
+    }
+    EXPECT_NEAR(sum, part_volume, 1e-6 * part_volume);
+}
+
+}  // namespace
+
+TEST(Decompose, BoxIsOneRootComponent) {
+    const auto part = mas::test::box(0, 0, 0, 10, 20, 30);
+    const auto d = mas::decompose(part, axis_of(part, 2.0));
+    ASSERT_EQ(d.components.size(), 1u);
+    EXPECT_NEAR(d.components[0].volume_mm3, 6000.0, 6000.0 * 1e-9);
+    EXPECT_TRUE(d.components[0].build_direction.isApprox(Vector3d::UnitZ()));
+    EXPECT_EQ(d.components[0].branch, 0);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, LBlockArmIsAChildBuiltAlongPlusXFromTheColumnSide) {
+    const auto part = mas::test::l_block();
+    const auto axis = axis_of(part, 2.5);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& root = d.components[0];
+    const auto& arm = d.components[1];
+    EXPECT_TRUE(near_box(root.solid, {0, 0, 0}, {20, 20, 60}));
+    EXPECT_NEAR(root.volume_mm3, 24000.0, 24000.0 * 1e-6);
+    EXPECT_TRUE(near_box(arm.solid, {20, 0, 40}, {70, 20, 60}));
+    EXPECT_NEAR(arm.volume_mm3, 20000.0, 20000.0 * 1e-6);
+    EXPECT_EQ(arm.parent, 0);
+    EXPECT_EQ(arm.rule, Rule::PlanarFace);
+    EXPECT_EQ(arm.branch, 1);
+    EXPECT_EQ(arm.break_link, axis.branches[1].first_link);
+    EXPECT_TRUE(arm.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_TRUE(near_box(arm.base_face, {20, 0, 40}, {20, 20, 60}));
+    EXPECT_NEAR((arm.base_origin - Vector3d(20, 10, 50)).norm(), 0.0, 1e-9);
+    // The root's faces are the column's six: the cut seam on x = 20 was removed.
+    EXPECT_EQ(root.solid.info().faces, 6);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, LBlockWithoutAConcaveEdgeFallsBackToTheSectionPlane) {
+    // Criterion (2) gates the candidates: the L's inner edge is 90 degrees past flat, so with 95
+    // required no planar face qualifies and the arm is cut where its march started, x = 20.
+    const auto part = mas::test::l_block();
+    mas::DecomposeParams p;
+    p.concave_angle_deg = 95.0;
+    const auto d = mas::decompose(part, axis_of(part, 2.5), p);
+    ASSERT_EQ(d.components.size(), 2u);
+    EXPECT_EQ(d.components[1].rule, Rule::SectionPlane);
+    EXPECT_TRUE(near_box(d.components[1].solid, {20, 0, 40}, {70, 20, 60}));
+    EXPECT_TRUE(d.components[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, PostOnTheArmIsAGrandchildCutFromTheArm) {
+    // The L-block with a post [50,60]x[0,20]x[60,80] on the arm: the arm's +X march turns +Z
+    // into the post, which is cut from the arm at the arm's top face (z = 60), built +Z.
+    const auto part =
+        from_occt(fuse(to_occt(mas::test::l_block()), occ_box(50, 0, 60, 10, 20, 20)));
+    const auto d = mas::decompose(part, axis_of(part, 2.5));
+    ASSERT_EQ(d.components.size(), 3u);
+    EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {20, 20, 60}));
+    EXPECT_TRUE(near_box(d.components[1].solid, {20, 0, 40}, {70, 20, 60}));
+    EXPECT_EQ(d.components[1].parent, 0);
+    const auto& post = d.components[2];
+    EXPECT_EQ(post.parent, 1);
+    EXPECT_EQ(post.rule, Rule::PlanarFace);
+    EXPECT_TRUE(near_box(post.solid, {50, 0, 60}, {60, 20, 80}));
+    EXPECT_TRUE(near_box(post.base_face, {50, 0, 60}, {60, 20, 60}));
+    EXPECT_TRUE(post.build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, TCrossbarArmsAreBuiltPlusXAndMinusX) {
+    const auto part = t_block();
+    const auto d = mas::decompose(part, axis_of(part, 2.5));
+    ASSERT_EQ(d.components.size(), 3u);
+    EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {20, 20, 60}));
+    int plus = 0, minus = 0;
+    for (std::size_t i = 1; i < 3; ++i) {
+        const auto& c = d.components[i];
+        EXPECT_EQ(c.parent, 0);
+        EXPECT_EQ(c.rule, Rule::PlanarFace);
+        EXPECT_NEAR(c.volume_mm3, 12000.0, 12000.0 * 1e-6);
+        if (c.build_direction.isApprox(Vector3d::UnitX(), 1e-12)) {
+            ++plus;
+            EXPECT_TRUE(near_box(c.solid, {20, 0, 40}, {50, 20, 60}));
+            EXPECT_TRUE(near_box(c.base_face, {20, 0, 40}, {20, 20, 60}));
+        } else if (c.build_direction.isApprox(-Vector3d::UnitX(), 1e-12)) {
+            ++minus;
+            EXPECT_TRUE(near_box(c.solid, {-30, 0, 40}, {0, 20, 60}));
+            EXPECT_TRUE(near_box(c.base_face, {0, 0, 40}, {0, 20, 60}));
+        }
+    }
+    EXPECT_EQ(plus, 1);
+    EXPECT_EQ(minus, 1);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, HorizontalBossIsSeparatedAtTheBlockFaceAndBuiltPlusX) {
+    const auto part = block_with_boss();
+    const auto d = mas::decompose(part, axis_of(part, 1.0));
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& boss = d.components[1];
+    EXPECT_EQ(boss.rule, Rule::PlanarFace);
+    EXPECT_TRUE(boss.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_TRUE(near_box(boss.solid, {40, 12, 12}, {70, 28, 28}, 1e-5));
+    EXPECT_TRUE(near_box(boss.base_face, {40, 12, 12}, {40, 28, 28}, 1e-5));
+    EXPECT_NEAR((boss.base_origin - Vector3d(40, 20, 20)).norm(), 0.0, 1e-6);
+    const double boss_volume = M_PI * 64.0 * 30.0;
+    EXPECT_NEAR(boss.volume_mm3, boss_volume, boss_volume * 1e-6);
+    EXPECT_NEAR(d.components[0].volume_mm3, 64000.0, 64000.0 * 1e-6);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, HingeLugsAndBossesAreBuiltSidewaysInOppositeDirections) {
+    const auto part = hinge();
+    const auto axis = axis_of(part, 1.0);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 5u);
+    EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {80, 10, 40}));
+    EXPECT_NEAR(d.components[0].volume_mm3, 32000.0, 32000.0 * 1e-6);
+    int lugs = 0, bosses = 0;
+    const double boss_volume = M_PI * 36.0 * 15.0;
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        const auto& c = d.components[i];
+        EXPECT_EQ(c.parent, 0);
+        EXPECT_EQ(c.rule, Rule::PlanarFace);
+        if (c.build_direction.isApprox(Vector3d::UnitY(), 1e-12)) {
+            ++lugs;
+            EXPECT_NEAR(c.volume_mm3, 6000.0, 6000.0 * 1e-6);
+            EXPECT_NEAR(bounds(c.solid).min().y(), 10.0, 1e-9);
+            EXPECT_NEAR(bounds(c.solid).max().y(), 40.0, 1e-9);
+            EXPECT_NEAR(bounds(c.base_face).min().y(), 10.0, 1e-9);
+            EXPECT_NEAR(bounds(c.base_face).max().y(), 10.0, 1e-9);
+        } else if (c.build_direction.isApprox(-Vector3d::UnitY(), 1e-12)) {
+            ++bosses;
+            EXPECT_NEAR(c.volume_mm3, boss_volume, boss_volume * 1e-6);
+            EXPECT_NEAR(bounds(c.solid).min().y(), -15.0, 1e-6);
+            EXPECT_NEAR(bounds(c.solid).max().y(), 0.0, 1e-9);
+            EXPECT_NEAR(bounds(c.base_face).min().y(), 0.0, 1e-9);
+            EXPECT_NEAR(bounds(c.base_face).max().y(), 0.0, 1e-9);
+        }
+    }
+    EXPECT_EQ(lugs, 2);
+    EXPECT_EQ(bosses, 2);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, TwoPostsSplitAtThePlateTopAndBuildPlusZ) {
+    const auto part = mas::test::two_posts();
+    const auto d = mas::decompose(part, axis_of(part, 1.0));
+    ASSERT_EQ(d.components.size(), 3u);
+    EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {40, 10, 5}));
+    EXPECT_NEAR(d.components[0].volume_mm3, 2000.0, 2000.0 * 1e-6);
+    EXPECT_EQ(d.components[0].solid.info().faces, 6);  // the plate, its cut seams removed
+    for (std::size_t i = 1; i < 3; ++i) {
+        const auto& c = d.components[i];
+        EXPECT_EQ(c.parent, 0);
+        EXPECT_EQ(c.rule, Rule::PlanarFace);
+        EXPECT_TRUE(c.build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+        EXPECT_NEAR(c.volume_mm3, 2500.0, 2500.0 * 1e-6);
+        EXPECT_NEAR(bounds(c.base_face).min().z(), 5.0, 1e-9);
+        EXPECT_NEAR(bounds(c.base_face).max().z(), 5.0, 1e-9);
+    }
+    EXPECT_NE(bounds(d.components[1].solid).min().x(), bounds(d.components[2].solid).min().x());
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlane) {
+    const auto part = cylinder_with_boss();
+    const auto axis = axis_of(part, 2.5);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& boss = d.components[1];
+    EXPECT_EQ(boss.rule, Rule::SectionPlane);
+    EXPECT_TRUE(boss.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    // Cut where the boss' march started: its first node's plane less eps.
+    const auto& first = axis.nodes[axis.branches[boss.branch].nodes.front()];
+    const double cut = first.offset - axis.params.eps_mm;
+    EXPECT_NEAR(bounds(boss.base_face).min().x(), cut, 1e-7);
+    EXPECT_NEAR(bounds(boss.base_face).max().x(), cut, 1e-7);
+    EXPECT_TRUE(near_box(boss.solid, {cut, -6, 14}, {40, 6, 26}, 1e-5));
+    const double boss_volume = M_PI * 36.0 * (40.0 - cut);
+    EXPECT_NEAR(boss.volume_mm3, boss_volume, boss_volume * 1e-6);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, WithoutFallbackARoundBossStaysInItsFather) {
+    const auto part = cylinder_with_boss();
+    mas::DecomposeParams p;
+    p.section_plane_fallback = false;
+    const auto d = mas::decompose(part, axis_of(part, 2.5), p);
+    ASSERT_EQ(d.components.size(), 1u);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, SourceShapeIsUnchanged) {
+    const auto part = t_block();
+    const std::string before = part.to_brep_string();
+    const auto d = mas::decompose(part, axis_of(part, 2.5));
+    EXPECT_EQ(d.components.size(), 3u);
+    EXPECT_EQ(part.to_brep_string(), before);
+}
+
+TEST(DecomposeErrors, NonSolidsAreRejected) {
+    const auto box = mas::test::box(0, 0, 0, 10, 10, 10);
+    const auto axis = axis_of(box, 2.0);
+    try {
+        mas::decompose(mas::test::single_face(), axis);
+        ADD_FAILURE() << "no error for a face";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::NotASolid);
+    }
+    try {
+        mas::decompose(mas::test::two_boxes(), axis);
+        ADD_FAILURE() << "no error for two solids";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::MultipleSolids);
+    }
+}
+
+TEST(DecomposeErrors, AnAxisOfAnotherPartIsRejected) {
+    const auto box = mas::test::box(0, 0, 0, 10, 10, 10);
+    auto expect_other_part = [&](const mas::Shape& part) {
+        try {
+            mas::decompose(part, axis_of(box, 2.0));
+            ADD_FAILURE() << "no error";
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find("different part"), std::string::npos) << e.what();
+        }
+    };
+    expect_other_part(mas::test::box(50, 0, 0, 10, 10, 10));  // moved away
+    expect_other_part(mas::test::box(0, 0, 0, 10, 10, 12));   // same place, 20% more volume
+    EXPECT_THROW(mas::decompose(box, mas::CentroidalAxis{}), mas::Error);
+    // A malformed axis (a branch whose father comes after it) is named, not followed.
+    const auto l_block = mas::test::l_block();
+    auto broken = axis_of(l_block, 2.5);
+    broken.branches[1].parent = 1;
+    try {
+        mas::decompose(l_block, broken);
+        ADD_FAILURE() << "no error for a malformed axis";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("malformed"), std::string::npos) << e.what();
+    }
+}
+
+TEST(DecomposeErrors, BadParametersAndCancellationAreReported) {
+    const auto part = mas::test::l_block();
+    const auto axis = axis_of(part, 2.5);
+    mas::DecomposeParams p;
+    p.face_angle_deg = 95.0;
+    EXPECT_THROW(mas::decompose(part, axis, p), mas::Error);
+    p = {};
+    p.projection_tolerance_mm = std::nan("");
+    EXPECT_THROW(mas::decompose(part, axis, p), mas::Error);
+    try {
+        mas::decompose(part, axis, {},
+                       [] { throw mas::Error(mas::ErrorCode::Cancelled, "cancelled"); });
+        ADD_FAILURE() << "not cancelled";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::Cancelled);
+    }
+}

@@ -1,9 +1,10 @@
 // multiaxis-slicer: the engine on STEP / IGES / BREP / STL / OFF files, outside FreeCAD.
 // Sub-commands grow with the pipeline: `sections` (cross-section areas and centroids), `axis` (the
-// centroidal axis).
+// centroidal axis), `decompose` (the tree of sub-components).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "mas/CentroidalAxis.hpp"
+#include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
@@ -26,6 +28,8 @@ const char* kUsage =
     "       multiaxis-slicer axis FILE [--step MM] [--distance-threshold MM] [--eps MM]\n"
     "                                  [--break-angle DEG] [--base-z MM] [--deflection MM]\n"
     "                                  [--json [OUT.json]]\n"
+    "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG] [--no-fallback]\n"
+    "                                       [--step-dir DIR] [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
     "\n"
     "sections   cut the part with parallel planes STEP mm apart along NORMAL (default 0,0,1 and\n"
@@ -34,6 +38,9 @@ const char* kUsage =
     "axis       the part's centroidal axis (Ruan et al. Sec. 3): nodes, links and branches.\n"
     "           --step and --distance-threshold default to values derived from the part (0),\n"
     "           --eps to 0.001 mm, --break-angle to 30 degrees, --base-z to the part's lowest z.\n"
+    "decompose  split the part into sub-components at its axis' turns and branches (Sec. 4.1):\n"
+    "           the tree, each component's build direction, base face and volume; --step-dir\n"
+    "           writes every component as DIR/component_NNN.step. Needs a BREP solid.\n"
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
     "--json     write JSON instead of text, to OUT.json or standard output\n"
@@ -222,9 +229,10 @@ const char* link_kind(mas::AxisLink::Kind k) {
     return k == mas::AxisLink::Kind::Connecting ? "connecting" : "step";
 }
 
-int run_axis(const std::vector<std::string>& args) {
-    const Args a = parse_args(args, {"--step", "--distance-threshold", "--eps", "--break-angle",
-                                     "--base-z", "--deflection"});
+const std::set<std::string> kAxisOptions = {
+    "--step", "--distance-threshold", "--eps", "--break-angle", "--base-z", "--deflection"};
+
+mas::AxisParams axis_params(const Args& a) {
     mas::AxisParams p;
     p.step_mm = a.number("--step", 0.0);
     p.distance_threshold_mm = a.number("--distance-threshold", 0.0);
@@ -234,6 +242,12 @@ int run_axis(const std::vector<std::string>& args) {
     if (p.step_mm < 0.0) throw UsageError("--step must be positive (or 0 for derived)");
     if (p.distance_threshold_mm < 0.0)
         throw UsageError("--distance-threshold must be positive (or 0 for twice the step)");
+    return p;
+}
+
+int run_axis(const std::vector<std::string>& args) {
+    const Args a = parse_args(args, kAxisOptions);
+    const mas::AxisParams p = axis_params(a);
     const Part part = load_part(a);
     const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, p);
     const mas::AxisParams& used = axis.params;
@@ -300,6 +314,96 @@ int run_axis(const std::vector<std::string>& args) {
     return 0;
 }
 
+const char* rule_name(mas::Component::SplitRule r) {
+    switch (r) {
+        case mas::Component::SplitRule::Root:
+            return "root";
+        case mas::Component::SplitRule::PlanarFace:
+            return "planar_face";
+        case mas::Component::SplitRule::SectionPlane:
+            return "section_plane";
+    }
+    return "unknown";
+}
+
+int run_decompose(const std::vector<std::string>& args) {
+    std::set<std::string> allowed = kAxisOptions;
+    allowed.insert({"--face-angle", "--concave-angle", "--step-dir"});
+    // --no-fallback takes no value: take it out before the common parser sees it.
+    std::vector<std::string> rest;
+    bool fallback = true;
+    for (const auto& arg : args) {
+        if (arg == "--no-fallback")
+            fallback = false;
+        else
+            rest.push_back(arg);
+    }
+    const Args a = parse_args(rest, allowed);
+    const mas::AxisParams ap = axis_params(a);
+    mas::DecomposeParams dp;
+    dp.face_angle_deg = a.number("--face-angle", dp.face_angle_deg);
+    dp.concave_angle_deg = a.number("--concave-angle", dp.concave_angle_deg);
+    dp.section_plane_fallback = fallback;
+    const Part part = load_part(a);
+    if (part.model.kind != mas::Model::Kind::Solid)
+        throw mas::Error(
+            mas::ErrorCode::NotASolid,
+            a.file + ": decomposition splits a BREP solid (STEP, IGES, BREP), not a mesh");
+    const mas::Shape solid = part.model.shape.single_solid(a.file);
+    const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, ap);
+    const mas::Decomposition d = mas::decompose(solid, axis, dp);
+
+    std::vector<std::string> step_files(d.components.size());
+    if (a.has("--step-dir")) {
+        const std::string dir = a.options.at("--step-dir");
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        if (ec) throw mas::Error(mas::ErrorCode::ReadFailed, dir + ": cannot create the folder");
+        for (std::size_t i = 0; i < d.components.size(); ++i) {
+            std::ostringstream name;
+            name << "component_" << std::setw(3) << std::setfill('0') << i + 1 << ".step";
+            step_files[i] = (std::filesystem::path(dir) / name.str()).string();
+            mas::write_step(d.components[i].solid, step_files[i]);
+        }
+    }
+    std::ostringstream out;
+    if (a.json) {
+        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
+            << ",\n  \"part_volume_mm3\": " << num(solid.info().volume_mm3)
+            << ",\n  \"axis\": {\"step_mm\": " << num(axis.params.step_mm)
+            << ", \"nodes\": " << axis.nodes.size() << ", \"branches\": " << axis.branches.size()
+            << "},\n  \"components\": [";
+        for (std::size_t i = 0; i < d.components.size(); ++i) {
+            const auto& c = d.components[i];
+            out << (i ? "," : "") << "\n    {\"parent\": " << c.parent
+                << ", \"build_direction\": " << vec(c.build_direction)
+                << ", \"has_base_face\": " << (c.has_base_face ? "true" : "false")
+                << ", \"base_origin\": " << vec(c.base_origin)
+                << ", \"base_normal\": " << vec(c.base_normal) << ", \"branch\": " << c.branch
+                << ", \"break_link\": " << c.break_link
+                << ", \"rule\": " << quoted(rule_name(c.rule))
+                << ", \"volume_mm3\": " << num(c.volume_mm3);
+            if (!step_files[i].empty()) out << ", \"step_file\": " << quoted(step_files[i]);
+            out << "}";
+        }
+        out << "\n  ]\n}\n";
+    } else {
+        out << "# " << a.file << ": " << d.components.size() << " components, axis step "
+            << num(axis.params.step_mm) << " mm\n# component parent rule build_direction volume_mm3"
+            << (a.has("--step-dir") ? " step_file" : "") << "\n";
+        for (std::size_t i = 0; i < d.components.size(); ++i) {
+            const auto& c = d.components[i];
+            out << i << " " << c.parent << " " << rule_name(c.rule) << " "
+                << num(c.build_direction.x()) << "," << num(c.build_direction.y()) << ","
+                << num(c.build_direction.z()) << " " << num(c.volume_mm3);
+            if (!step_files[i].empty()) out << " " << step_files[i];
+            out << "\n";
+        }
+    }
+    write_output(a, out.str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -319,6 +423,7 @@ int main(int argc, char** argv) {
         }
         if (command == "sections") return run_sections(args);
         if (command == "axis") return run_axis(args);
+        if (command == "decompose") return run_decompose(args);
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& e) {
         std::cerr << "multiaxis-slicer: " << e.what() << " (see multiaxis-slicer --help)\n";

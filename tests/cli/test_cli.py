@@ -177,6 +177,37 @@ class CliSections(unittest.TestCase):
                           "open_mesh")
         self.expect_error(["axis", box, "--normal", "1,0,0"], 2, "unknown option")
 
+    def test_decompose_splits_the_arm_off_the_l_block(self):
+        steps = os.path.join(self.tmp.name, "components")
+        r = run("decompose", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--step-dir",
+                steps, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertAlmostEqual(doc["part_volume_mm3"], 44000.0, places=6)
+        root, arm = doc["components"]
+        self.assertEqual((root["parent"], root["rule"], root["has_base_face"]), (-1, "root", False))
+        self.assertEqual((arm["parent"], arm["rule"], arm["has_base_face"]), (0, "planar_face", True))
+        self.assertAlmostEqual(root["volume_mm3"], 24000.0, places=6)
+        self.assertAlmostEqual(arm["volume_mm3"], 20000.0, places=6)
+        for got, want in zip(arm["build_direction"], (1, 0, 0)):
+            self.assertAlmostEqual(got, want, places=9)
+        self.assertAlmostEqual(arm["base_origin"][0], 20.0, places=9)
+        # Each component is a STEP file the program reads back: the arm is 20 x 20 across X.
+        self.assertEqual(sorted(os.listdir(steps)), ["component_001.step", "component_002.step"])
+        back = self.json_sections(arm["step_file"], "--normal", "1,0,0", "--step", "10")
+        self.assertEqual(len(back["sections"]), 5)
+        for sec in back["sections"]:
+            self.assertAlmostEqual(sec["area_mm2"], 400.0, places=6)
+
+    def test_decompose_bad_input(self):
+        self.expect_error(["decompose", self.write("box.stl", box_stl(10, 10, 10))], 1,
+                          "not_a_solid", "not a mesh")
+        self.expect_error(["decompose", os.path.join(DATA, "two_boxes.step")], 1, "multiple_solids")
+        self.expect_error(["decompose", os.path.join(DATA, "l_block.brep"), "--face-angle", "95"], 1,
+                          "face angle")
+        self.expect_error(["decompose", os.path.join(DATA, "l_block.brep"), "--fallback"], 2,
+                          "unknown option")
+
     def test_help(self):
         r = run("--help")
         self.assertEqual(r.returncode, 0)

@@ -98,6 +98,10 @@ std::vector<Section> exact_sections(const Shape& solid, const std::vector<Plane>
 
 namespace mas {
 
+// Writes `shape` as a STEP file (AP214, millimetres). Throws Error(EmptyInput) for a null shape,
+// Error(ReadFailed) when the file cannot be written.
+void write_step(const Shape& shape, const std::string& path);
+
 // OCCT's readers print progress and warnings to standard output through its default messenger.
 // A command-line program whose standard output is data calls this once at start to drop them.
 void silence_occt_console();

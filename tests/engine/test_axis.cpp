@@ -2,6 +2,7 @@
 // every test part, bad input.
 #include <gtest/gtest.h>
 
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -396,4 +397,33 @@ TEST(CentroidalAxis, LugNearTheEndOfALongWallTurnsTheWayItSticksOut) {
         EXPECT_NEAR(a.nodes[std::size_t(n)].area, 150.0, 1e-6);
     }
     expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, TracksSplitAroundAHoleRecordWhereTheyMerge) {
+    // A 12 x 40 wall on a plate with a horizontal hole (radius 6, along X, at y = 20, z = 30): the
+    // wall's sections split in two around the hole and join again above it.
+    const TopoDS_Shape wall = fuse(occ_box(0, 0, 0, 60, 40, 10), occ_box(0, 0, 10, 12, 40, 40));
+    const TopoDS_Shape hole =
+        BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-1, 20, 30), gp_Dir(1, 0, 0)), 6, 14).Shape();
+    const auto mesh = mesh_of(from_occt(BRepAlgoAPI_Cut(wall, hole).Shape()));
+    mas::AxisParams p;
+    p.step_mm = 2.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const auto kids = children(a, 0);
+    ASSERT_EQ(kids.size(), 2u);
+    const auto& first = a.branches[std::size_t(kids[0])];
+    const auto& second = a.branches[std::size_t(kids[1])];
+    EXPECT_TRUE(first.direction.isApprox(Vector3d::UnitZ()));
+    EXPECT_TRUE(second.direction.isApprox(Vector3d::UnitZ()));
+    // One of them ends where they join, merged into the other, which goes on to the top; the
+    // material bridging the hole's top joins them (no sideways branch, no further split).
+    const bool first_goes_on = first.merged_into < 0;
+    EXPECT_EQ(first_goes_on ? second.merged_into : first.merged_into,
+              first_goes_on ? kids[0] : kids[1]);
+    EXPECT_EQ(first_goes_on ? first.merged_into : second.merged_into, -1);
+    EXPECT_EQ(a.branches.size(), 3u);
+    const auto& on = first_goes_on ? first : second;
+    EXPECT_NEAR(a.nodes[std::size_t(on.nodes.back())].position.z(), 48.001, 1e-9);
+    EXPECT_EQ(a.branches[0].merged_into, -1);
+    expect_invariants(a, mesh, false);  // beside the hole, a section's centroid is in the hole
 }

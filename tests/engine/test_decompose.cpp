@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -23,6 +24,8 @@
 
 using Eigen::Vector3d;
 using mas::test::from_occt;
+using mas::test::fuse;
+using mas::test::occ_box;
 using mas::test::to_occt;
 using Rule = mas::Component::SplitRule;
 
@@ -30,21 +33,11 @@ namespace {
 
 constexpr double kDeflection = 0.02;  // mm, tessellation of every test part for its axis
 
-TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, double dz) {
-    return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
-}
-
 TopoDS_Shape occ_cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
     return BRepPrimAPI_MakeCylinder(
                gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
                r, h)
         .Shape();
-}
-
-TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
-    BRepAlgoAPI_Fuse f(a, b);
-    f.SimplifyResult();
-    return f.Shape();
 }
 
 double volume(const TopoDS_Shape& s) {
@@ -294,6 +287,19 @@ TEST(Decompose, HingeLugsAndBossesAreBuiltSidewaysInOppositeDirections) {
     }
     EXPECT_EQ(lugs, 2);
     EXPECT_EQ(bosses, 2);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, AWallWithAHoleThroughItIsOneComponent) {
+    // A 12 x 40 wall on a plate, a horizontal hole through the wall: the axis splits around the
+    // hole and joins again above it; that is a hole, not a feature to build apart.
+    const TopoDS_Shape body = fuse(occ_box(0, 0, 0, 60, 40, 10), occ_box(0, 0, 10, 12, 40, 40));
+    const auto part = from_occt(
+        BRepAlgoAPI_Cut(body, occ_cylinder(Vector3d(-1, 20, 30), Vector3d(1, 0, 0), 6, 14))
+            .Shape());
+    const auto d = mas::decompose(part, axis_of(part, 2.0));
+    ASSERT_EQ(d.components.size(), 1u);
+    EXPECT_EQ(d.components[0].rule, Rule::Root);
     expect_invariants(d, part);
 }
 

@@ -5,13 +5,16 @@
 // - Every outer loop of a section is its own node (Sec. 3.1). A section region continues the
 //   track of the lower region it overlaps most, projected along the march direction (Eq. 2).
 //   A lower region overlapped by several upper regions splits: each becomes a new branch in the
-//   same direction, child of the lower one's branch. Upper regions overlapping no lower region
-//   of the march belong to other geometry and are left to the search that reaches them.
+//   same direction, child of the lower one's branch. An upper region overlapping several tracks
+//   continues the one it overlaps most; the others end there, merged into it (merged_into). Upper
+//   regions overlapping no lower region of the march belong to other geometry and are left to the
+//   search that reaches them.
 // - Eq. 2 on a region U over its lower region(s) L: the parts of U - L, dA_k, whose centre G_k lies
 //   farther than `distance_threshold` outside L (2-D distance on the plane), and farther than an
 //   eighth of L's size (sqrt of its area: smaller stick-outs are bumps on a large section's
 //   surface, which made organic meshes sprout hundreds of branches), start new branches;
-//   the rest of U continues the march. The new direction is the one of +-X, +-Y, +-Z closest to
+//   the rest of U continues the march. A stick-out touching two or more lower regions is the
+//   bridge where tracks merge (the top of a hole), never a new branch. The new direction is the one of +-X, +-Y, +-Z closest to
 //   G_k - E, E the point of L's boundary nearest to G_k, plus the step along the march (the
 //   paper's Sec. 3.2.1 says G_k - C, C the lower centroid; that sends a lug sticking out
 //   sideways near the end of a long wall along the wall, past the part, so its material is never
@@ -94,6 +97,9 @@ struct AxisBranch {
     int parent_node = -1;    // the father's node the first node links to (-1 for a root)
     int first_link = -1;     // that link
     int depth = 0;           // 0 for roots
+    // The branch that went on with this one's material where their sections merged (two tracks
+    // split around a hole and joined again above it), -1 when it never merged.
+    int merged_into = -1;
 };
 
 struct CentroidalAxis {

@@ -40,6 +40,8 @@
 //   (a sliver of a round boss on a round body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces, is skipped: the branch's material stays in its father, nothing is recorded.
+// - Branches of one direction that split around a hole and merge again beyond it (AxisBranch::
+//   merged_into) make no cut: a wall with a hole through it is one sub-component.
 // - Several roots (a part on several feet) share the one root component.
 #pragma once
 

@@ -496,6 +496,12 @@ private:
                     stick_out[j] = difference({upper[j]}, lower);
                 }
             }
+            // A track that overlaps an upper region owned by another track merges into it.
+            for (std::size_t j = 0; j < upper.size(); ++j)
+                for (int o : overlapping[j])
+                    if (o != owner[j] && owner[j] >= 0)
+                        branches_[std::size_t(tracks[std::size_t(o)].branch)].merged_into =
+                            tracks[std::size_t(owner[j])].branch;
             std::vector<Track> next;
             std::vector<Task> children;
             for (std::size_t t = 0; t < tracks.size(); ++t) {
@@ -555,6 +561,15 @@ private:
                 }
             }
             if (dist <= threshold) continue;
+            // Material spanning between two lower regions (over a hole, where tracks merge) is
+            // a bridge that joins them, not a part turning away.
+            if (lower.size() > 1) {
+                const Regions2 grown = mas::offset({da}, p_.step_mm / 100.0, JoinType::Miter);
+                int touched = 0;
+                for (const auto& l : lower)
+                    if (area(intersection(grown, {l})) > p_.min_region_area_mm2) ++touched;
+                if (touched > 1) continue;
+            }
             // The turn follows the way the stick-out leaves the lower section: from the nearest
             // point of its boundary to G. (The paper's G - C sends a lug near the end of a long
             // wall along the wall, past the part, and its material is never searched.)

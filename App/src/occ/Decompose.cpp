@@ -446,11 +446,28 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             return -1;
         };
 
+        // Tracks that split around a hole and join again beyond it (the axis records the merge)
+        // are one feature with a hole in it, not sub-components: they stay in their father.
+        const auto rejoins = [&](std::size_t b) {
+            const AxisBranch& br = axis.branches[b];
+            if (br.parent < 0 ||
+                !br.direction.isApprox(axis.branches[std::size_t(br.parent)].direction))
+                return false;
+            if (br.merged_into >= 0) return true;
+            for (const auto& other : axis.branches)
+                if (other.merged_into == int(b)) return true;
+            return false;
+        };
+
         for (std::size_t b = 0; b < nb; ++b) {
             if (holder[b] >= 0) continue;  // cut with an earlier sibling
             if (throw_on_cancel) throw_on_cancel();
             if (!splits(b)) {
                 holder[b] = 0;
+                continue;
+            }
+            if (rejoins(b)) {
+                holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
                 continue;
             }
             const int father = father_of(b);

@@ -63,6 +63,10 @@ struct Section {
     std::vector<std::vector<Eigen::Vector3d>> loops_3d(std::size_t region) const;
 };
 
+// Orders a section's regions largest first and sets its total area and centroid from them (the
+// plane's origin when it has none). Both the mesh kernel and the exact path end with it.
+void finish_section(Section& section);
+
 struct SliceParams {
     // Build loops and regions (outer loops with holes). When false only each section's total area
     // and centroid are computed, straight from the segments (Green's theorem), which is cheaper.

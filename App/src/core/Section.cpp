@@ -46,6 +46,20 @@ PlaneFrame::PlaneFrame(const Eigen::Vector3d& unit_normal) : normal(unit_normal)
     v = unit_normal.cross(u);
 }
 
+void finish_section(Section& section) {
+    std::stable_sort(
+        section.regions.begin(), section.regions.end(),
+        [](const SectionRegion& a, const SectionRegion& b) { return a.area > b.area; });
+    double total = 0.0;
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    for (const auto& r : section.regions) {
+        total += r.area;
+        moment += r.area * r.centroid;
+    }
+    section.area = total;
+    section.centroid = total > 0.0 ? Eigen::Vector3d(moment / total) : section.plane.origin;
+}
+
 std::vector<std::vector<Eigen::Vector3d>> Section::loops_3d(std::size_t region) const {
     const PlaneFrame f = frame();
     const SectionRegion& r = regions.at(region);
@@ -161,8 +175,6 @@ void build_regions(const Segment* segs, std::size_t n, const SliceParams& params
     }
     Regions2 regions = regions_from_loops(std::move(loops), params.min_loop_area_mm2);
     const PlaneFrame frame(out.plane.normal);
-    double total = 0.0;
-    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
     out.regions.reserve(regions.size());
     for (auto& r : regions) {
         SectionRegion sr;
@@ -170,15 +182,9 @@ void build_regions(const Segment* segs, std::size_t n, const SliceParams& params
         sr.centroid = frame.to_3d(centroid(r), out.plane);
         for (const auto& q : r.outer.points) sr.bounds.extend(frame.to_3d(q, out.plane));
         sr.shape = std::move(r);
-        total += sr.area;
-        moment += sr.area * sr.centroid;
         out.regions.push_back(std::move(sr));
     }
-    std::stable_sort(
-        out.regions.begin(), out.regions.end(),
-        [](const SectionRegion& a, const SectionRegion& b) { return a.area > b.area; });
-    out.area = total;
-    out.centroid = total > 0.0 ? Eigen::Vector3d(moment / total) : out.plane.origin;
+    finish_section(out);
 }
 
 // The crossing of facet t with the plane at height d, as a segment running from the edge where

@@ -5,14 +5,12 @@
 #include <BOPTools_AlgoTools3D.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAlgoAPI_Section.hxx>
-#include <BRepBndLib.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
 #include <IntTools_Context.hxx>
@@ -151,8 +149,6 @@ Section section_by(const TopoDS_Shape& solid, BRepClass3d_SolidClassifier& insid
         cells = material_cells(merged, inside, context);
     }
 
-    double total = 0.0;
-    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
     for (const TopoDS_Face& face : cells) {
         GProp_GProps props;
         BRepGProp::SurfaceProperties(face, props);
@@ -172,24 +168,10 @@ Section section_by(const TopoDS_Shape& solid, BRepClass3d_SolidClassifier& insid
             else
                 region.shape.holes.push_back(std::move(loop));
         }
-        Bnd_Box box;
-        // Tight bounds of the exact outer boundary (BRepBndLib::Add would add the tolerances).
-        BRepBndLib::AddOptimal(outer, box, Standard_False, Standard_False);
-        if (!box.IsVoid()) {
-            double x0, y0, z0, x1, y1, z1;
-            box.Get(x0, y0, z0, x1, y1, z1);
-            region.bounds =
-                Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
-        }
-        total += region.area;
-        moment += region.area * region.centroid;
+        region.bounds = occ::tight_bounds(outer);  // of the exact outer boundary
         out.regions.push_back(std::move(region));
     }
-    std::stable_sort(
-        out.regions.begin(), out.regions.end(),
-        [](const SectionRegion& a, const SectionRegion& b) { return a.area > b.area; });
-    out.area = total;
-    if (total > 0.0) out.centroid = moment / total;
+    finish_section(out);
     return out;
 }
 

@@ -27,6 +27,16 @@ namespace mas {
 
 namespace occ {
 
+Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape) {
+    Bnd_Box box;
+    BRepBndLib::AddOptimal(shape, box, Standard_False, Standard_False);
+    Eigen::AlignedBox3d bounds;
+    if (box.IsVoid()) return bounds;
+    double x0, y0, z0, x1, y1, z1;
+    box.Get(x0, y0, z0, x1, y1, z1);
+    return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+}
+
 Shape wrap(const TopoDS_Shape& shape) {
     auto impl = std::make_shared<Shape::Impl>();
     impl->shape = shape;
@@ -173,15 +183,7 @@ ShapeInfo Shape::info() const {
             BRepGProp::VolumeProperties(x.Current(), props);
             info.volume_mm3 += props.Mass();
         }
-        Bnd_Box box;
-        // Exact bounds of the geometry: BRepBndLib::Add would widen them by the tolerances.
-        BRepBndLib::AddOptimal(s, box, Standard_False, Standard_False);
-        if (!box.IsVoid()) {
-            double x0, y0, z0, x1, y1, z1;
-            box.Get(x0, y0, z0, x1, y1, z1);
-            info.bounds =
-                Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
-        }
+        info.bounds = occ::tight_bounds(s);
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("shape info", e));
     }

@@ -2,6 +2,7 @@
 // files in App/src/occ share (wrapping a TopoDS_Shape, turning Standard_Failure into mas::Error).
 #pragma once
 
+#include <Eigen/Geometry>
 #include <Standard_Failure.hxx>
 #include <TopoDS_Shape.hxx>
 #include <istream>
@@ -23,6 +24,10 @@ namespace occ {
 Shape wrap(const TopoDS_Shape& shape);
 
 inline const TopoDS_Shape& occt(const Shape& shape) { return shape.impl().shape; }
+
+// The tight bounds of a shape's geometry (BRepBndLib::Add would widen them by the tolerances);
+// an empty box for a shape with no geometry.
+Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape);
 
 // "<what>: <OCCT's message>", with a fallback when OCCT gives none.
 std::string failure_message(const std::string& what, const Standard_Failure& failure);

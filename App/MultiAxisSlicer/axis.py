@@ -139,10 +139,13 @@ class AxisBranch:
     Attributes: ``parent`` (index of the father branch, -1 for a root), ``direction`` (one of +-X,
     +-Y, +-Z; FreeCAD.Vector when FreeCAD is importable), ``nodes`` (node indices in marching
     order), ``parent_node`` (the father's node the first node is linked to, -1 for a root),
-    ``first_link`` (that link's index, -1 for a root), ``depth`` (0 for a root).
+    ``first_link`` (that link's index, -1 for a root), ``depth`` (0 for a root),
+    ``merged_into`` (the branch that went on with this one's material where their sections
+    joined again, e.g. above a hole; -1 when it never merged).
     """
 
-    __slots__ = ("parent", "nodes", "parent_node", "first_link", "depth", "_direction")
+    __slots__ = ("parent", "nodes", "parent_node", "first_link", "depth", "merged_into",
+                 "_direction")
 
     def __init__(self, data):
         self.parent = data["parent"]
@@ -151,6 +154,7 @@ class AxisBranch:
         self.parent_node = data["parent_node"]
         self.first_link = data["first_link"]
         self.depth = data["depth"]
+        self.merged_into = data["merged_into"]
 
     @property
     def direction(self):
@@ -165,6 +169,7 @@ class AxisBranch:
             "parent_node": self.parent_node,
             "first_link": self.first_link,
             "depth": self.depth,
+            "merged_into": self.merged_into,
         }
 
     def __repr__(self):

@@ -287,7 +287,7 @@ int run_axis(const std::vector<std::string>& args) {
                 << ", \"direction\": " << vec(b.direction) << ", \"nodes\": [";
             for (std::size_t k = 0; k < b.nodes.size(); ++k) out << (k ? ", " : "") << b.nodes[k];
             out << "], \"parent_node\": " << b.parent_node << ", \"first_link\": " << b.first_link
-                << ", \"depth\": " << b.depth << "}";
+                << ", \"depth\": " << b.depth << ", \"merged_into\": " << b.merged_into << "}";
         }
         out << "\n  ]\n}\n";
     } else {

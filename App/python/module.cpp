@@ -571,6 +571,7 @@ bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
         d["parent_node"] = b.parent_node;
         d["first_link"] = b.first_link;
         d["depth"] = b.depth;
+        d["merged_into"] = b.merged_into;
         branches.append(d);
     }
     bp::dict params;
@@ -626,7 +627,7 @@ void bind_axis() {
         "is twice the step, base_z NaN is the part's lowest point. Returns a dict: nodes "
         "[{position, normal, area, offset, thickness, branch, incoming_link}], links [{start, "
         "end, kind ('step' | 'connecting'), is_break, turn_deg}], branches [{parent, direction, "
-        "nodes, parent_node, first_link, depth}], params (the values used: step_mm, "
+        "nodes, parent_node, first_link, depth, merged_into}], params (the values used: step_mm, "
         "distance_threshold_mm, eps_mm, break_angle_deg, base_z_mm, min_region_area_mm2), "
         "searched_volume_mm3, sections_cut. EngineError invalid_argument on NaN or out-of-range "
         "parameters, a step not smaller than the part's height, or a part that does not stand "

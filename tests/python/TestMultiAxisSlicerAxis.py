@@ -218,7 +218,8 @@ class TestAxisOfAnLBlock(AxisTest):
                                               "thickness_mm", "branch"})
         self.assertEqual(set(d["links"][0]), {"start", "end", "kind", "is_break", "turn_deg"})
         self.assertEqual(set(d["branches"][0]), {"parent", "direction", "nodes", "parent_node",
-                                                 "first_link", "depth"})
+                                                 "first_link", "depth", "merged_into"})
+        self.assertEqual([b["merged_into"] for b in d["branches"]], [-1, -1])
         for node, n in zip(axis.nodes, d["nodes"]):
             self.assertEqual(n["position"], [node.position.x, node.position.y, node.position.z])
             self.assertEqual(n["area_mm2"], node.area)

@@ -37,7 +37,8 @@ def _multi_axis_slicer_init():
         if path not in sys.path:
             sys.path.insert(0, path)
     if has_tests:
-        FreeCAD.__unit_test__ += ["TestMultiAxisSlicerApi", "TestMultiAxisSlicerAxis"]
+        FreeCAD.__unit_test__ += ["TestMultiAxisSlicerApi", "TestMultiAxisSlicerAxis",
+                                  "TestMultiAxisSlicerDecompose"]
 
 
 _multi_axis_slicer_init()

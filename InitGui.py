@@ -21,7 +21,8 @@ class MultiAxisSlicerWorkbench(Workbench):  # noqa: F821 (Workbench comes from F
     def Initialize(self):
         import MultiAxisSlicerGui.commands as commands
 
-        names = [commands.SectionsCommand.NAME, commands.CentroidalAxisCommand.NAME]
+        names = [commands.SectionsCommand.NAME, commands.CentroidalAxisCommand.NAME,
+                 commands.DecomposeCommand.NAME]
         self.appendToolbar("Multi-Axis Slicer", names)
         self.appendMenu("Multi-Axis Slicer", names)
 

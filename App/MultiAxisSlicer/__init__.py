@@ -10,6 +10,7 @@ FreeCAD (GUI or ``freecadcmd``) and in a plain Python 3.11 script; FreeCAD types
     for s in mas.sections(App.ActiveDocument.Box, normal=(0, 0, 1), step=2.0):
         print(s.origin, s.area, s.centroid)
     axis = mas.centroidal_axis(App.ActiveDocument.Box, step=2.0)   # see MultiAxisSlicer.axis
+    parts = mas.decompose(App.ActiveDocument.Box, step=2.0)  # see MultiAxisSlicer.decompose
 
 Errors:
   * ``EngineError`` (a ``RuntimeError``) for a part the engine cannot use; ``error.code`` names the
@@ -36,6 +37,8 @@ __all__ = [
     "AxisLink",
     "AxisNode",
     "CentroidalAxis",
+    "Component",
+    "Decomposition",
     "EngineError",
     "EngineUnavailableError",
     "Region",
@@ -44,8 +47,10 @@ __all__ = [
     "engine_available",
     "engine_missing_message",
     "centroidal_axis",
+    "decompose",
     "exact_sections",
     "make_centroidal_axis",
+    "make_decomposition",
     "make_sections",
     "parallel_planes",
     "read",
@@ -528,5 +533,19 @@ def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, br
                                          name=name, doc=doc)
 
 
-# The centroidal axis (after the helpers above, which it uses).
+def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
+                       deflection=0.0, name="Decomposition", doc=None):
+    """Adds a parametric ``Decomposition`` object (FreeCAD only) splitting the document object
+    ``source`` (optionally following the ``CentroidalAxis`` object ``axis``, whose parameters are
+    then used), computes it and adds one ``Component`` object per sub-component (Component001,
+    ... in tree order). Returns the Decomposition object. See ``MultiAxisSlicer.features``."""
+    from . import features
+
+    return features.make_decomposition(source, axis=axis, face_angle=face_angle,
+                                       section_plane_fallback=section_plane_fallback,
+                                       deflection=deflection, name=name, doc=doc)
+
+
+# The centroidal axis and the decomposition (after the helpers above, which they use).
 from .axis import AxisBranch, AxisLink, AxisNode, CentroidalAxis, centroidal_axis  # noqa: E402
+from .decompose import Component, Decomposition, decompose  # noqa: E402

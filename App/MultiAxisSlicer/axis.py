@@ -231,6 +231,26 @@ class CentroidalAxis:
             "branches": [b.to_dict() for b in self.branches],
         }
 
+    def _engine_dict(self):
+        """The axis in the layout the engine's centroidal_axis() returns, for _engine.decompose()
+        (built from the attributes, so that it is exactly what the caller sees)."""
+        return {
+            "nodes": [{"position": tuple(n._position), "normal": tuple(n._normal),
+                       "area": n.area, "offset": n.offset, "thickness": n.thickness,
+                       "branch": n.branch, "incoming_link": n.incoming_link}
+                      for n in self.nodes],
+            "links": [{"start": link.start, "end": link.end, "kind": link.kind,
+                       "is_break": link.is_break, "turn_deg": link.turn} for link in self.links],
+            "branches": [{"parent": b.parent, "direction": tuple(b._direction),
+                          "nodes": list(b.nodes), "parent_node": b.parent_node,
+                          "first_link": b.first_link, "depth": b.depth,
+                          "merged_into": b.merged_into} for b in self.branches],
+            "params": {key: self.params[key] for key in ("step_mm", "distance_threshold_mm",
+                                                         "eps_mm", "break_angle_deg",
+                                                         "base_z_mm")},
+            "searched_volume_mm3": self.searched_volume,
+        }
+
     def __repr__(self):
         return "<MultiAxisSlicer.CentroidalAxis nodes={} links={} breaks={} branches={}>".format(
             len(self.nodes), len(self.links), len(self.break_links()), len(self.branches)

@@ -3,11 +3,14 @@
 
 ``Sections``: the cross-sections of a solid or closed mesh by parallel planes, as a compound of
 closed wires. ``CentroidalAxis``: the part's centroidal axis, as a compound of vertices (nodes) and
-line segments (links). Thin like FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
+line segments (links). ``Decomposition``: the part's sub-components, as a compound of solids in
+tree order, with one ``Component`` object per solid (Component001, ...) for the tree and the 3D
+view. Thin like FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
 
     import MultiAxisSlicer.features as features
     obj = features.make_sections(doc.Box, normal=(0, 0, 1), step=2.0)
     axis = features.make_centroidal_axis(doc.Box, step=2.0)
+    parts = features.make_decomposition(doc.Box, axis=axis)   # computes it, adds the components
     doc.recompute()
 """
 
@@ -17,6 +20,7 @@ import FreeCAD
 import Part
 
 import MultiAxisSlicer as mas
+from MultiAxisSlicer.decompose import _angle
 
 # Bad input the user can fix (a face instead of a solid, an open mesh, Step = 0, no Source): FreeCAD
 # shows the object as failed with the message. Anything else is a bug and keeps its traceback.
@@ -285,6 +289,234 @@ def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, br
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, CentroidalAxisFeature.VIEW_PROVIDER)
     return obj
+
+
+class DecompositionFeature(_EngineFeature):
+    """Proxy of a ``Part::FeaturePython`` holding the sub-components of its ``Source``.
+
+    Inputs: Source (one solid: a mesh cannot be split), Axis (optional ``CentroidalAxis`` object:
+    when set, the axis is computed with its Step, DistanceThreshold, Epsilon, BreakAngle and
+    Deflection, and its Source is used when Source is empty), Step (mm, 0 = derived; used without
+    Axis), Deflection (mm, 0 = automatic; used without Axis), FaceAngle, ConcaveAngle,
+    SectionPlaneFallback. Outputs: Shape (a compound of the component solids in tree order: a
+    father before its children, the root first), ComponentCount, and per component, in the same
+    order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
+    Rules ("root", "planar_face", "section_plane"), Volumes (mm³); PartVolume, UsedStep.
+
+    The ``Component`` objects (``ComponentFeature``) show the solids one by one; they are created
+    by ``make_decomposition()`` / ``sync_components()``, never inside a recompute (adding or
+    removing document objects during a recompute is unsafe in FreeCAD).
+    """
+
+    TYPE = "MultiAxisSlicer::Decomposition"
+    VIEW_PROVIDER = "ViewProviderDecomposition"
+
+    @staticmethod
+    def ensure_properties(obj):
+        group = "Decomposition"
+        _add_property(obj, "App::PropertyLink", "Source", group,
+                      "Solid to split (empty: the Axis object's Source)")
+        _add_property(obj, "App::PropertyLink", "Axis", group,
+                      "CentroidalAxis object whose parameters are used (optional)")
+        _add_property(obj, "App::PropertyLength", "Step", group,
+                      "Axis step when no Axis object is set (0 = derived from the part)", 0.0)
+        _add_property(obj, "App::PropertyLength", "Deflection", group,
+                      "Chordal deflection for the axis when no Axis object is set "
+                      "(0 = automatic)", 0.0)
+        _add_property(obj, "App::PropertyAngle", "FaceAngle", group,
+                      "A splitting face's normal lies within this angle of the branch's "
+                      "direction", 10.0)
+        _add_property(obj, "App::PropertyAngle", "ConcaveAngle", group,
+                      "An edge is concave when the interior angle exceeds 180 degrees by more "
+                      "than this", 1.0)
+        _add_property(obj, "App::PropertyBool", "SectionPlaneFallback", group,
+                      "Without a splitting face, cut where the branch's march started", True)
+        result = "Result"
+        _add_property(obj, "App::PropertyInteger", "ComponentCount", result,
+                      "Number of sub-components", 0, _OUTPUT)
+        _add_property(obj, "App::PropertyIntegerList", "ComponentParents", result,
+                      "Index of each component's father (-1 for the root)", None, _OUTPUT)
+        _add_property(obj, "App::PropertyVectorList", "BuildDirections", result,
+                      "Each component's build direction (unit)", None, _OUTPUT)
+        _add_property(obj, "App::PropertyVectorList", "BaseOrigins", result,
+                      "Each component's base face centroid (mm)", None, _OUTPUT)
+        _add_property(obj, "App::PropertyStringList", "Rules", result,
+                      "How each component was cut: root, planar_face or section_plane", None,
+                      _OUTPUT)
+        _add_property(obj, "App::PropertyFloatList", "Volumes", result,
+                      "Each component's volume (mm^3)", None, _OUTPUT)
+        _add_property(obj, "App::PropertyVolume", "PartVolume", result,
+                      "Volume of the source solid (the components' volumes add up to it)", 0.0,
+                      _OUTPUT)
+        _add_property(obj, "App::PropertyLength", "UsedStep", result,
+                      "The axis step used", 0.0, _OUTPUT)
+
+    @staticmethod
+    def recompute(obj):
+        """Properties -> engine -> Shape and the result properties. Raises on bad input."""
+        axis_obj = obj.Axis
+        if axis_obj is not None and getattr(getattr(axis_obj, "Proxy", None), "Type",
+                                            None) != CentroidalAxisFeature.TYPE:
+            raise TypeError("{}: Axis '{}' is not a CentroidalAxis object".format(
+                obj.Label, axis_obj.Label))
+        source = obj.Source if obj.Source is not None else getattr(axis_obj, "Source", None)
+        if axis_obj is not None and axis_obj.Source is not None and source != axis_obj.Source:
+            raise ValueError("{}: Axis '{}' belongs to '{}', not to the Source '{}'".format(
+                obj.Label, axis_obj.Label, axis_obj.Source.Label, source.Label))
+        if source is None:
+            raise ValueError("{}: Source is not set".format(obj.Label))
+        if axis_obj is not None:
+            axis_params = dict(step=axis_obj.Step.Value or None,
+                               distance_threshold=axis_obj.DistanceThreshold.Value or None,
+                               eps=axis_obj.Epsilon.Value, break_angle=axis_obj.BreakAngle.Value,
+                               deflection=axis_obj.Deflection.Value or None)
+        else:
+            axis_params = dict(step=obj.Step.Value or None,
+                               deflection=obj.Deflection.Value or None)
+        result = mas.decompose(source, face_angle=obj.FaceAngle.Value,
+                               concave_angle=obj.ConcaveAngle.Value,
+                               section_plane_fallback=obj.SectionPlaneFallback, **axis_params)
+        obj.ComponentParents = [c.parent for c in result]
+        obj.BuildDirections = [FreeCAD.Vector(c.build_direction) for c in result]
+        obj.BaseOrigins = [FreeCAD.Vector(c.base_origin) for c in result]
+        obj.Rules = [c.rule for c in result]
+        obj.Volumes = [c.volume for c in result]
+        obj.PartVolume = result.part_volume
+        obj.UsedStep = result.axis.params["step_mm"]
+        # ComponentCount after the lists and before Shape: the view provider colours the faces
+        # per component when the Shape changes.
+        obj.ComponentCount = len(result)
+        obj.Shape = Part.makeCompound([c.shape for c in result])
+
+
+class ComponentFeature(_EngineFeature):
+    """Proxy of a ``Part::FeaturePython`` showing one sub-component of a ``Decomposition``.
+
+    Inputs: Decomposition (the object it belongs to), Index (its place in tree order, 0 = the
+    root). Outputs: Shape (the component's solid), Parent (index of the father component, -1 for
+    the root), BuildDirection, BaseOrigin, Rule, Volume. It follows the Decomposition on every
+    recompute; an Index the Decomposition no longer has is an error until ``sync_components()``
+    (or the GUI, after a recompute) removes the object."""
+
+    TYPE = "MultiAxisSlicer::Component"
+    VIEW_PROVIDER = "ViewProviderComponent"
+
+    @staticmethod
+    def ensure_properties(obj):
+        group = "Component"
+        _add_property(obj, "App::PropertyLink", "Decomposition", group,
+                      "The Decomposition this component belongs to", None, _OUTPUT)
+        _add_property(obj, "App::PropertyInteger", "Index", group,
+                      "Place in the decomposition's tree order (0 = the root)", 0, _OUTPUT)
+        result = "Result"
+        _add_property(obj, "App::PropertyInteger", "Parent", result,
+                      "Index of the father component (-1 for the root)", -1, _OUTPUT)
+        _add_property(obj, "App::PropertyVector", "BuildDirection", result,
+                      "Direction the component is deposited along (unit)", None, _OUTPUT)
+        _add_property(obj, "App::PropertyVector", "BaseOrigin", result,
+                      "Centroid of the base face it is built from (mm)", None, _OUTPUT)
+        _add_property(obj, "App::PropertyString", "Rule", result,
+                      "How it was cut: root, planar_face or section_plane", None, _OUTPUT)
+        _add_property(obj, "App::PropertyVolume", "Volume", result, "Volume", 0.0, _OUTPUT)
+
+    @staticmethod
+    def recompute(obj):
+        d = obj.Decomposition
+        if d is None:
+            raise ValueError("{}: Decomposition is not set".format(obj.Label))
+        i = obj.Index
+        solids = d.Shape.Solids
+        if not (0 <= i < min(d.ComponentCount, len(solids))):
+            raise ValueError("{}: '{}' now has {} component(s), this was number {}: left over "
+                             "until the components are synchronised".format(
+                                 obj.Label, d.Label, d.ComponentCount, i + 1))
+        obj.Parent = d.ComponentParents[i]
+        obj.BuildDirection = d.BuildDirections[i]
+        obj.BaseOrigin = d.BaseOrigins[i]
+        obj.Rule = d.Rules[i]
+        obj.Volume = d.Volumes[i]
+        obj.Shape = solids[i].copy()
+
+
+def is_decomposition(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == DecompositionFeature.TYPE
+
+
+def components_of(decomposition):
+    """The Component objects of a Decomposition object, in Index order."""
+    found = [o for o in decomposition.InList
+             if getattr(getattr(o, "Proxy", None), "Type", None) == ComponentFeature.TYPE
+             and o.Decomposition == decomposition]
+    return sorted(found, key=lambda o: o.Index)
+
+
+def sync_components(decomposition):
+    """Makes the Decomposition object's Component objects match its ComponentCount: one per
+    component, labelled Component001, Component002, ... in tree order, each recomputed; extra
+    ones are removed. Call it outside a recompute (after ``doc.recompute()``); the GUI does it
+    after every recompute that changes the count. Returns the Component objects."""
+    doc = decomposition.Document
+    existing = components_of(decomposition)
+    count = decomposition.ComponentCount if decomposition.isValid() else len(existing)
+    keep = [c for c in existing if c.Index < count]
+    for c in existing[len(keep):]:
+        doc.removeObject(c.Name)
+    have = {c.Index for c in keep}
+    for i in range(count):
+        if i in have:
+            continue
+        obj = doc.addObject("Part::FeaturePython", "Component")
+        ComponentFeature(obj)
+        obj.Decomposition = decomposition
+        obj.Index = i
+        obj.Label = "Component{:03d}".format(i + 1)
+        if FreeCAD.GuiUp:
+            _attach_view_provider(obj, ComponentFeature.VIEW_PROVIDER)
+        keep.append(obj)
+    keep.sort(key=lambda o: o.Index)
+    for c in keep:
+        if "Touched" in c.State or c.Shape.isNull():
+            c.recompute()
+    return keep
+
+
+def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
+                       deflection=0.0, name="Decomposition", doc=None):
+    """Adds a ``Decomposition`` object splitting ``source`` to ``doc`` (default: the source's,
+    else the axis object's document), computes it and adds its Component objects; returns the
+    Decomposition object. ``axis``: an optional ``CentroidalAxis`` object whose parameters (and
+    Source, when ``source`` is None) are used. ``face_angle`` in degrees, ``deflection`` in mm (0 =
+    automatic; used without ``axis``). A failing computation leaves the object marked invalid with
+    the message, without components. The source is not changed.
+
+    In the GUI the objects get their view providers (one distinct colour per component)."""
+    if axis is not None and not is_centroidal_axis(axis):
+        raise TypeError("axis must be a CentroidalAxis object, got {}".format(
+            getattr(axis, "TypeId", type(axis).__name__)))
+    if doc is None:
+        owner = source if source is not None else axis
+        doc = owner.Document if owner is not None else FreeCAD.ActiveDocument
+    if doc is None:
+        raise ValueError("no document to add the Decomposition object to")
+    face_angle = _angle(face_angle, "face_angle", 90.0)
+    deflection = mas._length(deflection, "deflection", allow_zero=True)
+    obj = doc.addObject("Part::FeaturePython", name)
+    DecompositionFeature(obj)
+    obj.Source = source
+    obj.Axis = axis
+    obj.FaceAngle = face_angle
+    obj.SectionPlaneFallback = bool(section_plane_fallback)
+    obj.Deflection = deflection
+    if FreeCAD.GuiUp:
+        _attach_view_provider(obj, DecompositionFeature.VIEW_PROVIDER)
+    obj.recompute(True)  # with what it depends on: the count decides the Component objects
+    if obj.isValid():
+        sync_components(obj)
+    return obj
+
+
+def is_centroidal_axis(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == CentroidalAxisFeature.TYPE
 
 
 def _attach_view_provider(obj, class_name):

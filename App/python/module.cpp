@@ -2,6 +2,7 @@
 // Thin on purpose: Python values in, engine structs through, plain tuples/lists/dicts out. Errors
 // leave as one exception class, EngineError(code, message); the GIL is released around engine work.
 #include "mas/CentroidalAxis.hpp"
+#include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
 #include "mas/Mesh.hpp"
 #include "mas/Section.hpp"
@@ -637,6 +638,200 @@ void bind_axis() {
             "wall, within [diagonal / 2000, diagonal / 20].");
 }
 
+// ---- stage: decomposition into sub-components
+// ------------------------------------------------------
+
+// The value of `key` in a dict; invalid_argument naming `what` when it is missing or `value` is
+// not a dict.
+bp::object required(const bp::object& value, const char* key, const std::string& what) {
+    if (!PyDict_Check(value.ptr()))
+        invalid_argument(what + " must be a dict, not '" + Py_TYPE(value.ptr())->tp_name + "'");
+    PyObject* item = PyDict_GetItemString(value.ptr(), key);  // borrowed
+    if (!item) invalid_argument(what + " has no '" + key + "'");
+    return bp::object(bp::handle<>(bp::borrowed(item)));
+}
+
+double number_of(const bp::object& value, const char* key, const std::string& what) {
+    const bp::object item = required(value, key, what);
+    const double x = PyFloat_AsDouble(item.ptr());
+    if (x == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        invalid_argument(what + "['" + key + "'] is not a number");
+    }
+    return x;
+}
+
+int index_of(const bp::object& value, const char* key, const std::string& what) {
+    const bp::object item = required(value, key, what);
+    const long i = PyLong_AsLong(item.ptr());
+    if (i == -1 && PyErr_Occurred()) {
+        PyErr_Clear();
+        invalid_argument(what + "['" + key + "'] is not an integer");
+    }
+    if (i < -1 || i > std::numeric_limits<int>::max())
+        invalid_argument(what + "['" + key + "'] is out of range");
+    return int(i);
+}
+
+// A list of the items of value[key], a sequence.
+std::vector<bp::object> items_of(const bp::object& value, const char* key,
+                                 const std::string& what) {
+    bp::handle<> seq = fast_sequence(required(value, key, what), what + "['" + key + "']");
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    std::vector<bp::object> out;
+    out.reserve(std::size_t(n));
+    for (Py_ssize_t i = 0; i < n; ++i) out.emplace_back(bp::handle<>(bp::borrowed(items[i])));
+    return out;
+}
+
+// The engine's axis from the dict centroidal_axis() returns (node regions are not needed: the
+// decomposition reads positions, normals, areas, offsets, thicknesses, the links, the branches,
+// the step, eps and the searched volume). Indices are checked by mas::decompose itself.
+mas::CentroidalAxis axis_from_py(const bp::object& value) {
+    mas::CentroidalAxis axis;
+    const std::vector<bp::object> nodes = items_of(value, "nodes", "axis");
+    axis.nodes.reserve(nodes.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const std::string what = "axis['nodes'][" + std::to_string(i) + "]";
+        mas::AxisNode n;
+        n.position = vector3(required(nodes[i], "position", what), what + "['position']");
+        n.normal = vector3(required(nodes[i], "normal", what), what + "['normal']");
+        n.area = number_of(nodes[i], "area", what);
+        n.offset = number_of(nodes[i], "offset", what);
+        n.thickness = number_of(nodes[i], "thickness", what);
+        n.branch = index_of(nodes[i], "branch", what);
+        n.incoming_link = index_of(nodes[i], "incoming_link", what);
+        if (!n.position.allFinite() || !n.normal.allFinite() || !std::isfinite(n.area) ||
+            !std::isfinite(n.offset) || !std::isfinite(n.thickness))
+            invalid_argument(what + " has a NaN or infinite value");
+        axis.nodes.push_back(n);
+    }
+    const std::vector<bp::object> links = items_of(value, "links", "axis");
+    axis.links.reserve(links.size());
+    for (std::size_t i = 0; i < links.size(); ++i) {
+        const std::string what = "axis['links'][" + std::to_string(i) + "]";
+        mas::AxisLink l;
+        l.start = index_of(links[i], "start", what);
+        l.end = index_of(links[i], "end", what);
+        const bp::extract<std::string> kind_text(required(links[i], "kind", what));
+        if (!kind_text.check()) invalid_argument(what + "['kind'] must be a string");
+        const std::string kind = kind_text();
+        if (kind == "step")
+            l.kind = mas::AxisLink::Kind::Step;
+        else if (kind == "connecting")
+            l.kind = mas::AxisLink::Kind::Connecting;
+        else
+            invalid_argument(what + "['kind'] must be 'step' or 'connecting', not '" + kind + "'");
+        l.is_break = PyObject_IsTrue(required(links[i], "is_break", what).ptr()) == 1;
+        l.turn_deg = number_of(links[i], "turn_deg", what);
+        axis.links.push_back(l);
+    }
+    const std::vector<bp::object> branches = items_of(value, "branches", "axis");
+    axis.branches.reserve(branches.size());
+    for (std::size_t i = 0; i < branches.size(); ++i) {
+        const std::string what = "axis['branches'][" + std::to_string(i) + "]";
+        mas::AxisBranch b;
+        b.parent = index_of(branches[i], "parent", what);
+        b.direction = vector3(required(branches[i], "direction", what), what + "['direction']");
+        if (!b.direction.allFinite() || b.direction.norm() < 1e-12)
+            invalid_argument(what + "['direction'] must be a finite, non-zero vector");
+        for (const bp::object& n : items_of(branches[i], "nodes", what)) {
+            const long k = PyLong_AsLong(n.ptr());
+            if (k == -1 && PyErr_Occurred()) {
+                PyErr_Clear();
+                invalid_argument(what + "['nodes'] holds a non-integer");
+            }
+            if (k < 0 || k > std::numeric_limits<int>::max())
+                invalid_argument(what + "['nodes'] holds an index out of range");
+            b.nodes.push_back(int(k));
+        }
+        b.parent_node = index_of(branches[i], "parent_node", what);
+        b.first_link = index_of(branches[i], "first_link", what);
+        b.depth = index_of(branches[i], "depth", what);
+        b.merged_into = index_of(branches[i], "merged_into", what);
+        axis.branches.push_back(b);
+    }
+    const bp::object params = required(value, "params", "axis");
+    axis.params.step_mm = number_of(params, "step_mm", "axis['params']");
+    axis.params.eps_mm = number_of(params, "eps_mm", "axis['params']");
+    axis.params.distance_threshold_mm =
+        number_of(params, "distance_threshold_mm", "axis['params']");
+    axis.params.break_angle_deg = number_of(params, "break_angle_deg", "axis['params']");
+    axis.params.base_z_mm = number_of(params, "base_z_mm", "axis['params']");
+    if (!(std::isfinite(axis.params.step_mm) && axis.params.step_mm > 0.0) ||
+        !(std::isfinite(axis.params.eps_mm) && axis.params.eps_mm >= 0.0))
+        invalid_argument("axis['params'] needs a positive step_mm and a non-negative eps_mm");
+    axis.searched_volume_mm3 = number_of(value, "searched_volume_mm3", "axis");
+    return axis;
+}
+
+const char* rule_name(mas::Component::SplitRule rule) {
+    switch (rule) {
+        case mas::Component::SplitRule::Root:
+            return "root";
+        case mas::Component::SplitRule::PlanarFace:
+            return "planar_face";
+        case mas::Component::SplitRule::SectionPlane:
+            return "section_plane";
+    }
+    return "unknown";
+}
+
+bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
+                   double concave_angle, double projection_tolerance, bool section_plane_fallback) {
+    mas::DecomposeParams params;
+    params.face_angle_deg = finite_number(face_angle, "face_angle");
+    params.concave_angle_deg = finite_number(concave_angle, "concave_angle");
+    params.projection_tolerance_mm = finite_number(projection_tolerance, "projection_tolerance");
+    params.section_plane_fallback = section_plane_fallback;
+    const mas::CentroidalAxis axis = axis_from_py(axis_py);
+    mas::Decomposition d;
+    double part_volume = 0.0;
+    {
+        GilRelease nogil;
+        d = mas::decompose(shape, axis, params);
+        part_volume = shape.info().volume_mm3;
+    }
+    bp::list components;
+    for (const auto& c : d.components) {
+        bp::dict out;
+        out["solid"] = bp::object(c.solid);
+        out["parent"] = c.parent;
+        out["build_direction"] = to_py(c.build_direction);
+        out["has_base_face"] = c.has_base_face;
+        out["base_face"] = c.has_base_face ? bp::object(c.base_face) : bp::object();
+        out["base_origin"] = to_py(c.base_origin);
+        out["base_normal"] = to_py(c.base_normal);
+        out["branch"] = c.branch;
+        out["break_link"] = c.break_link;
+        out["rule"] = rule_name(c.rule);
+        out["volume_mm3"] = c.volume_mm3;
+        components.append(out);
+    }
+    bp::dict result;
+    result["components"] = components;
+    result["part_volume_mm3"] = part_volume;
+    return result;
+}
+
+void bind_decompose() {
+    bp::def(
+        "decompose", &decompose,
+        (bp::arg("shape"), bp::arg("axis"), bp::arg("face_angle") = 10.0,
+         bp::arg("concave_angle") = 1.0, bp::arg("projection_tolerance") = 0.01,
+         bp::arg("section_plane_fallback") = true),
+        "Splits a solid (a Shape holding one closed solid) into sub-components along its "
+        "centroidal axis `axis` (the dict centroidal_axis() returns for this solid; node regions "
+        "are not needed). Angles in degrees, projection_tolerance in mm. Returns a dict: "
+        "components [{solid (Shape), parent (-1 for the root), build_direction, has_base_face, "
+        "base_face (Shape or None), base_origin, base_normal, branch, break_link, rule ('root' | "
+        "'planar_face' | 'section_plane'), volume_mm3}] in tree order (a father before its "
+        "children), part_volume_mm3. EngineError not_a_solid / multiple_solids / empty_input "
+        "for the shape, invalid_argument for bad parameters, a malformed axis or an axis of "
+        "another part, geometry_failure when OCCT fails on the input.");
+}
+
 }  // namespace
 
 BOOST_PYTHON_MODULE(_engine) {
@@ -672,4 +867,5 @@ BOOST_PYTHON_MODULE(_engine) {
     bind_section();
     bind_exact_section();
     bind_axis();
+    bind_decompose();
 }

@@ -101,5 +101,33 @@ class CentroidalAxisCommand(_PartCommand):
         return features.make_centroidal_axis(source, doc=doc)
 
 
+class DecomposeCommand(_PartCommand):
+    """The sub-components of the selected solid (or of a selected CentroidalAxis object's source,
+    following that axis' parameters), as a parametric Decomposition object with one Component
+    object per sub-component, in distinct colours. The source is hidden, not changed."""
+
+    NAME = "MultiAxisSlicer_Decompose"
+    TRANSACTION = "Decompose"
+    ICON = "Decompose.svg"
+    TOOLTIP = ("Split the selected solid into sub-components where its centroidal axis turns or "
+               "branches, each built from its base face along its own direction (a parametric "
+               "Decomposition object with Component001, ...; select a CentroidalAxis object to "
+               "use its parameters)")
+
+    def make(self, source, doc):
+        import MultiAxisSlicer.features as features
+
+        if features.is_centroidal_axis(source):
+            obj = features.make_decomposition(None, axis=source, doc=doc)
+            part = source.Source
+        else:
+            obj = features.make_decomposition(source, doc=doc)
+            part = source
+        if obj.isValid() and part is not None and part.ViewObject is not None:
+            part.ViewObject.Visibility = False  # the components take its place in the view
+        return obj
+
+
 FreeCADGui.addCommand(SectionsCommand.NAME, SectionsCommand())
 FreeCADGui.addCommand(CentroidalAxisCommand.NAME, CentroidalAxisCommand())
+FreeCADGui.addCommand(DecomposeCommand.NAME, DecomposeCommand())

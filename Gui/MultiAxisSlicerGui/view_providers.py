@@ -129,3 +129,127 @@ class ViewProviderCentroidalAxis(_Stateless):
 
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("CentroidalAxis.svg")
+
+
+# Sub-components: one distinct colour each, the root first (a qualitative palette, Tableau 10,
+# with the grey left out so that no component looks like an ordinary FreeCAD solid).
+COMPONENT_COLOURS = [
+    (0.12, 0.47, 0.71),  # blue
+    (1.00, 0.50, 0.05),  # orange
+    (0.17, 0.63, 0.17),  # green
+    (0.84, 0.15, 0.16),  # red
+    (0.58, 0.40, 0.74),  # purple
+    (0.55, 0.34, 0.29),  # brown
+    (0.89, 0.47, 0.76),  # pink
+    (0.74, 0.74, 0.13),  # olive
+    (0.09, 0.75, 0.81),  # cyan
+]
+
+
+def component_colour(index):
+    """The colour of component `index` (tree order); the palette repeats after nine."""
+    return COMPONENT_COLOURS[index % len(COMPONENT_COLOURS)]
+
+
+class ViewProviderDecomposition(_Stateless):
+    """Tree icon and colours of a ``Decomposition`` object. Its Component objects are its children
+    in the tree (Component001, ... in tree order) and are what the 3D view shows; the object's own
+    compound is hidden by default and, when shown, coloured per component with DiffuseColor (one
+    colour per face, the component's). After a recompute that changes the number of components,
+    the Component objects are added or removed (outside the recompute, on the next event loop
+    turn)."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self  # calls attach()
+        vobj.Visibility = False
+        self.colour_faces(vobj)
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def claimChildren(self):
+        import MultiAxisSlicer.features as features
+
+        obj = getattr(self, "Object", None)
+        if obj is None:
+            return []
+        try:
+            return features.components_of(obj)
+        except Exception:  # an object being deleted or restored
+            return []
+
+    def onDelete(self, vobj, subelements):
+        """Deleting the decomposition deletes its components (they only show its solids)."""
+        import MultiAxisSlicer.features as features
+
+        obj = vobj.Object
+        for c in features.components_of(obj):
+            obj.Document.removeObject(c.Name)
+        return True
+
+    def updateData(self, obj, prop):
+        if prop == "Shape" and obj.ViewObject is not None:
+            self.colour_faces(obj.ViewObject)
+        elif prop == "ComponentCount":
+            self._sync_later(obj)
+
+    @staticmethod
+    def _sync_later(obj):
+        doc = obj.Document
+        if getattr(doc, "Restoring", False) or getattr(doc, "Transacting", False):
+            return  # opening a file or undoing: the objects come back by themselves
+        name, doc_name = obj.Name, doc.Name
+        from PySide import QtCore
+
+        def sync():
+            import FreeCAD
+            import MultiAxisSlicer.features as features
+
+            d = FreeCAD.listDocuments().get(doc_name)
+            o = d.getObject(name) if d is not None else None
+            if o is None or getattr(d, "Transacting", False) or "Invalid" in o.State:
+                return
+            if len(features.components_of(o)) != o.ComponentCount:
+                features.sync_components(o)
+
+        QtCore.QTimer.singleShot(0, sync)
+
+    @staticmethod
+    def colour_faces(vobj):
+        obj = vobj.Object
+        if obj is None or "ComponentCount" not in obj.PropertiesList:
+            return
+        colours = []
+        for i, solid in enumerate(obj.Shape.Solids):
+            colours += [component_colour(i)] * len(solid.Faces)
+        if colours and not _same_colours(vobj.DiffuseColor, colours):
+            vobj.DiffuseColor = colours
+
+    def getIcon(self):
+        return MultiAxisSlicerGui.icon_path("Decompose.svg")
+
+
+class ViewProviderComponent(_Stateless):
+    """Tree icon and colour of a ``Component`` object: its ShapeColor is its index's colour."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+        self.colour(vobj)
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def updateData(self, obj, prop):
+        if (prop == "Index" and obj.ViewObject is not None
+                and not getattr(obj.Document, "Restoring", False)):  # keep a saved colour
+            self.colour(obj.ViewObject)
+
+    @staticmethod
+    def colour(vobj):
+        obj = vobj.Object
+        if obj is None or "Index" not in obj.PropertiesList:
+            return
+        vobj.ShapeColor = component_colour(obj.Index)
+
+    def getIcon(self):
+        return MultiAxisSlicerGui.icon_path("Decompose.svg")

@@ -14,6 +14,7 @@ import unittest
 
 import FreeCAD
 import FreeCADGui
+import Part
 from PySide import QtCore, QtGui
 
 import MultiAxisSlicer as mas
@@ -22,6 +23,7 @@ import MultiAxisSlicerGui.view_providers as view_providers
 WORKBENCH = "MultiAxisSlicerWorkbench"
 COMMAND = "MultiAxisSlicer_Sections"
 AXIS_COMMAND = "MultiAxisSlicer_CentroidalAxis"
+DECOMPOSE_COMMAND = "MultiAxisSlicer_Decompose"
 TOOLBAR = "Multi-Axis Slicer"
 
 
@@ -78,11 +80,14 @@ class TestWorkbench(unittest.TestCase):
         texts = [a.text() for a in toolbar.actions()]
         self.assertIn("Cross-sections", texts)
         self.assertIn("Centroidal axis", texts)
-        action = [a for a in toolbar.actions() if a.text() == "Centroidal axis"][0]
-        self.assertFalse(action.icon().isNull())
+        self.assertIn("Decompose", texts)
+        for text in ("Centroidal axis", "Decompose"):
+            action = [a for a in toolbar.actions() if a.text() == text][0]
+            self.assertFalse(action.icon().isNull(), text)
         menu = [m for m in FreeCADGui.getMainWindow().menuBar().actions() if m.text() == TOOLBAR]
         self.assertEqual(len(menu), 1)
         self.assertIn("Centroidal axis", [a.text() for a in menu[0].menu().actions()])
+        self.assertIn("Decompose", [a.text() for a in menu[0].menu().actions()])
         workbench = FreeCADGui.getWorkbench(WORKBENCH)
         self.assertTrue(workbench.Icon.endswith("MultiAxisSlicer.svg"))
         self.assertTrue(os.path.isfile(workbench.Icon), workbench.Icon)
@@ -339,6 +344,198 @@ class TestCentroidalAxisCommand(unittest.TestCase):
                 FreeCAD.closeDocument(doc.Name)
         finally:
             shutil.rmtree(folder)
+
+
+def features_of():
+    import MultiAxisSlicer.features as features
+
+    return features
+
+
+class TestDecomposeCommand(unittest.TestCase):
+    def setUp(self):
+        FreeCADGui.activateWorkbench(WORKBENCH)
+        self.doc = FreeCAD.newDocument("MasGuiDecompose")
+        self.part = self.doc.addObject("Part::Feature", "L")
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        FreeCADGui.Selection.clearSelection()
+        process_events()
+
+    def tearDown(self):
+        FreeCADGui.Selection.clearSelection()
+        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                            "MultiAxisSlicerError"):
+            box.close()
+        FreeCAD.closeDocument(self.doc.Name)
+        process_events()
+
+    def run_command(self, selected):
+        FreeCADGui.Selection.addSelection(selected)
+        FreeCADGui.runCommand(DECOMPOSE_COMMAND)
+        process_events()
+        return self.doc.getObject("Decomposition")
+
+    def check_colours(self, obj):
+        """One palette colour per component, distinct; the compound's faces in the same ones."""
+        import MultiAxisSlicer.features as features
+
+        components = features.components_of(obj)
+        colours = [tuple(c.ViewObject.ShapeColor[:3]) for c in components]
+        for i, colour in enumerate(colours):
+            self.assertTrue(same_colour(colour, view_providers.component_colour(i)), colour)
+        for i in range(len(colours)):
+            for j in range(i):
+                self.assertFalse(same_colour(colours[i], colours[j]), (i, j))
+        want = []
+        for i, solid in enumerate(obj.Shape.Solids):
+            want += [view_providers.component_colour(i)] * len(solid.Faces)
+        got = obj.ViewObject.DiffuseColor
+        self.assertEqual(len(got), len(want))
+        for a, b in zip(got, want):
+            self.assertTrue(same_colour(a, b), (a, b))
+        return components
+
+    def test_command_needs_one_selected_part(self):
+        self.assertFalse(FreeCADGui.Command.get(DECOMPOSE_COMMAND).isActive())
+        FreeCADGui.Selection.addSelection(self.part)
+        self.assertTrue(FreeCADGui.Command.get(DECOMPOSE_COMMAND).isActive())
+
+    def test_command_creates_components_in_distinct_colours(self):
+        before = self.part.Shape.exportBrepToString()
+        obj = self.run_command(self.part)
+        self.assertIsNotNone(obj, "the command made no Decomposition object")
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertIs(obj.Source, self.part)
+        self.assertEqual(obj.ComponentCount, 2)
+        components = self.check_colours(obj)
+        self.assertEqual([c.Label for c in components], ["Component001", "Component002"])
+        self.assertEqual(obj.ViewObject.Proxy.claimChildren(), components)
+        for c in components:
+            self.assertTrue(c.isValid(), c.getStatusString())
+            self.assertTrue(c.ViewObject.Visibility)
+            self.assertTrue(os.path.isfile(c.ViewObject.Proxy.getIcon()))
+        self.assertFalse(obj.ViewObject.Visibility)  # the components show it
+        self.assertTrue(obj.ViewObject.Proxy.getIcon().endswith("Decompose.svg"))
+        self.assertFalse(self.part.ViewObject.Visibility)  # hidden, not changed
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        self.assertIn("Decompose", self.doc.UndoNames)
+        save_screenshot(self, self.doc, "decompose_l_block.png", see_through=False)
+
+        # A post on the arm, cut at the engine test's step: the GUI adds the third component
+        # after the recompute.
+        self.part.Shape = l_block().fuse(
+            Part.makeBox(10, 20, 20, FreeCAD.Vector(50, 0, 60))).removeSplitter()
+        obj.Step = 2.5
+        self.doc.recompute()
+        process_events()
+        process_events()
+        self.assertEqual(obj.ComponentCount, 3)
+        components = self.check_colours(obj)
+        self.assertEqual([c.Label for c in components],
+                         ["Component001", "Component002", "Component003"])
+        self.doc.recompute()
+        self.assertTrue(all(o.isValid() for o in self.doc.Objects))
+        self.assertEqual(components[2].Parent, 1)  # the post stands on the arm
+        save_screenshot(self, self.doc, "decompose_l_block_post.png", see_through=False)
+
+    def test_undo_removes_everything(self):
+        names = [o.Name for o in self.doc.Objects]
+        obj = self.run_command(self.part)
+        self.assertEqual(len(self.doc.Objects), len(names) + 3)
+        self.doc.undo()
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_colours_survive_save_and_reopen_and_delete_takes_the_components(self):
+        obj = self.run_command(self.part)
+        components = features_of().components_of(obj)
+        components[1].ViewObject.ShapeColor = (0.0, 0.0, 0.0)  # the user's choice is kept
+        folder = tempfile.mkdtemp(prefix="mas_gui_dec_")
+        try:
+            path = os.path.join(folder, "decomposition.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+            process_events()
+            obj = self.doc.getObject("Decomposition")
+            self.assertIsInstance(obj.ViewObject.Proxy, view_providers.ViewProviderDecomposition)
+            components = features_of().components_of(obj)
+            self.assertEqual(obj.ViewObject.Proxy.claimChildren(), components)
+            self.assertTrue(same_colour(components[0].ViewObject.ShapeColor,
+                                        view_providers.component_colour(0)))
+            self.assertTrue(same_colour(components[1].ViewObject.ShapeColor, (0.0, 0.0, 0.0)))
+            obj.touch()
+            self.doc.recompute()
+            process_events()
+            self.assertEqual(len(features_of().components_of(obj)), 2)
+            self.assertTrue(all(o.isValid() for o in self.doc.Objects))
+            FreeCADGui.getDocument(self.doc.Name).getObject(obj.Name).Proxy.onDelete(
+                obj.ViewObject, [])
+            self.doc.removeObject(obj.Name)
+            process_events()
+            self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+        finally:
+            shutil.rmtree(folder)
+
+    def test_a_document_made_without_the_gui_gets_its_colours(self):
+        folder = tempfile.mkdtemp(prefix="mas_gui_dec_")
+        try:
+            path = os.path.join(folder, "decomposition.FCStd")
+            script = os.path.join(folder, "make.py")
+            with open(script, "w") as f:
+                f.write(textwrap.dedent("""
+                    import FreeCAD, Part
+                    import MultiAxisSlicer as mas
+                    doc = FreeCAD.newDocument("Headless")
+                    part = doc.addObject("Part::Feature", "T")
+                    part.Shape = Part.makeBox(20, 20, 60).fuse(Part.makeBox(
+                        80, 20, 20, FreeCAD.Vector(-30, 0, 40))).removeSplitter()
+                    mas.make_decomposition(part)
+                    doc.recompute()
+                    doc.saveAs({!r})
+                """.format(path)))
+            result = subprocess.run(["freecadcmd", script], capture_output=True, text=True,
+                                    timeout=120)
+            self.assertTrue(os.path.isfile(path), result.stdout + result.stderr)
+            doc = FreeCAD.openDocument(path)
+            try:
+                process_events()
+                obj = doc.getObject("Decomposition")
+                self.assertIsInstance(obj.ViewObject.Proxy,
+                                      view_providers.ViewProviderDecomposition)
+                self.assertEqual(obj.ComponentCount, 3)
+                self.check_colours(obj)
+            finally:
+                FreeCAD.closeDocument(doc.Name)
+        finally:
+            shutil.rmtree(folder)
+
+    def test_command_on_a_centroidal_axis_uses_its_parameters(self):
+        import MultiAxisSlicer as mas
+
+        axis = mas.make_centroidal_axis(self.part, step=2.5)
+        self.doc.recompute()
+        obj = self.run_command(axis)
+        self.assertIsNotNone(obj)
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertIs(obj.Axis, axis)
+        self.assertEqual(obj.UsedStep.Value, 2.5)
+        self.assertEqual(obj.ComponentCount, 2)
+        self.check_colours(obj)
+
+    def test_command_on_a_face_shows_the_engine_message(self):
+        self.part.Shape = Part.makePlane(10, 10)
+        self.doc.recompute()
+        obj = self.run_command(self.part)
+        self.assertIsNotNone(obj)
+        self.assertIn("Invalid", obj.State)
+        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                                     "MultiAxisSlicerError")
+                 if b.isVisible()]
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("not a solid", boxes[0].text())
+        self.assertTrue(self.part.ViewObject.Visibility)  # nothing replaced it
 
 
 # Run by a second FreeCAD GUI, on a copy of the add-on without the compiled engine.

@@ -1,0 +1,254 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Decomposition of a solid into sub-components (Ruan et al., Sec. 4.1), for scripts and FreeCAD.
+
+The part is split where its centroidal axis turns or branches; every sub-component is built from
+its base face along its own build direction, after its father. The engine's header
+App/include/mas/Decompose.hpp explains the reading of the paper it follows. Re-exported by the
+package::
+
+    import MultiAxisSlicer as mas
+    parts = mas.decompose(App.ActiveDocument.Part, step=2.5)
+    for c in parts:
+        print(c.parent, c.rule, c.build_direction, c.volume)      # mm^3
+        Part.show(c.shape)
+"""
+
+import numbers
+
+from . import _FreeCAD, _as_list, _as_vector, _model, _require_engine
+from .axis import CentroidalAxis, _number, centroidal_axis
+
+__all__ = ["Component", "Decomposition", "decompose"]
+
+# Axis parameters of decompose() and their defaults: with a given axis, none may be set.
+_AXIS_DEFAULTS = {"step": None, "distance_threshold": None, "eps": 0.001, "break_angle": 30.0,
+                  "base_z": None, "deflection": None}
+
+
+def _part_shape(brep):
+    """A Part.Shape from BREP text (FreeCAD only)."""
+    import Part
+
+    shape = Part.Shape()
+    shape.importBrepFromString(brep)
+    return shape
+
+
+def _angle(value, name, upper):
+    angle = _number(value, name, "degrees")
+    if not (0.0 <= angle < upper):  # also NaN
+        raise ValueError("{} must be in [0, {}) degrees, got {}".format(name, upper, angle))
+    return angle
+
+
+class Component:
+    """One sub-component: a closed solid built from its base face along its build direction.
+
+    Attributes:
+      * ``shape``: the solid, a ``Part.Solid`` when FreeCAD is importable, else the engine
+        ``Shape``; ``brep``: its BREP text (``Part.Shape().importBrepFromString()`` reads it).
+      * ``parent``: index of the father component in the decomposition, -1 for the root.
+      * ``build_direction``: unit vector the component is deposited along (the reverse of its base
+        face's outward normal; +Z for the root).
+      * ``base_face``: the planar face it was cut at (a ``Part.Face``; the engine ``Shape`` without
+        FreeCAD), None for the root, which stands on the build plate. ``base_face_brep``: its BREP
+        text or None.
+      * ``base_origin`` (mm): the base face's centroid (the root: the centre of the bottom of its
+        bounding box); ``base_normal``: its outward unit normal (= -build_direction).
+      * ``branch``: the axis branch that made it (0 for the root); ``break_link``: that branch's
+        first link (the break, turn or split), -1 for the root.
+      * ``rule``: how it was cut: "root", "planar_face" (a face meeting the paper's three criteria)
+        or "section_plane" (the fallback: the plane where the branch's march started).
+      * ``volume``: mm³.
+    Vectors are FreeCAD.Vector when FreeCAD is importable, else tuples.
+    """
+
+    __slots__ = ("parent", "branch", "break_link", "rule", "volume", "has_base_face", "_solid",
+                 "_face", "_build_direction", "_base_origin", "_base_normal", "_shape",
+                 "_base_face")
+
+    def __init__(self, data):
+        self._solid = data["solid"]
+        self._face = data["base_face"]
+        self.parent = data["parent"]
+        self.has_base_face = data["has_base_face"]
+        self._build_direction = data["build_direction"]
+        self._base_origin = data["base_origin"]
+        self._base_normal = data["base_normal"]
+        self.branch = data["branch"]
+        self.break_link = data["break_link"]
+        self.rule = data["rule"]
+        self.volume = data["volume_mm3"]
+        self._shape = None
+        self._base_face = None
+
+    @property
+    def brep(self):
+        return self._solid.to_brep_string()
+
+    @property
+    def base_face_brep(self):
+        return self._face.to_brep_string() if self._face is not None else None
+
+    @property
+    def shape(self):
+        if _FreeCAD is None:
+            return self._solid
+        if self._shape is None:
+            import Part
+
+            self._shape = Part.Solid(_part_shape(self.brep))
+        return self._shape
+
+    @property
+    def base_face(self):
+        if self._face is None:
+            return None
+        if _FreeCAD is None:
+            return self._face
+        if self._base_face is None:
+            import Part
+
+            self._base_face = Part.Face(_part_shape(self.base_face_brep))
+        return self._base_face
+
+    @property
+    def build_direction(self):
+        return _as_vector(self._build_direction)
+
+    @property
+    def base_origin(self):
+        return _as_vector(self._base_origin)
+
+    @property
+    def base_normal(self):
+        return _as_vector(self._base_normal)
+
+    def to_dict(self):
+        """JSON-ready, as ``multiaxis-slicer decompose --json`` writes a component."""
+        return {
+            "parent": self.parent,
+            "build_direction": _as_list(self._build_direction),
+            "has_base_face": self.has_base_face,
+            "base_origin": _as_list(self._base_origin),
+            "base_normal": _as_list(self._base_normal),
+            "branch": self.branch,
+            "break_link": self.break_link,
+            "rule": self.rule,
+            "volume_mm3": self.volume,
+        }
+
+    def __repr__(self):
+        return "<MultiAxisSlicer.Component parent={} rule={} build_direction={} volume={:.6g} " \
+               "mm3>".format(self.parent, self.rule,
+                             tuple(round(c, 6) for c in self._build_direction), self.volume)
+
+
+class Decomposition:
+    """The sub-components of a part in tree order (a father before its children; [0] is the root).
+
+    A sequence: ``len(d)``, ``d[i]``, ``for c in d``. Attributes: ``components`` (the list of
+    ``Component``), ``axis`` (the ``CentroidalAxis`` it followed), ``part_volume`` (mm³, the
+    part's; the components' volumes add up to it), ``params`` (the decomposition's parameters:
+    face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback).
+    """
+
+    def __init__(self, data, axis, params):
+        self.components = [Component(c) for c in data["components"]]
+        self.part_volume = data["part_volume_mm3"]
+        self.axis = axis
+        self.params = params
+
+    def __len__(self):
+        return len(self.components)
+
+    def __getitem__(self, index):
+        return self.components[index]
+
+    def __iter__(self):
+        return iter(self.components)
+
+    def children(self, index):
+        """Indices of the components whose father is component ``index``."""
+        return [i for i, c in enumerate(self.components) if c.parent == index]
+
+    def to_dict(self):
+        """JSON-ready plain data in the layout of ``multiaxis-slicer decompose FILE --json``
+        (without its "file"): kind, part_volume_mm3, axis (step_mm, nodes, branches), components
+        [{parent, build_direction, has_base_face, base_origin, base_normal, branch, break_link,
+        rule, volume_mm3}]."""
+        return {
+            "kind": "solid",
+            "part_volume_mm3": self.part_volume,
+            "axis": {"step_mm": self.axis.params["step_mm"], "nodes": len(self.axis.nodes),
+                     "branches": len(self.axis.branches)},
+            "components": [c.to_dict() for c in self.components],
+        }
+
+    def __repr__(self):
+        return "<MultiAxisSlicer.Decomposition components={} part_volume={:.6g} mm3>".format(
+            len(self.components), self.part_volume)
+
+
+def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
+              deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
+              eps=0.001, base_z=None, projection_tolerance=0.01):
+    """Splits one solid into sub-components where its centroidal axis turns or branches.
+
+    ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
+    Shape, a .step/.stp, .iges/.igs or .brep/.brp file, or an engine Shape. A mesh cannot be
+    split into solids: ``Mesh.Mesh``, mesh objects and .stl/.off files raise TypeError.
+
+    ``axis``: the ``CentroidalAxis`` of this very shape (``centroidal_axis(shape, ...)``, also of a
+    mesh of it). None: computed here with ``step``, ``distance_threshold``, ``eps``,
+    ``break_angle``, ``base_z`` and ``deflection``, which mean what they mean for
+    ``centroidal_axis()``; with an axis given they must stay unset (ValueError otherwise).
+
+    Decomposition parameters (angles in degrees, lengths in mm; FreeCAD Quantities accepted):
+      * ``face_angle``: a splitting face's normal is within this of the branch's direction
+        (criterion 1; default 10, in [0, 90)).
+      * ``concave_angle``: an edge is concave when the interior angle exceeds 180 degrees by more
+        than this (criterion 2; default 1, in [0, 180)).
+      * ``section_plane_fallback``: with no face meeting the criteria, cut at the plane where the
+        branch's march started (default True); False leaves that material in the father.
+      * ``projection_tolerance``: slack on Eq. 5's interval (criterion 3; default 0.01 mm).
+
+    Returns a ``Decomposition``. Raises TypeError for a mesh, None or another type; ValueError for
+    a parameter out of range; EngineError (with ``code``) not_a_solid (a face, a shell),
+    multiple_solids, empty_input, read_failed, invalid_argument (an axis of another part, a
+    malformed axis), geometry_failure. Nothing the caller passed is modified.
+    """
+    face_angle_deg = _angle(face_angle, "face_angle", 90.0)
+    concave_angle_deg = _angle(concave_angle, "concave_angle", 180.0)
+    tolerance_mm = _number(projection_tolerance, "projection_tolerance", "millimetres")
+    if not (0.0 <= tolerance_mm < float("inf")):
+        raise ValueError("projection_tolerance must be a finite, non-negative number of "
+                         "millimetres, got {}".format(tolerance_mm))
+    if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
+        raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
+            section_plane_fallback))
+    axis_params = {"step": step, "distance_threshold": distance_threshold, "eps": eps,
+                   "break_angle": break_angle, "base_z": base_z, "deflection": deflection}
+    if axis is not None:
+        if not isinstance(axis, CentroidalAxis):
+            raise TypeError("axis must be a CentroidalAxis (from centroidal_axis()) or None, got "
+                            "{}".format(type(axis).__name__))
+        changed = sorted(k for k, v in axis_params.items() if v != _AXIS_DEFAULTS[k])
+        if changed:
+            raise ValueError("decompose: an axis is given, so the axis parameters ({}) would be "
+                             "ignored; pass one or the other".format(", ".join(changed)))
+    eng = _require_engine()
+    kind, part, what = _model(shape)
+    if kind != "solid":
+        raise TypeError("decompose() splits a BREP solid (Part.Shape, STEP, IGES or BREP file); "
+                        "{} is a mesh, which cannot be split into solids".format(what))
+    solid = part.single_solid(what)
+    if axis is None:
+        axis = centroidal_axis(solid, **axis_params)
+    params = {"face_angle_deg": face_angle_deg, "concave_angle_deg": concave_angle_deg,
+              "projection_tolerance_mm": tolerance_mm,
+              "section_plane_fallback": bool(section_plane_fallback)}
+    data = eng.decompose(solid, axis._engine_dict(), face_angle=face_angle_deg,
+                         concave_angle=concave_angle_deg, projection_tolerance=tolerance_mm,
+                         section_plane_fallback=bool(section_plane_fallback))
+    return Decomposition(data, axis, params)

@@ -1,0 +1,519 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Decomposition into sub-components through the scripting API and the Decomposition document
+object, inside freecadcmd.
+
+Run: freecadcmd -t TestMultiAxisSlicerDecompose (tests/run_freecad_test.sh does it against the
+add-on staged in the build tree). The parts and expected values are those of the engine's own
+test (tests/engine/test_decompose.cpp): the cuts are planes of planar faces, so volumes are exact.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import textwrap
+import unittest
+
+import FreeCAD
+import Mesh
+import Part
+
+import MultiAxisSlicer as mas
+import MultiAxisSlicer.features as features
+
+V = FreeCAD.Vector
+REL = 1e-6  # relative volume tolerance: OCCT's volumes of exact planar solids
+
+
+def l_block():
+    """Fig. 7's L: a 20 x 20 x 60 column with a 50 mm arm [20, 70] x [0, 20] x [40, 60]."""
+    return Part.makeBox(20, 20, 60).fuse(Part.makeBox(50, 20, 20, V(20, 0, 40))).removeSplitter()
+
+
+def t_block():
+    """A T: column [0,20]x[0,20]x[0,60], crossbar [-30,50]x[0,20]x[40,60] reaching both ways."""
+    return Part.makeBox(20, 20, 60).fuse(
+        Part.makeBox(80, 20, 20, V(-30, 0, 40))).removeSplitter()
+
+
+def assert_box(test, shape, lo, hi, tol=1e-6):
+    bb = shape.BoundBox
+    got = ((bb.XMin, bb.YMin, bb.ZMin), (bb.XMax, bb.YMax, bb.ZMax))
+    for a, b in zip(got[0] + got[1], tuple(lo) + tuple(hi)):
+        test.assertAlmostEqual(a, b, delta=tol, msg="{} != {}".format(got, (lo, hi)))
+
+
+class DecomposeTest(unittest.TestCase):
+    def assertVectorAlmostEqual(self, a, b, places=9):
+        for i in range(3):
+            self.assertAlmostEqual(a[i], b[i], places=places, msg="{} != {}".format(a, b))
+
+    def assertRaisesEngineError(self, code, func, *args, **kwargs):
+        with self.assertRaises(mas.EngineError) as cm:
+            func(*args, **kwargs)
+        self.assertEqual(cm.exception.code, code, str(cm.exception))
+        return cm.exception
+
+    def check_l_block(self, d):
+        """The column is the root, the arm its child built +X from the base face x = 20."""
+        self.assertEqual(len(d), 2)
+        root, arm = d
+        self.assertEqual((root.parent, root.rule, root.branch, root.break_link),
+                         (-1, "root", 0, -1))
+        self.assertIsNone(root.base_face)
+        self.assertVectorAlmostEqual(root.build_direction, (0, 0, 1))
+        assert_box(self, root.shape, (0, 0, 0), (20, 20, 60))
+        self.assertAlmostEqual(root.volume, 24000.0, delta=24000.0 * REL)
+        self.assertEqual((arm.parent, arm.rule, arm.branch), (0, "planar_face", 1))
+        self.assertEqual(arm.break_link, d.axis.branches[1].first_link)
+        self.assertIsInstance(arm.shape, Part.Solid)
+        self.assertTrue(arm.shape.isValid())
+        assert_box(self, arm.shape, (20, 0, 40), (70, 20, 60))
+        self.assertAlmostEqual(arm.volume, 20000.0, delta=20000.0 * REL)
+        self.assertAlmostEqual(arm.shape.Volume, 20000.0, delta=20000.0 * REL)
+        self.assertIsInstance(arm.build_direction, FreeCAD.Vector)
+        self.assertVectorAlmostEqual(arm.build_direction, (1, 0, 0), places=12)
+        self.assertVectorAlmostEqual(arm.base_normal, (-1, 0, 0), places=12)
+        self.assertIsInstance(arm.base_face, Part.Face)
+        assert_box(self, arm.base_face, (20, 0, 40), (20, 20, 60))
+        self.assertAlmostEqual(arm.base_face.Area, 400.0, delta=400.0 * REL)
+        self.assertVectorAlmostEqual(arm.base_origin, (20, 10, 50))
+        self.check_volumes_add_up(d, 44000.0)
+
+    def check_volumes_add_up(self, d, part_volume):
+        self.assertAlmostEqual(d.part_volume, part_volume, delta=part_volume * REL)
+        self.assertAlmostEqual(sum(c.volume for c in d), part_volume, delta=part_volume * REL)
+        self.assertAlmostEqual(sum(c.shape.Volume for c in d), part_volume,
+                               delta=part_volume * REL)
+        for i, c in enumerate(d):  # tree order, the root first
+            self.assertLess(c.parent, i)
+
+
+class TestDecomposeApi(DecomposeTest):
+    def test_box_is_one_root_component(self):
+        d = mas.decompose(Part.makeBox(10, 20, 30), step=2.0)
+        self.assertEqual(len(d), 1)
+        self.assertEqual(d[0].rule, "root")
+        self.assertEqual(d.children(-1), [0])
+        self.check_volumes_add_up(d, 6000.0)
+
+    def test_l_block_arm_is_a_child_built_plus_x_from_the_column_side(self):
+        d = mas.decompose(l_block(), step=2.5)
+        self.check_l_block(d)
+        self.assertEqual(d.axis.params["step_mm"], 2.5)
+        self.assertEqual(d.children(0), [1])
+        self.assertEqual([c.rule for c in d], ["root", "planar_face"])  # iteration
+        self.assertIs(d[-1], d.components[1])
+
+    def test_t_crossbar_arms_are_built_plus_x_and_minus_x(self):
+        d = mas.decompose(t_block(), step=2.5)
+        self.assertEqual(len(d), 3)
+        assert_box(self, d[0].shape, (0, 0, 0), (20, 20, 60))
+        directions = sorted(round(c.build_direction.x) for c in d[1:])
+        self.assertEqual(directions, [-1, 1])
+        for c in d[1:]:
+            self.assertEqual(c.parent, 0)
+            self.assertEqual(c.rule, "planar_face")
+            self.assertAlmostEqual(c.volume, 12000.0, delta=12000.0 * REL)
+            if c.build_direction.x > 0:
+                assert_box(self, c.shape, (20, 0, 40), (50, 20, 60))
+                assert_box(self, c.base_face, (20, 0, 40), (20, 20, 60))
+            else:
+                assert_box(self, c.shape, (-30, 0, 40), (0, 20, 60))
+                assert_box(self, c.base_face, (0, 0, 40), (0, 20, 60))
+        self.check_volumes_add_up(d, 24000.0 + 2 * 12000.0)
+        # No two components overlap.
+        for i in range(len(d)):
+            for j in range(i):
+                self.assertAlmostEqual(d[i].shape.common(d[j].shape).Volume, 0.0, delta=1e-6)
+
+    def test_a_precomputed_axis_gives_the_same_components(self):
+        axis = mas.centroidal_axis(l_block(), step=2.5)
+        d = mas.decompose(l_block(), axis=axis)
+        self.assertIs(d.axis, axis)
+        self.check_l_block(d)
+        computed = mas.decompose(l_block(), step=2.5)
+        self.assertEqual(d.to_dict(), computed.to_dict())
+        # An axis of the mesh of the same part is an axis of that part too.
+        mesh_axis = mas.centroidal_axis(Mesh.Mesh(l_block().tessellate(0.05)), step=2.5)
+        self.check_l_block(mas.decompose(l_block(), axis=mesh_axis))
+
+    def test_an_axis_of_another_part_is_rejected(self):
+        axis = mas.centroidal_axis(Part.makeBox(10, 10, 10), step=2.0)
+        e = self.assertRaisesEngineError("invalid_argument", mas.decompose, l_block(), axis=axis)
+        self.assertIn("different part", str(e))
+        moved = Part.makeBox(10, 10, 10, V(50, 0, 0))
+        e = self.assertRaisesEngineError("invalid_argument", mas.decompose, moved, axis=axis)
+        self.assertIn("different part", str(e))
+
+    def test_a_malformed_axis_is_named(self):
+        axis = mas.centroidal_axis(l_block(), step=2.5)
+        axis.branches[1].parent = 1  # its own father
+        e = self.assertRaisesEngineError("invalid_argument", mas.decompose, l_block(), axis=axis)
+        self.assertIn("malformed", str(e))
+
+    def test_axis_and_axis_parameters_together_are_refused(self):
+        axis = mas.centroidal_axis(l_block(), step=2.5)
+        with self.assertRaisesRegex(ValueError, "step"):
+            mas.decompose(l_block(), axis=axis, step=2.5)
+        with self.assertRaisesRegex(TypeError, "CentroidalAxis"):
+            mas.decompose(l_block(), axis=axis.to_dict())
+
+    def test_decomposition_parameters(self):
+        # Criterion (2) needs more than the L's 90 degree concave edge: the fallback cuts at the
+        # plane where the arm's march started, x = 20; without the fallback the L stays whole.
+        d = mas.decompose(l_block(), step=2.5, concave_angle=95.0)
+        self.assertEqual([c.rule for c in d], ["root", "section_plane"])
+        assert_box(self, d[1].shape, (20, 0, 40), (70, 20, 60))
+        d = mas.decompose(l_block(), step=2.5, concave_angle=95.0, section_plane_fallback=False)
+        self.assertEqual(len(d), 1)
+        self.assertEqual(d.params["section_plane_fallback"], False)
+        for name, kwargs in (("face_angle", dict(face_angle=90.0)),
+                             ("face_angle", dict(face_angle=float("nan"))),
+                             ("concave_angle", dict(concave_angle=-1.0)),
+                             ("projection_tolerance", dict(projection_tolerance=-0.1)),
+                             ("step", dict(step=0.0))):
+            with self.assertRaisesRegex(ValueError, name, msg=str(kwargs)):
+                mas.decompose(l_block(), **kwargs)
+        d = mas.decompose(l_block(), step=FreeCAD.Units.Quantity("2.5 mm"),
+                          face_angle=FreeCAD.Units.Quantity("5 deg"))
+        self.assertEqual(d.params["face_angle_deg"], 5.0)
+        self.assertEqual(len(d), 2)
+
+    def test_document_object_and_file_inputs(self):
+        folder = tempfile.mkdtemp(prefix="mas_dec_")
+        doc = FreeCAD.newDocument("MasDecInputs")
+        try:
+            part = doc.addObject("Part::Feature", "L")
+            part.Shape = l_block()
+            self.check_l_block(mas.decompose(part, step=2.5))
+            path = os.path.join(folder, "l.brep")
+            l_block().exportBrep(path)
+            self.check_l_block(mas.decompose(path, step=2.5))
+        finally:
+            FreeCAD.closeDocument(doc.Name)
+            shutil.rmtree(folder)
+
+    def test_to_dict_is_json_ready(self):
+        d = mas.decompose(l_block(), step=2.5)
+        data = d.to_dict()
+        self.assertEqual(json.loads(json.dumps(data, allow_nan=False)), data)
+        self.assertEqual(set(data), {"kind", "part_volume_mm3", "axis", "components"})
+        self.assertEqual(data["axis"], {"step_mm": 2.5, "nodes": 44, "branches": 2})
+        self.assertEqual(len(data["components"]), 2)
+        for c in data["components"]:
+            self.assertEqual(set(c), {"parent", "build_direction", "base_origin", "base_normal",
+                                      "branch", "break_link", "rule", "volume_mm3",
+                                      "has_base_face"})
+        arm = data["components"][1]
+        self.assertEqual(arm["parent"], 0)
+        self.assertEqual(arm["rule"], "planar_face")
+        self.assertTrue(arm["has_base_face"])
+        self.assertFalse(data["components"][0]["has_base_face"])
+        self.assertAlmostEqual(arm["volume_mm3"], 20000.0, delta=20000.0 * REL)
+
+    def test_to_dict_matches_the_command_line_json(self):
+        addon = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__))))
+        program = os.path.join(addon, "multiaxis-slicer")
+        self.assertTrue(os.path.isfile(program), "no command-line program at " + program)
+        folder = tempfile.mkdtemp(prefix="mas_dec_cli_")
+        try:
+            path = os.path.join(folder, "t.brep")
+            out = os.path.join(folder, "decompose.json")
+            t_block().exportBrep(path)
+            result = subprocess.run([program, "decompose", path, "--step", "2.5", "--json", out],
+                                    capture_output=True, text=True, timeout=120)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            with open(out) as f:
+                cli = json.load(f)
+            ours = mas.decompose(path, step=2.5).to_dict()
+        finally:
+            shutil.rmtree(folder)
+        self.assertEqual(cli.pop("file"), path)
+
+        def same(a, b, where):  # the program prints 15 significant digits
+            if isinstance(a, dict):
+                self.assertEqual(set(a), set(b), where)
+                for k in a:
+                    same(a[k], b[k], where + "." + k)
+            elif isinstance(a, list):
+                self.assertEqual(len(a), len(b), where)
+                for i, (x, y) in enumerate(zip(a, b)):
+                    same(x, y, "{}[{}]".format(where, i))
+            elif isinstance(a, float) or isinstance(b, float):
+                self.assertAlmostEqual(a, b, delta=1e-12 * max(1.0, abs(b)), msg=where)
+            else:
+                self.assertEqual(a, b, where)
+
+        same(cli, ours, "decomposition")
+
+
+class TestDecomposeBadInput(DecomposeTest):
+    def test_none_and_unsupported_types_are_type_errors(self):
+        with self.assertRaisesRegex(TypeError, "None"):
+            mas.decompose(None)
+        with self.assertRaisesRegex(TypeError, "int"):
+            mas.decompose(42)
+
+    def test_a_mesh_cannot_be_decomposed(self):
+        with self.assertRaisesRegex(TypeError, "BREP solid.*mesh"):
+            mas.decompose(Mesh.Mesh(l_block().tessellate(0.1)))
+
+    def test_face_is_not_a_solid(self):
+        e = self.assertRaisesEngineError("not_a_solid", mas.decompose, Part.makePlane(10, 10))
+        self.assertIn("Face", str(e))
+
+    def test_two_solids_are_rejected(self):
+        two = Part.makeCompound([l_block(), Part.makeBox(5, 5, 5, V(100, 0, 0))])
+        e = self.assertRaisesEngineError("multiple_solids", mas.decompose, two)
+        self.assertIn("2 solids", str(e))
+
+    def test_engine_checks_its_inputs(self):
+        solid = mas._engine.Shape.from_brep_string(l_block().exportBrepToString())
+        axis = mas.centroidal_axis(l_block(), step=2.5)._engine_dict()
+        e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid,
+                                         {"nodes": []})
+        self.assertIn("links", str(e))
+        broken = dict(axis, links=[dict(axis["links"][0], kind="sideways")] + axis["links"][1:])
+        e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid, broken)
+        self.assertIn("kind", str(e))
+        self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid, axis,
+                                     face_angle=float("nan"))
+        self.assertEqual(len(mas._engine.decompose(solid, axis)["components"]), 2)
+
+    def test_the_source_is_not_modified(self):
+        shape = t_block()
+        shape.Placement = FreeCAD.Placement(V(1, 2, 3), FreeCAD.Rotation())
+        before = shape.exportBrepToString()
+        d = mas.decompose(shape, step=2.5)
+        self.assertEqual(len(d), 3)
+        self.assertEqual(shape.exportBrepToString(), before)
+
+
+def _write(folder, name, text):
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(textwrap.dedent(text))
+    return path
+
+
+class TestDecomposeWithoutFreeCAD(DecomposeTest):
+    def test_plain_python_gives_engine_shapes_and_brep_text(self):
+        app_dir = os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__)))
+        folder = tempfile.mkdtemp(prefix="mas_plain_dec_")
+        try:
+            path = os.path.join(folder, "l.brep")
+            l_block().exportBrep(path)
+            script = _write(folder, "script.py", """
+                import json, sys
+                assert "FreeCAD" not in sys.modules
+                import MultiAxisSlicer as mas
+                d = mas.decompose({!r}, step=2.5)
+                arm = d[1]
+                print("RESULT", len(d), arm.build_direction, type(arm.shape).__name__,
+                      "CASCADE Topology" in arm.brep, arm.base_face_brep is not None,
+                      round(arm.volume, 6))
+                json.dumps(d.to_dict())
+            """.format(path))
+            env = dict(os.environ, PYTHONPATH=app_dir)
+            result = subprocess.run(["/usr/bin/python3.11", script], env=env, capture_output=True,
+                                    text=True, timeout=120)
+        finally:
+            shutil.rmtree(folder)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("RESULT 2 (1.0, 0.0, -0.0) Shape True True 20000.0", result.stdout)
+
+
+class TestDecompositionObject(DecomposeTest):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("MasDec")
+        self.part = self.doc.addObject("Part::Feature", "L")
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        self.folder = tempfile.mkdtemp(prefix="mas_dec_doc_")
+
+    def tearDown(self):
+        for name in list(FreeCAD.listDocuments()):
+            if name.startswith("MasDec"):
+                FreeCAD.closeDocument(name)
+        shutil.rmtree(self.folder)
+
+    def check_l_block_objects(self, obj):
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.Proxy.Type, "MultiAxisSlicer::Decomposition")
+        self.assertEqual(obj.ComponentCount, 2)
+        self.assertEqual(list(obj.ComponentParents), [-1, 0])
+        self.assertEqual(list(obj.Rules), ["root", "planar_face"])
+        self.assertVectorAlmostEqual(obj.BuildDirections[1], (1, 0, 0))
+        self.assertVectorAlmostEqual(obj.BaseOrigins[1], (20, 10, 50))
+        self.assertAlmostEqual(obj.Volumes[1], 20000.0, delta=20000.0 * REL)
+        self.assertAlmostEqual(obj.PartVolume.Value, 44000.0, delta=44000.0 * REL)
+        self.assertEqual(len(obj.Shape.Solids), 2)
+        self.assertAlmostEqual(obj.Shape.Volume, 44000.0, delta=44000.0 * REL)
+        components = features.components_of(obj)
+        self.assertEqual([c.Label for c in components], ["Component001", "Component002"])
+        self.assertEqual([c.Index for c in components], [0, 1])
+        for c in components:
+            self.assertTrue(c.isValid(), c.getStatusString())
+            self.assertIs(c.Decomposition, obj)
+        root, arm = components
+        assert_box(self, root.Shape, (0, 0, 0), (20, 20, 60))
+        assert_box(self, arm.Shape, (20, 0, 40), (70, 20, 60))
+        self.assertEqual((root.Parent, arm.Parent), (-1, 0))
+        self.assertEqual(arm.Rule, "planar_face")
+        self.assertVectorAlmostEqual(arm.BuildDirection, (1, 0, 0))
+        self.assertAlmostEqual(arm.Volume.Value, 20000.0, delta=20000.0 * REL)
+        return components
+
+    def test_make_computes_the_decomposition_and_its_components(self):
+        obj = mas.make_decomposition(self.part)
+        self.assertEqual(obj.FaceAngle.Value, 10.0)
+        self.assertTrue(obj.SectionPlaneFallback)
+        self.assertIs(obj.Source, self.part)
+        self.assertIsNone(obj.Axis)
+        self.doc.recompute()
+        self.check_l_block_objects(obj)
+        self.assertEqual(obj.UsedStep.Value, mas.decompose(l_block()).axis.params["step_mm"])
+
+    def test_axis_object_parameters_are_used(self):
+        axis = mas.make_centroidal_axis(self.part, step=2.5)
+        self.doc.recompute()
+        obj = mas.make_decomposition(None, axis=axis)
+        self.doc.recompute()
+        self.check_l_block_objects(obj)
+        self.assertEqual(obj.UsedStep.Value, 2.5)
+        self.assertIn(axis, obj.OutList)
+        axis.Step = 5.0
+        self.doc.recompute()
+        self.assertEqual(obj.UsedStep.Value, 5.0)
+        self.check_l_block_objects(obj)
+
+    def test_the_source_is_not_modified(self):
+        before = self.part.Shape.exportBrepToString()
+        obj = mas.make_decomposition(self.part)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid())
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        self.assertNotIn("Touched", self.part.State)
+
+    def test_source_changes_flow_into_the_components(self):
+        obj = mas.make_decomposition(self.part)
+        self.doc.recompute()
+        self.part.Shape = t_block()
+        self.doc.recompute()
+        self.assertEqual(obj.ComponentCount, 3)
+        components = features.sync_components(obj)  # outside the recompute
+        self.assertEqual([c.Label for c in components],
+                         ["Component001", "Component002", "Component003"])
+        self.doc.recompute()
+        for c in components:
+            self.assertTrue(c.isValid(), c.getStatusString())
+            self.assertAlmostEqual(c.Volume.Value, obj.Volumes[c.Index], places=6)
+        self.part.Shape = Part.makeBox(20, 20, 60)
+        self.doc.recompute()
+        self.assertEqual(obj.ComponentCount, 1)
+        self.assertIn("Invalid", components[2].State)  # until synchronised
+        self.assertIn("now has 1 component(s)", components[2].getStatusString())
+        self.assertEqual(len(features.sync_components(obj)), 1)
+        self.doc.recompute()
+        self.assertEqual([c.Label for c in features.components_of(obj)], ["Component001"])
+        self.assertTrue(all(o.isValid() for o in self.doc.Objects))
+
+    def test_save_close_reopen_recompute(self):
+        obj = mas.make_decomposition(self.part, face_angle=5.0, deflection=0.02)
+        self.doc.recompute()
+        path = os.path.join(self.folder, "decomposition.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+
+        doc = FreeCAD.openDocument(path)
+        obj = doc.getObject("Decomposition")
+        self.assertIsInstance(obj.Proxy, features.DecompositionFeature)
+        self.assertIs(obj.Source, doc.getObject("L"))
+        self.assertEqual(obj.FaceAngle.Value, 5.0)
+        self.assertEqual(obj.Deflection.Value, 0.02)
+        self.assertEqual(len(obj.Shape.Solids), 2)  # saved with the document
+        for c in features.components_of(obj):
+            self.assertIsInstance(c.Proxy, features.ComponentFeature)
+        obj.touch()
+        doc.recompute()
+        self.check_l_block_objects(obj)
+        doc.save()
+
+    def test_undo_removes_everything_the_command_made(self):
+        self.doc.UndoMode = 1
+        names = [o.Name for o in self.doc.Objects]
+        self.doc.openTransaction("Decompose")
+        obj = mas.make_decomposition(self.part)
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        self.assertEqual(len(self.doc.Objects), len(names) + 3)
+        self.doc.undo()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.doc.redo()
+        obj = self.doc.getObject("Decomposition")
+        self.assertEqual(len(features.components_of(obj)), 2)
+
+    def test_bad_sources_mark_the_object_without_components(self):
+        face = self.doc.addObject("Part::Feature", "Face")
+        face.Shape = Part.makePlane(10, 10)
+        obj = mas.make_decomposition(face)
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("not a solid", obj.getStatusString())
+        self.assertEqual(features.components_of(obj), [])
+        mesh = self.doc.addObject("Mesh::Feature", "LMesh")
+        mesh.Mesh = Mesh.Mesh(l_block().tessellate(0.1))
+        obj.Source = mesh
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("BREP solid", obj.getStatusString())
+        axis = mas.make_centroidal_axis(self.part)
+        obj.Source = None
+        self.doc.recompute()
+        self.assertIn("Source is not set", obj.getStatusString())
+        obj.Axis = self.part
+        self.doc.recompute()
+        self.assertIn("not a CentroidalAxis", obj.getStatusString())
+        obj.Axis = axis
+        obj.Source = face
+        self.doc.recompute()
+        self.assertIn("belongs to 'L', not to the Source 'Face'", obj.getStatusString())
+        obj.Source = None  # recovers, the axis' Source is used
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.ComponentCount, 2)
+
+    def test_make_rejects_bad_parameters_before_adding_anything(self):
+        names = [o.Name for o in self.doc.Objects]
+        with self.assertRaisesRegex(ValueError, "face_angle"):
+            mas.make_decomposition(self.part, face_angle=95.0)
+        with self.assertRaisesRegex(TypeError, "CentroidalAxis"):
+            mas.make_decomposition(self.part, axis=self.part)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_failing_recompute_prints_the_message_without_a_traceback(self):
+        script = _write(self.folder, "fail.py", """
+            import FreeCAD, Mesh, Part
+            import MultiAxisSlicer as mas
+            doc = FreeCAD.newDocument("Fail")
+            face = doc.addObject("Part::Feature", "Face")
+            face.Shape = Part.makePlane(10, 10)
+            a = mas.make_decomposition(face)
+            mesh = doc.addObject("Mesh::Feature", "Mesh")
+            mesh.Mesh = Mesh.Mesh(Part.makeBox(10, 10, 10).tessellate(0.1))
+            b = mas.make_decomposition(mesh)
+            doc.recompute()
+            print("STATES", a.State, b.State)
+        """)
+        result = subprocess.run(["freecadcmd", script], capture_output=True, text=True, timeout=120)
+        output = result.stdout + result.stderr
+        self.assertIn("STATES ['Invalid'] ['Invalid']", output.replace("'Touched', ", ""))
+        self.assertIn("not a solid", output)
+        self.assertIn("BREP solid", output)
+        self.assertNotIn("Traceback", output)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -314,18 +314,6 @@ int run_axis(const std::vector<std::string>& args) {
     return 0;
 }
 
-const char* rule_name(mas::Component::SplitRule r) {
-    switch (r) {
-        case mas::Component::SplitRule::Root:
-            return "root";
-        case mas::Component::SplitRule::PlanarFace:
-            return "planar_face";
-        case mas::Component::SplitRule::SectionPlane:
-            return "section_plane";
-    }
-    return "unknown";
-}
-
 int run_decompose(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
     allowed.insert({"--face-angle", "--concave-angle", "--step-dir"});
@@ -381,7 +369,7 @@ int run_decompose(const std::vector<std::string>& args) {
                 << ", \"base_origin\": " << vec(c.base_origin)
                 << ", \"base_normal\": " << vec(c.base_normal) << ", \"branch\": " << c.branch
                 << ", \"break_link\": " << c.break_link
-                << ", \"rule\": " << quoted(rule_name(c.rule))
+                << ", \"rule\": " << quoted(mas::to_string(c.rule))
                 << ", \"volume_mm3\": " << num(c.volume_mm3);
             if (!step_files[i].empty()) out << ", \"step_file\": " << quoted(step_files[i]);
             out << "}";
@@ -393,7 +381,7 @@ int run_decompose(const std::vector<std::string>& args) {
             << (a.has("--step-dir") ? " step_file" : "") << "\n";
         for (std::size_t i = 0; i < d.components.size(); ++i) {
             const auto& c = d.components[i];
-            out << i << " " << c.parent << " " << rule_name(c.rule) << " "
+            out << i << " " << c.parent << " " << mas::to_string(c.rule) << " "
                 << num(c.build_direction.x()) << "," << num(c.build_direction.y()) << ","
                 << num(c.build_direction.z()) << " " << num(c.volume_mm3);
             if (!step_files[i].empty()) out << " " << step_files[i];

@@ -766,18 +766,6 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
     return axis;
 }
 
-const char* rule_name(mas::Component::SplitRule rule) {
-    switch (rule) {
-        case mas::Component::SplitRule::Root:
-            return "root";
-        case mas::Component::SplitRule::PlanarFace:
-            return "planar_face";
-        case mas::Component::SplitRule::SectionPlane:
-            return "section_plane";
-    }
-    return "unknown";
-}
-
 bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
                    double concave_angle, double projection_tolerance, bool section_plane_fallback) {
     mas::DecomposeParams params;
@@ -805,7 +793,7 @@ bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double fa
         out["base_normal"] = to_py(c.base_normal);
         out["branch"] = c.branch;
         out["break_link"] = c.break_link;
-        out["rule"] = rule_name(c.rule);
+        out["rule"] = mas::to_string(c.rule);
         out["volume_mm3"] = c.volume_mm3;
         components.append(out);
     }

@@ -87,6 +87,9 @@ struct Component {
     double volume_mm3 = 0.0;
 };
 
+// "root", "planar_face", "section_plane": the names the CLI and the Python API use.
+const char* to_string(Component::SplitRule rule);
+
 struct Decomposition {
     std::vector<Component> components;  // tree order: a father before its children; [0] is root
 };

@@ -545,4 +545,16 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     return out;
 }
 
+const char* to_string(Component::SplitRule rule) {
+    switch (rule) {
+        case Component::SplitRule::Root:
+            return "root";
+        case Component::SplitRule::PlanarFace:
+            return "planar_face";
+        case Component::SplitRule::SectionPlane:
+            return "section_plane";
+    }
+    return "unknown";
+}
+
 }  // namespace mas

@@ -1,6 +1,6 @@
 # The README's main job, run headless by `tools/setup.sh demo` (freecadcmd tools/main_job.py):
 # the whole pipeline on the bundled example part, results under out/. Today the pipeline ends at
-# the centroidal axis; each stage added to the product extends this job.
+# the decomposition into sub-components; each stage added to the product extends this job.
 #   MAS_EXAMPLE  the part (default examples/bracket.step)
 #   MAS_OUT      the output folder (default out/)
 import json
@@ -54,12 +54,24 @@ def main():
     with open(os.path.join(out, "axis.json"), "w") as f:
         json.dump(axis_doc, f, indent=1)
     breaks = sum(1 for link in axis.links if link.is_break)
-    # The same as a FreeCAD document: the part with parametric Sections and CentroidalAxis objects.
+    # The sub-components (paper Sec. 4.1) along that axis, each also as a STEP file.
+    start = time.perf_counter()
+    parts = mas.decompose(shape, axis=axis)
+    decompose_seconds = time.perf_counter() - start
+    for i, component in enumerate(parts):
+        component.shape.exportStep(os.path.join(out, "component_%03d.step" % (i + 1)))
+    with open(os.path.join(out, "decomposition.json"), "w") as f:
+        json.dump(dict(parts.to_dict(), file=os.path.basename(example),
+                       seconds=decompose_seconds), f, indent=1)
+    # The same as a FreeCAD document: the part with parametric Sections, CentroidalAxis and
+    # Decomposition objects (and its Component objects).
     doc = FreeCAD.newDocument("MainJob")
     part = doc.addObject("Part::Feature", "Bracket")
     part.Shape = shape
-    objects = [mas.make_sections(part, normal=(0, 0, 1), step=step, doc=doc),
-               mas.make_centroidal_axis(part, doc=doc)]
+    axis_object = mas.make_centroidal_axis(part, doc=doc)
+    objects = [mas.make_sections(part, normal=(0, 0, 1), step=step, doc=doc), axis_object]
+    doc.recompute()
+    objects.append(mas.make_decomposition(part, axis=axis_object, doc=doc))
     doc.recompute()
     for obj in objects:
         if obj.State and "Invalid" in obj.State:
@@ -69,6 +81,11 @@ def main():
                                                                 1e3 * seconds, out))
     print("main job: centroidal axis in %.1f ms: %d nodes, %d branches, %d break links"
           % (1e3 * axis_seconds, len(axis.nodes), len(axis.branches), breaks))
+    print("main job: %d sub-components in %.1f ms: %s"
+          % (len(parts), 1e3 * decompose_seconds,
+             ", ".join("%s along (%g, %g, %g) %.0f mm3" % (c.rule, c.build_direction.x,
+                                                       c.build_direction.y, c.build_direction.z,
+                                                       c.volume) for c in parts)))
     print("main job: done")
 
 

@@ -150,12 +150,15 @@ class Decomposition:
     A sequence: ``len(d)``, ``d[i]``, ``for c in d``. Attributes: ``components`` (the list of
     ``Component``), ``axis`` (the ``CentroidalAxis`` it followed), ``part_volume`` (mm³, the
     part's; the components' volumes add up to it), ``params`` (the decomposition's parameters:
-    face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback).
+    face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback),
+    ``notes`` (one line per axis branch that asked for a cut and got none: why, and which
+    component kept its material).
     """
 
     def __init__(self, data, axis, params):
         self.components = [Component(c) for c in data["components"]]
         self.part_volume = data["part_volume_mm3"]
+        self.notes = list(data["notes"])
         self.axis = axis
         self.params = params
 
@@ -176,13 +179,14 @@ class Decomposition:
         """JSON-ready plain data in the layout of ``multiaxis-slicer decompose FILE --json``
         (without its "file"): kind, part_volume_mm3, axis (step_mm, nodes, branches), components
         [{parent, build_direction, has_base_face, base_origin, base_normal, branch, break_link,
-        rule, volume_mm3}]."""
+        rule, volume_mm3}], notes."""
         return {
             "kind": "solid",
             "part_volume_mm3": self.part_volume,
             "axis": {"step_mm": self.axis.params["step_mm"], "nodes": len(self.axis.nodes),
                      "branches": len(self.axis.branches)},
             "components": [c.to_dict() for c in self.components],
+            "notes": list(self.notes),
         }
 
     def __repr__(self):

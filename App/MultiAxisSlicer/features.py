@@ -350,6 +350,9 @@ class DecompositionFeature(_EngineFeature):
                       _OUTPUT)
         _add_property(obj, "App::PropertyLength", "UsedStep", result,
                       "The axis step used", 0.0, _OUTPUT)
+        _add_property(obj, "App::PropertyStringList", "Notes", result,
+                      "Axis branches that got no cut, why, and where their material stayed", None,
+                      _OUTPUT)
 
     @staticmethod
     def recompute(obj):
@@ -383,6 +386,9 @@ class DecompositionFeature(_EngineFeature):
         obj.Volumes = [c.volume for c in result]
         obj.PartVolume = result.part_volume
         obj.UsedStep = result.axis.params["step_mm"]
+        obj.Notes = result.notes
+        for note in result.notes:
+            FreeCAD.Console.PrintWarning("{}: {}\n".format(obj.Label, note))
         # ComponentCount after the lists and before Shape: the view provider colours the faces
         # per component when the Shape changes.
         obj.ComponentCount = len(result)

@@ -374,8 +374,12 @@ int run_decompose(const std::vector<std::string>& args) {
             if (!step_files[i].empty()) out << ", \"step_file\": " << quoted(step_files[i]);
             out << "}";
         }
+        out << "\n  ],\n  \"notes\": [";
+        for (std::size_t i = 0; i < d.notes.size(); ++i)
+            out << (i ? ", " : "") << "\n    " << quoted(d.notes[i]);
         out << "\n  ]\n}\n";
     } else {
+        for (const auto& note : d.notes) out << "# note: " << note << "\n";
         out << "# " << a.file << ": " << d.components.size() << " components, axis step "
             << num(axis.params.step_mm) << " mm\n# component parent rule build_direction volume_mm3"
             << (a.has("--step-dir") ? " step_file" : "") << "\n";

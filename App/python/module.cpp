@@ -797,9 +797,12 @@ bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double fa
         out["volume_mm3"] = c.volume_mm3;
         components.append(out);
     }
+    bp::list notes;
+    for (const auto& n : d.notes) notes.append(n);
     bp::dict result;
     result["components"] = components;
     result["part_volume_mm3"] = part_volume;
+    result["notes"] = notes;
     return result;
 }
 
@@ -815,7 +818,8 @@ void bind_decompose() {
         "components [{solid (Shape), parent (-1 for the root), build_direction, has_base_face, "
         "base_face (Shape or None), base_origin, base_normal, branch, break_link, rule ('root' | "
         "'planar_face' | 'section_plane'), volume_mm3}] in tree order (a father before its "
-        "children), part_volume_mm3. EngineError not_a_solid / multiple_solids / empty_input "
+        "children), part_volume_mm3, notes (branches that got no cut, and why). EngineError "
+        "not_a_solid / multiple_solids / empty_input "
         "for the shape, invalid_argument for bad parameters, a malformed axis or an axis of "
         "another part, geometry_failure when OCCT fails on the input.");
 }

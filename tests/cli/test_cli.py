@@ -184,6 +184,7 @@ class CliSections(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         doc = json.loads(r.stdout)
         self.assertAlmostEqual(doc["part_volume_mm3"], 44000.0, places=6)
+        self.assertEqual(doc["notes"], [])
         root, arm = doc["components"]
         self.assertEqual((root["parent"], root["rule"], root["has_base_face"]), (-1, "root", False))
         self.assertEqual((arm["parent"], arm["rule"], arm["has_base_face"]), (0, "planar_face", True))
@@ -198,6 +199,17 @@ class CliSections(unittest.TestCase):
         self.assertEqual(len(back["sections"]), 5)
         for sec in back["sections"]:
             self.assertAlmostEqual(sec["area_mm2"], 400.0, places=6)
+
+    def test_decompose_says_which_branch_got_no_cut(self):
+        # A 95 degree concavity minimum rules out the L's 90 degree edge; without the fallback the
+        # arm stays in the column, and the output says so.
+        r = run("decompose", os.path.join(DATA, "l_block.brep"), "--step", "2.5",
+                "--concave-angle", "95", "--no-fallback")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        notes = [l for l in r.stdout.splitlines() if l.startswith("# note:")]
+        self.assertEqual(len(notes), 1)
+        self.assertIn("branch 1 (along 1,0,0)", notes[0])
+        self.assertIn("stays in component 0", notes[0])
 
     def test_decompose_bad_input(self):
         self.expect_error(["decompose", self.write("box.stl", box_stl(10, 10, 10))], 1,

@@ -349,6 +349,10 @@ TEST(Decompose, WithoutFallbackARoundBossStaysInItsFather) {
     const auto d = mas::decompose(part, axis_of(part, 2.5), p);
     ASSERT_EQ(d.components.size(), 1u);
     expect_invariants(d, part);
+    // Not silently: the boss's branch is named, with why and where its material went.
+    ASSERT_EQ(d.notes.size(), 1u);
+    EXPECT_NE(d.notes[0].find("fallback is off"), std::string::npos) << d.notes[0];
+    EXPECT_NE(d.notes[0].find("stays in component 0"), std::string::npos) << d.notes[0];
 }
 
 TEST(Decompose, SourceShapeIsUnchanged) {

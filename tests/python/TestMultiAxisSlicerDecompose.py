@@ -165,9 +165,14 @@ class TestDecomposeApi(DecomposeTest):
         # plane where the arm's march started, x = 20; without the fallback the L stays whole.
         d = mas.decompose(l_block(), step=2.5, concave_angle=95.0)
         self.assertEqual([c.rule for c in d], ["root", "section_plane"])
+        self.assertEqual(d.notes, [])
         assert_box(self, d[1].shape, (20, 0, 40), (70, 20, 60))
         d = mas.decompose(l_block(), step=2.5, concave_angle=95.0, section_plane_fallback=False)
         self.assertEqual(len(d), 1)
+        # The arm got no cut: said, with why and where its material stayed.
+        self.assertEqual(len(d.notes), 1)
+        self.assertIn("fallback is off", d.notes[0])
+        self.assertIn("stays in component 0", d.notes[0])
         self.assertEqual(d.params["section_plane_fallback"], False)
         for name, kwargs in (("face_angle", dict(face_angle=90.0)),
                              ("face_angle", dict(face_angle=float("nan"))),
@@ -199,7 +204,8 @@ class TestDecomposeApi(DecomposeTest):
         d = mas.decompose(l_block(), step=2.5)
         data = d.to_dict()
         self.assertEqual(json.loads(json.dumps(data, allow_nan=False)), data)
-        self.assertEqual(set(data), {"kind", "part_volume_mm3", "axis", "components"})
+        self.assertEqual(set(data), {"kind", "part_volume_mm3", "axis", "components", "notes"})
+        self.assertEqual(data["notes"], [])
         self.assertEqual(data["axis"], {"step_mm": 2.5, "nodes": 44, "branches": 2})
         self.assertEqual(len(data["components"]), 2)
         for c in data["components"]:

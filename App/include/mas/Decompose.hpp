@@ -47,6 +47,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "mas/CentroidalAxis.hpp"
@@ -92,6 +93,9 @@ const char* to_string(Component::SplitRule rule);
 
 struct Decomposition {
     std::vector<Component> components;  // tree order: a father before its children; [0] is root
+    // One line per branch that asked for a cut and got none (no splitting plane, a split OCCT
+    // could not perform, no piece holding the branch), saying where its material stayed.
+    std::vector<std::string> notes;
 };
 
 // Splits `solid` along `axis` (computed for this solid). Throws mas::Error: NotASolid /

@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "ShapeImpl.hpp"
@@ -411,6 +412,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     check_params(params);
     const Shape checked = input.single_solid("decompose");
     std::vector<Work> work;
+    std::vector<std::string> notes;  // branches that asked for a cut and got none
     try {
         // Work on a copy: OCCT's algorithms must never touch the caller's shape.
         const TopoDS_Shape solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
@@ -459,6 +461,13 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             return false;
         };
 
+        const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
+            const Vector3d& d = axis.branches[b].direction;
+            std::ostringstream line;
+            line << "branch " << b << " (along " << d.x() << "," << d.y() << "," << d.z()
+                 << "): " << why << "; its material stays in component " << kept_in;
+            notes.push_back(line.str());
+        };
         for (std::size_t b = 0; b < nb; ++b) {
             if (holder[b] >= 0) continue;  // cut with an earlier sibling
             if (throw_on_cancel) throw_on_cancel();
@@ -473,6 +482,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             const int father = father_of(b);
             if (father < 0) {
                 holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
+                note(b, "its first node lies in no component", holder[b]);
                 continue;
             }
             holder[b] = father;
@@ -480,7 +490,15 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             TopTools_IndexedDataMapOfShapeListOfShape e2f;
             TopExp::MapShapesAndAncestors(fs, TopAbs_EDGE, TopAbs_FACE, e2f);
             Plan p;
-            if (!decomposer.plan(b, fs, e2f, p)) continue;
+            if (!decomposer.plan(b, fs, e2f, p)) {
+                note(b,
+                     params.section_plane_fallback
+                         ? "no splitting plane could be placed"
+                         : "no planar face meets the three criteria and the section-plane "
+                           "fallback is off",
+                     father);
+                continue;
+            }
 
             // Later siblings in the same father that choose the same plane are cut in the same
             // split: one Boolean instead of one per sibling (a plate with many posts), with the
@@ -503,14 +521,21 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
 
             std::vector<Child> children;
             TopoDS_Shape father_new;
-            if (!split_by_plane(fs, p.point, p.normal, inner, children, father_new)) continue;
+            if (!split_by_plane(fs, p.point, p.normal, inner, children, father_new)) {
+                for (std::size_t g : group)
+                    note(g, "OCCT could not split its father at the chosen plane", father);
+                continue;
+            }
             work[std::size_t(father)].solid = father_new;
             for (std::size_t k = 0; k < group.size(); ++k) {
                 const std::size_t g = group[k];
                 if (children[k].solid.IsNull()) {
                     // No piece of its own: left for its own pass (its material may now sit in a
                     // sibling's piece or back in the father).
-                    if (k > 0) holder[g] = -1;
+                    if (k > 0)
+                        holder[g] = -1;
+                    else
+                        note(g, "the split left no piece holding its first node", father);
                     continue;
                 }
                 Work child;
@@ -539,6 +564,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             w.c.volume_mm3 = volume_of(w.solid);
             out.components.push_back(w.c);
         }
+        out.notes = std::move(notes);
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
     }

@@ -12,7 +12,6 @@ import os
 import shutil
 import subprocess
 import tempfile
-import textwrap
 import unittest
 
 import FreeCAD
@@ -21,33 +20,11 @@ import Part
 
 import MultiAxisSlicer as mas
 import MultiAxisSlicer.features as features
-
-V = FreeCAD.Vector
-
-
-def box_10_20_30():
-    """A 10 x 20 x 30 mm box with its corner at (1, 2, 3)."""
-    return Part.makeBox(10, 20, 30, V(1, 2, 3))
+import MultiAxisSlicerTestSupport as support
+from MultiAxisSlicerTestSupport import V, box_10_20_30, fc_mesh
 
 
-def fc_mesh(shape, deflection=0.1):
-    return Mesh.Mesh(shape.tessellate(deflection))
-
-
-class ApiTest(unittest.TestCase):
-    def assertVectorAlmostEqual(self, a, b, places=9):
-        for i in range(3):
-            self.assertAlmostEqual(a[i], b[i], places=places, msg="{} != {}".format(a, b))
-
-    def assertRaisesEngineError(self, code, func, *args, **kwargs):
-        with self.assertRaises(mas.EngineError) as cm:
-            func(*args, **kwargs)
-        self.assertEqual(cm.exception.code, code, str(cm.exception))
-        self.assertTrue(str(cm.exception), "an engine error needs a message")
-        return cm.exception
-
-
-class TestSectionsOfPlanarParts(ApiTest):
+class TestSectionsOfPlanarParts(support.EngineTestCase):
     def test_engine_is_available(self):
         self.assertTrue(mas.engine_available(), mas.engine_missing_message())
         self.assertEqual(mas.engine_missing_message(), "")
@@ -126,7 +103,7 @@ class TestSectionsOfPlanarParts(ApiTest):
             self.assertVectorAlmostEqual(e.centroid, m.centroid, places=6)
 
 
-class TestSectionsOfCurvedParts(ApiTest):
+class TestSectionsOfCurvedParts(support.EngineTestCase):
     def test_cylinder_sections_lie_within_the_deflection_bound(self):
         r, h = 10.0, 20.0
         cylinder = Part.makeCylinder(r, h)
@@ -155,7 +132,7 @@ class TestSectionsOfCurvedParts(ApiTest):
         self.assertVectorAlmostEqual(s.centroid, (0, 0, 10), places=6)
 
 
-class TestInputs(ApiTest):
+class TestInputs(support.EngineTestCase):
     def test_mesh_input_gives_the_same_sections_as_the_shape(self):
         shape = box_10_20_30()
         from_shape = mas.sections(shape, step=5.0)
@@ -214,7 +191,7 @@ class TestInputs(ApiTest):
         self.assertEqual(mesh.Topology, before)
 
 
-class TestBadInput(ApiTest):
+class TestBadInput(support.EngineTestCase):
     def test_none_is_a_type_error(self):
         with self.assertRaisesRegex(TypeError, "None"):
             mas.sections(None)
@@ -314,7 +291,7 @@ class TestBadInput(ApiTest):
             mas.exact_sections(box_10_20_30(), [(0, 0, 10)])
 
 
-class TestSourceIsNeverModified(ApiTest):
+class TestSourceIsNeverModified(support.EngineTestCase):
     def test_shapes_are_unchanged(self):
         for shape in (box_10_20_30(), Part.makeCylinder(5, 10), Part.makePlane(10, 10)):
             shape.Placement = FreeCAD.Placement(V(1, 2, 3), FreeCAD.Rotation(V(1, 1, 0), 30))
@@ -336,30 +313,13 @@ class TestSourceIsNeverModified(ApiTest):
         self.assertEqual(mesh.Topology, before)
 
 
-def _write(folder, name, text):
-    path = os.path.join(folder, name)
-    with open(path, "w") as f:
-        f.write(textwrap.dedent(text))
-    return path
-
-
-class TestWithoutFreeCAD(ApiTest):
+class TestWithoutFreeCAD(support.EngineTestCase):
     """The package in a plain Python 3.11 script: with the engine (tuples instead of vectors) and
     without it (importing works, the functions name the build command)."""
 
-    def run_python(self, path_entry, code):
-        folder = tempfile.mkdtemp(prefix="mas_plain_")
-        try:
-            script = _write(folder, "script.py", code)
-            env = dict(os.environ, PYTHONPATH=path_entry)
-            return subprocess.run(["/usr/bin/python3.11", script], env=env, capture_output=True,
-                                  text=True, timeout=120)
-        finally:
-            shutil.rmtree(folder)
-
     def test_plain_python_uses_tuples(self):
-        app_dir = os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__)))
-        result = self.run_python(app_dir, """
+        with support.scratch_folder("mas_plain_") as folder:
+            result = support.run_plain_python(folder, """
             import sys
             assert "FreeCAD" not in sys.modules
             import MultiAxisSlicer as mas
@@ -367,7 +327,7 @@ class TestWithoutFreeCAD(ApiTest):
             t = [0,2,1, 0,3,2, 4,5,6, 4,6,7, 0,1,5, 0,5,4, 1,2,6, 1,6,5, 2,3,7, 2,7,6, 3,0,4, 3,4,7]
             [s] = mas.sections(mas._engine.Mesh.from_arrays(v, t), step=1.0)
             print("RESULT", s.area, s.centroid, type(s.centroid).__name__)
-        """)
+            """)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("RESULT 1.0 (0.5, 0.5, 0.5) tuple", result.stdout)
 
@@ -379,14 +339,14 @@ class TestWithoutFreeCAD(ApiTest):
             for name in os.listdir(os.path.dirname(mas.__file__)):
                 if name.endswith(".py"):
                     shutil.copy(os.path.join(os.path.dirname(mas.__file__), name), package)
-            result = self.run_python(folder, """
+            result = support.run_plain_python(folder, """
                 import MultiAxisSlicer as mas
                 assert not mas.engine_available()
                 try:
                     mas.sections("part.step")
                 except mas.EngineUnavailableError as e:
                     print("MESSAGE", e)
-            """)
+            """, path_entry=folder)
         finally:
             shutil.rmtree(folder)
         self.assertEqual(result.returncode, 0, result.stderr)
@@ -395,7 +355,7 @@ class TestWithoutFreeCAD(ApiTest):
         self.assertIn("_engine", result.stdout)
 
 
-class TestSectionsObject(ApiTest):
+class TestSectionsObject(support.EngineTestCase):
     def setUp(self):
         self.doc = FreeCAD.newDocument("MasSections")
         self.box = self.doc.addObject("Part::Box", "Box")
@@ -527,7 +487,7 @@ class TestSectionsObject(ApiTest):
         self.assertIn("Source is not set", obj.getStatusString())
 
     def test_failing_recompute_prints_the_message_without_a_traceback(self):
-        script = _write(self.folder, "fail.py", """
+        script = support.write_dedented(self.folder, "fail.py", """
             import FreeCAD, Part
             import MultiAxisSlicer as mas
             doc = FreeCAD.newDocument("Fail")

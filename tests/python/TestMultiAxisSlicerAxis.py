@@ -13,7 +13,6 @@ import os
 import shutil
 import subprocess
 import tempfile
-import textwrap
 import unittest
 
 import FreeCAD
@@ -22,29 +21,13 @@ import Part
 
 import MultiAxisSlicer as mas
 import MultiAxisSlicer.features as features
+import MultiAxisSlicerTestSupport as support
+from MultiAxisSlicerTestSupport import V, box_10_20_30, fc_mesh, l_block
 
-V = FreeCAD.Vector
 EPS = 0.001  # mm, the default eps: a march's first plane lies this far inside the part
 # The arm's first node is 0.001 mm past the column, the column node it hangs on 0.001 mm above
 # z = 50: the connecting link turns a hair more than 90 degrees from the column.
 L_BREAK_TURN = 90.0 + math.degrees(math.atan2(0.001, 10.001))
-
-
-def box_10_20_30():
-    """A 10 x 20 x 30 mm box with its corner at (1, 2, 3)."""
-    return Part.makeBox(10, 20, 30, V(1, 2, 3))
-
-
-def l_block():
-    """Fig. 7's L: a 20 x 20 x 60 column with a 50 mm arm [20, 70] x [0, 20] x [40, 60] at its
-    top, one solid with no seam faces."""
-    column = Part.makeBox(20, 20, 60)
-    arm = Part.makeBox(50, 20, 20, V(20, 0, 40))
-    return column.fuse(arm).removeSplitter()
-
-
-def fc_mesh(shape, deflection=0.1):
-    return Mesh.Mesh(shape.tessellate(deflection))
 
 
 def open_box_mesh():
@@ -53,18 +36,7 @@ def open_box_mesh():
     return mesh
 
 
-class AxisTest(unittest.TestCase):
-    def assertVectorAlmostEqual(self, a, b, places=9):
-        for i in range(3):
-            self.assertAlmostEqual(a[i], b[i], places=places, msg="{} != {}".format(a, b))
-
-    def assertRaisesEngineError(self, code, func, *args, **kwargs):
-        with self.assertRaises(mas.EngineError) as cm:
-            func(*args, **kwargs)
-        self.assertEqual(cm.exception.code, code, str(cm.exception))
-        self.assertTrue(str(cm.exception), "an engine error needs a message")
-        return cm.exception
-
+class AxisTest(support.EngineTestCase):
     def check_l_block_axis(self, axis):
         """The engine test's expectations for the L at step 2.5 mm."""
         self.assertEqual(len(axis.branches), 2)
@@ -343,19 +315,10 @@ class TestAxisBadInput(AxisTest):
         self.assertEqual(mesh.Topology, topology)
 
 
-def _write(folder, name, text):
-    path = os.path.join(folder, name)
-    with open(path, "w") as f:
-        f.write(textwrap.dedent(text))
-    return path
-
-
 class TestAxisWithoutFreeCAD(AxisTest):
     def test_plain_python_uses_tuples(self):
-        app_dir = os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__)))
-        folder = tempfile.mkdtemp(prefix="mas_plain_axis_")
-        try:
-            script = _write(folder, "script.py", """
+        with support.scratch_folder("mas_plain_axis_") as folder:
+            result = support.run_plain_python(folder, """
                 import json, sys
                 assert "FreeCAD" not in sys.modules
                 import MultiAxisSlicer as mas
@@ -368,11 +331,6 @@ class TestAxisWithoutFreeCAD(AxisTest):
                       axis.branches[0].direction)
                 json.dumps(axis.to_dict())
             """)
-            env = dict(os.environ, PYTHONPATH=app_dir)
-            result = subprocess.run(["/usr/bin/python3.11", script], env=env, capture_output=True,
-                                    text=True, timeout=120)
-        finally:
-            shutil.rmtree(folder)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("RESULT 4 (0.5, 0.5, 1.001) tuple (0.0, 0.0, 1.0)", result.stdout)
 
@@ -543,7 +501,7 @@ class TestCentroidalAxisObject(AxisTest):
         self.assertEqual([o.Name for o in self.doc.Objects], names)
 
     def test_failing_recompute_prints_the_message_without_a_traceback(self):
-        script = _write(self.folder, "fail.py", """
+        script = support.write_dedented(self.folder, "fail.py", """
             import FreeCAD, Mesh, Part
             import MultiAxisSlicer as mas
             doc = FreeCAD.newDocument("Fail")

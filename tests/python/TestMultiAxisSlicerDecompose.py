@@ -12,7 +12,6 @@ import os
 import shutil
 import subprocess
 import tempfile
-import textwrap
 import unittest
 
 import FreeCAD
@@ -20,21 +19,11 @@ import Mesh
 import Part
 
 import MultiAxisSlicer as mas
+import MultiAxisSlicerTestSupport as support
+from MultiAxisSlicerTestSupport import V, l_block, t_block
 import MultiAxisSlicer.features as features
 
-V = FreeCAD.Vector
 REL = 1e-6  # relative volume tolerance: OCCT's volumes of exact planar solids
-
-
-def l_block():
-    """Fig. 7's L: a 20 x 20 x 60 column with a 50 mm arm [20, 70] x [0, 20] x [40, 60]."""
-    return Part.makeBox(20, 20, 60).fuse(Part.makeBox(50, 20, 20, V(20, 0, 40))).removeSplitter()
-
-
-def t_block():
-    """A T: column [0,20]x[0,20]x[0,60], crossbar [-30,50]x[0,20]x[40,60] reaching both ways."""
-    return Part.makeBox(20, 20, 60).fuse(
-        Part.makeBox(80, 20, 20, V(-30, 0, 40))).removeSplitter()
 
 
 def assert_box(test, shape, lo, hi, tol=1e-6):
@@ -44,17 +33,7 @@ def assert_box(test, shape, lo, hi, tol=1e-6):
         test.assertAlmostEqual(a, b, delta=tol, msg="{} != {}".format(got, (lo, hi)))
 
 
-class DecomposeTest(unittest.TestCase):
-    def assertVectorAlmostEqual(self, a, b, places=9):
-        for i in range(3):
-            self.assertAlmostEqual(a[i], b[i], places=places, msg="{} != {}".format(a, b))
-
-    def assertRaisesEngineError(self, code, func, *args, **kwargs):
-        with self.assertRaises(mas.EngineError) as cm:
-            func(*args, **kwargs)
-        self.assertEqual(cm.exception.code, code, str(cm.exception))
-        return cm.exception
-
+class DecomposeTest(support.EngineTestCase):
     def check_l_block(self, d):
         """The column is the root, the arm its child built +X from the base face x = 20."""
         self.assertEqual(len(d), 2)
@@ -297,21 +276,12 @@ class TestDecomposeBadInput(DecomposeTest):
         self.assertEqual(shape.exportBrepToString(), before)
 
 
-def _write(folder, name, text):
-    path = os.path.join(folder, name)
-    with open(path, "w") as f:
-        f.write(textwrap.dedent(text))
-    return path
-
-
 class TestDecomposeWithoutFreeCAD(DecomposeTest):
     def test_plain_python_gives_engine_shapes_and_brep_text(self):
-        app_dir = os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__)))
-        folder = tempfile.mkdtemp(prefix="mas_plain_dec_")
-        try:
+        with support.scratch_folder("mas_plain_dec_") as folder:
             path = os.path.join(folder, "l.brep")
             l_block().exportBrep(path)
-            script = _write(folder, "script.py", """
+            result = support.run_plain_python(folder, """
                 import json, sys
                 assert "FreeCAD" not in sys.modules
                 import MultiAxisSlicer as mas
@@ -322,11 +292,6 @@ class TestDecomposeWithoutFreeCAD(DecomposeTest):
                       round(arm.volume, 6))
                 json.dumps(d.to_dict())
             """.format(path))
-            env = dict(os.environ, PYTHONPATH=app_dir)
-            result = subprocess.run(["/usr/bin/python3.11", script], env=env, capture_output=True,
-                                    text=True, timeout=120)
-        finally:
-            shutil.rmtree(folder)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("RESULT 2 (1.0, 0.0, -0.0) Shape True True 20000.0", result.stdout)
 
@@ -500,7 +465,7 @@ class TestDecompositionObject(DecomposeTest):
         self.assertEqual([o.Name for o in self.doc.Objects], names)
 
     def test_failing_recompute_prints_the_message_without_a_traceback(self):
-        script = _write(self.folder, "fail.py", """
+        script = support.write_dedented(self.folder, "fail.py", """
             import FreeCAD, Mesh, Part
             import MultiAxisSlicer as mas
             doc = FreeCAD.newDocument("Fail")

@@ -1,0 +1,81 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""What the freecadcmd test modules share: test parts, assertions, running plain Python."""
+
+import contextlib
+import os
+import shutil
+import subprocess
+import tempfile
+import textwrap
+import unittest
+
+import FreeCAD
+import Mesh
+import Part
+
+import MultiAxisSlicer as mas
+
+V = FreeCAD.Vector
+
+
+def box_10_20_30():
+    """A 10 x 20 x 30 mm box with its corner at (1, 2, 3)."""
+    return Part.makeBox(10, 20, 30, V(1, 2, 3))
+
+
+def l_block():
+    """Fig. 7's L: a 20 x 20 x 60 column with a 50 mm arm [20, 70] x [0, 20] x [40, 60] at its
+    top, one solid with no seam faces."""
+    return Part.makeBox(20, 20, 60).fuse(Part.makeBox(50, 20, 20, V(20, 0, 40))).removeSplitter()
+
+
+def t_block():
+    """A T: column [0,20]x[0,20]x[0,60], crossbar [-30,50]x[0,20]x[40,60] reaching both ways."""
+    return Part.makeBox(20, 20, 60).fuse(
+        Part.makeBox(80, 20, 20, V(-30, 0, 40))).removeSplitter()
+
+
+def fc_mesh(shape, deflection=0.1):
+    return Mesh.Mesh(shape.tessellate(deflection))
+
+
+class EngineTestCase(unittest.TestCase):
+    def assertVectorAlmostEqual(self, a, b, places=9):
+        for i in range(3):
+            self.assertAlmostEqual(a[i], b[i], places=places, msg="{} != {}".format(a, b))
+
+    def assertRaisesEngineError(self, code, func, *args, **kwargs):
+        """Asserts func(*args, **kwargs) raises EngineError `code` with a message; returns it."""
+        with self.assertRaises(mas.EngineError) as cm:
+            func(*args, **kwargs)
+        self.assertEqual(cm.exception.code, code, str(cm.exception))
+        self.assertTrue(str(cm.exception), "an engine error needs a message")
+        return cm.exception
+
+
+@contextlib.contextmanager
+def scratch_folder(prefix):
+    folder = tempfile.mkdtemp(prefix=prefix)
+    try:
+        yield folder
+    finally:
+        shutil.rmtree(folder)
+
+
+def write_dedented(folder, name, text):
+    """Writes `text`, dedented, to folder/name and returns the path."""
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(textwrap.dedent(text))
+    return path
+
+
+def run_plain_python(folder, script, path_entry=None):
+    """Runs `script` (dedented) from `folder` with FreeCAD's interpreter but without FreeCAD,
+    `path_entry` (default: the add-on's App folder) on the path; returns the CompletedProcess."""
+    path = write_dedented(folder, "script.py", script)
+    if path_entry is None:
+        path_entry = os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__)))
+    env = dict(os.environ, PYTHONPATH=path_entry)
+    return subprocess.run(["/usr/bin/python3.11", path], env=env, capture_output=True, text=True,
+                          timeout=120)

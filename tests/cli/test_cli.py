@@ -211,6 +211,12 @@ class CliSections(unittest.TestCase):
         self.assertIn("branch 1 (along 1,0,0)", notes[0])
         self.assertIn("stays in component 0", notes[0])
 
+    def test_a_solid_that_meshes_with_gaps_is_named_as_such(self):
+        elbow = os.path.join(DATA, "faulty_elbow.step")
+        for command in ("sections", "axis", "decompose"):
+            self.expect_error([command, elbow], 1, "geometry_failure", "tessellation of the solid",
+                              "open edges", "Check geometry")
+
     def test_decompose_bad_input(self):
         self.expect_error(["decompose", self.write("box.stl", box_stl(10, 10, 10))], 1,
                           "not_a_solid", "not a mesh")

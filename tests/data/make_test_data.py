@@ -24,3 +24,14 @@ print("test data written to", here)
 # two_boxes.step       two separate boxes in one file (several solids where one is expected)
 two = Part.makeCompound([Part.makeBox(10, 10, 10), Part.makeBox(10, 10, 10, V(20, 0, 0))])
 two.exportStep(os.path.join(here, "two_boxes.step"))
+
+# faulty_elbow.step     a hollow pipe elbow whose inner tube starts 0.5 mm off the inner torus:
+# a valid OCCT solid whose tessellation by BRepMesh is not closed (a bad-input case)
+path_r = 40
+outer = Part.makeTorus(path_r, 10, V(0, 0, 0), V(0, 1, 0), 0, 360, 90)
+outer = Part.makeCylinder(10, 40, V(path_r, 0, -40), V(0, 0, 1)).fuse(outer)
+outer = outer.fuse(Part.makeCylinder(10, 40, V(0, 0, path_r), V(-1, 0, 0)))
+inner = Part.makeTorus(path_r, 7, V(0, 0, 0), V(0, 1, 0), 0, 360, 90)
+inner = inner.fuse(Part.makeCylinder(7, 41, V(path_r, 0, -40.5), V(0, 0, 1)))
+inner = inner.fuse(Part.makeCylinder(7, 41, V(0.5, 0, path_r), V(-1, 0, 0)))
+outer.cut(inner).removeSplitter().exportStep(os.path.join(here, "faulty_elbow.step"))

@@ -209,7 +209,19 @@ TriangleMesh occ::tessellate(const Shape& shape, const TessellationParams& param
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message(what, e));
     }
-    require_closed_mesh(mesh, what);
+    try {
+        require_closed_mesh(mesh, what);
+    } catch (const Error& e) {
+        if (e.code() != ErrorCode::OpenMesh) throw;
+        // The solid itself is closed (single_solid checked it): the gaps are in OCCT's meshing,
+        // which happens on faulty geometry (faces that meet without sharing their edges).
+        const MeshReport r = check_mesh(mesh);
+        throw Error(ErrorCode::GeometryFailure,
+                    what + ": OCCT's tessellation of the solid has " +
+                        std::to_string(r.boundary_edges) +
+                        " open edges; its faces may not join properly (check it with Part, "
+                        "Check geometry) or another deflection may mesh it");
+    }
     return mesh;
 }
 

@@ -6,6 +6,7 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
@@ -14,6 +15,7 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <cmath>
+#include <gp_Trsf.hxx>
 #include <string>
 
 #include "mas/CentroidalAxis.hpp"
@@ -287,6 +289,28 @@ TEST(Decompose, HingeLugsAndBossesAreBuiltSidewaysInOppositeDirections) {
     }
     EXPECT_EQ(lugs, 2);
     EXPECT_EQ(bosses, 2);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, BladesOnAHubAreCutOffOverThemselvesNotThroughTheHub) {
+    // A hub (radius 15, height 30) with a blade along +X and one turned 60 degrees: the +X blade's
+    // side face y = 2 is parallel to the other blade's branch (+Y) but lies nowhere over it, so
+    // it must not cut the hub in half; each blade is a child of the whole hub.
+    TopoDS_Shape hub = occ_cylinder(Vector3d(0, 0, 0), Vector3d(0, 0, 1), 15, 30);
+    for (double degrees : {0.0, 60.0}) {
+        TopoDS_Shape blade = occ_box(10, -2, 5, 40, 4, 20);
+        gp_Trsf turn;
+        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees * M_PI / 180.0);
+        hub = fuse(hub, BRepBuilderAPI_Transform(blade, turn, true).Shape());
+    }
+    const auto part = from_occt(hub);
+    const auto d = mas::decompose(part, axis_of(part, 1.5));
+    ASSERT_EQ(d.components.size(), 3u);
+    for (std::size_t i = 1; i < 3; ++i) EXPECT_EQ(d.components[i].parent, 0);
+    const auto root = bounds(d.components[0].solid);
+    EXPECT_LE(root.min().y(), -15.0 + 1e-6);
+    EXPECT_GE(root.max().y(), 15.0 - 1e-6);
+    EXPECT_TRUE(d.notes.empty());
     expect_invariants(d, part);
 }
 

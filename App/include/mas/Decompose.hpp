@@ -14,7 +14,9 @@
 //   face_angle_deg of +-D (the paper says L_pre; D is read instead, for the reason above), (2)
 //   with a concave edge on their boundary (interior angle over 180 + concave_angle_deg degrees,
 //   from the two faces' normals at the edge's midpoint), (3) meeting Eq. 5 along D: the outer
-//   wire's Proj_min or Proj_max along D lies in [D.Pos_start, D.Pos_end] (+- projection_tolerance).
+//   wire's Proj_min or Proj_max along D lies in [D.Pos_start, D.Pos_end] (+- projection_tolerance),
+//   and lying over the branch: seen along D, the face's box meets the branch's first section grown
+//   by a step (else a face of another feature, parallel to D, may cut through the father).
 //   The one whose plane lies nearest the junction (b's first plane minus half a step) wins.
 // - The father is split by the chosen face's whole plane. The child is the piece containing
 //   Pos_end, on the +D side; every other piece goes back into the father (fused, seams removed).

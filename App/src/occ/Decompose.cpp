@@ -32,6 +32,7 @@
 #include <string>
 
 #include "ShapeImpl.hpp"
+#include "mas/Section.hpp"
 
 namespace mas {
 
@@ -365,6 +366,13 @@ public:
         const double junction = first.offset - 0.5 * axis_.params.step_mm;
         double best = std::numeric_limits<double>::infinity();
         PlanarFace chosen;
+        // The branch's first section, seen along D (the node's plane has normal D), grown by a
+        // step: a splitting face must lie over it. Without this, the side face of one blade on a
+        // hub, parallel to another blade's branch, cut the hub in half.
+        const PlaneFrame frame(first.normal);
+        Eigen::AlignedBox2d reach = bounds(first.region);
+        reach.min().array() -= axis_.params.step_mm;
+        reach.max().array() += axis_.params.step_mm;
         for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {
             PlanarFace pf;
             if (!planar(TopoDS::Face(x.Current()), pf)) continue;
@@ -372,7 +380,12 @@ public:
             double lo, hi;
             projection_range(pf.face, D, lo, hi);
             const auto in_span = [&](double v) { return v >= lo_span - tol && v <= hi_span + tol; };
-            if (!in_span(lo) && !in_span(hi)) continue;              // (3)
+            if (!in_span(lo) && !in_span(hi)) continue;  // (3)
+            const Eigen::AlignedBox3d box = occ::tight_bounds(pf.face);
+            Eigen::AlignedBox2d across;
+            for (int corner = 0; corner < 8; ++corner)
+                across.extend(frame.to_2d(box.corner(Eigen::AlignedBox3d::CornerType(corner))));
+            if (!across.intersects(reach)) continue;                 // over the branch
             if (!has_concave_edge(pf, e2f, min_concave_)) continue;  // (2)
             const double d = std::abs(D.dot(pf.point) - junction);
             if (d < best) {

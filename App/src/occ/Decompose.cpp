@@ -369,8 +369,15 @@ public:
         // The branch's first section, seen along D (the node's plane has normal D), grown by a
         // step: a splitting face must lie over it. Without this, the side face of one blade on a
         // hub, parallel to another blade's branch, cut the hub in half.
+        // An axis handed over without its regions (from Python) gives a square around the
+        // centroid with the section's area, half again as wide.
         const PlaneFrame frame(first.normal);
         Eigen::AlignedBox2d reach = bounds(first.region);
+        if (first.region.outer.points.empty()) {
+            const Eigen::Vector2d c = frame.to_2d(first.position);
+            const Eigen::Vector2d half = Eigen::Vector2d::Constant(0.75 * std::sqrt(first.area));
+            reach = Eigen::AlignedBox2d(c - half, c + half);
+        }
         reach.min().array() -= axis_.params.step_mm;
         reach.max().array() += axis_.params.step_mm;
         for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {

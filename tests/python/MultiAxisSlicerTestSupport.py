@@ -2,6 +2,7 @@
 """What the freecadcmd test modules share: test parts, assertions, running plain Python."""
 
 import contextlib
+import json
 import os
 import shutil
 import subprocess
@@ -51,6 +52,34 @@ class EngineTestCase(unittest.TestCase):
         self.assertEqual(cm.exception.code, code, str(cm.exception))
         self.assertTrue(str(cm.exception), "an engine error needs a message")
         return cm.exception
+
+    def assertSameJson(self, a, b, where):
+        """Equal JSON-ready data; floats to 1e-12 relative (the program prints 15 digits)."""
+        if isinstance(a, dict):
+            self.assertEqual(set(a), set(b), where)
+            for k in a:
+                self.assertSameJson(a[k], b[k], where + "." + k)
+        elif isinstance(a, list):
+            self.assertEqual(len(a), len(b), where)
+            for i, (x, y) in enumerate(zip(a, b)):
+                self.assertSameJson(x, y, "{}[{}]".format(where, i))
+        elif isinstance(a, float) or isinstance(b, float):
+            self.assertAlmostEqual(a, b, delta=1e-12 * max(1.0, abs(b)), msg=where)
+        else:
+            self.assertEqual(a, b, where)
+
+    def cli_json(self, folder, *args):
+        """Runs the add-on's multiaxis-slicer with `args` and --json into `folder`; returns the
+        parsed output."""
+        addon = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__))))
+        program = os.path.join(addon, "multiaxis-slicer")
+        self.assertTrue(os.path.isfile(program), "no command-line program at " + program)
+        out = os.path.join(folder, "out.json")
+        result = subprocess.run([program, *args, "--json", out], capture_output=True, text=True,
+                                timeout=120)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(out) as f:
+            return json.load(f)
 
 
 @contextlib.contextmanager

@@ -199,39 +199,13 @@ class TestDecomposeApi(DecomposeTest):
         self.assertAlmostEqual(arm["volume_mm3"], 20000.0, delta=20000.0 * REL)
 
     def test_to_dict_matches_the_command_line_json(self):
-        addon = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(mas.__file__))))
-        program = os.path.join(addon, "multiaxis-slicer")
-        self.assertTrue(os.path.isfile(program), "no command-line program at " + program)
-        folder = tempfile.mkdtemp(prefix="mas_dec_cli_")
-        try:
+        with support.scratch_folder("mas_dec_cli_") as folder:
             path = os.path.join(folder, "t.brep")
-            out = os.path.join(folder, "decompose.json")
             t_block().exportBrep(path)
-            result = subprocess.run([program, "decompose", path, "--step", "2.5", "--json", out],
-                                    capture_output=True, text=True, timeout=120)
-            self.assertEqual(result.returncode, 0, result.stderr)
-            with open(out) as f:
-                cli = json.load(f)
+            cli = self.cli_json(folder, "decompose", path, "--step", "2.5")
             ours = mas.decompose(path, step=2.5).to_dict()
-        finally:
-            shutil.rmtree(folder)
         self.assertEqual(cli.pop("file"), path)
-
-        def same(a, b, where):  # the program prints 15 significant digits
-            if isinstance(a, dict):
-                self.assertEqual(set(a), set(b), where)
-                for k in a:
-                    same(a[k], b[k], where + "." + k)
-            elif isinstance(a, list):
-                self.assertEqual(len(a), len(b), where)
-                for i, (x, y) in enumerate(zip(a, b)):
-                    same(x, y, "{}[{}]".format(where, i))
-            elif isinstance(a, float) or isinstance(b, float):
-                self.assertAlmostEqual(a, b, delta=1e-12 * max(1.0, abs(b)), msg=where)
-            else:
-                self.assertEqual(a, b, where)
-
-        same(cli, ours, "decomposition")
+        self.assertSameJson(cli, ours, "decomposition")
 
 
 class TestDecomposeBadInput(DecomposeTest):

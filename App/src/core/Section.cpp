@@ -1,9 +1,11 @@
 // The cross-section kernel. For each group of planes sharing a normal:
 //   1. project every vertex on the normal once (h = n.v);
 //   2. each facet finds the planes its [hmin, hmax) spans by binary search over the sorted plane
-//      offsets and emits one segment per plane (PrusaSlicer's slice_mesh; Minetto et al. 2017);
-//      facets are processed in fixed chunks, counted first and then written into one array, so
-//      the work is parallel, needs no locks and the result does not depend on thread timing;
+//      offsets (PrusaSlicer's slice_mesh; Minetto et al. 2017). Facets are bucketed by the first
+//      plane they reach; planes are cut in fixed batches, in parallel, each batch gathering its
+//      facets from the buckets into reused per-thread buffers: bounded memory, no locks, and a
+//      result that does not depend on thread timing. Totals only (area, centroid) accumulate
+//      straight from the crossings per (facet chunk, plane), with no segments stored;
 //   3. per plane, segments are chained into loops through the mesh edges they cross (topological
 //      keys, never by comparing coordinates), and loops are grouped into regions with holes.
 // Degenerate case: a vertex exactly on a plane counts as above it (symbolic perturbation), so

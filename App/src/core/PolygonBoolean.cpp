@@ -2,8 +2,8 @@
 // are snapped to an integer grid of kScale units per mm; results come back as regions with holes.
 #include <clipper.hpp>
 #include <cmath>
-#include <limits>
 
+#include "ClipperConvert.hpp"
 #include "mas/Error.hpp"
 #include "mas/Polygon2.hpp"
 
@@ -11,50 +11,9 @@ namespace mas {
 
 namespace {
 
-// 1e-5 mm grid: exact enough for any deposition geometry, and parts up to ~15 m stay inside
-// Clipper's fast 32-bit-safe range (1.5e9 units) so its 64-bit products never overflow.
-constexpr double kScale = 1e5;
-
-ClipperLib::IntPoint to_int(const Eigen::Vector2d& p) {
-    if (!p.allFinite())
-        throw Error(ErrorCode::NonFiniteCoordinate,
-                    "polygon point has NaN or infinite coordinates");
-    constexpr double limit = 1e18;
-    if (std::abs(p.x() * kScale) > limit || std::abs(p.y() * kScale) > limit)
-        throw Error(ErrorCode::InvalidArgument, "polygon coordinates are too large");
-    return {static_cast<ClipperLib::cInt>(std::llround(p.x() * kScale)),
-            static_cast<ClipperLib::cInt>(std::llround(p.y() * kScale))};
-}
-
-ClipperLib::Path to_path(const Polygon2& polygon) {
-    ClipperLib::Path path;
-    path.reserve(polygon.points.size());
-    for (const auto& p : polygon.points) path.push_back(to_int(p));
-    return path;
-}
-
-ClipperLib::Paths to_paths(const Regions2& regions) {
-    ClipperLib::Paths paths;
-    for (const auto& r : regions) {
-        paths.push_back(to_path(r.outer));
-        // Force the orientation the region model implies (CCW outer, CW holes), whatever the
-        // caller stored, so that the non-zero fill rule reads holes as holes.
-        if (!ClipperLib::Orientation(paths.back())) ClipperLib::ReversePath(paths.back());
-        for (const auto& h : r.holes) {
-            paths.push_back(to_path(h));
-            if (ClipperLib::Orientation(paths.back())) ClipperLib::ReversePath(paths.back());
-        }
-    }
-    return paths;
-}
-
-Polygon2 from_path(const ClipperLib::Path& path) {
-    Polygon2 polygon;
-    polygon.points.reserve(path.size());
-    for (const auto& p : path)
-        polygon.points.emplace_back(double(p.X) / kScale, double(p.Y) / kScale);
-    return polygon;
-}
+using clipper_convert::from_path;
+using clipper_convert::kScale;
+using clipper_convert::to_paths;
 
 // Outer nodes of a PolyTree with their holes; islands inside holes become regions of their own.
 void collect(const ClipperLib::PolyNode& node, Regions2& out) {
@@ -71,7 +30,11 @@ void collect(const ClipperLib::PolyNode& node, Regions2& out) {
 }
 
 Regions2 run(ClipperLib::ClipType type, const Regions2& a, const Regions2& b) {
-    ClipperLib::Clipper clipper;
+    // One Clipper per thread, cleared before each use: its internal lists keep their memory,
+    // which saves many allocations on the axis' thousands of small Booleans. (A Clipper's
+    // result does not depend on what it did before; Clear() drops all its paths.)
+    thread_local ClipperLib::Clipper clipper;
+    clipper.Clear();
     clipper.AddPaths(to_paths(a), ClipperLib::ptSubject, true);
     clipper.AddPaths(to_paths(b), ClipperLib::ptClip, true);
     ClipperLib::PolyTree tree;

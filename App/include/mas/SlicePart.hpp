@@ -1,0 +1,80 @@
+// Slicing a whole part (paper Sec. 4.2): every sub-component of its decomposition, in tree order,
+// into adaptive "3-D" layers along its own axis (Slicing.hpp), and the deposition paths of every
+// layer (Toolpath.hpp), with the statistics a process engineer checks first.
+#pragma once
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Decompose.hpp"
+#include "mas/Mesh.hpp"
+#include "mas/Paths.hpp"
+#include "mas/Shape.hpp"
+#include "mas/Slicing.hpp"
+#include "mas/Toolpath.hpp"
+
+namespace mas {
+
+struct SlicePartParams {
+    LayerParams layers;
+    PathParams paths;
+    TessellationParams tessellation;  // for the components' meshes (slice_part only)
+};
+
+// One sub-component as a closed mesh, the input of slice_components.
+struct ComponentMesh {
+    TriangleMesh mesh;
+    int parent = -1;  // father component, -1 for the root
+    Plane base;       // on its base face (root: the build plate), normal = build direction
+    int branch = 0;   // the axis branch it follows
+};
+
+struct ComponentLayers {
+    int component = -1;
+    int first_layer = 0;  // index into SlicedPart::layers
+    int layer_count = 0;
+    int guide_nodes = 0;      // axis nodes of its branch inside it, followed by its layers
+    double volume_mm3 = 0.0;  // of its mesh
+};
+
+struct SliceStats {
+    int layer_count = 0;
+    double min_thickness_mm = 0.0, max_thickness_mm = 0.0;  // over every layer
+    double part_volume_mm3 = 0.0;           // the part (its meshes; slice_part: the exact solid)
+    double deposited_volume_mm3 = 0.0;      // sum of the layers' prisms
+    double material_volume_mm3 = 0.0;       // sum of the part's material between layer planes
+    double max_volume_difference = 0.0;     // the largest layer VolDiff
+    int layers_over_volume_difference = 0;  // kept at min_layer although over the bound
+    double worst_unsupported_area_mm2 = 0.0;
+    int worst_unsupported_layer = -1;
+    double deposit_length_mm = 0.0, travel_length_mm = 0.0;
+    int centre_line_passes = 0;  // regions narrower than a bead, run as one centre line
+    int unfilled_features = 0;   // too small even for that: listed per layer
+};
+
+struct SlicedPart {
+    std::vector<Layer> layers;              // component by component, in tree order, bottom to top
+    std::vector<LayerToolpaths> toolpaths;  // one per layer
+    std::vector<ComponentLayers> components;
+    SliceStats stats;
+};
+
+// Slices components given as meshes (a mesh part is one root component). `axis` is the part's
+// centroidal axis: component c follows the nodes of branch components[c].branch that lie inside
+// its mesh. `throw_on_cancel` is called between candidate planes and layers. Throws as
+// slice_component, and InvalidArgument for a component whose parent is not before it.
+SlicedPart slice_components(const std::vector<ComponentMesh>& components,
+                            const CentroidalAxis& axis, const SlicePartParams& params,
+                            const std::function<void()>& throw_on_cancel = {});
+
+// The decomposition's components tessellated with params.tessellation, then slice_components.
+// stats.part_volume_mm3 is the exact solid's volume.
+SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
+                      const Decomposition& decomposition, const SlicePartParams& params,
+                      const std::function<void()>& throw_on_cancel = {});
+
+// Whether `point` lies inside the closed mesh (generalised winding number above one half).
+bool inside_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& point);
+
+}  // namespace mas

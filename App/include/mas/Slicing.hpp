@@ -1,0 +1,128 @@
+// Adaptive multi-axis slicing of one sub-component into "3-D" layers (paper Sec. 4.2): each layer
+// lies between two planes that need not be parallel, its direction follows the centroidal axis and
+// its thickness adapts to the geometry within [min_layer, max_layer] and the volumetric bound.
+//
+// A layer, and how the paper is read where it is vague (each tested in tests/engine/
+// test_slicing.cpp):
+// - Layer k lies between its lower plane L (the previous layer's top, or the base plane for the
+//   first) and its upper plane U (the slice Sec. 4.2.2 chooses). It deposits its REGION: the
+//   component's section just above L, swept along U's normal n up to U (the lower region, as the
+//   issue defines it; what rests on the layer below is exactly what that layer's top offers).
+//   The layer records U as its plane: the tool axis is n, and its regions are the lower region
+//   projected along n onto U, in PlaneFrame(n) coordinates.
+// - Thickness at a point x of the lower region is its distance to U along n, (U.origin - x).n;
+//   the layer's min/max thickness are taken over the region's outline points (the thickness is
+//   linear, so the extremes lie on the outline). Eq. 9's bounds apply to both, so consecutive
+//   planes never cross inside the region.
+// - VolDiff (Eq. 9) for non-parallel layers: vol(P xor M) / vol(P), where P is the deposited prism
+//   (the region swept from L to U along n) and M the part's material between L and U. It is
+//   integrated over planes with normal n at `volume_samples` heights (midpoints of equal slabs)
+//   between the lowest point of L over the region and U: at each, P's section is the region's
+//   projection and M's the component's section, both cut by the half-plane where L lies below
+//   that height; area(A xor B) = area(A) + area(B) - 2 area(A and B). 0 means the layer deposits
+//   exactly the part; it is exact for parallel layers of prismatic parts.
+// - Sec. 4.2.2's search: from P_lower (the guide point on L) try P_upper at arc length delta
+//   further along the guide (the polyline of the component's axis nodes inside it, extended
+//   straight past both ends), direction D_upper = the guide's direction there (the link), plane
+//   through P_upper normal to D (a plane parallel to L goes exactly delta above it). Accept when
+//   Eq. 9 holds and, for a direction other than D_lower, when the next layer's footprint (the
+//   component's section on U) is supported by this layer (below, with min_layer's allowance).
+//   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then
+//   delta -= delta / 4, from max_layer down to min_layer. Turns under eps_angle / 10 (centroid
+//   noise) are ignored. The paper prefers a thinner tilted layer to a thick parallel one: that is
+//   what lets the layers follow a bend.
+// - Where no direction between D_upper and D_lower meets Eq. 9 at any delta (a tilt the
+//   thickness bounds forbid), the layer keeps D_lower: the thickest parallel layer that meets
+//   Eq. 9 (planar adaptive slicing).
+// - Where even min_layer along D_lower breaks the volumetric bound (the cap of a dome), the layer
+//   is kept at min_layer and flagged (meets_volume_difference = false); with `strict` that is an
+//   error instead. The thickness bounds are hard.
+// - Ending: when U would leave less than min_layer of material above it, U moves up to the top of
+//   the material (the last layer, if it stays within max_layer) or down so that min_layer remains.
+//   The last layer is therefore thinner than min_layer only when less than min_layer of the
+//   component remains above the one before it; a component thinner than min_layer is an error.
+// - Support (the point of the method): a layer's footprint on the layer below (its lower region,
+//   which lies on the lower layer's top) must lie within the lower layer's region grown by the
+//   overhang allowance, the layer's min thickness x tan(overhang_angle). unsupported_area_mm2 is
+//   what lies outside. The first layer of a child is checked against its father's section just
+//   below the base face; the root's first layer stands on the build plate.
+#pragma once
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "mas/Mesh.hpp"
+#include "mas/Polygon2.hpp"
+#include "mas/Section.hpp"
+
+namespace mas {
+
+struct LayerParams {
+    double min_layer_mm = 0.5;           // thinnest deposit anywhere on a layer, > 0
+    double max_layer_mm = 2.0;           // thickest deposit the machine forms, >= min_layer_mm
+    double max_volume_difference = 0.1;  // Eq. 9's VolDiff_pre, a fraction of the layer's volume
+    double eps_angle_deg = 1.0;  // Sec. 4.2.2's epsilon: stop averaging directions below this
+    // Eq. 6's Delta: the first region is the section this far above the base plane, mm. 0: 1e-3 x
+    // min_layer_mm.
+    double initial_offset_mm = 0.0;
+    double overhang_angle_deg = 45.0;  // support allowance = thickness x tan(this), degrees
+    int volume_samples = 4;            // sections per layer for VolDiff, >= 1
+    bool strict = false;               // a layer that cannot meet max_volume_difference is an error
+    std::size_t max_layers = 100000;   // per component: guard against runaway slicing
+};
+
+// Throws mas::Error(InvalidArgument) naming the parameter (min_layer > max_layer, a non-positive
+// or NaN length, a volume difference not > 0, an angle out of range, volume_samples < 1).
+void validate(const LayerParams& params);
+
+// One sub-component to slice.
+struct ComponentSlicingInput {
+    int component = 0;                   // index recorded in its layers
+    const TriangleMesh* mesh = nullptr;  // the component, closed
+    Plane base;  // on the base face (root: the build plate); normal = build direction, inward
+    // The component's centroidal axis: node positions in marching order and their node indices
+    // (the layers' axis_node). Fewer than two points: a straight line through the base origin (or
+    // the single point) along the build direction.
+    std::vector<Eigen::Vector3d> guide;
+    std::vector<int> guide_nodes;
+    // The father's mesh, for checking the first layer's support; null for the root.
+    const TriangleMesh* father_mesh = nullptr;
+};
+
+struct Layer {
+    int component = -1;
+    Plane plane;       // upper plane U: the layer's top; normal = tool axis, unit
+    Plane lower;       // the plane it is deposited on (the layer below's top, or the base plane)
+    Regions2 regions;  // the deposited region on `plane`, PlaneFrame(plane.normal) coordinates
+    double area_mm2 = 0.0;          // of `regions`
+    double min_thickness_mm = 0.0;  // over the region
+    double max_thickness_mm = 0.0;
+    double volume_mm3 = 0.0;           // deposited prism, integrated like VolDiff
+    double material_volume_mm3 = 0.0;  // the part's material between the planes, integrated
+    double volume_difference = 0.0;    // vol(prism xor material) / vol(prism)
+    bool meets_volume_difference = true;
+    double unsupported_area_mm2 = 0.0;  // footprint outside the support below (see header)
+    int axis_node = -1;  // the guide node nearest to axis_point, -1 when the guide has none
+    Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();  // P_upper, on the guide
+    int tries = 0;  // candidate planes evaluated before this one was accepted
+
+    // The 3-D loops of region r on `plane`: outer first, then holes.
+    std::vector<std::vector<Eigen::Vector3d>> loops_3d(std::size_t r) const;
+    // Deposit thickness (distance along plane.normal down to `lower`) under a point of `plane`.
+    double thickness_at(const Eigen::Vector3d& point_on_plane) const;
+};
+
+// Slices one component. Throws mas::Error: InvalidArgument for bad params, a null or open mesh, a
+// base plane with no material above it or a component thinner than min_layer_mm along its build
+// direction; GeometryFailure when strict and a layer misses the volumetric bound; whatever
+// `throw_on_cancel` throws (called between candidate planes).
+std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
+                                   const std::function<void()>& throw_on_cancel = {});
+
+// The area of `upper` (a region on a plane with normal `upper_normal`) outside `lower` (on a plane
+// with normal `lower_normal`) grown by `allowance_mm`, both seen along lower_normal: the support
+// check above, exposed for tests and for checking any two consecutive layers.
+double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm);
+
+}  // namespace mas

@@ -1,0 +1,42 @@
+// Deposition paths of one layer in 3-D: the 2-D bead paths of Paths.hpp laid on the layer's plane,
+// each point with the tool axis (the layer's normal) and the deposit thickness under it, joined by
+// travel moves. The input of the build sequence and the post-processor.
+#pragma once
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "mas/Paths.hpp"
+#include "mas/Slicing.hpp"
+
+namespace mas {
+
+struct ToolPath {
+    enum class Kind { Travel, Contour, Infill, CentreLine };
+    Kind kind = Kind::Travel;
+    int region = -1;                      // the layer region it belongs to (-1 for travel)
+    std::vector<Eigen::Vector3d> points;  // mm, on the layer's plane; closed loops repeat the start
+    std::vector<double> thickness_mm;     // deposit thickness under each point (see Layer)
+    bool deposit() const { return kind != Kind::Travel; }
+};
+
+// "travel", "contour", "infill", "centre_line".
+const char* to_string(ToolPath::Kind kind);
+
+struct LayerToolpaths {
+    Eigen::Vector3d tool_axis = Eigen::Vector3d::UnitZ();  // every point's: the layer's normal
+    std::vector<ToolPath> paths;            // in order: a travel move before every deposit path
+    std::vector<int> centre_line_regions;   // regions narrower than a bead: one centre-line pass
+    std::vector<UnfilledFeature> unfilled;  // too small even for that (2-D, layer frame)
+    double deposit_length_mm = 0.0;
+    double travel_length_mm = 0.0;
+    double uncovered_area_mm2 = -1.0;  // -1 unless params.measure_coverage
+};
+
+// The paths of `layer`; `layer_index` counts layers over the whole build (raster angle, seam).
+// `from` is where the head is (the previous layer's last point): the first travel starts there;
+// without it the layer starts at its first deposit path.
+LayerToolpaths plan_toolpaths(const Layer& layer, int layer_index, const PathParams& params,
+                              const std::optional<Eigen::Vector3d>& from = std::nullopt);
+
+}  // namespace mas

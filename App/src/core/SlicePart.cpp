@@ -1,0 +1,115 @@
+// Slicing every sub-component of a part and planning the paths of every layer (see SlicePart.hpp).
+#include "mas/SlicePart.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "mas/Error.hpp"
+
+namespace mas {
+
+bool inside_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& point) {
+    // Sum of the signed solid angles of the facets seen from the point (Van Oosterom & Strackee),
+    // over 4 pi: 1 inside a closed outward-oriented mesh, 0 outside.
+    double total = 0.0;
+    for (const Eigen::Vector3i& t : mesh.triangles) {
+        const Eigen::Vector3d a = mesh.vertices[std::size_t(t[0])] - point;
+        const Eigen::Vector3d b = mesh.vertices[std::size_t(t[1])] - point;
+        const Eigen::Vector3d c = mesh.vertices[std::size_t(t[2])] - point;
+        const double la = a.norm(), lb = b.norm(), lc = c.norm();
+        const double numerator = a.dot(b.cross(c));
+        const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+        total += 2.0 * std::atan2(numerator, denominator);
+    }
+    return total / (4.0 * 3.14159265358979323846) > 0.5;
+}
+
+SlicedPart slice_components(const std::vector<ComponentMesh>& components,
+                            const CentroidalAxis& axis, const SlicePartParams& params,
+                            const std::function<void()>& throw_on_cancel) {
+    validate(params.layers);
+    validate(params.paths);
+    if (components.empty()) throw Error(ErrorCode::EmptyInput, "no component to slice");
+    SlicedPart out;
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        const ComponentMesh& comp = components[c];
+        if (comp.parent >= int(c) || (c > 0 && comp.parent < 0) || (c == 0 && comp.parent != -1))
+            throw Error(ErrorCode::InvalidArgument,
+                        "component " + std::to_string(c) + " has father " +
+                            std::to_string(comp.parent) +
+                            ": components must come in tree order, the root first");
+        ComponentSlicingInput input;
+        input.component = int(c);
+        input.mesh = &comp.mesh;
+        input.base = comp.base;
+        input.father_mesh = comp.parent >= 0 ? &components[std::size_t(comp.parent)].mesh : nullptr;
+        if (comp.branch >= 0 && comp.branch < int(axis.branches.size())) {
+            for (int n : axis.branches[std::size_t(comp.branch)].nodes) {
+                if (n < 0 || n >= int(axis.nodes.size()))
+                    throw Error(ErrorCode::InvalidArgument,
+                                "the axis' branch " + std::to_string(comp.branch) + " names node " +
+                                    std::to_string(n) + ", which it lacks");
+                const Eigen::Vector3d& p = axis.nodes[std::size_t(n)].position;
+                if (!inside_mesh(comp.mesh, p)) continue;
+                input.guide.push_back(p);
+                input.guide_nodes.push_back(n);
+            }
+        }
+        ComponentLayers record;
+        record.component = int(c);
+        record.first_layer = int(out.layers.size());
+        record.guide_nodes = int(input.guide.size());
+        const MeshReport report = check_mesh(comp.mesh);
+        if (report.boundary_edges || report.non_manifold_edges || report.inconsistent_edges)
+            throw Error(ErrorCode::OpenMesh, "component " + std::to_string(c) +
+                                                 "'s mesh is not closed: it cannot be sliced");
+        record.volume_mm3 = report.volume_mm3;
+        std::vector<Layer> layers = slice_component(input, params.layers, throw_on_cancel);
+        record.layer_count = int(layers.size());
+        for (Layer& l : layers) out.layers.push_back(std::move(l));
+        out.components.push_back(record);
+        out.stats.part_volume_mm3 += record.volume_mm3;
+    }
+
+    SliceStats& s = out.stats;
+    s.layer_count = int(out.layers.size());
+    s.min_thickness_mm = std::numeric_limits<double>::infinity();
+    s.max_thickness_mm = 0.0;
+    Eigen::Vector3d head = Eigen::Vector3d::Zero();  // where the previous layer's paths ended
+    bool has_head = false;
+    out.toolpaths.reserve(out.layers.size());
+    for (std::size_t i = 0; i < out.layers.size(); ++i) {
+        if (throw_on_cancel) throw_on_cancel();
+        const Layer& l = out.layers[i];
+        s.min_thickness_mm = std::min(s.min_thickness_mm, l.min_thickness_mm);
+        s.max_thickness_mm = std::max(s.max_thickness_mm, l.max_thickness_mm);
+        s.deposited_volume_mm3 += l.volume_mm3;
+        s.material_volume_mm3 += l.material_volume_mm3;
+        s.max_volume_difference = std::max(s.max_volume_difference, l.volume_difference);
+        if (!l.meets_volume_difference) ++s.layers_over_volume_difference;
+        if (l.unsupported_area_mm2 > s.worst_unsupported_area_mm2) {
+            s.worst_unsupported_area_mm2 = l.unsupported_area_mm2;
+            s.worst_unsupported_layer = int(i);
+        }
+        LayerToolpaths paths =
+            plan_toolpaths(l, int(i), params.paths,
+                           has_head ? std::optional<Eigen::Vector3d>(head) : std::nullopt);
+        for (auto it = paths.paths.rbegin(); it != paths.paths.rend(); ++it)
+            if (!it->points.empty()) {
+                head = it->points.back();
+                has_head = true;
+                break;
+            }
+        s.deposit_length_mm += paths.deposit_length_mm;
+        s.travel_length_mm += paths.travel_length_mm;
+        s.centre_line_passes += int(paths.centre_line_regions.size());
+        s.unfilled_features += int(paths.unfilled.size());
+        out.toolpaths.push_back(std::move(paths));
+    }
+    if (out.layers.empty()) s.min_thickness_mm = 0.0;
+    return out;
+}
+
+}  // namespace mas

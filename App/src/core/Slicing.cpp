@@ -1,0 +1,578 @@
+// Adaptive multi-axis slicing of one sub-component (paper Sec. 4.2.2). See the header for the
+// definitions (layer, thickness, VolDiff, support) and the reading of the paper.
+#include "mas/Slicing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include "mas/Error.hpp"
+
+namespace mas {
+
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kLengthTolerance = 1e-9;  // mm: slack on the thickness bounds (rounding only)
+
+[[noreturn]] void invalid(const std::string& message) {
+    throw Error(ErrorCode::InvalidArgument, message);
+}
+
+std::string mm(double x) {
+    std::ostringstream s;
+    s.precision(6);
+    s << x << " mm";
+    return s.str();
+}
+
+double angle_deg(const Vector3d& a, const Vector3d& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
+}
+
+// ---- the guide: the component's axis as a polyline, extended straight past both ends ----------
+
+class Guide {
+public:
+    Guide(const ComponentSlicingInput& input) {
+        for (std::size_t i = 0; i < input.guide.size(); ++i) {
+            const Vector3d& p = input.guide[i];
+            if (!p.allFinite()) invalid("the component's axis has a non-finite point");
+            if (!points_.empty() && (p - points_.back()).norm() < 1e-9) continue;
+            points_.push_back(p);
+            nodes_.push_back(i < input.guide_nodes.size() ? input.guide_nodes[i] : -1);
+        }
+        if (points_.size() < 2) {
+            const Vector3d p = points_.empty() ? input.base.origin : points_.front();
+            const int node = nodes_.empty() ? -1 : nodes_.front();
+            points_ = {p, p + input.base.normal};
+            nodes_ = {node, node};
+        }
+        arc_.assign(points_.size(), 0.0);
+        for (std::size_t i = 1; i < points_.size(); ++i)
+            arc_[i] = arc_[i - 1] + (points_[i] - points_[i - 1]).norm();
+    }
+
+    double length() const { return arc_.back(); }
+
+    // Segment i joins points i and i+1; s < 0 and s > length() run on along the end segments.
+    std::size_t segment(double s) const {
+        const auto it = std::upper_bound(arc_.begin(), arc_.end(), s);
+        const std::size_t i = it == arc_.begin() ? 0 : std::size_t(it - arc_.begin()) - 1;
+        return std::min(i, points_.size() - 2);
+    }
+
+    Vector3d direction(double s) const {
+        const std::size_t i = segment(s);
+        return (points_[i + 1] - points_[i]).normalized();
+    }
+
+    Vector3d point(double s) const {
+        const std::size_t i = segment(s);
+        return points_[i] + (s - arc_[i]) * direction(s);
+    }
+
+    // The guide node nearest to arc length s (-1 when the guide came without node indices).
+    int node_near(double s) const {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < arc_.size(); ++i)
+            if (std::abs(arc_[i] - s) < std::abs(arc_[best] - s)) best = i;
+        return nodes_[best];
+    }
+
+    // The arc length where the guide (with its extensions) crosses `plane`, the crossing nearest
+    // to `hint`; nullopt when it never does (a guide parallel to the plane).
+    std::optional<double> crossing(const Plane& plane, double hint) const {
+        std::optional<double> best;
+        const std::size_t n = points_.size();
+        for (std::size_t i = 0; i + 1 < n; ++i) {
+            const double d0 = plane.signed_distance(points_[i]);
+            const double d1 = plane.signed_distance(points_[i + 1]);
+            const double len = arc_[i + 1] - arc_[i];
+            const bool first = i == 0, last = i + 2 == n;
+            if (d0 == d1) continue;
+            const double t = d0 / (d0 - d1);  // along the segment, may fall outside [0, 1]
+            if ((t < 0.0 && !first) || (t > 1.0 && !last)) continue;
+            const double s = arc_[i] + t * len;
+            if (!best || std::abs(s - hint) < std::abs(*best - hint)) best = s;
+        }
+        return best;
+    }
+
+private:
+    std::vector<Vector3d> points_;
+    std::vector<int> nodes_;
+    std::vector<double> arc_;
+};
+
+// ---- regions between frames ---------------------------------------------------------------------
+
+// A section's regions turned into 3-D loops lying on `plane` (the section may have been cut a hair
+// above it), plus the points of every outer loop, for thickness extremes.
+struct PlanarRegions {
+    Plane plane;
+    std::vector<std::vector<std::vector<Vector3d>>> loops;  // per region: outer, then holes
+    std::vector<Vector3d> outline;                          // every outer-loop point
+    double area = 0.0;
+    bool empty() const { return loops.empty(); }
+};
+
+PlanarRegions planar_regions(const Section& section, const Plane& plane) {
+    PlanarRegions out;
+    out.plane = plane;
+    const PlaneFrame frame(section.plane.normal);
+    // Points of the section's plane, moved onto `plane` along the section's normal.
+    const double denom = plane.normal.dot(section.plane.normal);
+    auto lift = [&](const Vector2d& q) {
+        const Vector3d x = frame.to_3d(q, section.plane);
+        return Vector3d(x - section.plane.normal * (plane.signed_distance(x) / denom));
+    };
+    for (const SectionRegion& section_region : section.regions) {
+        // Collinear points a hair apart (a plane just above a vertex cuts the facets around it
+        // close together) carry nothing: drop them within the Boolean grid.
+        const Region2 shape = simplify(section_region.shape, 1e-5);
+        std::vector<std::vector<Vector3d>> loops;
+        auto add = [&](const Polygon2& p, bool outer) {
+            std::vector<Vector3d> loop;
+            loop.reserve(p.points.size());
+            for (const Vector2d& q : p.points) loop.push_back(lift(q));
+            if (outer) out.outline.insert(out.outline.end(), loop.begin(), loop.end());
+            loops.push_back(std::move(loop));
+        };
+        add(shape.outer, true);
+        for (const Polygon2& h : shape.holes) add(h, false);
+        out.loops.push_back(std::move(loops));
+        out.area += section_region.area;
+    }
+    return out;
+}
+
+// The regions seen along `normal`: 2-D coordinates in PlaneFrame(normal). Orientation is kept as
+// long as the regions' plane faces the same way (normal . plane normal > 0).
+Regions2 project(const PlanarRegions& regions, const PlaneFrame& frame) {
+    Regions2 out;
+    out.reserve(regions.loops.size());
+    for (const auto& loops : regions.loops) {
+        Region2 r;
+        for (std::size_t k = 0; k < loops.size(); ++k) {
+            Polygon2 p;
+            p.points.reserve(loops[k].size());
+            for (const Vector3d& x : loops[k]) p.points.push_back(frame.to_2d(x));
+            if (k == 0)
+                r.outer = std::move(p);
+            else
+                r.holes.push_back(std::move(p));
+        }
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
+// The part of the plane (frame coordinates of PlaneFrame(D)) where plane L lies below height h
+// along D, as a polygon covering `box` (grown): {q : height_L(q) < h}. nullopt: all of it.
+std::optional<Regions2> below_height(const Plane& lower, const PlaneFrame& frame, double h,
+                                     const Eigen::AlignedBox2d& box) {
+    // height_L(q) = (n_L . o_L - n_L . (u q.x + v q.y)) / (n_L . D) = c - g . q
+    const double nd = lower.normal.dot(frame.normal);
+    const double c = lower.normal.dot(lower.origin) / nd;
+    const Vector2d g(lower.normal.dot(frame.u) / nd, lower.normal.dot(frame.v) / nd);
+    if (g.norm() < 1e-12) {
+        if (c < h) return std::nullopt;
+        return Regions2{};
+    }
+    // Keep c - g.q < h, i.e. g.q > c - h: clip the box (Sutherland-Hodgman on one half-plane).
+    const double margin = 1.0 + box.diagonal().norm();
+    const Vector2d lo = box.min() - Vector2d::Constant(margin);
+    const Vector2d hi = box.max() + Vector2d::Constant(margin);
+    const std::vector<Vector2d> corners = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+    std::vector<Vector2d> kept;
+    const double limit = c - h;
+    for (std::size_t i = 0; i < 4; ++i) {
+        const Vector2d& a = corners[i];
+        const Vector2d& b = corners[(i + 1) % 4];
+        const double fa = g.dot(a) - limit, fb = g.dot(b) - limit;
+        if (fa > 0.0) kept.push_back(a);
+        if ((fa > 0.0) != (fb > 0.0)) kept.push_back(a + (b - a) * (fa / (fa - fb)));
+    }
+    if (kept.size() < 3) return Regions2{};
+    return Regions2{Region2{Polygon2{kept}, {}}};
+}
+
+Eigen::AlignedBox2d bounds_of(const Regions2& regions) {
+    Eigen::AlignedBox2d box;
+    for (const Region2& r : regions) box.extend(bounds(r));
+    return box;
+}
+
+// ---- one candidate plane ------------------------------------------------------------------------
+
+struct Candidate {
+    Plane upper;
+    double along = 0.0;  // arc length of P_upper on the guide
+    bool final = false;  // U lies on the top of the material: nothing is left above it
+    double min_thickness = 0.0, max_thickness = 0.0;
+    double volume = 0.0, material = 0.0, difference = 0.0;
+    Regions2 region;                // the lower region seen along U's normal
+    PlanarRegions next;             // the section just above U: the next layer's region, on U
+    double unsupported_next = 0.0;  // of `next` outside `region` grown by the allowance
+    bool thickness_ok = false;
+};
+
+class ComponentSlicer {
+public:
+    ComponentSlicer(const ComponentSlicingInput& input, const LayerParams& params,
+                    const std::function<void()>& cancel)
+        : input_(input), params_(params), cancel_(cancel), guide_(input) {
+        offset_ =
+            params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
+        allowance_ = std::tan(params.overhang_angle_deg * kPi / 180.0);
+    }
+
+    std::vector<Layer> run();
+
+private:
+    // The highest point of the material along unit d.
+    double top_along(const Vector3d& d) const {
+        double top = -std::numeric_limits<double>::infinity();
+        for (const Vector3d& v : input_.mesh->vertices) top = std::max(top, v.dot(d));
+        return top;
+    }
+
+    PlanarRegions section_above(const Plane& plane) const {
+        const Plane cut = make_plane(plane.origin + offset_ * plane.normal, plane.normal);
+        return planar_regions(slice_mesh(*input_.mesh, cut), plane);
+    }
+
+    void thickness_range(const PlanarRegions& lower, const Plane& upper, double& tmin,
+                         double& tmax) const {
+        tmin = std::numeric_limits<double>::infinity();
+        tmax = -tmin;
+        for (const Vector3d& x : lower.outline) {
+            const double t = -upper.signed_distance(x);
+            tmin = std::min(tmin, t);
+            tmax = std::max(tmax, t);
+        }
+    }
+
+    Candidate evaluate(const PlanarRegions& lower, const Vector3d& d, const Vector3d& p_upper,
+                       double along, double delta) const;
+
+    const ComponentSlicingInput& input_;
+    const LayerParams& params_;
+    const std::function<void()>& cancel_;
+    Guide guide_;
+    double offset_ = 0.0;     // Eq. 6's Delta
+    double allowance_ = 1.0;  // tan(overhang angle)
+};
+
+Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& d,
+                                    const Vector3d& p_upper, double along, double delta) const {
+    Candidate c;
+    c.along = along;
+    if (angle_deg(d, lower.plane.normal) < 1e-9) {
+        // Parallel to the lower plane: exactly delta above it (the guide may lean a little
+        // against d, which must not eat into the thickness), where the guide crosses that plane.
+        const double offset = d.dot(lower.plane.origin) + delta;
+        c.upper = make_plane(p_upper + (offset - d.dot(p_upper)) * d, d);
+        if (const auto s = guide_.crossing(c.upper, along)) c.along = *s;
+    } else {
+        c.upper = make_plane(p_upper, d);
+    }
+    const double min_layer = params_.min_layer_mm, max_layer = params_.max_layer_mm;
+    // Past 80 degrees from the lower plane's normal a layer is a sliver standing on its edge.
+    if (d.dot(lower.plane.normal) < std::cos(80.0 * kPi / 180.0)) return c;
+    double tmin = 0.0, tmax = 0.0;
+    thickness_range(lower, c.upper, tmin, tmax);
+
+    // Ending: never leave less than min_layer of material above U.
+    const double above = top_along(d) - d.dot(c.upper.origin);
+    if (above < min_layer) {
+        const double up = above;                // moving U onto the top of the material
+        const double down = above - min_layer;  // leaving exactly min_layer above it
+        const bool top_ok = tmax + up <= max_layer + kLengthTolerance;
+        if (top_ok && tmin + up >= min_layer - kLengthTolerance) {
+            c.final = true;
+        } else if (tmin + down >= min_layer - kLengthTolerance) {
+            c.final = false;
+        } else {
+            c.final = top_ok;  // a thin last layer: less than min_layer is left in all
+        }
+        const double shift = c.final ? up : down;
+        c.upper = make_plane(c.upper.origin + shift * d, d);
+        tmin += shift;
+        tmax += shift;
+        if (const auto s = guide_.crossing(c.upper, along)) c.along = *s;
+    }
+    c.min_thickness = tmin;
+    c.max_thickness = tmax;
+    c.thickness_ok = tmax <= max_layer + kLengthTolerance &&
+                     (tmin >= min_layer - kLengthTolerance || (c.final && tmin > 0.0));
+    if (!c.thickness_ok) return c;
+
+    // VolDiff by sections normal to d between the lowest point of L over the region and U.
+    const PlaneFrame frame(d);
+    c.region = project(lower, frame);
+    const double h_top = d.dot(c.upper.origin);
+    double h_low = h_top - tmax;
+    const int k = params_.volume_samples;
+    std::vector<Plane> planes;
+    planes.reserve(std::size_t(k) + 1);
+    for (int i = 0; i < k; ++i)
+        planes.push_back(make_plane(d * (h_low + (i + 0.5) * (h_top - h_low) / k), d));
+    if (!c.final) planes.push_back(make_plane(c.upper.origin + offset_ * d, d));
+    const std::vector<Section> sections = slice_mesh(*input_.mesh, planes);
+    const double slab = (h_top - h_low) / k;
+    const Eigen::AlignedBox2d box = bounds_of(c.region);
+    double sym = 0.0;
+    for (int i = 0; i < k; ++i) {
+        Regions2 a = c.region, b;
+        for (const SectionRegion& r : sections[std::size_t(i)].regions) b.push_back(r.shape);
+        Eigen::AlignedBox2d all = box;
+        all.extend(bounds_of(b));
+        const double h = d.dot(planes[std::size_t(i)].origin);
+        if (const auto above_lower = below_height(lower.plane, frame, h, all)) {
+            a = intersection(a, *above_lower);
+            b = intersection(b, *above_lower);
+        }
+        const double area_a = area(a), area_b = area(b);
+        const double common = (area_a > 0.0 && area_b > 0.0) ? area(intersection(a, b)) : 0.0;
+        c.volume += area_a * slab;
+        c.material += area_b * slab;
+        sym += (area_a + area_b - 2.0 * common) * slab;
+    }
+    c.difference =
+        c.volume > 0.0 ? std::max(0.0, sym) / c.volume : std::numeric_limits<double>::infinity();
+    if (!c.final) {
+        c.next = planar_regions(sections.back(), c.upper);
+        if (c.next.empty()) c.final = true;
+    }
+    if (!c.next.empty()) {
+        const Regions2 grown = offset(c.region, min_layer * allowance_);
+        c.unsupported_next = area(difference(project(c.next, frame), grown));
+    }
+    return c;
+}
+
+std::vector<Layer> ComponentSlicer::run() {
+    const Plane base = make_plane(input_.base.origin, input_.base.normal);
+    PlanarRegions lower = section_above(base);
+    if (lower.empty())
+        invalid("component " + std::to_string(input_.component) +
+                ": no material just above its base plane (a base face that does not lie on the "
+                "component, or a build direction pointing away from it)");
+    const double height = top_along(base.normal) - base.normal.dot(base.origin);
+    if (height < params_.min_layer_mm - kLengthTolerance)
+        invalid("component " + std::to_string(input_.component) + " is only " + mm(height) +
+                " tall along its build direction, less than min_layer (" +
+                mm(params_.min_layer_mm) + "): no layer fits; lower min_layer");
+
+    std::vector<Layer> layers;
+    Vector3d d_lower = base.normal;
+    double s_lower = guide_.crossing(base, 0.0).value_or(0.0);
+    const double eps_angle = params_.eps_angle_deg;
+    while (!lower.empty()) {
+        if (layers.size() >= params_.max_layers)
+            invalid("component " + std::to_string(input_.component) + " needs more than " +
+                    std::to_string(params_.max_layers) + " layers");
+        std::optional<Candidate> accepted, fallback;
+        int tries = 0;
+        auto acceptable = [&](const Candidate& c, bool parallel) {
+            const bool volume_ok = c.difference <= params_.max_volume_difference;
+            const bool supported =
+                parallel || c.unsupported_next <= 1e-3 * std::max(c.next.area, 1e-9);
+            return c.thickness_ok && volume_ok && supported;
+        };
+        // Sec. 4.2.2: from delta = max_layer, the guide's direction at P_upper, averaged with
+        // D_lower until Eq. 9 holds or the two are within eps_angle, then a shorter delta.
+        for (double delta = params_.max_layer_mm; !accepted;) {
+            const double along = s_lower + delta;
+            const Vector3d p_upper = guide_.point(along);
+            Vector3d d = guide_.direction(along);
+            // A guide doubling back, or turning by less than a tenth of eps_angle (centroid
+            // noise): keep the lower direction.
+            if (d.dot(d_lower) <= 0.0 || angle_deg(d, d_lower) < 0.1 * eps_angle) d = d_lower;
+            for (;;) {
+                if (cancel_) cancel_();
+                ++tries;
+                const bool parallel = angle_deg(d, d_lower) < 1e-9;
+                Candidate c = evaluate(lower, d, p_upper, along, delta);
+                if (acceptable(c, parallel)) {
+                    accepted = std::move(c);
+                    break;
+                }
+                if (parallel || angle_deg(d, d_lower) < eps_angle) break;
+                d = (d + d_lower).normalized();
+            }
+            if (delta <= params_.min_layer_mm) break;
+            delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
+        }
+        // No direction between the guide's and D_lower met Eq. 9 at any delta (a layer whose
+        // tilt the thickness bounds forbid, or a dome's cap): planar adaptive along D_lower, the
+        // thickest layer that meets Eq. 9, else min_layer kept and flagged.
+        for (double delta = params_.max_layer_mm; !accepted;) {
+            if (cancel_) cancel_();
+            ++tries;
+            const double along = s_lower + delta;
+            Candidate c = evaluate(lower, d_lower, guide_.point(along), along, delta);
+            if (acceptable(c, true)) {
+                accepted = std::move(c);
+                break;
+            }
+            if (c.thickness_ok) fallback = std::move(c);
+            if (delta <= params_.min_layer_mm) break;
+            delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
+        }
+        if (!accepted) {
+            if (!fallback)
+                invalid("component " + std::to_string(input_.component) + ": no layer between " +
+                        mm(params_.min_layer_mm) + " and " + mm(params_.max_layer_mm) +
+                        " fits above the plane through (" + std::to_string(lower.plane.origin.x()) +
+                        ", " + std::to_string(lower.plane.origin.y()) + ", " +
+                        std::to_string(lower.plane.origin.z()) +
+                        "); the layer thickness bounds are too narrow for this part");
+            if (params_.strict) {
+                std::ostringstream s;
+                s << "component " << input_.component << ", layer " << layers.size() + 1
+                  << ": even a " << mm(params_.min_layer_mm) << " layer differs from the part by "
+                  << fallback->difference * 100.0
+                  << " % of its volume, over max_volume_difference ("
+                  << params_.max_volume_difference * 100.0 << " %)";
+                throw Error(ErrorCode::GeometryFailure, s.str());
+            }
+            accepted = std::move(fallback);
+        }
+        Candidate& c = *accepted;
+        Layer layer;
+        layer.component = input_.component;
+        layer.plane = c.upper;
+        layer.lower = lower.plane;
+        layer.regions = std::move(c.region);
+        layer.area_mm2 = area(layer.regions);
+        layer.min_thickness_mm = c.min_thickness;
+        layer.max_thickness_mm = c.max_thickness;
+        layer.volume_mm3 = c.volume;
+        layer.material_volume_mm3 = c.material;
+        layer.volume_difference = c.difference;
+        layer.meets_volume_difference = c.difference <= params_.max_volume_difference;
+        layer.axis_point = guide_.point(c.along);
+        layer.axis_node = guide_.node_near(c.along);
+        layer.tries = tries;
+        if (!layers.empty()) {
+            layer.unsupported_area_mm2 =
+                unsupported_area(layer, layers.back(), layer.min_thickness_mm * allowance_);
+        } else if (input_.father_mesh) {
+            // The first layer of a child rests on its father, just below the base face.
+            const Plane below = make_plane(base.origin - offset_ * base.normal, base.normal);
+            const Section s = slice_mesh(*input_.father_mesh, below);
+            Layer father;
+            father.plane = base;
+            father.lower = below;
+            for (const SectionRegion& r : s.regions) father.regions.push_back(r.shape);
+            layer.unsupported_area_mm2 =
+                unsupported_area(layer, father, layer.min_thickness_mm * allowance_);
+        }
+        layers.push_back(std::move(layer));
+        if (c.final) break;
+        lower = std::move(c.next);
+        d_lower = c.upper.normal;
+        s_lower = c.along;
+    }
+    return layers;
+}
+
+}  // namespace
+
+void validate(const LayerParams& p) {
+    auto positive = [](double x, const char* name) {
+        if (!(std::isfinite(x) && x > 0.0))
+            invalid(std::string(name) + " must be a positive, finite number, got " +
+                    std::to_string(x));
+    };
+    positive(p.min_layer_mm, "min_layer");
+    positive(p.max_layer_mm, "max_layer");
+    if (p.min_layer_mm > p.max_layer_mm)
+        invalid("min_layer (" + mm(p.min_layer_mm) + ") is greater than max_layer (" +
+                mm(p.max_layer_mm) + ")");
+    positive(p.max_volume_difference, "max_volume_difference");
+    if (!(p.eps_angle_deg > 0.0 && p.eps_angle_deg < 90.0))
+        invalid("eps_angle must be in (0, 90) degrees, got " + std::to_string(p.eps_angle_deg));
+    if (!(std::isfinite(p.initial_offset_mm) && p.initial_offset_mm >= 0.0 &&
+          p.initial_offset_mm < p.min_layer_mm))
+        invalid("initial_offset must be in [0, min_layer) mm, got " +
+                std::to_string(p.initial_offset_mm));
+    if (!(p.overhang_angle_deg >= 0.0 && p.overhang_angle_deg < 90.0))
+        invalid("overhang_angle must be in [0, 90) degrees, got " +
+                std::to_string(p.overhang_angle_deg));
+    if (p.volume_samples < 1 || p.volume_samples > 64)
+        invalid("volume_samples must be in [1, 64], got " + std::to_string(p.volume_samples));
+    if (p.max_layers < 1) invalid("max_layers must be at least 1");
+}
+
+std::vector<std::vector<Vector3d>> Layer::loops_3d(std::size_t r) const {
+    const PlaneFrame frame(plane.normal);
+    std::vector<std::vector<Vector3d>> loops;
+    const Region2& region = regions.at(r);
+    auto add = [&](const Polygon2& p) {
+        std::vector<Vector3d> loop;
+        loop.reserve(p.points.size());
+        for (const Vector2d& q : p.points) loop.push_back(frame.to_3d(q, plane));
+        loops.push_back(std::move(loop));
+    };
+    add(region.outer);
+    for (const Polygon2& h : region.holes) add(h);
+    return loops;
+}
+
+double Layer::thickness_at(const Vector3d& point_on_plane) const {
+    return lower.normal.dot(point_on_plane - lower.origin) / lower.normal.dot(plane.normal);
+}
+
+double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm) {
+    // The upper layer's footprint: its region moved back along its normal onto its lower plane
+    // (which is the lower layer's top), then seen along the lower layer's normal.
+    const PlaneFrame up(upper.plane.normal), down(lower.plane.normal);
+    const double denom = upper.lower.normal.dot(upper.plane.normal);
+    Regions2 footprint;
+    footprint.reserve(upper.regions.size());
+    auto move = [&](const Polygon2& p) {
+        Polygon2 out;
+        out.points.reserve(p.points.size());
+        for (const Vector2d& q : p.points) {
+            const Vector3d x = up.to_3d(q, upper.plane);
+            const Vector3d on_lower =
+                x - upper.plane.normal * (upper.lower.signed_distance(x) / denom);
+            out.points.push_back(down.to_2d(on_lower));
+        }
+        return out;
+    };
+    for (const Region2& r : upper.regions) {
+        Region2 f{move(r.outer), {}};
+        for (const Polygon2& h : r.holes) f.holes.push_back(move(h));
+        footprint.push_back(std::move(f));
+    }
+    const Regions2 support =
+        allowance_mm > 0.0 ? offset(lower.regions, allowance_mm) : lower.regions;
+    return area(difference(footprint, support));
+}
+
+std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
+                                   const std::function<void()>& throw_on_cancel) {
+    validate(params);
+    if (!input.mesh || input.mesh->triangles.empty())
+        invalid("component " + std::to_string(input.component) + " has no mesh to slice");
+    if (!input.base.origin.allFinite() || !input.base.normal.allFinite() ||
+        input.base.normal.norm() < 1e-12)
+        invalid("component " + std::to_string(input.component) +
+                " has a non-finite or zero base plane");
+    ComponentSlicingInput checked = input;
+    checked.base = make_plane(input.base.origin, input.base.normal);
+    ComponentSlicer slicer(checked, params, throw_on_cancel);
+    return slicer.run();
+}
+
+}  // namespace mas

@@ -1,0 +1,42 @@
+// Slicing a BREP part: its sub-components tessellated with the part's deflection, then sliced as
+// meshes (see SlicePart.hpp).
+#include "mas/Error.hpp"
+#include "mas/SlicePart.hpp"
+
+namespace mas {
+
+SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
+                      const Decomposition& decomposition, const SlicePartParams& params,
+                      const std::function<void()>& throw_on_cancel) {
+    if (decomposition.components.empty())
+        throw Error(ErrorCode::EmptyInput, "the decomposition has no component to slice");
+    const Shape part = solid.single_solid("the part");
+    // One deflection for every component: the part's, so that a face shared by a father and its
+    // child is approximated alike on both sides.
+    TessellationParams tessellation = params.tessellation;
+    tessellation.deflection_mm = effective_deflection(part, params.tessellation);
+    std::vector<ComponentMesh> meshes;
+    meshes.reserve(decomposition.components.size());
+    for (const Component& c : decomposition.components) {
+        if (throw_on_cancel) throw_on_cancel();
+        ComponentMesh m;
+        m.mesh = tessellate(c.solid, tessellation);
+        m.parent = c.parent;
+        m.branch = c.branch < 0 ? 0 : c.branch;
+        if (c.parent < 0) {
+            // The root stands on the build plate, the plane through its mesh's lowest point (an
+            // OCCT bounding box may be looser than the solid).
+            const Eigen::AlignedBox3d box = bounding_box(m.mesh);
+            m.base = make_plane({box.center().x(), box.center().y(), box.min().z()},
+                                Eigen::Vector3d::UnitZ());
+        } else {
+            m.base = make_plane(c.base_origin, c.build_direction);  // on its base face
+        }
+        meshes.push_back(std::move(m));
+    }
+    SlicedPart out = slice_components(meshes, axis, params, throw_on_cancel);
+    out.stats.part_volume_mm3 = part.info().volume_mm3;
+    return out;
+}
+
+}  // namespace mas

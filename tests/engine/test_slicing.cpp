@@ -1,0 +1,383 @@
+// Adaptive multi-axis slicing (paper Sec. 4.2) and the paths in every layer: exact layers of
+// prismatic parts, adaptive thickness on a dome and a cone, directions following the axis on the
+// L-block and a bend, and invariants (bounds, support, volume, paths) over every test part.
+#include <gtest/gtest.h>
+
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <cmath>
+#include <string>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Decompose.hpp"
+#include "mas/Error.hpp"
+#include "mas/SlicePart.hpp"
+#include "test_parts.hpp"
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+using mas::test::from_occt;
+using mas::test::fuse;
+using mas::test::occ_box;
+using mas::test::to_occt;
+
+namespace {
+
+constexpr double kDeflection = 0.02;  // mm: tessellation of the test parts (axis and layers)
+constexpr double kPi = 3.14159265358979323846;
+
+TopoDS_Shape occ_cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
+    return BRepPrimAPI_MakeCylinder(
+               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
+               r, h)
+        .Shape();
+}
+
+// A frustum on z = 0: radius 20 at the bottom, 8 at the top, 30 tall (side 21.8 degrees from Z).
+mas::Shape frustum() { return from_occt(BRepPrimAPI_MakeCone(20.0, 8.0, 30.0).Shape()); }
+
+// A dome: the upper half of a sphere of radius 20 standing on its flat face on z = 0.
+mas::Shape dome() {
+    return from_occt(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 20.0, 0.0, kPi / 2).Shape());
+}
+
+// A bent bar: a round bar of radius 6 rising 20 mm from z = 0, bending through a quarter circle of
+// radius 25 towards +X, then running 20 mm along +X. Its axis is the curve through (0, 0, 20) and
+// (25, 0, 45) around the bend's centre (25, 0, 20).
+mas::Shape bent_bar() {
+    const double r = 6.0, bend = 25.0, rise = 20.0;
+    TopoDS_Shape s = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), r, rise);
+    const gp_Ax2 frame(gp_Pnt(bend, 0, rise), gp_Dir(0, 1, 0), gp_Dir(-1, 0, 0));
+    s = fuse(s, BRepPrimAPI_MakeTorus(frame, bend, r, kPi / 2).Shape());
+    s = fuse(s, occ_cylinder({bend, 0, rise + bend}, Vector3d::UnitX(), r, 20.0));
+    return from_occt(s);
+}
+
+// A T: column [0,20]x[0,20]x[0,60] with a crossbar [-30,50]x[0,20]x[40,60] reaching both ways.
+mas::Shape t_block() {
+    return from_occt(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(-30, 0, 40, 80, 20, 20)));
+}
+
+struct Sliced {
+    mas::CentroidalAxis axis;
+    mas::Decomposition decomposition;
+    mas::SlicedPart result;
+};
+
+mas::SlicePartParams default_params() {
+    mas::SlicePartParams p;
+    p.tessellation.deflection_mm = kDeflection;
+    p.paths.measure_coverage = true;
+    return p;
+}
+
+Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& params) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    mas::AxisParams ap;
+    ap.step_mm = step;
+    Sliced s;
+    s.axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
+    s.decomposition = mas::decompose(part, s.axis);
+    s.result = mas::slice_part(part, s.axis, s.decomposition, params);
+    return s;
+}
+
+Sliced slice(const mas::Shape& part, double step) { return slice(part, step, default_params()); }
+
+double angle_deg(const Vector3d& a, const Vector3d& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
+}
+
+// What a round bead of width w can never reach: at a convex corner of interior angle a, the
+// area between the corner and the bead's arc, (w/2)^2 (cot(a/2) - (pi - a)/2). Zero on smooth
+// outlines (a -> pi), (w/2)^2 (1 - pi/4) at a right angle.
+double corner_residue(const mas::Regions2& regions, double w) {
+    double total = 0.0;
+    auto loop = [&](const mas::Polygon2& poly, double sense) {
+        const auto& p = poly.points;
+        const std::size_t n = p.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vector2d a = p[(i + n - 1) % n] - p[i], b = p[(i + 1) % n] - p[i];
+            const double cross = sense * (b.x() * a.y() - b.y() * a.x());
+            if (cross <= 0.0) continue;  // reflex (concave) corner: a bead fills it
+            const double angle = std::atan2(std::abs(cross), a.dot(b));
+            total += 0.25 * w * w * (1.0 / std::tan(angle / 2) - (kPi - angle) / 2);
+        }
+    };
+    for (const auto& r : regions) {
+        loop(r.outer, 1.0);
+        for (const auto& h : r.holes) loop(h, 1.0);
+    }
+    return total;
+}
+
+double perimeter(const mas::Regions2& regions) {
+    double p = 0.0;
+    for (const auto& r : regions) {
+        auto loop = [&](const mas::Polygon2& poly) {
+            for (std::size_t i = 0, j = poly.points.size() - 1; i < poly.points.size(); j = i++)
+                p += (poly.points[i] - poly.points[j]).norm();
+        };
+        loop(r.outer);
+        for (const auto& h : r.holes) loop(h);
+    }
+    return p;
+}
+
+// What every sliced part must satisfy (the invariants); `name` labels failures.
+void expect_invariants(const Sliced& s, const mas::SlicePartParams& params,
+                       const std::string& name) {
+    SCOPED_TRACE(name);
+    const mas::SlicedPart& r = s.result;
+    const mas::LayerParams& lp = params.layers;
+    ASSERT_GT(r.layers.size(), 0u);
+    ASSERT_EQ(r.toolpaths.size(), r.layers.size());
+    ASSERT_EQ(r.components.size(), s.decomposition.components.size());
+    double over_bound = 0.0;  // sum of VolDiff x volume: bounds |deposited - material|
+    for (std::size_t i = 0; i < r.layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        const mas::Layer& l = r.layers[i];
+        const bool last_of_component =
+            i + 1 == r.layers.size() || r.layers[i + 1].component != l.component;
+        // Thickness bounds, everywhere on the layer (the last layer of a component may be
+        // thinner when less than min_layer was left, see Slicing.hpp).
+        EXPECT_LE(l.max_thickness_mm, lp.max_layer_mm + 1e-9);
+        if (!last_of_component) {
+            EXPECT_GE(l.min_thickness_mm, lp.min_layer_mm - 1e-9);
+        }
+        EXPECT_GT(l.min_thickness_mm, 0.0);  // consecutive planes never cross inside the part
+        // Eq. 9: within the bound, or kept at min_layer and flagged.
+        if (l.meets_volume_difference) {
+            EXPECT_LE(l.volume_difference, lp.max_volume_difference);
+        } else if (!last_of_component) {
+            EXPECT_NEAR(l.min_thickness_mm, lp.min_layer_mm, 1e-6);
+        }
+        over_bound += l.volume_difference * l.volume_mm3;
+        // Support: the footprint lies on the layer below grown by the overhang allowance, up to
+        // the tessellation: the two outlines come from different cuts of the same facets, which
+        // differ by at most the deflection along the outline.
+        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * kDeflection + 1e-6)
+            << "unsupported " << l.unsupported_area_mm2 << " mm2 of " << l.area_mm2;
+        // Paths: inside the region grown by one bead radius, covering all but 1 % of it, apart
+        // from the corners no round bead reaches.
+        const mas::LayerToolpaths& tp = r.toolpaths[i];
+        EXPECT_TRUE(tp.tool_axis.isApprox(l.plane.normal));
+        EXPECT_LE(tp.uncovered_area_mm2,
+                  0.01 * l.area_mm2 + corner_residue(l.regions, params.paths.bead_width_mm));
+        const mas::PlaneFrame frame(l.plane.normal);
+        const mas::Regions2 grown =
+            mas::offset(l.regions, params.paths.bead_width_mm / 2 + params.paths.arc_tolerance_mm);
+        int outside = 0;
+        for (const mas::ToolPath& p : tp.paths) {
+            ASSERT_EQ(p.points.size(), p.thickness_mm.size());
+            // Deposit paths lie on the layer's plane (a travel move may start on the layer below).
+            if (!p.deposit()) continue;
+            for (std::size_t k = 0; k < p.points.size(); ++k) {
+                EXPECT_NEAR(l.plane.signed_distance(p.points[k]), 0.0, 1e-9);
+                bool in = false;
+                for (const auto& g : grown) in = in || mas::contains(g, frame.to_2d(p.points[k]));
+                if (!in) ++outside;
+                EXPECT_GE(p.thickness_mm[k], l.min_thickness_mm - 1e-6);
+                EXPECT_LE(p.thickness_mm[k], l.max_thickness_mm + 1e-6);
+            }
+        }
+        EXPECT_EQ(outside, 0);
+    }
+    // Volume: |deposited - material| <= sum VolDiff x volume exactly (triangle inequality); the
+    // material between the planes adds up to the part's volume up to the mesh (area x deflection
+    // on curved faces) and the midpoint quadrature of the sections (0 on prismatic parts).
+    const mas::SliceStats& st = r.stats;
+    EXPECT_LE(std::abs(st.deposited_volume_mm3 - st.material_volume_mm3),
+              over_bound * (1 + 1e-6) + 1e-6);
+    EXPECT_NEAR(st.material_volume_mm3, st.part_volume_mm3, 0.005 * st.part_volume_mm3);
+    EXPECT_EQ(st.layer_count, int(r.layers.size()));
+}
+
+}  // namespace
+
+TEST(Slicing, BoxLayersAreParallelAtMaxLayerWithTheLastOneFitted) {
+    // 20 x 10 x 21: ten 2 mm layers and a last one of 1 mm, all +Z, depositing exactly the box.
+    const auto part = mas::test::box(0, 0, 0, 20, 10, 21);
+    const auto s = slice(part, 2.0);
+    const auto& layers = s.result.layers;
+    ASSERT_EQ(layers.size(), 11u);
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(layers[i].component, 0);
+        EXPECT_TRUE(layers[i].plane.normal.isApprox(Vector3d::UnitZ(), 1e-12));
+        const double top = i < 10 ? 2.0 * (i + 1) : 21.0;
+        EXPECT_NEAR(layers[i].plane.origin.z(), top, 1e-9);
+        EXPECT_NEAR(layers[i].min_thickness_mm, i < 10 ? 2.0 : 1.0, 1e-9);
+        EXPECT_NEAR(layers[i].max_thickness_mm, layers[i].min_thickness_mm, 1e-9);
+        EXPECT_NEAR(layers[i].area_mm2, 200.0, 1e-6);
+        EXPECT_LT(layers[i].volume_difference, 1e-9);
+        EXPECT_EQ(layers[i].unsupported_area_mm2, 0.0);
+    }
+    EXPECT_NEAR(s.result.stats.deposited_volume_mm3, 4200.0, 1e-6);
+    expect_invariants(s, default_params(), "box");
+}
+
+TEST(Slicing, BoxOfAwkwardHeightNeverLeavesASliverOnTop) {
+    // 20.3 mm: nine 2 mm layers, then 1.8 mm so that the last one is min_layer (0.5), not 0.3.
+    const auto s = slice(mas::test::box(0, 0, 0, 10, 10, 20.3), 2.0);
+    const auto& layers = s.result.layers;
+    ASSERT_EQ(layers.size(), 11u);
+    EXPECT_NEAR(layers[9].min_thickness_mm, 1.8, 1e-9);
+    EXPECT_NEAR(layers[10].min_thickness_mm, 0.5, 1e-9);
+    EXPECT_NEAR(layers[10].plane.origin.z(), 20.3, 1e-9);
+}
+
+TEST(Slicing, DomeLayersThinWhereTheSurfaceTurnsParallelToThem) {
+    const auto params = default_params();
+    const auto s = slice(dome(), 2.0, params);
+    const auto& layers = s.result.layers;
+    ASSERT_GT(layers.size(), 10u);
+    // All +Z (one component); thickness falls as the surface flattens: the first layers are
+    // max_layer thick, the top ones min_layer.
+    for (const auto& l : layers) EXPECT_TRUE(l.plane.normal.isApprox(Vector3d::UnitZ(), 1e-9));
+    EXPECT_NEAR(layers.front().min_thickness_mm, 2.0, 1e-9);
+    EXPECT_NEAR(layers[layers.size() - 2].min_thickness_mm, 0.5, 0.05);
+    for (std::size_t i = 1; i + 1 < layers.size(); ++i)
+        EXPECT_LE(layers[i].min_thickness_mm, layers[i - 1].min_thickness_mm + 1e-9) << i;
+    expect_invariants(s, params, "dome");
+}
+
+TEST(Slicing, FrustumMeetsTheVolumeBoundOnEveryLayer) {
+    auto params = default_params();
+    params.layers.max_volume_difference = 0.05;
+    const auto s = slice(frustum(), 2.0, params);
+    for (const auto& l : s.result.layers) {
+        EXPECT_TRUE(l.meets_volume_difference);
+        EXPECT_LE(l.volume_difference, params.layers.max_volume_difference);
+    }
+    // Thinner towards the top, where the section is smaller for the same cusp.
+    EXPECT_LT(s.result.layers[s.result.layers.size() - 2].min_thickness_mm,
+              s.result.layers.front().min_thickness_mm);
+    expect_invariants(s, params, "frustum");
+}
+
+TEST(Slicing, LBlockArmIsSlicedAlongItsLengthAndTheColumnAlongZ) {
+    const auto params = default_params();
+    const auto s = slice(mas::test::l_block(), 2.5, params);
+    ASSERT_EQ(s.result.components.size(), 2u);
+    const auto& column = s.result.components[0];
+    const auto& arm = s.result.components[1];
+    EXPECT_EQ(column.layer_count, 30);  // 60 mm at 2 mm
+    EXPECT_EQ(arm.layer_count, 25);     // 50 mm at 2 mm
+    for (int i = 0; i < column.layer_count; ++i)
+        EXPECT_TRUE(s.result.layers[std::size_t(column.first_layer + i)].plane.normal.isApprox(
+            Vector3d::UnitZ(), 1e-9));
+    for (int i = 0; i < arm.layer_count; ++i) {
+        const auto& l = s.result.layers[std::size_t(arm.first_layer + i)];
+        EXPECT_TRUE(l.plane.normal.isApprox(Vector3d::UnitX(), 1e-9));
+        EXPECT_NEAR(l.plane.origin.x(), 20.0 + 2.0 * (i + 1), 1e-9);
+        EXPECT_NEAR(l.area_mm2, 400.0, 1e-6);
+    }
+    expect_invariants(s, params, "L-block");
+}
+
+TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {
+    const auto params = default_params();
+    const auto s = slice(bent_bar(), 0.0, params);
+    const auto& root = s.result.components[0];
+    double total_turn = 0.0, worst_step = 0.0;
+    for (int i = 1; i < root.layer_count; ++i) {
+        const auto& a = s.result.layers[std::size_t(root.first_layer + i - 1)];
+        const auto& b = s.result.layers[std::size_t(root.first_layer + i)];
+        const double turn = angle_deg(a.plane.normal, b.plane.normal);
+        total_turn += turn;
+        worst_step = std::max(worst_step, turn);
+    }
+    // The layers follow the bend (more than 30 degrees of turn before the split) a few degrees
+    // at a time; the thickness bounds hold on the inside and the outside of the bend (min and
+    // max over the region) and the planes never cross inside the bar (checked by the invariants).
+    EXPECT_GT(total_turn, 30.0);
+    EXPECT_LT(worst_step, 10.0);
+    expect_invariants(s, params, "bent bar");
+}
+
+TEST(Slicing, InvariantsHoldOnBranchingParts) {
+    const auto params = default_params();
+    expect_invariants(slice(t_block(), 2.5, params), params, "T");
+    expect_invariants(slice(mas::test::two_posts(), 1.0, params), params, "two posts");
+    expect_invariants(slice(mas::test::plate_with_hole(), 2.0, params), params, "plate with hole");
+}
+
+TEST(SlicingErrors, BadParametersAreNamed) {
+    const auto part = mas::test::box(0, 0, 0, 10, 10, 10);
+    auto expect_invalid = [&](mas::SlicePartParams p, const std::string& word) {
+        try {
+            slice(part, 2.0, p);
+            ADD_FAILURE() << "no error for " << word;
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+        }
+    };
+    auto p = default_params();
+    p.layers.min_layer_mm = 3.0;
+    expect_invalid(p, "min_layer");
+    p = default_params();
+    p.layers.max_layer_mm = std::nan("");
+    expect_invalid(p, "max_layer");
+    p = default_params();
+    p.layers.max_volume_difference = 0.0;
+    expect_invalid(p, "max_volume_difference");
+    p = default_params();
+    p.paths.bead_width_mm = 0.0;
+    expect_invalid(p, "bead");
+    p = default_params();
+    p.paths.bead_width_mm = -1.0;
+    expect_invalid(p, "bead");
+}
+
+TEST(SlicingErrors, NoFeasibleLayerIsAnError) {
+    // A 0.4 mm plate cannot hold a 0.5 mm layer.
+    try {
+        slice(mas::test::box(0, 0, 0, 10, 10, 0.4), 0.1);
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("min_layer"), std::string::npos) << e.what();
+    }
+    // Strict: a dome's cap cannot meet a 1 % bound even at min_layer.
+    auto p = default_params();
+    p.layers.max_volume_difference = 0.01;
+    p.layers.strict = true;
+    try {
+        slice(dome(), 2.0, p);
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::GeometryFailure);
+        EXPECT_NE(std::string(e.what()).find("max_volume_difference"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(SlicingErrors, CancellationStopsTheWork) {
+    const auto part = mas::test::box(0, 0, 0, 10, 10, 30);
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const auto axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
+    const auto d = mas::decompose(part, axis);
+    int calls = 0;
+    EXPECT_THROW(mas::slice_part(part, axis, d, default_params(),
+                                 [&] {
+                                     if (++calls == 5)
+                                         throw mas::Error(mas::ErrorCode::Cancelled, "stop");
+                                 }),
+                 mas::Error);
+    EXPECT_EQ(calls, 5);
+}
+
+TEST(Slicing, InsideMeshTellsInsideFromOutside) {
+    const auto mesh = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
+    EXPECT_TRUE(mas::inside_mesh(mesh, {5, 5, 5}));
+    EXPECT_TRUE(mas::inside_mesh(mesh, {0.01, 9.99, 5}));
+    EXPECT_FALSE(mas::inside_mesh(mesh, {-0.01, 5, 5}));
+    EXPECT_FALSE(mas::inside_mesh(mesh, {50, 50, 50}));
+}

@@ -41,8 +41,12 @@ __all__ = [
     "Decomposition",
     "EngineError",
     "EngineUnavailableError",
+    "Layer",
     "Region",
+    "SLICE_DEFAULTS",
     "Section",
+    "SliceResult",
+    "ToolPath",
     "deflection",
     "engine_available",
     "engine_missing_message",
@@ -52,10 +56,12 @@ __all__ = [
     "make_centroidal_axis",
     "make_decomposition",
     "make_sections",
+    "make_slice",
     "parallel_planes",
     "read",
     "section",
     "sections",
+    "slice",
     "to_engine_mesh",
 ]
 
@@ -546,6 +552,20 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
                                        deflection=deflection, name=name, doc=doc)
 
 
-# The centroidal axis and the decomposition (after the helpers above, which they use).
+def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
+               toolpath_name="Toolpath", doc=None, **params):
+    """Adds a parametric ``Layers`` object (FreeCAD only) slicing the part of the ``Decomposition``
+    object ``decomposition`` into adaptive multi-axis layers, and a ``Toolpath`` object showing
+    the bead paths planned in them; returns (layers, toolpath). Recompute the document to compute
+    them. ``params`` are ``slice()``'s slicing parameters (min_layer, max_layer, bead_width,
+    infill, ...), checked before anything is added. See ``MultiAxisSlicer.features``."""
+    from . import features
+
+    return features.make_slice(decomposition, deflection=deflection, show_travel=show_travel,
+                               name=name, toolpath_name=toolpath_name, doc=doc, **params)
+
+
+# The centroidal axis, the decomposition and the slicing (after the helpers above, which they use).
 from .axis import AxisBranch, AxisLink, AxisNode, CentroidalAxis, centroidal_axis  # noqa: E402
 from .decompose import Component, Decomposition, decompose  # noqa: E402
+from .slicing import SLICE_DEFAULTS, Layer, SliceResult, ToolPath, slice  # noqa: E402,A001

@@ -1,6 +1,6 @@
 // multiaxis-slicer: the engine on STEP / IGES / BREP / STL / OFF files, outside FreeCAD.
 // Sub-commands grow with the pipeline: `sections` (cross-section areas and centroids), `axis` (the
-// centroidal axis), `decompose` (the tree of sub-components).
+// centroidal axis), `decompose` (the tree of sub-components), `slice` (layers and paths).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +19,7 @@
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
+#include "mas/SlicePart.hpp"
 
 namespace {
 
@@ -30,6 +31,13 @@ const char* kUsage =
     "                                  [--json [OUT.json]]\n"
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG] [--no-fallback]\n"
     "                                       [--step-dir DIR] [--json [OUT.json]]\n"
+    "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
+    "                                   [--max-volume-difference F] [--eps-angle DEG]\n"
+    "                                   [--overhang-angle DEG] [--volume-samples N] [--strict]\n"
+    "                                   [--bead-width MM] [--overlap F] [--contours N]\n"
+    "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
+    "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
+    "                                   [--measure-coverage] [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
     "\n"
     "sections   cut the part with parallel planes STEP mm apart along NORMAL (default 0,0,1 and\n"
@@ -41,6 +49,11 @@ const char* kUsage =
     "decompose  split the part into sub-components at its axis' turns and branches (Sec. 4.1):\n"
     "           the tree, each component's build direction, base face and volume; --step-dir\n"
     "           writes every component as DIR/component_NNN.step. Needs a BREP solid.\n"
+    "slice      adaptive multi-axis layers of every sub-component (Sec. 4.2) and the bead paths\n"
+    "           in every layer: per layer its plane, thickness range, volumetric difference and\n"
+    "           unsupported area; --json adds regions and paths (points, tool axis, thickness).\n"
+    "           Defaults: layers 0.5 to 2 mm, volume difference 0.1, bead 1 mm, overlap 0.15,\n"
+    "           2 contours, raster infill. A mesh is sliced as one component.\n"
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
     "--json     write JSON instead of text, to OUT.json or standard output\n"
@@ -396,6 +409,203 @@ int run_decompose(const std::vector<std::string>& args) {
     return 0;
 }
 
+const std::set<std::string> kSliceOptions = {
+    "--min-layer",  "--max-layer",      "--max-volume-difference",
+    "--eps-angle",  "--overhang-angle", "--volume-samples",
+    "--bead-width", "--overlap",        "--contours",
+    "--infill",     "--raster-angle",   "--raster-angle-step",
+    "--min-feature"};
+
+mas::SlicePartParams slice_params(const Args& a) {
+    mas::SlicePartParams p;
+    mas::LayerParams& l = p.layers;
+    l.min_layer_mm = a.number("--min-layer", l.min_layer_mm);
+    l.max_layer_mm = a.number("--max-layer", l.max_layer_mm);
+    l.max_volume_difference = a.number("--max-volume-difference", l.max_volume_difference);
+    l.eps_angle_deg = a.number("--eps-angle", l.eps_angle_deg);
+    l.overhang_angle_deg = a.number("--overhang-angle", l.overhang_angle_deg);
+    l.volume_samples = int(a.number("--volume-samples", l.volume_samples));
+    mas::PathParams& t = p.paths;
+    t.bead_width_mm = a.number("--bead-width", t.bead_width_mm);
+    t.overlap = a.number("--overlap", t.overlap);
+    t.contour_count = int(a.number("--contours", t.contour_count));
+    if (a.has("--infill"))
+        t.infill = mas::infill_pattern_from_string(a.options.at("--infill").c_str());
+    t.raster_angle_deg = a.number("--raster-angle", t.raster_angle_deg);
+    t.raster_angle_step_deg = a.number("--raster-angle-step", t.raster_angle_step_deg);
+    t.min_feature_mm = a.number("--min-feature", t.min_feature_mm);
+    p.tessellation.deflection_mm = a.number("--deflection", 0.0);
+    return p;
+}
+
+void write_points(std::ostream& out, const std::vector<Eigen::Vector3d>& points) {
+    out << "[";
+    for (std::size_t i = 0; i < points.size(); ++i) out << (i ? ", " : "") << vec(points[i]);
+    out << "]";
+}
+
+int run_slice(const std::vector<std::string>& args) {
+    std::set<std::string> allowed = kAxisOptions;
+    allowed.insert(kSliceOptions.begin(), kSliceOptions.end());
+    std::vector<std::string> rest;
+    bool strict = false, coverage = false;
+    for (const auto& arg : args) {
+        if (arg == "--strict")
+            strict = true;
+        else if (arg == "--measure-coverage")
+            coverage = true;
+        else
+            rest.push_back(arg);
+    }
+    const Args a = parse_args(rest, allowed);
+    const mas::AxisParams ap = axis_params(a);
+    mas::SlicePartParams sp = slice_params(a);
+    sp.layers.strict = strict;
+    sp.paths.measure_coverage = coverage;
+    mas::validate(sp.layers);
+    mas::validate(sp.paths);
+    const Part part = load_part(a);
+    const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, ap);
+    mas::SlicedPart r;
+    if (part.model.kind == mas::Model::Kind::Solid) {
+        const mas::Shape solid = part.model.shape.single_solid(a.file);
+        const mas::Decomposition d = mas::decompose(solid, axis);
+        r = mas::slice_part(solid, axis, d, sp);
+    } else {
+        // A mesh cannot be split: one component on the plane through its lowest point.
+        mas::ComponentMesh root;
+        root.mesh = part.mesh;
+        const Eigen::AlignedBox3d box = mas::bounding_box(part.mesh);
+        root.base = mas::make_plane({box.center().x(), box.center().y(), box.min().z()},
+                                    Eigen::Vector3d::UnitZ());
+        r = mas::slice_components({root}, axis, sp);
+    }
+    const mas::SliceStats& st = r.stats;
+    std::ostringstream out;
+    if (a.json) {
+        const mas::LayerParams& l = sp.layers;
+        const mas::PathParams& t = sp.paths;
+        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
+            << ",\n  \"params\": {\"min_layer\": " << num(l.min_layer_mm)
+            << ", \"max_layer\": " << num(l.max_layer_mm)
+            << ", \"max_volume_difference\": " << num(l.max_volume_difference)
+            << ", \"eps_angle\": " << num(l.eps_angle_deg)
+            << ", \"overhang_angle\": " << num(l.overhang_angle_deg)
+            << ", \"volume_samples\": " << l.volume_samples
+            << ", \"strict\": " << (l.strict ? "true" : "false")
+            << ", \"bead_width\": " << num(t.bead_width_mm) << ", \"overlap\": " << num(t.overlap)
+            << ", \"contour_count\": " << t.contour_count
+            << ", \"infill\": " << quoted(mas::to_string(t.infill))
+            << ", \"raster_angle\": " << num(t.raster_angle_deg)
+            << ", \"raster_angle_step\": " << num(t.raster_angle_step_deg)
+            << ", \"min_feature\": " << num(t.min_feature_mm)
+            << ", \"measure_coverage\": " << (t.measure_coverage ? "true" : "false") << "}"
+            << ",\n  \"stats\": {\"layer_count\": " << st.layer_count
+            << ", \"min_thickness_mm\": " << num(st.min_thickness_mm)
+            << ", \"max_thickness_mm\": " << num(st.max_thickness_mm)
+            << ", \"part_volume_mm3\": " << num(st.part_volume_mm3)
+            << ", \"deposited_volume_mm3\": " << num(st.deposited_volume_mm3)
+            << ", \"material_volume_mm3\": " << num(st.material_volume_mm3)
+            << ", \"max_volume_difference\": " << num(st.max_volume_difference)
+            << ", \"layers_over_volume_difference\": " << st.layers_over_volume_difference
+            << ", \"worst_unsupported_area_mm2\": " << num(st.worst_unsupported_area_mm2)
+            << ", \"worst_unsupported_layer\": " << st.worst_unsupported_layer
+            << ", \"deposit_length_mm\": " << num(st.deposit_length_mm)
+            << ", \"travel_length_mm\": " << num(st.travel_length_mm)
+            << ", \"centre_line_passes\": " << st.centre_line_passes
+            << ", \"unfilled_features\": " << st.unfilled_features << "},\n  \"components\": [";
+        for (std::size_t i = 0; i < r.components.size(); ++i) {
+            const auto& c = r.components[i];
+            out << (i ? "," : "") << "\n    {\"component\": " << c.component
+                << ", \"first_layer\": " << c.first_layer << ", \"layer_count\": " << c.layer_count
+                << ", \"guide_nodes\": " << c.guide_nodes
+                << ", \"volume_mm3\": " << num(c.volume_mm3) << "}";
+        }
+        out << "\n  ],\n  \"layers\": [";
+        for (std::size_t i = 0; i < r.layers.size(); ++i) {
+            const mas::Layer& l = r.layers[i];
+            const mas::LayerToolpaths& tp = r.toolpaths[i];
+            out << (i ? "," : "") << "\n    {\"component\": " << l.component
+                << ", \"origin\": " << vec(l.plane.origin)
+                << ", \"normal\": " << vec(l.plane.normal)
+                << ", \"lower_origin\": " << vec(l.lower.origin)
+                << ", \"lower_normal\": " << vec(l.lower.normal) << ", \"regions\": [";
+            for (std::size_t k = 0; k < l.regions.size(); ++k) {
+                const auto loops = l.loops_3d(k);
+                out << (k ? ", " : "") << "{\"outer\": ";
+                write_points(out, loops.front());
+                out << ", \"holes\": [";
+                for (std::size_t h = 1; h < loops.size(); ++h) {
+                    out << (h > 1 ? ", " : "");
+                    write_points(out, loops[h]);
+                }
+                out << "]}";
+            }
+            out << "], \"area_mm2\": " << num(l.area_mm2)
+                << ", \"min_thickness_mm\": " << num(l.min_thickness_mm)
+                << ", \"max_thickness_mm\": " << num(l.max_thickness_mm)
+                << ", \"volume_mm3\": " << num(l.volume_mm3)
+                << ", \"material_volume_mm3\": " << num(l.material_volume_mm3)
+                << ", \"volume_difference\": " << num(l.volume_difference)
+                << ", \"meets_volume_difference\": "
+                << (l.meets_volume_difference ? "true" : "false")
+                << ", \"unsupported_area_mm2\": " << num(l.unsupported_area_mm2)
+                << ", \"axis_node\": " << l.axis_node << ", \"axis_point\": " << vec(l.axis_point)
+                << ", \"tool_axis\": " << vec(tp.tool_axis) << ", \"paths\": [";
+            for (std::size_t k = 0; k < tp.paths.size(); ++k) {
+                const mas::ToolPath& p = tp.paths[k];
+                out << (k ? ", " : "") << "\n      {\"kind\": " << quoted(mas::to_string(p.kind))
+                    << ", \"region\": " << p.region << ", \"points\": ";
+                write_points(out, p.points);
+                out << ", \"thickness_mm\": [";
+                for (std::size_t j = 0; j < p.thickness_mm.size(); ++j)
+                    out << (j ? ", " : "") << num(p.thickness_mm[j]);
+                out << "]}";
+            }
+            out << "], \"centre_line_regions\": [";
+            for (std::size_t k = 0; k < tp.centre_line_regions.size(); ++k)
+                out << (k ? ", " : "") << tp.centre_line_regions[k];
+            out << "], \"unfilled\": [";
+            const mas::PlaneFrame frame(l.plane.normal);
+            for (std::size_t k = 0; k < tp.unfilled.size(); ++k) {
+                const auto& u = tp.unfilled[k];
+                out << (k ? ", " : "") << "{\"region\": " << u.region
+                    << ", \"area_mm2\": " << num(u.area_mm2)
+                    << ", \"centroid\": " << vec(frame.to_3d(u.centroid, l.plane)) << "}";
+            }
+            out << "], \"deposit_length_mm\": " << num(tp.deposit_length_mm)
+                << ", \"travel_length_mm\": " << num(tp.travel_length_mm)
+                << ", \"uncovered_area_mm2\": " << num(tp.uncovered_area_mm2) << "}";
+        }
+        out << "\n  ]\n}\n";
+    } else {
+        out << "# " << a.file << ": " << r.components.size() << " components, " << st.layer_count
+            << " layers, thickness " << num(st.min_thickness_mm) << " to "
+            << num(st.max_thickness_mm) << " mm\n# deposited " << num(st.deposited_volume_mm3)
+            << " of " << num(st.part_volume_mm3) << " mm3; worst volume difference "
+            << num(st.max_volume_difference) << " (" << st.layers_over_volume_difference
+            << " layers over the bound); worst unsupported area "
+            << num(st.worst_unsupported_area_mm2) << " mm2\n# paths: " << num(st.deposit_length_mm)
+            << " mm deposit, " << num(st.travel_length_mm) << " mm travel, "
+            << st.centre_line_passes << " centre-line passes, " << st.unfilled_features
+            << " unfilled features\n"
+            << "# layer component origin normal min_thickness max_thickness area_mm2 "
+               "volume_difference unsupported_mm2 paths\n";
+        for (std::size_t i = 0; i < r.layers.size(); ++i) {
+            const mas::Layer& l = r.layers[i];
+            out << i << " " << l.component << " " << std::fixed << std::setprecision(4)
+                << l.plane.origin.x() << "," << l.plane.origin.y() << "," << l.plane.origin.z()
+                << " " << l.plane.normal.x() << "," << l.plane.normal.y() << ","
+                << l.plane.normal.z() << " " << l.min_thickness_mm << " " << l.max_thickness_mm
+                << " " << l.area_mm2 << " " << l.volume_difference << " " << l.unsupported_area_mm2
+                << " " << r.toolpaths[i].paths.size() << "\n"
+                << std::defaultfloat;
+        }
+    }
+    write_output(a, out.str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -416,6 +626,7 @@ int main(int argc, char** argv) {
         if (command == "sections") return run_sections(args);
         if (command == "axis") return run_axis(args);
         if (command == "decompose") return run_decompose(args);
+        if (command == "slice") return run_slice(args);
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& e) {
         std::cerr << "multiaxis-slicer: " << e.what() << " (see multiaxis-slicer --help)\n";

@@ -7,6 +7,7 @@
 #include "mas/Mesh.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
+#include "mas/SlicePart.hpp"
 
 // Boost 1.74's Boost.Python still includes deprecated Boost headers; keep the build output quiet.
 #define BOOST_BIND_GLOBAL_PLACEHOLDERS
@@ -824,6 +825,269 @@ void bind_decompose() {
         "another part, geometry_failure when OCCT fails on the input.");
 }
 
+// ---- stage: adaptive multi-axis slicing and paths
+// ------------------------------------------------
+
+// Layer and path parameters from a dict of the names slice() documents; unknown names are errors.
+mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
+    mas::SlicePartParams p;
+    const bp::list keys = d.keys();
+    for (bp::ssize_t i = 0; i < bp::len(keys); ++i) {
+        const bp::extract<std::string> key_text(keys[i]);
+        if (!key_text.check()) invalid_argument("slicing parameter names must be strings");
+        const std::string key = key_text();
+        const bp::object value = d[keys[i]];
+        auto number = [&]() {
+            const double x = PyFloat_AsDouble(value.ptr());
+            if (x == -1.0 && PyErr_Occurred()) {
+                PyErr_Clear();
+                invalid_argument(key + " must be a number");
+            }
+            return x;
+        };
+        auto integer = [&]() {
+            const long x = PyLong_AsLong(value.ptr());
+            if (x == -1 && PyErr_Occurred()) {
+                PyErr_Clear();
+                invalid_argument(key + " must be an integer");
+            }
+            return x;
+        };
+        if (key == "min_layer")
+            p.layers.min_layer_mm = number();
+        else if (key == "max_layer")
+            p.layers.max_layer_mm = number();
+        else if (key == "max_volume_difference")
+            p.layers.max_volume_difference = number();
+        else if (key == "eps_angle")
+            p.layers.eps_angle_deg = number();
+        else if (key == "initial_offset")
+            p.layers.initial_offset_mm = number();
+        else if (key == "overhang_angle")
+            p.layers.overhang_angle_deg = number();
+        else if (key == "volume_samples")
+            p.layers.volume_samples = int(integer());
+        else if (key == "strict")
+            p.layers.strict = PyObject_IsTrue(value.ptr()) == 1;
+        else if (key == "bead_width")
+            p.paths.bead_width_mm = number();
+        else if (key == "overlap")
+            p.paths.overlap = number();
+        else if (key == "contour_count")
+            p.paths.contour_count = int(integer());
+        else if (key == "infill") {
+            const bp::extract<std::string> name(value);
+            if (!name.check()) invalid_argument("infill must be 'raster', 'contour' or 'none'");
+            p.paths.infill = mas::infill_pattern_from_string(name().c_str());
+        } else if (key == "raster_angle")
+            p.paths.raster_angle_deg = number();
+        else if (key == "raster_angle_step")
+            p.paths.raster_angle_step_deg = number();
+        else if (key == "min_feature")
+            p.paths.min_feature_mm = number();
+        else if (key == "measure_coverage")
+            p.paths.measure_coverage = PyObject_IsTrue(value.ptr()) == 1;
+        else if (key == "deflection")
+            p.tessellation.deflection_mm = number();
+        else
+            invalid_argument("unknown slicing parameter '" + key + "'");
+    }
+    mas::validate(p.layers);
+    mas::validate(p.paths);
+    return p;
+}
+
+bp::list points_to_py(const std::vector<Eigen::Vector3d>& points) {
+    bp::list out;
+    for (const auto& p : points) out.append(to_py(p));
+    return out;
+}
+
+bp::dict sliced_to_py(const mas::SlicedPart& r) {
+    bp::list layers;
+    for (std::size_t i = 0; i < r.layers.size(); ++i) {
+        const mas::Layer& l = r.layers[i];
+        bp::dict d;
+        d["component"] = l.component;
+        d["origin"] = to_py(l.plane.origin);
+        d["normal"] = to_py(l.plane.normal);
+        d["lower_origin"] = to_py(l.lower.origin);
+        d["lower_normal"] = to_py(l.lower.normal);
+        bp::list regions;
+        for (std::size_t k = 0; k < l.regions.size(); ++k) {
+            const auto loops = l.loops_3d(k);
+            bp::dict region;
+            region["outer"] = points_to_py(loops.front());
+            bp::list holes;
+            for (std::size_t h = 1; h < loops.size(); ++h) holes.append(points_to_py(loops[h]));
+            region["holes"] = holes;
+            regions.append(region);
+        }
+        d["regions"] = regions;
+        d["area_mm2"] = l.area_mm2;
+        d["min_thickness_mm"] = l.min_thickness_mm;
+        d["max_thickness_mm"] = l.max_thickness_mm;
+        d["volume_mm3"] = l.volume_mm3;
+        d["material_volume_mm3"] = l.material_volume_mm3;
+        d["volume_difference"] = l.volume_difference;
+        d["meets_volume_difference"] = l.meets_volume_difference;
+        d["unsupported_area_mm2"] = l.unsupported_area_mm2;
+        d["axis_node"] = l.axis_node;
+        d["axis_point"] = to_py(l.axis_point);
+        const mas::LayerToolpaths& t = r.toolpaths[i];
+        bp::list paths;
+        for (const mas::ToolPath& p : t.paths) {
+            bp::dict path;
+            path["kind"] = mas::to_string(p.kind);
+            path["region"] = p.region;
+            path["points"] = points_to_py(p.points);
+            bp::list thickness;
+            for (double x : p.thickness_mm) thickness.append(x);
+            path["thickness_mm"] = thickness;
+            paths.append(path);
+        }
+        d["tool_axis"] = to_py(t.tool_axis);
+        d["paths"] = paths;
+        bp::list centre;
+        for (int k : t.centre_line_regions) centre.append(k);
+        d["centre_line_regions"] = centre;
+        bp::list unfilled;
+        const mas::PlaneFrame frame(l.plane.normal);
+        for (const auto& u : t.unfilled) {
+            bp::dict f;
+            f["region"] = u.region;
+            f["area_mm2"] = u.area_mm2;
+            f["centroid"] = to_py(frame.to_3d(u.centroid, l.plane));
+            unfilled.append(f);
+        }
+        d["unfilled"] = unfilled;
+        d["deposit_length_mm"] = t.deposit_length_mm;
+        d["travel_length_mm"] = t.travel_length_mm;
+        d["uncovered_area_mm2"] = t.uncovered_area_mm2;
+        layers.append(d);
+    }
+    bp::list components;
+    for (const auto& c : r.components) {
+        bp::dict d;
+        d["component"] = c.component;
+        d["first_layer"] = c.first_layer;
+        d["layer_count"] = c.layer_count;
+        d["guide_nodes"] = c.guide_nodes;
+        d["volume_mm3"] = c.volume_mm3;
+        components.append(d);
+    }
+    const mas::SliceStats& s = r.stats;
+    bp::dict stats;
+    stats["layer_count"] = s.layer_count;
+    stats["min_thickness_mm"] = s.min_thickness_mm;
+    stats["max_thickness_mm"] = s.max_thickness_mm;
+    stats["part_volume_mm3"] = s.part_volume_mm3;
+    stats["deposited_volume_mm3"] = s.deposited_volume_mm3;
+    stats["material_volume_mm3"] = s.material_volume_mm3;
+    stats["max_volume_difference"] = s.max_volume_difference;
+    stats["layers_over_volume_difference"] = s.layers_over_volume_difference;
+    stats["worst_unsupported_area_mm2"] = s.worst_unsupported_area_mm2;
+    stats["worst_unsupported_layer"] = s.worst_unsupported_layer;
+    stats["deposit_length_mm"] = s.deposit_length_mm;
+    stats["travel_length_mm"] = s.travel_length_mm;
+    stats["centre_line_passes"] = s.centre_line_passes;
+    stats["unfilled_features"] = s.unfilled_features;
+    bp::dict out;
+    out["layers"] = layers;
+    out["components"] = components;
+    out["stats"] = stats;
+    return out;
+}
+
+// The engine's decomposition from the component dicts decompose() returned (only what slicing
+// reads: solid, parent, build direction, base origin and normal, branch).
+mas::Decomposition decomposition_from_py(const bp::object& value) {
+    mas::Decomposition d;
+    bp::handle<> seq = fast_sequence(value, "components");
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        const bp::object item(bp::handle<>(bp::borrowed(items[i])));
+        const std::string what = "components[" + std::to_string(i) + "]";
+        mas::Component c;
+        const bp::extract<mas::Shape> solid(required(item, "solid", what));
+        if (!solid.check()) invalid_argument(what + "['solid'] must be an engine Shape");
+        c.solid = solid();
+        c.parent = index_of(item, "parent", what);
+        c.build_direction =
+            vector3(required(item, "build_direction", what), what + "['build_direction']");
+        c.base_origin = vector3(required(item, "base_origin", what), what + "['base_origin']");
+        c.base_normal = -c.build_direction;
+        c.branch = index_of(item, "branch", what);
+        if (!c.build_direction.allFinite() || c.build_direction.norm() < 1e-12 ||
+            !c.base_origin.allFinite())
+            invalid_argument(what + " has a non-finite or zero build direction or base origin");
+        d.components.push_back(std::move(c));
+    }
+    return d;
+}
+
+bp::dict slice_part(const mas::Shape& shape, const bp::object& axis_py,
+                    const bp::object& components_py, const bp::dict& params_py) {
+    const mas::SlicePartParams params = slice_params_from_py(params_py);
+    const mas::CentroidalAxis axis = axis_from_py(axis_py);
+    const mas::Decomposition d = decomposition_from_py(components_py);
+    mas::SlicedPart r;
+    {
+        GilRelease nogil;
+        r = mas::slice_part(shape, axis, d, params);
+    }
+    return sliced_to_py(r);
+}
+
+bp::dict slice_mesh_part(const mas::TriangleMesh& mesh, const bp::object& axis_py,
+                         const bp::dict& params_py) {
+    const mas::SlicePartParams params = slice_params_from_py(params_py);
+    const mas::CentroidalAxis axis = axis_from_py(axis_py);
+    mas::SlicedPart r;
+    {
+        GilRelease nogil;
+        // A mesh cannot be split: one root component standing on the plane through its lowest
+        // point, following the axis' first branch.
+        mas::ComponentMesh root;
+        root.mesh = mesh;
+        const Eigen::AlignedBox3d box = mas::bounding_box(mesh);
+        root.base =
+            mas::make_plane(Eigen::Vector3d(box.center().x(), box.center().y(), box.min().z()),
+                            Eigen::Vector3d::UnitZ());
+        r = mas::slice_components({root}, axis, params);
+    }
+    return sliced_to_py(r);
+}
+
+void bind_slice() {
+    const char* params_doc =
+        " `params` is a dict of slicing parameters (lengths in mm, angles in degrees): "
+        "min_layer, max_layer, max_volume_difference, eps_angle, initial_offset, overhang_angle, "
+        "volume_samples, strict, bead_width, overlap, contour_count, infill ('raster' | "
+        "'contour' | 'none'), raster_angle, raster_angle_step, min_feature, measure_coverage, "
+        "deflection (slice_part only); missing ones take the engine's defaults. Returns a dict: "
+        "layers [{component, origin, normal, lower_origin, lower_normal, regions [{outer, "
+        "holes}] as 3-D points, area_mm2, min_thickness_mm, max_thickness_mm, volume_mm3, "
+        "material_volume_mm3, volume_difference, meets_volume_difference, unsupported_area_mm2, "
+        "axis_node, axis_point, tool_axis, paths [{kind, region, points, thickness_mm}], "
+        "centre_line_regions, unfilled [{region, area_mm2, centroid}], deposit_length_mm, "
+        "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "
+        "layer_count, guide_nodes, volume_mm3}], stats {...}. EngineError invalid_argument for "
+        "bad parameters or a part no layer fits.";
+    bp::def("slice_part", &slice_part,
+            (bp::arg("shape"), bp::arg("axis"), bp::arg("components"), bp::arg("params")),
+            (std::string("Slices a solid's sub-components (the component dicts decompose() "
+                         "returned, in tree order) along its centroidal axis `axis`.") +
+             params_doc)
+                .c_str());
+    bp::def("slice_mesh_part", &slice_mesh_part,
+            (bp::arg("mesh"), bp::arg("axis"), bp::arg("params")),
+            (std::string("Slices a closed mesh as one component along its axis' first branch.") +
+             params_doc)
+                .c_str());
+}
+
 }  // namespace
 
 BOOST_PYTHON_MODULE(_engine) {
@@ -860,4 +1124,5 @@ BOOST_PYTHON_MODULE(_engine) {
     bind_exact_section();
     bind_axis();
     bind_decompose();
+    bind_slice();
 }

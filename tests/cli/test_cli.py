@@ -226,6 +226,45 @@ class CliSections(unittest.TestCase):
         self.expect_error(["decompose", os.path.join(DATA, "l_block.brep"), "--fallback"], 2,
                           "unknown option")
 
+    def test_slice_builds_the_l_block_column_along_z_and_the_arm_along_x(self):
+        out = os.path.join(self.tmp.name, "slice.json")
+        r = run("slice", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            doc = json.load(f)
+        column, arm = doc["components"]
+        self.assertEqual((column["layer_count"], arm["layer_count"]), (30, 25))
+        for layer in doc["layers"]:
+            want = (0, 0, 1) if layer["component"] == 0 else (1, 0, 0)
+            for got, w in zip(layer["normal"], want):
+                self.assertAlmostEqual(got, w, places=9)
+            self.assertAlmostEqual(layer["min_thickness_mm"], 2.0, places=9)
+            self.assertEqual(layer["unsupported_area_mm2"], 0.0)
+            kinds = {p["kind"] for p in layer["paths"]}
+            self.assertLessEqual({"contour", "infill"}, kinds)
+            for path in layer["paths"]:
+                self.assertEqual(len(path["points"]), len(path["thickness_mm"]))
+        self.assertAlmostEqual(doc["stats"]["deposited_volume_mm3"], 44000.0, places=3)
+        self.assertEqual(doc["stats"]["layer_count"], 55)
+
+    def test_slice_text_and_a_mesh_part(self):
+        r = run("slice", self.write("box.stl", box_stl(20, 10, 21)), "--max-layer", "3")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = [l.split() for l in r.stdout.splitlines() if not l.startswith("#")]
+        self.assertEqual(len(rows), 7)  # 21 mm in 3 mm layers
+        self.assertEqual([float(row[4]) for row in rows], [3.0] * 7)
+
+    def test_slice_bad_input(self):
+        brep = os.path.join(DATA, "l_block.brep")
+        self.expect_error(["slice", brep, "--min-layer", "3", "--max-layer", "2"], 1,
+                          "invalid_argument", "min_layer")
+        self.expect_error(["slice", brep, "--bead-width", "0"], 1, "invalid_argument", "bead")
+        self.expect_error(["slice", brep, "--bead-width", "-1"], 1, "invalid_argument", "bead")
+        self.expect_error(["slice", brep, "--infill", "zigzag"], 1, "invalid_argument", "infill")
+        self.expect_error(["slice", brep, "--max-layer", "nan"], 2, "max-layer")
+        self.expect_error(["slice", self.write("plate.stl", box_stl(10, 10, 0.3))], 1,
+                          "invalid_argument", "min_layer")
+
     def test_help(self):
         r = run("--help")
         self.assertEqual(r.returncode, 0)

@@ -1,0 +1,351 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Adaptive multi-axis slicing into "3-D" layers and the deposition paths in every layer (Ruan et
+al., Sec. 4.2), for scripts and FreeCAD.
+
+Every sub-component is sliced from its base face along its own centroidal axis; a layer's plane
+may tilt against the one below it, its thickness then varying across it. The engine's headers
+App/include/mas/Slicing.hpp and App/include/mas/Paths.hpp explain the definitions (thickness,
+volumetric difference, support) and the reading of the paper. Re-exported by the package::
+
+    import MultiAxisSlicer as mas
+    result = mas.slice(App.ActiveDocument.Part, min_layer=0.5, max_layer=2.0, bead_width=1.2)
+    for layer in result.layers:
+        print(layer.component, layer.normal, layer.min_thickness, layer.max_thickness)
+    for path in result.paths(0):
+        print(path.kind, path.deposit, len(path.points))
+"""
+
+import math
+import numbers
+
+from . import _as_list, _as_vector, _model, _require_engine
+from .axis import CentroidalAxis, _number, centroidal_axis
+from .decompose import Decomposition, decompose
+
+__all__ = ["Layer", "ToolPath", "SliceResult", "slice", "SLICE_DEFAULTS"]
+
+# The slicing parameters slice() takes, with their defaults (lengths in mm, angles in degrees).
+SLICE_DEFAULTS = {
+    "min_layer": 0.5,
+    "max_layer": 2.0,
+    "max_volume_difference": 0.1,
+    "eps_angle": 1.0,
+    "overhang_angle": 45.0,
+    "volume_samples": 4,
+    "strict": False,
+    "bead_width": 1.0,
+    "overlap": 0.15,
+    "contour_count": 2,
+    "infill": "raster",
+    "raster_angle": 0.0,
+    "raster_angle_step": 90.0,
+    "min_feature": 0.0,
+    "measure_coverage": False,
+}
+
+_AXIS_KEYS = ("step", "distance_threshold", "eps", "break_angle", "base_z")
+
+
+class ToolPath:
+    """One polyline of a layer: ``kind`` ("travel", "contour", "infill" or "centre_line"),
+    ``deposit`` (False for travel), ``region`` (index into the layer's regions, -1 for travel),
+    ``points`` (FreeCAD.Vector on the layer's plane; a closed loop repeats its first point),
+    ``thickness`` (deposit thickness under each point, mm) and ``tool_axis`` (the layer's normal,
+    the same for every point)."""
+
+    __slots__ = ("kind", "region", "_points", "thickness", "_axis")
+
+    def __init__(self, data, axis):
+        self.kind = data["kind"]
+        self.region = data["region"]
+        self._points = data["points"]
+        self.thickness = list(data["thickness_mm"])
+        self._axis = axis
+
+    @property
+    def deposit(self):
+        return self.kind != "travel"
+
+    @property
+    def points(self):
+        return [_as_vector(p) for p in self._points]
+
+    @property
+    def tool_axis(self):
+        return _as_vector(self._axis)
+
+    def length(self):
+        """Length of the polyline, mm."""
+        return sum(math.dist(a, b) for a, b in zip(self._points, self._points[1:]))
+
+    def to_dict(self):
+        return {"kind": self.kind, "region": self.region,
+                "points": [_as_list(p) for p in self._points],
+                "thickness_mm": list(self.thickness)}
+
+    def __repr__(self):
+        return "<MultiAxisSlicer.ToolPath {} points={} length={:.6g} mm>".format(
+            self.kind, len(self._points), self.length())
+
+
+class Layer:
+    """One "3-D" layer: what is deposited between its lower plane and its plane.
+
+    Attributes: ``component`` (index of its sub-component), ``origin`` and ``normal`` (its plane,
+    the layer's top; the normal is the tool axis), ``lower_origin`` and ``lower_normal`` (the plane
+    it is deposited on), ``regions`` (list of dicts with ``outer`` and ``holes``: loops as lists of
+    FreeCAD.Vector on the plane), ``area`` (mm²), ``min_thickness`` and ``max_thickness`` (mm, over
+    its region), ``volume`` (mm³ deposited), ``material_volume`` (mm³ of the part between the
+    planes), ``volume_difference`` (the volume of the symmetric difference of the two over the
+    deposited volume, Eq. 9's VolDiff), ``meets_volume_difference``, ``unsupported_area`` (mm² of
+    its footprint outside the layer below grown by the overhang allowance), ``axis_node`` (the
+    centroidal-axis node it follows) and ``axis_point``. Vectors are FreeCAD.Vector when FreeCAD is
+    importable, else tuples.
+    """
+
+    def __init__(self, data):
+        self._data = data
+        self.component = data["component"]
+        self.area = data["area_mm2"]
+        self.min_thickness = data["min_thickness_mm"]
+        self.max_thickness = data["max_thickness_mm"]
+        self.volume = data["volume_mm3"]
+        self.material_volume = data["material_volume_mm3"]
+        self.volume_difference = data["volume_difference"]
+        self.meets_volume_difference = data["meets_volume_difference"]
+        self.unsupported_area = data["unsupported_area_mm2"]
+        self.axis_node = data["axis_node"]
+
+    origin = property(lambda self: _as_vector(self._data["origin"]))
+    normal = property(lambda self: _as_vector(self._data["normal"]))
+    lower_origin = property(lambda self: _as_vector(self._data["lower_origin"]))
+    lower_normal = property(lambda self: _as_vector(self._data["lower_normal"]))
+    axis_point = property(lambda self: _as_vector(self._data["axis_point"]))
+
+    @property
+    def regions(self):
+        return [{"outer": [_as_vector(p) for p in r["outer"]],
+                 "holes": [[_as_vector(p) for p in h] for h in r["holes"]]}
+                for r in self._data["regions"]]
+
+    def loops(self):
+        """Every loop of every region (outers and holes) as lists of FreeCAD.Vector."""
+        out = []
+        for r in self.regions:
+            out.append(r["outer"])
+            out.extend(r["holes"])
+        return out
+
+    def to_dict(self):
+        d = self._data
+        return {
+            "component": d["component"],
+            "origin": _as_list(d["origin"]),
+            "normal": _as_list(d["normal"]),
+            "lower_origin": _as_list(d["lower_origin"]),
+            "lower_normal": _as_list(d["lower_normal"]),
+            "regions": [{"outer": [_as_list(p) for p in r["outer"]],
+                         "holes": [[_as_list(p) for p in h] for h in r["holes"]]}
+                        for r in d["regions"]],
+            "area_mm2": d["area_mm2"],
+            "min_thickness_mm": d["min_thickness_mm"],
+            "max_thickness_mm": d["max_thickness_mm"],
+            "volume_mm3": d["volume_mm3"],
+            "material_volume_mm3": d["material_volume_mm3"],
+            "volume_difference": d["volume_difference"],
+            "meets_volume_difference": d["meets_volume_difference"],
+            "unsupported_area_mm2": d["unsupported_area_mm2"],
+            "axis_node": d["axis_node"],
+            "axis_point": _as_list(d["axis_point"]),
+        }
+
+    def __repr__(self):
+        return ("<MultiAxisSlicer.Layer component={} normal={} thickness=[{:.4g}, {:.4g}] mm "
+                "volume_difference={:.3g}>").format(
+                    self.component, tuple(round(c, 6) for c in self._data["normal"]),
+                    self.min_thickness, self.max_thickness, self.volume_difference)
+
+
+class SliceResult:
+    """The layers of every sub-component and the paths in every layer.
+
+    Attributes: ``layers`` (list of ``Layer``: component by component in tree order, bottom to
+    top), ``components`` (per sub-component: first_layer, layer_count, guide_nodes, volume_mm3),
+    ``stats`` (dict: layer_count, min_thickness_mm, max_thickness_mm, part_volume_mm3,
+    deposited_volume_mm3, material_volume_mm3, max_volume_difference,
+    layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
+    deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features), ``params`` (the
+    slicing parameters used), ``axis`` (the ``CentroidalAxis``), ``decomposition`` (the
+    ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
+    """
+
+    def __init__(self, data, params, axis, decomposition, kind):
+        self._data = data
+        self.layers = [Layer(d) for d in data["layers"]]
+        self.components = [dict(c) for c in data["components"]]
+        self.stats = dict(data["stats"])
+        self.params = dict(params)
+        self.axis = axis
+        self.decomposition = decomposition
+        self.kind = kind
+
+    def __len__(self):
+        return len(self.layers)
+
+    def paths(self, layer_index):
+        """The paths of layer ``layer_index`` in deposition order (``ToolPath``): a travel move
+        before every deposit path, the first one from where the previous layer ended."""
+        d = self._data["layers"][layer_index]
+        return [ToolPath(p, d["tool_axis"]) for p in d["paths"]]
+
+    def layer_report(self, layer_index):
+        """Per-layer path facts: centre_line_regions (regions narrower than a bead, run as one
+        centre line), unfilled (features too small for that: region, area_mm2, centroid),
+        deposit_length_mm, travel_length_mm, uncovered_area_mm2 (-1 unless measure_coverage)."""
+        d = self._data["layers"][layer_index]
+        return {"centre_line_regions": list(d["centre_line_regions"]),
+                "unfilled": [{"region": u["region"], "area_mm2": u["area_mm2"],
+                              "centroid": _as_list(u["centroid"])} for u in d["unfilled"]],
+                "deposit_length_mm": d["deposit_length_mm"],
+                "travel_length_mm": d["travel_length_mm"],
+                "uncovered_area_mm2": d["uncovered_area_mm2"]}
+
+    def to_dict(self):
+        """JSON-ready plain data in the layout of ``multiaxis-slicer slice FILE --json`` (without
+        its "file"): kind, params, stats, components, layers (each with its paths and report)."""
+        layers = []
+        for i, layer in enumerate(self.layers):
+            d = layer.to_dict()
+            d["tool_axis"] = _as_list(self._data["layers"][i]["tool_axis"])
+            d["paths"] = [p.to_dict() for p in self.paths(i)]
+            d.update(self.layer_report(i))
+            layers.append(d)
+        return {"kind": self.kind, "params": dict(self.params), "stats": dict(self.stats),
+                "components": [dict(c) for c in self.components], "layers": layers}
+
+    def __repr__(self):
+        s = self.stats
+        return ("<MultiAxisSlicer.SliceResult layers={} components={} thickness=[{:.4g}, {:.4g}] "
+                "mm deposited={:.6g} of {:.6g} mm3>").format(
+                    s["layer_count"], len(self.components), s["min_thickness_mm"],
+                    s["max_thickness_mm"], s["deposited_volume_mm3"], s["part_volume_mm3"])
+
+
+def _slice_params(values):
+    """Checks the slicing parameters (ValueError / TypeError naming the bad one) and returns them
+    in the engine's names and units."""
+    p = {}
+    for name in ("min_layer", "max_layer", "min_feature", "bead_width"):
+        p[name] = _number(values[name], name, "millimetres")
+    for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step"):
+        p[name] = _number(values[name], name, "degrees")
+    p["max_volume_difference"] = _number(values["max_volume_difference"],
+                                         "max_volume_difference", "fraction")
+    p["overlap"] = _number(values["overlap"], "overlap", "fraction")
+    for name in ("volume_samples", "contour_count"):
+        v = values[name]
+        if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+            raise TypeError("{} must be an integer, got {!r}".format(name, v))
+        p[name] = int(v)
+    for name in ("strict", "measure_coverage"):
+        if not isinstance(values[name], (bool, numbers.Integral)):
+            raise TypeError("{} must be True or False, got {!r}".format(name, values[name]))
+        p[name] = bool(values[name])
+    if values["infill"] not in ("raster", "contour", "none"):
+        raise ValueError("infill must be 'raster', 'contour' or 'none', got {!r}".format(
+            values["infill"]))
+    p["infill"] = values["infill"]
+    if not (p["bead_width"] > 0.0):
+        raise ValueError("bead_width must be a positive number of millimetres, got {}".format(
+            p["bead_width"]))
+    if not (0.0 < p["min_layer"] <= p["max_layer"] < math.inf):
+        raise ValueError("need 0 < min_layer <= max_layer, got min_layer {} and max_layer {} "
+                         "mm".format(p["min_layer"], p["max_layer"]))
+    if not (p["max_volume_difference"] > 0.0):
+        raise ValueError("max_volume_difference must be a positive fraction, got {}".format(
+            p["max_volume_difference"]))
+    return p
+
+
+def slice(shape, axis=None, components=None, deflection=None, **params):  # noqa: A001
+    """Slices a part into adaptive multi-axis "3-D" layers and plans the paths in every layer.
+
+    ``shape``: a ``Part.Shape`` holding one closed solid, a document object with one, a file path
+    (.step/.stp, .iges/.igs, .brep/.brp; .stl/.off too) or a closed ``Mesh.Mesh``. A mesh cannot
+    be decomposed: it is sliced as one component standing on its lowest point, along its axis'
+    first branch.
+
+    ``axis``: the part's ``CentroidalAxis``; None: computed here (with ``step``,
+    ``distance_threshold``, ``eps``, ``break_angle``, ``base_z`` from ``params`` when given).
+    ``components``: the part's ``Decomposition`` (from ``decompose(shape, axis)``); None: computed
+    here with the axis. ``deflection``: chordal deflection for tessellating the components (mm;
+    None: derived from the part's size).
+
+    Slicing parameters (lengths in mm, angles in degrees; FreeCAD Quantities accepted), defaults in
+    ``SLICE_DEFAULTS``:
+      * ``min_layer``, ``max_layer``: bounds on the thickness anywhere on a layer (0.5, 2.0).
+      * ``max_volume_difference``: Eq. 9's bound on a layer's volumetric difference, a fraction of
+        its volume (0.1). A layer that cannot meet it even at min_layer (a dome's cap) is kept at
+        min_layer and flagged; ``strict=True`` makes that an error.
+      * ``eps_angle``: direction averaging stops below this angle (1).
+      * ``overhang_angle``: the support allowance is the layer thickness x tan(this) (45).
+      * ``volume_samples``: sections per layer integrating VolDiff (4).
+      * ``bead_width`` (1.0), ``overlap`` (fraction of a bead shared with its neighbour, 0.15),
+        ``contour_count`` (2), ``infill`` ("raster", "contour" or "none"), ``raster_angle`` (0)
+        and ``raster_angle_step`` (90, added every layer), ``min_feature`` (centre lines shorter
+        than this are reported, not run; 0: half a bead), ``measure_coverage`` (also measure the
+        area each layer's beads leave uncovered; False).
+
+    Returns a ``SliceResult``. Raises TypeError / ValueError for a bad parameter (naming it) and
+    EngineError (with ``code``) for a part the engine cannot use or parameters no layer fits
+    (invalid_argument), or strict and a layer over the bound (geometry_failure). Nothing the
+    caller passed is modified.
+    """
+    axis_params = {k: params.pop(k) for k in _AXIS_KEYS if k in params}
+    unknown = sorted(set(params) - set(SLICE_DEFAULTS))
+    if unknown:
+        raise TypeError("slice() got unknown parameter(s): {}".format(", ".join(unknown)))
+    values = dict(SLICE_DEFAULTS)
+    values.update(params)
+    p = _slice_params(values)
+    if axis is not None and not isinstance(axis, CentroidalAxis):
+        raise TypeError("axis must be a CentroidalAxis (from centroidal_axis()) or None, got "
+                        "{}".format(type(axis).__name__))
+    if components is not None and not isinstance(components, Decomposition):
+        raise TypeError("components must be a Decomposition (from decompose()) or None, got "
+                        "{}".format(type(components).__name__))
+    if axis is not None and axis_params:
+        raise ValueError("slice: an axis is given, so the axis parameters ({}) would be ignored; "
+                         "pass one or the other".format(", ".join(sorted(axis_params))))
+    if components is not None and axis is not None and components.axis is not axis:
+        raise ValueError("slice: the decomposition given follows another axis than the one given")
+    if deflection is not None:
+        d = _number(deflection, "deflection", "millimetres")
+        if not (d > 0.0 and math.isfinite(d)):
+            raise ValueError("deflection must be a positive number of millimetres, got {}".format(d))
+        p["deflection"] = d
+    eng = _require_engine()
+    kind, part, what = _model(shape)
+    if kind == "mesh":
+        if components is not None:
+            raise TypeError("slice: {} is a mesh, which cannot be decomposed; pass no "
+                            "components".format(what))
+        mesh = eng.make_closed(part, what)
+        if axis is None:
+            axis = centroidal_axis(mesh, **axis_params)
+        p.pop("deflection", None)
+        data = eng.slice_mesh_part(mesh, axis._engine_dict(), p)
+        return SliceResult(data, p, axis, None, kind)
+    solid = part.single_solid(what)
+    if components is not None:
+        axis = components.axis
+    elif axis is None:
+        axis = centroidal_axis(solid, **axis_params)
+    if components is None:
+        components = decompose(solid, axis=axis)
+    engine_components = [{"solid": c._solid, "parent": c.parent,
+                          "build_direction": tuple(c._build_direction),
+                          "base_origin": tuple(c._base_origin), "branch": c.branch}
+                         for c in components]
+    data = eng.slice_part(solid, axis._engine_dict(), engine_components, p)
+    return SliceResult(data, p, axis, components, kind)

@@ -38,7 +38,7 @@ def _multi_axis_slicer_init():
             sys.path.insert(0, path)
     if has_tests:
         FreeCAD.__unit_test__ += ["TestMultiAxisSlicerApi", "TestMultiAxisSlicerAxis",
-                                  "TestMultiAxisSlicerDecompose"]
+                                  "TestMultiAxisSlicerDecompose", "TestMultiAxisSlicerSlice"]
 
 
 _multi_axis_slicer_init()

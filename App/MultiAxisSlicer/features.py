@@ -5,12 +5,15 @@
 closed wires. ``CentroidalAxis``: the part's centroidal axis, as a compound of vertices (nodes) and
 line segments (links). ``Decomposition``: the part's sub-components, as a compound of solids in
 tree order, with one ``Component`` object per solid (Component001, ...) for the tree and the 3D
-view. Thin like FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
+view. ``Layers``: a decomposition's adaptive multi-axis layers, as a compound of their outlines;
+``Toolpath``: the bead paths planned in them, as a compound of polylines. Thin like FreeCAD's own
+features: properties -> MultiAxisSlicer -> Shape.
 
     import MultiAxisSlicer.features as features
     obj = features.make_sections(doc.Box, normal=(0, 0, 1), step=2.0)
     axis = features.make_centroidal_axis(doc.Box, step=2.0)
     parts = features.make_decomposition(doc.Box, axis=axis)   # computes it, adds the components
+    layers, toolpath = features.make_slice(parts, max_layer=1.5, bead_width=1.2)
     doc.recompute()
 """
 
@@ -357,28 +360,7 @@ class DecompositionFeature(_EngineFeature):
     @staticmethod
     def recompute(obj):
         """Properties -> engine -> Shape and the result properties. Raises on bad input."""
-        axis_obj = obj.Axis
-        if axis_obj is not None and getattr(getattr(axis_obj, "Proxy", None), "Type",
-                                            None) != CentroidalAxisFeature.TYPE:
-            raise TypeError("{}: Axis '{}' is not a CentroidalAxis object".format(
-                obj.Label, axis_obj.Label))
-        source = obj.Source if obj.Source is not None else getattr(axis_obj, "Source", None)
-        if axis_obj is not None and axis_obj.Source is not None and source != axis_obj.Source:
-            raise ValueError("{}: Axis '{}' belongs to '{}', not to the Source '{}'".format(
-                obj.Label, axis_obj.Label, axis_obj.Source.Label, source.Label))
-        if source is None:
-            raise ValueError("{}: Source is not set".format(obj.Label))
-        if axis_obj is not None:
-            axis_params = dict(step=axis_obj.Step.Value or None,
-                               distance_threshold=axis_obj.DistanceThreshold.Value or None,
-                               eps=axis_obj.Epsilon.Value, break_angle=axis_obj.BreakAngle.Value,
-                               deflection=axis_obj.Deflection.Value or None)
-        else:
-            axis_params = dict(step=obj.Step.Value or None,
-                               deflection=obj.Deflection.Value or None)
-        result = mas.decompose(source, face_angle=obj.FaceAngle.Value,
-                               concave_angle=obj.ConcaveAngle.Value,
-                               section_plane_fallback=obj.SectionPlaneFallback, **axis_params)
+        result = decomposition_result(obj)
         obj.ComponentParents = [c.parent for c in result]
         obj.BuildDirections = [FreeCAD.Vector(c.build_direction) for c in result]
         obj.BaseOrigins = [FreeCAD.Vector(c.base_origin) for c in result]
@@ -393,6 +375,63 @@ class DecompositionFeature(_EngineFeature):
         # per component when the Shape changes.
         obj.ComponentCount = len(result)
         obj.Shape = Part.makeCompound([c.shape for c in result])
+
+
+def decomposition_inputs(obj):
+    """(source, keyword arguments of ``MultiAxisSlicer.decompose``) of a Decomposition object, from
+    its properties and its Axis object's. Raises ValueError / TypeError for inconsistent links."""
+    axis_obj = obj.Axis
+    if axis_obj is not None and not is_centroidal_axis(axis_obj):
+        raise TypeError("{}: Axis '{}' is not a CentroidalAxis object".format(
+            obj.Label, axis_obj.Label))
+    source = obj.Source if obj.Source is not None else getattr(axis_obj, "Source", None)
+    if axis_obj is not None and axis_obj.Source is not None and source != axis_obj.Source:
+        raise ValueError("{}: Axis '{}' belongs to '{}', not to the Source '{}'".format(
+            obj.Label, axis_obj.Label, axis_obj.Source.Label, source.Label))
+    if source is None:
+        raise ValueError("{}: Source is not set".format(obj.Label))
+    if axis_obj is not None:
+        params = dict(step=axis_obj.Step.Value or None,
+                      distance_threshold=axis_obj.DistanceThreshold.Value or None,
+                      eps=axis_obj.Epsilon.Value, break_angle=axis_obj.BreakAngle.Value,
+                      deflection=axis_obj.Deflection.Value or None)
+    else:
+        params = dict(step=obj.Step.Value or None, deflection=obj.Deflection.Value or None)
+    params.update(face_angle=obj.FaceAngle.Value, concave_angle=obj.ConcaveAngle.Value,
+                  section_plane_fallback=bool(obj.SectionPlaneFallback))
+    return source, params
+
+
+def _shape_key(source):
+    """A key that changes when the source's geometry or placement does: a hash of its BREP text
+    (well under a millisecond for a part of a few dozen faces). None when it has no Part shape."""
+    shape = getattr(source, "Shape", None)
+    if shape is None or not hasattr(shape, "exportBrepToString") or shape.isNull():
+        return None
+    return hash(shape.exportBrepToString())
+
+
+def decomposition_result(obj):
+    """The engine's ``MultiAxisSlicer.Decomposition`` of a Decomposition object, as its properties
+    and its source's current shape give it.
+
+    The proxy keeps the last one in memory (never saved) with the source and parameters it was
+    computed from, so that the Layers object slicing it does not decompose the part again; after a
+    reopen, or when anything it depends on changed, it is computed anew. Raises like
+    ``MultiAxisSlicer.decompose``."""
+    source, params = decomposition_inputs(obj)
+    proxy = obj.Proxy
+    key = _shape_key(source)
+    if key is not None:
+        key = (key, tuple(sorted(params.items())))
+        cached = getattr(proxy, "_result", None)
+        if cached is not None and cached[0] == key:
+            return cached[1]
+    proxy._result = None
+    result = mas.decompose(source, **params)
+    if key is not None:
+        proxy._result = (key, result)
+    return result
 
 
 class ComponentFeature(_EngineFeature):
@@ -523,6 +562,372 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
 
 def is_centroidal_axis(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == CentroidalAxisFeature.TYPE
+
+
+# ---- slicing: Layers and Toolpath ----------------------------------------------------------------
+
+# The slicing parameters a Layers object holds as properties: (property, group, slice() parameter,
+# property type, tooltip). Their defaults are MultiAxisSlicer.SLICE_DEFAULTS (mm, degrees).
+_SLICE_PROPERTIES = (
+    ("MinLayer", "Layers", "min_layer", "App::PropertyLength",
+     "Least thickness anywhere on a layer"),
+    ("MaxLayer", "Layers", "max_layer", "App::PropertyLength",
+     "Greatest thickness anywhere on a layer"),
+    ("MaxVolumeDifference", "Layers", "max_volume_difference", "App::PropertyFloat",
+     "Bound on a layer's volumetric difference (Eq. 9), as a fraction of its volume"),
+    ("EpsAngle", "Layers", "eps_angle", "App::PropertyAngle",
+     "Averaging a layer's direction stops when it changes by less than this"),
+    ("OverhangAngle", "Layers", "overhang_angle", "App::PropertyAngle",
+     "A layer may stick out over the one below by its thickness x tan(this)"),
+    ("VolumeSamples", "Layers", "volume_samples", "App::PropertyInteger",
+     "Sections per layer for integrating its volumetric difference"),
+    ("Strict", "Layers", "strict", "App::PropertyBool",
+     "A layer over MaxVolumeDifference even at MinLayer is an error (otherwise it is kept at "
+     "MinLayer and counted in LayersOverVolumeDifference)"),
+    ("BeadWidth", "Paths", "bead_width", "App::PropertyLength", "Width of one deposited bead"),
+    ("Overlap", "Paths", "overlap", "App::PropertyFloat",
+     "Fraction of a bead's width shared with its neighbour"),
+    ("ContourCount", "Paths", "contour_count", "App::PropertyInteger",
+     "Contour passes along every region's boundary"),
+    ("Infill", "Paths", "infill", "App::PropertyEnumeration",
+     "Filling inside the contours: raster lines, more contours, or none"),
+    ("RasterAngle", "Paths", "raster_angle", "App::PropertyAngle",
+     "Direction of the first layer's raster lines"),
+    ("RasterAngleStep", "Paths", "raster_angle_step", "App::PropertyAngle",
+     "Added to the raster direction from one layer to the next"),
+    ("MinFeature", "Paths", "min_feature", "App::PropertyLength",
+     "Centre lines shorter than this are reported, not run (0 = half a bead)"),
+    ("MeasureCoverage", "Paths", "measure_coverage", "App::PropertyBool",
+     "Also measure the area the beads leave uncovered (slower; see the Toolpath's "
+     "UncoveredArea)"),
+)
+
+INFILL_PATTERNS = ["raster", "contour", "none"]
+
+# The Toolpath's Shape: one sub-compound per kind of path, in this order (the view provider
+# colours them), each holding that kind's polylines in deposition order.
+PATH_KINDS = ("contour", "infill", "centre_line", "travel")
+
+
+def _check_link(obj, prop, check, what):
+    linked = getattr(obj, prop)
+    if linked is None:
+        raise ValueError("{}: {} is not set".format(obj.Label, prop))
+    if not check(linked):
+        raise TypeError("{}: {} '{}' is not a {} object".format(obj.Label, prop, linked.Label,
+                                                                 what))
+    return linked
+
+
+def slice_inputs(obj):
+    """(Decomposition object, slice() parameters, deflection or None) of a Layers object. Raises
+    ValueError / TypeError for a missing or wrong link or a bad parameter (naming it)."""
+    decomposition = _check_link(obj, "Decomposition", is_decomposition, "Decomposition")
+    params = {}
+    for prop, _group, name, type_id, _doc in _SLICE_PROPERTIES:
+        value = getattr(obj, prop)
+        if type_id in ("App::PropertyLength", "App::PropertyAngle"):
+            value = value.Value
+        params[name] = value
+    mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))  # before any decomposing
+    return decomposition, params, obj.Deflection.Value or None
+
+
+def slice_result(obj):
+    """The engine's ``MultiAxisSlicer.SliceResult`` of a Layers object, as its properties and its
+    Decomposition give it.
+
+    The proxy keeps the last one in memory (never saved): the Toolpath object reads its paths from
+    there. After a reopen, or when a parameter or the decomposition changed, it is computed anew
+    (the decomposition too, unless the Decomposition object still has it). Raises like
+    ``MultiAxisSlicer.slice``."""
+    decomposition_obj, params, deflection = slice_inputs(obj)
+    decomposition = decomposition_result(decomposition_obj)
+    source, _ = decomposition_inputs(decomposition_obj)
+    proxy = obj.Proxy
+    # The cached result holds its decomposition, so that id() is not reused while it is cached.
+    key = (id(decomposition), tuple(sorted(params.items())), deflection)
+    cached = getattr(proxy, "_result", None)
+    if cached is not None and cached[0] == key:
+        return cached[1]
+    proxy._result = None
+    result = mas.slice(source, components=decomposition, deflection=deflection, **params)
+    proxy._result = (key, result)
+    return result
+
+
+def _polyline(points, closed=False):
+    """A Part wire through `points` (consecutive repeats dropped); closed: back to the first point.
+    None when too few distinct points are left."""
+    kept = []
+    for p in points:
+        if not kept or not p.isEqual(kept[-1], 1e-7):
+            kept.append(p)
+    if closed:
+        if len(kept) > 1 and kept[0].isEqual(kept[-1], 1e-7):
+            kept.pop()
+        if len(kept) < 3:
+            return None
+        kept.append(kept[0])
+    elif len(kept) < 2:
+        return None
+    return Part.makePolygon(kept)
+
+
+def layers_shape(result):
+    """A compound of one sub-compound per layer (in the result's order), each holding one closed
+    polygonal wire per loop of the layer's regions (outer loops and holes)."""
+    layers = []
+    for layer in result.layers:
+        wires = [_polyline(loop, closed=True) for loop in layer.loops()]
+        layers.append(Part.makeCompound([w for w in wires if w is not None]))
+    return Part.makeCompound(layers)
+
+
+def toolpath_shape(result, show_travel=False):
+    """(compound, path counts, deposit paths): a compound of one sub-compound per kind of path
+    (``PATH_KINDS``: contour, infill, centre_line, travel), each holding that kind's polylines in
+    deposition order; travel moves only with ``show_travel``. The counts are of the polylines
+    shown, per kind in the same order; deposit paths counts every deposit path of the result."""
+    groups = [[] for _ in PATH_KINDS]
+    deposits = 0
+    for i in range(len(result.layers)):
+        for path in result.paths(i):
+            deposits += path.deposit
+            if not path.deposit and not show_travel:
+                continue
+            kind = PATH_KINDS.index(path.kind) if path.kind in PATH_KINDS else 0
+            wire = _polyline(path.points)
+            if wire is not None:
+                groups[kind].append(wire)
+    return (Part.makeCompound([Part.makeCompound(g) for g in groups]), [len(g) for g in groups],
+            deposits)
+
+
+class LayersFeature(_EngineFeature):
+    """Proxy of a ``Part::FeaturePython`` holding the adaptive multi-axis layers of a
+    ``Decomposition`` object's part (``MultiAxisSlicer.slice``).
+
+    Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced,
+    each along its own build direction), the layer parameters (MinLayer, MaxLayer,
+    MaxVolumeDifference, EpsAngle, OverhangAngle, VolumeSamples, Strict), the path parameters
+    (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
+    MeasureCoverage) and Deflection (mm chordal deflection for tessellating the components, 0 =
+    automatic). Outputs: Shape (a compound of one sub-compound per layer, component by component
+    in tree order and bottom to top, each holding one closed wire per loop of its outline: the
+    view provider colours them by component), LayerCount, MinThickness, MaxThickness,
+    DepositedVolume, MaterialVolume, PartVolume, MaxVolumeDifferenceFound,
+    LayersOverVolumeDifference, WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts
+    and, per layer, LayerComponents, LayerOrigins, LayerNormals (the tool axis),
+    LayerMinThicknesses, LayerMaxThicknesses, LayerVolumeDifferences.
+
+    The paths are planned in the same computation; the ``Toolpath`` object linked to this one
+    shows them. The full result stays in memory only (``slice_result()``)."""
+
+    TYPE = "MultiAxisSlicer::Layers"
+    VIEW_PROVIDER = "ViewProviderLayers"
+
+    @staticmethod
+    def ensure_properties(obj):
+        _add_property(obj, "App::PropertyLink", "Decomposition", "Layers",
+                      "Decomposition object whose part is sliced, component by component")
+        for prop, group, name, type_id, doc in _SLICE_PROPERTIES:
+            if type_id == "App::PropertyEnumeration":
+                if _add_property(obj, type_id, prop, group, doc):
+                    setattr(obj, prop, INFILL_PATTERNS)
+                    setattr(obj, prop, mas.SLICE_DEFAULTS[name])
+            else:
+                _add_property(obj, type_id, prop, group, doc, mas.SLICE_DEFAULTS[name])
+        _add_property(obj, "App::PropertyLength", "Deflection", "Layers",
+                      "Chordal deflection for tessellating the components (0 = automatic)", 0.0)
+        result = "Result"
+        for type_id, prop, doc, default in (
+                ("App::PropertyInteger", "LayerCount", "Number of layers", 0),
+                ("App::PropertyLength", "MinThickness", "Least thickness on any layer", 0.0),
+                ("App::PropertyLength", "MaxThickness", "Greatest thickness on any layer", 0.0),
+                ("App::PropertyVolume", "DepositedVolume", "Volume of all layers (mm^3)", 0.0),
+                ("App::PropertyVolume", "MaterialVolume",
+                 "Volume of the part between the layers' planes (mm^3)", 0.0),
+                ("App::PropertyVolume", "PartVolume", "Volume of the part (mm^3)", 0.0),
+                ("App::PropertyFloat", "MaxVolumeDifferenceFound",
+                 "Greatest volumetric difference of a layer (fraction of its volume)", 0.0),
+                ("App::PropertyInteger", "LayersOverVolumeDifference",
+                 "Layers over MaxVolumeDifference even at MinLayer (a dome's cap)", 0),
+                ("App::PropertyArea", "WorstUnsupportedArea",
+                 "Largest area of a layer outside the one below grown by the overhang allowance",
+                 0.0),
+                ("App::PropertyInteger", "WorstUnsupportedLayer",
+                 "Index of the layer with that area (-1: none)", -1),
+                ("App::PropertyIntegerList", "ComponentLayerCounts",
+                 "Number of layers of each component (tree order)", None),
+                ("App::PropertyIntegerList", "LayerComponents",
+                 "Component of each layer", None),
+                ("App::PropertyVectorList", "LayerOrigins",
+                 "A point on each layer's plane (its top)", None),
+                ("App::PropertyVectorList", "LayerNormals",
+                 "Each layer's normal: its tool axis (unit)", None),
+                ("App::PropertyFloatList", "LayerMinThicknesses",
+                 "Each layer's least thickness (mm)", None),
+                ("App::PropertyFloatList", "LayerMaxThicknesses",
+                 "Each layer's greatest thickness (mm)", None),
+                ("App::PropertyFloatList", "LayerVolumeDifferences",
+                 "Each layer's volumetric difference (fraction of its volume)", None)):
+            _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
+
+    @staticmethod
+    def recompute(obj):
+        """Properties -> engine -> Shape and the result properties. Raises on bad input."""
+        result = slice_result(obj)
+        stats = result.stats
+        layers = result.layers
+        obj.LayerOrigins = [FreeCAD.Vector(layer.origin) for layer in layers]
+        obj.LayerNormals = [FreeCAD.Vector(layer.normal) for layer in layers]
+        obj.LayerMinThicknesses = [layer.min_thickness for layer in layers]
+        obj.LayerMaxThicknesses = [layer.max_thickness for layer in layers]
+        obj.LayerVolumeDifferences = [layer.volume_difference for layer in layers]
+        obj.ComponentLayerCounts = [c["layer_count"] for c in result.components]
+        obj.LayerCount = len(layers)
+        obj.MinThickness = stats["min_thickness_mm"]
+        obj.MaxThickness = stats["max_thickness_mm"]
+        obj.DepositedVolume = stats["deposited_volume_mm3"]
+        obj.MaterialVolume = stats["material_volume_mm3"]
+        obj.PartVolume = stats["part_volume_mm3"]
+        obj.MaxVolumeDifferenceFound = stats["max_volume_difference"]
+        obj.LayersOverVolumeDifference = stats["layers_over_volume_difference"]
+        obj.WorstUnsupportedArea = stats["worst_unsupported_area_mm2"]
+        obj.WorstUnsupportedLayer = stats["worst_unsupported_layer"]
+        if stats["layers_over_volume_difference"]:
+            FreeCAD.Console.PrintWarning(
+                "{}: {} layer(s) over MaxVolumeDifference {:g} even at MinLayer (worst {:.3g}); "
+                "kept at MinLayer\n".format(obj.Label, stats["layers_over_volume_difference"],
+                                            obj.MaxVolumeDifference,
+                                            stats["max_volume_difference"]))
+        # LayerComponents before Shape: the view provider colours the layers when Shape changes.
+        obj.LayerComponents = [layer.component for layer in layers]
+        obj.Shape = layers_shape(result)
+
+
+class ToolpathFeature(_EngineFeature):
+    """Proxy of a ``Part::FeaturePython`` showing the deposition paths of a ``Layers`` object.
+
+    Inputs: Layers (the Layers object, whose computation planned the paths), ShowTravel (also show
+    the travel moves between deposit paths). Outputs: Shape (a compound of one sub-compound per
+    kind of path: contours, infill, centre lines, travel (empty unless ShowTravel), each holding
+    that kind's polylines in deposition order; the view provider colours them per kind),
+    PathCounts (per kind, in that order), PathCount (deposit paths), PathLength (deposited),
+    TravelLength, CentreLinePasses (regions narrower than a bead, run as one centre line),
+    UnfilledFeatures (too small even for that), UncoveredArea (with the Layers' MeasureCoverage)."""
+
+    TYPE = "MultiAxisSlicer::Toolpath"
+    VIEW_PROVIDER = "ViewProviderToolpath"
+
+    @staticmethod
+    def ensure_properties(obj):
+        group = "Toolpath"
+        _add_property(obj, "App::PropertyLink", "Layers", group,
+                      "Layers object whose paths are shown")
+        _add_property(obj, "App::PropertyBool", "ShowTravel", group,
+                      "Also show the travel moves between deposit paths", False)
+        result = "Result"
+        for type_id, prop, doc, default in (
+                ("App::PropertyInteger", "PathCount", "Number of deposit paths", 0),
+                ("App::PropertyIntegerList", "PathCounts",
+                 "Paths shown per kind: contour, infill, centre line, travel", None),
+                ("App::PropertyLength", "PathLength", "Length of all deposit paths", 0.0),
+                ("App::PropertyLength", "TravelLength", "Length of all travel moves", 0.0),
+                ("App::PropertyInteger", "CentreLinePasses",
+                 "Regions narrower than a bead, deposited as one centre line", 0),
+                ("App::PropertyInteger", "UnfilledFeatures",
+                 "Features too small even for a centre line, left unfilled", 0),
+                ("App::PropertyArea", "UncoveredArea",
+                 "Area the beads leave uncovered, all layers (0 unless the Layers object's "
+                 "MeasureCoverage is on)", 0.0)):
+            _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
+
+    @staticmethod
+    def recompute(obj):
+        """The Layers object's result -> Shape and the result properties. Raises on bad input."""
+        layers = _check_link(obj, "Layers", is_layers, "Layers")
+        result = slice_result(layers)
+        stats = result.stats
+        shape, counts, deposits = toolpath_shape(result, obj.ShowTravel)
+        obj.PathCount = deposits
+        obj.PathLength = stats["deposit_length_mm"]
+        obj.TravelLength = stats["travel_length_mm"]
+        obj.CentreLinePasses = stats["centre_line_passes"]
+        obj.UnfilledFeatures = stats["unfilled_features"]
+        uncovered = [result.layer_report(i)["uncovered_area_mm2"]
+                     for i in range(len(result.layers))]
+        obj.UncoveredArea = sum(a for a in uncovered if a > 0.0)
+        if stats["unfilled_features"]:
+            FreeCAD.Console.PrintWarning(
+                "{}: {} feature(s) too small for a bead left unfilled\n".format(
+                    obj.Label, stats["unfilled_features"]))
+        # PathCounts before Shape: the view provider colours the paths when Shape changes.
+        obj.PathCounts = counts
+        obj.Shape = shape
+
+
+def is_layers(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == LayersFeature.TYPE
+
+
+def is_toolpath(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == ToolpathFeature.TYPE
+
+
+def _slice_property_values(params):
+    """Checks make_slice()'s keyword arguments like ``MultiAxisSlicer.slice`` does and returns
+    {property: value}. Raises TypeError / ValueError naming the bad one."""
+    known = {name for _p, _g, name, _t, _d in _SLICE_PROPERTIES}
+    unknown = sorted(set(params) - known)
+    if unknown:
+        raise TypeError("make_slice() got unknown parameter(s): {}".format(", ".join(unknown)))
+    checked = mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))
+    # Properties would silently clamp what slice() reports: a negative length, an angle past a turn.
+    mas._length(checked["min_feature"], "min_feature", allow_zero=True)
+    for _p, _g, name, type_id, _d in _SLICE_PROPERTIES:
+        if type_id == "App::PropertyAngle" and not (-360.0 <= checked[name] <= 360.0):
+            raise ValueError("{} must be between -360 and 360 degrees, got {}".format(
+                name, checked[name]))
+    return {prop: checked[name] for prop, _g, name, _t, _d in _SLICE_PROPERTIES}
+
+
+def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
+               toolpath_name="Toolpath", doc=None, **params):
+    """Adds a ``Layers`` object slicing the part of the ``Decomposition`` object ``decomposition``
+    and a ``Toolpath`` object showing its paths to ``doc`` (default: the decomposition's document);
+    returns (layers, toolpath). Recompute the document to compute them.
+
+    ``params``: the slicing parameters of ``MultiAxisSlicer.slice`` (min_layer, max_layer,
+    max_volume_difference, eps_angle, overhang_angle, volume_samples, strict, bead_width, overlap,
+    contour_count, infill, raster_angle, raster_angle_step, min_feature, measure_coverage; mm and
+    degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before anything is added.
+    ``deflection``: mm for tessellating the components (0 = automatic). ``show_travel``: the
+    Toolpath also shows the travel moves. Nothing is changed on the decomposition or its source.
+
+    In the GUI they get their view providers (layers coloured by component, paths by kind)."""
+    if not is_decomposition(decomposition):
+        raise TypeError("make_slice() needs a Decomposition object, got {}".format(
+            getattr(decomposition, "TypeId", type(decomposition).__name__)))
+    values = _slice_property_values(params)
+    deflection = mas._length(deflection, "deflection", allow_zero=True)
+    if doc is None:
+        doc = decomposition.Document
+    layers = doc.addObject("Part::FeaturePython", name)
+    LayersFeature(layers)
+    layers.Decomposition = decomposition
+    for prop, value in values.items():
+        setattr(layers, prop, value)
+    layers.Deflection = deflection
+    toolpath = doc.addObject("Part::FeaturePython", toolpath_name)
+    ToolpathFeature(toolpath)
+    toolpath.Layers = layers
+    toolpath.ShowTravel = bool(show_travel)
+    if FreeCAD.GuiUp:
+        _attach_view_provider(layers, LayersFeature.VIEW_PROVIDER)
+        _attach_view_provider(toolpath, ToolpathFeature.VIEW_PROVIDER)
+    return layers, toolpath
 
 
 def _attach_view_provider(obj, class_name):

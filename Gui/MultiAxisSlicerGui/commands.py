@@ -128,6 +128,119 @@ class DecomposeCommand(_PartCommand):
         return obj
 
 
+class _Busy:
+    """Feedback while the GUI waits on the engine: a wait cursor, a status-bar message and
+    FreeCAD's progress bar (Base.ProgressIndicator, one step per stage). The engine gives no
+    progress of its own, so the bar advances between stages; every stage change repaints."""
+
+    def __init__(self, title, steps):
+        self.title = title
+        self.steps = steps
+        self.progress = None
+        self.started = False
+
+    def __enter__(self):
+        from PySide import QtCore, QtGui
+
+        QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
+        indicator = getattr(FreeCAD.Base, "ProgressIndicator", None)
+        if indicator is not None:
+            try:
+                self.progress = indicator()
+                self.progress.start(self.title, self.steps)
+            except Exception:  # no progress bar, the status bar still says what runs
+                self.progress = None
+        return self
+
+    def stage(self, message):
+        """Starts the next stage: advances the bar past the previous one, shows `message` in the
+        status bar and repaints."""
+        if self.progress is not None and self.started:
+            try:
+                self.progress.next()
+            except Exception:
+                pass
+        self.started = True
+        FreeCADGui.getMainWindow().statusBar().showMessage(message)
+        FreeCAD.Console.PrintLog("Multi-Axis Slicer: {}\n".format(message))
+        FreeCADGui.updateGui()
+
+    def __exit__(self, *exc):
+        from PySide import QtGui
+
+        if self.progress is not None:
+            try:
+                self.progress.stop()
+            except Exception:
+                pass
+        FreeCADGui.getMainWindow().statusBar().clearMessage()
+        QtGui.QApplication.restoreOverrideCursor()
+        return False
+
+
+class SliceCommand(_PartCommand):
+    """Adaptive multi-axis layers and bead paths of a selected Decomposition object (or of a
+    selected solid, decomposed first as the Decompose command does), as a parametric Layers object
+    (outlines coloured by component) and a Toolpath object (paths coloured by kind), in one
+    transaction. Slicing can take a while: a wait cursor, the status bar and the progress bar say
+    which stage runs."""
+
+    NAME = "MultiAxisSlicer_Slice"
+    TRANSACTION = "Slice"
+    ICON = "Slice.svg"
+    TOOLTIP = ("Slice the selected Decomposition (or solid, decomposed first) into adaptive "
+               "multi-axis layers, each component along its own build direction, and plan the bead "
+               "paths in every layer (parametric Layers and Toolpath objects: set MinLayer, "
+               "MaxLayer, BeadWidth, Infill, ...)")
+
+    def Activated(self):
+        import MultiAxisSlicer.features as features
+
+        source = _selected_part()
+        if source is None:
+            MultiAxisSlicerGui.show_error("Select one Decomposition object or one solid first.")
+            return
+        if not mas.engine_available():
+            MultiAxisSlicerGui.show_error(mas.engine_missing_message())
+            return
+        doc = source.Document
+        failed = None
+        doc.openTransaction(self.TRANSACTION)
+        try:
+            with _Busy("Slicing '{}'...".format(source.Label), 3) as busy:
+                if features.is_decomposition(source):
+                    decomposition = source
+                    busy.stage("Using the decomposition '{}'".format(source.Label))
+                else:
+                    busy.stage("Decomposing '{}'...".format(source.Label))
+                    decomposition = DecomposeCommand().make(source, doc)
+                if decomposition.isValid():
+                    layers, toolpath = features.make_slice(decomposition, doc=doc)
+                    busy.stage("Slicing '{}' into layers...".format(source.Label))
+                    doc.recompute([layers])  # one stage at a time, for the feedback
+                    if layers.isValid():
+                        busy.stage("Drawing the bead paths...")
+                        doc.recompute([toolpath])
+                    doc.recompute()
+                    failed = next((o for o in (layers, toolpath) if not o.isValid()), None)
+                    if failed is None:  # the layers take the part's place in the view
+                        part = features.decomposition_inputs(decomposition)[0]
+                        for o in [part] + features.components_of(decomposition):
+                            if o.ViewObject is not None:
+                                o.ViewObject.Visibility = False
+                else:
+                    failed = decomposition
+        except Exception as error:  # creating the objects failed: leave nothing behind
+            doc.abortTransaction()
+            MultiAxisSlicerGui.show_error(
+                "{} of '{}' failed: {}".format(self.TRANSACTION, source.Label, error))
+            return
+        doc.commitTransaction()
+        if failed is not None:  # the objects stay so that their parameters can be fixed
+            MultiAxisSlicerGui.show_error("{}: {}".format(failed.Label, failed.getStatusString()))
+
+
 FreeCADGui.addCommand(SectionsCommand.NAME, SectionsCommand())
 FreeCADGui.addCommand(CentroidalAxisCommand.NAME, CentroidalAxisCommand())
 FreeCADGui.addCommand(DecomposeCommand.NAME, DecomposeCommand())
+FreeCADGui.addCommand(SliceCommand.NAME, SliceCommand())

@@ -103,12 +103,15 @@ class ViewProviderCentroidalAxis(_Stateless):
     def updateData(self, obj, prop):
         if prop == "Shape" and obj.ViewObject is not None:
             self.colour_edges(obj.ViewObject)
+            refresh_line_colours_later(obj.ViewObject)
 
     def onChanged(self, vobj, prop):
         if prop in ("LineColor", "LineColorArray", "BreakLineColor"):
             self.colour_edges(vobj)
         elif prop == "DrawOnTop":
             self.update_depth(vobj)
+        elif prop == "Visibility" and vobj.Visibility:  # a hidden object is redrawn when shown
+            refresh_line_colours_later(vobj)
 
     @staticmethod
     def colour_edges(vobj):
@@ -253,3 +256,154 @@ class ViewProviderComponent(_Stateless):
 
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("Decompose.svg")
+
+
+def _edge_colours(shape, colours):
+    """One colour per edge of a compound of sub-compounds: every edge of sub-compound i in
+    colours[i] (edges in the order FreeCAD lists them: sub-compound by sub-compound)."""
+    if shape.isNull():  # not computed yet
+        return []
+    out = []
+    for child, colour in zip(shape.childShapes(), colours):
+        out += [colour] * len(child.Edges)
+    return out
+
+
+def refresh_line_colours_later(vobj):
+    """Sets LineColorArray again once the event loop turns, so that it colours the line set FreeCAD
+    drew for the current Shape.
+
+    FreeCAD 0.20 copies LineColorArray into the 3D view's line set as the set is at that moment
+    and leaves the entries past its edges uninitialised; a proxy's updateData runs before the
+    view provider redraws the set for a new Shape, and a hidden object is redrawn only when shown.
+    Colours set from updateData alone would thus colour the previous shape's edges."""
+    obj = vobj.Object
+    if obj is None or obj.Document is None:
+        return
+    doc_name, name = obj.Document.Name, obj.Name
+    from PySide import QtCore
+
+    def refresh():
+        import FreeCAD
+
+        doc = FreeCAD.listDocuments().get(doc_name)
+        o = doc.getObject(name) if doc is not None else None
+        if o is None or o.ViewObject is None or getattr(doc, "Restoring", False):
+            return
+        colours = o.ViewObject.LineColorArray
+        if len(colours) > 1:
+            o.ViewObject.LineColorArray = colours
+
+    QtCore.QTimer.singleShot(0, refresh)
+
+
+def _set_line_colours(vobj, colours):
+    """LineColorArray = colours (one colour: all alike), unless it holds them already (which also
+    ends the round trip when FreeCAD resets the array after a LineColor change)."""
+    if not colours:
+        return
+    if all(c == colours[0] for c in colours):
+        colours = [colours[0]]
+    if not _same_colours(vobj.LineColorArray, colours):
+        vobj.LineColorArray = colours
+
+
+# Layers: the outlines in their component's colour (the Component objects' palette).
+LAYERS_LINE_WIDTH = 2.0
+
+
+class ViewProviderLayers(_Stateless):
+    """Tree icon and colours of a ``Layers`` object: every layer's outline in its component's
+    colour (``component_colour``, as the Component objects), per edge through LineColorArray. The
+    object's Shape holds one sub-compound per layer and LayerComponents names each one's
+    component. FreeCAD resets LineColorArray when LineColor changes: the colours are rebuilt
+    then. The decomposition stays as it is."""
+
+    def __init__(self, vobj):
+        vobj.LineWidth = LAYERS_LINE_WIDTH
+        vobj.PointSize = 1.0
+        vobj.Proxy = self  # calls attach()
+        self.colour_edges(vobj)
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+        refresh_line_colours_later(vobj)  # a reopened document: once its view is drawn
+
+    def updateData(self, obj, prop):
+        if prop == "Shape" and obj.ViewObject is not None:
+            self.colour_edges(obj.ViewObject)
+            refresh_line_colours_later(obj.ViewObject)
+
+    def onChanged(self, vobj, prop):
+        if prop in ("LineColor", "LineColorArray"):
+            self.colour_edges(vobj)
+        elif prop == "Visibility" and vobj.Visibility:  # a hidden object is redrawn when shown
+            refresh_line_colours_later(vobj)
+
+    @staticmethod
+    def colour_edges(vobj):
+        obj = vobj.Object
+        if obj is None or "LayerComponents" not in obj.PropertiesList:
+            return  # still being set up or restored
+        colours = [component_colour(c) for c in obj.LayerComponents]
+        _set_line_colours(vobj, _edge_colours(obj.Shape, colours))
+
+    def getIcon(self):
+        return MultiAxisSlicerGui.icon_path("Slice.svg")
+
+
+# Toolpath: one colour per kind of path, in the order of the object's sub-compounds (contour,
+# infill, centre line, travel); none of them a component's colour, so that paths and layer outlines
+# shown together stay apart.
+TOOLPATH_COLOURS = {
+    "ContourColor": ((0.65, 0.0, 0.0), "Colour of the contour paths"),  # dark red
+    "InfillColor": ((0.0, 0.5, 0.45), "Colour of the infill paths"),  # teal
+    "CentreLineColor": ((0.85, 0.0, 0.85), "Colour of the centre-line paths"),  # magenta
+    "TravelColor": ((0.6, 0.6, 0.6), "Colour of the travel moves (ShowTravel)"),  # grey
+}
+TOOLPATH_COLOUR_ORDER = ("ContourColor", "InfillColor", "CentreLineColor", "TravelColor")
+TOOLPATH_LINE_WIDTH = 1.0
+
+
+class ViewProviderToolpath(_Stateless):
+    """Tree icon and colours of a ``Toolpath`` object: contours, infill, centre lines and travel
+    moves each in their own colour (view properties ContourColor, InfillColor, CentreLineColor,
+    TravelColor), per edge through LineColorArray. The object's Shape holds one sub-compound per
+    kind, in that order."""
+
+    def __init__(self, vobj):
+        for prop in TOOLPATH_COLOUR_ORDER:
+            colour, doc = TOOLPATH_COLOURS[prop]
+            vobj.addProperty("App::PropertyColor", prop, "Object Style", doc)
+            setattr(vobj, prop, colour)
+        vobj.LineWidth = TOOLPATH_LINE_WIDTH
+        vobj.PointSize = 1.0
+        vobj.Proxy = self  # calls attach()
+        self.colour_edges(vobj)
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+        refresh_line_colours_later(vobj)  # a reopened document: once its view is drawn
+
+    def updateData(self, obj, prop):
+        if prop == "Shape" and obj.ViewObject is not None:
+            self.colour_edges(obj.ViewObject)
+            refresh_line_colours_later(obj.ViewObject)
+
+    def onChanged(self, vobj, prop):
+        if prop in ("LineColor", "LineColorArray") + TOOLPATH_COLOUR_ORDER:
+            self.colour_edges(vobj)
+        elif prop == "Visibility" and vobj.Visibility:  # a hidden object is redrawn when shown
+            refresh_line_colours_later(vobj)
+
+    @staticmethod
+    def colour_edges(vobj):
+        obj = vobj.Object
+        if obj is None or "PathCounts" not in obj.PropertiesList or not all(
+                p in vobj.PropertiesList for p in TOOLPATH_COLOUR_ORDER):
+            return  # still being set up or restored
+        colours = [tuple(getattr(vobj, p))[:3] for p in TOOLPATH_COLOUR_ORDER]
+        _set_line_colours(vobj, _edge_colours(obj.Shape, colours))
+
+    def getIcon(self):
+        return MultiAxisSlicerGui.icon_path("Toolpath.svg")

@@ -24,6 +24,7 @@ WORKBENCH = "MultiAxisSlicerWorkbench"
 COMMAND = "MultiAxisSlicer_Sections"
 AXIS_COMMAND = "MultiAxisSlicer_CentroidalAxis"
 DECOMPOSE_COMMAND = "MultiAxisSlicer_Decompose"
+SLICE_COMMAND = "MultiAxisSlicer_Slice"
 TOOLBAR = "Multi-Axis Slicer"
 
 
@@ -81,13 +82,15 @@ class TestWorkbench(unittest.TestCase):
         self.assertIn("Cross-sections", texts)
         self.assertIn("Centroidal axis", texts)
         self.assertIn("Decompose", texts)
-        for text in ("Centroidal axis", "Decompose"):
+        self.assertIn("Slice", texts)
+        for text in ("Centroidal axis", "Decompose", "Slice"):
             action = [a for a in toolbar.actions() if a.text() == text][0]
             self.assertFalse(action.icon().isNull(), text)
         menu = [m for m in FreeCADGui.getMainWindow().menuBar().actions() if m.text() == TOOLBAR]
         self.assertEqual(len(menu), 1)
         self.assertIn("Centroidal axis", [a.text() for a in menu[0].menu().actions()])
         self.assertIn("Decompose", [a.text() for a in menu[0].menu().actions()])
+        self.assertIn("Slice", [a.text() for a in menu[0].menu().actions()])
         workbench = FreeCADGui.getWorkbench(WORKBENCH)
         self.assertTrue(workbench.Icon.endswith("MultiAxisSlicer.svg"))
         self.assertTrue(os.path.isfile(workbench.Icon), workbench.Icon)
@@ -536,6 +539,232 @@ class TestDecomposeCommand(unittest.TestCase):
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())
         self.assertTrue(self.part.ViewObject.Visibility)  # nothing replaced it
+
+
+class TestSliceCommand(unittest.TestCase):
+    def setUp(self):
+        FreeCADGui.activateWorkbench(WORKBENCH)
+        self.doc = FreeCAD.newDocument("MasGuiSlice")
+        self.part = self.doc.addObject("Part::Feature", "L")
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        FreeCADGui.Selection.clearSelection()
+        process_events()
+
+    def tearDown(self):
+        FreeCADGui.Selection.clearSelection()
+        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                            "MultiAxisSlicerError"):
+            box.close()
+        FreeCAD.closeDocument(self.doc.Name)
+        process_events()
+
+    def run_command(self, selected):
+        FreeCADGui.Selection.addSelection(selected)
+        FreeCADGui.runCommand(SLICE_COMMAND)
+        process_events()
+        return self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
+
+    def error_boxes(self):
+        return [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                                    "MultiAxisSlicerError")
+                if b.isVisible()]
+
+    def check_rendered_colours(self, obj):
+        """The 3D view's line set is coloured with LineColorArray (FreeCAD 0.20 leaves garbage
+        there when the array is set before the line set is redrawn for a new Shape)."""
+        from pivy import coin
+
+        process_events()
+        want = obj.ViewObject.LineColorArray
+        search = coin.SoSearchAction()
+        search.setType(coin.SoMaterial.getClassTypeId())
+        search.setInterest(coin.SoSearchAction.ALL)
+        search.apply(obj.ViewObject.RootNode)
+        materials = [search.getPaths().get(i).getTail()
+                     for i in range(search.getPaths().getLength())]
+        lines = [m for m in materials if m.diffuseColor.getNum() == len(want)]
+        self.assertTrue(lines, "no line material with {} colours".format(len(want)))
+        got = [lines[0].diffuseColor[i].getValue() for i in range(len(want))]
+        for i, (a, b) in enumerate(zip(got, want)):
+            self.assertTrue(same_colour(a, b), "{} edge {} drawn in {}, not {}".format(
+                obj.Label, i, a, b))
+
+    def check_colours(self, layers, toolpath):
+        """Layer outlines in their component's colour, paths in their kind's, edge by edge."""
+        want = []
+        for layer, component in zip(layers.Shape.childShapes(), layers.LayerComponents):
+            want += [view_providers.component_colour(component)] * len(layer.Edges)
+        got = layers.ViewObject.LineColorArray
+        self.assertEqual(len(got), len(want))
+        for i, (a, b) in enumerate(zip(got, want)):
+            self.assertTrue(same_colour(a, b), "layer edge {}: {} != {}".format(i, a, b))
+        vobj = toolpath.ViewObject
+        want = []
+        for group, prop in zip(toolpath.Shape.childShapes(),
+                               view_providers.TOOLPATH_COLOUR_ORDER):
+            want += [getattr(vobj, prop)] * len(group.Edges)
+        got = vobj.LineColorArray
+        self.assertEqual(len(got), len(want))
+        for i, (a, b) in enumerate(zip(got, want)):
+            self.assertTrue(same_colour(a, b), "path edge {}: {} != {}".format(i, a, b))
+        for obj in (layers, toolpath):
+            if obj.ViewObject.Visibility:
+                self.check_rendered_colours(obj)
+
+    def test_command_needs_one_selected_part(self):
+        self.assertFalse(FreeCADGui.Command.get(SLICE_COMMAND).isActive())
+        FreeCADGui.Selection.addSelection(self.part)
+        self.assertTrue(FreeCADGui.Command.get(SLICE_COMMAND).isActive())
+
+    def test_command_slices_a_selected_decomposition(self):
+        decomposition = mas.make_decomposition(self.part)
+        self.doc.recompute()
+        before = self.part.Shape.exportBrepToString()
+        names = [o.Name for o in self.doc.Objects]
+        layers, toolpath = self.run_command(decomposition)
+        self.assertIsNotNone(layers, "the command made no Layers object")
+        self.assertIsNotNone(toolpath, "the command made no Toolpath object")
+        self.assertEqual(self.error_boxes(), [])
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertIs(layers.Decomposition, decomposition)
+        self.assertIs(toolpath.Layers, layers)
+        self.assertEqual(list(layers.ComponentLayerCounts), [30, 25])
+        self.assertEqual(layers.LayerCount, 55)
+        self.assertGreater(toolpath.PathCount, 55)
+        self.assertIsNone(QtGui.QApplication.overrideCursor())  # the wait cursor is gone
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        self.assertTrue(layers.ViewObject.Visibility)
+        self.assertTrue(toolpath.ViewObject.Visibility)
+        self.assertTrue(layers.ViewObject.Proxy.getIcon().endswith("Slice.svg"))
+        self.assertTrue(os.path.isfile(layers.ViewObject.Proxy.getIcon()))
+        self.assertTrue(os.path.isfile(toolpath.ViewObject.Proxy.getIcon()))
+        import MultiAxisSlicer.features as features
+
+        for c in features.components_of(decomposition):  # the layers take their place
+            self.assertFalse(c.ViewObject.Visibility)
+        self.assertFalse(self.part.ViewObject.Visibility)
+        self.check_colours(layers, toolpath)
+        self.assertIn("Slice", self.doc.UndoNames)
+        save_screenshot(self, self.doc, "slice_l_block.png", see_through=False)
+
+        # Parameters and view settings: the colours follow.
+        layers.MaxLayer = 1.5
+        toolpath.ShowTravel = True
+        self.doc.recompute()
+        process_events()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertGreater(toolpath.PathCounts[3], 0)
+        self.check_colours(layers, toolpath)
+        layers.ViewObject.LineColor = (0.0, 0.0, 0.0)  # FreeCAD resets the per-edge colours
+        toolpath.ViewObject.TravelColor = (0.0, 0.8, 0.0)
+        process_events()
+        self.check_colours(layers, toolpath)
+
+        self.doc.undo()  # one step takes both
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_command_on_a_solid_decomposes_it_first(self):
+        layers, toolpath = self.run_command(self.part)
+        self.assertIsNotNone(layers)
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        decomposition = self.doc.getObject("Decomposition")
+        self.assertIs(layers.Decomposition, decomposition)
+        self.assertEqual(decomposition.ComponentCount, 2)
+        self.assertFalse(self.part.ViewObject.Visibility)  # hidden, not changed
+        self.check_colours(layers, toolpath)
+        toolpath.ViewObject.Visibility = False
+        save_screenshot(self, self.doc, "slice_l_block_layers.png", see_through=False)
+        toolpath.ViewObject.Visibility = True
+        layers.ViewObject.Visibility = False
+        save_screenshot(self, self.doc, "slice_l_block_toolpath.png", see_through=False)
+        layers.ViewObject.Visibility = True
+        self.check_colours(layers, toolpath)
+        self.doc.undo()
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+
+    def test_command_on_a_face_shows_the_engine_message(self):
+        self.part.Shape = Part.makePlane(10, 10)
+        self.doc.recompute()
+        layers, toolpath = self.run_command(self.part)
+        self.assertIsNone(layers)  # nothing to slice: the decomposition failed
+        boxes = self.error_boxes()
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("not a solid", boxes[0].text())
+        self.assertIsNone(QtGui.QApplication.overrideCursor())
+
+    def test_a_failing_layers_object_shows_its_message(self):
+        decomposition = mas.make_decomposition(self.part)
+        layers, toolpath = mas.make_slice(decomposition)
+        layers.MinLayer = 3.0
+        self.doc.recompute()
+        self.assertIn("Invalid", layers.State)
+        self.assertIn("min_layer", layers.getStatusString())
+        layers.MinLayer = 0.5
+        self.doc.recompute()
+        process_events()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.check_colours(layers, toolpath)
+
+    def test_colours_survive_save_and_reopen(self):
+        self.run_command(mas.make_decomposition(self.part))
+        folder = tempfile.mkdtemp(prefix="mas_gui_slice_")
+        try:
+            path = os.path.join(folder, "slice.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+            process_events()
+            layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
+            self.assertIsInstance(layers.ViewObject.Proxy, view_providers.ViewProviderLayers)
+            self.assertIsInstance(toolpath.ViewObject.Proxy, view_providers.ViewProviderToolpath)
+            self.check_colours(layers, toolpath)
+            toolpath.ShowTravel = True  # the slicing is redone on demand
+            self.doc.recompute()
+            process_events()
+            self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+            self.check_colours(layers, toolpath)
+        finally:
+            shutil.rmtree(folder)
+
+
+    def test_a_document_made_without_the_gui_gets_its_colours(self):
+        folder = tempfile.mkdtemp(prefix="mas_gui_slice_")
+        try:
+            path = os.path.join(folder, "slice.FCStd")
+            script = os.path.join(folder, "make.py")
+            with open(script, "w") as f:
+                f.write(textwrap.dedent("""
+                    import FreeCAD, Part
+                    import MultiAxisSlicer as mas
+                    doc = FreeCAD.newDocument("Headless")
+                    part = doc.addObject("Part::Feature", "L")
+                    part.Shape = Part.makeBox(20, 20, 60).fuse(
+                        Part.makeBox(50, 20, 20, FreeCAD.Vector(20, 0, 40))).removeSplitter()
+                    mas.make_slice(mas.make_decomposition(part), show_travel=True)
+                    doc.recompute()
+                    doc.saveAs({!r})
+                """.format(path)))
+            result = subprocess.run(["freecadcmd", script], capture_output=True, text=True,
+                                    timeout=120)
+            self.assertTrue(os.path.isfile(path), result.stdout + result.stderr)
+            doc = FreeCAD.openDocument(path)
+            try:
+                process_events()
+                layers, toolpath = doc.getObject("Layers"), doc.getObject("Toolpath")
+                self.assertIsInstance(layers.ViewObject.Proxy, view_providers.ViewProviderLayers)
+                self.assertIsInstance(toolpath.ViewObject.Proxy,
+                                      view_providers.ViewProviderToolpath)
+                self.assertEqual(layers.LayerCount, 55)
+                self.assertGreater(toolpath.PathCounts[3], 0)
+                self.check_colours(layers, toolpath)
+            finally:
+                FreeCAD.closeDocument(doc.Name)
+        finally:
+            shutil.rmtree(folder)
 
 
 # Run by a second FreeCAD GUI, on a copy of the add-on without the compiled engine.

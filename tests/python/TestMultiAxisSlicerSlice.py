@@ -1,0 +1,493 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Adaptive multi-axis slicing through the scripting API (``MultiAxisSlicer.slice``) and the Layers
+and Toolpath document objects, inside freecadcmd.
+
+Run: freecadcmd -t TestMultiAxisSlicerSlice (tests/run_freecad_test.sh does it against the add-on
+staged in the build tree). The parts are boxes and the L of the decomposition tests: their layers
+are planar and parallel, so thicknesses and volumes are exact.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+import FreeCAD
+import Part
+
+import MultiAxisSlicer as mas
+import MultiAxisSlicer.features as features
+import MultiAxisSlicerTestSupport as support
+from MultiAxisSlicerTestSupport import V, fc_mesh, l_block
+
+REL = 1e-6  # relative volume tolerance
+TOL = 1e-9  # mm: thicknesses of planar layers
+
+
+def box_20_10_21():
+    """21 mm high: ten 2 mm layers and a last one of 1 mm at the default max_layer."""
+    return Part.makeBox(20, 10, 21)
+
+
+class SliceTest(support.EngineTestCase):
+    def check_box_layers(self, result):
+        """The 20 x 10 x 21 box: 11 layers along +Z, 2 mm thick but the last, 1 mm."""
+        self.assertEqual(len(result.layers), 11)
+        self.assertEqual(len(result), 11)
+        self.assertEqual(result.stats["layer_count"], 11)
+        self.assertEqual(len(result.components), 1)
+        self.assertEqual(result.components[0]["layer_count"], 11)
+        for i, layer in enumerate(result.layers):
+            want = 2.0 if i < 10 else 1.0
+            self.assertEqual(layer.component, 0)
+            self.assertVectorAlmostEqual(layer.normal, (0, 0, 1))
+            self.assertAlmostEqual(layer.min_thickness, want, delta=TOL, msg="layer {}".format(i))
+            self.assertAlmostEqual(layer.max_thickness, want, delta=TOL, msg="layer {}".format(i))
+            self.assertAlmostEqual(layer.origin.z, min(2.0 * (i + 1), 21.0), delta=TOL)
+            self.assertAlmostEqual(layer.area, 200.0, delta=200.0 * REL)
+        self.assertAlmostEqual(result.stats["deposited_volume_mm3"], 4200.0, delta=4200.0 * REL)
+        self.assertAlmostEqual(result.stats["part_volume_mm3"], 4200.0, delta=4200.0 * REL)
+        self.assertEqual(result.stats["layers_over_volume_difference"], 0)
+
+    def check_paths(self, result):
+        """Every layer has deposit paths on its plane along its normal, travel before each."""
+        for i, layer in enumerate(result.layers):
+            paths = result.paths(i)
+            deposits = [p for p in paths if p.deposit]
+            self.assertTrue(deposits, "layer {} has no deposit path".format(i))
+            for p in paths:
+                self.assertIn(p.kind, ("travel", "contour", "infill", "centre_line"))
+                self.assertEqual(p.deposit, p.kind != "travel")
+                self.assertVectorAlmostEqual(p.tool_axis, layer.normal)
+                self.assertEqual(len(p.thickness), len(p.points))
+            for p in deposits:
+                for q in p.points:
+                    self.assertAlmostEqual((q - layer.origin).dot(layer.normal), 0.0, places=6)
+
+
+class TestSliceApi(SliceTest):
+    def test_box_is_eleven_layers_along_z(self):
+        result = mas.slice(box_20_10_21())
+        self.assertIsInstance(result, mas.SliceResult)
+        self.assertEqual(result.kind, "solid")
+        self.assertEqual(len(result.decomposition), 1)
+        self.check_box_layers(result)
+        self.check_paths(result)
+        # The outline of every layer: one region, a 20 x 10 rectangle on its plane.
+        for layer in result.layers:
+            regions = layer.regions
+            self.assertEqual(len(regions), 1)
+            self.assertEqual(regions[0]["holes"], [])
+            xs = [p.x for p in regions[0]["outer"]]
+            ys = [p.y for p in regions[0]["outer"]]
+            self.assertAlmostEqual(min(xs), 0.0, places=3)
+            self.assertAlmostEqual(max(xs), 20.0, places=3)
+            self.assertAlmostEqual(min(ys), 0.0, places=3)
+            self.assertAlmostEqual(max(ys), 10.0, places=3)
+        self.assertGreater(result.stats["deposit_length_mm"], 0.0)
+
+    def test_l_block_column_layers_go_up_and_arm_layers_go_out(self):
+        result = mas.slice(l_block())
+        self.assertEqual(len(result.components), 2)
+        column, arm = result.components
+        self.assertEqual((column["first_layer"], column["layer_count"]), (0, 30))  # 60 mm / 2
+        self.assertEqual((arm["first_layer"], arm["layer_count"]), (30, 25))  # 50 mm / 2
+        self.assertAlmostEqual(column["volume_mm3"], 24000.0, delta=24000.0 * REL)
+        self.assertAlmostEqual(arm["volume_mm3"], 20000.0, delta=20000.0 * REL)
+        for i, layer in enumerate(result.layers):
+            if i < 30:  # the column, bottom to top
+                self.assertEqual(layer.component, 0)
+                self.assertVectorAlmostEqual(layer.normal, (0, 0, 1))
+                self.assertAlmostEqual(layer.origin.z, 2.0 * (i + 1), delta=TOL)
+            else:  # the arm, out from the column's face at x = 20
+                self.assertEqual(layer.component, 1)
+                self.assertVectorAlmostEqual(layer.normal, (1, 0, 0))
+                self.assertAlmostEqual(layer.origin.x, 20.0 + 2.0 * (i - 29), delta=TOL)
+                self.assertAlmostEqual(layer.area, 400.0, delta=400.0 * REL)
+            self.assertAlmostEqual(layer.max_thickness, 2.0, delta=TOL)
+        self.assertVectorAlmostEqual(result.layers[30].lower_origin, (20, 10, 50))
+        self.assertAlmostEqual(result.stats["deposited_volume_mm3"], 44000.0,
+                               delta=44000.0 * REL)
+        self.check_paths(result)
+
+    def test_a_given_decomposition_gives_the_same_result(self):
+        parts = mas.decompose(l_block())
+        given = mas.slice(l_block(), components=parts)
+        self.assertIs(given.decomposition, parts)
+        self.assertIs(given.axis, parts.axis)
+        self.assertEqual(given.to_dict(), mas.slice(l_block()).to_dict())
+
+    def test_parameters_are_used(self):
+        result = mas.slice(box_20_10_21(), max_layer=1.5, infill="none", contour_count=1,
+                           bead_width=FreeCAD.Units.Quantity("1.2 mm"))
+        self.assertEqual(len(result.layers), 14)  # 21 mm / 1.5
+        self.assertEqual(result.params["bead_width"], 1.2)
+        self.assertEqual(result.params["infill"], "none")
+        for i in range(len(result.layers)):
+            kinds = [p.kind for p in result.paths(i) if p.deposit]
+            self.assertEqual(kinds, ["contour"])
+
+    def test_a_mesh_is_sliced_as_one_component(self):
+        result = mas.slice(fc_mesh(box_20_10_21()))
+        self.assertEqual(result.kind, "mesh")
+        self.assertIsNone(result.decomposition)
+        self.check_box_layers(result)
+        self.check_paths(result)
+        with self.assertRaisesRegex(TypeError, "mesh"):
+            mas.slice(fc_mesh(box_20_10_21()), components=mas.decompose(box_20_10_21()))
+
+    def test_to_dict_is_json_ready(self):
+        result = mas.slice(l_block())
+        data = result.to_dict()
+        self.assertEqual(json.loads(json.dumps(data, allow_nan=False)), data)
+        self.assertEqual(set(data), {"kind", "params", "stats", "components", "layers"})
+        self.assertEqual(data["params"], dict(mas.SLICE_DEFAULTS))
+        self.assertEqual(len(data["layers"]), 55)
+        layer = data["layers"][30]
+        self.assertEqual(layer["tool_axis"], layer["normal"])
+        self.assertTrue(layer["paths"])
+        self.assertEqual(layer["unfilled"], [])
+
+    def test_to_dict_matches_the_command_line_json(self):
+        with support.scratch_folder("mas_slice_cli_") as folder:
+            path = os.path.join(folder, "l.brep")
+            l_block().exportBrep(path)
+            cli = self.cli_json(folder, "slice", path)
+            ours = mas.slice(path).to_dict()
+            self.assertEqual(cli.pop("file"), path)
+            self.assertSameJson(cli, ours, "slice")
+            cli = self.cli_json(folder, "slice", path, "--max-layer", "1.5", "--infill",
+                                "contour", "--bead-width", "1.2", "--contours", "1")
+            ours = mas.slice(path, max_layer=1.5, infill="contour", bead_width=1.2,
+                             contour_count=1).to_dict()
+        cli.pop("file")
+        self.assertSameJson(cli, ours, "slice")
+
+    def test_the_source_is_not_modified(self):
+        shape = l_block()
+        shape.Placement = FreeCAD.Placement(V(1, 2, 3), FreeCAD.Rotation())
+        before = shape.exportBrepToString()
+        result = mas.slice(shape)
+        self.assertEqual(len(result.components), 2)
+        self.assertEqual(shape.exportBrepToString(), before)
+
+
+class TestSliceBadInput(SliceTest):
+    def test_bad_parameters_are_named(self):
+        box = box_20_10_21()
+        for error, name, kwargs in (
+                (ValueError, "min_layer", dict(min_layer=3.0, max_layer=2.0)),
+                (ValueError, "min_layer", dict(min_layer=0.0)),
+                (ValueError, "bead_width", dict(bead_width=0.0)),
+                (ValueError, "bead_width", dict(bead_width=-1.0)),
+                (ValueError, "infill", dict(infill="bogus")),
+                (ValueError, "max_volume_difference", dict(max_volume_difference=0.0)),
+                (TypeError, "contour_count", dict(contour_count=1.5)),
+                (TypeError, "bead_width", dict(bead_width="wide")),
+                (TypeError, "unknown parameter.*layer_height", dict(layer_height=1.0))):
+            with self.assertRaisesRegex(error, name, msg=str(kwargs)):
+                mas.slice(box, **kwargs)
+
+    def test_none_and_faces_are_rejected(self):
+        with self.assertRaisesRegex(TypeError, "None"):
+            mas.slice(None)
+        e = self.assertRaisesEngineError("not_a_solid", mas.slice, Part.makePlane(10, 10))
+        self.assertIn("Face", str(e))
+        with self.assertRaisesRegex(TypeError, "Decomposition"):
+            mas.slice(box_20_10_21(), components=[])
+
+
+class SliceObjectTest(SliceTest):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("MasSlice")
+        self.part = self.doc.addObject("Part::Feature", "Box")
+        self.part.Shape = box_20_10_21()
+        self.doc.recompute()
+        self.folder = tempfile.mkdtemp(prefix="mas_slice_doc_")
+
+    def tearDown(self):
+        for name in list(FreeCAD.listDocuments()):
+            if name.startswith("MasSlice"):
+                FreeCAD.closeDocument(name)
+        shutil.rmtree(self.folder)
+
+    def make(self, source=None, **params):
+        decomposition = mas.make_decomposition(source or self.part)
+        layers, toolpath = mas.make_slice(decomposition, **params)
+        self.doc.recompute()
+        return decomposition, layers, toolpath
+
+    def check_box_objects(self, layers, toolpath):
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertEqual(layers.Proxy.Type, "MultiAxisSlicer::Layers")
+        self.assertEqual(toolpath.Proxy.Type, "MultiAxisSlicer::Toolpath")
+        self.assertEqual(layers.LayerCount, 11)
+        self.assertEqual(len(layers.Shape.childShapes()), 11)  # one sub-compound per layer
+        self.assertEqual(len(layers.Shape.Wires), 11)  # one loop each
+        self.assertTrue(all(w.isClosed() for w in layers.Shape.Wires))
+        self.assertEqual(layers.Shape.Faces, [])
+        self.assertEqual(list(layers.LayerComponents), [0] * 11)
+        self.assertEqual(list(layers.ComponentLayerCounts), [11])
+        for got, want in zip(layers.LayerMaxThicknesses, [2.0] * 10 + [1.0]):
+            self.assertAlmostEqual(got, want, delta=TOL)
+        for got, want in zip(layers.LayerMinThicknesses, [2.0] * 10 + [1.0]):
+            self.assertAlmostEqual(got, want, delta=TOL)
+        for n in layers.LayerNormals:
+            self.assertVectorAlmostEqual(n, (0, 0, 1))
+        self.assertAlmostEqual(layers.MinThickness.Value, 1.0, delta=TOL)
+        self.assertAlmostEqual(layers.MaxThickness.Value, 2.0, delta=TOL)
+        self.assertAlmostEqual(layers.DepositedVolume.Value, 4200.0, delta=4200.0 * REL)
+        self.assertAlmostEqual(layers.PartVolume.Value, 4200.0, delta=4200.0 * REL)
+        self.assertEqual(layers.LayersOverVolumeDifference, 0)
+        self.assertEqual(layers.WorstUnsupportedLayer, -1)
+        bb = layers.Shape.BoundBox
+        self.assertAlmostEqual(bb.ZMin, 2.0, places=6)
+        self.assertAlmostEqual(bb.ZMax, 21.0, places=6)
+        # The paths: contours and raster infill, no travel unless asked.
+        self.assertFalse(toolpath.Shape.isNull())
+        self.assertGreater(len(toolpath.Shape.Edges), 0)
+        self.assertEqual(len(toolpath.Shape.childShapes()), len(features.PATH_KINDS))
+        contours, infill, centre_lines, travel = toolpath.PathCounts
+        self.assertEqual(contours, 2 * 11)  # two contours per layer
+        self.assertGreater(infill, 0)
+        self.assertEqual(travel, 0)
+        self.assertEqual(toolpath.PathCount, contours + infill + centre_lines)
+        self.assertGreater(toolpath.PathLength.Value, 0.0)
+        self.assertGreater(toolpath.TravelLength.Value, 0.0)
+        self.assertEqual(toolpath.UnfilledFeatures, 0)
+        wires = toolpath.Shape.Wires
+        self.assertAlmostEqual(sum(w.Length for w in wires), toolpath.PathLength.Value,
+                               delta=1e-6 * toolpath.PathLength.Value)
+
+
+class TestLayersObject(SliceObjectTest):
+    def test_make_slice_on_a_box_decomposition(self):
+        decomposition, layers, toolpath = self.make()
+        self.assertIs(layers.Decomposition, decomposition)
+        self.assertIs(toolpath.Layers, layers)
+        self.assertIn(decomposition, layers.OutList)
+        self.assertIn(layers, toolpath.OutList)
+        self.assertEqual(layers.MinLayer.Value, 0.5)
+        self.assertEqual(layers.MaxLayer.Value, 2.0)
+        self.assertEqual(layers.Infill, "raster")
+        self.assertEqual(layers.getEnumerationsOfProperty("Infill"), ["raster", "contour", "none"])
+        self.assertEqual(layers.ContourCount, 2)
+        self.assertEqual(layers.Deflection.Value, 0.0)
+        self.assertFalse(toolpath.ShowTravel)
+        self.check_box_objects(layers, toolpath)
+        self.assertEqual(layers.getGroupOfProperty("BeadWidth"), "Paths")
+        self.assertEqual(layers.getGroupOfProperty("MaxLayer"), "Layers")
+        self.assertIn("ReadOnly", layers.getEditorMode("LayerCount"))
+
+    def test_parameters_given_to_make_slice_are_used(self):
+        decomposition, layers, toolpath = self.make(max_layer=1.5, bead_width=1.2,
+                                                    infill="none", contour_count=1,
+                                                    show_travel=True, deflection=0.02)
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.MaxLayer.Value, 1.5)
+        self.assertEqual(layers.BeadWidth.Value, 1.2)
+        self.assertEqual(layers.Deflection.Value, 0.02)
+        self.assertEqual(layers.LayerCount, 14)
+        self.assertEqual(list(toolpath.PathCounts[:3]), [14, 0, 0])  # one contour per layer
+        self.assertGreater(toolpath.PathCounts[3], 0)  # travel shown
+
+    def test_changing_parameters_recomputes(self):
+        decomposition, layers, toolpath = self.make()
+        paths = toolpath.PathCount
+        layers.MaxLayer = 1.5
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.LayerCount, 14)
+        self.assertEqual(len(layers.Shape.Wires), 14)
+        self.assertGreater(toolpath.PathCount, paths)  # the toolpath follows
+        self.assertEqual(toolpath.PathCounts[0], 2 * 14)
+        layers.MaxLayer = 3.0
+        self.doc.recompute()
+        self.assertEqual(layers.LayerCount, 7)
+        self.assertEqual(toolpath.PathCounts[0], 2 * 7)
+        layers.Infill = "none"
+        self.doc.recompute()
+        self.assertEqual(list(toolpath.PathCounts), [14, 0, 0, 0])
+        toolpath.ShowTravel = True
+        self.doc.recompute()
+        self.assertGreater(toolpath.PathCounts[3], 0)
+        self.assertEqual(len(toolpath.Shape.childShapes()[3].Wires), toolpath.PathCounts[3])
+        self.assertEqual(toolpath.UncoveredArea.Value, 0.0)  # not measured
+        layers.MeasureCoverage = True
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertGreaterEqual(toolpath.UncoveredArea.Value, 0.0)
+        self.assertTrue(layers.Proxy._result[1].params["measure_coverage"])
+
+    def test_source_changes_flow_through_the_decomposition(self):
+        decomposition, layers, toolpath = self.make()
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        features.sync_components(decomposition)
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(list(layers.ComponentLayerCounts), [30, 25])
+        self.assertEqual(list(layers.LayerComponents), [0] * 30 + [1] * 25)
+        for i, n in enumerate(layers.LayerNormals):
+            self.assertVectorAlmostEqual(n, (0, 0, 1) if i < 30 else (1, 0, 0))
+        self.assertEqual(len(layers.Shape.childShapes()), 55)
+        arm = layers.Shape.childShapes()[30]
+        self.assertAlmostEqual(arm.BoundBox.XMin, 22.0, places=6)
+        self.assertAlmostEqual(arm.BoundBox.XMax, 22.0, places=6)
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertGreater(toolpath.Shape.BoundBox.XMax, 60.0)
+
+    def test_the_decomposition_is_not_computed_again(self):
+        calls = []
+        decompose = mas.decompose
+
+        def counting(*args, **kwargs):
+            calls.append(args)
+            return decompose(*args, **kwargs)
+
+        mas.decompose = counting
+        try:
+            decomposition = mas.make_decomposition(self.part)
+            self.assertEqual(len(calls), 1)
+            layers, toolpath = mas.make_slice(decomposition)
+            self.doc.recompute()
+            self.check_box_objects(layers, toolpath)
+            self.assertEqual(len(calls), 1)  # the Decomposition object's result is reused
+            decomposition.FaceAngle = 5.0
+            self.doc.recompute()
+            self.assertEqual(len(calls), 2)
+            self.check_box_objects(layers, toolpath)
+        finally:
+            mas.decompose = decompose
+
+    def test_the_source_is_not_modified(self):
+        before = self.part.Shape.exportBrepToString()
+        decomposition, layers, toolpath = self.make()
+        self.assertTrue(toolpath.isValid())
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        self.assertNotIn("Touched", self.part.State)
+        self.assertNotIn("Touched", decomposition.State)
+
+    def test_save_close_reopen_recompute(self):
+        decomposition, layers, toolpath = self.make(max_layer=1.5, infill="contour")
+        self.assertEqual(layers.LayerCount, 14)
+        path = os.path.join(self.folder, "slice.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+
+        doc = FreeCAD.openDocument(path)
+        layers, toolpath = doc.getObject("Layers"), doc.getObject("Toolpath")
+        self.assertIsInstance(layers.Proxy, features.LayersFeature)
+        self.assertIsInstance(toolpath.Proxy, features.ToolpathFeature)
+        self.assertIs(layers.Decomposition, doc.getObject("Decomposition"))
+        self.assertIs(toolpath.Layers, layers)
+        self.assertEqual(layers.MaxLayer.Value, 1.5)
+        self.assertEqual(layers.Infill, "contour")
+        self.assertEqual(layers.LayerCount, 14)
+        self.assertEqual(len(layers.Shape.Wires), 14)  # the shapes are saved with the document
+        self.assertGreater(len(toolpath.Shape.Edges), 0)
+        self.assertIsNone(getattr(layers.Proxy, "_result", None))  # the result is not saved
+        # The toolpath recomputes on its own: the slicing is redone on demand.
+        toolpath.ShowTravel = True
+        doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertGreater(toolpath.PathCounts[3], 0)
+        layers.MaxLayer = 2.0
+        doc.recompute()
+        self.assertEqual(layers.LayerCount, 11)
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        doc.save()  # saving restored proxies works too
+
+    def test_undo_removes_both_objects(self):
+        self.doc.UndoMode = 1
+        decomposition = mas.make_decomposition(self.part)
+        names = [o.Name for o in self.doc.Objects]
+        self.doc.openTransaction("Slice")
+        layers, toolpath = mas.make_slice(decomposition)
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        self.assertEqual(len(self.doc.Objects), len(names) + 2)
+        self.doc.undo()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.doc.redo()
+        layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
+        self.assertIs(toolpath.Layers, layers)
+        self.assertEqual(layers.LayerCount, 11)
+
+    def test_bad_parameters_mark_the_object_with_the_message(self):
+        decomposition, layers, toolpath = self.make()
+        layers.MinLayer = 3.0  # more than MaxLayer
+        self.doc.recompute()
+        self.assertIn("Invalid", layers.State)
+        self.assertIn("min_layer", layers.getStatusString())
+        layers.MinLayer = 0.5
+        layers.BeadWidth = 0.0
+        self.doc.recompute()
+        self.assertIn("Invalid", layers.State)
+        self.assertIn("bead_width", layers.getStatusString())
+        layers.BeadWidth = -1.0  # a length property keeps it at 0
+        self.doc.recompute()
+        self.assertIn("bead_width", layers.getStatusString())
+        layers.BeadWidth = 1.0
+        layers.Decomposition = None
+        self.doc.recompute()
+        self.assertIn("Decomposition is not set", layers.getStatusString())
+        layers.Decomposition = self.part
+        self.doc.recompute()
+        self.assertIn("not a Decomposition object", layers.getStatusString())
+        toolpath.Layers = decomposition
+        self.doc.recompute()
+        self.assertIn("not a Layers object", toolpath.getStatusString())
+        # Both recover once their inputs are fixed.
+        layers.Decomposition = decomposition
+        toolpath.Layers = layers
+        self.doc.recompute()
+        self.check_box_objects(layers, toolpath)
+
+    def test_make_rejects_bad_parameters_before_adding_anything(self):
+        decomposition = mas.make_decomposition(self.part)
+        names = [o.Name for o in self.doc.Objects]
+        for error, name, kwargs in (
+                (ValueError, "min_layer", dict(min_layer=3.0, max_layer=2.0)),
+                (ValueError, "bead_width", dict(bead_width=0.0)),
+                (ValueError, "bead_width", dict(bead_width=-1.0)),
+                (ValueError, "infill", dict(infill="bogus")),
+                (ValueError, "min_feature", dict(min_feature=-1.0)),
+                (ValueError, "deflection", dict(deflection=-0.1)),
+                (TypeError, "unknown parameter.*layer_height", dict(layer_height=1.0))):
+            with self.assertRaisesRegex(error, name, msg=str(kwargs)):
+                mas.make_slice(decomposition, **kwargs)
+        with self.assertRaisesRegex(TypeError, "Decomposition object"):
+            mas.make_slice(self.part)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_failing_recompute_prints_the_message_without_a_traceback(self):
+        script = support.write_dedented(self.folder, "fail.py", """
+            import FreeCAD, Part
+            import MultiAxisSlicer as mas
+            doc = FreeCAD.newDocument("Fail")
+            box = doc.addObject("Part::Feature", "Box")
+            box.Shape = Part.makeBox(20, 10, 21)
+            layers, toolpath = mas.make_slice(mas.make_decomposition(box))
+            layers.MinLayer = 3.0
+            doc.recompute()
+            print("STATES", layers.State, toolpath.State)
+            other, _ = mas.make_slice(mas.make_decomposition(box))
+            other.Decomposition = box
+            doc.recompute()
+            print("OTHER", other.State)
+        """)
+        result = subprocess.run(["freecadcmd", script], capture_output=True, text=True, timeout=120)
+        output = result.stdout + result.stderr
+        self.assertIn("STATES ['Invalid']", output.replace("'Touched', ", ""))
+        self.assertIn("OTHER ['Invalid']", output.replace("'Touched', ", ""))
+        self.assertIn("need 0 < min_layer <= max_layer", output)
+        self.assertIn("not a Decomposition object", output)
+        self.assertNotIn("Traceback", output)
+
+
+if __name__ == "__main__":
+    unittest.main()

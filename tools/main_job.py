@@ -1,6 +1,6 @@
 # The README's main job, run headless by `tools/setup.sh demo` (freecadcmd tools/main_job.py):
 # the whole pipeline on the bundled example part, results under out/. Today the pipeline ends at
-# the decomposition into sub-components; each stage added to the product extends this job.
+# the layers and their deposition paths; each stage added to the product extends this job.
 #   MAS_EXAMPLE  the part (default examples/bracket.step)
 #   MAS_OUT      the output folder (default out/)
 import json
@@ -63,15 +63,45 @@ def main():
     with open(os.path.join(out, "decomposition.json"), "w") as f:
         json.dump(dict(parts.to_dict(), file=os.path.basename(example),
                        seconds=decompose_seconds), f, indent=1)
-    # The same as a FreeCAD document: the part with parametric Sections, CentroidalAxis and
-    # Decomposition objects (and its Component objects).
+    # Adaptive multi-axis layers of every sub-component and the bead paths in every layer
+    # (paper Sec. 4.2), in the command line's JSON layout, plus a line per layer.
+    start = time.perf_counter()
+    sliced = mas.slice(shape, components=parts)
+    slice_seconds = time.perf_counter() - start
+    with open(os.path.join(out, "slice.json"), "w") as f:
+        json.dump(dict(sliced.to_dict(), file=os.path.basename(example), seconds=slice_seconds),
+                  f)
+    stats = sliced.stats
+    with open(os.path.join(out, "layers.txt"), "w") as f:
+        f.write("# %s: %d layers in %d sub-components (%.1f ms); thickness %.3f to %.3f mm; "
+                "deposited %.1f of %.1f mm3; worst unsupported area %.2f mm2 (layer %d)\n"
+                % (os.path.basename(example), stats["layer_count"], len(sliced.components),
+                   1e3 * slice_seconds, stats["min_thickness_mm"], stats["max_thickness_mm"],
+                   stats["deposited_volume_mm3"], stats["part_volume_mm3"],
+                   stats["worst_unsupported_area_mm2"], stats["worst_unsupported_layer"]))
+        f.write("# layer component origin_x origin_y origin_z normal_x normal_y normal_z "
+                "min_thickness max_thickness area_mm2 volume_difference unsupported_mm2 "
+                "deposit_mm travel_mm\n")
+        for i, layer in enumerate(sliced.layers):
+            o, n = layer.origin, layer.normal
+            paths = sliced.paths(i)
+            deposit = sum(p.length() for p in paths if p.deposit)
+            travel = sum(p.length() for p in paths if not p.deposit)
+            f.write("%d %d %.4f %.4f %.4f %.6f %.6f %.6f %.4f %.4f %.3f %.5f %.3f %.2f %.2f\n"
+                    % (i, layer.component, o.x, o.y, o.z, n.x, n.y, n.z, layer.min_thickness,
+                       layer.max_thickness, layer.area, layer.volume_difference,
+                       layer.unsupported_area, deposit, travel))
+    # The same as a FreeCAD document: the part with parametric Sections, CentroidalAxis,
+    # Decomposition (and its Component objects), Layers and Toolpath objects.
     doc = FreeCAD.newDocument("MainJob")
     part = doc.addObject("Part::Feature", "Bracket")
     part.Shape = shape
     axis_object = mas.make_centroidal_axis(part, doc=doc)
     objects = [mas.make_sections(part, normal=(0, 0, 1), step=step, doc=doc), axis_object]
     doc.recompute()
-    objects.append(mas.make_decomposition(part, axis=axis_object, doc=doc))
+    decomposition_object = mas.make_decomposition(part, axis=axis_object, doc=doc)
+    objects.append(decomposition_object)
+    objects.extend(mas.make_slice(decomposition_object, doc=doc))
     doc.recompute()
     for obj in objects:
         if obj.State and "Invalid" in obj.State:
@@ -86,6 +116,12 @@ def main():
              ", ".join("%s along (%g, %g, %g) %.0f mm3" % (c.rule, c.build_direction.x,
                                                        c.build_direction.y, c.build_direction.z,
                                                        c.volume) for c in parts)))
+    print("main job: %d layers in %.1f ms, %.3f to %.3f mm thick, %.0f mm of deposit paths, "
+          "worst unsupported area %.2f mm2" % (stats["layer_count"], 1e3 * slice_seconds,
+                                                stats["min_thickness_mm"],
+                                                stats["max_thickness_mm"],
+                                                stats["deposit_length_mm"],
+                                                stats["worst_unsupported_area_mm2"]))
     print("main job: done")
 
 

@@ -69,9 +69,11 @@ case "$mode" in
   bench)
     mkdir -p "$root/out"
     [ -f "$build/bench-data/bunny00.off" ] || "$root/tools/fetch_bench_data.sh" "$build/bench-data"
-    echo "setup: $(nproc) cores; benchmark figures go to out/bench_sections.txt, out/bench_axis.txt"
+    echo "setup: $(nproc) cores; benchmark figures go to out/bench_*.txt"
     "$build/bench/mas_bench" "$build/bench-data" | tee "$root/out/bench_sections.txt"
     "$build/bench/mas_bench_axis" "$build/bench-data" | tee "$root/out/bench_axis.txt"
+    "$build/bench/mas_bench_decompose" | tee "$root/out/bench_decompose.txt"
+    "$build/bench/mas_bench_slice" "$root/examples/bracket.step" | tee "$root/out/bench_slice.txt"
     ;;
   *) echo "usage: tools/setup.sh [install|demo|test|bench|build]" >&2; exit 2 ;;
 esac

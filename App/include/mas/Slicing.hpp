@@ -25,15 +25,16 @@
 //   further along the guide (the polyline of the component's axis nodes inside it, extended
 //   straight past both ends), direction D_upper = the guide's direction there (the link), plane
 //   through P_upper normal to D (a plane parallel to L goes exactly delta above it). Accept when
-//   Eq. 9 holds and, for a direction other than D_lower, when the next layer's footprint (the
-//   component's section on U) is supported by this layer (below, with min_layer's allowance).
+//   Eq. 9 holds and the next layer's footprint (the component's section on U) is supported by
+//   this layer (below, with min_layer's allowance).
 //   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then
 //   delta -= delta / 4, from max_layer down to min_layer. Turns under eps_angle / 10 (centroid
 //   noise) are ignored. The paper prefers a thinner tilted layer to a thick parallel one: that is
 //   what lets the layers follow a bend.
-// - Where no direction between D_upper and D_lower meets Eq. 9 at any delta (a tilt the
-//   thickness bounds forbid), the layer keeps D_lower: the thickest parallel layer that meets
-//   Eq. 9 (planar adaptive slicing).
+// - Where no direction between D_upper and D_lower meets both at any delta (a tilt the thickness
+//   bounds forbid, an overhang of the part's own such as the ceiling of a horizontal hole), the
+//   layer keeps D_lower: the thickest parallel layer that meets both, else the thickest that
+//   meets Eq. 9 (planar adaptive slicing; its unsupported area is reported).
 // - Where even min_layer along D_lower breaks the volumetric bound (the cap of a dome), the layer
 //   is kept at min_layer and flagged (meets_volume_difference = false); with `strict` that is an
 //   error instead. The thickness bounds are hard.

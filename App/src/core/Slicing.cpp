@@ -381,14 +381,15 @@ std::vector<Layer> ComponentSlicer::run() {
                     std::to_string(params_.max_layers) + " layers");
         std::optional<Candidate> accepted, fallback;
         int tries = 0;
-        auto acceptable = [&](const Candidate& c, bool parallel) {
-            const bool volume_ok = c.difference <= params_.max_volume_difference;
-            const bool supported =
-                parallel || c.unsupported_next <= 1e-3 * std::max(c.next.area, 1e-9);
-            return c.thickness_ok && volume_ok && supported;
+        auto meets_eq9 = [&](const Candidate& c) {
+            return c.thickness_ok && c.difference <= params_.max_volume_difference;
+        };
+        auto supported = [&](const Candidate& c) {
+            return c.unsupported_next <= 1e-3 * std::max(c.next.area, 1e-9);
         };
         // Sec. 4.2.2: from delta = max_layer, the guide's direction at P_upper, averaged with
-        // D_lower until Eq. 9 holds or the two are within eps_angle, then a shorter delta.
+        // D_lower until Eq. 9 holds (and the next layer is supported) or the two are within
+        // eps_angle, then a shorter delta.
         for (double delta = params_.max_layer_mm; !accepted;) {
             const double along = s_lower + delta;
             const Vector3d p_upper = guide_.point(along);
@@ -401,7 +402,7 @@ std::vector<Layer> ComponentSlicer::run() {
                 ++tries;
                 const bool parallel = angle_deg(d, d_lower) < 1e-9;
                 Candidate c = evaluate(lower, d, p_upper, along, delta);
-                if (acceptable(c, parallel)) {
+                if (meets_eq9(c) && supported(c)) {
                     accepted = std::move(c);
                     break;
                 }
@@ -411,21 +412,26 @@ std::vector<Layer> ComponentSlicer::run() {
             if (delta <= params_.min_layer_mm) break;
             delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
         }
-        // No direction between the guide's and D_lower met Eq. 9 at any delta (a layer whose
-        // tilt the thickness bounds forbid, or a dome's cap): planar adaptive along D_lower, the
-        // thickest layer that meets Eq. 9, else min_layer kept and flagged.
-        for (double delta = params_.max_layer_mm; !accepted;) {
-            if (cancel_) cancel_();
-            ++tries;
-            const double along = s_lower + delta;
-            Candidate c = evaluate(lower, d_lower, guide_.point(along), along, delta);
-            if (acceptable(c, true)) {
-                accepted = std::move(c);
-                break;
+        // Nothing met both (a tilt the thickness bounds forbid, an overhang of the part's own, a
+        // dome's cap): planar adaptive along D_lower, the thickest layer that meets Eq. 9 with
+        // the next layer supported, else the thickest that meets Eq. 9, else min_layer flagged.
+        if (!accepted) {
+            std::optional<Candidate> eq9_only;
+            for (double delta = params_.max_layer_mm;;) {
+                if (cancel_) cancel_();
+                ++tries;
+                const double along = s_lower + delta;
+                Candidate c = evaluate(lower, d_lower, guide_.point(along), along, delta);
+                if (meets_eq9(c) && supported(c)) {
+                    accepted = std::move(c);
+                    break;
+                }
+                if (meets_eq9(c) && !eq9_only) eq9_only = c;
+                if (c.thickness_ok) fallback = std::move(c);
+                if (delta <= params_.min_layer_mm) break;
+                delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
             }
-            if (c.thickness_ok) fallback = std::move(c);
-            if (delta <= params_.min_layer_mm) break;
-            delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
+            if (!accepted && eq9_only) accepted = std::move(eq9_only);
         }
         if (!accepted) {
             if (!fallback)

@@ -427,3 +427,29 @@ TEST(CentroidalAxis, TracksSplitAroundAHoleRecordWhereTheyMerge) {
     EXPECT_EQ(a.branches[0].merged_into, -1);
     expect_invariants(a, mesh, false);  // beside the hole, a section's centroid is in the hole
 }
+
+TEST(CentroidalAxis, IsTheSameRunAfterRun) {
+    // The march works planes out ahead on a second thread: the result must not depend on timing.
+    const TopoDS_Shape part =
+        fuse(fuse(occ_box(0, 0, 0, 60, 40, 10), occ_box(0, 0, 10, 12, 40, 50)),
+             BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(40, 20, 10), gp_Dir(0, 0, 1)), 8, 30).Shape());
+    const auto mesh = mesh_of(from_occt(part));
+    mas::AxisParams p;
+    p.step_mm = 0.5;
+    const auto first = mas::centroidal_axis(mesh, p);
+    for (int run = 0; run < 10; ++run) {
+        const auto again = mas::centroidal_axis(mesh, p);
+        ASSERT_EQ(again.nodes.size(), first.nodes.size());
+        ASSERT_EQ(again.links.size(), first.links.size());
+        ASSERT_EQ(again.branches.size(), first.branches.size());
+        for (std::size_t i = 0; i < first.nodes.size(); ++i) {
+            EXPECT_EQ(again.nodes[i].position, first.nodes[i].position) << i;
+            EXPECT_EQ(again.nodes[i].area, first.nodes[i].area) << i;
+            EXPECT_EQ(again.nodes[i].branch, first.nodes[i].branch) << i;
+        }
+        for (std::size_t b = 0; b < first.branches.size(); ++b)
+            EXPECT_EQ(again.branches[b].merged_into, first.branches[b].merged_into) << b;
+        EXPECT_EQ(again.sections_cut, first.sections_cut);
+        EXPECT_EQ(again.searched_volume_mm3, first.searched_volume_mm3);
+    }
+}

@@ -2,13 +2,22 @@
 // +-X, +-Y, +-Z with swept-slab bookkeeping for B = B - Bs. See the header for the readings chosen.
 #include "mas/CentroidalAxis.hpp"
 
+#include <tbb/concurrent_vector.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <sstream>
+#include <thread>
 
+#include "SectionGrid.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 
@@ -224,13 +233,19 @@ Regions2 slab_cut(const Slab& s, const Vector3d& n, double c, const PlaneFrame& 
     return {oriented(std::move(r))};
 }
 
+// The regions larger than min_area, largest first (ties in their given order).
 Regions2 keep_larger(Regions2 regions, double min_area) {
-    regions.erase(std::remove_if(regions.begin(), regions.end(),
-                                 [&](const Region2& r) { return area(r) <= min_area; }),
-                  regions.end());
-    std::stable_sort(regions.begin(), regions.end(),
-                     [](const Region2& a, const Region2& b) { return area(a) > area(b); });
-    return regions;
+    std::vector<std::pair<double, std::size_t>> order;  // (area, index): each area computed once
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        const double a = area(regions[i]);
+        if (a > min_area) order.emplace_back(a, i);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    Regions2 out;
+    out.reserve(order.size());
+    for (const auto& [a, i] : order) out.push_back(std::move(regions[i]));
+    return out;
 }
 
 class Search {
@@ -270,7 +285,7 @@ private:
     struct Track {
         int branch;
         int node;
-        Region2 region;
+        Regions2 region;  // the node's region, alone in a list as the Booleans take it
         Eigen::AlignedBox2d box;
     };
 
@@ -288,16 +303,36 @@ private:
         std::vector<Regions2> regions;
         std::vector<std::vector<Eigen::AlignedBox3d>> boxes;
         std::size_t count = 0;
-        std::vector<char> chunk_cut;  // per chunk of kGridChunk planes: cut yet?
+        // Per chunk of kGridChunk planes: kUncut, kCutting or kCut (either thread may cut it),
+        // and whether the search has used it yet (sections_cut counts those).
+        std::vector<std::atomic<int>> chunk_state;
+        std::vector<char> chunk_used;
+        std::unique_ptr<SectionGrid> sections;  // the mesh prepared for cutting these planes
         bool ready = false;
     };
     static constexpr std::size_t kGridChunk = 16;
 
-    // Section regions of grid plane k minus everything already swept (B - Bs). Only slabs whose
-    // box meets a region's box can take anything away: a march's slabs far along another
-    // direction are skipped without being cut.
+    // Section regions of grid plane k minus everything already swept (B - Bs).
     Regions2 unswept(Grid& g, std::size_t k) {
         cut_chunk(g, k);
+        count_chunk(g, k);
+        return subtract_swept(g, k, slabs_.size());
+    }
+
+    // sections_cut counts the chunks of planes the search reaches, whichever thread cut them
+    // (a Lookahead may cut one a march then never reaches).
+    void count_chunk(Grid& g, std::size_t k) {
+        const std::size_t chunk = k / kGridChunk;
+        if (g.chunk_used[chunk]) return;
+        g.chunk_used[chunk] = 1;
+        sections_cut_ += std::min(g.count, (chunk + 1) * kGridChunk) - chunk * kGridChunk;
+    }
+
+    // B - Bs on grid plane k, already cut, with the first `slab_count` slabs: safe to run on
+    // another thread while the march adds nodes (see Lookahead). Only slabs whose box meets a
+    // region's box can take anything away: a march's slabs far along another direction are
+    // skipped without being cut.
+    Regions2 subtract_swept(const Grid& g, std::size_t k, std::size_t slab_count) const {
         const Regions2& regions = g.regions[k];
         if (regions.empty()) return {};
         const Vector3d& n = g.normal;
@@ -305,7 +340,11 @@ private:
         const PlaneFrame frame(n);
         Regions2 swept;
         std::map<int, std::pair<StripAxes, std::vector<Strip>>> strips;  // per branch
-        for (const auto& slab : slabs_) {
+        Eigen::AlignedBox3d all;  // of every region: most slabs miss it
+        for (const auto& box : g.boxes[k]) all.extend(box);
+        for (std::size_t i = 0; i < slab_count; ++i) {
+            const Slab& slab = slabs_[i];
+            if (!slab.box.intersects(all)) continue;
             bool meets = false;
             for (const auto& box : g.boxes[k]) meets = meets || slab.box.intersects(box);
             if (!meets) continue;
@@ -400,37 +439,172 @@ private:
             static_cast<std::size_t>(std::max(0.0, std::floor((hi - g.origin) / p_.step_mm))) + 1;
         g.regions.resize(g.count);
         g.boxes.resize(g.count);
-        g.chunk_cut.assign((g.count + kGridChunk - 1) / kGridChunk, 0);
+        const std::size_t chunks = (g.count + kGridChunk - 1) / kGridChunk;
+        g.chunk_state = std::vector<std::atomic<int>>(chunks);  // all kUncut
+        g.chunk_used.assign(chunks, 0);
+        std::vector<Plane> planes(g.count);
+        for (std::size_t i = 0; i < g.count; ++i) planes[i] = Plane{n * offset(g, i), n};
+        g.sections = std::make_unique<SectionGrid>(mesh_, std::move(planes));
         g.ready = true;
         return g;
     }
 
-    // Cuts the chunk of grid planes holding plane k, unless it is cut already.
-    void cut_chunk(Grid& g, std::size_t k) {
+    enum : int { kUncut, kCutting, kCut };
+
+    // Cuts the chunk of grid planes holding plane k, unless it is cut already; waits if the
+    // other thread is cutting it. `on_search`: called from the search's own thread, the only
+    // one where cancellation may be checked.
+    void cut_chunk(Grid& g, std::size_t k, bool on_search = true) {
         const std::size_t chunk = k / kGridChunk;
-        if (g.chunk_cut[chunk]) return;
         const std::size_t first = chunk * kGridChunk, last = std::min(g.count, first + kGridChunk);
-        std::vector<Plane> planes;
-        for (std::size_t i = first; i < last; ++i)
-            planes.push_back(Plane{g.normal * offset(g, i), g.normal});
-        const std::vector<Section> sections = slice_mesh(mesh_, planes, {}, cancel_);
-        const double tol = p_.step_mm / 100.0;
-        for (std::size_t i = first; i < last; ++i) {
-            Regions2 rs;
-            for (const auto& r : sections[i - first].regions) {
-                rs.push_back(simplify(r.shape, tol));
-                Eigen::AlignedBox3d box = r.bounds;
-                box.min().array() -= 1e-6;
-                box.max().array() += 1e-6;
-                g.boxes[i].push_back(box);
-            }
-            g.regions[i] = keep_larger(std::move(rs), p_.min_region_area_mm2);
+        std::atomic<int>& state = g.chunk_state[chunk];
+        for (;;) {
+            int uncut = kUncut;
+            if (state.compare_exchange_strong(uncut, kCutting, std::memory_order_acq_rel)) break;
+            if (uncut == kCut) return;
+            std::this_thread::yield();  // being cut by the other thread
         }
-        g.chunk_cut[chunk] = 1;
-        sections_cut_ += last - first;
+        try {
+            if (on_search && cancel_) cancel_();
+            const double tol = p_.step_mm / 100.0;
+            // Each plane's regions simplified as soon as it is cut, in parallel. Isolated: while
+            // waiting for its planes this thread must not pick up a Lookahead's task, which
+            // could wait for this very chunk.
+            tbb::this_task_arena::isolate([&] {
+                g.sections->cut(first, last, [&](std::size_t i, Section& section) {
+                    Regions2 rs;
+                    g.boxes[i].clear();
+                    for (const auto& r : section.regions) {
+                        rs.push_back(simplify(r.shape, tol));
+                        Eigen::AlignedBox3d box = r.bounds;
+                        box.min().array() -= 1e-6;
+                        box.max().array() += 1e-6;
+                        g.boxes[i].push_back(box);
+                    }
+                    g.regions[i] = keep_larger(std::move(rs), p_.min_region_area_mm2);
+                });
+            });
+        } catch (...) {
+            state.store(kUncut, std::memory_order_release);
+            throw;
+        }
+        state.store(kCut, std::memory_order_release);
     }
 
     double offset(const Grid& g, std::size_t k) const { return g.origin + double(k) * p_.step_mm; }
+
+    // B - Bs of the planes a march reaches next, worked out on another thread while the march
+    // handles the current plane: the Booleans of the two are most of the axis' time, and each
+    // plane's B - Bs needs only the slabs swept before it. It stays valid while only the march's
+    // own nodes are added (each node's slab ends at the next plane, so it takes nothing from the
+    // planes ahead); a branch searched from the march sweeps across them, so the march calls
+    // restart() before searching one and the planes ahead are worked out afresh afterwards.
+    // The results are the ones unswept() would give: same slabs, same order, same Booleans.
+    class Lookahead {
+    public:
+        Lookahead(Search& search, Grid& g, std::size_t from)
+            : s_(search), g_(g), from_(from), slots_(new Slot[g.count - from]) {}
+        Lookahead(const Lookahead&) = delete;
+        Lookahead& operator=(const Lookahead&) = delete;
+        ~Lookahead() { stop(); }
+
+        // unswept(g, k) for k = from, from + 1, ... in turn.
+        Regions2 take(std::size_t k) {
+            s_.cut_chunk(g_, k);
+            s_.count_chunk(g_, k);
+            const std::size_t end = std::min(g_.count, k + kAhead);
+            if (!started_) {
+                slab_count_ = s_.slabs_.size();
+                started_ = true;
+            }
+            end_.store(end, std::memory_order_release);
+            bool idle = false;
+            if (end > k + 1 && running_.compare_exchange_strong(idle, true))
+                tasks_.run([this, k] { run(k + 1); });
+            // Ours unless the other thread has it; while it works on it, help with the next.
+            Slot& slot = at(k);
+            if (!claim(slot, kMine)) {
+                for (std::size_t j = k + 1; j < end; ++j) {
+                    if (slot.state.load(std::memory_order_acquire) == kDone) break;
+                    if (claim(at(j), kMine)) fill(at(j), j, true);
+                }
+                while (slot.state.load(std::memory_order_acquire) != kDone)
+                    std::this_thread::yield();
+            } else {
+                fill(slot, k, true);
+            }
+            if (slot.error) std::rethrow_exception(slot.error);
+            return std::move(slot.result);
+        }
+
+        // Before a branch is searched from plane k: forget the planes after k.
+        void restart(std::size_t k) {
+            stop();
+            for (std::size_t j = k + 1; j < end_.load(std::memory_order_relaxed); ++j) {
+                Slot& slot = at(j);
+                slot.state.store(kFree, std::memory_order_relaxed);
+                slot.result.clear();
+                slot.error = nullptr;
+            }
+            started_ = false;
+        }
+
+    private:
+        enum : int { kFree, kTheirs, kMine, kDone };
+        struct Slot {
+            std::atomic<int> state{kFree};
+            Regions2 result;
+            std::exception_ptr error;
+        };
+        static constexpr std::size_t kAhead = 8;  // planes worked out ahead of the march
+
+        Slot& at(std::size_t k) { return slots_[k - from_]; }
+        static bool claim(Slot& slot, int who) {
+            int free = kFree;
+            return slot.state.compare_exchange_strong(free, who, std::memory_order_acq_rel);
+        }
+        void fill(Slot& slot, std::size_t k, bool on_search) {
+            try {
+                s_.cut_chunk(g_, k, on_search);
+                slot.result = s_.subtract_swept(g_, k, slab_count_);
+            } catch (...) {
+                slot.error = std::current_exception();
+            }
+            slot.state.store(kDone, std::memory_order_release);
+        }
+        // On the other thread: the free planes from k on, in order, until told to stop or out
+        // of planes it may read.
+        void run(std::size_t k) {
+            for (;;) {
+                for (; !stop_.load(std::memory_order_acquire) &&
+                       k < end_.load(std::memory_order_acquire);
+                     ++k)
+                    if (claim(at(k), kTheirs)) fill(at(k), k, false);
+                running_.store(false, std::memory_order_release);
+                // The march may have moved end_ on just before running_ dropped.
+                bool idle = false;
+                if (stop_.load(std::memory_order_acquire) ||
+                    k >= end_.load(std::memory_order_acquire) ||
+                    !running_.compare_exchange_strong(idle, true))
+                    return;
+            }
+        }
+        void stop() {
+            stop_.store(true, std::memory_order_release);
+            tasks_.wait();
+            stop_.store(false, std::memory_order_release);
+        }
+
+        Search& s_;
+        Grid& g_;
+        const std::size_t from_;
+        std::unique_ptr<Slot[]> slots_;  // per plane from from_ on
+        std::size_t slab_count_ = 0;     // the slabs B - Bs subtracts: those before the march
+        bool started_ = false;
+        std::atomic<std::size_t> end_{0};  // the other thread may take planes before this one
+        std::atomic<bool> stop_{false}, running_{false};
+        tbb::task_group tasks_;
+    };
 
     void search(const Task& task, int depth) {
         if (depth > 1000)
@@ -462,12 +636,18 @@ private:
         for (const auto& region : first) {
             const int b = new_branch(n, task.parent_branch, task.father_node);
             const int node = add_node(region, n, offset_of(k0), task.slab_start, slab_end(k0), b);
-            tracks.push_back({b, node, region, bounds(region)});
+            tracks.push_back({b, node, {region}, bounds(region)});
         }
 
+        Lookahead ahead(*this, g, k0 + 1);
         for (std::size_t k = k0 + 1; k < count && !tracks.empty(); ++k) {
             if (cancel_) cancel_();
-            const Regions2 upper = unswept(g, k);
+            // Each upper region alone in a list, as the Booleans take it (no copies).
+            std::vector<Regions2> upper;
+            for (auto& r : ahead.take(k)) {
+                upper.emplace_back();
+                upper.back().push_back(std::move(r));
+            }
             // Each upper region continues the track it overlaps most (Eq. 2's projection).
             // The overlap is read off U - L (area(U) - area(U - L)), which Eq. 2 needs anyway:
             // one Boolean per pair instead of two.
@@ -476,11 +656,11 @@ private:
             std::vector<Regions2> stick_out(upper.size());
             for (std::size_t j = 0; j < upper.size(); ++j) {
                 double best = p_.min_region_area_mm2;
-                const Eigen::AlignedBox2d box = bounds(upper[j]);
+                const Eigen::AlignedBox2d box = bounds(upper[j].front());
                 const double upper_area = area(upper[j]);
                 for (std::size_t t = 0; t < tracks.size(); ++t) {
                     if (!box.intersects(tracks[t].box)) continue;
-                    Regions2 d = difference({upper[j]}, {tracks[t].region});
+                    Regions2 d = difference(upper[j], tracks[t].region);
                     const double a = upper_area - area(d);
                     if (a <= p_.min_region_area_mm2) continue;
                     overlapping[j].push_back(static_cast<int>(t));
@@ -492,8 +672,9 @@ private:
                 }
                 if (overlapping[j].size() > 1) {  // merging tracks: U minus all of them
                     Regions2 lower;
-                    for (int o : overlapping[j]) lower.push_back(tracks[std::size_t(o)].region);
-                    stick_out[j] = difference({upper[j]}, lower);
+                    for (int o : overlapping[j])
+                        lower.push_back(tracks[std::size_t(o)].region.front());
+                    stick_out[j] = difference(upper[j], lower);
                 }
             }
             // A track that overlaps an upper region owned by another track merges into it.
@@ -509,8 +690,9 @@ private:
                 for (std::size_t j = 0; j < upper.size(); ++j) {
                     if (owner[j] != static_cast<int>(t)) continue;
                     Regions2 lower;
-                    for (int o : overlapping[j]) lower.push_back(tracks[std::size_t(o)].region);
-                    for (auto& piece : classify(upper[j], stick_out[j], lower, tracks[t], n,
+                    for (int o : overlapping[j])
+                        lower.push_back(tracks[std::size_t(o)].region.front());
+                    for (auto& piece : classify(upper[j].front(), stick_out[j], lower, tracks[t], n,
                                                 offset_of(k - 1), offset_of(k), children))
                         pieces.push_back(std::move(piece));
                 }
@@ -525,12 +707,14 @@ private:
                     const int link = add_link(lower_node, node, AxisLink::Kind::Step);
                     if (branches_[b].first_link < 0 && branches_[b].nodes.size() == 1)
                         branches_[b].first_link = link;
-                    next.push_back({b, node, pieces[i], bounds(pieces[i])});
+                    next.push_back({b, node, {}, bounds(pieces[i])});
+                    next.back().region.push_back(std::move(pieces[i]));
                 }
             }
             tracks = std::move(next);
             // Branch-first: every branch found here is searched to its end before this march
             // goes on, so that the march's later sections no longer see its material.
+            if (!children.empty()) ahead.restart(k);
             for (const auto& child : children) search(child, depth + 1);
         }
     }
@@ -580,7 +764,7 @@ private:
             // Eq. 4: the new march starts just beyond the lower boundary's extent T along dir.
             double t_max = -std::numeric_limits<double>::infinity();
             const Plane lower_plane{n * lower_offset, n};
-            for (const auto& q : track.region.outer.points)
+            for (const auto& q : track.region.front().outer.points)
                 t_max = std::max(t_max, dir.dot(frame.to_3d(q, lower_plane)));
             Task child;
             child.direction = dir;
@@ -663,7 +847,8 @@ private:
     std::vector<AxisNode> nodes_;
     std::vector<AxisLink> links_;
     std::vector<AxisBranch> branches_;
-    std::vector<Slab> slabs_;
+    // Grown by the march while a Lookahead reads the ones already there from another thread.
+    tbb::concurrent_vector<Slab> slabs_;
     std::array<Grid, 6> grids_;
     std::size_t sections_cut_ = 0;
 };
@@ -674,19 +859,24 @@ double derive_axis_step(const TriangleMesh& mesh) {
     const Eigen::AlignedBox3d box = bounding_box(mesh);
     const double diag = box.diagonal().norm();
     if (!(diag > 0.0)) throw Error(ErrorCode::EmptyInput, "the part has no extent");
-    std::vector<Plane> planes;
+    std::vector<Section> sections;
     for (int axis = 0; axis < 3; ++axis) {
         const Vector3d n = axis_vector(axis, 1.0);
         const double lo = box.min()[axis], hi = box.max()[axis];
+        std::vector<Plane> planes;
         for (int i = 0; i < 16; ++i)
             planes.push_back(Plane{n * (lo + (i + 0.5) * (hi - lo) / 16), n});
+        // A grid cuts its planes in parallel (slice_mesh would build their 16 sections on one
+        // thread, as one batch).
+        for (auto& s : SectionGrid(mesh, std::move(planes)).cut(0, 16))
+            sections.push_back(std::move(s));
     }
     // A wall shows as an elongated region (a strip); a compact one (a disc, a square) is a wall
     // only when nothing elongated is cut at all: a plane grazing a rounded tip cuts a tiny compact
     // region whose 2A/P says nothing about how thick the part is there.
     double wall = std::numeric_limits<double>::infinity();
     double compact = std::numeric_limits<double>::infinity();
-    for (const auto& s : slice_mesh(mesh, planes))
+    for (const auto& s : sections)
         for (const auto& r : s.regions) {
             double per = perimeter(r.shape.outer);
             for (const auto& h : r.shape.holes) per += perimeter(h);

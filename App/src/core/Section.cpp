@@ -12,6 +12,9 @@
 // every crossed facet has exactly one edge going down and one going up through the plane, chains
 // close on a closed mesh, and a facet lying in a plane is never cut: a horizontal face at exactly
 // the height of a plane belongs to the slab below it.
+// SectionGrid (SectionGrid.hpp) keeps steps 1 and 2 of a stack of planes, so that a caller that
+// cuts them a few at a time (the centroidal axis' marches) pays for the whole mesh once; each of
+// its cuts gives what slice_mesh gives for the same planes.
 #include "mas/Section.hpp"
 
 #include <tbb/blocked_range.h>
@@ -25,6 +28,7 @@
 #include <numeric>
 #include <thread>
 
+#include "SectionGrid.hpp"
 #include "mas/Error.hpp"
 
 namespace mas {
@@ -214,6 +218,34 @@ Crossing cross_facet(const Eigen::Vector3i& t, double d, const std::vector<doubl
     return c;
 }
 
+// Every vertex's offset along `normal` and its coordinates in PlaneFrame(normal).
+void project(const TriangleMesh& mesh, const Eigen::Vector3d& normal, std::vector<double>& h,
+             std::vector<Eigen::Vector2d>& uv) {
+    const PlaneFrame frame(normal);
+    const std::size_t nv = mesh.vertices.size();
+    h.resize(nv);
+    uv.resize(nv);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, kChunk), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            h[i] = normal.dot(mesh.vertices[i]);
+            uv[i] = frame.to_2d(mesh.vertices[i]);
+        }
+    });
+}
+
+// Planes at heights d with lo < d <= hi cut a facet spanning [lo, hi] (a vertex on a plane is
+// above it): [first, last) in the ascending `offsets`.
+void facet_planes(const Eigen::Vector3i& t, const std::vector<double>& h,
+                  const std::vector<double>& offsets, std::size_t& first, std::size_t& last) {
+    const double a = h[std::size_t(t[0])], b = h[std::size_t(t[1])], c = h[std::size_t(t[2])];
+    const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
+    first = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), lo) - offsets.begin());
+    last = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), hi) - offsets.begin());
+}
+
+// Planes per batch of the region path: see slice_group.
+constexpr std::size_t kBatch = 64;
+
 // Slices the mesh by planes that all share `normal`; `offsets[k]` is n.origin of plane
 // `which[k]`, sorted ascending. Every step is parallel and its result independent of thread
 // timing: facets in fixed chunks, planes in fixed batches.
@@ -223,14 +255,9 @@ void slice_group(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
                  std::vector<Section>& out) {
     const PlaneFrame frame(normal);
     const std::size_t nv = mesh.vertices.size();
-    std::vector<double> h(nv);
-    std::vector<Eigen::Vector2d> uv(nv);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, kChunk), [&](const auto& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            h[i] = normal.dot(mesh.vertices[i]);
-            uv[i] = frame.to_2d(mesh.vertices[i]);
-        }
-    });
+    std::vector<double> h;
+    std::vector<Eigen::Vector2d> uv;
+    project(mesh, normal, h, uv);
 
     const std::size_t nt = mesh.triangles.size();
     const std::size_t np = offsets.size();
@@ -239,12 +266,8 @@ void slice_group(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
     const std::size_t chunk = std::max<std::size_t>(
         kChunk, std::size_t(double(nt) * double(std::max<std::size_t>(np, 1)) / 16e6) + 1);
     const std::size_t nchunks = (nt + chunk - 1) / chunk;
-    // Planes at heights d with hmin < d <= hmax cut the facet (a vertex on a plane is above it).
     auto plane_range = [&](const Eigen::Vector3i& t, std::size_t& first, std::size_t& last) {
-        const double a = h[std::size_t(t[0])], b = h[std::size_t(t[1])], c = h[std::size_t(t[2])];
-        const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
-        first = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), lo) - offsets.begin());
-        last = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), hi) - offsets.begin());
+        facet_planes(t, h, offsets, first, last);
     };
     auto for_chunks = [&](const auto& body) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nchunks, 1), [&](const auto& r) {
@@ -292,8 +315,8 @@ void slice_group(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
     // buffers, so memory stays bounded and is touched once (allocating and first touching all
     // segments at once, 64 MB for 1000 planes through 1M facets, cost more than the cutting).
     // A batch's facets come from buckets by the first plane each facet reaches, plus the few
-    // facets spanning more than kBatch planes, which every batch checks.
-    constexpr std::size_t kBatch = 64;
+    // facets spanning more than kBatch planes, which every batch checks. (SectionGrid::cut
+    // reproduces the order of a single batch's segments: keep the two in step.)
     std::vector<std::uint32_t> first_plane(nt), last_plane(nt);
     for_chunks([&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
@@ -455,6 +478,148 @@ std::vector<Plane> parallel_planes(const TriangleMesh& mesh, const Eigen::Vector
         planes.push_back(Plane{unit.normal * mid, unit.normal});
     }
     return planes;
+}
+
+SectionGrid::SectionGrid(const TriangleMesh& mesh, std::vector<Plane> planes,
+                         const SliceParams& params)
+    : mesh_(mesh), params_(params), planes_(std::move(planes)) {
+    if (mesh.vertices.size() >= (std::size_t(1) << 32) ||
+        mesh.triangles.size() >= (std::size_t(1) << 32))
+        throw Error(ErrorCode::InvalidArgument,
+                    "meshes with 2^32 vertices or facets or more are not supported");
+    if (planes_.empty()) return;
+    for (auto& p : planes_) p = make_plane(p.origin, p.normal);
+    const Eigen::Vector3d n = planes_.front().normal;
+    height_of_.reserve(planes_.size());
+    for (const auto& p : planes_) {
+        // Exactly one normal: slice_mesh measures every offset along its group's first normal.
+        if (p.normal != n)
+            throw Error(ErrorCode::InvalidArgument, "section grid: planes must share one normal");
+        const double d = n.dot(p.origin);
+        if (!heights_.empty() && d < heights_.back())
+            throw Error(ErrorCode::InvalidArgument, "section grid: planes must be in order");
+        if (heights_.empty() || d != heights_.back()) heights_.push_back(d);
+        height_of_.push_back(std::uint32_t(heights_.size() - 1));
+    }
+    project(mesh, n, h_, uv_);
+    // slice_mesh's plane range of a facet, upper_bound(min h) to upper_bound(max h), from its
+    // vertices' (upper_bound is monotonic): one search per vertex instead of two per facet.
+    std::vector<std::uint32_t> above(h_.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, h_.size(), kChunk), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) above[i] = upper_bound(h_[i]);
+    });
+    const std::size_t nt = mesh.triangles.size();
+    first_.resize(nt);
+    last_.resize(nt);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, kChunk), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const Eigen::Vector3i& t = mesh.triangles[i];
+            const std::uint32_t a = above[std::size_t(t[0])], b = above[std::size_t(t[1])],
+                                c = above[std::size_t(t[2])];
+            first_[i] = std::min({a, b, c});
+            last_[i] = std::max({a, b, c});
+        }
+    });
+    bucket_start_.assign(heights_.size() + 2, 0);
+    for (std::size_t i = 0; i < nt; ++i)
+        if (first_[i] < last_[i]) ++bucket_start_[first_[i] + 2];
+    for (std::size_t k = 2; k < bucket_start_.size(); ++k) bucket_start_[k] += bucket_start_[k - 1];
+    bucket_.resize(bucket_start_.back());
+    for (std::size_t i = 0; i < nt; ++i)
+        if (first_[i] < last_[i]) bucket_[bucket_start_[first_[i] + 1]++] = std::uint32_t(i);
+    bucket_start_.pop_back();
+    for (std::size_t i = 0; i < nt; ++i)
+        if (last_[i] - first_[i] > kShort) long_.push_back(std::uint32_t(i));
+}
+
+std::uint32_t SectionGrid::upper_bound(double x) const {
+    // std::upper_bound over heights_, started from a guess: grids are close to uniform, so the
+    // guess is off by a step or two, and a binary search's unpredictable branches cost more
+    // than the rest of the preparation.
+    const std::size_t n = heights_.size();
+    const double span = heights_.back() - heights_.front();
+    std::size_t k = 0;
+    if (n > 1 && span > 0.0) {
+        const double guess = (x - heights_.front()) / span * double(n - 1);
+        if (guess > 0.0) k = guess < double(n) ? std::size_t(guess) : n;  // NaN: 0
+    }
+    // The first height h with x < h, with std::upper_bound's comparison.
+    while (k < n && !(x < heights_[k])) ++k;
+    while (k > 0 && x < heights_[k - 1]) --k;
+    return std::uint32_t(k);
+}
+
+std::vector<Section> SectionGrid::cut(
+    std::size_t first, std::size_t last,
+    const std::function<void(std::size_t, Section&)>& each) const {
+    if (first > last || last > planes_.size())
+        throw Error(ErrorCode::InvalidArgument, "section grid: plane range out of bounds");
+    std::vector<Section> out;
+    if (first == last) return out;
+    const std::size_t u0 = height_of_[first], u1 = std::size_t(height_of_[last - 1]) + 1;
+    if (u1 - u0 > kBatch || !params_.build_regions) {
+        // Beyond one batch slice_mesh orders segments differently: let it do the work.
+        out = slice_mesh(mesh_,
+                         std::vector<Plane>(planes_.begin() + std::ptrdiff_t(first),
+                                            planes_.begin() + std::ptrdiff_t(last)),
+                         params_);
+    } else {
+        // slice_mesh cuts these planes in one batch whose facets come ordered by the first of
+        // its planes they cross, then by index: first every facet already crossing height u0
+        // (by index), then those starting at u0 + 1, u0 + 2, ... (bucket_ order). Chains start
+        // at the first segment, so the same order gives the same loops.
+        std::vector<std::uint32_t> facets;
+        const std::size_t from = u0 > kShort ? u0 - kShort : 0;
+        for (std::size_t j = bucket_start_[from]; j < bucket_start_[u0 + 1]; ++j) {
+            const std::uint32_t i = bucket_[j];
+            if (last_[i] > u0 && last_[i] - first_[i] <= kShort) facets.push_back(i);
+        }
+        for (std::uint32_t i : long_)
+            if (first_[i] <= u0 && last_[i] > u0) facets.push_back(i);
+        std::sort(facets.begin(), facets.end());
+        facets.insert(facets.end(), bucket_.begin() + std::ptrdiff_t(bucket_start_[u0 + 1]),
+                      bucket_.begin() + std::ptrdiff_t(bucket_start_[u1]));
+        // Dealt to the heights each crosses, keeping that order.
+        std::vector<std::vector<std::uint32_t>> per_height(u1 - u0);
+        for (std::uint32_t i : facets)
+            for (std::size_t u = std::max<std::size_t>(first_[i], u0),
+                             end = std::min<std::size_t>(last_[i], u1);
+                 u < end; ++u)
+                per_height[u - u0].push_back(i);
+
+        out.resize(last - first);
+        // Each distinct height is cut into the section of its first plane in the range.
+        std::vector<std::size_t> which(u1 - u0);
+        for (std::size_t k = last; k-- > first;) which[height_of_[k] - u0] = k - first;
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(u0, u1, 1), [&](const auto& r) {
+            std::vector<Segment> segs;
+            for (std::size_t u = r.begin(); u != r.end(); ++u) {
+                const double d = heights_[u];
+                segs.clear();
+                for (std::uint32_t i : per_height[u - u0]) {
+                    const Crossing x = cross_facet(mesh_.triangles[i], d, h_);
+                    segs.push_back(Segment{edge_key(x.down_a, x.down_b), edge_key(x.up_a, x.up_b),
+                                           crossing(x.down_a, x.down_b, d, h_, uv_)});
+                }
+                Section& s = out[which[u - u0]];
+                s.plane = planes_[first + which[u - u0]];
+                s.centroid = s.plane.origin;
+                build_regions(segs.data(), segs.size(), params_, s);
+            }
+        });
+        // Planes at a height already cut get a copy, with their own plane.
+        for (std::size_t k = first; k < last; ++k) {
+            const std::size_t from_k = which[height_of_[k] - u0];
+            if (from_k == k - first) continue;
+            out[k - first] = out[from_k];
+            out[k - first].plane = planes_[k];
+        }
+    }
+    if (each)
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1), [&](const auto& r) {
+            for (std::size_t k = r.begin(); k != r.end(); ++k) each(first + k, out[k]);
+        });
+    return out;
 }
 
 }  // namespace mas

@@ -231,6 +231,23 @@ TEST(Slicing, BoxOfAwkwardHeightNeverLeavesASliverOnTop) {
     EXPECT_NEAR(layers[10].plane.origin.z(), 20.3, 1e-9);
 }
 
+TEST(Slicing, NarrowThicknessBoundsStillFitEveryLayer) {
+    // With layers of 0.8 to 1.0 mm not every height can be filled (1.5 mm cannot): 10.5 mm
+    // takes eleven layers, none of them outside the bounds.
+    auto params = default_params();
+    params.layers.min_layer_mm = 0.8;
+    params.layers.max_layer_mm = 1.0;
+    const auto s = slice(mas::test::box(0, 0, 0, 10, 10, 10.5), 2.0, params);
+    const auto& layers = s.result.layers;
+    ASSERT_EQ(layers.size(), 11u);
+    for (const auto& l : layers) {
+        EXPECT_GE(l.min_thickness_mm, 0.8 - 1e-9);
+        EXPECT_LE(l.max_thickness_mm, 1.0 + 1e-9);
+    }
+    EXPECT_NEAR(layers.back().plane.origin.z(), 10.5, 1e-9);
+    expect_invariants(s, params, "box 10.5");
+}
+
 TEST(Slicing, DomeLayersThinWhereTheSurfaceTurnsParallelToThem) {
     const auto params = default_params();
     const auto s = slice(dome(), 2.0, params);

@@ -38,10 +38,12 @@
 // - Where even min_layer along D_lower breaks the volumetric bound (the cap of a dome), the layer
 //   is kept at min_layer and flagged (meets_volume_difference = false); with `strict` that is an
 //   error instead. The thickness bounds are hard.
-// - Ending: when U would leave less than min_layer of material above it, U moves up to the top of
-//   the material (the last layer, if it stays within max_layer) or down so that min_layer remains.
-//   The last layer is therefore thinner than min_layer only when less than min_layer of the
-//   component remains above the one before it; a component thinner than min_layer is an error.
+// - Ending: U never leaves above it a height no layers can fill: less than min_layer, or, when
+//   max_layer < 2 min_layer, a height between k max_layer and (k + 1) min_layer. It moves up onto
+//   the top of the material (the last layer, if that stays within the bounds), up to the fillable
+//   height just below, or down to the one just above. The last layer is therefore thinner than
+//   min_layer only when less than min_layer of the component remains above the one before it; a
+//   component thinner than min_layer is an error.
 // - Support (the point of the method): a layer's footprint on the layer below (its lower region,
 //   which lies on the lower layer's top) must lie within the lower layer's region grown by the
 //   overhang allowance, the layer's min thickness x tan(overhang_angle). unsupported_area_mm2 is

@@ -289,20 +289,44 @@ Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& 
     double tmin = 0.0, tmax = 0.0;
     thickness_range(lower, c.upper, tmin, tmax);
 
-    // Ending: never leave less than min_layer of material above U.
+    // Ending: never leave above U a height no layers can fill, one thinner than min_layer or
+    // (when max_layer < 2 min_layer) one between k max_layer and (k + 1) min_layer. A height a
+    // takes at least ceil(a / max_layer) layers, which fit when that many min_layers do.
     const double above = top_along(d) - d.dot(c.upper.origin);
-    if (above < min_layer) {
-        const double up = above;                // moving U onto the top of the material
-        const double down = above - min_layer;  // leaving exactly min_layer above it
-        const bool top_ok = tmax + up <= max_layer + kLengthTolerance;
-        if (top_ok && tmin + up >= min_layer - kLengthTolerance) {
+    const auto fillable = [&](double a) {
+        return std::abs(a) <= kLengthTolerance ||
+               (a > 0.0 && std::ceil(a / max_layer - 1e-9) * min_layer <= a + kLengthTolerance);
+    };
+    if (above < -kLengthTolerance) {
+        // U lies past the top of the material: down onto it, the last layer (thinner than
+        // min_layer only when less than that was left).
+        c.upper = make_plane(c.upper.origin + above * d, d);
+        tmin += above;
+        tmax += above;
+        c.final = true;
+        if (const auto s = guide_.crossing(c.upper, along)) c.along = *s;
+    } else if (!fillable(above)) {
+        // Moving U up by `shift` thickens this layer and leaves above - shift. In turn: up onto
+        // the top (the last layer), up to the fillable height just below (k max_layer), down to
+        // the one just above ((k + 1) min_layer, k = floor(above / max_layer)), else a thin last
+        // layer where less than min_layer is left in all.
+        const double k = std::floor(above / max_layer);
+        const double up_to_top = above, up = above - k * max_layer;
+        const double down = above - (k + 1.0) * min_layer;
+        auto fits = [&](double shift) {
+            return tmax + shift <= max_layer + kLengthTolerance &&
+                   tmin + shift >= min_layer - kLengthTolerance;
+        };
+        double shift = down;
+        if (fits(up_to_top)) {
+            shift = up_to_top;
             c.final = true;
-        } else if (tmin + down >= min_layer - kLengthTolerance) {
-            c.final = false;
-        } else {
-            c.final = top_ok;  // a thin last layer: less than min_layer is left in all
+        } else if (k >= 1.0 && fits(up)) {
+            shift = up;
+        } else if (!fits(down) && tmax + up_to_top <= max_layer + kLengthTolerance) {
+            shift = up_to_top;
+            c.final = true;
         }
-        const double shift = c.final ? up : down;
         c.upper = make_plane(c.upper.origin + shift * d, d);
         tmin += shift;
         tmax += shift;

@@ -163,12 +163,14 @@ int main(int argc, char** argv) {
             mas::make_plane(Vector3d(bounds.center().x(), bounds.center().y(), bounds.min().z()),
                             Vector3d::UnitZ());
         whole.branch = -1;
-        const mas::SlicedPart planar = mas::slice_components({whole}, axis, params);
+        mas::SlicePartParams planar_params = params;  // plain adaptive slicing: Eq. 9 alone
+        planar_params.layers.require_support = false;
+        const mas::SlicedPart planar = mas::slice_components({whole}, axis, planar_params);
         Row row;
         row.name = p.name;
         row.ours = r.stats.layer_count;
         row.planar = planar.stats.layer_count;
-        row.uniform = uniform_count(whole, axis, params, planar);
+        row.uniform = uniform_count(whole, axis, planar_params, planar);
         row.ours_unsupported = r.stats.worst_unsupported_area_mm2;
         row.planar_unsupported = planar.stats.worst_unsupported_area_mm2;
         row.ours_over = r.stats.layers_over_volume_difference;

@@ -72,7 +72,10 @@ struct LayerParams {
     double overhang_angle_deg = 45.0;  // support allowance = thickness x tan(this), degrees
     int volume_samples = 4;            // sections per layer for VolDiff, >= 1
     bool strict = false;               // a layer that cannot meet max_volume_difference is an error
-    std::size_t max_layers = 100000;   // per component: guard against runaway slicing
+    // Accept a plane only when the next layer's footprint is supported (see above). False: Eq. 9
+    // alone, as in plain adaptive slicing (the benchmark's planar baselines).
+    bool require_support = true;
+    std::size_t max_layers = 100000;  // per component: guard against runaway slicing
 };
 
 // Throws mas::Error(InvalidArgument) naming the parameter (min_layer > max_layer, a non-positive

@@ -409,7 +409,8 @@ std::vector<Layer> ComponentSlicer::run() {
             return c.thickness_ok && c.difference <= params_.max_volume_difference;
         };
         auto supported = [&](const Candidate& c) {
-            return c.unsupported_next <= 1e-3 * std::max(c.next.area, 1e-9);
+            return !params_.require_support ||
+                   c.unsupported_next <= 1e-3 * std::max(c.next.area, 1e-9);
         };
         // Sec. 4.2.2: from delta = max_layer, the guide's direction at P_upper, averaged with
         // D_lower until Eq. 9 holds (and the next layer is supported) or the two are within

@@ -330,10 +330,12 @@ def slice(shape, axis=None, components=None, deflection=None, **params):  # noqa
         if components is not None:
             raise TypeError("slice: {} is a mesh, which cannot be decomposed; pass no "
                             "components".format(what))
+        if "deflection" in p:
+            raise ValueError("slice: {} is a mesh, sliced as it is; deflection applies to solids "
+                             "only".format(what))
         mesh = eng.make_closed(part, what)
         if axis is None:
             axis = centroidal_axis(mesh, **axis_params)
-        p.pop("deflection", None)
         data = eng.slice_mesh_part(mesh, axis._engine_dict(), p)
         return SliceResult(data, p, axis, None, kind)
     solid = part.single_solid(what)

@@ -851,7 +851,17 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
                 PyErr_Clear();
                 invalid_argument(key + " must be an integer");
             }
-            return x;
+            if (x < std::numeric_limits<int>::min() || x > std::numeric_limits<int>::max())
+                invalid_argument(key + " is out of range");
+            return int(x);
+        };
+        auto truth = [&]() {
+            const int x = PyObject_IsTrue(value.ptr());
+            if (x < 0) {
+                PyErr_Clear();
+                invalid_argument(key + " must be True or False");
+            }
+            return x == 1;
         };
         if (key == "min_layer")
             p.layers.min_layer_mm = number();
@@ -866,15 +876,15 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
         else if (key == "overhang_angle")
             p.layers.overhang_angle_deg = number();
         else if (key == "volume_samples")
-            p.layers.volume_samples = int(integer());
+            p.layers.volume_samples = integer();
         else if (key == "strict")
-            p.layers.strict = PyObject_IsTrue(value.ptr()) == 1;
+            p.layers.strict = truth();
         else if (key == "bead_width")
             p.paths.bead_width_mm = number();
         else if (key == "overlap")
             p.paths.overlap = number();
         else if (key == "contour_count")
-            p.paths.contour_count = int(integer());
+            p.paths.contour_count = integer();
         else if (key == "infill") {
             const bp::extract<std::string> name(value);
             if (!name.check()) invalid_argument("infill must be 'raster', 'contour' or 'none'");
@@ -886,7 +896,7 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
         else if (key == "min_feature")
             p.paths.min_feature_mm = number();
         else if (key == "measure_coverage")
-            p.paths.measure_coverage = PyObject_IsTrue(value.ptr()) == 1;
+            p.paths.measure_coverage = truth();
         else if (key == "deflection")
             p.tessellation.deflection_mm = number();
         else
@@ -1042,6 +1052,8 @@ bp::dict slice_part(const mas::Shape& shape, const bp::object& axis_py,
 
 bp::dict slice_mesh_part(const mas::TriangleMesh& mesh, const bp::object& axis_py,
                          const bp::dict& params_py) {
+    if (params_py.has_key("deflection"))
+        invalid_argument("a mesh is sliced as it is: 'deflection' applies to solids only");
     const mas::SlicePartParams params = slice_params_from_py(params_py);
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     mas::SlicedPart r;

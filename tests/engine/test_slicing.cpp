@@ -248,6 +248,21 @@ TEST(Slicing, NarrowThicknessBoundsStillFitEveryLayer) {
     expect_invariants(s, params, "box 10.5");
 }
 
+TEST(Slicing, HeightsNoFullLayersFillEndInAThinLastLayer) {
+    // Layers of 1 to 1.2 mm cannot fill 2.6 mm with full layers (two are at most 2.4, three at
+    // least 3): 1.2 + 1.2 and a last layer of 0.2.
+    auto params = default_params();
+    params.layers.min_layer_mm = 1.0;
+    params.layers.max_layer_mm = 1.2;
+    const auto s = slice(mas::test::box(0, 0, 0, 10, 10, 2.6), 2.0, params);
+    const auto& layers = s.result.layers;
+    ASSERT_EQ(layers.size(), 3u);
+    EXPECT_NEAR(layers[0].min_thickness_mm, 1.2, 1e-9);
+    EXPECT_NEAR(layers[1].min_thickness_mm, 1.2, 1e-9);
+    EXPECT_NEAR(layers[2].min_thickness_mm, 0.2, 1e-9);
+    expect_invariants(s, params, "box 2.6");
+}
+
 TEST(Slicing, DomeLayersThinWhereTheSurfaceTurnsParallelToThem) {
     const auto params = default_params();
     const auto s = slice(dome(), 2.0, params);

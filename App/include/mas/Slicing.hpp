@@ -119,16 +119,17 @@ struct Layer {
     double thickness_at(const Eigen::Vector3d& point_on_plane) const;
 };
 
-// Slices one component. Throws mas::Error: InvalidArgument for bad params, a null or open mesh, a
-// base plane with no material above it or a component thinner than min_layer_mm along its build
-// direction; GeometryFailure when strict and a layer misses the volumetric bound; whatever
-// `throw_on_cancel` throws (called between candidate planes).
+// Slices one component. Throws mas::Error: InvalidArgument for bad params, a null mesh, a base
+// plane with no material above it or a component thinner than min_layer_mm along its build
+// direction; OpenMesh for a mesh that is not a closed surface; GeometryFailure when strict and a
+// layer misses the volumetric bound; whatever `throw_on_cancel` throws (called between candidate
+// planes).
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
                                    const std::function<void()>& throw_on_cancel = {});
 
-// The area of `upper` (a region on a plane with normal `upper_normal`) outside `lower` (on a plane
-// with normal `lower_normal`) grown by `allowance_mm`, both seen along lower_normal: the support
-// check above, exposed for tests and for checking any two consecutive layers.
+// The area of `upper`'s footprint outside `lower`'s region grown by `allowance_mm`: upper's region
+// moved back along its own normal onto its lower plane (lower's top), then both seen along
+// lower's normal. The support check above, exposed for tests and for checking any two layers.
 double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm);
 
 }  // namespace mas

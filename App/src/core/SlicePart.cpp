@@ -21,6 +21,9 @@ bool inside_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& point) {
         const double la = a.norm(), lb = b.norm(), lc = c.norm();
         const double numerator = a.dot(b.cross(c));
         const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+        // On the facet itself the solid angle jumps between -2 pi and 2 pi: a point on the
+        // surface counts as inside.
+        if (std::abs(numerator) <= 1e-12 * la * lb * lc && denominator < 0.0) return true;
         total += 2.0 * std::atan2(numerator, denominator);
     }
     return total / (4.0 * 3.14159265358979323846) > 0.5;
@@ -40,6 +43,11 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                         "component " + std::to_string(c) + " has father " +
                             std::to_string(comp.parent) +
                             ": components must come in tree order, the root first");
+        const MeshReport report = check_mesh(comp.mesh);
+        if (!report.closed() || report.non_finite_vertices)
+            throw Error(ErrorCode::OpenMesh, "component " + std::to_string(c) +
+                                                 "'s mesh is not a closed surface: it cannot be "
+                                                 "sliced");
         ComponentSlicingInput input;
         input.component = int(c);
         input.mesh = &comp.mesh;
@@ -61,10 +69,6 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         record.component = int(c);
         record.first_layer = int(out.layers.size());
         record.guide_nodes = int(input.guide.size());
-        const MeshReport report = check_mesh(comp.mesh);
-        if (report.boundary_edges || report.non_manifold_edges || report.inconsistent_edges)
-            throw Error(ErrorCode::OpenMesh, "component " + std::to_string(c) +
-                                                 "'s mesh is not closed: it cannot be sliced");
         record.volume_mm3 = report.volume_mm3;
         std::vector<Layer> layers = slice_component(input, params.layers, throw_on_cancel);
         record.layer_count = int(layers.size());

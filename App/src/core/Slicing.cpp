@@ -297,14 +297,22 @@ Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& 
         return std::abs(a) <= kLengthTolerance ||
                (a > 0.0 && std::ceil(a / max_layer - 1e-9) * min_layer <= a + kLengthTolerance);
     };
+    // U moved by `shift` along d, and P_upper with it: where the guide crosses U, or (a guide
+    // parallel to U) as far along the guide as the shift takes it.
+    const auto move_upper = [&](double shift) {
+        c.upper = make_plane(c.upper.origin + shift * d, d);
+        tmin += shift;
+        tmax += shift;
+        if (const auto s = guide_.crossing(c.upper, along))
+            c.along = *s;
+        else
+            c.along = along + shift / std::max(d.dot(guide_.direction(along)), 0.1);
+    };
     if (above < -kLengthTolerance) {
         // U lies past the top of the material: down onto it, the last layer (thinner than
         // min_layer only when less than that was left).
-        c.upper = make_plane(c.upper.origin + above * d, d);
-        tmin += above;
-        tmax += above;
+        move_upper(above);
         c.final = true;
-        if (const auto s = guide_.crossing(c.upper, along)) c.along = *s;
     } else if (!fillable(above)) {
         // Moving U up by `shift` thickens this layer and leaves above - shift. In turn: up onto
         // the top (the last layer), up to the fillable height just below (k max_layer), down to
@@ -317,20 +325,20 @@ Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& 
             return tmax + shift <= max_layer + kLengthTolerance &&
                    tmin + shift >= min_layer - kLengthTolerance;
         };
-        double shift = down;
+        // None fits: U stays, and what is left ends in a thin last layer.
+        double shift = 0.0;
         if (fits(up_to_top)) {
             shift = up_to_top;
             c.final = true;
         } else if (k >= 1.0 && fits(up)) {
             shift = up;
-        } else if (!fits(down) && tmax + up_to_top <= max_layer + kLengthTolerance) {
+        } else if (fits(down)) {
+            shift = down;
+        } else if (tmax + up_to_top <= max_layer + kLengthTolerance) {
             shift = up_to_top;
             c.final = true;
         }
-        c.upper = make_plane(c.upper.origin + shift * d, d);
-        tmin += shift;
-        tmax += shift;
-        if (const auto s = guide_.crossing(c.upper, along)) c.along = *s;
+        move_upper(shift);
     }
     c.min_thickness = tmin;
     c.max_thickness = tmax;
@@ -403,7 +411,7 @@ std::vector<Layer> ComponentSlicer::run() {
         if (layers.size() >= params_.max_layers)
             invalid("component " + std::to_string(input_.component) + " needs more than " +
                     std::to_string(params_.max_layers) + " layers");
-        std::optional<Candidate> accepted, fallback;
+        std::optional<Candidate> accepted, fallback, any_fit;
         int tries = 0;
         auto meets_eq9 = [&](const Candidate& c) {
             return c.thickness_ok && c.difference <= params_.max_volume_difference;
@@ -431,6 +439,7 @@ std::vector<Layer> ComponentSlicer::run() {
                     accepted = std::move(c);
                     break;
                 }
+                if (c.thickness_ok && !any_fit) any_fit = c;  // the last resort, below
                 if (parallel || angle_deg(d, d_lower) < eps_angle) break;
                 d = (d + d_lower).normalized();
             }
@@ -457,6 +466,8 @@ std::vector<Layer> ComponentSlicer::run() {
                 delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
             }
             if (!accepted && eq9_only) accepted = std::move(eq9_only);
+            // No parallel layer fits the thickness bounds at all, but a tilted one did.
+            if (!accepted && !fallback && any_fit) fallback = std::move(any_fit);
         }
         if (!accepted) {
             if (!fallback)
@@ -596,6 +607,12 @@ std::vector<Layer> slice_component(const ComponentSlicingInput& input, const Lay
     validate(params);
     if (!input.mesh || input.mesh->triangles.empty())
         invalid("component " + std::to_string(input.component) + " has no mesh to slice");
+    const MeshReport report = check_mesh(*input.mesh);
+    if (report.boundary_edges || report.non_manifold_edges || report.inconsistent_edges ||
+        report.non_finite_vertices)
+        throw Error(ErrorCode::OpenMesh,
+                    "component " + std::to_string(input.component) +
+                        "'s mesh is not a closed surface: it cannot be sliced");
     if (!input.base.origin.allFinite() || !input.base.normal.allFinite() ||
         input.base.normal.norm() < 1e-12)
         invalid("component " + std::to_string(input.component) +

@@ -470,6 +470,17 @@ std::vector<AxisLine> axis_lines(AxisGraph& g, double min_length, double& longes
                 for (int ei : g.incident[std::size_t(n)]) g.edges[std::size_t(ei)].used = true;
         };
         AxisLine line;
+        // Runs edge ei of the axis from node n onto the line; returns the node it ends at.
+        auto take_edge = [&](int ei, int n) {
+            AxisEdge& e = g.edges[std::size_t(ei)];
+            const bool forward = e.a == n;
+            append_edge(e, forward, line.points);
+            line.length += e.length;
+            line.width +=
+                e.length * (g.node_radius[std::size_t(e.a)] + g.node_radius[std::size_t(e.b)]);
+            e.used = true;
+            return forward ? e.b : e.a;
+        };
         const bool cycle =
             std::all_of(nodes.begin(), nodes.end(), [&](int n) { return unused_degree(n) == 2; });
         if (cycle) {
@@ -480,15 +491,8 @@ std::vector<AxisLine> axis_lines(AxisGraph& g, double min_length, double& longes
                 for (int ei : g.incident[std::size_t(n)])
                     if (ei != prev_edge && !g.edges[std::size_t(ei)].used) next_edge = ei;
                 if (next_edge < 0) break;
-                AxisEdge& e = g.edges[std::size_t(next_edge)];
-                const bool forward = e.a == n;
-                append_edge(e, forward, line.points);
-                line.length += e.length;
-                line.width +=
-                    e.length * (g.node_radius[std::size_t(e.a)] + g.node_radius[std::size_t(e.b)]);
-                e.used = true;
+                n = take_edge(next_edge, n);
                 prev_edge = next_edge;
-                n = forward ? e.b : e.a;
             }
             if (line.points.size() > 1) line.points.pop_back();  // back at the start
         } else {
@@ -509,16 +513,7 @@ std::vector<AxisLine> axis_lines(AxisGraph& g, double min_length, double& longes
             }
             std::reverse(chain.begin(), chain.end());
             int n = a;
-            for (int ei : chain) {
-                AxisEdge& e = g.edges[std::size_t(ei)];
-                const bool forward = e.a == n;
-                append_edge(e, forward, line.points);
-                line.length += e.length;
-                line.width +=
-                    e.length * (g.node_radius[std::size_t(e.a)] + g.node_radius[std::size_t(e.b)]);
-                e.used = true;
-                n = forward ? e.b : e.a;
-            }
+            for (int ei : chain) n = take_edge(ei, n);
             line.r_front = g.node_radius[std::size_t(a)];
             line.r_back = g.node_radius[std::size_t(b)];
         }

@@ -159,9 +159,7 @@ int main(int argc, char** argv) {
         // Planar adaptive along Z: the whole part as one component, a straight +Z guide.
         mas::ComponentMesh whole;
         whole.mesh = mesh;
-        whole.base =
-            mas::make_plane(Vector3d(bounds.center().x(), bounds.center().y(), bounds.min().z()),
-                            Vector3d::UnitZ());
+        whole.base = mas::build_plate(mesh);
         whole.branch = -1;
         mas::SlicePartParams planar_params = params;  // plain adaptive slicing: Eq. 9 alone
         planar_params.layers.require_support = false;

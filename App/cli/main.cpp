@@ -472,13 +472,7 @@ int run_slice(const std::vector<std::string>& args) {
         const mas::Decomposition d = mas::decompose(solid, axis);
         r = mas::slice_part(solid, axis, d, sp);
     } else {
-        // A mesh cannot be split: one component on the plane through its lowest point.
-        mas::ComponentMesh root;
-        root.mesh = part.mesh;
-        const Eigen::AlignedBox3d box = mas::bounding_box(part.mesh);
-        root.base = mas::make_plane({box.center().x(), box.center().y(), box.min().z()},
-                                    Eigen::Vector3d::UnitZ());
-        r = mas::slice_components({root}, axis, sp);
+        r = mas::slice_mesh_part(part.mesh, axis, sp);  // a mesh cannot be split
     }
     const mas::SliceStats& st = r.stats;
     std::ostringstream out;

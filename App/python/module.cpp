@@ -1059,15 +1059,7 @@ bp::dict slice_mesh_part(const mas::TriangleMesh& mesh, const bp::object& axis_p
     mas::SlicedPart r;
     {
         GilRelease nogil;
-        // A mesh cannot be split: one root component standing on the plane through its lowest
-        // point, following the axis' first branch.
-        mas::ComponentMesh root;
-        root.mesh = mesh;
-        const Eigen::AlignedBox3d box = mas::bounding_box(mesh);
-        root.base =
-            mas::make_plane(Eigen::Vector3d(box.center().x(), box.center().y(), box.min().z()),
-                            Eigen::Vector3d::UnitZ());
-        r = mas::slice_components({root}, axis, params);
+        r = mas::slice_mesh_part(mesh, axis, params);
     }
     return sliced_to_py(r);
 }

@@ -68,11 +68,21 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const std::function<void()>& throw_on_cancel = {});
 
+// A closed mesh sliced as one root component (a mesh cannot be decomposed) on its build_plate(),
+// following the axis' first branch.
+SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
+                           const SlicePartParams& params,
+                           const std::function<void()>& throw_on_cancel = {});
+
 // The decomposition's components tessellated with params.tessellation, then slice_components.
 // stats.part_volume_mm3 is the exact solid's volume.
 SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                       const Decomposition& decomposition, const SlicePartParams& params,
                       const std::function<void()>& throw_on_cancel = {});
+
+// The plane a root component stands on: through the mesh's lowest point, under the centre of its
+// box, normal +Z. (The mesh's box, not an OCCT bounding box, which may be looser than the solid.)
+Plane build_plate(const TriangleMesh& mesh);
 
 // Whether `point` lies inside the closed mesh (generalised winding number above one half).
 bool inside_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& point);

@@ -29,6 +29,21 @@ bool inside_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& point) {
     return total / (4.0 * 3.14159265358979323846) > 0.5;
 }
 
+Plane build_plate(const TriangleMesh& mesh) {
+    const Eigen::AlignedBox3d box = bounding_box(mesh);
+    return make_plane({box.center().x(), box.center().y(), box.min().z()},
+                      Eigen::Vector3d::UnitZ());
+}
+
+SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
+                           const SlicePartParams& params,
+                           const std::function<void()>& throw_on_cancel) {
+    ComponentMesh root;
+    root.mesh = mesh;
+    root.base = build_plate(mesh);
+    return slice_components({root}, axis, params, throw_on_cancel);
+}
+
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const std::function<void()>& throw_on_cancel) {

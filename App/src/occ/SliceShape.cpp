@@ -23,15 +23,8 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         m.mesh = tessellate(c.solid, tessellation);
         m.parent = c.parent;
         m.branch = c.branch < 0 ? 0 : c.branch;
-        if (c.parent < 0) {
-            // The root stands on the build plate, the plane through its mesh's lowest point (an
-            // OCCT bounding box may be looser than the solid).
-            const Eigen::AlignedBox3d box = bounding_box(m.mesh);
-            m.base = make_plane({box.center().x(), box.center().y(), box.min().z()},
-                                Eigen::Vector3d::UnitZ());
-        } else {
-            m.base = make_plane(c.base_origin, c.build_direction);  // on its base face
-        }
+        // The root stands on the build plate; a child on its base face.
+        m.base = c.parent < 0 ? build_plate(m.mesh) : make_plane(c.base_origin, c.build_direction);
         meshes.push_back(std::move(m));
     }
     SlicedPart out = slice_components(meshes, axis, params, throw_on_cancel);

@@ -308,22 +308,12 @@ def _set_line_colours(vobj, colours):
         vobj.LineColorArray = colours
 
 
-# Layers: the outlines in their component's colour (the Component objects' palette).
-LAYERS_LINE_WIDTH = 2.0
+class _EdgeColoured(_Stateless):
+    """Colours per edge through LineColorArray (``colour_edges``, of the subclass), set again
+    whenever the Shape, a colour property (``COLOUR_PROPERTIES``) or the visibility changes, and
+    once a reopened document is drawn (see refresh_line_colours_later)."""
 
-
-class ViewProviderLayers(_Stateless):
-    """Tree icon and colours of a ``Layers`` object: every layer's outline in its component's
-    colour (``component_colour``, as the Component objects), per edge through LineColorArray. The
-    object's Shape holds one sub-compound per layer and LayerComponents names each one's
-    component. FreeCAD resets LineColorArray when LineColor changes: the colours are rebuilt
-    then. The decomposition stays as it is."""
-
-    def __init__(self, vobj):
-        vobj.LineWidth = LAYERS_LINE_WIDTH
-        vobj.PointSize = 1.0
-        vobj.Proxy = self  # calls attach()
-        self.colour_edges(vobj)
+    COLOUR_PROPERTIES = ("LineColor", "LineColorArray")
 
     def attach(self, vobj):
         self.Object = vobj.Object
@@ -335,10 +325,28 @@ class ViewProviderLayers(_Stateless):
             refresh_line_colours_later(obj.ViewObject)
 
     def onChanged(self, vobj, prop):
-        if prop in ("LineColor", "LineColorArray"):
+        if prop in self.COLOUR_PROPERTIES:
             self.colour_edges(vobj)
         elif prop == "Visibility" and vobj.Visibility:  # a hidden object is redrawn when shown
             refresh_line_colours_later(vobj)
+
+
+# Layers: the outlines in their component's colour (the Component objects' palette).
+LAYERS_LINE_WIDTH = 2.0
+
+
+class ViewProviderLayers(_EdgeColoured):
+    """Tree icon and colours of a ``Layers`` object: every layer's outline in its component's
+    colour (``component_colour``, as the Component objects), per edge through LineColorArray. The
+    object's Shape holds one sub-compound per layer and LayerComponents names each one's
+    component. FreeCAD resets LineColorArray when LineColor changes: the colours are rebuilt
+    then. The decomposition stays as it is."""
+
+    def __init__(self, vobj):
+        vobj.LineWidth = LAYERS_LINE_WIDTH
+        vobj.PointSize = 1.0
+        vobj.Proxy = self  # calls attach()
+        self.colour_edges(vobj)
 
     @staticmethod
     def colour_edges(vobj):
@@ -365,11 +373,13 @@ TOOLPATH_COLOUR_ORDER = ("ContourColor", "InfillColor", "CentreLineColor", "Trav
 TOOLPATH_LINE_WIDTH = 1.0
 
 
-class ViewProviderToolpath(_Stateless):
+class ViewProviderToolpath(_EdgeColoured):
     """Tree icon and colours of a ``Toolpath`` object: contours, infill, centre lines and travel
     moves each in their own colour (view properties ContourColor, InfillColor, CentreLineColor,
     TravelColor), per edge through LineColorArray. The object's Shape holds one sub-compound per
     kind, in that order."""
+
+    COLOUR_PROPERTIES = _EdgeColoured.COLOUR_PROPERTIES + TOOLPATH_COLOUR_ORDER
 
     def __init__(self, vobj):
         for prop in TOOLPATH_COLOUR_ORDER:
@@ -380,21 +390,6 @@ class ViewProviderToolpath(_Stateless):
         vobj.PointSize = 1.0
         vobj.Proxy = self  # calls attach()
         self.colour_edges(vobj)
-
-    def attach(self, vobj):
-        self.Object = vobj.Object
-        refresh_line_colours_later(vobj)  # a reopened document: once its view is drawn
-
-    def updateData(self, obj, prop):
-        if prop == "Shape" and obj.ViewObject is not None:
-            self.colour_edges(obj.ViewObject)
-            refresh_line_colours_later(obj.ViewObject)
-
-    def onChanged(self, vobj, prop):
-        if prop in ("LineColor", "LineColorArray") + TOOLPATH_COLOUR_ORDER:
-            self.colour_edges(vobj)
-        elif prop == "Visibility" and vobj.Visibility:  # a hidden object is redrawn when shown
-            refresh_line_colours_later(vobj)
 
     @staticmethod
     def colour_edges(vobj):

@@ -13,6 +13,7 @@
 #include <exception>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <sstream>
 #include <thread>
@@ -312,11 +313,13 @@ private:
     };
     static constexpr std::size_t kGridChunk = 16;
 
-    // Section regions of grid plane k minus everything already swept (B - Bs).
-    Regions2 unswept(Grid& g, std::size_t k) {
+    // Section regions of grid plane k minus everything already swept (B - Bs): those whose box
+    // meets one of `near` (every region when it is null), largest first.
+    Regions2 unswept(Grid& g, std::size_t k, const std::vector<Eigen::AlignedBox2d>* near) {
         cut_chunk(g, k);
         count_chunk(g, k);
-        return subtract_swept(g, k, slabs_.size());
+        PlaneSweep sweep = swept_on(g, k, slabs_.size());
+        return gather(g, k, sweep, near);
     }
 
     // sections_cut counts the chunks of planes the search reaches, whichever thread cut them
@@ -328,17 +331,39 @@ private:
         sections_cut_ += std::min(g.count, (chunk + 1) * kGridChunk) - chunk * kGridChunk;
     }
 
-    // B - Bs on grid plane k, already cut, with the first `slab_count` slabs: safe to run on
-    // another thread while the march adds nodes (see Lookahead). Only slabs whose box meets a
-    // region's box can take anything away: a march's slabs far along another direction are
+    // B - Bs on one grid plane, region by region. A march reads only the regions whose box meets
+    // one of its tracks' boxes (the others overlap none of its tracks and are left to the search
+    // that reaches them), so only those are worked out: on scanned meshes, where a plane cuts many
+    // limbs, that is under half of the Boolean work. Each region minus the swept pieces near it is
+    // the region's share of the whole plane minus everything swept.
+    struct PlaneSweep {
+        Regions2 swept;  // what the slabs take from the plane near its regions
+        std::vector<Eigen::AlignedBox2d> swept_boxes;
+        std::vector<Eigen::AlignedBox2d> boxes;  // per region of the plane, 2-D
+        std::vector<Regions2> left;              // per region: what is left of it, once done
+        std::vector<char> done;
+    };
+
+    static bool meets(const Eigen::AlignedBox2d& box,
+                      const std::vector<Eigen::AlignedBox2d>* near) {
+        if (!near) return true;
+        for (const auto& b : *near)
+            if (box.intersects(b)) return true;
+        return false;
+    }
+
+    // The swept pieces on grid plane k, already cut, from the first `slab_count` slabs: safe to
+    // run on another thread while the march adds nodes (see Lookahead). Only slabs whose box meets
+    // a region's box can take anything away: a march's slabs far along another direction are
     // skipped without being cut.
-    Regions2 subtract_swept(const Grid& g, std::size_t k, std::size_t slab_count) const {
+    PlaneSweep swept_on(const Grid& g, std::size_t k, std::size_t slab_count) const {
         const Regions2& regions = g.regions[k];
-        if (regions.empty()) return {};
+        PlaneSweep out;
+        if (regions.empty()) return out;
         const Vector3d& n = g.normal;
         const double c = offset(g, k);
         const PlaneFrame frame(n);
-        Regions2 swept;
+        Regions2& swept = out.swept;
         std::map<int, std::pair<StripAxes, std::vector<Strip>>> strips;  // per branch
         Eigen::AlignedBox3d all;  // of every region: most slabs miss it
         for (const auto& box : g.boxes[k]) all.extend(box);
@@ -359,19 +384,52 @@ private:
         for (auto& [branch, group] : strips)
             for (auto& r : strips_to_regions(std::move(group.second), group.first, frame, 1e-9))
                 swept.push_back(std::move(r));
+        for (const auto& r : regions) out.boxes.push_back(bounds(r));
         // Only what overlaps a region's 2-D box can take anything away from it.
-        std::vector<Eigen::AlignedBox2d> region_boxes;
-        for (const auto& r : regions) region_boxes.push_back(bounds(r));
-        swept.erase(std::remove_if(swept.begin(), swept.end(),
-                                   [&](const Region2& r) {
-                                       const Eigen::AlignedBox2d b = bounds(r);
-                                       for (const auto& rb : region_boxes)
-                                           if (b.intersects(rb)) return false;
-                                       return true;
-                                   }),
-                    swept.end());
-        if (swept.empty()) return regions;
-        return keep_larger(difference(regions, swept), p_.min_region_area_mm2);
+        Regions2 kept;
+        for (auto& r : swept) {
+            const Eigen::AlignedBox2d b = bounds(r);
+            if (!meets(b, &out.boxes)) continue;
+            kept.push_back(std::move(r));
+            out.swept_boxes.push_back(b);
+        }
+        swept = std::move(kept);
+        out.left.resize(regions.size());
+        out.done.assign(regions.size(), 0);
+        return out;
+    }
+
+    // Works out the regions of plane k that meet one of `near` and are not done yet.
+    void subtract_near(const Grid& g, std::size_t k, PlaneSweep& sweep,
+                       const std::vector<Eigen::AlignedBox2d>* near) const {
+        const Regions2& regions = g.regions[k];
+        for (std::size_t i = 0; i < sweep.done.size(); ++i) {
+            if (sweep.done[i] || !meets(sweep.boxes[i], near)) continue;
+            if (sweep.swept.empty()) {
+                sweep.left[i] = {regions[i]};
+            } else {
+                // Through the Boolean even when no swept piece is near this region, as every
+                // region of a plane with something swept is (the Boolean snaps its points).
+                Regions2 cut;
+                for (std::size_t j = 0; j < sweep.swept.size(); ++j)
+                    if (sweep.swept_boxes[j].intersects(sweep.boxes[i]))
+                        cut.push_back(sweep.swept[j]);
+                sweep.left[i] = difference({regions[i]}, cut);
+            }
+            sweep.done[i] = 1;
+        }
+    }
+
+    // What is left of the regions of plane k that meet one of `near`, largest first.
+    Regions2 gather(const Grid& g, std::size_t k, PlaneSweep& sweep,
+                    const std::vector<Eigen::AlignedBox2d>* near) const {
+        subtract_near(g, k, sweep, near);
+        Regions2 out;
+        for (std::size_t i = 0; i < sweep.done.size(); ++i)
+            if (meets(sweep.boxes[i], near))
+                for (auto& r : sweep.left[i]) out.push_back(std::move(r));
+        if (sweep.swept.empty()) return out;  // the plane's own regions, already in order
+        return keep_larger(std::move(out), p_.min_region_area_mm2);
     }
 
     int new_branch(const Vector3d& dir, int parent, int parent_node) {
@@ -499,7 +557,9 @@ private:
     // own nodes are added (each node's slab ends at the next plane, so it takes nothing from the
     // planes ahead); a branch searched from the march sweeps across them, so the march calls
     // restart() before searching one and the planes ahead are worked out afresh afterwards.
-    // The results are the ones unswept() would give: same slabs, same order, same Booleans.
+    // The results are the ones unswept() would give: same slabs, same order, same Booleans. The
+    // other thread works out the regions near the march's tracks as they were when it last took
+    // a plane; take() works out any others its tracks now meet.
     class Lookahead {
     public:
         Lookahead(Search& search, Grid& g, std::size_t from)
@@ -508,10 +568,14 @@ private:
         Lookahead& operator=(const Lookahead&) = delete;
         ~Lookahead() { stop(); }
 
-        // unswept(g, k) for k = from, from + 1, ... in turn.
-        Regions2 take(std::size_t k) {
+        // unswept(g, k, &near) for k = from, from + 1, ... in turn.
+        Regions2 take(std::size_t k, const std::vector<Eigen::AlignedBox2d>& near) {
             s_.cut_chunk(g_, k);
             s_.count_chunk(g_, k);
+            {
+                const std::lock_guard<std::mutex> lock(near_mutex_);
+                near_ = near;
+            }
             const std::size_t end = std::min(g_.count, k + kAhead);
             if (!started_) {
                 slab_count_ = s_.slabs_.size();
@@ -534,7 +598,7 @@ private:
                 fill(slot, k, true);
             }
             if (slot.error) std::rethrow_exception(slot.error);
-            return std::move(slot.result);
+            return s_.gather(g_, k, slot.result, &near);
         }
 
         // Before a branch is searched from plane k: forget the planes after k.
@@ -543,7 +607,7 @@ private:
             for (std::size_t j = k + 1; j < end_.load(std::memory_order_relaxed); ++j) {
                 Slot& slot = at(j);
                 slot.state.store(kFree, std::memory_order_relaxed);
-                slot.result.clear();
+                slot.result = PlaneSweep{};
                 slot.error = nullptr;
             }
             started_ = false;
@@ -553,7 +617,7 @@ private:
         enum : int { kFree, kTheirs, kMine, kDone };
         struct Slot {
             std::atomic<int> state{kFree};
-            Regions2 result;
+            PlaneSweep result;
             std::exception_ptr error;
         };
         static constexpr std::size_t kAhead = 8;  // planes worked out ahead of the march
@@ -566,7 +630,13 @@ private:
         void fill(Slot& slot, std::size_t k, bool on_search) {
             try {
                 s_.cut_chunk(g_, k, on_search);
-                slot.result = s_.subtract_swept(g_, k, slab_count_);
+                slot.result = s_.swept_on(g_, k, slab_count_);
+                std::vector<Eigen::AlignedBox2d> near;
+                {
+                    const std::lock_guard<std::mutex> lock(near_mutex_);
+                    near = near_;
+                }
+                s_.subtract_near(g_, k, slot.result, &near);
             } catch (...) {
                 slot.error = std::current_exception();
             }
@@ -604,6 +674,9 @@ private:
         std::atomic<std::size_t> end_{0};  // the other thread may take planes before this one
         std::atomic<bool> stop_{false}, running_{false};
         tbb::task_group tasks_;
+        std::mutex near_mutex_;
+        std::vector<Eigen::AlignedBox2d>
+            near_;  // the march's track boxes when it last took a plane
     };
 
     void search(const Task& task, int depth) {
@@ -621,16 +694,21 @@ private:
         auto slab_end = [&](std::size_t k) { return std::min(offset_of(k + 1), g.hi); };
 
         // First section: the regions the stick-out reaches (every region for the root).
-        Regions2 first = unswept(g, k0);
+        Regions2 first;
         if (task.constrained) {
             const PlaneFrame frame(n);
             const Regions2 reach = slab_cut(task.constraint, n, offset_of(k0), frame);
+            std::vector<Eigen::AlignedBox2d> near;
+            for (const auto& r : reach) near.push_back(bounds(r));
+            first = unswept(g, k0, &near);
             first.erase(std::remove_if(first.begin(), first.end(),
                                        [&](const Region2& r) {
                                            return area(intersection({r}, reach)) <=
                                                   p_.min_region_area_mm2;
                                        }),
                         first.end());
+        } else {
+            first = unswept(g, k0, nullptr);
         }
         std::vector<Track> tracks;
         for (const auto& region : first) {
@@ -643,8 +721,10 @@ private:
         for (std::size_t k = k0 + 1; k < count && !tracks.empty(); ++k) {
             if (cancel_) cancel_();
             // Each upper region alone in a list, as the Booleans take it (no copies).
+            std::vector<Eigen::AlignedBox2d> near;
+            for (const auto& t : tracks) near.push_back(t.box);
             std::vector<Regions2> upper;
-            for (auto& r : ahead.take(k)) {
+            for (auto& r : ahead.take(k, near)) {
                 upper.emplace_back();
                 upper.back().push_back(std::move(r));
             }

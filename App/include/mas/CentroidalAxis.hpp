@@ -14,19 +14,20 @@
 //   eighth of L's size (sqrt of its area: smaller stick-outs are bumps on a large section's
 //   surface, which made organic meshes sprout hundreds of branches), start new branches;
 //   the rest of U continues the march. A stick-out touching two or more lower regions is the
-//   bridge where tracks merge (the top of a hole), never a new branch. The new direction is the one of +-X, +-Y, +-Z closest to
-//   G_k - E, E the point of L's boundary nearest to G_k, plus the step along the march (the
-//   paper's Sec. 3.2.1 says G_k - C, C the lower centroid; that sends a lug sticking out
-//   sideways near the end of a long wall along the wall, past the part, so its material is never
-//   searched); the first plane of the new branch is at Eq. 4's location: the lower boundary's
-//   extent T along the new direction, plus eps.
+//   bridge where tracks merge (the top of a hole), never a new branch. The new direction is the one
+//   of +-X, +-Y, +-Z closest to G_k - E, E the point of L's boundary nearest to G_k, plus the step
+//   along the march (the paper's Sec. 3.2.1 says G_k - C, C the lower centroid; that sends a lug
+//   sticking out sideways near the end of a long wall along the wall, past the part, so its
+//   material is never searched); the first plane of the new branch is at Eq. 4's location: the
+//   lower boundary's extent T along the new direction, plus eps.
 // - GetSweepBody / B = B - Bs (Sec. 3.2.4) as bookkeeping on the sections, not a solid Boolean:
 //   each node sweeps a slab, its region extruded from its plane to the next one along the march
 //   direction. Every later section first subtracts the slabs it crosses (all directions are
 //   axis-aligned, so a slab meets a plane in its own region or in a union of rectangles). Search
 //   is branch-first: a new branch is searched to its end before its father's march continues,
 //   so the father's later sections no longer see the branch's material, and no part of the solid
-//   is searched twice. The slabs' volumes add up to the part's volume (tested).
+//   is searched twice. The slabs' volumes add up to the part's volume (tested). A march subtracts
+//   the slabs only from the regions whose box meets one of its tracks' boxes: it reads no others.
 // - FindConnectingLink: a branch that turned is tied to the node of its father branch nearest to
 //   its first node; a branch born of a split is tied to the lower node it split from.
 // - C1 breaks (Sec. 3.2.3): a link whose direction turns more than `break_angle` from the link

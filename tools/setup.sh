@@ -22,6 +22,7 @@ packages=(
   libboost-python-dev libeigen3-dev libpolyclipping-dev libtbb-dev
   libgtest-dev libbenchmark-dev
   linuxcnc-uspace xvfb xauth
+  clang-format
 )
 
 install_packages() {

@@ -674,9 +674,9 @@ private:
         std::atomic<std::size_t> end_{0};  // the other thread may take planes before this one
         std::atomic<bool> stop_{false}, running_{false};
         tbb::task_group tasks_;
+        // The march's track boxes when it last took a plane: the regions to work out ahead.
         std::mutex near_mutex_;
-        std::vector<Eigen::AlignedBox2d>
-            near_;  // the march's track boxes when it last took a plane
+        std::vector<Eigen::AlignedBox2d> near_;
     };
 
     void search(const Task& task, int depth) {

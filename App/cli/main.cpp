@@ -1,6 +1,7 @@
 // multiaxis-slicer: the engine on STEP / IGES / BREP / STL / OFF files, outside FreeCAD.
 // Sub-commands grow with the pipeline: `sections` (cross-section areas and centroids), `axis` (the
 // centroidal axis), `decompose` (the tree of sub-components), `slice` (layers and paths).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -611,6 +612,14 @@ int main(int argc, char** argv) {
         args.erase(args.begin());
         if (command == "--help" || command == "-h") {
             std::cout << kUsage;
+            return 0;
+        }
+        const bool known = command == "sections" || command == "axis" || command == "decompose" ||
+                           command == "slice";
+        if (known && std::find_if(args.begin(), args.end(), [](const std::string& a) {
+                         return a == "--help" || a == "-h";
+                     }) != args.end()) {
+            std::cout << kUsage;  // `multiaxis-slicer axis --help`: the same text
             return 0;
         }
         if (command == "--version") {

@@ -269,6 +269,13 @@ class CliSections(unittest.TestCase):
         r = run("--help")
         self.assertEqual(r.returncode, 0)
         self.assertIn("sections", r.stdout)
+        for command in ("sections", "axis", "decompose", "slice"):
+            r = run(command, "--help")
+            self.assertEqual(r.returncode, 0, command)
+            self.assertIn("multiaxis-slicer " + command + " FILE", r.stdout)
+        r = run("frobnicate", "--help")  # an unknown command is still named as such
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("unknown command 'frobnicate'", r.stderr)
 
 
 if __name__ == "__main__":

@@ -300,9 +300,10 @@ private:
         // Per plane: its regions, simplified to step / 100 (the axis is a coarse descriptor;
         // Booleans on faceted loops with hundreds of points were most of its cost), largest
         // first, and their 3-D boxes grown by a hair. Corners are kept, so exact outlines stay
-        // exact.
+        // exact. `bounds2` holds each region's 2-D box, in the order of `regions`.
         std::vector<Regions2> regions;
         std::vector<std::vector<Eigen::AlignedBox3d>> boxes;
+        std::vector<std::vector<Eigen::AlignedBox2d>> bounds2;
         std::size_t count = 0;
         // Per chunk of kGridChunk planes: kUncut, kCutting or kCut (either thread may cut it),
         // and whether the search has used it yet (sections_cut counts those).
@@ -339,8 +340,7 @@ private:
     struct PlaneSweep {
         Regions2 swept;  // what the slabs take from the plane near its regions
         std::vector<Eigen::AlignedBox2d> swept_boxes;
-        std::vector<Eigen::AlignedBox2d> boxes;  // per region of the plane, 2-D
-        std::vector<Regions2> left;              // per region: what is left of it, once done
+        std::vector<Regions2> left;  // per region: what is left of it, once done
         std::vector<char> done;
     };
 
@@ -384,12 +384,11 @@ private:
         for (auto& [branch, group] : strips)
             for (auto& r : strips_to_regions(std::move(group.second), group.first, frame, 1e-9))
                 swept.push_back(std::move(r));
-        for (const auto& r : regions) out.boxes.push_back(bounds(r));
         // Only what overlaps a region's 2-D box can take anything away from it.
         Regions2 kept;
         for (auto& r : swept) {
             const Eigen::AlignedBox2d b = bounds(r);
-            if (!meets(b, &out.boxes)) continue;
+            if (!meets(b, &g.bounds2[k])) continue;
             kept.push_back(std::move(r));
             out.swept_boxes.push_back(b);
         }
@@ -403,8 +402,9 @@ private:
     void subtract_near(const Grid& g, std::size_t k, PlaneSweep& sweep,
                        const std::vector<Eigen::AlignedBox2d>* near) const {
         const Regions2& regions = g.regions[k];
+        const auto& boxes = g.bounds2[k];
         for (std::size_t i = 0; i < sweep.done.size(); ++i) {
-            if (sweep.done[i] || !meets(sweep.boxes[i], near)) continue;
+            if (sweep.done[i] || !meets(boxes[i], near)) continue;
             if (sweep.swept.empty()) {
                 sweep.left[i] = {regions[i]};
             } else {
@@ -412,8 +412,7 @@ private:
                 // region of a plane with something swept is (the Boolean snaps its points).
                 Regions2 cut;
                 for (std::size_t j = 0; j < sweep.swept.size(); ++j)
-                    if (sweep.swept_boxes[j].intersects(sweep.boxes[i]))
-                        cut.push_back(sweep.swept[j]);
+                    if (sweep.swept_boxes[j].intersects(boxes[i])) cut.push_back(sweep.swept[j]);
                 sweep.left[i] = difference({regions[i]}, cut);
             }
             sweep.done[i] = 1;
@@ -426,7 +425,7 @@ private:
         subtract_near(g, k, sweep, near);
         Regions2 out;
         for (std::size_t i = 0; i < sweep.done.size(); ++i)
-            if (meets(sweep.boxes[i], near))
+            if (meets(g.bounds2[k][i], near))
                 for (auto& r : sweep.left[i]) out.push_back(std::move(r));
         if (sweep.swept.empty()) return out;  // the plane's own regions, already in order
         return keep_larger(std::move(out), p_.min_region_area_mm2);
@@ -497,6 +496,7 @@ private:
             static_cast<std::size_t>(std::max(0.0, std::floor((hi - g.origin) / p_.step_mm))) + 1;
         g.regions.resize(g.count);
         g.boxes.resize(g.count);
+        g.bounds2.resize(g.count);
         const std::size_t chunks = (g.count + kGridChunk - 1) / kGridChunk;
         g.chunk_state = std::vector<std::atomic<int>>(chunks);  // all kUncut
         g.chunk_used.assign(chunks, 0);
@@ -540,6 +540,8 @@ private:
                         g.boxes[i].push_back(box);
                     }
                     g.regions[i] = keep_larger(std::move(rs), p_.min_region_area_mm2);
+                    g.bounds2[i].clear();
+                    for (const auto& r : g.regions[i]) g.bounds2[i].push_back(bounds(r));
                 });
             });
         } catch (...) {

@@ -49,8 +49,7 @@ void report(const std::string& name, const mas::TriangleMesh& mesh, double tesse
         std::size_t sv = 0;
         std::vector<double> runs;
         for (int i = 0; i < 3; ++i) runs.push_back(cgal_skeleton_ms(mesh, sv));
-        std::sort(runs.begin(), runs.end());
-        const double cgal = runs[1];
+        const double cgal = mas::bench::median(std::move(runs));
         std::printf(" | CGAL skeleton %8.1f ms (%zu vertices): x%.0f", cgal, sv,
                     cgal / (ms + tessellation_ms));
     }

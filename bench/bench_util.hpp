@@ -14,6 +14,12 @@
 
 namespace mas::bench {
 
+// The middle value (the upper one of the two middle values for an even count).
+inline double median(std::vector<double> t) {
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
 // Median wall time of `runs` calls, in milliseconds.
 inline double time_ms(int runs, const std::function<void()>& f) {
     std::vector<double> t;
@@ -24,8 +30,7 @@ inline double time_ms(int runs, const std::function<void()>& f) {
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count());
     }
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
+    return median(std::move(t));
 }
 
 inline Shape from_occt(const TopoDS_Shape& s) {

@@ -399,6 +399,38 @@ TEST(CentroidalAxis, LugNearTheEndOfALongWallTurnsTheWayItSticksOut) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, InwardLipOfATubeStaysWithItsMarch) {
+    // A tube (radius 30, bore 25) standing on its rim, its top 10 mm a lip reaching in to a bore
+    // of 10. Over the tube's ring the lip's sections stick out inwards: an annulus whose centre
+    // lies in the bore, 25 mm from the lower section. It lies beyond no side of that section, so
+    // no march in another direction could reach it: it is no turn, the march goes on with it.
+    // (Taken for a turn it went to a march starting past the tube's outside, and the whole lip
+    // was never searched.)
+    const TopoDS_Shape tube =
+        BRepAlgoAPI_Cut(
+            BRepAlgoAPI_Cut(BRepPrimAPI_MakeCylinder(30, 40).Shape(),
+                            BRepPrimAPI_MakeCylinder(25, 30).Shape())
+                .Shape(),
+            BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 29), gp_Dir(0, 0, 1)), 10, 12).Shape())
+            .Shape();
+    const auto mesh = mesh_of(from_occt(tube));
+    mas::AxisParams p;
+    p.step_mm = 2.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 1u);
+    ASSERT_EQ(a.nodes.size(), 20u);  // z = 0.001 ... 38.001
+    for (const auto& node : a.nodes) {
+        const double r_in = node.position.z() < 30.0 ? 25.0 : 10.0;
+        // Inscribed polygons: each circle's area is short by at most its perimeter x deflection.
+        const double exact = M_PI * (30.0 * 30.0 - r_in * r_in);
+        EXPECT_NEAR(node.area, exact, 2.0 * M_PI * (30.0 + r_in) * kDeflection)
+            << "z = " << node.position.z();
+        EXPECT_NEAR(node.position.x(), 0.0, kDeflection);
+        EXPECT_NEAR(node.position.y(), 0.0, kDeflection);
+    }
+    expect_invariants(a, mesh, false);  // a ring's centroid is in its bore
+}
+
 TEST(CentroidalAxis, TracksSplitAroundAHoleRecordWhereTheyMerge) {
     // A 12 x 40 wall on a plate with a horizontal hole (radius 6, along X, at y = 20, z = 30): the
     // wall's sections split in two around the hole and join again above it.

@@ -313,7 +313,12 @@ TEST(Slicing, LBlockArmIsSlicedAlongItsLengthAndTheColumnAlongZ) {
 }
 
 TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {
-    const auto params = default_params();
+    // Between tilted planes, VolDiff and the material are integrated by the midpoint rule over
+    // `volume_samples` sections per layer. In this bend its error with the default 4 adds up to
+    // 0.54 % of the volume, which is not what the invariants check here (that the layers
+    // partition the bar); with 16 the material comes within 0.12 % of the bar's volume.
+    auto params = default_params();
+    params.layers.volume_samples = 16;
     const auto s = slice(bent_bar(), 0.0, params);
     const auto& root = s.result.components[0];
     double total_turn = 0.0, worst_step = 0.0;

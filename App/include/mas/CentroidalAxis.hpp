@@ -20,6 +20,12 @@
 //   sticking out sideways near the end of a long wall along the wall, past the part, so its
 //   material is never searched); the first plane of the new branch is at Eq. 4's location: the
 //   lower boundary's extent T along the new direction, plus eps.
+// - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
+//   among the four sides of the lower section (the turn's direction first, then the others):
+//   each side's share beyond that side's T whose centre still lies beyond the threshold starts a
+//   march that way, from the same plane. What lies beyond no side, or too close, stays with the
+//   march that found it: an inward lip over a tube's bore (its centre is in the bore, far from
+//   the lower ring, yet no sideways march could reach it), a C-shaped section's mouth filled.
 // - GetSweepBody / B = B - Bs (Sec. 3.2.4) as bookkeeping on the sections, not a solid Boolean:
 //   each node sweeps a slab, its region extruded from its plane to the next one along the march
 //   direction. Every later section first subtracts the slabs it crosses (all directions are

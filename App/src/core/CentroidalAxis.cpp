@@ -85,6 +85,60 @@ double perimeter(const Polygon2& p) {
     return len;
 }
 
+// The four directions of +-X, +-Y, +-Z perpendicular to the march n, `first` first.
+std::vector<Vector3d> sides_from(const Vector3d& first, const Vector3d& n) {
+    std::vector<Vector3d> out{first};
+    for (int a = 0; a < 3; ++a)
+        for (double sign : {1.0, -1.0}) {
+            const Vector3d d = axis_vector(a, sign);
+            if (a != axis_index(n) && d != first) out.push_back(d);
+        }
+    return out;
+}
+
+// Eq. 4's T: the extent of a region's outer loop on the plane {n.p = offset} along `dir`.
+double extent(const Region2& region, const Vector3d& dir, const Vector3d& n, double offset) {
+    const PlaneFrame frame(n);
+    const Plane plane{n * offset, n};
+    double t = -std::numeric_limits<double>::infinity();
+    for (const auto& q : region.outer.points) t = std::max(t, dir.dot(frame.to_3d(q, plane)));
+    return t;
+}
+
+// The regions split at {dir.p = t} (dir perpendicular to the frame's normal): the parts beyond,
+// the parts behind. A region wholly on one side is passed on as it is, without a Boolean.
+std::pair<Regions2, Regions2> split_at(Regions2 regions, const PlaneFrame& frame,
+                                       const Vector3d& dir, double t) {
+    const Vector2d d(dir.dot(frame.u), dir.dot(frame.v));  // +-(1, 0) or +-(0, 1)
+    std::pair<Regions2, Regions2> out;
+    for (auto& r : regions) {
+        const Eigen::AlignedBox2d box = bounds(r);
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const auto& c : {box.min(), box.max()}) {
+            lo = std::min(lo, d.dot(c));
+            hi = std::max(hi, d.dot(c));
+        }
+        if (lo >= t) {
+            out.first.push_back(std::move(r));
+        } else if (hi <= t) {
+            out.second.push_back(std::move(r));
+        } else {
+            // The half-plane, within a box around the region.
+            const Vector2d pad = Vector2d::Constant(1.0 + box.diagonal().norm());
+            Vector2d a = box.min() - pad, b = box.max() + pad;
+            const int c = std::abs(d.x()) > 0.5 ? 0 : 1;
+            if (d[c] > 0.0)
+                a[c] = t;
+            else
+                b[c] = -t;
+            const Region2 half{Polygon2{{a, {b.x(), a.y()}, b, {a.x(), b.y()}}}, {}};
+            for (auto& piece : intersection({r}, {half})) out.first.push_back(std::move(piece));
+            for (auto& piece : difference({r}, {half})) out.second.push_back(std::move(piece));
+        }
+    }
+    return out;
+}
+
 // Intervals where the line {q[coord] = value} runs inside the region (even-odd over all loops).
 std::vector<std::pair<double, double>> line_intervals(const Region2& r, int coord, double value) {
     const int other = 1 - coord;
@@ -281,7 +335,8 @@ private:
         int parent_branch = -1;
         int father_node = -1;  // lower node the stick-out was found over (-1 for the root)
         bool constrained = false;
-        Slab constraint;  // the stick-out dA_k swept between the lower and the upper plane
+        // The march's share of the stick-out dA_k, swept between the lower and the upper plane.
+        std::vector<Slab> constraints;
     };
     struct Track {
         int branch;
@@ -699,7 +754,9 @@ private:
         Regions2 first;
         if (task.constrained) {
             const PlaneFrame frame(n);
-            const Regions2 reach = slab_cut(task.constraint, n, offset_of(k0), frame);
+            Regions2 reach;
+            for (const auto& c : task.constraints)
+                for (auto& r : slab_cut(c, n, offset_of(k0), frame)) reach.push_back(std::move(r));
             std::vector<Eigen::AlignedBox2d> near;
             for (const auto& r : reach) near.push_back(bounds(r));
             first = unswept(g, k0, &near);
@@ -843,24 +900,52 @@ private:
                 closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane) +
                              n * (upper_offset - lower_offset));
             if (std::abs(dir.dot(n)) > 0.5) continue;  // still along the march: no turn
-            // Eq. 4: the new march starts just beyond the lower boundary's extent T along dir.
-            double t_max = -std::numeric_limits<double>::infinity();
-            const Plane lower_plane{n * lower_offset, n};
-            for (const auto& q : track.region.front().outer.points)
-                t_max = std::max(t_max, dir.dot(frame.to_3d(q, lower_plane)));
-            Task child;
-            child.direction = dir;
-            child.start = t_max + p_.eps_mm;
-            child.slab_start = t_max;
-            child.parent_branch = track.branch;
-            child.father_node = track.node;
-            child.constrained = true;
-            // The new march keeps the regions of its first section that meet the stick-out swept
-            // from the lower plane to one step above the upper one: a strip one plane thick
-            // could miss a region that starts a hair above the plane on a faceted surface.
-            child.constraint = Slab{n, lower_offset, upper_offset + p_.step_mm, da, {}};
-            children.push_back(std::move(child));
-            far.push_back(da);
+            // A march in a new direction starts at Eq. 4's T, the lower boundary's extent along
+            // it, and reaches only what lies beyond. The stick-out is shared out among the four
+            // sides of the lower section, the turn's own first: each side's share beyond its T
+            // whose centre still lies beyond the threshold starts a march that way. What lies
+            // beyond no side, or too close, stays with this march. (Handing the whole stick-out to
+            // one march lost the rest: an inward lip, centred in the bore it narrows, went to a
+            // march starting outside the part; CGAL's turbine.off lost 8 % of its volume so.)
+            Regions2 rest{da};
+            for (const Vector3d& side : sides_from(dir, n)) {
+                if (rest.empty()) break;
+                const double t_max = extent(track.region.front(), side, n, lower_offset);
+                auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
+                rest = std::move(behind);
+                if (share.empty()) continue;
+                Vector2d g_share = Vector2d::Zero();
+                double a_share = 0.0;
+                for (const auto& r : share) {
+                    const double a = area(r);
+                    g_share += a * centroid(r);
+                    a_share += a;
+                }
+                if (a_share <= p_.min_region_area_mm2) continue;
+                g_share /= a_share;
+                double d_share = std::numeric_limits<double>::infinity();
+                for (const auto& l : lower)
+                    d_share = std::min(d_share, distance_to_region(l, g_share));
+                if (d_share <= threshold) continue;
+                // Eq. 4: the new march starts just beyond the lower boundary's extent T.
+                Task child;
+                child.direction = side;
+                child.start = t_max + p_.eps_mm;
+                child.slab_start = t_max;
+                child.parent_branch = track.branch;
+                child.father_node = track.node;
+                child.constrained = true;
+                // The new march keeps the regions of its first section that meet its share
+                // swept from the lower plane to one step above the upper one: a strip one plane
+                // thick could miss a region that starts a hair above the plane on a faceted
+                // surface.
+                for (auto& r : share) {
+                    child.constraints.push_back(
+                        Slab{n, lower_offset, upper_offset + p_.step_mm, r, {}});
+                    far.push_back(std::move(r));
+                }
+                children.push_back(std::move(child));
+            }
         }
         if (far.empty()) return {upper};
         return difference({upper}, far);

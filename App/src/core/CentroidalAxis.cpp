@@ -334,8 +334,8 @@ private:
         double slab_start = 0.0;  // the first node sweeps from here (Eq. 4's T, or the base)
         int parent_branch = -1;
         int father_node = -1;  // lower node the stick-out was found over (-1 for the root)
-        bool constrained = false;
-        // The march's share of the stick-out dA_k, swept between the lower and the upper plane.
+        // The march's share of the stick-out dA_k, swept between the lower and the upper plane;
+        // none for the root, which takes every region of its first section.
         std::vector<Slab> constraints;
     };
     struct Track {
@@ -752,7 +752,7 @@ private:
 
         // First section: the regions the stick-out reaches (every region for the root).
         Regions2 first;
-        if (task.constrained) {
+        if (!task.constraints.empty()) {
             const PlaneFrame frame(n);
             Regions2 reach;
             for (const auto& c : task.constraints)
@@ -934,7 +934,6 @@ private:
                 child.slab_start = t_max;
                 child.parent_branch = track.branch;
                 child.father_node = track.node;
-                child.constrained = true;
                 // The new march keeps the regions of its first section that meet its share
                 // swept from the lower plane to one step above the upper one: a strip one plane
                 // thick could miss a region that starts a hair above the plane on a faceted

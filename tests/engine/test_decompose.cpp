@@ -111,6 +111,8 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
             EXPECT_EQ(c.rule, Rule::Root);
             EXPECT_FALSE(c.has_base_face);
             EXPECT_TRUE(c.base_face.is_null());
+            // The root stands on the build plate.
+            EXPECT_NEAR(bounds(c.solid).min().z(), part.info().bounds.min().z(), 1e-6);
         } else {
             EXPECT_GE(c.parent, 0);
             EXPECT_LT(c.parent, int(i));
@@ -377,6 +379,74 @@ TEST(Decompose, WithoutFallbackARoundBossStaysInItsFather) {
     ASSERT_EQ(d.notes.size(), 1u);
     EXPECT_NE(d.notes[0].find("fallback is off"), std::string::npos) << d.notes[0];
     EXPECT_NE(d.notes[0].find("stays in component 0"), std::string::npos) << d.notes[0];
+}
+
+TEST(Decompose, ASliverCutOffTheFathersTopStaysInTheFather) {
+    // A hub lying along X (radius 8, axis at z = 30, top at z = 38) on a pedestal, six blades
+    // round it at x = 10, 60 degrees apart. With a 1.45 mm step the plane z = 37.701 cuts the hub's
+    // crown apart from the two upper blades, and the crown's march ends there: as a component of
+    // its own it would be 0.3 mm thick, less than any layer (the slicer stopped on it).
+    TopoDS_Shape s = fuse(occ_box(-10, -10, 0, 20, 20, 20), occ_box(-5, -3, 18, 10, 6, 12));
+    s = fuse(s, occ_cylinder({-20, 0, 30}, Vector3d::UnitX(), 8, 40));
+    for (int k = 0; k < 6; ++k) {
+        gp_Trsf lean, move;
+        lean.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), (60.0 * k + 30.0) * M_PI / 180);
+        move.SetTranslation(gp_Vec(10, 0, 30));
+        s = fuse(s,
+                 BRepBuilderAPI_Transform(occ_box(-2, -1, 6, 4, 2, 25), move * lean, true).Shape());
+    }
+    const auto part = from_occt(s);
+    const double step = 1.45;
+    const auto d = mas::decompose(part, axis_of(part, step));
+    // The root, the two sideways blades (built +-Y) and the two upper ones (+Z); the lower two
+    // hang into the pedestal's reach and stay with the root.
+    ASSERT_EQ(d.components.size(), 5u);
+    ASSERT_EQ(d.notes.size(), 1u);
+    EXPECT_NE(d.notes[0].find("reaches only 0.3 mm"), std::string::npos) << d.notes[0];
+    EXPECT_NE(d.notes[0].find("too thin to build on its own"), std::string::npos) << d.notes[0];
+    EXPECT_NE(d.notes[0].find("stays in component 0"), std::string::npos) << d.notes[0];
+    // The crown is the root's: the root reaches the hub's top.
+    EXPECT_NEAR(bounds(d.components[0].solid).max().z(), 38.0, 1e-6);
+    // Every child reaches at least a step past its base face.
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        const auto& c = d.components[i];
+        const auto b = bounds(c.solid);
+        double reach = -1e9;
+        for (int k = 0; k < 8; ++k)
+            reach =
+                std::max(reach, c.build_direction.dot(Vector3d(k & 1 ? b.max().x() : b.min().x(),
+                                                               k & 2 ? b.max().y() : b.min().y(),
+                                                               k & 4 ? b.max().z() : b.min().z()) -
+                                                      c.base_origin));
+        EXPECT_GE(reach, step) << "component " << i;
+    }
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, ARingStandingOnItsRimKeepsItsRootOnThePlate) {
+    // A ring (radii 50 and 40, 20 long along X) standing on its rim, an inward lip (radius 30 to
+    // 50, 3 thick) on one face. The axis goes round the ring in turns (+Y, +Z, -Y, -Z, +Y) and
+    // comes back to the plate. Each turn's split must leave its father what it stands on: the
+    // root its footing on the plate, a child its base face. Cut blindly, the march's way down the
+    // far side took the root's foot, and a later split took a child's whole base face.
+    TopoDS_Shape ring = BRepAlgoAPI_Cut(occ_cylinder({0, 0, 50}, Vector3d::UnitX(), 50, 20),
+                                        occ_cylinder({0, 0, 50}, Vector3d::UnitX(), 40, 20))
+                            .Shape();
+    ring = fuse(ring, BRepAlgoAPI_Cut(occ_cylinder({0, 0, 50}, Vector3d::UnitX(), 50, 3),
+                                      occ_cylinder({0, 0, 50}, Vector3d::UnitX(), 30, 3))
+                          .Shape());
+    const auto part = from_occt(ring);
+    const auto d = mas::decompose(part, axis_of(part, 2.5));
+    ASSERT_GE(d.components.size(), 2u);
+    bool kept_on_plate = false;
+    for (const auto& n : d.notes)
+        kept_on_plate = kept_on_plate || n.find("rests on the build plate") != std::string::npos;
+    EXPECT_TRUE(kept_on_plate);
+    // Only the root stands on the plate: whatever is built in another direction does not reach
+    // down to it (a nozzle building sideways there would meet the plate).
+    for (std::size_t i = 1; i < d.components.size(); ++i)
+        EXPECT_GT(bounds(d.components[i].solid).min().z(), 1e-3) << "component " << i;
+    expect_invariants(d, part);
 }
 
 TEST(Decompose, SourceShapeIsUnchanged) {

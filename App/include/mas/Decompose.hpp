@@ -20,8 +20,10 @@
 //   The one whose plane lies nearest the junction (b's first plane minus half a step) wins.
 // - The father is split by the chosen face's whole plane. The child is the piece containing
 //   Pos_end, on the +D side; every other piece goes back into the father (fused, seams removed).
-//   The child's base face is its face on the plane; build_direction = minus its outward normal
-//   (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The L-block, seen along Y:
+//   The child's base face is its face on the plane under Pos_end (the largest one when none is:
+//   a plane cuts a half ring standing on its rim in two faces, one at each end); build_direction
+//   = minus its outward normal (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The
+//   L-block, seen along Y:
 //
 //          z ^   +------:-------------+
 //            |   |      :    child    |   D = +X. The column's face x = 20 has normal +X (1),
@@ -32,6 +34,15 @@
 //            |   +------+                 o: Pos_start (column node), Pos_end (arm's 1st node)
 //            +------------------> x
 //
+// - The piece stays in the father, with a note saying why, when it
+//   - reaches less than one axis step past the plane: a sliver cut off the father's end where its
+//     march found the split on its last plane (a hub's crown between two blades), thinner than
+//     the axis can resolve and than a layer; the father builds it on top;
+//   - rests on the build plate, when the father is the root: material on the plate is built up
+//     from it (a nozzle building it sideways would meet the plate), and the root must keep its
+//     footing (a ring standing on its rim, whose axis comes round back to the plate);
+//   - holds the father's base face, all that is left of it: a split may take part of it (the
+//     upper half of a bar built along X, cut off to be built up on the lower half), never all.
 // - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
 // - No planar face meets the criteria (a round boss on a round body): the SectionPlane rule (our
@@ -96,7 +107,8 @@ const char* to_string(Component::SplitRule rule);
 struct Decomposition {
     std::vector<Component> components;  // tree order: a father before its children; [0] is root
     // One line per branch that asked for a cut and got none (no splitting plane, a split OCCT
-    // could not perform, no piece holding the branch), saying where its material stayed.
+    // could not perform, no piece holding the branch, a piece too thin or holding what its father
+    // stands on), saying why and where its material stayed.
     std::vector<std::string> notes;
 };
 

@@ -173,15 +173,89 @@ struct Child {
     TopoDS_Shape solid;
     TopoDS_Face base;
     Vector3d base_origin, base_normal;
+    // Why the piece holding the point stayed in the father instead (empty when it did not).
+    std::string kept_because;
+};
+
+// What a father stands on, which no split may take from it: the root's footing on the build plate
+// (its material at the part's lowest z), a child's base face.
+struct Footing {
+    bool root = true;
+    double plate_z = 0.0;  // root: the plate's height
+    TopoDS_Face base;      // child: its base face
+    Vector3d normal;       // child: the base face's outward normal
+    double tol = 1e-6;     // mm
+};
+
+// A point strictly inside `face` (its centroid when that is inside, else the first inside point
+// of a grid over its parameter range); false for a face too thin to find one.
+bool point_inside(const TopoDS_Face& face, double tol, gp_Pnt& out) {
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(face, props);
+    out = props.CentreOfMass();
+    if (BRepClass_FaceClassifier(face, out, tol).State() == TopAbs_IN) return true;
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(face, u0, u1, v0, v1);
+    const BRepAdaptor_Surface surface(face, Standard_False);
+    constexpr int kGrid = 16;
+    for (int i = 0; i < kGrid; ++i)
+        for (int j = 0; j < kGrid; ++j) {
+            const gp_Pnt2d uv(u0 + (u1 - u0) * (i + 0.5) / kGrid,
+                              v0 + (v1 - v0) * (j + 0.5) / kGrid);
+            if (BRepClass_FaceClassifier(face, uv, tol).State() != TopAbs_IN) continue;
+            out = surface.Value(uv.X(), uv.Y());
+            return true;
+        }
+    return false;
+}
+
+// Does `piece` (of a split father) hold any of the father's footing? For a child: has it a face
+// on the base face's plane that is part of the base face? (The split divides faces, so each of
+// the piece's faces lies within one face of the father: one inside point tells which.)
+bool holds_footing(const TopoDS_Shape& piece, const Footing& f) {
+    if (f.root) return bounds_of(piece).min().z() <= f.plate_z + f.tol;
+    PlanarFace base;
+    if (!planar(f.base, base)) return false;
+    for (TopExp_Explorer x(piece, TopAbs_FACE); x.More(); x.Next()) {
+        PlanarFace pf;
+        if (!planar(TopoDS::Face(x.Current()), pf)) continue;
+        if (pf.normal.dot(f.normal) < 1.0 - 1e-9) continue;
+        if (std::abs(f.normal.dot(pf.point - base.point)) > f.tol) continue;
+        gp_Pnt p;
+        if (!point_inside(pf.face, f.tol, p)) continue;
+        const TopAbs_State st = BRepClass_FaceClassifier(f.base, p, f.tol).State();
+        if (st == TopAbs_IN || st == TopAbs_ON) return true;
+    }
+    return false;
+}
+
+// How far `s` reaches along the unit `n` beyond `point`: exact for an axis-aligned n (every
+// march direction), an upper bound otherwise (a box's corners bound any direction's range).
+double height_along(const TopoDS_Shape& s, const Vector3d& point, const Vector3d& n) {
+    const Eigen::AlignedBox3d b = bounds_of(s);
+    double hi = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 8; ++i)
+        hi = std::max(
+            hi, n.dot(Vector3d(i & 1 ? b.max().x() : b.min().x(), i & 2 ? b.max().y() : b.min().y(),
+                               i & 4 ? b.max().z() : b.min().z()) -
+                      point));
+    return hi;
+}
+
+enum class SplitOutcome {
+    Split,    // at least one child; the father is what is left
+    NoChild,  // no piece qualified as a child: nothing changes
+    Failed,   // OCCT failed, or the rest of the father is not one solid
 };
 
 // Splits `father` by the plane (point, normal n) and takes as children the pieces containing the
 // `inner` points on the +n side (one each, a piece at most once; a point without a piece gets a
-// null child). Every other piece goes back into the father (fused, seams removed). False when
-// OCCT fails or when the pieces do not leave the father in one solid.
-bool split_by_plane(const TopoDS_Shape& father, const Vector3d& point, const Vector3d& n,
-                    const std::vector<Vector3d>& inner, std::vector<Child>& children,
-                    TopoDS_Shape& father_out) {
+// null child) that reach at least `min_height` beyond the plane and hold none of the father's
+// `footing`. Every other piece goes back into the father (fused, seams removed).
+SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
+                            const Vector3d& point, const Vector3d& n,
+                            const std::vector<Vector3d>& inner, double min_height,
+                            std::vector<Child>& children, TopoDS_Shape& father_out) {
     try {
         const Eigen::AlignedBox3d b = bounds_of(father);
         const double r = 2.0 * b.diagonal().norm() + 1.0;
@@ -198,11 +272,14 @@ bool split_by_plane(const TopoDS_Shape& father, const Vector3d& point, const Vec
         splitter.SetTools(tools);
         splitter.SetNonDestructive(Standard_True);
         splitter.Build();
-        if (!splitter.IsDone() || splitter.HasErrors()) return false;
+        if (!splitter.IsDone() || splitter.HasErrors()) return SplitOutcome::Failed;
         const auto pieces = solids_of(splitter.Shape());
-        if (pieces.size() < 2) return false;
+        if (pieces.size() < 2) return SplitOutcome::Failed;
 
         std::vector<bool> taken(pieces.size(), false);
+        std::vector<bool> footed(pieces.size());  // holds some of the father's footing
+        for (std::size_t i = 0; i < pieces.size(); ++i)
+            footed[i] = holds_footing(pieces[i], footing);
         children.assign(inner.size(), Child{});
         const double tol = 1e-6 * (1.0 + b.diagonal().norm());
         int found = 0;
@@ -214,11 +291,41 @@ bool split_by_plane(const TopoDS_Shape& father, const Vector3d& point, const Vec
             GProp_GProps props;
             BRepGProp::VolumeProperties(pieces[piece], props);
             if (n.dot(vec(props.CentreOfMass()) - point) <= 0.0) continue;
+            // A sliver the plane cut off the father's end (the march found it on its last
+            // plane) cannot be built on its own: it stays in the father, which builds it on top.
+            const double height = height_along(pieces[piece], point, n);
+            if (height < min_height) {
+                std::ostringstream why;
+                why << "its piece reaches only " << height
+                    << " mm past the splitting plane, less than the axis step (" << min_height
+                    << " mm): too thin to build on its own";
+                children[k].kept_because = why.str();
+                continue;
+            }
+            // A split must not take what the father stands on. A piece on the build plate is
+            // built up from it, with the root (a nozzle building it sideways would meet the
+            // plate). A child's father must keep some of its base face: a piece may take part of
+            // it (the upper half of a bar built along X, cut off to be built up on the lower
+            // half), not all, or the father would be left with nothing to be built from.
+            bool takes_footing = footed[piece];
+            if (takes_footing && !footing.root)
+                for (std::size_t i = 0; i < pieces.size() && takes_footing; ++i)
+                    if (i != piece && !taken[i] && footed[i]) takes_footing = false;
+            if (takes_footing) {
+                children[k].kept_because = footing.root ? "its piece rests on the build plate"
+                                                        : "its piece holds its father's base face";
+                continue;
+            }
             const auto solids = solids_of(unify(pieces[piece]));
             if (solids.size() != 1) continue;
             Child child;
             child.solid = solids.front();
-            // The base face: the child's largest face on the plane, facing -n.
+            // The base face: the child's face on the plane, facing -n, that lies under the
+            // branch's first node; the largest one if none does. (A plane can cut a piece in
+            // several faces: a half ring standing on its rim has one at each end, and the branch
+            // starts from one of them.)
+            const Vector3d under = inner[k] - n * n.dot(inner[k] - point);
+            bool best_under = false;
             double best_area = 0.0;
             for (TopExp_Explorer x(child.solid, TopAbs_FACE); x.More(); x.Next()) {
                 PlanarFace pf;
@@ -227,7 +334,11 @@ bool split_by_plane(const TopoDS_Shape& father, const Vector3d& point, const Vec
                 if (std::abs(n.dot(pf.point - point)) > tol) continue;
                 GProp_GProps fp;
                 BRepGProp::SurfaceProperties(pf.face, fp);
-                if (fp.Mass() <= best_area) continue;
+                const TopAbs_State st = BRepClass_FaceClassifier(pf.face, pnt(under), tol).State();
+                const bool is_under = st == TopAbs_IN || st == TopAbs_ON;
+                if (best_under && !is_under) continue;
+                if (best_under == is_under && fp.Mass() <= best_area) continue;
+                best_under = is_under;
                 best_area = fp.Mass();
                 child.base = pf.face;
                 child.base_origin = vec(fp.CentreOfMass());
@@ -238,7 +349,7 @@ bool split_by_plane(const TopoDS_Shape& father, const Vector3d& point, const Vec
             children[k] = child;
             ++found;
         }
-        if (found == 0) return false;
+        if (found == 0) return SplitOutcome::NoChild;
 
         TopTools_ListOfShape rest;
         for (std::size_t i = 0; i < pieces.size(); ++i)
@@ -255,15 +366,15 @@ bool split_by_plane(const TopoDS_Shape& father, const Vector3d& point, const Vec
             fuse.SetTools(rest);
             fuse.SetNonDestructive(Standard_True);
             fuse.Build();
-            if (!fuse.IsDone() || fuse.HasErrors()) return false;
+            if (!fuse.IsDone() || fuse.HasErrors()) return SplitOutcome::Failed;
             father_new = fuse.Shape();
         }
         const auto father_solids = solids_of(unify(father_new));
-        if (father_solids.size() != 1) return false;
+        if (father_solids.size() != 1) return SplitOutcome::Failed;
         father_out = father_solids.front();
-        return true;
+        return SplitOutcome::Split;
     } catch (const Standard_Failure&) {
-        return false;  // a split OCCT cannot perform: the branches stay in their father
+        return SplitOutcome::Failed;  // a split OCCT cannot perform: the branches stay put
     }
 }
 
@@ -539,16 +650,30 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             }
             if (throw_on_cancel) throw_on_cancel();
 
+            const Component& fc = work[std::size_t(father)].c;
+            Footing footing;
+            footing.root = !fc.has_base_face;
+            footing.plate_z = box.min().z();
+            if (fc.has_base_face) footing.base = TopoDS::Face(occ::occt(fc.base_face));
+            footing.normal = fc.base_normal;
+            footing.tol = std::max(plane_tol, axis.params.eps_mm);
             std::vector<Child> children;
             TopoDS_Shape father_new;
-            if (!split_by_plane(fs, p.point, p.normal, inner, children, father_new)) {
+            const SplitOutcome outcome = split_by_plane(fs, footing, p.point, p.normal, inner,
+                                                        axis.params.step_mm, children, father_new);
+            if (outcome == SplitOutcome::Failed) {
                 for (std::size_t g : group)
                     note(g, "OCCT could not split its father at the chosen plane", father);
                 continue;
             }
-            work[std::size_t(father)].solid = father_new;
+            if (outcome == SplitOutcome::Split) work[std::size_t(father)].solid = father_new;
             for (std::size_t k = 0; k < group.size(); ++k) {
                 const std::size_t g = group[k];
+                if (!children[k].kept_because.empty()) {
+                    holder[g] = father;
+                    note(g, children[k].kept_because, father);
+                    continue;
+                }
                 if (children[k].solid.IsNull()) {
                     // No piece of its own: left for its own pass (its material may now sit in a
                     // sibling's piece or back in the father).

@@ -97,6 +97,22 @@ mas::Shape cylinder_with_boss() {
                           occ_cylinder({0, 0, 20}, Vector3d::UnitX(), 6, 40)));
 }
 
+// A hub lying along X (radius 8, axis at z = 30, top at z = 38) on a pedestal [-10,10]^2 x [0,20]
+// with a neck, six blades 4 x 2 x 25 round it at x in [8, 12], 60 degrees apart starting 30
+// degrees off +Z: blades on a hub, the hub lying.
+mas::Shape lying_rotor() {
+    TopoDS_Shape s = fuse(occ_box(-10, -10, 0, 20, 20, 20), occ_box(-5, -3, 18, 10, 6, 12));
+    s = fuse(s, occ_cylinder({-20, 0, 30}, Vector3d::UnitX(), 8, 40));
+    for (int k = 0; k < 6; ++k) {
+        gp_Trsf lean, move;
+        lean.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), (60.0 * k + 30.0) * M_PI / 180);
+        move.SetTranslation(gp_Vec(10, 0, 30));
+        s = fuse(s,
+                 BRepBuilderAPI_Transform(occ_box(-2, -1, 6, 4, 2, 25), move * lean, true).Shape());
+    }
+    return from_occt(s);
+}
+
 // Every decomposition must satisfy these, whatever the part.
 void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
     ASSERT_FALSE(d.components.empty());
@@ -386,16 +402,7 @@ TEST(Decompose, ASliverCutOffTheFathersTopStaysInTheFather) {
     // round it at x = 10, 60 degrees apart. With a 1.45 mm step the plane z = 37.701 cuts the hub's
     // crown apart from the two upper blades, and the crown's march ends there: as a component of
     // its own it would be 0.3 mm thick, less than any layer (the slicer stopped on it).
-    TopoDS_Shape s = fuse(occ_box(-10, -10, 0, 20, 20, 20), occ_box(-5, -3, 18, 10, 6, 12));
-    s = fuse(s, occ_cylinder({-20, 0, 30}, Vector3d::UnitX(), 8, 40));
-    for (int k = 0; k < 6; ++k) {
-        gp_Trsf lean, move;
-        lean.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), (60.0 * k + 30.0) * M_PI / 180);
-        move.SetTranslation(gp_Vec(10, 0, 30));
-        s = fuse(s,
-                 BRepBuilderAPI_Transform(occ_box(-2, -1, 6, 4, 2, 25), move * lean, true).Shape());
-    }
-    const auto part = from_occt(s);
+    const auto part = lying_rotor();
     const double step = 1.45;
     const auto d = mas::decompose(part, axis_of(part, step));
     // The root, the two sideways blades (built +-Y) and the two upper ones (+Z); the lower two
@@ -420,6 +427,29 @@ TEST(Decompose, ASliverCutOffTheFathersTopStaysInTheFather) {
                                                       c.base_origin));
         EXPECT_GE(reach, step) << "component " << i;
     }
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, LeaningBladesAreBuiltWhole) {
+    // With a 1.5 mm step the hub's +X march meets the blades at x = 10 and sends the two upper
+    // ones up (+Z). Their leaning tips, which the +Z slabs leave partly unswept, must not become
+    // +X branches of the hub's march: the decomposition would cut each blade lengthwise at x = 10
+    // and build its outer half sideways.
+    const auto part = lying_rotor();
+    const auto d = mas::decompose(part, axis_of(part, 1.5));
+    int upper_blades = 0;
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        const auto& c = d.components[i];
+        const auto b = bounds(c.solid);
+        SCOPED_TRACE("component " + std::to_string(i));
+        EXPECT_FALSE(b.min().x() > 9.0 && b.max().x() < 12.0 + 1e-6) << "a blade's outer part";
+        if (b.max().z() < 57.0) continue;
+        ++upper_blades;  // the blade's top is at z = 30 + 31 cos 30 + sin 30 = 57.35
+        EXPECT_TRUE(c.build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+        EXPECT_NEAR(b.min().x(), 8.0, 1e-6);
+        EXPECT_NEAR(b.max().x(), 12.0, 1e-6);
+    }
+    EXPECT_EQ(upper_blades, 2);
     expect_invariants(d, part);
 }
 

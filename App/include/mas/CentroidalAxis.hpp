@@ -8,7 +8,9 @@
 //   same direction, child of the lower one's branch. An upper region overlapping several tracks
 //   continues the one it overlaps most; the others end there, merged into it (merged_into). Upper
 //   regions overlapping no lower region of the march belong to other geometry and are left to the
-//   search that reaches them.
+//   search that reaches them. An overlap no wider than 1e-4 mm (ten units of the polygon
+//   Booleans' grid) along the shorter of the two outlines is none: it is a hairline the Booleans'
+//   snapping left, such as the one U minus a turn's far pieces keeps along their outline.
 // - Eq. 2 on a region U over its lower region(s) L: the parts of U - L, dA_k, whose centre G_k lies
 //   farther than `distance_threshold` outside L (2-D distance on the plane), and farther than an
 //   eighth of L's size (sqrt of its area: smaller stick-outs are bumps on a large section's

@@ -289,6 +289,12 @@ Regions2 slab_cut(const Slab& s, const Vector3d& n, double c, const PlaneFrame& 
 }
 
 // The regions larger than min_area, largest first (ties in their given order).
+double outline_of(const Region2& r) {
+    double length = perimeter(r.outer);
+    for (const auto& h : r.holes) length += perimeter(h);
+    return length;
+}
+
 Regions2 keep_larger(Regions2 regions, double min_area) {
     std::vector<std::pair<double, std::size_t>> order;  // (area, index): each area computed once
     for (std::size_t i = 0; i < regions.size(); ++i) {
@@ -302,6 +308,11 @@ Regions2 keep_larger(Regions2 regions, double min_area) {
     for (const auto& [a, i] : order) out.push_back(std::move(regions[i]));
     return out;
 }
+
+// Ten units of the polygon Booleans' grid (PolygonBoolean.cpp snaps to 1e-5 mm): wider than
+// anything their snapping leaves between two outlines that should coincide, far narrower than any
+// feature the axis resolves.
+constexpr double kHairline = 1e-4;  // mm
 
 class Search {
 public:
@@ -343,6 +354,7 @@ private:
         int node;
         Regions2 region;  // the node's region, alone in a list as the Booleans take it
         Eigen::AlignedBox2d box;
+        double outline = 0.0;  // the region's perimeter, holes included, mm
     };
 
     // The sections of one of the six directions, cut once on a fixed grid: planes at
@@ -773,7 +785,7 @@ private:
         for (const auto& region : first) {
             const int b = new_branch(n, task.parent_branch, task.father_node);
             const int node = add_node(region, n, offset_of(k0), task.slab_start, slab_end(k0), b);
-            tracks.push_back({b, node, {region}, bounds(region)});
+            tracks.push_back({b, node, {region}, bounds(region), outline_of(region)});
         }
 
         Lookahead ahead(*this, g, k0 + 1);
@@ -794,6 +806,12 @@ private:
             std::vector<std::vector<int>> overlapping(upper.size());
             std::vector<Regions2> stick_out(upper.size());
             for (std::size_t j = 0; j < upper.size(); ++j) {
+                // An overlap no wider than the Booleans' snapping along the shorter outline is
+                // none: the hairlines a turn's U - far leaves along the outlines it took away (the
+                // far pieces' edges are off U's by a grid unit) would otherwise carry a march to
+                // whatever they touch (a blade's unswept tip, which the decomposition then cut
+                // off lengthwise).
+                const double outline = outline_of(upper[j].front());
                 double best = p_.min_region_area_mm2;
                 const Eigen::AlignedBox2d box = bounds(upper[j].front());
                 const double upper_area = area(upper[j]);
@@ -801,7 +819,9 @@ private:
                     if (!box.intersects(tracks[t].box)) continue;
                     Regions2 d = difference(upper[j], tracks[t].region);
                     const double a = upper_area - area(d);
-                    if (a <= p_.min_region_area_mm2) continue;
+                    if (a <= std::max(p_.min_region_area_mm2,
+                                      kHairline * std::min(outline, tracks[t].outline)))
+                        continue;
                     overlapping[j].push_back(static_cast<int>(t));
                     if (overlapping[j].size() == 1) stick_out[j] = std::move(d);
                     if (a > best) {
@@ -846,7 +866,7 @@ private:
                     const int link = add_link(lower_node, node, AxisLink::Kind::Step);
                     if (branches_[b].first_link < 0 && branches_[b].nodes.size() == 1)
                         branches_[b].first_link = link;
-                    next.push_back({b, node, {}, bounds(pieces[i])});
+                    next.push_back({b, node, {}, bounds(pieces[i]), outline_of(pieces[i])});
                     next.back().region.push_back(std::move(pieces[i]));
                 }
             }

@@ -16,6 +16,7 @@
 #include <GProp_GProps.hxx>
 #include <cmath>
 #include <gp_Trsf.hxx>
+#include <set>
 #include <string>
 
 #include "mas/CentroidalAxis.hpp"
@@ -164,6 +165,13 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
         }
     }
     EXPECT_NEAR(sum, part_volume, 1e-6 * part_volume);
+    // A note per branch that got no cut, each branch named once.
+    std::set<std::string> named;
+    for (const auto& n : d.notes) {
+        const std::string branch = n.substr(0, n.find(" ("));
+        EXPECT_EQ(branch.rfind("branch ", 0), 0u) << n;
+        EXPECT_TRUE(named.insert(branch).second) << "noted twice: " << n;
+    }
 }
 
 }  // namespace

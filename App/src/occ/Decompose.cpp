@@ -245,7 +245,8 @@ double height_along(const TopoDS_Shape& s, const Vector3d& point, const Vector3d
 enum class SplitOutcome {
     Split,    // at least one child; the father is what is left
     NoChild,  // no piece qualified as a child: nothing changes
-    Failed,   // OCCT failed, or the rest of the father is not one solid
+    Failed,   // OCCT failed
+    Apart,    // the rest of the father would not be one solid
 };
 
 // Splits `father` by the plane (point, normal n) and takes as children the pieces containing the
@@ -370,7 +371,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             father_new = fuse.Shape();
         }
         const auto father_solids = solids_of(unify(father_new));
-        if (father_solids.size() != 1) return SplitOutcome::Failed;
+        if (father_solids.size() != 1) return SplitOutcome::Apart;
         father_out = father_solids.front();
         return SplitOutcome::Split;
     } catch (const Standard_Failure&) {
@@ -661,9 +662,14 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             TopoDS_Shape father_new;
             const SplitOutcome outcome = split_by_plane(fs, footing, p.point, p.normal, inner,
                                                         axis.params.step_mm, children, father_new);
-            if (outcome == SplitOutcome::Failed) {
-                for (std::size_t g : group)
-                    note(g, "OCCT could not split its father at the chosen plane", father);
+            if (outcome == SplitOutcome::Failed || outcome == SplitOutcome::Apart) {
+                // The siblings that would have shared the split try their own in turn (and
+                // note their own outcome).
+                note(b,
+                     outcome == SplitOutcome::Failed
+                         ? "OCCT could not split its father at the chosen plane"
+                         : "the split at the chosen plane would leave its father in pieces",
+                     father);
                 continue;
             }
             if (outcome == SplitOutcome::Split) work[std::size_t(father)].solid = father_new;

@@ -4,6 +4,8 @@
 
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepOffsetAPI_ThruSections.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
@@ -396,6 +398,43 @@ TEST(CentroidalAxis, LugNearTheEndOfALongWallTurnsTheWayItSticksOut) {
         EXPECT_NEAR(a.nodes[std::size_t(n)].position.z(), 35.0, kGrid);
         EXPECT_NEAR(a.nodes[std::size_t(n)].area, 150.0, 1e-6);
     }
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, TwistedBladeLeavingAHubTurnsIntoItsLength) {
+    // A hub (radius 12, 40 tall) with a blade 30 x 3 reaching +X from x = 8 to 60, twisted 40
+    // degrees along its length (ruled between its end sections, centred at z = 20). Its underside
+    // leaves the hub at a small angle: every plane of the +Z march adds a strip up to ~9 mm
+    // longer than the last beside it, whose centre stays within the "bump" distance (an eighth of
+    // the hub's size) of the lower section. It reaches far past it, though: an overhang, and a
+    // turn. (Taken for bumps, the whole blade was built upwards, unsupported.)
+    auto end_section = [](double x, double degrees) {
+        const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
+        BRepBuilderAPI_MakePolygon poly;
+        for (const auto& [y, z] : {std::pair{-1.5, -15.0}, {1.5, -15.0}, {1.5, 15.0}, {-1.5, 15.0}})
+            poly.Add(gp_Pnt(x, y * c - z * s, 20.0 + y * s + z * c));
+        poly.Close();
+        return poly.Wire();
+    };
+    BRepOffsetAPI_ThruSections loft(Standard_True, Standard_True);
+    loft.AddWire(end_section(8.0, 0.0));
+    loft.AddWire(end_section(60.0, 40.0));
+    loft.Build();
+    ASSERT_TRUE(loft.IsDone());
+    const auto mesh =
+        mesh_of(from_occt(fuse(BRepPrimAPI_MakeCylinder(12, 40).Shape(), loft.Shape())));
+    mas::AxisParams p;
+    p.step_mm = 0.45;
+    const auto a = mas::centroidal_axis(mesh, p);
+    int blade = -1;
+    for (int b : children(a, 0))
+        if (a.branches[std::size_t(b)].direction.isApprox(Vector3d::UnitX())) blade = b;
+    ASSERT_GE(blade, 0) << "no +X branch from the hub";
+    const auto& nodes = a.branches[std::size_t(blade)].nodes;
+    // The blade's march starts at the hub's side (Eq. 4's T, at most a step on) and goes to its
+    // tip, one node a step.
+    EXPECT_LE(a.nodes[std::size_t(nodes.front())].position.x(), 12.0 + p.step_mm + 1e-9);
+    EXPECT_GE(a.nodes[std::size_t(nodes.back())].position.x(), 60.0 - p.step_mm);
     expect_invariants(a, mesh);
 }
 

@@ -12,16 +12,18 @@
 //   Booleans' grid) along the shorter of the two outlines is none: it is a hairline the Booleans'
 //   snapping left, such as the one U minus a turn's far pieces keeps along their outline.
 // - Eq. 2 on a region U over its lower region(s) L: the parts of U - L, dA_k, whose centre G_k lies
-//   farther than `distance_threshold` outside L (2-D distance on the plane), and farther than an
-//   eighth of L's size (sqrt of its area: smaller stick-outs are bumps on a large section's
-//   surface, which made organic meshes sprout hundreds of branches), start new branches;
-//   the rest of U continues the march. A stick-out touching two or more lower regions is the
-//   bridge where tracks merge (the top of a hole), never a new branch. The new direction is the one
-//   of +-X, +-Y, +-Z closest to G_k - E, E the point of L's boundary nearest to G_k, plus the step
-//   along the march (the paper's Sec. 3.2.1 says G_k - C, C the lower centroid; that sends a lug
-//   sticking out sideways near the end of a long wall along the wall, past the part, so its
-//   material is never searched); the first plane of the new branch is at Eq. 4's location: the
-//   lower boundary's extent T along the new direction, plus eps.
+//   farther than `distance_threshold` outside L (2-D distance on the plane) start new branches,
+//   unless they are bumps on a large section's surface (which made organic meshes sprout
+//   hundreds of branches): centred and reaching no farther than an eighth of L's size (sqrt of
+//   its area) outside L. One that reaches farther is an overhang growing out of the part, however
+//   near its centre: a twisted blade leaving a hub at a small angle adds a long strip beside the
+//   last one at every plane. The rest of U continues the march. A stick-out touching two or more
+//   lower regions is the bridge where tracks merge (the top of a hole), never a new branch. The
+//   new direction is the one of +-X, +-Y, +-Z closest to G_k - E, E the point of L's boundary
+//   nearest to G_k, plus the step along the march (the paper's Sec. 3.2.1 says G_k - C, C the
+//   lower centroid; that sends a lug sticking out sideways near the end of a long wall along the
+//   wall, past the part, so its material is never searched); the first plane of the new branch
+//   is at Eq. 4's location: the lower boundary's extent T along the new direction, plus eps.
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a

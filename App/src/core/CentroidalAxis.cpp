@@ -887,9 +887,24 @@ private:
         if (stick_out.empty()) return {upper};  // Eq. 2: empty, same direction
         const PlaneFrame frame(n);
         const Plane upper_plane{n * upper_offset, n};
-        // "Much greater than the step" (d), and more than an eighth of the lower section's size:
-        // a stick-out centred closer than that is a bump on a large section's surface, not a turn.
-        const double threshold = std::max(p_.distance_threshold_mm, std::sqrt(area(lower)) / 8.0);
+        // Far: centred "much greater than the step" (d) outside L, and not a bump on a large
+        // section's surface: a stick-out centred within an eighth of L's size, reaching no
+        // farther than that, is one. One that reaches farther is an overhang growing out of the
+        // part however near its centre stays (the underside of a blade leaving a hub at a small
+        // angle adds a long strip beside the last one at every plane).
+        const double bump = std::sqrt(area(lower)) / 8.0;
+        const auto is_far = [&](const Regions2& piece, double centre_distance) {
+            if (centre_distance <= p_.distance_threshold_mm) return false;
+            if (centre_distance > bump) return true;
+            for (const auto& r : piece)
+                for (const auto& q : r.outer.points) {
+                    double to_lower = std::numeric_limits<double>::infinity();
+                    for (const auto& l : lower)
+                        to_lower = std::min(to_lower, distance_to_region(l, q));
+                    if (to_lower > bump) return true;
+                }
+            return false;
+        };
         Regions2 far;
         for (const auto& da : stick_out) {
             if (area(da) <= p_.min_region_area_mm2) continue;
@@ -903,7 +918,7 @@ private:
                     exit = nearest_boundary_point(l, g);
                 }
             }
-            if (dist <= threshold) continue;
+            if (!is_far({da}, dist)) continue;
             // Material spanning between two lower regions (over a hole, where tracks merge) is
             // a bridge that joins them, not a part turning away.
             if (lower.size() > 1) {
@@ -946,7 +961,7 @@ private:
                 double d_share = std::numeric_limits<double>::infinity();
                 for (const auto& l : lower)
                     d_share = std::min(d_share, distance_to_region(l, g_share));
-                if (d_share <= threshold) continue;
+                if (!is_far(share, d_share)) continue;
                 // Eq. 4: the new march starts just beyond the lower boundary's extent T.
                 Task child;
                 child.direction = side;

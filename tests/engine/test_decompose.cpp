@@ -461,6 +461,37 @@ TEST(Decompose, LeaningBladesAreBuiltWhole) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, APipeTeesBranchIsBuiltAlongItself) {
+    // A pipe (radius 10, bore 8, 60 tall) with a branch of the same pipe reaching +Y from its
+    // axis at z = 35, 35 long. The branch's march starts near the pipe's side with a ring whose
+    // centroid lies in the bore, in no solid: the father and the piece for the branch are found
+    // by a point in the ring's material instead. (By the centroid the branch stayed in the root,
+    // built upwards; and the split the root's march asked for left a face OCCT's check rejects once
+    // its seams were removed.)
+    const TopoDS_Shape outer = fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10, 60),
+                                    occ_cylinder({0, 0, 35}, Vector3d::UnitY(), 10, 35));
+    const TopoDS_Shape bore = fuse(occ_cylinder({0, 0, -1}, Vector3d::UnitZ(), 8, 62),
+                                   occ_cylinder({0, 0, 35}, Vector3d::UnitY(), 8, 36));
+    const auto part = from_occt(BRepAlgoAPI_Cut(outer, bore).Shape());
+    const auto d = mas::decompose(part, axis_of(part, 1.0));
+    int branch_pipe = 0;
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        const auto& c = d.components[i];
+        if (!c.build_direction.isApprox(Vector3d::UnitY(), 1e-12)) continue;
+        ++branch_pipe;
+        EXPECT_EQ(c.parent, 0);
+        // The whole ring of the branch, from near the pipe's side (where its march began) to
+        // its end.
+        const double y0 = bounds(c.solid).min().y();
+        EXPECT_LT(y0, 15.0);
+        EXPECT_TRUE(near_box(c.solid, {-10, y0, 25}, {10, 35, 45}));
+        const double ring = M_PI * (100.0 - 64.0) * (35.0 - y0);
+        EXPECT_NEAR(c.volume_mm3, ring, 1e-6 * ring);
+    }
+    EXPECT_EQ(branch_pipe, 1);
+    expect_invariants(d, part);  // every component a valid solid
+}
+
 TEST(Decompose, ARingStandingOnItsRimKeepsItsRootOnThePlate) {
     // A ring (radii 50 and 40, 20 long along X) standing on its rim, an inward lip (radius 30 to
     // 50, 3 thick) on one face. The axis goes round the ring in turns (+Y, +Z, -Y, -Z, +Y) and

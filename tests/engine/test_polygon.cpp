@@ -33,6 +33,29 @@ TEST(Polygon, RegionCentroidAccountsForHoles) {
     EXPECT_TRUE(mas::contains(r, {2, 5}));
 }
 
+TEST(Polygon, InteriorPointLiesInTheMaterialNotInTheBore) {
+    // A square ring [0,10]^2 less [2,8]^2: the centroid (5, 5) is in the bore; the widest span of
+    // the line y = 5 is either wall, 2 wide, and the first one found is kept: x = 1.
+    mas::Region2 ring{rect(0, 0, 10, 10), {rect(2, 2, 8, 8)}};
+    std::reverse(ring.holes[0].points.begin(), ring.holes[0].points.end());
+    EXPECT_FALSE(mas::contains(ring, mas::centroid(ring)));
+    const Eigen::Vector2d p = mas::interior_point(ring);
+    EXPECT_TRUE(mas::contains(ring, p));
+    EXPECT_NEAR(p.x(), 1.0, 1e-12);
+    EXPECT_NEAR(p.y(), 5.0, 1e-12);
+    // A C open to +X (the square less [3,10]x[3,7]): the line through the centroid crosses the
+    // mouth; the point lies in the back wall, x in [0, 3].
+    const mas::Region2 c{{{{0, 0}, {10, 0}, {10, 3}, {3, 3}, {3, 7}, {10, 7}, {10, 10}, {0, 10}}},
+                         {}};
+    const Eigen::Vector2d q = mas::interior_point(c);
+    EXPECT_TRUE(mas::contains(c, q));
+    EXPECT_NEAR(q.x(), 1.5, 1e-12);
+    // A convex region: the middle of its chord through the centroid.
+    const Eigen::Vector2d m = mas::interior_point(mas::Region2{rect(0, 0, 4, 2), {}});
+    EXPECT_NEAR(m.x(), 2.0, 1e-12);
+    EXPECT_NEAR(m.y(), 1.0, 1e-12);
+}
+
 TEST(Polygon, RegionsFromLoopsNestHolesInSmallestOuter) {
     auto big = rect(0, 0, 100, 100), hole = rect(10, 10, 90, 90), island = rect(40, 40, 60, 60);
     std::reverse(hole.points.begin(), hole.points.end());

@@ -36,6 +36,12 @@ Eigen::AlignedBox2d bounds(const Region2& region);
 // True if the point lies inside the region (inside the outer loop and outside every hole).
 bool contains(const Region2& region, const Eigen::Vector2d& point);
 
+// A point in the region's material, away from its outline: the middle of the widest inside span
+// of the horizontal line through its centroid (through its box's middle when that line has
+// none). Unlike the centroid it never lies in a hole (a ring's bore) or outside a C's mouth. The
+// centroid for a region too thin to have a span; the origin for an empty one.
+Eigen::Vector2d interior_point(const Region2& region);
+
 // Groups oriented closed loops into regions: CCW loops are outer boundaries, CW loops are holes,
 // each hole going to the smallest outer loop that contains it (a hole inside no outer loop is
 // dropped). This is what cutting a closed, outward-oriented mesh gives. Loops with |area| below

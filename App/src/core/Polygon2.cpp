@@ -110,6 +110,39 @@ bool contains(const Region2& region, const Eigen::Vector2d& point) {
     return true;
 }
 
+Eigen::Vector2d interior_point(const Region2& region) {
+    const Eigen::AlignedBox2d box = bounds(region);
+    if (box.isEmpty()) return Eigen::Vector2d::Zero();
+    // The widest inside span of a horizontal line, through the centroid first (a compact region's
+    // middle), else through the box's middle; crossings by the half-open rule, pairs inside.
+    auto widest_span = [&](double y, Eigen::Vector2d& out) {
+        std::vector<double> xs;
+        auto cross = [&](const Polygon2& loop) {
+            const auto& q = loop.points;
+            for (std::size_t i = 0, j = q.size() - 1; i < q.size(); j = i++)
+                if ((q[i].y() > y) != (q[j].y() > y))
+                    xs.push_back(q[j].x() +
+                                 (y - q[j].y()) * (q[i].x() - q[j].x()) / (q[i].y() - q[j].y()));
+        };
+        if (region.outer.points.size() < 3) return false;
+        cross(region.outer);
+        for (const auto& h : region.holes)
+            if (h.points.size() >= 3) cross(h);
+        std::sort(xs.begin(), xs.end());
+        double best = 0.0;
+        for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+            if (xs[i + 1] - xs[i] > best) {
+                best = xs[i + 1] - xs[i];
+                out = {0.5 * (xs[i] + xs[i + 1]), y};
+            }
+        return best > 0.0;
+    };
+    Eigen::Vector2d p = centroid(region);
+    if (widest_span(p.y(), p)) return p;
+    if (widest_span(box.center().y(), p)) return p;
+    return centroid(region);
+}
+
 namespace {
 
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,

@@ -9,6 +9,7 @@
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepCheck_Analyzer.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepClass_FaceClassifier.hxx>
 #include <BRepGProp.hxx>
@@ -17,6 +18,7 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom2d_Curve.hxx>
+#include <ShapeFix_Shape.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -152,16 +154,38 @@ void projection_range(const TopoDS_Face& face, const Vector3d& D, double& lo, do
     }
 }
 
+std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& s) {
+    std::vector<TopoDS_Shape> out;
+    for (TopExp_Explorer x(s, TopAbs_SOLID); x.More(); x.Next()) out.push_back(x.Current());
+    return out;
+}
+
 TopoDS_Shape unify(const TopoDS_Shape& s) {
     ShapeUpgrade_UnifySameDomain u(s, Standard_True, Standard_True, Standard_False);
     u.Build();
     return u.Shape();
 }
 
-std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& s) {
-    std::vector<TopoDS_Shape> out;
-    for (TopExp_Explorer x(s, TopAbs_SOLID); x.More(); x.Next()) out.push_back(x.Current());
-    return out;
+// One solid of `piece` that OCCT's shape check accepts, for a component: the piece with the seams
+// between coplanar or co-cylindrical faces removed, else the piece as the split left it, else
+// what ShapeFix makes of it; false when none is one valid solid. (The splitter and the seam
+// removal can leave a face whose wires the check rejects: a tee's pipe cut across its branch.)
+bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out) {
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        TopoDS_Shape s = piece;
+        if (attempt == 0) s = unify(piece);
+        if (attempt == 2) {
+            ShapeFix_Shape fix(piece);
+            fix.Perform();
+            s = fix.Shape();
+        }
+        const auto solids = solids_of(s);
+        if (solids.size() == 1 && BRepCheck_Analyzer(solids.front()).IsValid()) {
+            out = solids.front();
+            return true;
+        }
+    }
+    return false;
 }
 
 bool contains(const TopoDS_Shape& solid, const Vector3d& p) {
@@ -247,16 +271,19 @@ enum class SplitOutcome {
     NoChild,  // no piece qualified as a child: nothing changes
     Failed,   // OCCT failed
     Apart,    // the rest of the father would not be one solid
+    Invalid,  // the rest of the father would be no valid solid
 };
 
 // Splits `father` by the plane (point, normal n) and takes as children the pieces containing the
 // `inner` points on the +n side (one each, a piece at most once; a point without a piece gets a
-// null child) that reach at least `min_height` beyond the plane and hold none of the father's
-// `footing`. Every other piece goes back into the father (fused, seams removed).
+// null child) that reach at least `min_height` beyond the plane, hold at most `max_volume[k]`
+// and none of the father's `footing`. Every other piece goes back into the father (fused, seams
+// removed).
 SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                             const Vector3d& point, const Vector3d& n,
                             const std::vector<Vector3d>& inner, double min_height,
-                            std::vector<Child>& children, TopoDS_Shape& father_out) {
+                            const std::vector<double>& max_volume, std::vector<Child>& children,
+                            TopoDS_Shape& father_out) {
     try {
         const Eigen::AlignedBox3d b = bounds_of(father);
         const double r = 2.0 * b.diagonal().norm() + 1.0;
@@ -303,6 +330,17 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 children[k].kept_because = why.str();
                 continue;
             }
+            // A piece far bigger than what the branch and its sub-branches swept is mostly other
+            // branches' material: the whole plane of a sliver's split (a few hundredths of a mm2
+            // the sections left beside a pipe tee's branch) would cut that branch in two.
+            if (props.Mass() > max_volume[k]) {
+                std::ostringstream why;
+                why << "its piece would hold " << props.Mass() << " mm3, far more than the "
+                    << max_volume[k] << " mm3 its march and sub-branches allow: mostly other "
+                    << "branches' material";
+                children[k].kept_because = why.str();
+                continue;
+            }
             // A split must not take what the father stands on. A piece on the build plate is
             // built up from it, with the root (a nozzle building it sideways would meet the
             // plate). A child's father must keep some of its base face: a piece may take part of
@@ -317,10 +355,11 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                                                         : "its piece holds its father's base face";
                 continue;
             }
-            const auto solids = solids_of(unify(pieces[piece]));
-            if (solids.size() != 1) continue;
             Child child;
-            child.solid = solids.front();
+            if (!valid_solid(pieces[piece], child.solid)) {
+                children[k].kept_because = "its piece of the split is no valid solid";
+                continue;
+            }
             // The base face: the child's face on the plane, facing -n, that lies under the
             // branch's first node; the largest one if none does. (A plane can cut a piece in
             // several faces: a half ring standing on its rim has one at each end, and the branch
@@ -370,9 +409,8 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             if (!fuse.IsDone() || fuse.HasErrors()) return SplitOutcome::Failed;
             father_new = fuse.Shape();
         }
-        const auto father_solids = solids_of(unify(father_new));
-        if (father_solids.size() != 1) return SplitOutcome::Apart;
-        father_out = father_solids.front();
+        if (solids_of(unify(father_new)).size() != 1) return SplitOutcome::Apart;
+        if (!valid_solid(father_new, father_out)) return SplitOutcome::Invalid;
         return SplitOutcome::Split;
     } catch (const Standard_Failure&) {
         return SplitOutcome::Failed;  // a split OCCT cannot perform: the branches stay put
@@ -452,7 +490,16 @@ struct Plan {
     Component::SplitRule rule = Component::SplitRule::PlanarFace;
     Vector3d point, normal;  // the splitting plane; normal . D > 0
     Vector3d pos_end;        // the branch's first node
+    Vector3d inner;          // a point in the material of its first section
 };
+
+// A point in the material of a node's section: its centroid lies in the bore of a pipe's ring
+// and outside a C's mouth, in no solid; an axis handed over without regions gives the centroid.
+Vector3d material_point(const AxisNode& node) {
+    if (node.region.outer.points.size() < 3) return node.position;
+    const PlaneFrame frame(node.normal);
+    return frame.to_3d(interior_point(node.region), Plane{node.normal * node.offset, node.normal});
+}
 
 class Decomposer {
 public:
@@ -472,6 +519,7 @@ public:
         const Vector3d pos_start = axis_.nodes[std::size_t(link.start)].position;
         const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
         out.pos_end = first.position;
+        out.inner = material_point(first);
         const double lo_span = std::min(D.dot(pos_start), D.dot(out.pos_end));
         const double hi_span = std::max(D.dot(pos_start), D.dot(out.pos_end));
         const double tol = params_.projection_tolerance_mm;
@@ -562,6 +610,20 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
 
         const Decomposer decomposer(axis, params);
         const std::size_t nb = axis.branches.size();
+        // The most a branch's component may hold: four times what it and its sub-branches swept
+        // (a split plane short of where the march began adds the material between), plus two
+        // steps of its first section.
+        std::vector<double> max_volume(nb, 0.0);
+        for (const auto& node : axis.nodes)
+            if (node.branch >= 0 && std::size_t(node.branch) < nb)
+                max_volume[std::size_t(node.branch)] += node.area * node.thickness;
+        for (std::size_t b = nb; b-- > 1;)
+            if (axis.branches[b].parent >= 0)
+                max_volume[std::size_t(axis.branches[b].parent)] += max_volume[b];
+        for (std::size_t b = 0; b < nb; ++b)
+            max_volume[b] = 4.0 * max_volume[b] +
+                            2.0 * axis.params.step_mm *
+                                axis.nodes[std::size_t(axis.branches[b].nodes.front())].area;
         // The component holding each branch's material; -1 until the branch is handled.
         std::vector<int> holder(nb, -1);
         const auto splits = [&](std::size_t b) {
@@ -573,7 +635,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         // first; -1 for none.
         const auto father_of = [&](std::size_t b) {
             const int h = holder[std::size_t(axis.branches[b].parent)];
-            const Vector3d& p = axis.nodes[std::size_t(axis.branches[b].nodes.front())].position;
+            const Vector3d p =
+                material_point(axis.nodes[std::size_t(axis.branches[b].nodes.front())]);
             if (h >= 0 && contains(work[std::size_t(h)].solid, p)) return h;
             for (int k = int(work.size()) - 1; k >= 0; --k)
                 if (contains(work[std::size_t(k)].solid, p)) return k;
@@ -636,7 +699,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             // split: one Boolean instead of one per sibling (a plate with many posts), with the
             // components each would get from its own split of the reduced father.
             std::vector<std::size_t> group{b};
-            std::vector<Vector3d> inner{p.pos_end};
+            std::vector<Vector3d> inner{p.inner};
+            std::vector<double> most{max_volume[b]};
             for (std::size_t c = b + 1; c < nb; ++c) {
                 if (holder[c] >= 0 || !splits(c)) continue;
                 const int cp = axis.branches[c].parent;
@@ -647,7 +711,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 if (!decomposer.plan(c, fs, e2f, q) || !Decomposer::same_plane(p, q, plane_tol))
                     continue;
                 group.push_back(c);
-                inner.push_back(q.pos_end);
+                inner.push_back(q.inner);
+                most.push_back(max_volume[c]);
             }
             if (throw_on_cancel) throw_on_cancel();
 
@@ -660,15 +725,18 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             footing.tol = std::max(plane_tol, axis.params.eps_mm);
             std::vector<Child> children;
             TopoDS_Shape father_new;
-            const SplitOutcome outcome = split_by_plane(fs, footing, p.point, p.normal, inner,
-                                                        axis.params.step_mm, children, father_new);
-            if (outcome == SplitOutcome::Failed || outcome == SplitOutcome::Apart) {
+            const SplitOutcome outcome =
+                split_by_plane(fs, footing, p.point, p.normal, inner, axis.params.step_mm, most,
+                               children, father_new);
+            if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
                 // The siblings that would have shared the split try their own in turn (and
                 // note their own outcome).
                 note(b,
-                     outcome == SplitOutcome::Failed
-                         ? "OCCT could not split its father at the chosen plane"
-                         : "the split at the chosen plane would leave its father in pieces",
+                     outcome == SplitOutcome::Failed ? "OCCT could not split its father at the "
+                                                       "chosen plane"
+                     : outcome == SplitOutcome::Apart
+                         ? "the split at the chosen plane would leave its father in pieces"
+                         : "the split at the chosen plane would leave its father no valid solid",
                      father);
                 continue;
             }

@@ -20,6 +20,10 @@
 //   The one whose plane lies nearest the junction (b's first plane minus half a step) wins.
 // - The father is split by the chosen face's whole plane. The child is the piece containing
 //   Pos_end, on the +D side; every other piece goes back into the father (fused, seams removed).
+//   "Containing Pos_end" is read with a point in the material of b's first section
+//   (interior_point()), also when finding the father: a pipe's first section is a ring whose
+//   centroid lies in the bore, in no solid. Each component is a solid OCCT's shape check accepts:
+//   the piece with its seams removed, else as the split left it, else as ShapeFix makes it.
 //   The child's base face is its face on the plane under Pos_end (the largest one when none is:
 //   a plane cuts a half ring standing on its rim in two faces, one at each end); build_direction
 //   = minus its outward normal (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The
@@ -42,7 +46,11 @@
 //     from it (a nozzle building it sideways would meet the plate), and the root must keep its
 //     footing (a ring standing on its rim, whose axis comes round back to the plate);
 //   - holds the father's base face, all that is left of it: a split may take part of it (the
-//     upper half of a bar built along X, cut off to be built up on the lower half), never all.
+//     upper half of a bar built along X, cut off to be built up on the lower half), never all;
+//   - holds over four times what b and its sub-branches swept (plus two steps of b's first
+//     section): it is mostly other branches' material (a sliver the sections left beside a pipe
+//     tee's branch would cut the branch pipe in two with its plane);
+//   - is no valid solid, whatever is tried.
 // - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
 // - No planar face meets the criteria (a round boss on a round body): the SectionPlane rule (our
@@ -52,7 +60,8 @@
 //   grid. The same piece selection follows. What lies between the father's surface and that plane
 //   (a sliver of a round boss on a round body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
-//   several pieces, is skipped: the branch's material stays in its father, nothing is recorded.
+//   several pieces or no valid solid, is skipped: the branch's material stays in its father, and
+//   a note says so.
 // - Branches of one direction that split around a hole and merge again beyond it (AxisBranch::
 //   merged_into) make no cut: a wall with a hole through it is one sub-component.
 // - Several roots (a part on several feet) share the one root component.

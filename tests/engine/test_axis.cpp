@@ -438,6 +438,38 @@ TEST(CentroidalAxis, TwistedBladeLeavingAHubTurnsIntoItsLength) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, HubLyingAcrossItsNeckTurnsBothWays) {
+    // A neck [-5,5]x[-1,1]x[0,30] carrying a hub along X (radius 8, axis at z = 30) from x = -20
+    // to 20. Where the +Z march meets the hub's underside, the stick-out is the hub's section
+    // (wider than the neck) less the neck: one piece round the neck, centred on it, reaching 15 mm
+    // past it both ways. Its ends beyond the neck's sides turn, one march each way along the
+    // hub's axis. (By its centre it was no turn, and the hub's ends were built upwards from their
+    // undersides.)
+    const auto mesh = mesh_of(from_occt(fuse(
+        occ_box(-5, -1, 0, 10, 2, 30),
+        BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-20, 0, 30), gp_Dir(1, 0, 0)), 8, 40).Shape())));
+    mas::AxisParams p;
+    p.step_mm = 1.5;
+    const auto a = mas::centroidal_axis(mesh, p);
+    for (double sign : {1.0, -1.0}) {
+        SCOPED_TRACE(sign > 0 ? "+X" : "-X");
+        int end = -1;
+        for (int b : children(a, 0))
+            if (a.branches[std::size_t(b)].direction.isApprox(sign * Vector3d::UnitX())) end = b;
+        ASSERT_GE(end, 0);
+        const auto& nodes = a.branches[std::size_t(end)].nodes;
+        // From the neck's side (x = 5, at most a step on) to the hub's end, on the hub's axis
+        // up to the deflection once past the first plane (which may still cut the neck).
+        EXPECT_LE(sign * a.nodes[std::size_t(nodes.front())].position.x(), 5.0 + p.step_mm);
+        EXPECT_GE(sign * a.nodes[std::size_t(nodes.back())].position.x(), 20.0 - p.step_mm);
+        for (std::size_t i = 1; i < nodes.size(); ++i) {
+            const auto& node = a.nodes[std::size_t(nodes[i])];
+            EXPECT_NEAR(node.position.y(), 0.0, kDeflection);
+        }
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, InwardLipOfATubeStaysWithItsMarch) {
     // A tube (radius 30, bore 25) standing on its rim, its top 10 mm a lip reaching in to a bore
     // of 10. Over the tube's ring the lip's sections stick out inwards: an annulus whose centre

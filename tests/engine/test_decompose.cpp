@@ -413,9 +413,9 @@ TEST(Decompose, ASliverCutOffTheFathersTopStaysInTheFather) {
     const auto part = lying_rotor();
     const double step = 1.45;
     const auto d = mas::decompose(part, axis_of(part, step));
-    // The root, the two sideways blades (built +-Y) and the two upper ones (+Z); the lower two
-    // hang into the pedestal's reach and stay with the root.
-    ASSERT_EQ(d.components.size(), 5u);
+    // The root, the hub's two ends (built +-X), the two sideways blades (+-Y) and the two upper
+    // ones (+Z); the lower two hang into the pedestal's reach and stay with the root.
+    ASSERT_EQ(d.components.size(), 7u);
     ASSERT_EQ(d.notes.size(), 1u);
     EXPECT_NE(d.notes[0].find("reaches only 0.3 mm"), std::string::npos) << d.notes[0];
     EXPECT_NE(d.notes[0].find("too thin to build on its own"), std::string::npos) << d.notes[0];

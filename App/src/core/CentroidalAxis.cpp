@@ -893,17 +893,20 @@ private:
         // part however near its centre stays (the underside of a blade leaving a hub at a small
         // angle adds a long strip beside the last one at every plane).
         const double bump = std::sqrt(area(lower)) / 8.0;
-        const auto is_far = [&](const Regions2& piece, double centre_distance) {
-            if (centre_distance <= p_.distance_threshold_mm) return false;
-            if (centre_distance > bump) return true;
+        // Whether any point of `piece` lies farther than `limit` outside every lower region.
+        const auto reaches = [&](const Regions2& piece, double limit) {
             for (const auto& r : piece)
                 for (const auto& q : r.outer.points) {
                     double to_lower = std::numeric_limits<double>::infinity();
                     for (const auto& l : lower)
                         to_lower = std::min(to_lower, distance_to_region(l, q));
-                    if (to_lower > bump) return true;
+                    if (to_lower > limit) return true;
                 }
             return false;
+        };
+        const auto is_far = [&](const Regions2& piece, double centre_distance) {
+            if (centre_distance <= p_.distance_threshold_mm) return false;
+            return centre_distance > bump || reaches(piece, bump);
         };
         Regions2 far;
         for (const auto& da : stick_out) {
@@ -918,23 +921,33 @@ private:
                     exit = nearest_boundary_point(l, g);
                 }
             }
-            if (!is_far({da}, dist)) continue;
+            bool turn = is_far({da}, dist);
             // Material spanning between two lower regions (over a hole, where tracks merge) is
             // a bridge that joins them, not a part turning away.
-            if (lower.size() > 1) {
+            if (turn && lower.size() > 1) {
                 const Regions2 grown = mas::offset({da}, p_.step_mm / 100.0, JoinType::Miter);
                 int touched = 0;
                 for (const auto& l : lower)
                     if (area(intersection(grown, {l})) > p_.min_region_area_mm2) ++touched;
-                if (touched > 1) continue;
+                if (touched > 1) turn = false;
             }
-            // The turn follows the way the stick-out leaves the lower section: from the nearest
-            // point of its boundary to G. (The paper's G - C sends a lug near the end of a long
-            // wall along the wall, past the part, and its material is never searched.)
-            const Vector3d dir =
-                closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane) +
-                             n * (upper_offset - lower_offset));
-            if (std::abs(dir.dot(n)) > 0.5) continue;  // still along the march: no turn
+            Vector3d dir = n;
+            if (turn) {
+                // The turn follows the way the stick-out leaves the lower section: from the
+                // nearest point of its boundary to G. (The paper's G - C sends a lug near the
+                // end of a long wall along the wall, past the part, and its material is never
+                // searched.)
+                dir = closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane) +
+                                   n * (upper_offset - lower_offset));
+                if (std::abs(dir.dot(n)) > 0.5) continue;  // still along the march: no turn
+            } else if (!reaches({da}, std::max(p_.distance_threshold_mm, bump))) {
+                continue;  // near, or a bridge, and no overhang
+            }
+            // Otherwise (not a turn, yet reaching far outside every lower region) the stick-out
+            // wraps round the lower section or spans past the regions it joins: a hub lying
+            // across the neck it stands on, whose two ends make one stick-out centred on the
+            // neck. Its shares beyond the lower section's sides may each turn.
+            const bool around = !turn;
             // A march in a new direction starts at Eq. 4's T, the lower boundary's extent along
             // it, and reaches only what lies beyond. The stick-out is shared out among the four
             // sides of the lower section, the turn's own first: each side's share beyond its T
@@ -943,9 +956,15 @@ private:
             // one march lost the rest: an inward lip, centred in the bore it narrows, went to a
             // march starting outside the part; CGAL's turbine.off lost 8 % of its volume so.)
             Regions2 rest{da};
-            for (const Vector3d& side : sides_from(dir, n)) {
+            std::vector<Vector3d> sides =
+                sides_from(around ? axis_vector((axis_index(n) + 1) % 3, 1.0) : dir, n);
+            for (const Vector3d& side : sides) {
                 if (rest.empty()) break;
-                const double t_max = extent(track.region.front(), side, n, lower_offset);
+                // Around the lower section: beyond every lower region's extent.
+                double t_max = extent(track.region.front(), side, n, lower_offset);
+                if (around)
+                    for (const auto& l : lower)
+                        t_max = std::max(t_max, extent(l, side, n, lower_offset));
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
                 rest = std::move(behind);
                 if (share.empty()) continue;

@@ -25,10 +25,11 @@
 //   wall, past the part, so its material is never searched); the first plane of the new branch
 //   is at Eq. 4's location: the lower boundary's extent T along the new direction, plus eps.
 // - A stick-out that is no turn by its centre (centred near L, or a bridge between lower
-//   regions) yet reaches farther than both thresholds outside L wraps round L or spans past the
-//   regions it joins: a hub lying across the neck it stands on makes one stick-out centred on the
-//   neck. It is shared out among the four sides as below, each side's T taken over every lower
-//   region, and each share is judged as a stick-out of its own.
+//   regions) yet reaches out past L by more than `distance_threshold` and half L's size wraps
+//   round L or spans past the regions it joins: a hub lying across the neck it stands on makes
+//   one stick-out centred on the neck. It is shared out among the four sides as below, each
+//   side's T taken over every lower region, and each share is judged as a stick-out of its own.
+//   Reaching out less, it is the part widening (an organic body at its shoulders).
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a

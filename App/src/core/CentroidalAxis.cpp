@@ -893,15 +893,34 @@ private:
         // part however near its centre stays (the underside of a blade leaving a hub at a small
         // angle adds a long strip beside the last one at every plane).
         const double bump = std::sqrt(area(lower)) / 8.0;
-        // Whether any point of `piece` lies farther than `limit` outside every lower region.
+        // Whether any point of `piece`'s outline lies farther than `limit` outside every lower
+        // region. A point within `limit` of the last point of L found nearest to an earlier one
+        // is within `limit` of L: along a stick-out hugging L only every few points need the
+        // search through L's edges.
         const auto reaches = [&](const Regions2& piece, double limit) {
-            for (const auto& r : piece)
+            for (const auto& r : piece) {
+                bool witness_known = false;
+                Vector2d witness = Vector2d::Zero();  // a point of L (boundary or inside)
                 for (const auto& q : r.outer.points) {
+                    if (witness_known && (q - witness).norm() <= limit) continue;
                     double to_lower = std::numeric_limits<double>::infinity();
-                    for (const auto& l : lower)
-                        to_lower = std::min(to_lower, distance_to_region(l, q));
+                    for (const auto& l : lower) {
+                        if (contains(l, q)) {
+                            to_lower = 0.0;
+                            witness = q;
+                            break;
+                        }
+                        const Vector2d b = nearest_boundary_point(l, q);
+                        const double d = (b - q).norm();
+                        if (d < to_lower) {
+                            to_lower = d;
+                            witness = b;
+                        }
+                    }
                     if (to_lower > limit) return true;
+                    witness_known = true;
                 }
+            }
             return false;
         };
         const auto is_far = [&](const Regions2& piece, double centre_distance) {
@@ -940,13 +959,15 @@ private:
                 dir = closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane) +
                                    n * (upper_offset - lower_offset));
                 if (std::abs(dir.dot(n)) > 0.5) continue;  // still along the march: no turn
-            } else if (!reaches({da}, std::max(p_.distance_threshold_mm, bump))) {
-                continue;  // near, or a bridge, and no overhang
+            } else if (!reaches({da}, std::max(p_.distance_threshold_mm, 4.0 * bump))) {
+                continue;  // near, or a bridge, and reaching out less than half L's size
             }
-            // Otherwise (not a turn, yet reaching far outside every lower region) the stick-out
-            // wraps round the lower section or spans past the regions it joins: a hub lying
-            // across the neck it stands on, whose two ends make one stick-out centred on the
-            // neck. Its shares beyond the lower section's sides may each turn.
+            // Otherwise (not a turn, yet reaching out past every lower region by more than half
+            // their size) the stick-out wraps round the lower section or spans past the regions
+            // it joins: a hub lying across the neck it stands on, whose two ends make one
+            // stick-out centred on the neck. Its shares beyond the lower section's sides may each
+            // turn. (Reaching out less, it is the part widening, as an organic body does at its
+            // shoulders: turned, CGAL's armadillo grew 35 branches and took twice as long.)
             const bool around = !turn;
             // A march in a new direction starts at Eq. 4's T, the lower boundary's extent along
             // it, and reaches only what lies beyond. The stick-out is shared out among the four

@@ -288,13 +288,14 @@ Regions2 slab_cut(const Slab& s, const Vector3d& n, double c, const PlaneFrame& 
     return {oriented(std::move(r))};
 }
 
-// The regions larger than min_area, largest first (ties in their given order).
+// A region's perimeter, holes included, mm.
 double outline_of(const Region2& r) {
     double length = perimeter(r.outer);
     for (const auto& h : r.holes) length += perimeter(h);
     return length;
 }
 
+// The regions larger than min_area, largest first (ties in their given order).
 Regions2 keep_larger(Regions2 regions, double min_area) {
     std::vector<std::pair<double, std::size_t>> order;  // (area, index): each area computed once
     for (std::size_t i = 0; i < regions.size(); ++i) {
@@ -977,7 +978,7 @@ private:
             // one march lost the rest: an inward lip, centred in the bore it narrows, went to a
             // march starting outside the part; CGAL's turbine.off lost 8 % of its volume so.)
             Regions2 rest{da};
-            std::vector<Vector3d> sides =
+            const std::vector<Vector3d> sides =
                 sides_from(around ? axis_vector((axis_index(n) + 1) % 3, 1.0) : dir, n);
             for (const Vector3d& side : sides) {
                 if (rest.empty()) break;

@@ -62,11 +62,14 @@ class AxisNode:
     ``CentroidalAxis.links`` of the link ending here, -1 for a root's first node).
     """
 
-    __slots__ = ("area", "offset", "thickness", "branch", "incoming_link", "_position", "_normal")
+    __slots__ = ("area", "offset", "thickness", "branch", "incoming_link", "_position", "_normal",
+                 "_interior")
 
     def __init__(self, data):
         self._position = data["position"]
         self._normal = data["normal"]
+        # A point in the region's material (the engine's; the decomposition finds pipes by it).
+        self._interior = data.get("interior", data["position"])
         self.area = data["area"]
         self.offset = data["offset"]
         self.thickness = data["thickness"]
@@ -237,7 +240,8 @@ class CentroidalAxis:
         return {
             "nodes": [{"position": tuple(n._position), "normal": tuple(n._normal),
                        "area": n.area, "offset": n.offset, "thickness": n.thickness,
-                       "branch": n.branch, "incoming_link": n.incoming_link}
+                       "branch": n.branch, "incoming_link": n.incoming_link,
+                       "interior": tuple(n._interior)}
                       for n in self.nodes],
             "links": [{"start": link.start, "end": link.end, "kind": link.kind,
                        "is_break": link.is_break, "turn_deg": link.turn} for link in self.links],

@@ -538,7 +538,8 @@ const char* link_kind(mas::AxisLink::Kind kind) {
     return kind == mas::AxisLink::Kind::Connecting ? "connecting" : "step";
 }
 
-// The axis as plain data; node regions stay in the engine (the Python side has no use for them).
+// The axis as plain data; node regions stay in the engine (the Python side has no use for them):
+// each node's interior point stands for its region where the decomposition needs one.
 bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
     bp::list nodes;
     for (const auto& n : axis.nodes) {
@@ -550,6 +551,7 @@ bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
         d["thickness"] = n.thickness;
         d["branch"] = n.branch;
         d["incoming_link"] = n.incoming_link;
+        d["interior"] = to_py(n.interior);
         nodes.append(d);
     }
     bp::list links;
@@ -706,6 +708,11 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
         if (!n.position.allFinite() || !n.normal.allFinite() || !std::isfinite(n.area) ||
             !std::isfinite(n.offset) || !std::isfinite(n.thickness))
             invalid_argument(what + " has a NaN or infinite value");
+        // Optional: a point in the node's material (the decomposition finds pipes by it).
+        if (PyDict_GetItemString(nodes[i].ptr(), "interior")) {
+            n.interior = vector3(required(nodes[i], "interior", what), what + "['interior']");
+            if (!n.interior.allFinite()) invalid_argument(what + "['interior'] is not finite");
+        }
         axis.nodes.push_back(n);
     }
     const std::vector<bp::object> links = items_of(value, "links", "axis");

@@ -107,6 +107,24 @@ class TestDecomposeApi(DecomposeTest):
             for j in range(i):
                 self.assertAlmostEqual(d[i].shape.common(d[j].shape).Volume, 0.0, delta=1e-6)
 
+    def test_a_pipe_tees_branch_is_built_along_itself(self):
+        # The engine's test part (test_decompose.cpp): the branch's first section is a ring whose
+        # centroid lies in the bore. The axis carries a point in each node's material across to
+        # the decomposition, which finds the branch's father and piece by it.
+        outer = Part.makeCylinder(10, 60).fuse(Part.makeCylinder(10, 35, V(0, 0, 35), V(0, 1, 0)))
+        bore = Part.makeCylinder(8, 62, V(0, 0, -1)).fuse(
+            Part.makeCylinder(8, 36, V(0, 0, 35), V(0, 1, 0)))
+        tee = outer.cut(bore)
+        axis = mas.centroidal_axis(tee, step=1.0, deflection=0.02)
+        d = mas.decompose(tee, axis=axis)
+        branch = [c for c in d if c.build_direction.y > 0.999]
+        self.assertEqual(len(branch), 1, [c.build_direction for c in d])
+        self.assertEqual(branch[0].parent, 0)
+        bb = branch[0].shape.BoundBox
+        self.assertLess(bb.YMin, 15.0)
+        assert_box(self, branch[0].shape, (-10, bb.YMin, 25), (10, 35, 45))
+        self.check_volumes_add_up(d, tee.Volume)
+
     def test_a_precomputed_axis_gives_the_same_components(self):
         axis = mas.centroidal_axis(l_block(), step=2.5)
         d = mas.decompose(l_block(), axis=axis)

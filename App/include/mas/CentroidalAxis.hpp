@@ -94,6 +94,9 @@ struct AxisNode {
     int branch = -1;
     int incoming_link = -1;  // the link ending at this node, -1 for a root node
     Region2 region;          // the region in PlaneFrame(normal) coordinates
+    // A point in the region's material, on its plane (interior_point()): unlike the centroid it
+    // never lies in a hole (a pipe's bore) or outside a C's mouth. NaN when not known.
+    Eigen::Vector3d interior = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 struct AxisLink {

@@ -519,6 +519,7 @@ private:
         const Plane plane{n * offset, n};
         AxisNode node;
         node.position = frame.to_3d(centroid(region), plane);
+        node.interior = frame.to_3d(interior_point(region), plane);
         node.normal = n;
         node.area = area(region);
         node.offset = offset;

@@ -493,12 +493,11 @@ struct Plan {
     Vector3d inner;          // a point in the material of its first section
 };
 
-// A point in the material of a node's section: its centroid lies in the bore of a pipe's ring
-// and outside a C's mouth, in no solid; an axis handed over without regions gives the centroid.
+// A point in the material of a node's section (AxisNode::interior): its centroid lies in the
+// bore of a pipe's ring and outside a C's mouth, in no solid. The centroid for an axis that does
+// not carry it.
 Vector3d material_point(const AxisNode& node) {
-    if (node.region.outer.points.size() < 3) return node.position;
-    const PlaneFrame frame(node.normal);
-    return frame.to_3d(interior_point(node.region), Plane{node.normal * node.offset, node.normal});
+    return node.interior.allFinite() ? node.interior : node.position;
 }
 
 class Decomposer {

@@ -167,13 +167,15 @@ TopoDS_Shape unify(const TopoDS_Shape& s) {
 }
 
 // One solid of `piece` that OCCT's shape check accepts, for a component: the piece with the seams
-// between coplanar or co-cylindrical faces removed, else the piece as the split left it, else
-// what ShapeFix makes of it; false when none is one valid solid. (The splitter and the seam
-// removal can leave a face whose wires the check rejects: a tee's pipe cut across its branch.)
-bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out) {
+// between coplanar or co-cylindrical faces removed (`unified`, when already done), else the piece
+// as the split left it, else what ShapeFix makes of it; false when none is one valid solid. (The
+// splitter and the seam removal can leave a face whose wires the check rejects: a tee's pipe cut
+// across its branch.)
+bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out,
+                 const TopoDS_Shape& unified = TopoDS_Shape()) {
     for (int attempt = 0; attempt < 3; ++attempt) {
         TopoDS_Shape s = piece;
-        if (attempt == 0) s = unify(piece);
+        if (attempt == 0) s = unified.IsNull() ? unify(piece) : unified;
         if (attempt == 2) {
             ShapeFix_Shape fix(piece);
             fix.Perform();
@@ -409,8 +411,9 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             if (!fuse.IsDone() || fuse.HasErrors()) return SplitOutcome::Failed;
             father_new = fuse.Shape();
         }
-        if (solids_of(unify(father_new)).size() != 1) return SplitOutcome::Apart;
-        if (!valid_solid(father_new, father_out)) return SplitOutcome::Invalid;
+        const TopoDS_Shape unified = unify(father_new);
+        if (solids_of(unified).size() != 1) return SplitOutcome::Apart;
+        if (!valid_solid(father_new, father_out, unified)) return SplitOutcome::Invalid;
         return SplitOutcome::Split;
     } catch (const Standard_Failure&) {
         return SplitOutcome::Failed;  // a split OCCT cannot perform: the branches stay put

@@ -150,7 +150,8 @@ class Decomposition:
     A sequence: ``len(d)``, ``d[i]``, ``for c in d``. Attributes: ``components`` (the list of
     ``Component``), ``axis`` (the ``CentroidalAxis`` it followed), ``part_volume`` (mm³, the
     part's; the components' volumes add up to it), ``params`` (the decomposition's parameters:
-    face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback),
+    face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback,
+    min_component_height_mm),
     ``notes`` (one line per axis branch that asked for a cut and got none: why, and which
     component kept its material).
     """
@@ -196,7 +197,7 @@ class Decomposition:
 
 def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
               deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
-              eps=0.001, base_z=None, projection_tolerance=0.01):
+              eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
@@ -216,6 +217,9 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
       * ``section_plane_fallback``: with no face meeting the criteria, cut at the plane where the
         branch's march started (default True); False leaves that material in the father.
       * ``projection_tolerance``: slack on Eq. 5's interval (criterion 3; default 0.01 mm).
+      * ``min_component_height``: a child must reach at least this far past its splitting plane,
+        and at least one axis step; a thinner piece stays in its father (default 0 mm: the step).
+        ``slice()`` passes its ``min_layer``, so that every component fits a layer.
 
     Returns a ``Decomposition``. Raises TypeError for a mesh, None or another type; ValueError for
     a parameter out of range; EngineError (with ``code``) not_a_solid (a face, a shell),
@@ -228,6 +232,10 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     if not (0.0 <= tolerance_mm < float("inf")):
         raise ValueError("projection_tolerance must be a finite, non-negative number of "
                          "millimetres, got {}".format(tolerance_mm))
+    min_height_mm = _number(min_component_height, "min_component_height", "millimetres")
+    if not (0.0 <= min_height_mm < float("inf")):
+        raise ValueError("min_component_height must be a finite, non-negative number of "
+                         "millimetres, got {}".format(min_height_mm))
     if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
         raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
             section_plane_fallback))
@@ -251,8 +259,10 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
         axis = centroidal_axis(solid, **axis_params)
     params = {"face_angle_deg": face_angle_deg, "concave_angle_deg": concave_angle_deg,
               "projection_tolerance_mm": tolerance_mm,
-              "section_plane_fallback": bool(section_plane_fallback)}
+              "section_plane_fallback": bool(section_plane_fallback),
+              "min_component_height_mm": min_height_mm}
     data = eng.decompose(solid, axis._engine_dict(), face_angle=face_angle_deg,
                          concave_angle=concave_angle_deg, projection_tolerance=tolerance_mm,
-                         section_plane_fallback=bool(section_plane_fallback))
+                         section_plane_fallback=bool(section_plane_fallback),
+                         min_component_height=min_height_mm)
     return Decomposition(data, axis, params)

@@ -334,6 +334,9 @@ class DecompositionFeature(_EngineFeature):
                       "than this", 1.0)
         _add_property(obj, "App::PropertyBool", "SectionPlaneFallback", group,
                       "Without a splitting face, cut where the branch's march started", True)
+        _add_property(obj, "App::PropertyLength", "MinComponentHeight", group,
+                      "A sub-component reaches at least this far past its cut, and one axis step "
+                      "(0 = the step); the Slice command sets MinLayer here", 0.0)
         result = "Result"
         _add_property(obj, "App::PropertyInteger", "ComponentCount", result,
                       "Number of sub-components", 0, _OUTPUT)
@@ -398,7 +401,8 @@ def decomposition_inputs(obj):
     else:
         params = dict(step=obj.Step.Value or None, deflection=obj.Deflection.Value or None)
     params.update(face_angle=obj.FaceAngle.Value, concave_angle=obj.ConcaveAngle.Value,
-                  section_plane_fallback=bool(obj.SectionPlaneFallback))
+                  section_plane_fallback=bool(obj.SectionPlaneFallback),
+                  min_component_height=obj.MinComponentHeight.Value)
     return source, params
 
 
@@ -526,13 +530,14 @@ def sync_components(decomposition):
 
 
 def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
-                       deflection=0.0, name="Decomposition", doc=None):
+                       deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0):
     """Adds a ``Decomposition`` object splitting ``source`` to ``doc`` (default: the source's,
     else the axis object's document), computes it and adds its Component objects; returns the
     Decomposition object. ``axis``: an optional ``CentroidalAxis`` object whose parameters (and
     Source, when ``source`` is None) are used. ``face_angle`` in degrees, ``deflection`` in mm (0 =
-    automatic; used without ``axis``). A failing computation leaves the object marked invalid with
-    the message, without components. The source is not changed.
+    automatic; used without ``axis``), ``min_component_height`` in mm (the least a sub-component
+    reaches past its cut, besides one axis step). A failing computation leaves the object marked
+    invalid with the message, without components. The source is not changed.
 
     In the GUI the objects get their view providers (one distinct colour per component)."""
     if axis is not None and not is_centroidal_axis(axis):
@@ -545,6 +550,8 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
         raise ValueError("no document to add the Decomposition object to")
     face_angle = _angle(face_angle, "face_angle", 90.0)
     deflection = mas._length(deflection, "deflection", allow_zero=True)
+    min_component_height = mas._length(min_component_height, "min_component_height",
+                                       allow_zero=True)
     obj = doc.addObject("Part::FeaturePython", name)
     DecompositionFeature(obj)
     obj.Source = source
@@ -552,6 +559,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     obj.FaceAngle = face_angle
     obj.SectionPlaneFallback = bool(section_plane_fallback)
     obj.Deflection = deflection
+    obj.MinComponentHeight = min_component_height
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, DecompositionFeature.VIEW_PROVIDER)
     obj.recompute(True)  # with what it depends on: the count decides the Component objects

@@ -344,7 +344,8 @@ def slice(shape, axis=None, components=None, deflection=None, **params):  # noqa
     elif axis is None:
         axis = centroidal_axis(solid, **axis_params)
     if components is None:
-        components = decompose(solid, axis=axis)
+        # No component thinner than a layer: the slicer could not lay one on it.
+        components = decompose(solid, axis=axis, min_component_height=p["min_layer"])
     engine_components = [{"solid": c._solid, "parent": c.parent,
                           "build_direction": tuple(c._build_direction),
                           "base_origin": tuple(c._base_origin), "branch": c.branch}

@@ -31,7 +31,8 @@ const char* kUsage =
     "                                  [--break-angle DEG] [--base-z MM] [--deflection MM]\n"
     "                                  [--json [OUT.json]]\n"
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG] [--no-fallback]\n"
-    "                                       [--step-dir DIR] [--json [OUT.json]]\n"
+    "                                       [--min-height MM] [--step-dir DIR] [--json "
+    "[OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
     "                                   [--max-volume-difference F] [--eps-angle DEG]\n"
     "                                   [--overhang-angle DEG] [--volume-samples N] [--strict]\n"
@@ -49,12 +50,14 @@ const char* kUsage =
     "           --eps to 0.001 mm, --break-angle to 30 degrees, --base-z to the part's lowest z.\n"
     "decompose  split the part into sub-components at its axis' turns and branches (Sec. 4.1):\n"
     "           the tree, each component's build direction, base face and volume; --step-dir\n"
-    "           writes every component as DIR/component_NNN.step. Needs a BREP solid.\n"
+    "           writes every component as DIR/component_NNN.step. Needs a BREP solid. A child\n"
+    "           reaches at least --min-height (default 0) and one axis step past its cut.\n"
     "slice      adaptive multi-axis layers of every sub-component (Sec. 4.2) and the bead paths\n"
     "           in every layer: per layer its plane, thickness range, volumetric difference and\n"
     "           unsupported area; --json adds regions and paths (points, tool axis, thickness).\n"
     "           Defaults: layers 0.5 to 2 mm, volume difference 0.1, bead 1 mm, overlap 0.15,\n"
-    "           2 contours, raster infill. A mesh is sliced as one component.\n"
+    "           2 contours, raster infill. A mesh is sliced as one component; a solid is\n"
+    "           decomposed with --min-height at --min-layer.\n"
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
     "--json     write JSON instead of text, to OUT.json or standard output\n"
@@ -330,7 +333,7 @@ int run_axis(const std::vector<std::string>& args) {
 
 int run_decompose(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
-    allowed.insert({"--face-angle", "--concave-angle", "--step-dir"});
+    allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--step-dir"});
     // --no-fallback takes no value: take it out before the common parser sees it.
     std::vector<std::string> rest;
     bool fallback = true;
@@ -345,6 +348,7 @@ int run_decompose(const std::vector<std::string>& args) {
     mas::DecomposeParams dp;
     dp.face_angle_deg = a.number("--face-angle", dp.face_angle_deg);
     dp.concave_angle_deg = a.number("--concave-angle", dp.concave_angle_deg);
+    dp.min_component_height_mm = a.number("--min-height", dp.min_component_height_mm);
     dp.section_plane_fallback = fallback;
     const Part part = load_part(a);
     if (part.model.kind != mas::Model::Kind::Solid)
@@ -470,7 +474,9 @@ int run_slice(const std::vector<std::string>& args) {
     mas::SlicedPart r;
     if (part.model.kind == mas::Model::Kind::Solid) {
         const mas::Shape solid = part.model.shape.single_solid(a.file);
-        const mas::Decomposition d = mas::decompose(solid, axis);
+        mas::DecomposeParams dp;  // no component thinner than a layer
+        dp.min_component_height_mm = sp.layers.min_layer_mm;
+        const mas::Decomposition d = mas::decompose(solid, axis, dp);
         r = mas::slice_part(solid, axis, d, sp);
     } else {
         r = mas::slice_mesh_part(part.mesh, axis, sp);  // a mesh cannot be split

@@ -114,14 +114,16 @@ class DecomposeCommand(_PartCommand):
                "Decomposition object with Component001, ...; select a CentroidalAxis object to "
                "use its parameters)")
 
-    def make(self, source, doc):
+    def make(self, source, doc, min_component_height=0.0):
         import MultiAxisSlicer.features as features
 
         if features.is_centroidal_axis(source):
-            obj = features.make_decomposition(None, axis=source, doc=doc)
+            obj = features.make_decomposition(None, axis=source, doc=doc,
+                                              min_component_height=min_component_height)
             part = source.Source
         else:
-            obj = features.make_decomposition(source, doc=doc)
+            obj = features.make_decomposition(source, doc=doc,
+                                              min_component_height=min_component_height)
             part = source
         if obj.isValid() and part is not None and part.ViewObject is not None:
             part.ViewObject.Visibility = False  # the components take its place in the view
@@ -213,7 +215,9 @@ class SliceCommand(_PartCommand):
                     busy.stage("Using the decomposition '{}'".format(source.Label))
                 else:
                     busy.stage("Decomposing '{}'...".format(source.Label))
-                    decomposition = DecomposeCommand().make(source, doc)
+                    # No sub-component thinner than the layers (the default MinLayer).
+                    decomposition = DecomposeCommand().make(
+                        source, doc, mas.SLICE_DEFAULTS["min_layer"])
                 if decomposition.isValid():
                     layers, toolpath = features.make_slice(decomposition, doc=doc)
                     busy.stage("Slicing '{}' into layers...".format(source.Label))

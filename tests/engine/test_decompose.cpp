@@ -518,6 +518,23 @@ TEST(Decompose, ARingStandingOnItsRimKeepsItsRootOnThePlate) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, AChildReachesTheLeastComponentHeight) {
+    // The L-block's arm reaches 50 mm past its cut at x = 20: a component with a least height of
+    // 50, none with 50.001 (it stays in the column, noted).
+    const auto part = mas::test::l_block();
+    const auto axis = axis_of(part, 2.5);
+    mas::DecomposeParams p;
+    p.min_component_height_mm = 50.0 - 1e-6;
+    EXPECT_EQ(mas::decompose(part, axis, p).components.size(), 2u);
+    p.min_component_height_mm = 50.001;
+    const auto d = mas::decompose(part, axis, p);
+    ASSERT_EQ(d.components.size(), 1u);
+    EXPECT_NEAR(d.components[0].volume_mm3, 44000.0, 44000.0 * 1e-6);
+    ASSERT_EQ(d.notes.size(), 1u);
+    EXPECT_NE(d.notes[0].find("reaches only 50 mm"), std::string::npos) << d.notes[0];
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, SourceShapeIsUnchanged) {
     const auto part = t_block();
     const std::string before = part.to_brep_string();
@@ -579,6 +596,17 @@ TEST(DecomposeErrors, BadParametersAndCancellationAreReported) {
     p = {};
     p.projection_tolerance_mm = std::nan("");
     EXPECT_THROW(mas::decompose(part, axis, p), mas::Error);
+    for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
+        p = {};
+        p.min_component_height_mm = bad;
+        try {
+            mas::decompose(part, axis, p);
+            ADD_FAILURE() << "no error for min_component_height " << bad;
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find("minimum component height"), std::string::npos);
+        }
+    }
     try {
         mas::decompose(part, axis, {},
                        [] { throw mas::Error(mas::ErrorCode::Cancelled, "cancelled"); });

@@ -175,6 +175,8 @@ class TestDecomposeApi(DecomposeTest):
                              ("face_angle", dict(face_angle=float("nan"))),
                              ("concave_angle", dict(concave_angle=-1.0)),
                              ("projection_tolerance", dict(projection_tolerance=-0.1)),
+                             ("min_component_height", dict(min_component_height=-1.0)),
+                             ("min_component_height", dict(min_component_height=float("inf"))),
                              ("step", dict(step=0.0))):
             with self.assertRaisesRegex(ValueError, name, msg=str(kwargs)):
                 mas.decompose(l_block(), **kwargs)
@@ -182,6 +184,10 @@ class TestDecomposeApi(DecomposeTest):
                           face_angle=FreeCAD.Units.Quantity("5 deg"))
         self.assertEqual(d.params["face_angle_deg"], 5.0)
         self.assertEqual(len(d), 2)
+        # The arm reaches 50 mm past its cut: not a component when 60 are needed.
+        d = mas.decompose(l_block(), step=2.5, min_component_height=FreeCAD.Units.Quantity("6 cm"))
+        self.assertEqual(len(d), 1)
+        self.assertIn("reaches only 50 mm", d.notes[0])
 
     def test_document_object_and_file_inputs(self):
         folder = tempfile.mkdtemp(prefix="mas_dec_")
@@ -383,8 +389,25 @@ class TestDecompositionObject(DecomposeTest):
         self.assertEqual([c.Label for c in features.components_of(obj)], ["Component001"])
         self.assertTrue(all(o.isValid() for o in self.doc.Objects))
 
+    def test_min_component_height_keeps_a_short_child_in_its_father(self):
+        obj = mas.make_decomposition(self.part)
+        self.assertEqual(obj.MinComponentHeight.Value, 0.0)  # one axis step
+        self.doc.recompute()
+        self.assertEqual(obj.ComponentCount, 2)
+        obj.MinComponentHeight = 60.0  # the arm reaches 50 mm past its cut
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.ComponentCount, 1)
+        self.assertIn("reaches only 50 mm", obj.Notes[0])
+        self.assertEqual(len(features.sync_components(obj)), 1)
+        short = mas.make_decomposition(self.part,
+                                       min_component_height=FreeCAD.Units.Quantity("6 cm"))
+        self.assertEqual(short.MinComponentHeight.Value, 60.0)
+        self.assertEqual(short.ComponentCount, 1)
+
     def test_save_close_reopen_recompute(self):
-        obj = mas.make_decomposition(self.part, face_angle=5.0, deflection=0.02)
+        obj = mas.make_decomposition(self.part, face_angle=5.0, deflection=0.02,
+                                     min_component_height=1.5)
         self.doc.recompute()
         path = os.path.join(self.folder, "decomposition.FCStd")
         self.doc.saveAs(path)
@@ -396,6 +419,7 @@ class TestDecompositionObject(DecomposeTest):
         self.assertIs(obj.Source, doc.getObject("L"))
         self.assertEqual(obj.FaceAngle.Value, 5.0)
         self.assertEqual(obj.Deflection.Value, 0.02)
+        self.assertEqual(obj.MinComponentHeight.Value, 1.5)
         self.assertEqual(len(obj.Shape.Solids), 2)  # saved with the document
         for c in features.components_of(obj):
             self.assertIsInstance(c.Proxy, features.ComponentFeature)

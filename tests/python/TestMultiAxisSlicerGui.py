@@ -673,6 +673,8 @@ class TestSliceCommand(unittest.TestCase):
         decomposition = self.doc.getObject("Decomposition")
         self.assertIs(layers.Decomposition, decomposition)
         self.assertEqual(decomposition.ComponentCount, 2)
+        # No sub-component thinner than the layers.
+        self.assertEqual(decomposition.MinComponentHeight.Value, layers.MinLayer.Value)
         self.assertFalse(self.part.ViewObject.Visibility)  # hidden, not changed
         self.check_colours(layers, toolpath)
         toolpath.ViewObject.Visibility = False

@@ -119,6 +119,23 @@ class TestSliceApi(SliceTest):
         self.assertIs(given.axis, parts.axis)
         self.assertEqual(given.to_dict(), mas.slice(l_block()).to_dict())
 
+    def test_no_component_is_thinner_than_a_layer(self):
+        # A 4 x 4 column with a 1.8 mm stub on its side: with a 0.4 mm step the axis turns into
+        # the stub, and decompose() alone makes it a component 1.8 mm deep along +X. No layer of
+        # 2 mm or more fits that (the slicer stopped on it): slice() decomposes with
+        # min_component_height = min_layer, and the stub stays in the column.
+        part = Part.makeBox(4, 4, 30).fuse(Part.makeBox(1.8, 4, 4, V(4, 0, 20))).removeSplitter()
+        alone = mas.decompose(part, step=0.4)
+        self.assertEqual(len(alone), 2)
+        self.assertAlmostEqual(alone[1].shape.BoundBox.XLength, 1.8, delta=1e-6)
+        result = mas.slice(part, step=0.4, min_layer=2.0, max_layer=3.0)
+        self.assertEqual(len(result.components), 1)
+        self.assertEqual(result.decomposition.params["min_component_height_mm"], 2.0)
+        notes = result.decomposition.notes
+        self.assertEqual(len(notes), 1)
+        self.assertIn("reaches only 1.8 mm", notes[0])
+        self.assertAlmostEqual(result.stats["part_volume_mm3"], 480.0 + 28.8, delta=1e-6)
+
     def test_parameters_are_used(self):
         result = mas.slice(box_20_10_21(), max_layer=1.5, infill="none", contour_count=1,
                            bead_width=FreeCAD.Units.Quantity("1.2 mm"))

@@ -39,9 +39,10 @@
 //            +------------------> x
 //
 // - The piece stays in the father, with a note saying why, when it
-//   - reaches less than one axis step past the plane: a sliver cut off the father's end where its
-//     march found the split on its last plane (a hub's crown between two blades), thinner than
-//     the axis can resolve and than a layer; the father builds it on top;
+//   - reaches less than one axis step (or min_component_height) past the plane: a sliver cut off
+//     the father's end where its march found the split on its last plane (a hub's crown between
+//     two blades), thinner than the axis can resolve and than a layer; the father builds it on
+//     top;
 //   - rests on the build plate, when the father is the root: material on the plate is built up
 //     from it (a nozzle building it sideways would meet the plate), and the root must keep its
 //     footing (a ring standing on its rim, whose axis comes round back to the plate);
@@ -87,6 +88,10 @@ struct DecomposeParams {
     double projection_tolerance_mm = 0.01;
     // Cut at the plane where a branch's march started when no planar face qualifies.
     bool section_plane_fallback = true;
+    // A child must reach at least this far past its splitting plane, mm, and at least one axis
+    // step; a thinner piece stays in its father. Slicing sets its min_layer here, so that no
+    // component is too thin for a layer.
+    double min_component_height_mm = 0.0;
 };
 
 struct Component {

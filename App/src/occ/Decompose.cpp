@@ -326,9 +326,10 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             const double height = height_along(pieces[piece], point, n);
             if (height < min_height) {
                 std::ostringstream why;
-                why << "its piece reaches only " << height
-                    << " mm past the splitting plane, less than the axis step (" << min_height
-                    << " mm): too thin to build on its own";
+                why << "its piece reaches only " << height << " mm past the splitting plane, "
+                    << "less than " << min_height
+                    << " mm (the axis step or the least component height): too thin to build "
+                       "on its own";
                 children[k].kept_because = why.str();
                 continue;
             }
@@ -481,6 +482,9 @@ void check_params(const DecomposeParams& p) {
     if (!(p.projection_tolerance_mm >= 0.0 && std::isfinite(p.projection_tolerance_mm)))
         throw Error(ErrorCode::InvalidArgument,
                     "decompose: projection tolerance must be finite and not negative");
+    if (!(p.min_component_height_mm >= 0.0 && std::isfinite(p.min_component_height_mm)))
+        throw Error(ErrorCode::InvalidArgument,
+                    "decompose: minimum component height must be finite and not negative");
 }
 
 struct Work {
@@ -728,7 +732,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             std::vector<Child> children;
             TopoDS_Shape father_new;
             const SplitOutcome outcome =
-                split_by_plane(fs, footing, p.point, p.normal, inner, axis.params.step_mm, most,
+                split_by_plane(fs, footing, p.point, p.normal, inner,
+                               std::max(axis.params.step_mm, params.min_component_height_mm), most,
                                children, father_new);
             if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
                 // The siblings that would have shared the split try their own in turn (and

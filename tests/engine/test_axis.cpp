@@ -465,6 +465,7 @@ TEST(CentroidalAxis, HubLyingAcrossItsNeckTurnsBothWays) {
         for (std::size_t i = 1; i < nodes.size(); ++i) {
             const auto& node = a.nodes[std::size_t(nodes[i])];
             EXPECT_NEAR(node.position.y(), 0.0, kDeflection);
+            EXPECT_NEAR(node.position.z(), 30.0, kDeflection);
         }
     }
     expect_invariants(a, mesh);

@@ -1121,8 +1121,7 @@ double derive_axis_step(const TriangleMesh& mesh) {
     double compact = std::numeric_limits<double>::infinity();
     for (const auto& s : sections)
         for (const auto& r : s.regions) {
-            double per = perimeter(r.shape.outer);
-            for (const auto& h : r.shape.holes) per += perimeter(h);
+            const double per = outline_of(r.shape);
             if (!(per > 0.0 && r.area > 0.0)) continue;
             const double width = 2.0 * r.area / per;
             // P^2 / A is 4 pi for a disc, 16 for a square, 21.3 for a 3:1 rectangle.

@@ -137,21 +137,21 @@ bool has_concave_edge(const PlanarFace& f, const TopTools_IndexedDataMapOfShapeL
     return false;
 }
 
-// Eq. 5's Proj_min and Proj_max of the face's outer wire along D.
-void projection_range(const TopoDS_Face& face, const Vector3d& D, double& lo, double& hi) {
+// The range of a box along D: exact for an axis-aligned D (every march direction), bounds
+// otherwise (a box's corners bound any direction's range).
+void range_along(const Eigen::AlignedBox3d& box, const Vector3d& D, double& lo, double& hi) {
     lo = std::numeric_limits<double>::infinity();
     hi = -lo;
-    const TopoDS_Wire wire = BRepTools::OuterWire(face);
-    Bnd_Box box;
-    BRepBndLib::AddOptimal(wire, box, Standard_False, Standard_False);
-    // D is axis-aligned in practice, but a box's corners bound any direction's range.
-    double x0, y0, z0, x1, y1, z1;
-    box.Get(x0, y0, z0, x1, y1, z1);
     for (int i = 0; i < 8; ++i) {
-        const Vector3d c(i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
-        lo = std::min(lo, c.dot(D));
-        hi = std::max(hi, c.dot(D));
+        const double t = D.dot(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
     }
+}
+
+// Eq. 5's Proj_min and Proj_max of the face's outer wire along D.
+void projection_range(const TopoDS_Face& face, const Vector3d& D, double& lo, double& hi) {
+    range_along(bounds_of(BRepTools::OuterWire(face)), D, lo, hi);
 }
 
 std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& s) {
@@ -255,17 +255,12 @@ bool holds_footing(const TopoDS_Shape& piece, const Footing& f) {
     return false;
 }
 
-// How far `s` reaches along the unit `n` beyond `point`: exact for an axis-aligned n (every
-// march direction), an upper bound otherwise (a box's corners bound any direction's range).
+// How far `s` reaches along the unit `n` beyond `point` (range_along: exact for an axis-aligned
+// n, an upper bound otherwise).
 double height_along(const TopoDS_Shape& s, const Vector3d& point, const Vector3d& n) {
-    const Eigen::AlignedBox3d b = bounds_of(s);
-    double hi = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 8; ++i)
-        hi = std::max(
-            hi, n.dot(Vector3d(i & 1 ? b.max().x() : b.min().x(), i & 2 ? b.max().y() : b.min().y(),
-                               i & 4 ? b.max().z() : b.min().z()) -
-                      point));
-    return hi;
+    double lo, hi;
+    range_along(bounds_of(s), n, lo, hi);
+    return hi - n.dot(point);
 }
 
 enum class SplitOutcome {
@@ -307,9 +302,12 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
         if (pieces.size() < 2) return SplitOutcome::Failed;
 
         std::vector<bool> taken(pieces.size(), false);
-        std::vector<bool> footed(pieces.size());  // holds some of the father's footing
-        for (std::size_t i = 0; i < pieces.size(); ++i)
-            footed[i] = holds_footing(pieces[i], footing);
+        // Whether each piece holds some of the father's footing, worked out when first asked.
+        std::vector<int> footed(pieces.size(), -1);
+        const auto holds = [&](std::size_t i) {
+            if (footed[i] < 0) footed[i] = holds_footing(pieces[i], footing) ? 1 : 0;
+            return footed[i] == 1;
+        };
         children.assign(inner.size(), Child{});
         const double tol = 1e-6 * (1.0 + b.diagonal().norm());
         int found = 0;
@@ -349,10 +347,10 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             // plate). A child's father must keep some of its base face: a piece may take part of
             // it (the upper half of a bar built along X, cut off to be built up on the lower
             // half), not all, or the father would be left with nothing to be built from.
-            bool takes_footing = footed[piece];
+            bool takes_footing = holds(piece);
             if (takes_footing && !footing.root)
                 for (std::size_t i = 0; i < pieces.size() && takes_footing; ++i)
-                    if (i != piece && !taken[i] && footed[i]) takes_footing = false;
+                    if (i != piece && !taken[i] && holds(i)) takes_footing = false;
             if (takes_footing) {
                 children[k].kept_because = footing.root ? "its piece rests on the build plate"
                                                         : "its piece holds its father's base face";

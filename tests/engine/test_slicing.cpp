@@ -292,6 +292,42 @@ TEST(Slicing, FrustumMeetsTheVolumeBoundOnEveryLayer) {
     expect_invariants(s, params, "frustum");
 }
 
+// A wall a little past the overhang angle: a stem of radius 4 and 20 tall, then a cone widening to
+// radius 20 over 15 mm (46.8 degrees from Z, 45 allowed). Every layer overhangs the one below by
+// (16/15) t_below - t_self; no thickness removes that, thin layers keep it least. The fallback
+// (nothing fully supported) builds the cone in min_layer layers, as adaptive slicers thin their
+// layers on shallow walls; the thickest layers Eq. 9 allows would leave a 0.7 mm ledge under the
+// last one.
+TEST(Slicing, AWallJustPastTheOverhangAngleIsBuiltInThinLayers) {
+    const double k = 16.0 / 15.0;  // radius gained per mm of height in the cone
+    TopoDS_Shape cone =
+        BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 20), gp_Dir(0, 0, 1)), 4.0, 20.0, 15.0).Shape();
+    const auto params = default_params();
+    const auto s = slice(
+        from_occt(fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 4.0, 20.0), cone)), 2.0, params);
+    const auto& layers = s.result.layers;
+    ASSERT_EQ(s.result.components.size(), 1u);
+    const double t = params.layers.min_layer_mm;
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        const mas::Layer& l = layers[i];
+        EXPECT_TRUE(l.plane.normal.isApprox(Vector3d::UnitZ(), 1e-9));
+        // The last layer has nothing above it to leave unsupported: it is the thickest that fits.
+        if (l.lower.origin.z() > 20.0 - 1e-6 && i + 1 < layers.size()) {
+            EXPECT_NEAR(l.min_thickness_mm, t, 1e-9);
+        }
+        // The ring every layer must overhang, at the cone's widest, plus the two cuts' deflection.
+        const double top_radius = 4.0 + k * (std::min(l.plane.origin.z(), 35.0) - 20.0);
+        EXPECT_LE(l.unsupported_area_mm2, 2 * kPi * std::max(top_radius, 4.0) * (k - 1) * t +
+                                              perimeter(l.regions) * kDeflection)
+            << "unsupported " << l.unsupported_area_mm2 << " mm2 of " << l.area_mm2;
+    }
+    // The stem is built in max_layer layers up to the cone, the cone in min_layer ones up to
+    // within one max_layer of its top.
+    EXPECT_NEAR(layers.front().min_thickness_mm, params.layers.max_layer_mm, 1e-9);
+    EXPECT_GE(layers.back().lower.origin.z(), 35.0 - params.layers.max_layer_mm - 1e-9);
+}
+
 TEST(Slicing, LBlockArmIsSlicedAlongItsLengthAndTheColumnAlongZ) {
     const auto params = default_params();
     const auto s = slice(mas::test::l_block(), 2.5, params);

@@ -33,8 +33,11 @@
 //   what lets the layers follow a bend.
 // - Where no direction between D_upper and D_lower meets both at any delta (a tilt the thickness
 //   bounds forbid, an overhang of the part's own such as the ceiling of a horizontal hole), the
-//   layer keeps D_lower: the thickest parallel layer that meets both, else the thickest that
-//   meets Eq. 9 (planar adaptive slicing; its unsupported area is reported).
+//   layer keeps D_lower: the thickest parallel layer that meets both, else, of those that meet
+//   Eq. 9, the one leaving the next footprint least unsupported, the thickest among equals
+//   (planar adaptive slicing; its unsupported area is reported). A wall just past the overhang
+//   angle overhangs every layer by (its slope - 1) x the thickness below, so it gets thin
+//   layers, as adaptive slicers thin theirs on shallow walls, not thick ones that leave ledges.
 // - Where even min_layer along D_lower breaks the volumetric bound (the cap of a dome), the layer
 //   is kept at min_layer and flagged (meets_volume_difference = false); with `strict` that is an
 //   error instead. The thickness bounds are hard.

@@ -416,9 +416,10 @@ std::vector<Layer> ComponentSlicer::run() {
         auto meets_eq9 = [&](const Candidate& c) {
             return c.thickness_ok && c.difference <= params_.max_volume_difference;
         };
+        // Unsupported area below this counts as none: 1e-3 of the next footprint.
+        auto tolerance_of = [](const Candidate& c) { return 1e-3 * std::max(c.next.area, 1e-9); };
         auto supported = [&](const Candidate& c) {
-            return !params_.require_support ||
-                   c.unsupported_next <= 1e-3 * std::max(c.next.area, 1e-9);
+            return !params_.require_support || c.unsupported_next <= tolerance_of(c);
         };
         // Sec. 4.2.2: from delta = max_layer, the guide's direction at P_upper, averaged with
         // D_lower until Eq. 9 holds (and the next layer is supported) or the two are within
@@ -460,7 +461,12 @@ std::vector<Layer> ComponentSlicer::run() {
                     accepted = std::move(c);
                     break;
                 }
-                if (meets_eq9(c) && !eq9_only) eq9_only = c;
+                // Thick to thin: a thinner layer replaces a thicker one only when it leaves the
+                // next layer less unsupported (a wall slightly past the overhang angle is built
+                // in thin layers, as adaptive slicers do, rather than in thick ones that overhang).
+                if (meets_eq9(c) && (!eq9_only || c.unsupported_next <
+                                                      eq9_only->unsupported_next - tolerance_of(c)))
+                    eq9_only = c;
                 if (c.thickness_ok) fallback = std::move(c);
                 if (delta <= params_.min_layer_mm) break;
                 delta = std::max(params_.min_layer_mm, delta - delta / 4.0);

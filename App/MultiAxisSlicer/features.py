@@ -722,11 +722,11 @@ class LayersFeature(_EngineFeature):
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
     MeasureCoverage) and Deflection (mm chordal deflection for tessellating the components, 0 =
     automatic). Outputs: Shape (a compound of one sub-compound per layer, component by component
-    in tree order and bottom to top, each holding one closed wire per loop of its outline: the
+    in build order and bottom to top, each holding one closed wire per loop of its outline: the
     view provider colours them by component), LayerCount, MinThickness, MaxThickness,
     DepositedVolume, MaterialVolume, PartVolume, MaxVolumeDifferenceFound,
     LayersOverVolumeDifference, WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts
-    and, per layer, LayerComponents, LayerOrigins, LayerNormals (the tool axis),
+    (tree order), BuildOrder (the components in deposition order) and, per layer, LayerComponents, LayerOrigins, LayerNormals (the tool axis),
     LayerMinThicknesses, LayerMaxThicknesses, LayerVolumeDifferences.
 
     The paths are planned in the same computation; the ``Toolpath`` object linked to this one
@@ -768,6 +768,8 @@ class LayersFeature(_EngineFeature):
                  "Index of the layer with that area (-1: none)", -1),
                 ("App::PropertyIntegerList", "ComponentLayerCounts",
                  "Number of layers of each component (tree order)", None),
+                ("App::PropertyIntegerList", "BuildOrder",
+                 "The components in the order they are deposited (the layers' order)", None),
                 ("App::PropertyIntegerList", "LayerComponents",
                  "Component of each layer", None),
                 ("App::PropertyVectorList", "LayerOrigins",
@@ -794,6 +796,7 @@ class LayersFeature(_EngineFeature):
         obj.LayerMaxThicknesses = [layer.max_thickness for layer in layers]
         obj.LayerVolumeDifferences = [layer.volume_difference for layer in layers]
         obj.ComponentLayerCounts = [c["layer_count"] for c in result.components]
+        obj.BuildOrder = result.build_order
         obj.LayerCount = len(layers)
         obj.MinThickness = stats["min_thickness_mm"]
         obj.MaxThickness = stats["max_thickness_mm"]

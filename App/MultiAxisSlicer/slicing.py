@@ -169,8 +169,11 @@ class Layer:
 class SliceResult:
     """The layers of every sub-component and the paths in every layer.
 
-    Attributes: ``layers`` (list of ``Layer``: component by component in tree order, bottom to
-    top), ``components`` (per sub-component: first_layer, layer_count, guide_nodes, volume_mm3),
+    Attributes: ``layers`` (list of ``Layer``: component by component in build order, each bottom
+    to top), ``build_order`` (the component indices in the order they are deposited: the root,
+    then each time the component whose first layer what is built leaves least unsupported),
+    ``components`` (per sub-component, by index: first_layer, layer_count, guide_nodes,
+    volume_mm3),
     ``stats`` (dict: layer_count, min_thickness_mm, max_thickness_mm, part_volume_mm3,
     deposited_volume_mm3, material_volume_mm3, max_volume_difference,
     layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
@@ -183,6 +186,7 @@ class SliceResult:
         self._data = data
         self.layers = [Layer(d) for d in data["layers"]]
         self.components = [dict(c) for c in data["components"]]
+        self.build_order = list(data["build_order"])
         self.stats = dict(data["stats"])
         self.params = dict(params)
         self.axis = axis
@@ -212,7 +216,8 @@ class SliceResult:
 
     def to_dict(self):
         """JSON-ready plain data in the layout of ``multiaxis-slicer slice FILE --json`` (without
-        its "file"): kind, params, stats, components, layers (each with its paths and report)."""
+        its "file"): kind, params, stats, build_order, components, layers (each with its paths
+        and report)."""
         layers = []
         for i, layer in enumerate(self.layers):
             d = layer.to_dict()
@@ -221,6 +226,7 @@ class SliceResult:
             d.update(self.layer_report(i))
             layers.append(d)
         return {"kind": self.kind, "params": dict(self.params), "stats": dict(self.stats),
+                "build_order": list(self.build_order),
                 "components": [dict(c) for c in self.components], "layers": layers}
 
     def __repr__(self):

@@ -514,7 +514,10 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"deposit_length_mm\": " << num(st.deposit_length_mm)
             << ", \"travel_length_mm\": " << num(st.travel_length_mm)
             << ", \"centre_line_passes\": " << st.centre_line_passes
-            << ", \"unfilled_features\": " << st.unfilled_features << "},\n  \"components\": [";
+            << ", \"unfilled_features\": " << st.unfilled_features << "},\n  \"build_order\": [";
+        for (std::size_t i = 0; i < r.build_order.size(); ++i)
+            out << (i ? ", " : "") << r.build_order[i];
+        out << "],\n  \"components\": [";
         for (std::size_t i = 0; i < r.components.size(); ++i) {
             const auto& c = r.components[i];
             out << (i ? "," : "") << "\n    {\"component\": " << c.component

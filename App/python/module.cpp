@@ -997,6 +997,8 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
         d["volume_mm3"] = c.volume_mm3;
         components.append(d);
     }
+    bp::list order;
+    for (const int c : r.build_order) order.append(c);
     const mas::SliceStats& s = r.stats;
     bp::dict stats;
     stats["layer_count"] = s.layer_count;
@@ -1016,6 +1018,7 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
     bp::dict out;
     out["layers"] = layers;
     out["components"] = components;
+    out["build_order"] = order;
     out["stats"] = stats;
     return out;
 }
@@ -1088,7 +1091,9 @@ void bind_slice() {
         "axis_node, axis_point, tool_axis, paths [{kind, region, points, thickness_mm}], "
         "centre_line_regions, unfilled [{region, area_mm2, centroid}], deposit_length_mm, "
         "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "
-        "layer_count, guide_nodes, volume_mm3}], stats {...}. EngineError invalid_argument for "
+        "layer_count, guide_nodes, volume_mm3}] indexed by component, build_order (the "
+        "components in deposition order, the order of the layers), stats {...}. EngineError "
+        "invalid_argument for "
         "bad parameters or a part no layer fits.";
     bp::def("slice_part", &slice_part,
             (bp::arg("shape"), bp::arg("axis"), bp::arg("components"), bp::arg("params")),

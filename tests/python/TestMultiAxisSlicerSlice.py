@@ -159,13 +159,41 @@ class TestSliceApi(SliceTest):
         result = mas.slice(l_block())
         data = result.to_dict()
         self.assertEqual(json.loads(json.dumps(data, allow_nan=False)), data)
-        self.assertEqual(set(data), {"kind", "params", "stats", "components", "layers"})
+        self.assertEqual(set(data),
+                         {"kind", "params", "stats", "build_order", "components", "layers"})
+        self.assertEqual(data["build_order"], [0, 1])  # the column, then the arm on it
         self.assertEqual(data["params"], dict(mas.SLICE_DEFAULTS))
         self.assertEqual(len(data["layers"]), 55)
         layer = data["layers"][30]
         self.assertEqual(layer["tool_axis"], layer["normal"])
         self.assertTrue(layer["paths"])
         self.assertEqual(layer["unfilled"], [])
+
+    def test_a_tees_branch_is_built_after_the_pipe_above_its_junction(self):
+        # The engine's test part: the branch's first layer is a ring at the pipe's side, whose
+        # upper half rests on the pipe above the junction, a later component in tree order.
+        outer = Part.makeCylinder(10, 60).fuse(Part.makeCylinder(10, 35, V(0, 0, 35), V(0, 1, 0)))
+        bore = Part.makeCylinder(8, 62, V(0, 0, -1)).fuse(
+            Part.makeCylinder(8, 36, V(0, 0, 35), V(0, 1, 0)))
+        tee = outer.cut(bore)
+        axis = mas.centroidal_axis(tee, step=1.0, deflection=0.02)
+        d = mas.decompose(tee, axis=axis)
+        result = mas.slice(tee, axis=axis, components=d, deflection=0.02)
+        branch = [i for i, c in enumerate(d) if c.build_direction.y > 0.999]
+        self.assertEqual(len(branch), 1)
+        order = result.build_order
+        self.assertEqual(sorted(order), list(range(len(d))))
+        self.assertEqual(order[0], 0)
+        self.assertEqual(order[-1], branch[0])
+        # The layers come component by component in that order.
+        expected = []
+        for c in order:
+            expected += [c] * result.components[c]["layer_count"]
+        self.assertEqual([layer.component for layer in result.layers], expected)
+        first = result.layers[result.components[branch[0]]["first_layer"]]
+        self.assertEqual(first.component, branch[0])
+        # Supported up to the two cuts' deflection along its outline (2 pi (10 + 8) mm long).
+        self.assertLessEqual(first.unsupported_area, 2 * 3.141592653589793 * 18 * 0.02)
 
     def test_to_dict_matches_the_command_line_json(self):
         with support.scratch_folder("mas_slice_cli_") as folder:
@@ -347,6 +375,7 @@ class TestLayersObject(SliceObjectTest):
         self.doc.recompute()
         self.assertTrue(layers.isValid(), layers.getStatusString())
         self.assertEqual(list(layers.ComponentLayerCounts), [30, 25])
+        self.assertEqual(list(layers.BuildOrder), [0, 1])
         self.assertEqual(list(layers.LayerComponents), [0] * 30 + [1] * 25)
         for i, n in enumerate(layers.LayerNormals):
             self.assertVectorAlmostEqual(n, (0, 0, 1) if i < 30 else (1, 0, 0))

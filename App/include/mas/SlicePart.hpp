@@ -54,16 +54,28 @@ struct SliceStats {
 };
 
 struct SlicedPart {
-    std::vector<Layer> layers;              // component by component, in tree order, bottom to top
-    std::vector<LayerToolpaths> toolpaths;  // one per layer
-    std::vector<ComponentLayers> components;
+    std::vector<Layer> layers;  // component by component in build order, each bottom to top
+    std::vector<LayerToolpaths> toolpaths;    // one per layer
+    std::vector<ComponentLayers> components;  // indexed by component
+    std::vector<int> build_order;             // the components in the order they are deposited
     SliceStats stats;
 };
 
+// The order the components are deposited in: the root first, then, again and again, of the
+// components whose father is already built, the one whose first layer is left least unsupported by
+// everything built so far (base_unsupported_area), the first in tree order among equals. A side
+// branch leaving a pipe that continues above it (a tee) thus waits for the pipe above, whose
+// material its first layer also rests on; without such a difference the order is the tree's.
+// Only support is weighed: the nozzle's reach past built components (Eq. 10) is not.
+std::vector<int> build_order(const std::vector<ComponentMesh>& components,
+                             const LayerParams& params,
+                             const std::function<void()>& throw_on_cancel = {});
+
 // Slices components given as meshes (a mesh part is one root component). `axis` is the part's
 // centroidal axis: component c follows the nodes of branch components[c].branch that lie inside
-// its mesh. `throw_on_cancel` is called between candidate planes and layers. Throws as
-// slice_component, and InvalidArgument for a component whose parent is not before it.
+// its mesh. They are deposited in build_order(); each child's first layer is checked against
+// everything built before it. `throw_on_cancel` is called between candidate planes and layers.
+// Throws as slice_component, and InvalidArgument for a component whose parent is not before it.
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const std::function<void()>& throw_on_cancel = {});

@@ -50,8 +50,9 @@
 // - Support (the point of the method): a layer's footprint on the layer below (its lower region,
 //   which lies on the lower layer's top) must lie within the lower layer's region grown by the
 //   overhang allowance, the layer's min thickness x tan(overhang_angle). unsupported_area_mm2 is
-//   what lies outside. The first layer of a child is checked against its father's section just
-//   below the base face; the root's first layer stands on the build plate.
+//   what lies outside. The first layer of a child is checked against what was deposited before
+//   it (its father and the components built earlier, see SlicePart.hpp's build order), their
+//   sections just below the base face; the root's first layer stands on the build plate.
 #pragma once
 #include <Eigen/Core>
 #include <cstddef>
@@ -95,8 +96,9 @@ struct ComponentSlicingInput {
     // the single point) along the build direction.
     std::vector<Eigen::Vector3d> guide;
     std::vector<int> guide_nodes;
-    // The father's mesh, for checking the first layer's support; null for the root.
-    const TriangleMesh* father_mesh = nullptr;
+    // What is deposited before it (its father and any component built earlier), for checking
+    // its first layer's support; empty for the root, which stands on the build plate.
+    std::vector<const TriangleMesh*> support_meshes;
 };
 
 struct Layer {
@@ -129,6 +131,13 @@ struct Layer {
 // planes).
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
                                    const std::function<void()>& throw_on_cancel = {});
+
+// What of a component would stand on nothing when it is started: its section just above its base
+// plane (Eq. 6's offset) outside the sections of `support` (the meshes deposited before it) just
+// below it, grown by min_layer x tan(overhang_angle). What the build order minimises.
+double base_unsupported_area(const TriangleMesh& component, const Plane& base,
+                             const std::vector<const TriangleMesh*>& support,
+                             const LayerParams& params);
 
 // The area of `upper`'s footprint outside `lower`'s region grown by `allowance_mm`: upper's region
 // moved back along its own normal onto its lower plane (lower's top), then both seen along

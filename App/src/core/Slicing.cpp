@@ -223,13 +223,33 @@ struct Candidate {
     bool thickness_ok = false;
 };
 
+// Eq. 6's Delta: how far above a plane its section is cut.
+double base_offset(const LayerParams& params) {
+    return params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
+}
+
+// What the meshes deposited before a component give its first layer to stand on: their sections
+// just below its base plane (Eq. 6's offset), one layer with `base` as its top.
+Layer support_below(const std::vector<const TriangleMesh*>& support, const Plane& base,
+                    double offset) {
+    Layer below;
+    below.plane = base;
+    below.lower = make_plane(base.origin - offset * base.normal, base.normal);
+    for (const TriangleMesh* mesh : support) {
+        Regions2 cut;
+        for (const SectionRegion& r : slice_mesh(*mesh, below.lower).regions)
+            cut.push_back(r.shape);
+        below.regions = below.regions.empty() ? std::move(cut) : union_of(below.regions, cut);
+    }
+    return below;
+}
+
 class ComponentSlicer {
 public:
     ComponentSlicer(const ComponentSlicingInput& input, const LayerParams& params,
                     const std::function<void()>& cancel)
         : input_(input), params_(params), cancel_(cancel), guide_(input) {
-        offset_ =
-            params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
+        offset_ = base_offset(params);
         allowance_ = std::tan(params.overhang_angle_deg * kPi / 180.0);
     }
 
@@ -513,16 +533,12 @@ std::vector<Layer> ComponentSlicer::run() {
         if (!layers.empty()) {
             layer.unsupported_area_mm2 =
                 unsupported_area(layer, layers.back(), layer.min_thickness_mm * allowance_);
-        } else if (input_.father_mesh) {
-            // The first layer of a child rests on its father, just below the base face.
-            const Plane below = make_plane(base.origin - offset_ * base.normal, base.normal);
-            const Section s = slice_mesh(*input_.father_mesh, below);
-            Layer father;
-            father.plane = base;
-            father.lower = below;
-            for (const SectionRegion& r : s.regions) father.regions.push_back(r.shape);
+        } else if (!input_.support_meshes.empty()) {
+            // The first layer of a child rests on what was deposited before it, just below the
+            // base face.
             layer.unsupported_area_mm2 =
-                unsupported_area(layer, father, layer.min_thickness_mm * allowance_);
+                unsupported_area(layer, support_below(input_.support_meshes, base, offset_),
+                                 layer.min_thickness_mm * allowance_);
         }
         layers.push_back(std::move(layer));
         if (c.final) break;
@@ -606,6 +622,23 @@ double unsupported_area(const Layer& upper, const Layer& lower, double allowance
     const Regions2 support =
         allowance_mm > 0.0 ? offset(lower.regions, allowance_mm) : lower.regions;
     return area(difference(footprint, support));
+}
+
+double base_unsupported_area(const TriangleMesh& component, const Plane& base,
+                             const std::vector<const TriangleMesh*>& support,
+                             const LayerParams& params) {
+    validate(params);
+    const Plane plane = make_plane(base.origin, base.normal);
+    const double offset = base_offset(params);
+    Layer first;
+    first.plane = make_plane(plane.origin + offset * plane.normal, plane.normal);
+    first.lower = plane;
+    for (const SectionRegion& r : slice_mesh(component, first.plane).regions)
+        first.regions.push_back(r.shape);
+    if (first.regions.empty()) return 0.0;
+    return unsupported_area(
+        first, support_below(support, plane, offset),
+        params.min_layer_mm * std::tan(params.overhang_angle_deg * kPi / 180.0));
 }
 
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,

@@ -592,8 +592,9 @@ int run_slice(const std::vector<std::string>& args) {
             << num(st.worst_unsupported_area_mm2) << " mm2\n# paths: " << num(st.deposit_length_mm)
             << " mm deposit, " << num(st.travel_length_mm) << " mm travel, "
             << st.centre_line_passes << " centre-line passes, " << st.unfilled_features
-            << " unfilled features\n"
-            << "# layer component origin normal min_thickness max_thickness area_mm2 "
+            << " unfilled features\n# build order:";
+        for (const int c : r.build_order) out << " " << c;
+        out << "\n# layer component origin normal min_thickness max_thickness area_mm2 "
                "volume_difference unsupported_mm2 paths\n";
         for (std::size_t i = 0; i < r.layers.size(); ++i) {
             const mas::Layer& l = r.layers[i];

@@ -234,6 +234,7 @@ class CliSections(unittest.TestCase):
             doc = json.load(f)
         column, arm = doc["components"]
         self.assertEqual((column["layer_count"], arm["layer_count"]), (30, 25))
+        self.assertEqual(doc["build_order"], [0, 1])
         for layer in doc["layers"]:
             want = (0, 0, 1) if layer["component"] == 0 else (1, 0, 0)
             for got, w in zip(layer["normal"], want):
@@ -253,6 +254,7 @@ class CliSections(unittest.TestCase):
         rows = [l.split() for l in r.stdout.splitlines() if not l.startswith("#")]
         self.assertEqual(len(rows), 7)  # 21 mm in 3 mm layers
         self.assertEqual([float(row[4]) for row in rows], [3.0] * 7)
+        self.assertIn("# build order: 0\n", r.stdout)
 
     def test_slice_bad_input(self):
         brep = os.path.join(DATA, "l_block.brep")

@@ -35,3 +35,12 @@ inner = Part.makeTorus(path_r, 7, V(0, 0, 0), V(0, 1, 0), 0, 360, 90)
 inner = inner.fuse(Part.makeCylinder(7, 41, V(path_r, 0, -40.5), V(0, 0, 1)))
 inner = inner.fuse(Part.makeCylinder(7, 41, V(0.5, 0, path_r), V(-1, 0, 0)))
 outer.cut(inner).removeSplitter().exportStep(os.path.join(here, "faulty_elbow.step"))
+
+# coil_c0.step          a tube swept along two turns of a helix (radius 20, pitch 15) with a tilted
+# circle, on a pad: its surfaces are only C0, which OCCT's Booleans do not promise to split
+# soundly; a split piece may pass OCCT's check and still mesh with non-manifold edges
+helix = Part.makeHelix(15, 30, 20)
+profile = Part.Wire(Part.makeCircle(3, V(20, 0, 0), V(0, 1, 0.2387)))
+coil = Part.Wire(helix).makePipeShell([profile], True, True)
+coil = coil.fuse(Part.makeCylinder(6, 3, V(20, 0, -3))).removeSplitter()
+coil.Solids[0].exportStep(os.path.join(here, "coil_c0.step"))

@@ -23,7 +23,9 @@
 //   "Containing Pos_end" is read with a point in the material of b's first section
 //   (interior_point()), also when finding the father: a pipe's first section is a ring whose
 //   centroid lies in the bore, in no solid. Each component is a solid OCCT's shape check accepts:
-//   the piece with its seams removed, else as the split left it, else as ShapeFix makes it.
+//   the piece with its seams removed, else as the split left it, else as ShapeFix makes it. On a
+//   part with C0 faces or edges, which OCCT's Booleans do not promise to split soundly, it must
+//   also mesh closed at the part's default deflection (what slicing uses).
 //   The child's base face is its face on the plane under Pos_end (the largest one when none is:
 //   a plane cuts a half ring standing on its rim in two faces, one at each end); build_direction
 //   = minus its outward normal (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The

@@ -18,6 +18,8 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom_Surface.hxx>
 #include <ShapeFix_Shape.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
@@ -166,12 +168,42 @@ TopoDS_Shape unify(const TopoDS_Shape& s) {
     return u.Shape();
 }
 
-// One solid of `piece` that OCCT's shape check accepts, for a component: the piece with the seams
-// between coplanar or co-cylindrical faces removed (`unified`, when already done), else the piece
-// as the split left it, else what ShapeFix makes of it; false when none is one valid solid. (The
-// splitter and the seam removal can leave a face whose wires the check rejects: a tee's pipe cut
-// across its branch.)
-bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out,
+// Whether any face or edge of `s` is only C0 (a kink inside one surface or curve). OCCT's
+// Booleans expect C1 arguments; the splits of a C0 part (a pipe swept along a helix with a kinked
+// profile) can pass the shape check and still mesh with edges shared by three triangles.
+bool has_c0_geometry(const TopoDS_Shape& s) {
+    for (TopExp_Explorer x(s, TopAbs_FACE); x.More(); x.Next()) {
+        const Handle(Geom_Surface) surface = BRep_Tool::Surface(TopoDS::Face(x.Current()));
+        if (!surface.IsNull() && surface->Continuity() == GeomAbs_C0) return true;
+    }
+    for (TopExp_Explorer x(s, TopAbs_EDGE); x.More(); x.Next()) {
+        Standard_Real first, last;
+        const Handle(Geom_Curve) curve = BRep_Tool::Curve(TopoDS::Edge(x.Current()), first, last);
+        if (!curve.IsNull() && curve->Continuity() == GeomAbs_C0) return true;
+    }
+    return false;
+}
+
+// Whether OCCT meshes `solid` into a closed surface at `deflection` mm, as slicing will; always
+// true for `deflection` 0 (no check asked).
+bool meshes_closed(const TopoDS_Shape& solid, double deflection) {
+    if (deflection <= 0.0) return true;
+    TessellationParams tp;
+    tp.deflection_mm = deflection;
+    try {
+        occ::tessellate(occ::wrap(solid), tp, "piece");
+        return true;
+    } catch (const Error&) {
+        return false;
+    }
+}
+
+// One solid of `piece` that OCCT's shape check accepts and that meshes closed at
+// `mesh_deflection` (0: not checked), for a component: the piece with the seams between coplanar or
+// co-cylindrical faces removed (`unified`, when already done), else the piece as the split left it,
+// else what ShapeFix makes of it; false when none is one valid solid. (The splitter and the seam
+// removal can leave a face whose wires the check rejects: a tee's pipe cut across its branch.)
+bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, double mesh_deflection,
                  const TopoDS_Shape& unified = TopoDS_Shape()) {
     for (int attempt = 0; attempt < 3; ++attempt) {
         TopoDS_Shape s = piece;
@@ -182,7 +214,8 @@ bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out,
             s = fix.Shape();
         }
         const auto solids = solids_of(s);
-        if (solids.size() == 1 && BRepCheck_Analyzer(solids.front()).IsValid()) {
+        if (solids.size() == 1 && BRepCheck_Analyzer(solids.front()).IsValid() &&
+            meshes_closed(solids.front(), mesh_deflection)) {
             out = solids.front();
             return true;
         }
@@ -279,8 +312,8 @@ enum class SplitOutcome {
 SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                             const Vector3d& point, const Vector3d& n,
                             const std::vector<Vector3d>& inner, double min_height,
-                            const std::vector<double>& max_volume, std::vector<Child>& children,
-                            TopoDS_Shape& father_out) {
+                            const std::vector<double>& max_volume, double mesh_deflection,
+                            std::vector<Child>& children, TopoDS_Shape& father_out) {
     try {
         const Eigen::AlignedBox3d b = bounds_of(father);
         const double r = 2.0 * b.diagonal().norm() + 1.0;
@@ -357,8 +390,9 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 continue;
             }
             Child child;
-            if (!valid_solid(pieces[piece], child.solid)) {
-                children[k].kept_because = "its piece of the split is no valid solid";
+            if (!valid_solid(pieces[piece], child.solid, mesh_deflection)) {
+                children[k].kept_because =
+                    "its piece of the split is no valid solid (OCCT's check, or a closed mesh)";
                 continue;
             }
             // The base face: the child's face on the plane, facing -n, that lies under the
@@ -412,7 +446,8 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
         }
         const TopoDS_Shape unified = unify(father_new);
         if (solids_of(unified).size() != 1) return SplitOutcome::Apart;
-        if (!valid_solid(father_new, father_out, unified)) return SplitOutcome::Invalid;
+        if (!valid_solid(father_new, father_out, mesh_deflection, unified))
+            return SplitOutcome::Invalid;
         return SplitOutcome::Split;
     } catch (const Standard_Failure&) {
         return SplitOutcome::Failed;  // a split OCCT cannot perform: the branches stay put
@@ -603,6 +638,10 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         const Eigen::AlignedBox3d box = bounds_of(solid);
         check_axis(axis, box, volume_of(solid));
         const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
+        // A part with C0 geometry, which OCCT's Booleans do not promise to split soundly: every
+        // component must also mesh closed at the deflection slicing uses by default, the part's.
+        const double mesh_deflection =
+            has_c0_geometry(solid) ? effective_deflection(checked, TessellationParams{}) : 0.0;
 
         Work root;
         root.solid = solid;
@@ -732,7 +771,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             const SplitOutcome outcome =
                 split_by_plane(fs, footing, p.point, p.normal, inner,
                                std::max(axis.params.step_mm, params.min_component_height_mm), most,
-                               children, father_new);
+                               mesh_deflection, children, father_new);
             if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
                 // The siblings that would have shared the split try their own in turn (and
                 // note their own outcome).
@@ -741,7 +780,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                                                        "chosen plane"
                      : outcome == SplitOutcome::Apart
                          ? "the split at the chosen plane would leave its father in pieces"
-                         : "the split at the chosen plane would leave its father no valid solid",
+                         : "the split at the chosen plane would leave its father no valid solid "
+                           "(OCCT's "
+                           "check, or a closed mesh)",
                      father);
                 continue;
             }

@@ -1,5 +1,8 @@
 // Slicing a BREP part: its sub-components tessellated with the part's deflection, then sliced as
 // meshes (see SlicePart.hpp).
+#include <string>
+
+#include "ShapeImpl.hpp"
 #include "mas/Error.hpp"
 #include "mas/SlicePart.hpp"
 
@@ -17,10 +20,11 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
     tessellation.deflection_mm = effective_deflection(part, params.tessellation);
     std::vector<ComponentMesh> meshes;
     meshes.reserve(decomposition.components.size());
-    for (const Component& c : decomposition.components) {
+    for (std::size_t i = 0; i < decomposition.components.size(); ++i) {
+        const Component& c = decomposition.components[i];
         if (throw_on_cancel) throw_on_cancel();
         ComponentMesh m;
-        m.mesh = tessellate(c.solid, tessellation);
+        m.mesh = occ::tessellate(c.solid, tessellation, "component " + std::to_string(i));
         m.parent = c.parent;
         m.branch = c.branch < 0 ? 0 : c.branch;
         // The root stands on the build plate; a child on its base face.

@@ -216,11 +216,18 @@ TriangleMesh occ::tessellate(const Shape& shape, const TessellationParams& param
         // The solid itself is closed (single_solid checked it): the gaps are in OCCT's meshing,
         // which happens on faulty geometry (faces that meet without sharing their edges).
         const MeshReport r = check_mesh(mesh);
+        std::string defects;
+        auto count = [&](std::size_t n, const char* kind) {
+            if (n == 0) return;
+            defects += (defects.empty() ? "" : ", ") + std::to_string(n) + " " + kind;
+        };
+        count(r.boundary_edges, "open edges");
+        count(r.non_manifold_edges, "edges shared by more than two triangles");
+        count(r.inconsistent_edges, "edges between oppositely oriented triangles");
         throw Error(ErrorCode::GeometryFailure,
-                    what + ": OCCT's tessellation of the solid has " +
-                        std::to_string(r.boundary_edges) +
-                        " open edges; its faces may not join properly (check it with Part, "
-                        "Check geometry) or another deflection may mesh it");
+                    what + ": OCCT's tessellation of the solid has " + defects +
+                        "; its faces may not join properly (check it with Part, Check geometry) "
+                        "or another deflection may mesh it");
     }
     return mesh;
 }

@@ -807,6 +807,14 @@ class LayersFeature(_EngineFeature):
         obj.LayersOverVolumeDifference = stats["layers_over_volume_difference"]
         obj.WorstUnsupportedArea = stats["worst_unsupported_area_mm2"]
         obj.WorstUnsupportedLayer = stats["worst_unsupported_layer"]
+        FreeCAD.Console.PrintMessage(
+            "{}: {} layers in {} component(s), deposited in the order {}; worst unsupported area "
+            "{:.3g} mm^2{}\n".format(
+                obj.Label, len(layers), len(result.components),
+                ", ".join(str(c) for c in result.build_order),
+                stats["worst_unsupported_area_mm2"],
+                " (layer {})".format(stats["worst_unsupported_layer"])
+                if stats["worst_unsupported_layer"] >= 0 else ""))
         if stats["layers_over_volume_difference"]:
             FreeCAD.Console.PrintWarning(
                 "{}: {} layer(s) over MaxVolumeDifference {:g} even at MinLayer (worst {:.3g}); "

@@ -726,8 +726,9 @@ class LayersFeature(_EngineFeature):
     view provider colours them by component), LayerCount, MinThickness, MaxThickness,
     DepositedVolume, MaterialVolume, PartVolume, MaxVolumeDifferenceFound,
     LayersOverVolumeDifference, WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts
-    (tree order), BuildOrder (the components in deposition order) and, per layer, LayerComponents, LayerOrigins, LayerNormals (the tool axis),
-    LayerMinThicknesses, LayerMaxThicknesses, LayerVolumeDifferences.
+    (tree order), BuildOrder (the components in deposition order) and, per layer,
+    LayerComponents, LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses,
+    LayerMaxThicknesses, LayerVolumeDifferences.
 
     The paths are planned in the same computation; the ``Toolpath`` object linked to this one
     shows them. The full result stays in memory only (``slice_result()``)."""

@@ -173,9 +173,8 @@ class SliceResult:
     to top), ``build_order`` (the component indices in the order they are deposited: the root,
     then each time the component whose first layer what is built leaves least unsupported),
     ``components`` (per sub-component, by index: first_layer, layer_count, guide_nodes,
-    volume_mm3),
-    ``stats`` (dict: layer_count, min_thickness_mm, max_thickness_mm, part_volume_mm3,
-    deposited_volume_mm3, material_volume_mm3, max_volume_difference,
+    volume_mm3), ``stats`` (dict: layer_count, min_thickness_mm, max_thickness_mm,
+    part_volume_mm3, deposited_volume_mm3, material_volume_mm3, max_volume_difference,
     layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
     deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features), ``params`` (the
     slicing parameters used), ``axis`` (the ``CentroidalAxis``), ``decomposition`` (the

@@ -69,7 +69,7 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
             if (throw_on_cancel) throw_on_cancel();
             const double a =
                 base_unsupported_area(components[c].mesh, components[c].base, built, params);
-            if (a < best_area - 1e-3) {
+            if (best == n || a < best_area - 1e-3) {
                 best = c;
                 best_area = a;
             }

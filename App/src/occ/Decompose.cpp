@@ -169,8 +169,9 @@ TopoDS_Shape unify(const TopoDS_Shape& s) {
 }
 
 // Whether any face or edge of `s` is only C0 (a kink inside one surface or curve). OCCT's
-// Booleans expect C1 arguments; the splits of a C0 part (a pipe swept along a helix with a kinked
-// profile) can pass the shape check and still mesh with edges shared by three triangles.
+// Booleans expect C1 arguments; the splits of a C0 part (a tube swept along a helix, whose
+// surface the sweep made C0) can pass the shape check and still mesh with edges shared by three
+// triangles.
 bool has_c0_geometry(const TopoDS_Shape& s) {
     for (TopExp_Explorer x(s, TopAbs_FACE); x.More(); x.Next()) {
         const Handle(Geom_Surface) surface = BRep_Tool::Surface(TopoDS::Face(x.Current()));

@@ -425,8 +425,11 @@ TEST(Slicing, ATeesBranchWaitsForThePipeAboveItsJunction) {
     const mas::TriangleMesh pipe = mas::tessellate(comps[std::size_t(branch)].solid, tp);
     const mas::Plane base = mas::make_plane(comps[std::size_t(branch)].base_origin,
                                             comps[std::size_t(branch)].build_direction);
-    EXPECT_GT(mas::base_unsupported_area(pipe, base, {&root}, params.layers),
-              0.25 * kPi * (100.0 - 64.0));
+    // Its footprint is the whole ring, up to the deflection along both circles.
+    const mas::BaseSupport alone = mas::base_support(pipe, base, {&root}, params.layers);
+    EXPECT_NEAR(alone.footprint_area_mm2, kPi * (100.0 - 64.0),
+                2 * kPi * (10.0 + 8.0) * kDeflection);
+    EXPECT_GT(alone.unsupported_area_mm2, 0.25 * kPi * (100.0 - 64.0));
     // The branch comes last, after the pipe above the junction, and its first layer is supported.
     EXPECT_EQ(s.result.build_order.back(), branch);
     const auto& first =

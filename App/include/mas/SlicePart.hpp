@@ -63,10 +63,11 @@ struct SlicedPart {
 
 // The order the components are deposited in: the root first, then, again and again, of the
 // components whose father is already built, the one whose first layer is left least unsupported by
-// everything built so far (base_unsupported_area), the first in tree order among equals. A side
-// branch leaving a pipe that continues above it (a tee) thus waits for the pipe above, whose
-// material its first layer also rests on; without such a difference the order is the tree's.
-// Only support is weighed: the nozzle's reach past built components (Eq. 10) is not.
+// everything built so far (base_support), the first in tree order among equals (within a
+// thousandth of its footprint). A side branch leaving a pipe that continues above it (a tee) thus
+// waits for the pipe above, whose material its first layer also rests on; without such a
+// difference the order is the tree's. Only support is weighed: the nozzle's reach past built
+// components (Eq. 10) is not.
 std::vector<int> build_order(const std::vector<ComponentMesh>& components,
                              const LayerParams& params,
                              const std::function<void()>& throw_on_cancel = {});

@@ -132,12 +132,17 @@ struct Layer {
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
                                    const std::function<void()>& throw_on_cancel = {});
 
-// What of a component would stand on nothing when it is started: its section just above its base
-// plane (Eq. 6's offset) outside the sections of `support` (the meshes deposited before it) just
-// below it, grown by min_layer x tan(overhang_angle). What the build order minimises.
-double base_unsupported_area(const TriangleMesh& component, const Plane& base,
-                             const std::vector<const TriangleMesh*>& support,
-                             const LayerParams& params);
+// What of a component would stand on nothing when it is started: its footprint, the section just
+// above its base plane (Eq. 6's offset), and the part of it outside the sections of `support` (the
+// meshes deposited before it) just below the plane, grown by min_layer x tan(overhang_angle).
+// What the build order minimises.
+struct BaseSupport {
+    double footprint_area_mm2 = 0.0;
+    double unsupported_area_mm2 = 0.0;
+};
+BaseSupport base_support(const TriangleMesh& component, const Plane& base,
+                         const std::vector<const TriangleMesh*>& support,
+                         const LayerParams& params);
 
 // The area of `upper`'s footprint outside `lower`'s region grown by `allowance_mm`: upper's region
 // moved back along its own normal onto its lower plane (lower's top), then both seen along

@@ -61,15 +61,19 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
     take(0);
     while (order.size() < n) {
         // Of the components whose father is built, the one left least unsupported by what is;
-        // the first in tree order among equals (within a thousandth of a square millimetre).
+        // the first in tree order among equals. As when slicing, an unsupported area up to a
+        // thousandth of the footprint counts as none (the two cuts' tessellation noise).
         std::size_t best = n;
         double best_area = std::numeric_limits<double>::infinity();
         for (std::size_t c = 1; c < n; ++c) {
             if (done[c] || !done[std::size_t(components[c].parent)]) continue;
             if (throw_on_cancel) throw_on_cancel();
-            const double a =
-                base_unsupported_area(components[c].mesh, components[c].base, built, params);
-            if (best == n || a < best_area - 1e-3) {
+            const BaseSupport b =
+                base_support(components[c].mesh, components[c].base, built, params);
+            const double a = b.unsupported_area_mm2 <= 1e-3 * b.footprint_area_mm2
+                                 ? 0.0
+                                 : b.unsupported_area_mm2;
+            if (best == n || a < best_area - 1e-3 * b.footprint_area_mm2) {
                 best = c;
                 best_area = a;
             }

@@ -624,9 +624,9 @@ double unsupported_area(const Layer& upper, const Layer& lower, double allowance
     return area(difference(footprint, support));
 }
 
-double base_unsupported_area(const TriangleMesh& component, const Plane& base,
-                             const std::vector<const TriangleMesh*>& support,
-                             const LayerParams& params) {
+BaseSupport base_support(const TriangleMesh& component, const Plane& base,
+                         const std::vector<const TriangleMesh*>& support,
+                         const LayerParams& params) {
     validate(params);
     const Plane plane = make_plane(base.origin, base.normal);
     const double offset = base_offset(params);
@@ -635,10 +635,13 @@ double base_unsupported_area(const TriangleMesh& component, const Plane& base,
     first.lower = plane;
     for (const SectionRegion& r : slice_mesh(component, first.plane).regions)
         first.regions.push_back(r.shape);
-    if (first.regions.empty()) return 0.0;
-    return unsupported_area(
-        first, support_below(support, plane, offset),
-        params.min_layer_mm * std::tan(params.overhang_angle_deg * kPi / 180.0));
+    BaseSupport out;
+    if (first.regions.empty()) return out;
+    out.footprint_area_mm2 = area(first.regions);
+    out.unsupported_area_mm2 =
+        unsupported_area(first, support_below(support, plane, offset),
+                         params.min_layer_mm * std::tan(params.overhang_angle_deg * kPi / 180.0));
+    return out;
 }
 
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,

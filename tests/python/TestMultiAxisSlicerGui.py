@@ -631,6 +631,7 @@ class TestSliceCommand(unittest.TestCase):
         self.assertIs(layers.Decomposition, decomposition)
         self.assertIs(toolpath.Layers, layers)
         self.assertEqual(list(layers.ComponentLayerCounts), [30, 25])
+        self.assertEqual(list(layers.BuildOrder), [0, 1])
         self.assertEqual(layers.LayerCount, 55)
         self.assertGreater(toolpath.PathCount, 55)
         self.assertIsNone(QtGui.QApplication.overrideCursor())  # the wait cursor is gone

@@ -433,6 +433,7 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(layers.MaxLayer.Value, 1.5)
         self.assertEqual(layers.Infill, "contour")
         self.assertEqual(layers.LayerCount, 14)
+        self.assertEqual(list(layers.BuildOrder), [0])
         self.assertEqual(len(layers.Shape.Wires), 14)  # the shapes are saved with the document
         self.assertGreater(len(toolpath.Shape.Edges), 0)
         self.assertIsNone(getattr(layers.Proxy, "_result", None))  # the result is not saved

@@ -468,11 +468,7 @@ TEST(Decompose, APipeTeesBranchIsBuiltAlongItself) {
     // by a point in the ring's material instead. (By the centroid the branch stayed in the root,
     // built upwards; and the split the root's march asked for left a face OCCT's check rejects once
     // its seams were removed.)
-    const TopoDS_Shape outer = fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10, 60),
-                                    occ_cylinder({0, 0, 35}, Vector3d::UnitY(), 10, 35));
-    const TopoDS_Shape bore = fuse(occ_cylinder({0, 0, -1}, Vector3d::UnitZ(), 8, 62),
-                                   occ_cylinder({0, 0, 35}, Vector3d::UnitY(), 8, 36));
-    const auto part = from_occt(BRepAlgoAPI_Cut(outer, bore).Shape());
+    const auto part = mas::test::pipe_tee();
     const auto d = mas::decompose(part, axis_of(part, 1.0));
     int branch_pipe = 0;
     for (std::size_t i = 1; i < d.components.size(); ++i) {

@@ -88,6 +88,17 @@ Shape two_posts() {
     return from_occt(fuse(base, posts));
 }
 
+Shape pipe_tee() {
+    auto pipe = [](const gp_Ax2& axis, double r, double h) {
+        return BRepPrimAPI_MakeCylinder(axis, r, h).Shape();
+    };
+    const gp_Ax2 up(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), side(gp_Pnt(0, 0, 35), gp_Dir(0, 1, 0));
+    const TopoDS_Shape outer = fuse(pipe(up, 10, 60), pipe(side, 10, 35));
+    const TopoDS_Shape bore =
+        fuse(pipe(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 8, 62), pipe(side, 8, 36));
+    return from_occt(BRepAlgoAPI_Cut(outer, bore).Shape());
+}
+
 Shape torus(double major_radius, double minor_radius) {
     return from_occt(
         BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), major_radius, minor_radius)

@@ -25,6 +25,9 @@ Shape plate_with_hole();
 // Two 10 x 10 posts on one 40 x 10 x 5 base plate [0,40]x[0,10]x[0,5]: posts
 // [0,10]x[0,10]x[5,30] and [30,40]x[0,10]x[5,30]; one solid, two regions above z = 5.
 Shape two_posts();
+// A pipe tee: a pipe of radius 10 with a bore of 8, 60 tall on z = 0 along Z, and a branch of the
+// same pipe reaching +Y from its axis at z = 35, 35 long.
+Shape pipe_tee();
 // Torus with its axis along Z through the origin.
 Shape torus(double major_radius, double minor_radius);
 // A shape made of one planar face (not a solid) and a compound of two disjoint boxes.

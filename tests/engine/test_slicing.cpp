@@ -3,7 +3,6 @@
 // L-block and a bend, and invariants (bounds, support, volume, paths) over every test part.
 #include <gtest/gtest.h>
 
-#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -401,18 +400,13 @@ TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {
     expect_invariants(s, params, "bent bar");
 }
 
-// A pipe tee (radius 10, bore 8, 60 tall; a branch of the same pipe reaching +Y from its axis at
-// z = 35, 35 long). The branch's first layer is a whole ring at the pipe's side; the root holds
-// only the junction's lower half, the pipe above holds the upper half. Built in tree order the
-// branch would start with half its ring on nothing; it waits for the pipe above, and every first
-// layer then rests on what is built.
+// A pipe tee (test_parts.hpp). The branch's first layer is a whole ring at the pipe's side; the
+// root holds only the junction's lower half, the pipe above holds the upper half. Built in tree
+// order the branch would start with half its ring on nothing; it waits for the pipe above, and
+// every first layer then rests on what is built.
 TEST(Slicing, ATeesBranchWaitsForThePipeAboveItsJunction) {
-    const TopoDS_Shape outer = fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10, 60),
-                                    occ_cylinder({0, 0, 35}, Vector3d::UnitY(), 10, 35));
-    const TopoDS_Shape bore = fuse(occ_cylinder({0, 0, -1}, Vector3d::UnitZ(), 8, 62),
-                                   occ_cylinder({0, 0, 35}, Vector3d::UnitY(), 8, 36));
     const auto params = default_params();
-    const auto s = slice(from_occt(BRepAlgoAPI_Cut(outer, bore).Shape()), 1.0, params);
+    const auto s = slice(mas::test::pipe_tee(), 1.0, params);
     const auto& comps = s.decomposition.components;
     int branch = -1;
     for (std::size_t c = 1; c < comps.size(); ++c)

@@ -30,6 +30,15 @@ def l_block():
     return Part.makeBox(20, 20, 60).fuse(Part.makeBox(50, 20, 20, V(20, 0, 40))).removeSplitter()
 
 
+def pipe_tee():
+    """A pipe of radius 10 with a bore of 8, 60 tall along Z, and a branch of the same pipe
+    reaching +Y from its axis at z = 35, 35 long (the engine's test_parts.hpp)."""
+    outer = Part.makeCylinder(10, 60).fuse(Part.makeCylinder(10, 35, V(0, 0, 35), V(0, 1, 0)))
+    bore = Part.makeCylinder(8, 62, V(0, 0, -1)).fuse(
+        Part.makeCylinder(8, 36, V(0, 0, 35), V(0, 1, 0)))
+    return outer.cut(bore)
+
+
 def t_block():
     """A T: column [0,20]x[0,20]x[0,60], crossbar [-30,50]x[0,20]x[40,60] reaching both ways."""
     return Part.makeBox(20, 20, 60).fuse(

@@ -111,10 +111,7 @@ class TestDecomposeApi(DecomposeTest):
         # The engine's test part (test_decompose.cpp): the branch's first section is a ring whose
         # centroid lies in the bore. The axis carries a point in each node's material across to
         # the decomposition, which finds the branch's father and piece by it.
-        outer = Part.makeCylinder(10, 60).fuse(Part.makeCylinder(10, 35, V(0, 0, 35), V(0, 1, 0)))
-        bore = Part.makeCylinder(8, 62, V(0, 0, -1)).fuse(
-            Part.makeCylinder(8, 36, V(0, 0, 35), V(0, 1, 0)))
-        tee = outer.cut(bore)
+        tee = support.pipe_tee()
         axis = mas.centroidal_axis(tee, step=1.0, deflection=0.02)
         d = mas.decompose(tee, axis=axis)
         branch = [c for c in d if c.build_direction.y > 0.999]

@@ -172,10 +172,7 @@ class TestSliceApi(SliceTest):
     def test_a_tees_branch_is_built_after_the_pipe_above_its_junction(self):
         # The engine's test part: the branch's first layer is a ring at the pipe's side, whose
         # upper half rests on the pipe above the junction, a later component in tree order.
-        outer = Part.makeCylinder(10, 60).fuse(Part.makeCylinder(10, 35, V(0, 0, 35), V(0, 1, 0)))
-        bore = Part.makeCylinder(8, 62, V(0, 0, -1)).fuse(
-            Part.makeCylinder(8, 36, V(0, 0, 35), V(0, 1, 0)))
-        tee = outer.cut(bore)
+        tee = support.pipe_tee()
         axis = mas.centroidal_axis(tee, step=1.0, deflection=0.02)
         d = mas.decompose(tee, axis=axis)
         result = mas.slice(tee, axis=axis, components=d, deflection=0.02)

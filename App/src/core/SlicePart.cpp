@@ -51,12 +51,30 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
     std::vector<int> order;
     if (n == 0) return order;
     order.reserve(n);
-    std::vector<char> done(n, 0);
-    std::vector<const TriangleMesh*> built;
+    // A component's support can only change when a mesh reaching its base plane is built: the
+    // boxes tell which (within max_layer of the plane, far more than the section's offset), and
+    // only those are cut again.
+    std::vector<Eigen::AlignedBox3d> boxes(n);
+    for (std::size_t c = 0; c < n; ++c) boxes[c] = bounding_box(components[c].mesh);
+    auto reaches_base = [&](std::size_t mesh, std::size_t c) {
+        const Eigen::Vector3d& o = components[c].base.origin;
+        const Eigen::Vector3d d = components[c].base.normal.normalized();
+        const Eigen::AlignedBox3d& b = boxes[mesh];
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (int k = 0; k < 8; ++k) {
+            const double h = d.dot(b.corner(Eigen::AlignedBox3d::CornerType(k)) - o);
+            lo = std::min(lo, h);
+            hi = std::max(hi, h);
+        }
+        return lo <= params.max_layer_mm && hi >= -params.max_layer_mm;
+    };
+    std::vector<char> done(n, 0), stale(n, 1);
+    std::vector<double> score(n, 0.0), tolerance(n, 0.0);
     auto take = [&](std::size_t c) {
         order.push_back(int(c));
         done[c] = 1;
-        built.push_back(&components[c].mesh);
+        for (std::size_t k = 1; k < n; ++k)
+            if (!done[k] && reaches_base(c, k)) stale[k] = 1;
     };
     take(0);
     while (order.size() < n) {
@@ -64,19 +82,20 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
         // the first in tree order among equals. As when slicing, an unsupported area up to a
         // thousandth of the footprint counts as none (the two cuts' tessellation noise).
         std::size_t best = n;
-        double best_area = std::numeric_limits<double>::infinity();
         for (std::size_t c = 1; c < n; ++c) {
             if (done[c] || !done[std::size_t(components[c].parent)]) continue;
-            if (throw_on_cancel) throw_on_cancel();
-            const BaseSupport b =
-                base_support(components[c].mesh, components[c].base, built, params);
-            const double a = b.unsupported_area_mm2 <= 1e-3 * b.footprint_area_mm2
-                                 ? 0.0
-                                 : b.unsupported_area_mm2;
-            if (best == n || a < best_area - 1e-3 * b.footprint_area_mm2) {
-                best = c;
-                best_area = a;
+            if (stale[c]) {
+                if (throw_on_cancel) throw_on_cancel();
+                std::vector<const TriangleMesh*> near;
+                for (std::size_t k = 0; k < n; ++k)
+                    if (done[k] && reaches_base(k, c)) near.push_back(&components[k].mesh);
+                const BaseSupport b =
+                    base_support(components[c].mesh, components[c].base, near, params);
+                tolerance[c] = 1e-3 * b.footprint_area_mm2;
+                score[c] = b.unsupported_area_mm2 <= tolerance[c] ? 0.0 : b.unsupported_area_mm2;
+                stale[c] = 0;
             }
+            if (best == n || score[c] < score[best] - tolerance[c]) best = c;
         }
         take(best);
     }

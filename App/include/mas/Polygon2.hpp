@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <utility>
 #include <vector>
 
 namespace mas {
@@ -35,6 +36,12 @@ Eigen::AlignedBox2d bounds(const Region2& region);
 
 // True if the point lies inside the region (inside the outer loop and outside every hole).
 bool contains(const Region2& region, const Eigen::Vector2d& point);
+
+// The intervals, along the other coordinate and in increasing order, where the line
+// {q[coord] = value} (coord 0: x, 1: y) runs inside the region: crossings with every loop of at
+// least three points, even-odd (a vertex on the line counts as above it).
+std::vector<std::pair<double, double>> inside_intervals(const Region2& region, int coord,
+                                                        double value);
 
 // A point in the region's material, away from its outline: the middle of the widest inside span
 // of the horizontal line through its centroid (through its box's middle when that line has

@@ -139,27 +139,6 @@ std::pair<Regions2, Regions2> split_at(Regions2 regions, const PlaneFrame& frame
     return out;
 }
 
-// Intervals where the line {q[coord] = value} runs inside the region (even-odd over all loops).
-std::vector<std::pair<double, double>> line_intervals(const Region2& r, int coord, double value) {
-    const int other = 1 - coord;
-    std::vector<double> xs;
-    auto cross = [&](const Polygon2& loop) {
-        const auto& p = loop.points;
-        for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-            if ((p[i][coord] > value) == (p[j][coord] > value)) continue;
-            const double t = (value - p[j][coord]) / (p[i][coord] - p[j][coord]);
-            xs.push_back(p[j][other] + t * (p[i][other] - p[j][other]));
-        }
-    };
-    cross(r.outer);
-    for (const auto& h : r.holes) cross(h);
-    std::sort(xs.begin(), xs.end());
-    std::vector<std::pair<double, double>> out;
-    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
-        if (xs[i + 1] > xs[i]) out.emplace_back(xs[i], xs[i + 1]);
-    return out;
-}
-
 // What one node has swept: its region extruded along `normal` over [h0, h1) (offsets n.p).
 struct Slab {
     Vector3d normal;
@@ -201,7 +180,7 @@ Strip perpendicular_strip(const Slab& s, const StripAxes& ax) {
     const double to_it = coord == 0 ? sf.v[ax.it] : sf.u[ax.it];  // 2-D other coordinate -> it
     const double a0 = s.h0 * s.normal[ax.ia], a1 = s.h1 * s.normal[ax.ia];
     Strip strip{std::min(a0, a1), std::max(a0, a1), {}};
-    for (const auto& [w0, w1] : line_intervals(s.region, coord, line))
+    for (const auto& [w0, w1] : inside_intervals(s.region, coord, line))
         strip.t.emplace_back(std::min(w0 * to_it, w1 * to_it), std::max(w0 * to_it, w1 * to_it));
     std::sort(strip.t.begin(), strip.t.end());
     return strip;

@@ -110,30 +110,40 @@ bool contains(const Region2& region, const Eigen::Vector2d& point) {
     return true;
 }
 
+std::vector<std::pair<double, double>> inside_intervals(const Region2& region, int coord,
+                                                        double value) {
+    const int other = 1 - coord;
+    std::vector<double> xs;
+    auto cross = [&](const Polygon2& loop) {
+        const auto& p = loop.points;
+        if (p.size() < 3) return;
+        for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+            if ((p[i][coord] > value) == (p[j][coord] > value)) continue;
+            const double t = (value - p[j][coord]) / (p[i][coord] - p[j][coord]);
+            xs.push_back(p[j][other] + t * (p[i][other] - p[j][other]));
+        }
+    };
+    cross(region.outer);
+    for (const auto& h : region.holes) cross(h);
+    std::sort(xs.begin(), xs.end());
+    std::vector<std::pair<double, double>> out;
+    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+        if (xs[i + 1] > xs[i]) out.emplace_back(xs[i], xs[i + 1]);
+    return out;
+}
+
 Eigen::Vector2d interior_point(const Region2& region) {
     const Eigen::AlignedBox2d box = bounds(region);
     if (box.isEmpty()) return Eigen::Vector2d::Zero();
-    // The widest inside span of a horizontal line, through the centroid first (a compact region's
-    // middle), else through the box's middle; crossings by the half-open rule, pairs inside.
+    if (region.outer.points.size() < 3) return centroid(region);
+    // The middle of the widest inside span of a horizontal line, through the centroid first (a
+    // compact region's middle), else through the box's middle.
     auto widest_span = [&](double y, Eigen::Vector2d& out) {
-        std::vector<double> xs;
-        auto cross = [&](const Polygon2& loop) {
-            const auto& q = loop.points;
-            for (std::size_t i = 0, j = q.size() - 1; i < q.size(); j = i++)
-                if ((q[i].y() > y) != (q[j].y() > y))
-                    xs.push_back(q[j].x() +
-                                 (y - q[j].y()) * (q[i].x() - q[j].x()) / (q[i].y() - q[j].y()));
-        };
-        if (region.outer.points.size() < 3) return false;
-        cross(region.outer);
-        for (const auto& h : region.holes)
-            if (h.points.size() >= 3) cross(h);
-        std::sort(xs.begin(), xs.end());
         double best = 0.0;
-        for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
-            if (xs[i + 1] - xs[i] > best) {
-                best = xs[i + 1] - xs[i];
-                out = {0.5 * (xs[i] + xs[i + 1]), y};
+        for (const auto& [x0, x1] : inside_intervals(region, 1, y))
+            if (x1 - x0 > best) {
+                best = x1 - x0;
+                out = {0.5 * (x0 + x1), y};
             }
         return best > 0.0;
     };

@@ -228,6 +228,11 @@ double base_offset(const LayerParams& params) {
     return params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
 }
 
+// tan(overhang angle): how far a layer may overhang the one below per mm of its thickness.
+double overhang_allowance(const LayerParams& params) {
+    return std::tan(params.overhang_angle_deg * kPi / 180.0);
+}
+
 // What the meshes deposited before a component give its first layer to stand on: their sections
 // just below its base plane (Eq. 6's offset), one layer with `base` as its top.
 Layer support_below(const std::vector<const TriangleMesh*>& support, const Plane& base,
@@ -250,7 +255,7 @@ public:
                     const std::function<void()>& cancel)
         : input_(input), params_(params), cancel_(cancel), guide_(input) {
         offset_ = base_offset(params);
-        allowance_ = std::tan(params.overhang_angle_deg * kPi / 180.0);
+        allowance_ = overhang_allowance(params);
     }
 
     std::vector<Layer> run();
@@ -638,9 +643,8 @@ BaseSupport base_support(const TriangleMesh& component, const Plane& base,
     BaseSupport out;
     if (first.regions.empty()) return out;
     out.footprint_area_mm2 = area(first.regions);
-    out.unsupported_area_mm2 =
-        unsupported_area(first, support_below(support, plane, offset),
-                         params.min_layer_mm * std::tan(params.overhang_angle_deg * kPi / 180.0));
+    out.unsupported_area_mm2 = unsupported_area(first, support_below(support, plane, offset),
+                                                params.min_layer_mm * overhang_allowance(params));
     return out;
 }
 

@@ -776,15 +776,14 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
                 // The siblings that would have shared the split try their own in turn (and
                 // note their own outcome).
-                note(b,
-                     outcome == SplitOutcome::Failed ? "OCCT could not split its father at the "
-                                                       "chosen plane"
-                     : outcome == SplitOutcome::Apart
-                         ? "the split at the chosen plane would leave its father in pieces"
-                         : "the split at the chosen plane would leave its father no valid solid "
-                           "(OCCT's "
-                           "check, or a closed mesh)",
-                     father);
+                const char* why =
+                    outcome == SplitOutcome::Failed
+                        ? "OCCT could not split its father at the chosen plane"
+                    : outcome == SplitOutcome::Apart
+                        ? "the split at the chosen plane would leave its father in pieces"
+                        : "the split at the chosen plane would leave its father no valid solid "
+                          "(OCCT's check, or a closed mesh)";
+                note(b, why, father);
                 continue;
             }
             if (outcome == SplitOutcome::Split) work[std::size_t(father)].solid = father_new;

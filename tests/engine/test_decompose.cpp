@@ -604,8 +604,9 @@ TEST(DecomposeErrors, BadParametersAndCancellationAreReported) {
         }
     }
     try {
-        mas::decompose(part, axis, {},
-                       [] { throw mas::Error(mas::ErrorCode::Cancelled, "cancelled"); });
+        mas::decompose(part, axis, {}, mas::Progress([](double, const std::string&) {
+                           throw mas::Error(mas::ErrorCode::Cancelled, "cancelled");
+                       }));
         ADD_FAILURE() << "not cancelled";
     } catch (const mas::Error& e) {
         EXPECT_EQ(e.code(), mas::ErrorCode::Cancelled);

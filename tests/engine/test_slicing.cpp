@@ -500,10 +500,10 @@ TEST(SlicingErrors, CancellationStopsTheWork) {
     const auto d = mas::decompose(part, axis);
     int calls = 0;
     EXPECT_THROW(mas::slice_part(part, axis, d, default_params(),
-                                 [&] {
+                                 mas::Progress([&](double, const std::string&) {
                                      if (++calls == 5)
                                          throw mas::Error(mas::ErrorCode::Cancelled, "stop");
-                                 }),
+                                 })),
                  mas::Error);
     EXPECT_EQ(calls, 5);
 }

@@ -76,6 +76,7 @@
 #include <vector>
 
 #include "mas/CentroidalAxis.hpp"
+#include "mas/Progress.hpp"
 #include "mas/Shape.hpp"
 
 namespace mas {
@@ -131,9 +132,9 @@ struct Decomposition {
 // Splits `solid` along `axis` (computed for this solid). Throws mas::Error: NotASolid /
 // MultipleSolids / EmptyInput as Shape::single_solid, InvalidArgument for bad parameters or an
 // axis computed for a different part, GeometryFailure when OCCT fails on the input itself,
-// whatever `throw_on_cancel` throws. The input shape is never modified.
+// whatever `progress` throws (Progress.hpp: reported branch by branch, checked before each split).
+// The input shape is never modified.
 Decomposition decompose(const Shape& solid, const CentroidalAxis& axis,
-                        const DecomposeParams& params = {},
-                        const std::function<void()>& throw_on_cancel = {});
+                        const DecomposeParams& params = {}, const Progress& progress = {});
 
 }  // namespace mas

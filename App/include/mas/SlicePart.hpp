@@ -10,6 +10,7 @@
 #include "mas/Decompose.hpp"
 #include "mas/Mesh.hpp"
 #include "mas/Paths.hpp"
+#include "mas/Progress.hpp"
 #include "mas/Shape.hpp"
 #include "mas/Slicing.hpp"
 #include "mas/Toolpath.hpp"
@@ -69,29 +70,29 @@ struct SlicedPart {
 // difference the order is the tree's. Only support is weighed: the nozzle's reach past built
 // components (Eq. 10) is not.
 std::vector<int> build_order(const std::vector<ComponentMesh>& components,
-                             const LayerParams& params,
-                             const std::function<void()>& throw_on_cancel = {});
+                             const LayerParams& params, const Progress& progress = {});
 
 // Slices components given as meshes (a mesh part is one root component). `axis` is the part's
 // centroidal axis: component c follows the nodes of branch components[c].branch that lie inside
 // its mesh. They are deposited in build_order(); each child's first layer is checked against
-// everything built before it. `throw_on_cancel` is called between candidate planes and layers.
+// everything built before it. `progress` (Progress.hpp) follows the build order (a few per cent),
+// the components' layers (each its share by volume, reported after every layer and checked between
+// candidate planes) and the paths (the last tenth, layer by layer), and reaches 1 when done.
 // Throws as slice_component, and InvalidArgument for a component whose parent is not before it.
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
-                            const std::function<void()>& throw_on_cancel = {});
+                            const Progress& progress = {});
 
 // A closed mesh sliced as one root component (a mesh cannot be decomposed) on its build_plate(),
 // following the axis' first branch.
 SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
-                           const SlicePartParams& params,
-                           const std::function<void()>& throw_on_cancel = {});
+                           const SlicePartParams& params, const Progress& progress = {});
 
-// The decomposition's components tessellated with params.tessellation, then slice_components.
-// stats.part_volume_mm3 is the exact solid's volume.
+// The decomposition's components tessellated with params.tessellation (the first tenth of
+// `progress`), then slice_components. stats.part_volume_mm3 is the exact solid's volume.
 SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                       const Decomposition& decomposition, const SlicePartParams& params,
-                      const std::function<void()>& throw_on_cancel = {});
+                      const Progress& progress = {});
 
 // The plane a root component stands on: through the mesh's lowest point, under the centre of its
 // box, normal +Z. (The mesh's box, not an OCCT bounding box, which may be looser than the solid.)

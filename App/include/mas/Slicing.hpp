@@ -61,6 +61,7 @@
 
 #include "mas/Mesh.hpp"
 #include "mas/Polygon2.hpp"
+#include "mas/Progress.hpp"
 #include "mas/Section.hpp"
 
 namespace mas {
@@ -127,10 +128,10 @@ struct Layer {
 // Slices one component. Throws mas::Error: InvalidArgument for bad params, a null mesh, a base
 // plane with no material above it or a component thinner than min_layer_mm along its build
 // direction; OpenMesh for a mesh that is not a closed surface; GeometryFailure when strict and a
-// layer misses the volumetric bound; whatever `throw_on_cancel` throws (called between candidate
-// planes).
+// layer misses the volumetric bound; whatever `progress` throws (see Progress.hpp: checked between
+// candidate planes; after each layer, the material sliced so far over the mesh's volume).
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
-                                   const std::function<void()>& throw_on_cancel = {});
+                                   const Progress& progress = {});
 
 // What of a component would stand on nothing when it is started: its footprint, the section just
 // above its base plane (Eq. 6's offset), and the part of it outside the sections of `support` (the

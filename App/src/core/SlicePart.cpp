@@ -36,17 +36,15 @@ Plane build_plate(const TriangleMesh& mesh) {
 }
 
 SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
-                           const SlicePartParams& params,
-                           const std::function<void()>& throw_on_cancel) {
+                           const SlicePartParams& params, const Progress& progress) {
     ComponentMesh root;
     root.mesh = mesh;
     root.base = build_plate(mesh);
-    return slice_components({root}, axis, params, throw_on_cancel);
+    return slice_components({root}, axis, params, progress);
 }
 
 std::vector<int> build_order(const std::vector<ComponentMesh>& components,
-                             const LayerParams& params,
-                             const std::function<void()>& throw_on_cancel) {
+                             const LayerParams& params, const Progress& progress) {
     const std::size_t n = components.size();
     std::vector<int> order;
     if (n == 0) return order;
@@ -85,7 +83,7 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
         for (std::size_t c = 1; c < n; ++c) {
             if (done[c] || !done[std::size_t(components[c].parent)]) continue;
             if (stale[c]) {
-                if (throw_on_cancel) throw_on_cancel();
+                progress.check();
                 std::vector<const TriangleMesh*> near;
                 for (std::size_t k = 0; k < n; ++k)
                     if (done[k] && reaches_base(k, c)) near.push_back(&components[k].mesh);
@@ -98,13 +96,15 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
             if (best == n || score[c] < score[best] - tolerance[c]) best = c;
         }
         take(best);
+        progress(double(order.size()) / double(n));
     }
+    progress(1.0);
     return order;
 }
 
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
-                            const std::function<void()>& throw_on_cancel) {
+                            const Progress& progress) {
     validate(params.layers);
     validate(params.paths);
     if (components.empty()) throw Error(ErrorCode::EmptyInput, "no component to slice");
@@ -125,7 +125,12 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     }
     SlicedPart out;
     out.components.resize(components.size());
-    out.build_order = build_order(components, params.layers, throw_on_cancel);
+    out.build_order =
+        build_order(components, params.layers, progress.span(0.0, 0.05, "ordering the components"));
+    // Each component's share of the layers' 85 % is its share of the volume.
+    double total_volume = 0.0;
+    for (double v : volumes) total_volume += std::max(v, 0.0);
+    double sliced_volume = 0.0;
     std::vector<const TriangleMesh*> built;
     for (const int ci : out.build_order) {
         const std::size_t c = std::size_t(ci);
@@ -152,7 +157,16 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         record.first_layer = int(out.layers.size());
         record.guide_nodes = int(input.guide.size());
         record.volume_mm3 = volumes[c];
-        std::vector<Layer> layers = slice_component(input, params.layers, throw_on_cancel);
+        const double share = total_volume > 0.0 ? std::max(volumes[c], 0.0) / total_volume
+                                                : 1.0 / double(components.size());
+        const std::string stage = "slicing component " + std::to_string(c) + " (" +
+                                  std::to_string(built.size() + 1) + " of " +
+                                  std::to_string(components.size()) + ")";
+        std::vector<Layer> layers =
+            slice_component(input, params.layers,
+                            progress.span(0.05 + 0.85 * sliced_volume,
+                                          0.05 + 0.85 * (sliced_volume + share), stage));
+        sliced_volume += share;
         record.layer_count = int(layers.size());
         for (Layer& l : layers) out.layers.push_back(std::move(l));
         out.stats.part_volume_mm3 += record.volume_mm3;
@@ -166,8 +180,9 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     Eigen::Vector3d head = Eigen::Vector3d::Zero();  // where the previous layer's paths ended
     bool has_head = false;
     out.toolpaths.reserve(out.layers.size());
+    const Progress paths_progress = progress.span(0.9, 1.0, "planning the bead paths");
     for (std::size_t i = 0; i < out.layers.size(); ++i) {
-        if (throw_on_cancel) throw_on_cancel();
+        paths_progress(double(i) / double(out.layers.size()));
         const Layer& l = out.layers[i];
         s.min_thickness_mm = std::min(s.min_thickness_mm, l.min_thickness_mm);
         s.max_thickness_mm = std::max(s.max_thickness_mm, l.max_thickness_mm);
@@ -195,6 +210,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         out.toolpaths.push_back(std::move(paths));
     }
     if (out.layers.empty()) s.min_thickness_mm = 0.0;
+    progress(1.0);
     return out;
 }
 

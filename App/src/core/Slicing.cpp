@@ -252,8 +252,8 @@ Layer support_below(const std::vector<const TriangleMesh*>& support, const Plane
 class ComponentSlicer {
 public:
     ComponentSlicer(const ComponentSlicingInput& input, const LayerParams& params,
-                    const std::function<void()>& cancel)
-        : input_(input), params_(params), cancel_(cancel), guide_(input) {
+                    double volume_mm3, const Progress& progress)
+        : input_(input), params_(params), progress_(progress), volume_(volume_mm3), guide_(input) {
         offset_ = base_offset(params);
         allowance_ = overhang_allowance(params);
     }
@@ -289,7 +289,8 @@ private:
 
     const ComponentSlicingInput& input_;
     const LayerParams& params_;
-    const std::function<void()>& cancel_;
+    const Progress& progress_;
+    double volume_ = 0.0;  // the mesh's: the layers' material over it is the progress
     Guide guide_;
     double offset_ = 0.0;     // Eq. 6's Delta
     double allowance_ = 1.0;  // tan(overhang angle)
@@ -429,6 +430,7 @@ std::vector<Layer> ComponentSlicer::run() {
                 mm(params_.min_layer_mm) + "): no layer fits; lower min_layer");
 
     std::vector<Layer> layers;
+    double material = 0.0;  // of the layers so far
     Vector3d d_lower = base.normal;
     double s_lower = guide_.crossing(base, 0.0).value_or(0.0);
     const double eps_angle = params_.eps_angle_deg;
@@ -457,7 +459,7 @@ std::vector<Layer> ComponentSlicer::run() {
             // noise): keep the lower direction.
             if (d.dot(d_lower) <= 0.0 || angle_deg(d, d_lower) < 0.1 * eps_angle) d = d_lower;
             for (;;) {
-                if (cancel_) cancel_();
+                progress_.check();
                 ++tries;
                 const bool parallel = angle_deg(d, d_lower) < 1e-9;
                 Candidate c = evaluate(lower, d, p_upper, along, delta);
@@ -478,7 +480,7 @@ std::vector<Layer> ComponentSlicer::run() {
         if (!accepted) {
             std::optional<Candidate> eq9_only;
             for (double delta = params_.max_layer_mm;;) {
-                if (cancel_) cancel_();
+                progress_.check();
                 ++tries;
                 const double along = s_lower + delta;
                 Candidate c = evaluate(lower, d_lower, guide_.point(along), along, delta);
@@ -545,8 +547,10 @@ std::vector<Layer> ComponentSlicer::run() {
                 unsupported_area(layer, support_below(input_.support_meshes, base, offset_),
                                  layer.min_thickness_mm * allowance_);
         }
+        material += layer.material_volume_mm3;
         layers.push_back(std::move(layer));
         if (c.final) break;
+        progress_(volume_ > 0.0 ? material / volume_ : 0.0);
         lower = std::move(c.next);
         d_lower = c.upper.normal;
         s_lower = c.along;
@@ -649,7 +653,7 @@ BaseSupport base_support(const TriangleMesh& component, const Plane& base,
 }
 
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
-                                   const std::function<void()>& throw_on_cancel) {
+                                   const Progress& progress) {
     validate(params);
     if (!input.mesh || input.mesh->triangles.empty())
         invalid("component " + std::to_string(input.component) + " has no mesh to slice");
@@ -665,8 +669,10 @@ std::vector<Layer> slice_component(const ComponentSlicingInput& input, const Lay
                 " has a non-finite or zero base plane");
     ComponentSlicingInput checked = input;
     checked.base = make_plane(input.base.origin, input.base.normal);
-    ComponentSlicer slicer(checked, params, throw_on_cancel);
-    return slicer.run();
+    ComponentSlicer slicer(checked, params, report.volume_mm3, progress);
+    std::vector<Layer> layers = slicer.run();
+    progress(1.0);
+    return layers;
 }
 
 }  // namespace mas

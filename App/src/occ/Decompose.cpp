@@ -627,8 +627,7 @@ private:
 }  // namespace
 
 Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
-                        const DecomposeParams& params,
-                        const std::function<void()>& throw_on_cancel) {
+                        const DecomposeParams& params, const Progress& progress) {
     check_params(params);
     const Shape checked = input.single_solid("decompose");
     std::vector<Work> work;
@@ -709,7 +708,10 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         };
         for (std::size_t b = 0; b < nb; ++b) {
             if (holder[b] >= 0) continue;  // cut with an earlier sibling
-            if (throw_on_cancel) throw_on_cancel();
+            const Progress at = progress.span(
+                double(b) / double(nb), double(b + 1) / double(nb),
+                "splitting at branch " + std::to_string(b) + " of " + std::to_string(nb));
+            at(0.0);
             if (!splits(b)) {
                 holder[b] = 0;
                 continue;
@@ -758,7 +760,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 inner.push_back(q.inner);
                 most.push_back(max_volume[c]);
             }
-            if (throw_on_cancel) throw_on_cancel();
+            at.check();
 
             const Component& fc = work[std::size_t(father)].c;
             Footing footing;
@@ -833,6 +835,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
     }
+    progress(1.0);
     return out;
 }
 

@@ -10,7 +10,7 @@ namespace mas {
 
 SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                       const Decomposition& decomposition, const SlicePartParams& params,
-                      const std::function<void()>& throw_on_cancel) {
+                      const Progress& progress) {
     if (decomposition.components.empty())
         throw Error(ErrorCode::EmptyInput, "the decomposition has no component to slice");
     const Shape part = solid.single_solid("the part");
@@ -22,7 +22,8 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
     meshes.reserve(decomposition.components.size());
     for (std::size_t i = 0; i < decomposition.components.size(); ++i) {
         const Component& c = decomposition.components[i];
-        if (throw_on_cancel) throw_on_cancel();
+        progress.span(0.0, 0.1, "tessellating the components")(
+            double(i) / double(decomposition.components.size()));
         ComponentMesh m;
         m.mesh = occ::tessellate(c.solid, tessellation, "component " + std::to_string(i));
         m.parent = c.parent;
@@ -31,7 +32,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         m.base = c.parent < 0 ? build_plate(m.mesh) : make_plane(c.base_origin, c.build_direction);
         meshes.push_back(std::move(m));
     }
-    SlicedPart out = slice_components(meshes, axis, params, throw_on_cancel);
+    SlicedPart out = slice_components(meshes, axis, params, progress.span(0.1, 1.0));
     out.stats.part_volume_mm3 = part.info().volume_mm3;
     return out;
 }

@@ -1,0 +1,153 @@
+// Progress reporting and cancellation of the long engine computations (Progress.hpp).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Decompose.hpp"
+#include "mas/Error.hpp"
+#include "mas/Progress.hpp"
+#include "mas/Shape.hpp"
+#include "mas/SlicePart.hpp"
+#include "test_parts.hpp"
+
+namespace {
+
+constexpr double kDeflection = 0.02;  // mm, tessellation of the test parts
+
+using Reports = std::vector<std::pair<double, std::string>>;
+
+mas::Progress recorder(Reports& reports) {
+    return mas::Progress(
+        [&reports](double f, const std::string& stage) { reports.emplace_back(f, stage); });
+}
+
+bool has_stage(const Reports& reports, const std::string& start) {
+    for (const auto& r : reports)
+        if (r.second.rfind(start, 0) == 0) return true;
+    return false;
+}
+
+void expect_never_back_and_done(const Reports& reports) {
+    ASSERT_FALSE(reports.empty());
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+        EXPECT_GE(reports[i].first, 0.0) << "report " << i;
+        EXPECT_LE(reports[i].first, 1.0) << "report " << i;
+        if (i > 0) {
+            EXPECT_GE(reports[i].first, reports[i - 1].first) << "report " << i;
+        }
+    }
+    EXPECT_EQ(reports.back().first, 1.0);
+}
+
+struct Stop {};  // an exception of the caller's own, not an engine error
+
+}  // namespace
+
+TEST(Progress, SpansReportTheirShareOfTheWholeAndNeverGoBack) {
+    Reports r;
+    const mas::Progress whole = recorder(r);
+    const mas::Progress second = whole.span(0.5, 1.0, "second half");
+    second(0.5);
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_DOUBLE_EQ(r.back().first, 0.75);
+    EXPECT_EQ(r.back().second, "second half");
+    // A span of a span, inheriting the stage; clamped to its share.
+    const mas::Progress inner = second.span(0.0, 0.5);
+    inner(2.0);
+    EXPECT_DOUBLE_EQ(r.back().first, 0.75);
+    EXPECT_EQ(r.back().second, "second half");
+    inner(0.2);  // 0.55 < 0.75: what was reported stays
+    EXPECT_DOUBLE_EQ(r.back().first, 0.75);
+    second(1.0);
+    EXPECT_DOUBLE_EQ(r.back().first, 1.0);
+    whole.span(0.0, 0.1, "first tenth").check();  // no news: the fraction reported so far
+    EXPECT_DOUBLE_EQ(r.back().first, 1.0);
+    EXPECT_EQ(r.back().second, "first tenth");
+    EXPECT_EQ(r.size(), 5u);
+}
+
+TEST(Progress, AnEmptyProgressReportsNothing) {
+    const mas::Progress none;
+    EXPECT_FALSE(none);
+    none(0.5);
+    none.check();
+    none.span(0.2, 0.4, "x")(1.0);
+    EXPECT_FALSE(none.checker());
+    EXPECT_FALSE(mas::Progress(mas::Progress::Report{}));
+}
+
+TEST(Progress, DecompositionReportsBranchByBranchUpToOne) {
+    const auto part = mas::test::two_posts();
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const auto axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
+    Reports r;
+    const auto d = mas::decompose(part, axis, {}, recorder(r));
+    EXPECT_EQ(d.components.size(), 3u);
+    expect_never_back_and_done(r);
+    EXPECT_GE(r.size(), axis.branches.size());
+}
+
+TEST(Progress, SlicingReportsEveryStageInOrderUpToOne) {
+    const auto part = mas::test::two_posts();
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const auto axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 3u);
+    mas::SlicePartParams params;
+    params.tessellation.deflection_mm = kDeflection;
+    Reports r;
+    const mas::SlicedPart sliced = mas::slice_part(part, axis, d, params, recorder(r));
+    expect_never_back_and_done(r);
+    // Every layer reports once as it is laid, besides the checks between candidate planes.
+    EXPECT_GE(r.size(), sliced.layers.size());
+    // The stages, in this order.
+    const std::vector<std::string> stages = {
+        "tessellating the components", "ordering the components", "slicing component 0 (1 of 3)",
+        "slicing component", "planning the bead paths"};
+    std::size_t at = 0;
+    for (const std::string& stage : stages) {
+        while (at < r.size() && r[at].second.rfind(stage, 0) != 0) ++at;
+        EXPECT_LT(at, r.size()) << "no stage \"" << stage << "\" after the one before";
+    }
+    EXPECT_TRUE(has_stage(r, "slicing component 1 ("));
+    EXPECT_TRUE(has_stage(r, "slicing component 2 ("));
+    // Each component's layers fill its share by volume: the plate's ends where the posts' begin.
+    double plate_done = 0.0;
+    for (const auto& x : r)
+        if (x.second.rfind("slicing component 0", 0) == 0) plate_done = x.first;
+    const double share =
+        d.components[0].volume_mm3 /
+        (d.components[0].volume_mm3 + d.components[1].volume_mm3 + d.components[2].volume_mm3);
+    EXPECT_NEAR(plate_done, 0.1 + 0.9 * (0.05 + 0.85 * share), 1e-9);
+}
+
+TEST(Progress, AnExceptionFromTheReportStopsSlicingUnchanged) {
+    const auto part = mas::test::two_posts();
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const auto axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
+    const auto d = mas::decompose(part, axis);
+    mas::SlicePartParams params;
+    params.tessellation.deflection_mm = kDeflection;
+    // Stopped in each stage in turn; the same call then runs to its end.
+    for (const std::string stage :
+         {"tessellating", "ordering", "slicing component 2", "planning"}) {
+        int after = 0;
+        EXPECT_THROW(
+            mas::slice_part(part, axis, d, params, mas::Progress([&](double, const std::string& s) {
+                                if (s.rfind(stage, 0) == 0 && ++after == 2) throw Stop{};
+                            })),
+            Stop)
+            << stage;
+        EXPECT_EQ(after, 2) << stage;
+    }
+    Reports r;
+    const mas::SlicedPart sliced = mas::slice_part(part, axis, d, params, recorder(r));
+    EXPECT_GT(sliced.layers.size(), 0u);
+    expect_never_back_and_done(r);
+}

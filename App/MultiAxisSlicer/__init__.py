@@ -21,6 +21,8 @@ Errors:
     ``None``).
   * ``EngineUnavailableError`` when the compiled engine is missing: importing this package always
     works, the functions that need the engine raise it with the build command.
+  * ``Cancelled`` (or whatever a ``progress=`` callback raises) when the callback stopped a long
+    computation: see ``MultiAxisSlicer.progress``.
 
 Nothing here modifies the caller's shape, mesh or document object: solids cross into the engine as
 BREP text, meshes as coordinate arrays.
@@ -36,6 +38,7 @@ __all__ = [
     "AxisBranch",
     "AxisLink",
     "AxisNode",
+    "Cancelled",
     "CentroidalAxis",
     "Component",
     "Decomposition",
@@ -567,6 +570,7 @@ def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
 
 
 # The centroidal axis, the decomposition and the slicing (after the helpers above, which they use).
+from .progress import Cancelled  # noqa: E402
 from .axis import AxisBranch, AxisLink, AxisNode, CentroidalAxis, centroidal_axis  # noqa: E402
 from .decompose import Component, Decomposition, decompose  # noqa: E402
 from .slicing import SLICE_DEFAULTS, Layer, SliceResult, ToolPath, slice  # noqa: E402,A001

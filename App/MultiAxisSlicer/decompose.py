@@ -16,6 +16,7 @@ package::
 import numbers
 
 from . import _FreeCAD, _as_list, _as_vector, _model, _require_engine
+from . import progress as _progress
 from .axis import CentroidalAxis, _number, centroidal_axis
 
 __all__ = ["Component", "Decomposition", "decompose"]
@@ -197,7 +198,8 @@ class Decomposition:
 
 def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
               deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
-              eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0):
+              eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0,
+              progress=None):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
@@ -221,6 +223,9 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
         and at least one axis step; a thinner piece stays in its father (default 0 mm: the step).
         ``slice()`` passes its ``min_layer``, so that every component fits a layer.
 
+    ``progress``: None or ``progress(fraction, stage)``, reported branch by branch; an exception it
+    raises (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
+
     Returns a ``Decomposition``. Raises TypeError for a mesh, None or another type; ValueError for
     a parameter out of range; EngineError (with ``code``) not_a_solid (a face, a shell),
     multiple_solids, empty_input, read_failed, invalid_argument (an axis of another part, a
@@ -236,6 +241,7 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     if not (0.0 <= min_height_mm < float("inf")):
         raise ValueError("min_component_height must be a finite, non-negative number of "
                          "millimetres, got {}".format(min_height_mm))
+    _progress.check(progress)
     if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
         raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
             section_plane_fallback))
@@ -264,5 +270,5 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     data = eng.decompose(solid, axis._engine_dict(), face_angle=face_angle_deg,
                          concave_angle=concave_angle_deg, projection_tolerance=tolerance_mm,
                          section_plane_fallback=bool(section_plane_fallback),
-                         min_component_height=min_height_mm)
+                         min_component_height=min_height_mm, progress=progress)
     return Decomposition(data, axis, params)

@@ -20,6 +20,7 @@ import numbers
 
 from . import _as_list, _as_vector, _model, _require_engine
 from .axis import CentroidalAxis, _number, centroidal_axis
+from . import progress as _progress
 from .decompose import Decomposition, decompose
 
 __all__ = ["Layer", "ToolPath", "SliceResult", "slice", "SLICE_DEFAULTS"]
@@ -272,7 +273,8 @@ def _slice_params(values):
     return p
 
 
-def slice(shape, axis=None, components=None, deflection=None, **params):  # noqa: A001
+def slice(shape, axis=None, components=None, deflection=None, progress=None,  # noqa: A001
+          **params):
     """Slices a part into adaptive multi-axis "3-D" layers and plans the paths in every layer.
 
     ``shape``: a ``Part.Shape`` holding one closed solid, a document object with one, a file path
@@ -301,6 +303,10 @@ def slice(shape, axis=None, components=None, deflection=None, **params):  # noqa
         than this are reported, not run; 0: half a bead), ``measure_coverage`` (also measure the
         area each layer's beads leave uncovered; False).
 
+    ``progress``: None or ``progress(fraction, stage)``, called now and then with the fraction of
+    the whole done (decomposing, when done here, is the first fifth); an exception it raises
+    (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
+
     Returns a ``SliceResult``. Raises TypeError / ValueError for a bad parameter (naming it) and
     EngineError (with ``code``) for a part the engine cannot use or parameters no layer fits
     (invalid_argument), or strict and a layer over the bound (geometry_failure). Nothing the
@@ -313,6 +319,7 @@ def slice(shape, axis=None, components=None, deflection=None, **params):  # noqa
     values = dict(SLICE_DEFAULTS)
     values.update(params)
     p = _slice_params(values)
+    _progress.check(progress)
     if axis is not None and not isinstance(axis, CentroidalAxis):
         raise TypeError("axis must be a CentroidalAxis (from centroidal_axis()) or None, got "
                         "{}".format(type(axis).__name__))
@@ -341,19 +348,22 @@ def slice(shape, axis=None, components=None, deflection=None, **params):  # noqa
         mesh = eng.make_closed(part, what)
         if axis is None:
             axis = centroidal_axis(mesh, **axis_params)
-        data = eng.slice_mesh_part(mesh, axis._engine_dict(), p)
+        data = eng.slice_mesh_part(mesh, axis._engine_dict(), p, progress)
         return SliceResult(data, p, axis, None, kind)
     solid = part.single_solid(what)
     if components is not None:
         axis = components.axis
     elif axis is None:
         axis = centroidal_axis(solid, **axis_params)
+    slicing_progress = progress
     if components is None:
         # No component thinner than a layer: the slicer could not lay one on it.
-        components = decompose(solid, axis=axis, min_component_height=p["min_layer"])
+        components = decompose(solid, axis=axis, min_component_height=p["min_layer"],
+                               progress=_progress.span(progress, 0.0, 0.2))
+        slicing_progress = _progress.span(progress, 0.2, 1.0)
     engine_components = [{"solid": c._solid, "parent": c.parent,
                           "build_direction": tuple(c._build_direction),
                           "base_origin": tuple(c._base_origin), "branch": c.branch}
                          for c in components]
-    data = eng.slice_part(solid, axis._engine_dict(), engine_components, p)
+    data = eng.slice_part(solid, axis._engine_dict(), engine_components, p, slicing_progress)
     return SliceResult(data, p, axis, components, kind)

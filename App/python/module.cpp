@@ -86,9 +86,62 @@ public:
     GilRelease(const GilRelease&) = delete;
     GilRelease& operator=(const GilRelease&) = delete;
 
+    // Takes the GIL back for a while, on the thread that released it (a Python callback).
+    class Hold {
+    public:
+        explicit Hold(GilRelease& released) : released_(released) {
+            PyEval_RestoreThread(released_.state_);
+        }
+        ~Hold() { released_.state_ = PyEval_SaveThread(); }
+        Hold(const Hold&) = delete;
+        Hold& operator=(const Hold&) = delete;
+
+    private:
+        GilRelease& released_;
+    };
+
 private:
     PyThreadState* state_;
 };
+
+// Runs work(progress) with the GIL released, `progress` reporting to the Python callable
+// `callback(fraction, stage)` (None: no reports). The engine reports from this thread only, so each
+// report takes the GIL back for the call. An exception the callback raises (the user cancelled)
+// stops the work and is raised again here, unchanged, once the GIL is back.
+template <class Work>
+void run_reporting(const bp::object& callback, Work&& work) {
+    PyObject* fn = callback.is_none() ? nullptr : callback.ptr();
+    if (fn && !PyCallable_Check(fn))
+        invalid_argument(std::string("progress must be callable as progress(fraction, stage) or "
+                                     "None, not '") +
+                         Py_TYPE(fn)->tp_name + "'");
+    struct Raised {};
+    PyObject *type = nullptr, *value = nullptr, *traceback = nullptr;
+    bool raised = false;
+    {
+        GilRelease nogil;
+        mas::Progress progress;
+        if (fn)
+            progress = mas::Progress([&](double fraction, const std::string& stage) {
+                GilRelease::Hold gil(nogil);
+                PyObject* result = PyObject_CallFunction(fn, "ds", fraction, stage.c_str());
+                if (!result) {
+                    PyErr_Fetch(&type, &value, &traceback);
+                    throw Raised{};
+                }
+                Py_DECREF(result);
+            });
+        try {
+            work(progress);
+        } catch (const Raised&) {
+            raised = true;
+        }
+    }
+    if (raised) {
+        PyErr_Restore(type, value, traceback);
+        bp::throw_error_already_set();
+    }
+}
 
 // ---- conversions
 // ---------------------------------------------------------------------------------
@@ -776,7 +829,7 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
 
 bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
                    double concave_angle, double projection_tolerance, bool section_plane_fallback,
-                   double min_component_height) {
+                   double min_component_height, const bp::object& progress) {
     mas::DecomposeParams params;
     params.face_angle_deg = finite_number(face_angle, "face_angle");
     params.concave_angle_deg = finite_number(concave_angle, "concave_angle");
@@ -786,11 +839,10 @@ bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double fa
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     mas::Decomposition d;
     double part_volume = 0.0;
-    {
-        GilRelease nogil;
-        d = mas::decompose(shape, axis, params);
+    run_reporting(progress, [&](const mas::Progress& p) {
+        d = mas::decompose(shape, axis, params, p);
         part_volume = shape.info().volume_mm3;
-    }
+    });
     bp::list components;
     for (const auto& c : d.components) {
         bp::dict out;
@@ -821,7 +873,8 @@ void bind_decompose() {
         "decompose", &decompose,
         (bp::arg("shape"), bp::arg("axis"), bp::arg("face_angle") = 10.0,
          bp::arg("concave_angle") = 1.0, bp::arg("projection_tolerance") = 0.01,
-         bp::arg("section_plane_fallback") = true, bp::arg("min_component_height") = 0.0),
+         bp::arg("section_plane_fallback") = true, bp::arg("min_component_height") = 0.0,
+         bp::arg("progress") = bp::object()),
         "Splits a solid (a Shape holding one closed solid) into sub-components along its "
         "centroidal axis `axis` (the dict centroidal_axis() returns for this solid; node regions "
         "are not needed). Angles in degrees, projection_tolerance and min_component_height (the "
@@ -833,7 +886,9 @@ void bind_decompose() {
         "children), part_volume_mm3, notes (branches that got no cut, and why). EngineError "
         "not_a_solid / multiple_solids / empty_input "
         "for the shape, invalid_argument for bad parameters, a malformed axis or an axis of "
-        "another part, geometry_failure when OCCT fails on the input.");
+        "another part, geometry_failure when OCCT fails on the input. `progress`: None or "
+        "progress(fraction, stage), called now and then from this thread (fraction 0 to 1, never "
+        "decreasing); an exception it raises stops the work and is raised here unchanged.");
 }
 
 // ---- stage: adaptive multi-axis slicing and paths
@@ -1052,29 +1107,26 @@ mas::Decomposition decomposition_from_py(const bp::object& value) {
 }
 
 bp::dict slice_part(const mas::Shape& shape, const bp::object& axis_py,
-                    const bp::object& components_py, const bp::dict& params_py) {
+                    const bp::object& components_py, const bp::dict& params_py,
+                    const bp::object& progress) {
     const mas::SlicePartParams params = slice_params_from_py(params_py);
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     const mas::Decomposition d = decomposition_from_py(components_py);
     mas::SlicedPart r;
-    {
-        GilRelease nogil;
-        r = mas::slice_part(shape, axis, d, params);
-    }
+    run_reporting(progress,
+                  [&](const mas::Progress& p) { r = mas::slice_part(shape, axis, d, params, p); });
     return sliced_to_py(r);
 }
 
 bp::dict slice_mesh_part(const mas::TriangleMesh& mesh, const bp::object& axis_py,
-                         const bp::dict& params_py) {
+                         const bp::dict& params_py, const bp::object& progress) {
     if (params_py.has_key("deflection"))
         invalid_argument("a mesh is sliced as it is: 'deflection' applies to solids only");
     const mas::SlicePartParams params = slice_params_from_py(params_py);
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     mas::SlicedPart r;
-    {
-        GilRelease nogil;
-        r = mas::slice_mesh_part(mesh, axis, params);
-    }
+    run_reporting(progress,
+                  [&](const mas::Progress& p) { r = mas::slice_mesh_part(mesh, axis, params, p); });
     return sliced_to_py(r);
 }
 
@@ -1093,19 +1145,23 @@ void bind_slice() {
         "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "
         "layer_count, guide_nodes, volume_mm3}] indexed by component, build_order (the "
         "components in deposition order, the order of the layers), stats {...}. EngineError "
-        "invalid_argument for "
-        "bad parameters or a part no layer fits.";
+        "invalid_argument for bad parameters or a part no layer fits. `progress`: None or "
+        "progress(fraction, stage), called now and then from this thread (fraction 0 to 1, never "
+        "decreasing, 1 when done); an exception it raises stops the work and is raised here "
+        "unchanged.";
     bp::def("slice_part", &slice_part,
-            (bp::arg("shape"), bp::arg("axis"), bp::arg("components"), bp::arg("params")),
+            (bp::arg("shape"), bp::arg("axis"), bp::arg("components"), bp::arg("params"),
+             bp::arg("progress") = bp::object()),
             (std::string("Slices a solid's sub-components (the component dicts decompose() "
                          "returned, in tree order) along its centroidal axis `axis`.") +
              params_doc)
                 .c_str());
-    bp::def("slice_mesh_part", &slice_mesh_part,
-            (bp::arg("mesh"), bp::arg("axis"), bp::arg("params")),
-            (std::string("Slices a closed mesh as one component along its axis' first branch.") +
-             params_doc)
-                .c_str());
+    bp::def(
+        "slice_mesh_part", &slice_mesh_part,
+        (bp::arg("mesh"), bp::arg("axis"), bp::arg("params"), bp::arg("progress") = bp::object()),
+        (std::string("Slices a closed mesh as one component along its axis' first branch.") +
+         params_doc)
+            .c_str());
 }
 
 }  // namespace

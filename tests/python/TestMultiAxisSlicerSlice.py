@@ -216,6 +216,75 @@ class TestSliceApi(SliceTest):
         self.assertEqual(shape.exportBrepToString(), before)
 
 
+class TestSliceProgress(SliceTest):
+    """``progress=``: reports from the engine, and stopping it by raising."""
+
+    def check_reports(self, reports):
+        """Fractions in [0, 1], never going back, ending at 1."""
+        self.assertTrue(reports)
+        fractions = [f for f, _ in reports]
+        for i, (a, b) in enumerate(zip(fractions, fractions[1:])):
+            self.assertLessEqual(a, b, "report {} goes back".format(i + 1))
+        self.assertGreaterEqual(fractions[0], 0.0)
+        self.assertEqual(fractions[-1], 1.0)
+
+    def test_slicing_reports_each_stage_up_to_one(self):
+        reports = []
+        result = mas.slice(l_block(), progress=lambda f, s: reports.append((f, s)))
+        self.check_reports(reports)
+        stages = [s for _, s in reports]
+        # Decomposing (the first fifth), then the engine's slicing stages, in order.
+        order = ["splitting at branch", "tessellating the components", "ordering the components",
+                 "slicing component 0 (1 of 2)", "slicing component 1 (2 of 2)",
+                 "planning the bead paths"]
+        at = [next((i for i, s in enumerate(stages) if s.startswith(o)), None) for o in order]
+        self.assertNotIn(None, at, dict(zip(order, at)))
+        self.assertEqual(at, sorted(at))
+        # The decomposition's reports fill the first fifth, the slicing's the rest.
+        split = [f for f, s in reports if s.startswith("splitting")]
+        self.assertLessEqual(max(split), 0.2)
+        self.assertGreaterEqual(min(f for f, s in reports if s.startswith("tessellating")), 0.2)
+        # At least one report per layer.
+        self.assertGreaterEqual(sum(1 for s in stages if s.startswith("slicing component")),
+                                len(result.layers))
+
+    def test_decomposing_and_slicing_a_mesh_report_too(self):
+        reports = []
+        d = mas.decompose(l_block(), progress=lambda f, s: reports.append((f, s)))
+        self.assertEqual(len(d), 2)
+        self.check_reports(reports)
+        reports = []
+        mas.slice(fc_mesh(box_20_10_21()), progress=lambda f, s: reports.append((f, s)))
+        self.check_reports(reports)
+
+    def test_raising_stops_the_work_and_is_raised_again(self):
+        shape = l_block()
+        before = shape.exportBrepToString()
+        for stop_at, error in ((0.1, mas.Cancelled), (0.5, mas.Cancelled), (0.95, KeyError)):
+            calls = []
+
+            def stop(fraction, stage):
+                calls.append(fraction)
+                if fraction >= stop_at:
+                    raise error("stopped at {}".format(stage))
+
+            with self.assertRaises(error) as raised:
+                mas.slice(shape, progress=stop)
+            self.assertIn("stopped at", str(raised.exception))
+            self.assertGreaterEqual(calls[-1], stop_at)
+            self.assertLess(calls[-1], 1.0)  # not at the end: stopped on the way
+        self.assertEqual(shape.exportBrepToString(), before)
+        # The engine is left as it was: the same call then runs through.
+        self.check_box_layers(mas.slice(box_20_10_21(), progress=lambda f, s: None))
+        with self.assertRaises(mas.Cancelled):
+            mas.decompose(shape, progress=lambda f, s: (_ for _ in ()).throw(mas.Cancelled()))
+
+    def test_a_progress_that_is_not_callable_is_named(self):
+        for call in (mas.slice, mas.decompose):
+            with self.assertRaisesRegex(TypeError, "progress must be None or callable"):
+                call(l_block(), progress=5)
+
+
 class TestSliceBadInput(SliceTest):
     def test_bad_parameters_are_named(self):
         box = box_20_10_21()

@@ -23,11 +23,14 @@ import FreeCAD
 import Part
 
 import MultiAxisSlicer as mas
+from MultiAxisSlicer import progress as _progress
 from MultiAxisSlicer.decompose import _angle
 
-# Bad input the user can fix (a face instead of a solid, an open mesh, Step = 0, no Source): FreeCAD
-# shows the object as failed with the message. Anything else is a bug and keeps its traceback.
-_USER_ERRORS = (mas.EngineError, mas.EngineUnavailableError, ValueError, TypeError)
+# Bad input the user can fix (a face instead of a solid, an open mesh, Step = 0, no Source), or a
+# recompute the user cancelled: FreeCAD shows the object as failed with the message. Anything else
+# is a bug and keeps its traceback.
+_USER_ERRORS = (mas.EngineError, mas.EngineUnavailableError, ValueError, TypeError,
+                mas.Cancelled)
 
 # Output properties: read-only in the property editor (1), and setting them does not touch the
 # object again (8, App::Prop_Output).
@@ -432,7 +435,9 @@ def decomposition_result(obj):
         if cached is not None and cached[0] == key:
             return cached[1]
     proxy._result = None
-    result = mas.decompose(source, **params)
+    # Reported through the GUI's progress dialog, when there is one (MultiAxisSlicer.progress).
+    with _progress.reporting("Decomposing '{}'".format(obj.Label)) as progress:
+        result = mas.decompose(source, progress=progress, **params)
     if key is not None:
         proxy._result = (key, result)
     return result
@@ -659,7 +664,9 @@ def slice_result(obj):
     if cached is not None and cached[0] == key:
         return cached[1]
     proxy._result = None
-    result = mas.slice(source, components=decomposition, deflection=deflection, **params)
+    with _progress.reporting("Slicing '{}'".format(obj.Label)) as progress:
+        result = mas.slice(source, components=decomposition, deflection=deflection,
+                           progress=progress, **params)
     proxy._result = (key, result)
     return result
 

@@ -6,6 +6,9 @@ import FreeCADGui
 
 import MultiAxisSlicer as mas
 import MultiAxisSlicerGui
+import MultiAxisSlicerGui.progress
+
+MultiAxisSlicerGui.progress.install()  # the commands' recomputes show progress and can be cancelled
 
 
 def _selected_part():
@@ -19,6 +22,25 @@ def _selected_part():
     if obj.isDerivedFrom("Mesh::Feature") or hasattr(obj, "Shape"):
         return obj
     return None
+
+
+def _visibility(doc):
+    """{object name: visible} of the document's objects, to restore after a cancel."""
+    return {o.Name: o.ViewObject.Visibility for o in doc.Objects if o.ViewObject is not None}
+
+
+def _undo_cancelled(doc, transaction, source, visibility):
+    """The user cancelled the command's computation: nothing it made stays (the open transaction
+    is aborted), the objects are shown as they were (`visibility`, from _visibility()), and the
+    status bar says so; no error box."""
+    doc.abortTransaction()
+    for name, visible in visibility.items():
+        obj = doc.getObject(name)
+        if obj is not None and obj.ViewObject is not None:
+            obj.ViewObject.Visibility = visible
+    message = "{} of '{}' cancelled".format(transaction, source.Label)
+    FreeCADGui.getMainWindow().statusBar().showMessage(message, 10000)
+    FreeCAD.Console.PrintMessage(message + "\n")
 
 
 class _PartCommand:
@@ -55,6 +77,8 @@ class _PartCommand:
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
             return
         doc = source.Document
+        cancels = MultiAxisSlicerGui.progress.cancel_count()
+        visibility = _visibility(doc)
         doc.openTransaction(self.TRANSACTION)
         try:
             obj = self.make(source, doc)
@@ -63,6 +87,9 @@ class _PartCommand:
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(
                 "{} of '{}' failed: {}".format(self.TRANSACTION, source.Label, error))
+            return
+        if MultiAxisSlicerGui.progress.cancel_count() != cancels:
+            _undo_cancelled(doc, self.TRANSACTION, source, visibility)
             return
         doc.commitTransaction()
         if not obj.isValid():  # the object stays so that its parameters can be fixed
@@ -131,50 +158,33 @@ class DecomposeCommand(_PartCommand):
 
 
 class _Busy:
-    """Feedback while the GUI waits on the engine: a wait cursor, a status-bar message and
-    FreeCAD's progress bar (Base.ProgressIndicator, one step per stage). The engine gives no
-    progress of its own, so the bar advances between stages; every stage change repaints."""
+    """Feedback between the stages of a command: a wait cursor and a status-bar message. Within a
+    stage the object's recompute shows its own progress dialog, with Cancel (progress.py), which
+    replaces the status-bar progress bar the command used to step once per stage."""
 
-    def __init__(self, title, steps):
-        self.title = title
-        self.steps = steps
-        self.progress = None
-        self.started = False
+    def __init__(self):
+        self.cancels = 0
 
     def __enter__(self):
         from PySide import QtCore, QtGui
 
+        self.cancels = MultiAxisSlicerGui.progress.cancel_count()
         QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
-        indicator = getattr(FreeCAD.Base, "ProgressIndicator", None)
-        if indicator is not None:
-            try:
-                self.progress = indicator()
-                self.progress.start(self.title, self.steps)
-            except Exception:  # no progress bar, the status bar still says what runs
-                self.progress = None
         return self
 
     def stage(self, message):
-        """Starts the next stage: advances the bar past the previous one, shows `message` in the
-        status bar and repaints."""
-        if self.progress is not None and self.started:
-            try:
-                self.progress.next()
-            except Exception:
-                pass
-        self.started = True
+        """Shows `message` in the status bar and repaints."""
         FreeCADGui.getMainWindow().statusBar().showMessage(message)
         FreeCAD.Console.PrintLog("Multi-Axis Slicer: {}\n".format(message))
         FreeCADGui.updateGui()
 
+    def cancelled(self):
+        """Whether the user cancelled a recompute since this began."""
+        return MultiAxisSlicerGui.progress.cancel_count() != self.cancels
+
     def __exit__(self, *exc):
         from PySide import QtGui
 
-        if self.progress is not None:
-            try:
-                self.progress.stop()
-            except Exception:
-                pass
         FreeCADGui.getMainWindow().statusBar().clearMessage()
         QtGui.QApplication.restoreOverrideCursor()
         return False
@@ -184,8 +194,8 @@ class SliceCommand(_PartCommand):
     """Adaptive multi-axis layers and bead paths of a selected Decomposition object (or of a
     selected solid, decomposed first as the Decompose command does), as a parametric Layers object
     (outlines coloured by component) and a Toolpath object (paths coloured by kind), in one
-    transaction. Slicing can take a while: a wait cursor, the status bar and the progress bar say
-    which stage runs."""
+    transaction. Slicing can take a while: the status bar says which stage runs, and a progress
+    dialog shows how far it is; its Cancel undoes the whole command."""
 
     NAME = "MultiAxisSlicer_Slice"
     TRANSACTION = "Slice"
@@ -206,10 +216,11 @@ class SliceCommand(_PartCommand):
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
             return
         doc = source.Document
+        visibility = _visibility(doc)
         failed = None
         doc.openTransaction(self.TRANSACTION)
         try:
-            with _Busy("Slicing '{}'...".format(source.Label), 3) as busy:
+            with _Busy() as busy:
                 if features.is_decomposition(source):
                     decomposition = source
                     busy.stage("Using the decomposition '{}'".format(source.Label))
@@ -218,14 +229,17 @@ class SliceCommand(_PartCommand):
                     # No sub-component thinner than the layers (the default MinLayer).
                     decomposition = DecomposeCommand().make(
                         source, doc, mas.SLICE_DEFAULTS["min_layer"])
-                if decomposition.isValid():
+                if busy.cancelled():
+                    failed = decomposition
+                elif decomposition.isValid():
                     layers, toolpath = features.make_slice(decomposition, doc=doc)
                     busy.stage("Slicing '{}' into layers...".format(source.Label))
                     doc.recompute([layers])  # one stage at a time, for the feedback
                     if layers.isValid():
                         busy.stage("Drawing the bead paths...")
                         doc.recompute([toolpath])
-                    doc.recompute()
+                    if not busy.cancelled():  # else nothing is kept: no more work
+                        doc.recompute()
                     failed = next((o for o in (layers, toolpath) if not o.isValid()), None)
                     if failed is None:  # the layers take the part's place in the view
                         part = features.decomposition_inputs(decomposition)[0]
@@ -234,10 +248,14 @@ class SliceCommand(_PartCommand):
                                 o.ViewObject.Visibility = False
                 else:
                     failed = decomposition
+                cancelled = busy.cancelled()
         except Exception as error:  # creating the objects failed: leave nothing behind
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(
                 "{} of '{}' failed: {}".format(self.TRANSACTION, source.Label, error))
+            return
+        if cancelled:
+            _undo_cancelled(doc, self.TRANSACTION, source, visibility)
             return
         doc.commitTransaction()
         if failed is not None:  # the objects stay so that their parameters can be fixed

@@ -2,6 +2,10 @@
 """View providers of the Multi-Axis Slicer document objects."""
 
 import MultiAxisSlicerGui
+import MultiAxisSlicerGui.progress
+
+# Any document with these objects in the GUI imports this module: their recomputes show progress.
+MultiAxisSlicerGui.progress.install()
 
 # Sections are drawn as lines over the part: a colour that stands out from FreeCAD's grey solids.
 SECTION_LINE_COLOR = (1.0, 0.45, 0.0)  # orange

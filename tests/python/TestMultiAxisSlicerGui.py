@@ -18,6 +18,7 @@ import Part
 from PySide import QtCore, QtGui
 
 import MultiAxisSlicer as mas
+import MultiAxisSlicerGui.progress as progress
 import MultiAxisSlicerGui.view_providers as view_providers
 
 WORKBENCH = "MultiAxisSlicerWorkbench"
@@ -698,6 +699,80 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())
         self.assertIsNone(QtGui.QApplication.overrideCursor())
+
+    def cancelling(self, stage):
+        """A context manager: while it is open, every progress dialog whose text has `stage` in it
+        shows at once and has its Cancel button clicked (mouse press and release through the
+        application, as a user's, so that an input filter would stop them)."""
+        test = self
+
+        class Canceller:
+            def __enter__(self):
+                self.saved = (progress.SHOW_AFTER, progress.INTERVAL)
+                progress.SHOW_AFTER = progress.INTERVAL = 0.0
+                self.clicks = 0
+                self.timer = QtCore.QTimer()
+                self.timer.timeout.connect(self.poke)
+                self.timer.start(0)
+                return self
+
+            def poke(self):
+                dialog = QtGui.QApplication.activeModalWidget()
+                if not isinstance(dialog, QtGui.QProgressDialog) or stage not in \
+                        dialog.labelText() or dialog.wasCanceled():
+                    return
+                button = dialog.findChild(QtGui.QPushButton)
+                test.assertEqual(button.text(), "Cancel")
+                centre = button.rect().center()
+                for kind in (QtCore.QEvent.MouseButtonPress, QtCore.QEvent.MouseButtonRelease):
+                    QtGui.QApplication.sendEvent(button, QtGui.QMouseEvent(
+                        kind, centre, QtCore.Qt.LeftButton, QtCore.Qt.LeftButton,
+                        QtCore.Qt.NoModifier))
+                self.clicks += 1
+
+            def __exit__(self, *exc):
+                self.timer.stop()
+                progress.SHOW_AFTER, progress.INTERVAL = self.saved
+                return False
+
+        return Canceller()
+
+    def test_cancel_in_the_progress_dialog_undoes_the_command(self):
+        before = self.part.Shape.exportBrepToString()
+        names = [o.Name for o in self.doc.Objects]
+        undo = self.doc.UndoCount
+        cancels = progress.cancel_count()
+        with self.cancelling("Slicing") as canceller:
+            self.run_command(self.part)
+        self.assertEqual(canceller.clicks, 1)
+        self.assertEqual(progress.cancel_count(), cancels + 1)
+        # Nothing the command made stays, the part is shown as before, no error box.
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.assertEqual(self.doc.UndoCount, undo)
+        self.assertTrue(self.part.ViewObject.Visibility)
+        self.assertEqual(self.error_boxes(), [])
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        self.assertIsNone(QtGui.QApplication.overrideCursor())
+        self.assertEqual(QtGui.QApplication.activeModalWidget(), None)
+        # The same command then runs through.
+        layers, toolpath = self.run_command(self.part)
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertEqual(layers.LayerCount, 55)
+
+    def test_a_cancelled_recompute_marks_the_object_and_the_next_one_runs(self):
+        layers, toolpath = self.run_command(mas.make_decomposition(self.part))
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        layers.MaxLayer = 1.5
+        with self.cancelling("Slicing 'Layers'") as canceller:
+            self.doc.recompute()
+        self.assertEqual(canceller.clicks, 1)
+        self.assertIn("Invalid", layers.State)
+        self.assertIn("cancelled by the user", layers.getStatusString())
+        self.assertEqual(self.error_boxes(), [])
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertGreater(layers.LayerCount, 55)
 
     def test_a_failing_layers_object_shows_its_message(self):
         decomposition = mas.make_decomposition(self.part)

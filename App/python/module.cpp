@@ -14,6 +14,7 @@
 #define BOOST_ALLOW_DEPRECATED_HEADERS
 #include <boost/python.hpp>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <string>
 #include <vector>
@@ -117,7 +118,7 @@ void run_reporting(const bp::object& callback, Work&& work) {
                          Py_TYPE(fn)->tp_name + "'");
     struct Raised {};
     PyObject *type = nullptr, *value = nullptr, *traceback = nullptr;
-    bool raised = false;
+    std::exception_ptr failure;
     {
         GilRelease nogil;
         mas::Progress progress;
@@ -134,13 +135,16 @@ void run_reporting(const bp::object& callback, Work&& work) {
         try {
             work(progress);
         } catch (const Raised&) {
-            raised = true;
+        } catch (...) {
+            failure = std::current_exception();
         }
     }
-    if (raised) {
+    // The callback's exception wins over whatever the engine made of it.
+    if (type || value) {
         PyErr_Restore(type, value, traceback);
         bp::throw_error_already_set();
     }
+    if (failure) std::rethrow_exception(failure);
 }
 
 // ---- conversions

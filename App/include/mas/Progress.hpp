@@ -31,9 +31,6 @@ public:
     void check() const;
     // The share [lo, hi] (fractions of this span) of this span, under `stage` (empty: this span's).
     Progress span(double lo, double hi, std::string stage = {}) const;
-    // This span's check() as a plain callback, for the functions that only take one; empty when
-    // nothing is reported.
-    std::function<void()> checker() const;
 
     explicit operator bool() const { return static_cast<bool>(state_); }
 

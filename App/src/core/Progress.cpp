@@ -34,9 +34,4 @@ Progress Progress::span(double lo, double hi, std::string stage) const {
     return out;
 }
 
-std::function<void()> Progress::checker() const {
-    if (!state_) return {};
-    return [p = *this] { p.check(); };
-}
-
 }  // namespace mas

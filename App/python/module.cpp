@@ -13,6 +13,7 @@
 #define BOOST_BIND_GLOBAL_PLACEHOLDERS
 #define BOOST_ALLOW_DEPRECATED_HEADERS
 #include <boost/python.hpp>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -107,8 +108,12 @@ private:
 
 // Runs work(progress) with the GIL released, `progress` reporting to the Python callable
 // `callback(fraction, stage)` (None: no reports). The engine reports from this thread only, so each
-// report takes the GIL back for the call. An exception the callback raises (the user cancelled)
-// stops the work and is raised again here, unchanged, once the GIL is back.
+// report takes the GIL back for the call. The engine reports thousands of times a second on small
+// layers; the callback hears from it at most every kReportInterval, and at every new stage and at
+// the end. An exception the callback raises (the user cancelled) stops the work and is raised again
+// here, unchanged, once the GIL is back.
+constexpr std::chrono::milliseconds kReportInterval{10};
+
 template <class Work>
 void run_reporting(const bp::object& callback, Work&& work) {
     PyObject* fn = callback.is_none() ? nullptr : callback.ptr();
@@ -122,8 +127,18 @@ void run_reporting(const bp::object& callback, Work&& work) {
     {
         GilRelease nogil;
         mas::Progress progress;
+        std::string last_stage;
+        auto last_call = std::chrono::steady_clock::now();
+        bool called = false;
         if (fn)
             progress = mas::Progress([&](double fraction, const std::string& stage) {
+                const auto now = std::chrono::steady_clock::now();
+                if (called && now - last_call < kReportInterval && fraction < 1.0 &&
+                    stage == last_stage)
+                    return;
+                called = true;
+                last_call = now;
+                last_stage = stage;
                 GilRelease::Hold gil(nogil);
                 PyObject* result = PyObject_CallFunction(fn, "ds", fraction, stage.c_str());
                 if (!result) {

@@ -2,6 +2,7 @@
 // Sub-commands grow with the pipeline: `sections` (cross-section areas and centroids), `axis` (the
 // centroidal axis), `decompose` (the tree of sub-components), `slice` (layers and paths).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
@@ -18,6 +20,7 @@
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
+#include "mas/Progress.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
 #include "mas/SlicePart.hpp"
@@ -31,15 +34,15 @@ const char* kUsage =
     "                                  [--break-angle DEG] [--base-z MM] [--deflection MM]\n"
     "                                  [--json [OUT.json]]\n"
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG] [--no-fallback]\n"
-    "                                       [--min-height MM] [--step-dir DIR] [--json "
-    "[OUT.json]]\n"
+    "                                       [--min-height MM] [--step-dir DIR] [--progress]\n"
+    "                                       [--json [OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
     "                                   [--max-volume-difference F] [--eps-angle DEG]\n"
     "                                   [--overhang-angle DEG] [--volume-samples N] [--strict]\n"
     "                                   [--bead-width MM] [--overlap F] [--contours N]\n"
     "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
     "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
-    "                                   [--measure-coverage] [--json [OUT.json]]\n"
+    "                                   [--measure-coverage] [--progress] [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
     "\n"
     "sections   cut the part with parallel planes STEP mm apart along NORMAL (default 0,0,1 and\n"
@@ -61,8 +64,34 @@ const char* kUsage =
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
     "--json     write JSON instead of text, to OUT.json or standard output\n"
+    "--progress report how far decomposing and slicing are on standard error: a line at each\n"
+    "           new stage and at most one a second within one, then 100 %. (Ctrl-C stops.)\n"
     "--deflection MM  chordal deflection for tessellating a solid (default: derived from its "
     "size)\n";
+
+// --progress: the stage and the per cent done on standard error, a line at each new stage and at
+// most one a second within a stage (a log stays short), and a last line at 100 %.
+mas::Progress stderr_progress() {
+    struct State {
+        std::string stage;
+        std::chrono::steady_clock::time_point last;
+        bool any = false, done = false;
+    };
+    auto st = std::make_shared<State>();
+    return mas::Progress([st](double fraction, const std::string& stage) {
+        const auto now = std::chrono::steady_clock::now();
+        if (st->done) return;
+        st->done = fraction >= 1.0;
+        if (!st->done && (stage.empty() || (st->any && stage == st->stage &&
+                                            now - st->last < std::chrono::seconds(1))))
+            return;
+        st->any = true;
+        st->stage = stage;
+        st->last = now;
+        std::fprintf(stderr, "%3.0f %% %s\n", 100.0 * fraction, st->done ? "done" : stage.c_str());
+        std::fflush(stderr);
+    });
+}
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -336,10 +365,12 @@ int run_decompose(const std::vector<std::string>& args) {
     allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--step-dir"});
     // --no-fallback takes no value: take it out before the common parser sees it.
     std::vector<std::string> rest;
-    bool fallback = true;
+    bool fallback = true, report = false;
     for (const auto& arg : args) {
         if (arg == "--no-fallback")
             fallback = false;
+        else if (arg == "--progress")
+            report = true;
         else
             rest.push_back(arg);
     }
@@ -357,7 +388,8 @@ int run_decompose(const std::vector<std::string>& args) {
             a.file + ": decomposition splits a BREP solid (STEP, IGES, BREP), not a mesh");
     const mas::Shape solid = part.model.shape.single_solid(a.file);
     const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, ap);
-    const mas::Decomposition d = mas::decompose(solid, axis, dp);
+    const mas::Decomposition d =
+        mas::decompose(solid, axis, dp, report ? stderr_progress() : mas::Progress());
 
     std::vector<std::string> step_files(d.components.size());
     if (a.has("--step-dir")) {
@@ -453,12 +485,14 @@ int run_slice(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
     allowed.insert(kSliceOptions.begin(), kSliceOptions.end());
     std::vector<std::string> rest;
-    bool strict = false, coverage = false;
+    bool strict = false, coverage = false, report = false;
     for (const auto& arg : args) {
         if (arg == "--strict")
             strict = true;
         else if (arg == "--measure-coverage")
             coverage = true;
+        else if (arg == "--progress")
+            report = true;
         else
             rest.push_back(arg);
     }
@@ -472,14 +506,16 @@ int run_slice(const std::vector<std::string>& args) {
     const Part part = load_part(a);
     const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, ap);
     mas::SlicedPart r;
+    const mas::Progress progress = report ? stderr_progress() : mas::Progress();
     if (part.model.kind == mas::Model::Kind::Solid) {
         const mas::Shape solid = part.model.shape.single_solid(a.file);
         mas::DecomposeParams dp;  // no component thinner than a layer
         dp.min_component_height_mm = sp.layers.min_layer_mm;
-        const mas::Decomposition d = mas::decompose(solid, axis, dp);
-        r = mas::slice_part(solid, axis, d, sp);
+        // Decomposing is the first fifth, as in the Python API.
+        const mas::Decomposition d = mas::decompose(solid, axis, dp, progress.span(0.0, 0.2));
+        r = mas::slice_part(solid, axis, d, sp, progress.span(0.2, 1.0));
     } else {
-        r = mas::slice_mesh_part(part.mesh, axis, sp);  // a mesh cannot be split
+        r = mas::slice_mesh_part(part.mesh, axis, sp, progress);  // a mesh cannot be split
     }
     const mas::SliceStats& st = r.stats;
     std::ostringstream out;

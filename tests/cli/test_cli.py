@@ -275,6 +275,27 @@ class CliSections(unittest.TestCase):
         self.assertEqual([float(row[4]) for row in rows], [3.0] * 7)
         self.assertIn("# build order: 0\n", r.stdout)
 
+    def test_progress_goes_to_standard_error_stage_by_stage_up_to_100(self):
+        brep = os.path.join(DATA, "l_block.brep")
+        for command, stages in (
+                ("decompose", ["splitting at branch 0 of 2", "splitting at branch 1 of 2"]),
+                ("slice", ["splitting at branch 0 of 2", "splitting at branch 1 of 2",
+                           "tessellating the components",
+                           "ordering the components", "slicing component 0 (1 of 2)",
+                           "slicing component 1 (2 of 2)", "planning the bead paths"])):
+            plain = run(command, brep, "--json")
+            r = run(command, brep, "--json", "--progress")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(plain.stderr, "")
+            self.assertEqual(r.stdout, plain.stdout, command)  # the result is the same
+            lines = [l.split(" % ", 1) for l in r.stderr.splitlines()]
+            percents = [float(p) for p, _ in lines]
+            self.assertEqual(percents, sorted(percents), command)
+            self.assertEqual(lines[-1], ["100", "done"], command)
+            self.assertEqual(sum(1 for _, s in lines if s == "done"), 1, command)
+            # Every stage, once each (the part takes well under a second), in order.
+            self.assertEqual([s for _, s in lines[:-1]], stages, command)
+
     def test_slice_bad_input(self):
         brep = os.path.join(DATA, "l_block.brep")
         self.expect_error(["slice", brep, "--min-layer", "3", "--max-layer", "2"], 1,

@@ -44,6 +44,22 @@ void expect_never_back_and_done(const Reports& reports) {
 
 struct Stop {};  // an exception of the caller's own, not an engine error
 
+// The two posts on a plate (boxes: their meshes are exact), with its axis and decomposition.
+struct TwoPosts {
+    mas::Shape part = mas::test::two_posts();
+    mas::CentroidalAxis axis;
+    mas::Decomposition d;
+    mas::SlicePartParams params;
+
+    TwoPosts() {
+        mas::TessellationParams tp;
+        tp.deflection_mm = kDeflection;
+        axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
+        d = mas::decompose(part, axis);
+        params.tessellation.deflection_mm = kDeflection;
+    }
+};
+
 }  // namespace
 
 TEST(Progress, SpansReportTheirShareOfTheWholeAndNeverGoBack) {
@@ -91,16 +107,11 @@ TEST(Progress, DecompositionReportsBranchByBranchUpToOne) {
 }
 
 TEST(Progress, SlicingReportsEveryStageInOrderUpToOne) {
-    const auto part = mas::test::two_posts();
-    mas::TessellationParams tp;
-    tp.deflection_mm = kDeflection;
-    const auto axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
-    const auto d = mas::decompose(part, axis);
+    const TwoPosts p;
+    const mas::Decomposition& d = p.d;
     ASSERT_EQ(d.components.size(), 3u);
-    mas::SlicePartParams params;
-    params.tessellation.deflection_mm = kDeflection;
     Reports r;
-    const mas::SlicedPart sliced = mas::slice_part(part, axis, d, params, recorder(r));
+    const mas::SlicedPart sliced = mas::slice_part(p.part, p.axis, d, p.params, recorder(r));
     expect_never_back_and_done(r);
     // Every layer reports once as it is laid, besides the checks between candidate planes.
     EXPECT_GE(r.size(), sliced.layers.size());
@@ -126,27 +137,21 @@ TEST(Progress, SlicingReportsEveryStageInOrderUpToOne) {
 }
 
 TEST(Progress, AnExceptionFromTheReportStopsSlicingUnchanged) {
-    const auto part = mas::test::two_posts();
-    mas::TessellationParams tp;
-    tp.deflection_mm = kDeflection;
-    const auto axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
-    const auto d = mas::decompose(part, axis);
-    mas::SlicePartParams params;
-    params.tessellation.deflection_mm = kDeflection;
+    const TwoPosts p;
     // Stopped in each stage in turn; the same call then runs to its end.
     for (const std::string stage :
          {"tessellating", "ordering", "slicing component 2", "planning"}) {
         int after = 0;
-        EXPECT_THROW(
-            mas::slice_part(part, axis, d, params, mas::Progress([&](double, const std::string& s) {
-                                if (s.rfind(stage, 0) == 0 && ++after == 2) throw Stop{};
-                            })),
-            Stop)
+        EXPECT_THROW(mas::slice_part(p.part, p.axis, p.d, p.params,
+                                     mas::Progress([&](double, const std::string& s) {
+                                         if (s.rfind(stage, 0) == 0 && ++after == 2) throw Stop{};
+                                     })),
+                     Stop)
             << stage;
         EXPECT_EQ(after, 2) << stage;
     }
     Reports r;
-    const mas::SlicedPart sliced = mas::slice_part(part, axis, d, params, recorder(r));
+    const mas::SlicedPart sliced = mas::slice_part(p.part, p.axis, p.d, p.params, recorder(r));
     EXPECT_GT(sliced.layers.size(), 0u);
     expect_never_back_and_done(r);
 }

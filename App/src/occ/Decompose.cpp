@@ -204,9 +204,11 @@ bool meshes_closed(const TopoDS_Shape& solid, double deflection) {
 // co-cylindrical faces removed (`unified`, when already done), else the piece as the split left it,
 // else what ShapeFix makes of it; false when none is one valid solid. (The splitter and the seam
 // removal can leave a face whose wires the check rejects: a tee's pipe cut across its branch.)
+// `progress` is checked before each attempt: on a C0 part each one meshes the piece.
 bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, double mesh_deflection,
-                 const TopoDS_Shape& unified = TopoDS_Shape()) {
+                 const Progress& progress, const TopoDS_Shape& unified = TopoDS_Shape()) {
     for (int attempt = 0; attempt < 3; ++attempt) {
+        progress.check();
         TopoDS_Shape s = piece;
         if (attempt == 0) s = unified.IsNull() ? unify(piece) : unified;
         if (attempt == 2) {
@@ -309,12 +311,13 @@ enum class SplitOutcome {
 // `inner` points on the +n side (one each, a piece at most once; a point without a piece gets a
 // null child) that reach at least `min_height` beyond the plane, hold at most `max_volume[k]`
 // and none of the father's `footing`. Every other piece goes back into the father (fused, seams
-// removed).
+// removed). `progress` is checked between the steps (OCCT's own calls run uninterrupted).
 SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                             const Vector3d& point, const Vector3d& n,
                             const std::vector<Vector3d>& inner, double min_height,
                             const std::vector<double>& max_volume, double mesh_deflection,
-                            std::vector<Child>& children, TopoDS_Shape& father_out) {
+                            const Progress& progress, std::vector<Child>& children,
+                            TopoDS_Shape& father_out) {
     try {
         const Eigen::AlignedBox3d b = bounds_of(father);
         const double r = 2.0 * b.diagonal().norm() + 1.0;
@@ -391,7 +394,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 continue;
             }
             Child child;
-            if (!valid_solid(pieces[piece], child.solid, mesh_deflection)) {
+            if (!valid_solid(pieces[piece], child.solid, mesh_deflection, progress)) {
                 children[k].kept_because =
                     "its piece of the split is no valid solid (OCCT's check, or a closed mesh)";
                 continue;
@@ -447,7 +450,8 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
         }
         const TopoDS_Shape unified = unify(father_new);
         if (solids_of(unified).size() != 1) return SplitOutcome::Apart;
-        if (!valid_solid(father_new, father_out, mesh_deflection, unified))
+        progress.check();
+        if (!valid_solid(father_new, father_out, mesh_deflection, progress, unified))
             return SplitOutcome::Invalid;
         return SplitOutcome::Split;
     } catch (const Standard_Failure&) {
@@ -774,7 +778,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             const SplitOutcome outcome =
                 split_by_plane(fs, footing, p.point, p.normal, inner,
                                std::max(axis.params.step_mm, params.min_component_height_mm), most,
-                               mesh_deflection, children, father_new);
+                               mesh_deflection, at, children, father_new);
             if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
                 // The siblings that would have shared the split try their own in turn (and
                 // note their own outcome).

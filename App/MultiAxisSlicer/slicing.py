@@ -19,8 +19,8 @@ import math
 import numbers
 
 from . import _as_list, _as_vector, _model, _require_engine
-from .axis import CentroidalAxis, _number, centroidal_axis
 from . import progress as _progress
+from .axis import CentroidalAxis, _number, centroidal_axis
 from .decompose import Decomposition, decompose
 
 __all__ = ["Layer", "ToolPath", "SliceResult", "slice", "SLICE_DEFAULTS"]

@@ -6,7 +6,9 @@ are stopped.
 now and then, from the calling thread, with the fraction of the whole done so far (0 to 1, never
 decreasing; 1 when done) and the stage in words ("slicing component 2 (3 of 5)"). To stop the
 work it raises: ``Cancelled`` by convention, or any exception, which the computation raises again
-unchanged. Nothing the caller passed is modified by a stopped computation::
+unchanged. Nothing the caller passed is modified by a stopped computation. Python's signal
+handlers run at the engine's reports too, with or without a callback: Ctrl-C stops the work with
+``KeyboardInterrupt`` within about 10 ms::
 
     def progress(fraction, stage):
         print("{:4.0%} {}".format(fraction, stage))

@@ -110,8 +110,10 @@ private:
 // `callback(fraction, stage)` (None: no reports). The engine reports from this thread only, so each
 // report takes the GIL back for the call. The engine reports thousands of times a second on small
 // layers; the callback hears from it at most every kReportInterval, and at every new stage and at
-// the end. An exception the callback raises (the user cancelled) stops the work and is raised again
-// here, unchanged, once the GIL is back.
+// the end. Python's signal handlers run there too, callback or not: Ctrl-C (KeyboardInterrupt)
+// stops a script's long decomposition or slicing within kReportInterval of the engine's next
+// report. An exception the callback or a handler raises (the user cancelled) stops the work and is
+// raised again here, unchanged, once the GIL is back.
 constexpr std::chrono::milliseconds kReportInterval{10};
 
 template <class Work>
@@ -130,23 +132,23 @@ void run_reporting(const bp::object& callback, Work&& work) {
         std::string last_stage;
         auto last_call = std::chrono::steady_clock::now();
         bool called = false;
-        if (fn)
-            progress = mas::Progress([&](double fraction, const std::string& stage) {
-                const auto now = std::chrono::steady_clock::now();
-                if (called && now - last_call < kReportInterval && fraction < 1.0 &&
-                    stage == last_stage)
-                    return;
-                called = true;
-                last_call = now;
-                last_stage = stage;
-                GilRelease::Hold gil(nogil);
-                PyObject* result = PyObject_CallFunction(fn, "ds", fraction, stage.c_str());
-                if (!result) {
-                    PyErr_Fetch(&type, &value, &traceback);
-                    throw Raised{};
-                }
-                Py_DECREF(result);
-            });
+        progress = mas::Progress([&](double fraction, const std::string& stage) {
+            const auto now = std::chrono::steady_clock::now();
+            const bool news = !called || fraction >= 1.0 || stage != last_stage;
+            if (now - last_call < kReportInterval && !(fn && news)) return;
+            called = true;
+            last_call = now;
+            last_stage = stage;
+            GilRelease::Hold gil(nogil);
+            PyObject* result = PyErr_CheckSignals() != 0 ? nullptr
+                               : fn ? PyObject_CallFunction(fn, "ds", fraction, stage.c_str())
+                                    : Py_NewRef(Py_None);
+            if (!result) {
+                PyErr_Fetch(&type, &value, &traceback);
+                throw Raised{};
+            }
+            Py_DECREF(result);
+        });
         try {
             work(progress);
         } catch (const Raised&) {

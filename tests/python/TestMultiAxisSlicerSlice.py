@@ -279,6 +279,39 @@ class TestSliceProgress(SliceTest):
         with self.assertRaises(mas.Cancelled):
             mas.decompose(shape, progress=lambda f, s: (_ for _ in ()).throw(mas.Cancelled()))
 
+    def test_a_python_signal_handler_stops_the_engine_without_a_callback(self):
+        # Ctrl-C in a script: Python's handlers run while the engine works, not once it is done.
+        import signal
+        import time
+
+        class Alarm(Exception):
+            pass
+
+        def handler(signum, frame):
+            raise Alarm()
+
+        plate = Part.makeBox(100, 100, 4)
+        posts = plate.fuse([Part.makeCylinder(3, 25, V(10 + 12 * i, 10 + 12 * j, 4))
+                            for i in range(7) for j in range(7)]).removeSplitter()
+        parts = mas.decompose(posts, min_component_height=0.5)
+        start = time.perf_counter()
+        self.assertEqual(len(mas.slice(posts, components=parts).components), 50)
+        whole = time.perf_counter() - start  # some tenths of a second
+        previous = signal.signal(signal.SIGALRM, handler)
+        try:
+            start = time.perf_counter()
+            signal.setitimer(signal.ITIMER_REAL, whole / 10)
+            with self.assertRaises(Alarm):
+                mas.slice(posts, components=parts)
+            stopped = time.perf_counter() - start
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, previous)
+        # Stopped on the way (a handler that waited for the engine would run at its end), and
+        # the engine runs through again.
+        self.assertLess(stopped, whole / 2)
+        self.assertEqual(len(mas.slice(posts, components=parts).components), 50)
+
     def test_a_progress_that_is_not_callable_is_named(self):
         for call in (mas.slice, mas.decompose):
             with self.assertRaisesRegex(TypeError, "progress must be None or callable"):

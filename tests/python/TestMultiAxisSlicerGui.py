@@ -741,19 +741,20 @@ class TestSliceCommand(unittest.TestCase):
         before = self.part.Shape.exportBrepToString()
         names = [o.Name for o in self.doc.Objects]
         undo = self.doc.UndoCount
-        cancels = progress.cancel_count()
-        with self.cancelling("Slicing") as canceller:
-            self.run_command(self.part)
-        self.assertEqual(canceller.clicks, 1)
-        self.assertEqual(progress.cancel_count(), cancels + 1)
-        # Nothing the command made stays, the part is shown as before, no error box.
-        self.assertEqual([o.Name for o in self.doc.Objects], names)
-        self.assertEqual(self.doc.UndoCount, undo)
-        self.assertTrue(self.part.ViewObject.Visibility)
-        self.assertEqual(self.error_boxes(), [])
-        self.assertEqual(self.part.Shape.exportBrepToString(), before)
-        self.assertIsNone(QtGui.QApplication.overrideCursor())
-        self.assertEqual(QtGui.QApplication.activeModalWidget(), None)
+        for stage in ("Decomposing", "Slicing"):  # the solid is decomposed first
+            cancels = progress.cancel_count()
+            with self.cancelling(stage) as canceller:
+                self.run_command(self.part)
+            self.assertEqual(canceller.clicks, 1, stage)
+            self.assertEqual(progress.cancel_count(), cancels + 1, stage)
+            # Nothing the command made stays, the part is shown as before, no error box.
+            self.assertEqual([o.Name for o in self.doc.Objects], names, stage)
+            self.assertEqual(self.doc.UndoCount, undo, stage)
+            self.assertTrue(self.part.ViewObject.Visibility, stage)
+            self.assertEqual(self.error_boxes(), [], stage)
+            self.assertEqual(self.part.Shape.exportBrepToString(), before, stage)
+            self.assertIsNone(QtGui.QApplication.overrideCursor(), stage)
+            self.assertEqual(QtGui.QApplication.activeModalWidget(), None, stage)
         # The same command then runs through.
         layers, toolpath = self.run_command(self.part)
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())

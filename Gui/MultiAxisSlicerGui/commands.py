@@ -82,7 +82,8 @@ class _PartCommand:
         doc.openTransaction(self.TRANSACTION)
         try:
             obj = self.make(source, doc)
-            doc.recompute()
+            if MultiAxisSlicerGui.progress.cancel_count() == cancels:  # else no more work
+                doc.recompute()
         except Exception as error:  # creating the object failed: leave nothing behind
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(

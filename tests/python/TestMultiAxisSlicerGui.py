@@ -356,6 +356,43 @@ def features_of():
     return features
 
 
+class Canceller:
+    """While open, every progress dialog whose text has `stage` in it shows at once and has its
+    Cancel button clicked (mouse press and release sent through the application, as a user's
+    click would be, so that an input filter would stop them). `clicks` counts the clicks."""
+
+    def __init__(self, test, stage):
+        self.test = test
+        self.stage = stage
+        self.clicks = 0
+
+    def __enter__(self):
+        self.saved = (progress.SHOW_AFTER, progress.INTERVAL)
+        progress.SHOW_AFTER = progress.INTERVAL = 0.0
+        self.timer = QtCore.QTimer()
+        self.timer.timeout.connect(self.poke)
+        self.timer.start(0)
+        return self
+
+    def poke(self):
+        dialog = QtGui.QApplication.activeModalWidget()
+        if not isinstance(dialog, QtGui.QProgressDialog) or self.stage not in \
+                dialog.labelText() or dialog.wasCanceled():
+            return
+        button = dialog.findChild(QtGui.QPushButton)
+        self.test.assertEqual(button.text(), "Cancel")
+        centre = button.rect().center()
+        for kind in (QtCore.QEvent.MouseButtonPress, QtCore.QEvent.MouseButtonRelease):
+            QtGui.QApplication.sendEvent(button, QtGui.QMouseEvent(
+                kind, centre, QtCore.Qt.LeftButton, QtCore.Qt.LeftButton, QtCore.Qt.NoModifier))
+        self.clicks += 1
+
+    def __exit__(self, *exc):
+        self.timer.stop()
+        progress.SHOW_AFTER, progress.INTERVAL = self.saved
+        return False
+
+
 class TestDecomposeCommand(unittest.TestCase):
     def setUp(self):
         FreeCADGui.activateWorkbench(WORKBENCH)
@@ -379,6 +416,24 @@ class TestDecomposeCommand(unittest.TestCase):
         FreeCADGui.runCommand(DECOMPOSE_COMMAND)
         process_events()
         return self.doc.getObject("Decomposition")
+
+    def test_cancel_in_the_progress_dialog_undoes_the_command(self):
+        names = [o.Name for o in self.doc.Objects]
+        undo = self.doc.UndoCount
+        with Canceller(self, "Decomposing") as canceller:
+            self.assertIsNone(self.run_command(self.part))
+        self.assertEqual(canceller.clicks, 1)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.assertEqual(self.doc.UndoCount, undo)
+        self.assertTrue(self.part.ViewObject.Visibility)
+        self.assertEqual([b for b in FreeCADGui.getMainWindow().findChildren(
+            QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()], [])
+        # The same command then runs through.
+        import MultiAxisSlicer.features as features
+
+        decomposition = self.run_command(self.part)
+        self.assertTrue(decomposition.isValid(), decomposition.getStatusString())
+        self.assertEqual(len(features.components_of(decomposition)), 2)
 
     def check_colours(self, obj):
         """One palette colour per component, distinct; the compound's faces in the same ones."""
@@ -700,50 +755,13 @@ class TestSliceCommand(unittest.TestCase):
         self.assertIn("not a solid", boxes[0].text())
         self.assertIsNone(QtGui.QApplication.overrideCursor())
 
-    def cancelling(self, stage):
-        """A context manager: while it is open, every progress dialog whose text has `stage` in it
-        shows at once and has its Cancel button clicked (mouse press and release through the
-        application, as a user's, so that an input filter would stop them)."""
-        test = self
-
-        class Canceller:
-            def __enter__(self):
-                self.saved = (progress.SHOW_AFTER, progress.INTERVAL)
-                progress.SHOW_AFTER = progress.INTERVAL = 0.0
-                self.clicks = 0
-                self.timer = QtCore.QTimer()
-                self.timer.timeout.connect(self.poke)
-                self.timer.start(0)
-                return self
-
-            def poke(self):
-                dialog = QtGui.QApplication.activeModalWidget()
-                if not isinstance(dialog, QtGui.QProgressDialog) or stage not in \
-                        dialog.labelText() or dialog.wasCanceled():
-                    return
-                button = dialog.findChild(QtGui.QPushButton)
-                test.assertEqual(button.text(), "Cancel")
-                centre = button.rect().center()
-                for kind in (QtCore.QEvent.MouseButtonPress, QtCore.QEvent.MouseButtonRelease):
-                    QtGui.QApplication.sendEvent(button, QtGui.QMouseEvent(
-                        kind, centre, QtCore.Qt.LeftButton, QtCore.Qt.LeftButton,
-                        QtCore.Qt.NoModifier))
-                self.clicks += 1
-
-            def __exit__(self, *exc):
-                self.timer.stop()
-                progress.SHOW_AFTER, progress.INTERVAL = self.saved
-                return False
-
-        return Canceller()
-
     def test_cancel_in_the_progress_dialog_undoes_the_command(self):
         before = self.part.Shape.exportBrepToString()
         names = [o.Name for o in self.doc.Objects]
         undo = self.doc.UndoCount
         for stage in ("Decomposing", "Slicing"):  # the solid is decomposed first
             cancels = progress.cancel_count()
-            with self.cancelling(stage) as canceller:
+            with Canceller(self, stage) as canceller:
                 self.run_command(self.part)
             self.assertEqual(canceller.clicks, 1, stage)
             self.assertEqual(progress.cancel_count(), cancels + 1, stage)
@@ -764,7 +782,7 @@ class TestSliceCommand(unittest.TestCase):
         layers, toolpath = self.run_command(mas.make_decomposition(self.part))
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
         layers.MaxLayer = 1.5
-        with self.cancelling("Slicing 'Layers'") as canceller:
+        with Canceller(self, "Slicing 'Layers'") as canceller:
             self.doc.recompute()
         self.assertEqual(canceller.clicks, 1)
         self.assertIn("Invalid", layers.State)

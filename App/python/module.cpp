@@ -128,11 +128,10 @@ void run_reporting(const bp::object& callback, Work&& work) {
     std::exception_ptr failure;
     {
         GilRelease nogil;
-        mas::Progress progress;
         std::string last_stage;
         auto last_call = std::chrono::steady_clock::now();
         bool called = false;
-        progress = mas::Progress([&](double fraction, const std::string& stage) {
+        const mas::Progress progress([&](double fraction, const std::string& stage) {
             const auto now = std::chrono::steady_clock::now();
             const bool news = !called || fraction >= 1.0 || stage != last_stage;
             if (now - last_call < kReportInterval && !(fn && news)) return;

@@ -230,9 +230,7 @@ class SliceCommand(_PartCommand):
                     # No sub-component thinner than the layers (the default MinLayer).
                     decomposition = DecomposeCommand().make(
                         source, doc, mas.SLICE_DEFAULTS["min_layer"])
-                if busy.cancelled():
-                    failed = decomposition
-                elif decomposition.isValid():
+                if decomposition.isValid():  # a cancelled one is not
                     layers, toolpath = features.make_slice(decomposition, doc=doc)
                     busy.stage("Slicing '{}' into layers...".format(source.Label))
                     doc.recompute([layers])  # one stage at a time, for the feedback

@@ -41,7 +41,6 @@ class ProgressDialog:
         self.dialog = None
         self.start = 0.0
         self.last = 0.0
-        self.cursor_pushed = False
 
     def __enter__(self):
         self.start = self.last = time.monotonic()
@@ -79,8 +78,7 @@ class ProgressDialog:
         dialog.setMinimumWidth(360)  # the stage's text changes: no jumping size
         dialog.show()
         # A command may have set the wait cursor: Cancel takes an ordinary pointer.
-        QtGui.QApplication.setOverrideCursor(QtCore.Qt.ArrowCursor)
-        self.cursor_pushed = True
+        QtGui.QApplication.setOverrideCursor(QtCore.Qt.ArrowCursor)  # until __exit__
         self.dialog = dialog
 
     def _cancelled(self):
@@ -89,10 +87,8 @@ class ProgressDialog:
         raise _progress.Cancelled("cancelled by the user; recompute to run it again")
 
     def __exit__(self, *exc):
-        if self.cursor_pushed:
-            QtGui.QApplication.restoreOverrideCursor()
-            self.cursor_pushed = False
         if self.dialog is not None:
+            QtGui.QApplication.restoreOverrideCursor()
             self.dialog.close()
             self.dialog.deleteLater()
             self.dialog = None

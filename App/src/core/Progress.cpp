@@ -12,9 +12,9 @@ Progress::Progress(Report report) {
 
 void Progress::operator()(double done) const {
     if (!state_) return;
-    // NaN counts as nothing done.
+    // NaN counts as nothing done. span() keeps lo_ <= hi_ within [0, 1].
     const double d = std::isnan(done) ? 0.0 : std::clamp(done, 0.0, 1.0);
-    state_->last = std::max(state_->last, std::clamp(lo_ + d * (hi_ - lo_), 0.0, 1.0));
+    state_->last = std::max(state_->last, lo_ + d * (hi_ - lo_));
     state_->report(state_->last, stage_);
 }
 

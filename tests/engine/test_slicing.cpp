@@ -8,6 +8,7 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -156,7 +157,9 @@ void expect_invariants(const Sliced& s, const mas::SlicePartParams& params, cons
         const auto& rec = r.components[std::size_t(c)];
         EXPECT_EQ(rec.component, c);
         const int father = s.decomposition.components[std::size_t(c)].parent;
-        if (father >= 0) EXPECT_LT(position[std::size_t(father)], position[std::size_t(c)]);
+        if (father >= 0) {
+            EXPECT_LT(position[std::size_t(father)], position[std::size_t(c)]);
+        }
         EXPECT_EQ(rec.first_layer, int(next_layer));
         for (int k = 0; k < rec.layer_count; ++k)
             EXPECT_EQ(r.layers[next_layer + std::size_t(k)].component, c);
@@ -186,9 +189,15 @@ void expect_invariants(const Sliced& s, const mas::SlicePartParams& params, cons
         // Support: the footprint lies on the layer below grown by the overhang allowance, up to
         // the tessellation: the two outlines come from different cuts of the same facets, which
         // differ by at most the deflection along the outline.
-        if (every_layer_supported)
+        if (every_layer_supported) {
             EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * kDeflection + 1e-6)
                 << "unsupported " << l.unsupported_area_mm2 << " mm2 of " << l.area_mm2;
+        }
+        // The unsupported regions are that area, on the plane the layer is deposited on.
+        EXPECT_DOUBLE_EQ(mas::area(l.unsupported), l.unsupported_area_mm2);
+        for (std::size_t k = 0; k < l.unsupported.size(); ++k)
+            for (const auto& loop : l.unsupported_loops_3d(k))
+                for (const Vector3d& p : loop) EXPECT_NEAR(l.lower.signed_distance(p), 0.0, 1e-9);
         // Paths: inside the region grown by one bead radius, covering all but 1 % of it, apart
         // from the corners no round bead reaches.
         const mas::LayerToolpaths& tp = r.toolpaths[i];
@@ -353,6 +362,52 @@ TEST(Slicing, AWallJustPastTheOverhangAngleIsBuiltInThinLayers) {
     // within one max_layer of its top.
     EXPECT_NEAR(layers.front().min_thickness_mm, params.layers.max_layer_mm, 1e-9);
     EXPECT_GE(layers.back().lower.origin.z(), 35.0 - params.layers.max_layer_mm - 1e-9);
+}
+
+// A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
+// reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
+// where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.
+TEST(Slicing, UnsupportedRegionsShowWhereALayerStandsOnNothing) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const mas::TriangleMesh mesh = mas::tessellate(
+        from_occt(fuse(occ_box(0, 0, 0, 10, 10, 10), occ_box(0, 0, 10, 30, 10, 2))), tp);
+    mas::ComponentSlicingInput input;
+    input.component = 0;
+    input.mesh = &mesh;
+    input.base = mas::make_plane(Vector3d::Zero(), Vector3d::UnitZ());
+    const mas::LayerParams params = default_params().layers;
+    const std::vector<mas::Layer> layers = mas::slice_component(input, params);
+    int unsupported = 0;
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        const mas::Layer& l = layers[i];
+        ASSERT_TRUE(l.plane.normal.isApprox(Vector3d::UnitZ(), 1e-12));
+        if (std::abs(l.lower.signed_distance(Vector3d(0, 0, 10))) > 1e-9) {
+            EXPECT_TRUE(l.unsupported.empty());
+            EXPECT_EQ(l.unsupported_area_mm2, 0.0);
+            continue;
+        }
+        ++unsupported;
+        // The allowance: the layer's thickness x tan(45 degrees).
+        const double t = l.min_thickness_mm;
+        ASSERT_EQ(l.unsupported.size(), 1u);
+        EXPECT_TRUE(l.unsupported[0].holes.empty());
+        EXPECT_NEAR(l.unsupported_area_mm2, (20.0 - t) * 10.0, 1e-3);
+        EXPECT_DOUBLE_EQ(mas::area(l.unsupported), l.unsupported_area_mm2);
+        const auto loops = l.unsupported_loops_3d(0);
+        ASSERT_EQ(loops.size(), 1u);
+        Eigen::AlignedBox3d box;
+        for (const Vector3d& p : loops[0]) {
+            EXPECT_NEAR(p.z(), 10.0, 1e-9);
+            box.extend(p);
+        }
+        EXPECT_NEAR(box.min().x(), 10.0 + t, 1e-4);
+        EXPECT_NEAR(box.max().x(), 30.0, 1e-4);
+        EXPECT_NEAR(box.min().y(), 0.0, 1e-4);
+        EXPECT_NEAR(box.max().y(), 10.0, 1e-4);
+    }
+    EXPECT_EQ(unsupported, 1);
 }
 
 TEST(Slicing, LBlockArmIsSlicedAlongItsLengthAndTheColumnAlongZ) {

@@ -115,12 +115,17 @@ struct Layer {
     double volume_difference = 0.0;    // vol(prism xor material) / vol(prism)
     bool meets_volume_difference = true;
     double unsupported_area_mm2 = 0.0;  // footprint outside the support below (see header)
+    // Where that is: the footprint's part outside the support, on `lower`, in
+    // PlaneFrame(lower.normal) coordinates; its area is unsupported_area_mm2. Empty when supported.
+    Regions2 unsupported;
     int axis_node = -1;  // the guide node nearest to axis_point, -1 when the guide has none
     Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();  // P_upper, on the guide
     int tries = 0;  // candidate planes evaluated before this one was accepted
 
     // The 3-D loops of region r on `plane`: outer first, then holes.
     std::vector<std::vector<Eigen::Vector3d>> loops_3d(std::size_t r) const;
+    // The same for region r of `unsupported`, on `lower`.
+    std::vector<std::vector<Eigen::Vector3d>> unsupported_loops_3d(std::size_t r) const;
     // Deposit thickness (distance along plane.normal down to `lower`) under a point of `plane`.
     double thickness_at(const Eigen::Vector3d& point_on_plane) const;
 };
@@ -145,9 +150,11 @@ BaseSupport base_support(const TriangleMesh& component, const Plane& base,
                          const std::vector<const TriangleMesh*>& support,
                          const LayerParams& params);
 
-// The area of `upper`'s footprint outside `lower`'s region grown by `allowance_mm`: upper's region
+// The part of `upper`'s footprint outside `lower`'s region grown by `allowance_mm`: upper's region
 // moved back along its own normal onto its lower plane (lower's top), then both seen along
-// lower's normal. The support check above, exposed for tests and for checking any two layers.
+// lower's normal; in PlaneFrame(lower.plane.normal) coordinates. The support check above, exposed
+// for tests and for checking any two layers; unsupported_area is its area.
+Regions2 unsupported_regions(const Layer& upper, const Layer& lower, double allowance_mm);
 double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm);
 
 }  // namespace mas

@@ -538,15 +538,16 @@ std::vector<Layer> ComponentSlicer::run() {
         layer.axis_node = guide_.node_near(c.along);
         layer.tries = tries;
         if (!layers.empty()) {
-            layer.unsupported_area_mm2 =
-                unsupported_area(layer, layers.back(), layer.min_thickness_mm * allowance_);
+            layer.unsupported =
+                unsupported_regions(layer, layers.back(), layer.min_thickness_mm * allowance_);
         } else if (!input_.support_meshes.empty()) {
             // The first layer of a child rests on what was deposited before it, just below the
             // base face.
-            layer.unsupported_area_mm2 =
-                unsupported_area(layer, support_below(input_.support_meshes, base, offset_),
-                                 layer.min_thickness_mm * allowance_);
+            layer.unsupported =
+                unsupported_regions(layer, support_below(input_.support_meshes, base, offset_),
+                                    layer.min_thickness_mm * allowance_);
         }
+        layer.unsupported_area_mm2 = area(layer.unsupported);
         material += layer.material_volume_mm3;
         layers.push_back(std::move(layer));
         if (c.final) break;
@@ -586,10 +587,13 @@ void validate(const LayerParams& p) {
     if (p.max_layers < 1) invalid("max_layers must be at least 1");
 }
 
-std::vector<std::vector<Vector3d>> Layer::loops_3d(std::size_t r) const {
+namespace {
+
+// A region's loops (outer first, then holes) in 3-D, on `plane`, from PlaneFrame(plane.normal)
+// coordinates.
+std::vector<std::vector<Vector3d>> region_loops_3d(const Region2& region, const Plane& plane) {
     const PlaneFrame frame(plane.normal);
     std::vector<std::vector<Vector3d>> loops;
-    const Region2& region = regions.at(r);
     auto add = [&](const Polygon2& p) {
         std::vector<Vector3d> loop;
         loop.reserve(p.points.size());
@@ -601,11 +605,21 @@ std::vector<std::vector<Vector3d>> Layer::loops_3d(std::size_t r) const {
     return loops;
 }
 
+}  // namespace
+
+std::vector<std::vector<Vector3d>> Layer::loops_3d(std::size_t r) const {
+    return region_loops_3d(regions.at(r), plane);
+}
+
+std::vector<std::vector<Vector3d>> Layer::unsupported_loops_3d(std::size_t r) const {
+    return region_loops_3d(unsupported.at(r), lower);
+}
+
 double Layer::thickness_at(const Vector3d& point_on_plane) const {
     return lower.normal.dot(point_on_plane - lower.origin) / lower.normal.dot(plane.normal);
 }
 
-double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm) {
+Regions2 unsupported_regions(const Layer& upper, const Layer& lower, double allowance_mm) {
     // The upper layer's footprint: its region moved back along its normal onto its lower plane
     // (which is the lower layer's top), then seen along the lower layer's normal.
     const PlaneFrame up(upper.plane.normal), down(lower.plane.normal);
@@ -630,7 +644,11 @@ double unsupported_area(const Layer& upper, const Layer& lower, double allowance
     }
     const Regions2 support =
         allowance_mm > 0.0 ? offset(lower.regions, allowance_mm) : lower.regions;
-    return area(difference(footprint, support));
+    return difference(footprint, support);
+}
+
+double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm) {
+    return area(unsupported_regions(upper, lower, allowance_mm));
 }
 
 BaseSupport base_support(const TriangleMesh& component, const Plane& base,

@@ -689,13 +689,29 @@ def _polyline(points, closed=False):
     return Part.makePolygon(kept)
 
 
+def _region_face(region):
+    """A planar face bounded by a region's loops (``outer`` and ``holes``), or its outer wire alone
+    when OCCT cannot make the face; None for a region with under three distinct points."""
+    outer = _polyline(region["outer"], closed=True)
+    if outer is None:
+        return None
+    holes = [w for w in (_polyline(h, closed=True) for h in region["holes"]) if w is not None]
+    try:
+        return Part.makeFace([outer] + holes, "Part::FaceMakerBullseye")
+    except Part.OCCError:
+        return outer
+
+
 def layers_shape(result):
     """A compound of one sub-compound per layer (in the result's order), each holding one closed
-    polygonal wire per loop of the layer's regions (outer loops and holes)."""
+    polygonal wire per loop of the layer's regions (outer loops and holes), then one planar face
+    per unsupported region of the layer (on the plane it is deposited on: where it stands on
+    nothing, see ``MultiAxisSlicer.Layer.unsupported_regions``). The layers hold no other face."""
     layers = []
     for layer in result.layers:
         wires = [_polyline(loop, closed=True) for loop in layer.loops()]
-        layers.append(Part.makeCompound([w for w in wires if w is not None]))
+        faces = [_region_face(r) for r in layer.unsupported_regions]
+        layers.append(Part.makeCompound([s for s in wires + faces if s is not None]))
     return Part.makeCompound(layers)
 
 
@@ -729,13 +745,14 @@ class LayersFeature(_EngineFeature):
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
     MeasureCoverage) and Deflection (mm chordal deflection for tessellating the components, 0 =
     automatic). Outputs: Shape (a compound of one sub-compound per layer, component by component
-    in build order and bottom to top, each holding one closed wire per loop of its outline: the
-    view provider colours them by component), LayerCount, MinThickness, MaxThickness,
+    in build order and bottom to top, each holding one closed wire per loop of its outline, then
+    a face per region where it stands on nothing, on the plane below it: the view provider colours
+    the outlines by component and the faces red), LayerCount, MinThickness, MaxThickness,
     DepositedVolume, MaterialVolume, PartVolume, MaxVolumeDifferenceFound,
     LayersOverVolumeDifference, WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts
     (tree order), BuildOrder (the components in deposition order) and, per layer,
     LayerComponents, LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses,
-    LayerMaxThicknesses, LayerVolumeDifferences.
+    LayerMaxThicknesses, LayerVolumeDifferences, LayerUnsupportedAreas.
 
     The paths are planned in the same computation; the ``Toolpath`` object linked to this one
     shows them. The full result stays in memory only (``slice_result()``)."""
@@ -789,7 +806,10 @@ class LayersFeature(_EngineFeature):
                 ("App::PropertyFloatList", "LayerMaxThicknesses",
                  "Each layer's greatest thickness (mm)", None),
                 ("App::PropertyFloatList", "LayerVolumeDifferences",
-                 "Each layer's volumetric difference (fraction of its volume)", None)):
+                 "Each layer's volumetric difference (fraction of its volume)", None),
+                ("App::PropertyFloatList", "LayerUnsupportedAreas",
+                 "Each layer's area outside the one below grown by the overhang allowance (mm^2; "
+                 "the red faces)", None)):
             _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
 
     @staticmethod
@@ -803,6 +823,7 @@ class LayersFeature(_EngineFeature):
         obj.LayerMinThicknesses = [layer.min_thickness for layer in layers]
         obj.LayerMaxThicknesses = [layer.max_thickness for layer in layers]
         obj.LayerVolumeDifferences = [layer.volume_difference for layer in layers]
+        obj.LayerUnsupportedAreas = [layer.unsupported_area for layer in layers]
         obj.ComponentLayerCounts = [c["layer_count"] for c in result.components]
         obj.BuildOrder = result.build_order
         obj.LayerCount = len(layers)

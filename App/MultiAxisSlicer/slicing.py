@@ -89,6 +89,16 @@ class ToolPath:
             self.kind, len(self._points), self.length())
 
 
+def _regions_as_vectors(regions):
+    return [{"outer": [_as_vector(p) for p in r["outer"]],
+             "holes": [[_as_vector(p) for p in h] for h in r["holes"]]} for r in regions]
+
+
+def _regions_as_lists(regions):
+    return [{"outer": [_as_list(p) for p in r["outer"]],
+             "holes": [[_as_list(p) for p in h] for h in r["holes"]]} for r in regions]
+
+
 class Layer:
     """One "3-D" layer: what is deposited between its lower plane and its plane.
 
@@ -99,7 +109,9 @@ class Layer:
     its region), ``volume`` (mm³ deposited), ``material_volume`` (mm³ of the part between the
     planes), ``volume_difference`` (the volume of the symmetric difference of the two over the
     deposited volume, Eq. 9's VolDiff), ``meets_volume_difference``, ``unsupported_area`` (mm² of
-    its footprint outside the layer below grown by the overhang allowance), ``axis_node`` (the
+    its footprint outside the layer below grown by the overhang allowance), ``unsupported_regions``
+    (where that is: regions like ``regions``, on the lower plane, empty when the layer is
+    supported), ``axis_node`` (the
     centroidal-axis node it follows) and ``axis_point``. Vectors are FreeCAD.Vector when FreeCAD is
     importable, else tuples.
     """
@@ -125,9 +137,11 @@ class Layer:
 
     @property
     def regions(self):
-        return [{"outer": [_as_vector(p) for p in r["outer"]],
-                 "holes": [[_as_vector(p) for p in h] for h in r["holes"]]}
-                for r in self._data["regions"]]
+        return _regions_as_vectors(self._data["regions"])
+
+    @property
+    def unsupported_regions(self):
+        return _regions_as_vectors(self._data["unsupported_regions"])
 
     def loops(self):
         """Every loop of every region (outers and holes) as lists of FreeCAD.Vector."""
@@ -145,9 +159,7 @@ class Layer:
             "normal": _as_list(d["normal"]),
             "lower_origin": _as_list(d["lower_origin"]),
             "lower_normal": _as_list(d["lower_normal"]),
-            "regions": [{"outer": [_as_list(p) for p in r["outer"]],
-                         "holes": [[_as_list(p) for p in h] for h in r["holes"]]}
-                        for r in d["regions"]],
+            "regions": _regions_as_lists(d["regions"]),
             "area_mm2": d["area_mm2"],
             "min_thickness_mm": d["min_thickness_mm"],
             "max_thickness_mm": d["max_thickness_mm"],
@@ -156,6 +168,7 @@ class Layer:
             "volume_difference": d["volume_difference"],
             "meets_volume_difference": d["meets_volume_difference"],
             "unsupported_area_mm2": d["unsupported_area_mm2"],
+            "unsupported_regions": _regions_as_lists(d["unsupported_regions"]),
             "axis_node": d["axis_node"],
             "axis_point": _as_list(d["axis_point"]),
         }

@@ -57,7 +57,8 @@ const char* kUsage =
     "           reaches at least --min-height (default 0) and one axis step past its cut.\n"
     "slice      adaptive multi-axis layers of every sub-component (Sec. 4.2) and the bead paths\n"
     "           in every layer: per layer its plane, thickness range, volumetric difference and\n"
-    "           unsupported area; --json adds regions and paths (points, tool axis, thickness).\n"
+    "           unsupported area; --json adds its regions, its unsupported regions (on the\n"
+    "           plane below it) and its paths (points, tool axis, thickness).\n"
     "           Defaults: layers 0.5 to 2 mm, volume difference 0.1, bead 1 mm, overlap 0.15,\n"
     "           2 contours, raster infill. A mesh is sliced as one component; a solid is\n"
     "           decomposed with --min-height at --min-layer.\n"
@@ -481,6 +482,18 @@ void write_points(std::ostream& out, const std::vector<Eigen::Vector3d>& points)
     out << "]";
 }
 
+// {"outer": [...], "holes": [[...], ...]} from a region's 3-D loops (outer first).
+void write_region(std::ostream& out, const std::vector<std::vector<Eigen::Vector3d>>& loops) {
+    out << "{\"outer\": ";
+    write_points(out, loops.front());
+    out << ", \"holes\": [";
+    for (std::size_t h = 1; h < loops.size(); ++h) {
+        out << (h > 1 ? ", " : "");
+        write_points(out, loops[h]);
+    }
+    out << "]}";
+}
+
 int run_slice(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
     allowed.insert(kSliceOptions.begin(), kSliceOptions.end());
@@ -571,15 +584,8 @@ int run_slice(const std::vector<std::string>& args) {
                 << ", \"lower_origin\": " << vec(l.lower.origin)
                 << ", \"lower_normal\": " << vec(l.lower.normal) << ", \"regions\": [";
             for (std::size_t k = 0; k < l.regions.size(); ++k) {
-                const auto loops = l.loops_3d(k);
-                out << (k ? ", " : "") << "{\"outer\": ";
-                write_points(out, loops.front());
-                out << ", \"holes\": [";
-                for (std::size_t h = 1; h < loops.size(); ++h) {
-                    out << (h > 1 ? ", " : "");
-                    write_points(out, loops[h]);
-                }
-                out << "]}";
+                out << (k ? ", " : "");
+                write_region(out, l.loops_3d(k));
             }
             out << "], \"area_mm2\": " << num(l.area_mm2)
                 << ", \"min_thickness_mm\": " << num(l.min_thickness_mm)
@@ -590,6 +596,12 @@ int run_slice(const std::vector<std::string>& args) {
                 << ", \"meets_volume_difference\": "
                 << (l.meets_volume_difference ? "true" : "false")
                 << ", \"unsupported_area_mm2\": " << num(l.unsupported_area_mm2)
+                << ", \"unsupported_regions\": [";
+            for (std::size_t k = 0; k < l.unsupported.size(); ++k) {
+                out << (k ? ", " : "");
+                write_region(out, l.unsupported_loops_3d(k));
+            }
+            out << "]"
                 << ", \"axis_node\": " << l.axis_node << ", \"axis_point\": " << vec(l.axis_point)
                 << ", \"tool_axis\": " << vec(tp.tool_axis) << ", \"paths\": [";
             for (std::size_t k = 0; k < tp.paths.size(); ++k) {

@@ -999,6 +999,16 @@ bp::list points_to_py(const std::vector<Eigen::Vector3d>& points) {
     return out;
 }
 
+// {"outer": points, "holes": [points, ...]} from a region's 3-D loops (outer first).
+bp::dict region_to_py(const std::vector<std::vector<Eigen::Vector3d>>& loops) {
+    bp::dict region;
+    region["outer"] = points_to_py(loops.front());
+    bp::list holes;
+    for (std::size_t h = 1; h < loops.size(); ++h) holes.append(points_to_py(loops[h]));
+    region["holes"] = holes;
+    return region;
+}
+
 bp::dict sliced_to_py(const mas::SlicedPart& r) {
     bp::list layers;
     for (std::size_t i = 0; i < r.layers.size(); ++i) {
@@ -1010,16 +1020,13 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
         d["lower_origin"] = to_py(l.lower.origin);
         d["lower_normal"] = to_py(l.lower.normal);
         bp::list regions;
-        for (std::size_t k = 0; k < l.regions.size(); ++k) {
-            const auto loops = l.loops_3d(k);
-            bp::dict region;
-            region["outer"] = points_to_py(loops.front());
-            bp::list holes;
-            for (std::size_t h = 1; h < loops.size(); ++h) holes.append(points_to_py(loops[h]));
-            region["holes"] = holes;
-            regions.append(region);
-        }
+        for (std::size_t k = 0; k < l.regions.size(); ++k)
+            regions.append(region_to_py(l.loops_3d(k)));
         d["regions"] = regions;
+        bp::list unsupported;
+        for (std::size_t k = 0; k < l.unsupported.size(); ++k)
+            unsupported.append(region_to_py(l.unsupported_loops_3d(k)));
+        d["unsupported_regions"] = unsupported;
         d["area_mm2"] = l.area_mm2;
         d["min_thickness_mm"] = l.min_thickness_mm;
         d["max_thickness_mm"] = l.max_thickness_mm;
@@ -1160,7 +1167,8 @@ void bind_slice() {
         "layers [{component, origin, normal, lower_origin, lower_normal, regions [{outer, "
         "holes}] as 3-D points, area_mm2, min_thickness_mm, max_thickness_mm, volume_mm3, "
         "material_volume_mm3, volume_difference, meets_volume_difference, unsupported_area_mm2, "
-        "axis_node, axis_point, tool_axis, paths [{kind, region, points, thickness_mm}], "
+        "unsupported_regions [{outer, holes}] on the lower plane, axis_node, axis_point, "
+        "tool_axis, paths [{kind, region, points, thickness_mm}], "
         "centre_line_regions, unfilled [{region, area_mm2, centroid}], deposit_length_mm, "
         "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "
         "layer_count, guide_nodes, volume_mm3}] indexed by component, build_order (the "

@@ -13,6 +13,16 @@ CLI = os.environ.get("MAS_CLI", "multiaxis-slicer")
 DATA = os.environ.get("MAS_TEST_DATA", os.path.join(os.path.dirname(__file__), "..", "data"))
 
 
+def loop_area(points):
+    """Area of a closed planar polygon in 3-D (Newell's normal)."""
+    n = [0.0, 0.0, 0.0]
+    for a, b in zip(points, points[1:] + points[:1]):
+        n[0] += a[1] * b[2] - a[2] * b[1]
+        n[1] += a[2] * b[0] - a[0] * b[2]
+        n[2] += a[0] * b[1] - a[1] * b[0]
+    return 0.5 * math.sqrt(sum(c * c for c in n))
+
+
 def run(*args):
     return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
 
@@ -260,12 +270,37 @@ class CliSections(unittest.TestCase):
                 self.assertAlmostEqual(got, w, places=9)
             self.assertAlmostEqual(layer["min_thickness_mm"], 2.0, places=9)
             self.assertEqual(layer["unsupported_area_mm2"], 0.0)
+            self.assertEqual(layer["unsupported_regions"], [])
             kinds = {p["kind"] for p in layer["paths"]}
             self.assertLessEqual({"contour", "infill"}, kinds)
             for path in layer["paths"]:
                 self.assertEqual(len(path["points"]), len(path["thickness_mm"]))
         self.assertAlmostEqual(doc["stats"]["deposited_volume_mm3"], 44000.0, places=3)
         self.assertEqual(doc["stats"]["layer_count"], 55)
+
+    def test_slice_json_shows_where_the_bracket_bridges_its_hole(self):
+        """The bracket's horizontal hole has a ceiling no layer rests on: the layers bridging it
+        list where, on the plane below them, and those regions add up to their unsupported area."""
+        out = os.path.join(self.tmp.name, "bracket.json")
+        bracket = os.path.join(os.path.dirname(DATA), "..", "examples", "bracket.step")
+        r = run("slice", bracket, "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            layers = json.load(f)["layers"]
+        flagged = 0
+        for i, layer in enumerate(layers):
+            n = layer["lower_normal"]
+            o = layer["lower_origin"]
+            total = 0.0
+            for region in layer["unsupported_regions"]:
+                for k, loop in enumerate([region["outer"]] + region["holes"]):
+                    for p in loop:  # on the plane the layer is deposited on
+                        self.assertAlmostEqual(sum((a - b) * c for a, b, c in zip(p, o, n)), 0.0,
+                                               places=9)
+                    total += (1 if k == 0 else -1) * loop_area(loop)
+            self.assertAlmostEqual(total, layer["unsupported_area_mm2"], delta=1e-6, msg=str(i))
+            flagged += bool(layer["unsupported_regions"])
+        self.assertGreater(flagged, 0)
 
     def test_slice_text_and_a_mesh_part(self):
         r = run("slice", self.write("box.stl", box_stl(20, 10, 21)), "--max-layer", "3")

@@ -343,6 +343,38 @@ class TestSliceBadInput(SliceTest):
             mas.slice(box_20_10_21(), components=[])
 
 
+class TestUnsupportedRegions(SliceTest):
+    def test_a_shelf_sliced_as_a_mesh_shows_where_its_first_layer_stands_on_nothing(self):
+        """A 10 x 10 stem 10 tall under a 30 x 10 slab 2 thick, as one mesh component along Z:
+        the slab's first layer reaches 20 mm past the stem. What of it lies outside the stem grown
+        by the allowance (its thickness x tan 45) is exactly a rectangle on the stem's top."""
+        shelf = Part.makeBox(10, 10, 10).fuse(Part.makeBox(30, 10, 2, V(0, 0, 10)))
+        result = mas.slice(fc_mesh(shelf.removeSplitter()))
+        flagged = [(i, layer) for i, layer in enumerate(result.layers) if layer.unsupported_regions]
+        self.assertEqual(len(flagged), 1)
+        i, layer = flagged[0]
+        self.assertAlmostEqual(layer.lower_origin.z, 10.0, delta=TOL)
+        t = layer.min_thickness
+        self.assertAlmostEqual(layer.unsupported_area, (20.0 - t) * 10.0, delta=1e-3)
+        (region,) = layer.unsupported_regions
+        self.assertEqual(region["holes"], [])
+        box = FreeCAD.BoundBox()
+        for p in region["outer"]:
+            self.assertIsInstance(p, FreeCAD.Vector)
+            box.add(p)
+        for got, want in ((box.XMin, 10.0 + t), (box.XMax, 30.0), (box.YMin, 0.0),
+                          (box.YMax, 10.0), (box.ZMin, 10.0), (box.ZMax, 10.0)):
+            self.assertAlmostEqual(got, want, delta=1e-4)
+        face = Part.Face(Part.makePolygon(region["outer"] + region["outer"][:1]))
+        self.assertAlmostEqual(face.Area, layer.unsupported_area, delta=1e-6)
+        # The same in the JSON layout; every other layer has none.
+        d = result.to_dict()["layers"]
+        self.assertEqual(d[i]["unsupported_regions"],
+                         [{"outer": [[p.x, p.y, p.z] for p in region["outer"]], "holes": []}])
+        self.assertEqual([k for k, l in enumerate(d) if l["unsupported_regions"]], [i])
+        json.dumps(d)
+
+
 class SliceObjectTest(SliceTest):
     def setUp(self):
         self.doc = FreeCAD.newDocument("MasSlice")
@@ -372,7 +404,8 @@ class SliceObjectTest(SliceTest):
         self.assertEqual(len(layers.Shape.childShapes()), 11)  # one sub-compound per layer
         self.assertEqual(len(layers.Shape.Wires), 11)  # one loop each
         self.assertTrue(all(w.isClosed() for w in layers.Shape.Wires))
-        self.assertEqual(layers.Shape.Faces, [])
+        self.assertEqual(layers.Shape.Faces, [])  # no unsupported region
+        self.assertEqual(list(layers.LayerUnsupportedAreas), [0.0] * 11)
         self.assertEqual(list(layers.LayerComponents), [0] * 11)
         self.assertEqual(list(layers.ComponentLayerCounts), [11])
         for got, want in zip(layers.LayerMaxThicknesses, [2.0] * 10 + [1.0]):
@@ -515,6 +548,43 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(self.part.Shape.exportBrepToString(), before)
         self.assertNotIn("Touched", self.part.State)
         self.assertNotIn("Touched", decomposition.State)
+
+    def test_unsupported_regions_are_faces_over_a_holes_ceiling_and_are_saved(self):
+        """A 30 x 10 x 20 block with a horizontal hole of radius 4 along Y at x = 15, z = 10: no
+        direction builds its ceiling on what is below, so the layers bridging it are unsupported
+        there. The Layers object shows each such region as a face in its layer's sub-compound, on
+        the plane the layer is deposited on, within the hole's upper half."""
+        self.part.Shape = Part.makeBox(30, 10, 20).cut(
+            Part.makeCylinder(4, 10, V(15, 0, 10), V(0, 1, 0)))
+        _decomposition, layers, _toolpath = self.make()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        result = features.slice_result(layers)
+        areas = [layer.unsupported_area for layer in result.layers]
+        self.assertEqual(list(layers.LayerUnsupportedAreas), areas)
+        self.assertEqual(layers.WorstUnsupportedArea.Value, max(areas))
+        self.assertGreater(max(areas), 0.0)
+        self.assertEqual(len(layers.Shape.Faces),
+                         sum(len(layer.unsupported_regions) for layer in result.layers))
+        for i, (child, layer) in enumerate(zip(layers.Shape.childShapes(), result.layers)):
+            self.assertAlmostEqual(sum(f.Area for f in child.Faces), areas[i],
+                                   delta=1e-9 + 1e-6 * areas[i], msg="layer {}".format(i))
+            for f in child.Faces:
+                bb = f.BoundBox
+                self.assertGreaterEqual(bb.XMin, 11.0 - 1e-6)
+                self.assertLessEqual(bb.XMax, 19.0 + 1e-6)
+                self.assertGreaterEqual(bb.ZMin, 10.0)
+                self.assertLessEqual(bb.ZMax, 14.0)
+                for v in f.Vertexes:
+                    self.assertAlmostEqual((v.Point - layer.lower_origin).dot(layer.lower_normal),
+                                           0.0, places=9)
+        faces = len(layers.Shape.Faces)
+        path = os.path.join(self.folder, "hole.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        doc = FreeCAD.openDocument(path)
+        layers = doc.getObject("Layers")
+        self.assertEqual(len(layers.Shape.Faces), faces)
+        self.assertEqual(list(layers.LayerUnsupportedAreas), areas)
 
     def test_save_close_reopen_recompute(self):
         decomposition, layers, toolpath = self.make(max_layer=1.5, infill="contour")

@@ -335,8 +335,25 @@ class _EdgeColoured(_Stateless):
             refresh_line_colours_later(vobj)
 
 
-# Layers: the outlines in their component's colour (the Component objects' palette).
+# Layers: the outlines in their component's colour (the Component objects' palette); the only
+# faces, where a layer stands on nothing, filled and outlined in ShapeColor, plain red. Most such
+# regions are slivers along an overhanging edge, which only their outline makes visible.
 LAYERS_LINE_WIDTH = 2.0
+UNSUPPORTED_COLOUR = (1.0, 0.0, 0.0)
+
+
+def layer_edge_colours(shape, components, unsupported_colour):
+    """One colour per edge of a Layers object's Shape: each sub-compound's outline edges in its
+    component's colour, then the edges of its faces (the unsupported regions, which come after
+    the outline wires) in `unsupported_colour`."""
+    if shape.isNull():  # not computed yet
+        return []
+    out = []
+    for child, component in zip(shape.childShapes(), components):
+        unsupported = sum(len(f.Edges) for f in child.Faces)
+        out += [component_colour(component)] * (len(child.Edges) - unsupported)
+        out += [unsupported_colour] * unsupported
+    return out
 
 
 class ViewProviderLayers(_EdgeColoured):
@@ -344,11 +361,15 @@ class ViewProviderLayers(_EdgeColoured):
     colour (``component_colour``, as the Component objects), per edge through LineColorArray. The
     object's Shape holds one sub-compound per layer and LayerComponents names each one's
     component. FreeCAD resets LineColorArray when LineColor changes: the colours are rebuilt
-    then. The decomposition stays as it is."""
+    then. The decomposition stays as it is. The Shape's faces mark where a layer is unsupported:
+    ShapeColor (red by default) fills and outlines them."""
+
+    COLOUR_PROPERTIES = _EdgeColoured.COLOUR_PROPERTIES + ("ShapeColor",)
 
     def __init__(self, vobj):
         vobj.LineWidth = LAYERS_LINE_WIDTH
         vobj.PointSize = 1.0
+        vobj.ShapeColor = UNSUPPORTED_COLOUR
         vobj.Proxy = self  # calls attach()
         self.colour_edges(vobj)
 
@@ -357,8 +378,8 @@ class ViewProviderLayers(_EdgeColoured):
         obj = vobj.Object
         if obj is None or "LayerComponents" not in obj.PropertiesList:
             return  # still being set up or restored
-        colours = [component_colour(c) for c in obj.LayerComponents]
-        _set_line_colours(vobj, _edge_colours(obj.Shape, colours))
+        _set_line_colours(vobj, layer_edge_colours(obj.Shape, obj.LayerComponents,
+                                                   tuple(vobj.ShapeColor)[:3]))
 
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("Slice.svg")

@@ -647,10 +647,15 @@ class TestSliceCommand(unittest.TestCase):
                 obj.Label, i, a, b))
 
     def check_colours(self, layers, toolpath):
-        """Layer outlines in their component's colour, paths in their kind's, edge by edge."""
+        """Layer outlines in their component's colour, the unsupported regions' outlines in the
+        Layers' ShapeColor, paths in their kind's, edge by edge."""
         want = []
         for layer, component in zip(layers.Shape.childShapes(), layers.LayerComponents):
-            want += [view_providers.component_colour(component)] * len(layer.Edges)
+            unsupported = [e for f in layer.Faces for e in f.Edges]
+            for edge in layer.Edges:
+                want.append(layers.ViewObject.ShapeColor
+                            if any(edge.isSame(e) for e in unsupported) else
+                            view_providers.component_colour(component))
         got = layers.ViewObject.LineColorArray
         self.assertEqual(len(got), len(want))
         for i, (a, b) in enumerate(zip(got, want)):
@@ -722,6 +727,27 @@ class TestSliceCommand(unittest.TestCase):
         self.doc.undo()  # one step takes both
         process_events()
         self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_unsupported_regions_are_drawn_in_red_where_layers_bridge_a_hole(self):
+        """A block with a horizontal hole: the layers closing over its ceiling stand partly on
+        nothing. Those regions are the Layers' faces, filled and outlined in ShapeColor (red), and
+        follow a change of ShapeColor."""
+        self.part.Shape = Part.makeBox(30, 10, 20).cut(
+            Part.makeCylinder(4, 10, FreeCAD.Vector(15, 0, 10), FreeCAD.Vector(0, 1, 0)))
+        self.doc.recompute()
+        layers, toolpath = self.run_command(self.part)
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertGreater(len(layers.Shape.Faces), 0)
+        self.assertTrue(same_colour(layers.ViewObject.ShapeColor,
+                                    view_providers.UNSUPPORTED_COLOUR))
+        self.assertIn(view_providers.UNSUPPORTED_COLOUR,
+                      [tuple(c)[:3] for c in layers.ViewObject.LineColorArray])
+        self.check_colours(layers, toolpath)
+        toolpath.ViewObject.Visibility = False
+        save_screenshot(self, self.doc, "slice_unsupported.png", see_through=False)
+        layers.ViewObject.ShapeColor = (0.0, 0.0, 1.0)
+        process_events()
+        self.check_colours(layers, toolpath)
 
     def test_command_on_a_solid_decomposes_it_first(self):
         layers, toolpath = self.run_command(self.part)

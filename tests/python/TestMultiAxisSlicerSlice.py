@@ -8,6 +8,7 @@ are planar and parallel, so thicknesses and volumes are exact.
 """
 
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -373,6 +374,33 @@ class TestUnsupportedRegions(SliceTest):
                          [{"outer": [[p.x, p.y, p.z] for p in region["outer"]], "holes": []}])
         self.assertEqual([k for k, l in enumerate(d) if l["unsupported_regions"]], [i])
         json.dumps(d)
+
+
+    def test_a_disc_on_a_stem_is_unsupported_on_a_ring_drawn_as_a_face_with_a_hole(self):
+        """A disc of radius 15, 2 thick, on a stem of radius 5 and 10 tall, as one mesh component:
+        the disc's first layer stands on nothing outside the stem grown by its thickness t, a ring
+        from 5 + t to 15, up to the deflection along both circles."""
+        deflection = 0.05
+        mushroom = Part.makeCylinder(5, 10).fuse(Part.makeCylinder(15, 2, V(0, 0, 10)))
+        result = mas.slice(fc_mesh(mushroom.removeSplitter(), deflection))
+        flagged = [i for i, layer in enumerate(result.layers) if layer.unsupported_regions]
+        self.assertEqual(len(flagged), 1)
+        layer = result.layers[flagged[0]]
+        t = layer.min_thickness
+        self.assertAlmostEqual(layer.lower_origin.z, 10.0, delta=TOL)
+        (region,) = layer.unsupported_regions
+        self.assertEqual(len(region["holes"]), 1)
+        ring = math.pi * (15.0 ** 2 - (5.0 + t) ** 2)
+        self.assertAlmostEqual(layer.unsupported_area, ring,
+                               delta=2 * math.pi * (15.0 + 5.0 + t) * deflection)
+        # The Layers object's face for it: the ring, hole and all.
+        child = features.layers_shape(result).childShapes()[flagged[0]]
+        (face,) = child.Faces
+        self.assertTrue(face.isValid())
+        self.assertEqual(len(face.Wires), 2)
+        self.assertAlmostEqual(face.Area, layer.unsupported_area, delta=1e-6)
+        self.assertAlmostEqual(face.BoundBox.ZMin, 10.0, delta=TOL)
+        self.assertAlmostEqual(face.BoundBox.ZMax, 10.0, delta=TOL)
 
 
 class SliceObjectTest(SliceTest):

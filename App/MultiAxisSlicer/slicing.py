@@ -111,9 +111,8 @@ class Layer:
     deposited volume, Eq. 9's VolDiff), ``meets_volume_difference``, ``unsupported_area`` (mm² of
     its footprint outside the layer below grown by the overhang allowance), ``unsupported_regions``
     (where that is: regions like ``regions``, on the lower plane, empty when the layer is
-    supported), ``axis_node`` (the
-    centroidal-axis node it follows) and ``axis_point``. Vectors are FreeCAD.Vector when FreeCAD is
-    importable, else tuples.
+    supported), ``axis_node`` (the centroidal-axis node it follows) and ``axis_point``. Vectors are
+    FreeCAD.Vector when FreeCAD is importable, else tuples.
     """
 
     def __init__(self, data):

@@ -51,6 +51,11 @@ std::size_t weld_vertices(TriangleMesh& mesh, double tolerance_mm);
 
 Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh);
 
+// The range [lo, hi] of a box's points along `direction` (unit): exact for an axis-aligned
+// direction, bounds otherwise (a box's corners bound any direction's range).
+void range_along(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& direction, double& lo,
+                 double& hi);
+
 // Geomview OFF reader (the CGAL data sets used by the benchmarks). Polygons with more than three
 // corners are fanned into triangles. Throws mas::Error(ReadFailed / EmptyInput /
 // NonFiniteCoordinate).

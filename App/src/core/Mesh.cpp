@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 
@@ -148,6 +149,17 @@ Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh) {
     for (const auto& t : mesh.triangles)
         for (int k = 0; k < 3; ++k) box.extend(mesh.vertices[t[k]]);
     return box;
+}
+
+void range_along(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& direction, double& lo,
+                 double& hi) {
+    lo = std::numeric_limits<double>::infinity();
+    hi = -lo;
+    for (int i = 0; i < 8; ++i) {
+        const double t = direction.dot(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
+    }
 }
 
 TriangleMesh read_off(const std::string& path) {

@@ -55,15 +55,9 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
     std::vector<Eigen::AlignedBox3d> boxes(n);
     for (std::size_t c = 0; c < n; ++c) boxes[c] = bounding_box(components[c].mesh);
     auto reaches_base = [&](std::size_t mesh, std::size_t c) {
-        const Eigen::Vector3d& o = components[c].base.origin;
-        const Eigen::Vector3d d = components[c].base.normal.normalized();
-        const Eigen::AlignedBox3d& b = boxes[mesh];
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (int k = 0; k < 8; ++k) {
-            const double h = d.dot(b.corner(Eigen::AlignedBox3d::CornerType(k)) - o);
-            lo = std::min(lo, h);
-            hi = std::max(hi, h);
-        }
+        double lo, hi;  // heights above the base plane
+        range_along(boxes[mesh].translated(-components[c].base.origin),
+                    components[c].base.normal.normalized(), lo, hi);
         return lo <= params.max_layer_mm && hi >= -params.max_layer_mm;
     };
     std::vector<char> done(n, 0), stale(n, 1);

@@ -36,6 +36,7 @@
 #include <string>
 
 #include "ShapeImpl.hpp"
+#include "mas/Mesh.hpp"
 #include "mas/Section.hpp"
 
 namespace mas {
@@ -139,19 +140,8 @@ bool has_concave_edge(const PlanarFace& f, const TopTools_IndexedDataMapOfShapeL
     return false;
 }
 
-// The range of a box along D: exact for an axis-aligned D (every march direction), bounds
-// otherwise (a box's corners bound any direction's range).
-void range_along(const Eigen::AlignedBox3d& box, const Vector3d& D, double& lo, double& hi) {
-    lo = std::numeric_limits<double>::infinity();
-    hi = -lo;
-    for (int i = 0; i < 8; ++i) {
-        const double t = D.dot(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
-        lo = std::min(lo, t);
-        hi = std::max(hi, t);
-    }
-}
-
-// Eq. 5's Proj_min and Proj_max of the face's outer wire along D.
+// Eq. 5's Proj_min and Proj_max of the face's outer wire along D (exact for an axis-aligned D,
+// every march direction; see range_along).
 void projection_range(const TopoDS_Face& face, const Vector3d& D, double& lo, double& hi) {
     range_along(bounds_of(BRepTools::OuterWire(face)), D, lo, hi);
 }

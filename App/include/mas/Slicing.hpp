@@ -138,6 +138,11 @@ struct Layer {
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
                                    const Progress& progress = {});
 
+// Unsupported area up to this counts as none, for a footprint of `footprint_mm2`: a thousandth of
+// it, the noise between two cuts of the tessellation. The slicer's support check and the build
+// order both use it.
+inline double negligible_unsupported_mm2(double footprint_mm2) { return 1e-3 * footprint_mm2; }
+
 // What of a component would stand on nothing when it is started: its footprint, the section just
 // above its base plane (Eq. 6's offset), and the part of it outside the sections of `support` (the
 // meshes deposited before it) just below the plane, grown by min_layer x tan(overhang_angle).

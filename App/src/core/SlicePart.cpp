@@ -71,8 +71,8 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
     take(0);
     while (order.size() < n) {
         // Of the components whose father is built, the one left least unsupported by what is;
-        // the first in tree order among equals. As when slicing, an unsupported area up to a
-        // thousandth of the footprint counts as none (the two cuts' tessellation noise).
+        // the first in tree order among equals. As when slicing, a negligible unsupported area
+        // counts as none.
         std::size_t best = n;
         for (std::size_t c = 1; c < n; ++c) {
             if (done[c] || !done[std::size_t(components[c].parent)]) continue;
@@ -83,7 +83,7 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
                     if (done[k] && reaches_base(k, c)) near.push_back(&components[k].mesh);
                 const BaseSupport b =
                     base_support(components[c].mesh, components[c].base, near, params);
-                tolerance[c] = 1e-3 * b.footprint_area_mm2;
+                tolerance[c] = negligible_unsupported_mm2(b.footprint_area_mm2);
                 score[c] = b.unsupported_area_mm2 <= tolerance[c] ? 0.0 : b.unsupported_area_mm2;
                 stale[c] = 0;
             }

@@ -443,8 +443,10 @@ std::vector<Layer> ComponentSlicer::run() {
         auto meets_eq9 = [&](const Candidate& c) {
             return c.thickness_ok && c.difference <= params_.max_volume_difference;
         };
-        // Unsupported area below this counts as none: 1e-3 of the next footprint.
-        auto tolerance_of = [](const Candidate& c) { return 1e-3 * std::max(c.next.area, 1e-9); };
+        // Unsupported area below this counts as none (of the next footprint).
+        auto tolerance_of = [](const Candidate& c) {
+            return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+        };
         auto supported = [&](const Candidate& c) {
             return !params_.require_support || c.unsupported_next <= tolerance_of(c);
         };

@@ -20,10 +20,10 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
     tessellation.deflection_mm = effective_deflection(part, params.tessellation);
     std::vector<ComponentMesh> meshes;
     meshes.reserve(decomposition.components.size());
+    const Progress tessellating = progress.span(0.0, 0.1, "tessellating the components");
     for (std::size_t i = 0; i < decomposition.components.size(); ++i) {
         const Component& c = decomposition.components[i];
-        progress.span(0.0, 0.1, "tessellating the components")(
-            double(i) / double(decomposition.components.size()));
+        tessellating(double(i) / double(decomposition.components.size()));
         ComponentMesh m;
         m.mesh = occ::tessellate(c.solid, tessellation, "component " + std::to_string(i));
         m.parent = c.parent;

@@ -43,6 +43,16 @@ def _undo_cancelled(doc, transaction, source, visibility):
     FreeCAD.Console.PrintMessage(message + "\n")
 
 
+class _CancelWatch:
+    """Tells whether the user cancelled a recompute from the progress dialog since it was made."""
+
+    def __init__(self):
+        self.count = MultiAxisSlicerGui.progress.cancel_count()
+
+    def cancelled(self):
+        return MultiAxisSlicerGui.progress.cancel_count() != self.count
+
+
 class _PartCommand:
     """A command making one parametric object over the selected solid or mesh, in one transaction
     (undo removes it). A subclass sets NAME, TRANSACTION, ICON, TOOLTIP and defines make()."""
@@ -77,19 +87,19 @@ class _PartCommand:
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
             return
         doc = source.Document
-        cancels = MultiAxisSlicerGui.progress.cancel_count()
+        watch = _CancelWatch()
         visibility = _visibility(doc)
         doc.openTransaction(self.TRANSACTION)
         try:
             obj = self.make(source, doc)
-            if MultiAxisSlicerGui.progress.cancel_count() == cancels:  # else no more work
+            if not watch.cancelled():  # else no more work
                 doc.recompute()
         except Exception as error:  # creating the object failed: leave nothing behind
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(
                 "{} of '{}' failed: {}".format(self.TRANSACTION, source.Label, error))
             return
-        if MultiAxisSlicerGui.progress.cancel_count() != cancels:
+        if watch.cancelled():
             _undo_cancelled(doc, self.TRANSACTION, source, visibility)
             return
         doc.commitTransaction()
@@ -164,12 +174,12 @@ class _Busy:
     replaces the status-bar progress bar the command used to step once per stage."""
 
     def __init__(self):
-        self.cancels = 0
+        self.watch = None
 
     def __enter__(self):
         from PySide import QtCore, QtGui
 
-        self.cancels = MultiAxisSlicerGui.progress.cancel_count()
+        self.watch = _CancelWatch()
         QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
         return self
 
@@ -181,7 +191,7 @@ class _Busy:
 
     def cancelled(self):
         """Whether the user cancelled a recompute since this began."""
-        return MultiAxisSlicerGui.progress.cancel_count() != self.cancels
+        return self.watch.cancelled()
 
     def __exit__(self, *exc):
         from PySide import QtGui

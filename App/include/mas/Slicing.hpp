@@ -38,6 +38,13 @@
 //   (planar adaptive slicing; its unsupported area is reported). A wall just past the overhang
 //   angle overhangs every layer by (its slope - 1) x the thickness below, so it gets thin
 //   layers, as adaptive slicers thin theirs on shallow walls, not thick ones that leave ledges.
+//   Unless a tilted candidate met Eq. 9 and leaves less of the next footprint unsupported per mm
+//   of height (over its mean thickness) than that parallel layer: then the tilted one. This is
+//   where the guide leans along a wall past the overhang angle (an arm leaning 60 degrees off a
+//   column, which the axis marches through in Z): no tilt the thickness bounds allow makes the
+//   next layer supported at once, and parallel layers would overhang all the way up, but each
+//   tilt leaves less, until the layers lie square to the arm. Per mm, not per layer: a wedge
+//   leaves more in all than a thin parallel layer just by being thicker on one side.
 // - Where even min_layer along D_lower breaks the volumetric bound (the cap of a dome), the layer
 //   is kept at min_layer and flagged (meets_volume_difference = false); with `strict` that is an
 //   error instead. The thickness bounds are hard.

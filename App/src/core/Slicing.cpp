@@ -439,6 +439,9 @@ std::vector<Layer> ComponentSlicer::run() {
             invalid("component " + std::to_string(input_.component) + " needs more than " +
                     std::to_string(params_.max_layers) + " layers");
         std::optional<Candidate> accepted, fallback, any_fit;
+        // Of the tilted candidates that meet Eq. 9 but leave the next layer unsupported, the one
+        // leaving least per mm of height (the first, thickest, of equals).
+        std::optional<Candidate> tilted;
         int tries = 0;
         auto meets_eq9 = [&](const Candidate& c) {
             return c.thickness_ok && c.difference <= params_.max_volume_difference;
@@ -446,6 +449,19 @@ std::vector<Layer> ComponentSlicer::run() {
         // Unsupported area below this counts as none (of the next footprint).
         auto tolerance_of = [](const Candidate& c) {
             return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+        };
+        // Layers of different thickness are compared by what they leave unsupported per mm of
+        // height built (over the mean thickness: the prism's volume over its region's area), so
+        // that a wedge is not judged worse than a thin parallel layer for being thicker on one
+        // side.
+        auto mean_thickness = [](const Candidate& c) {
+            return std::max(c.volume / std::max(area(c.region), 1e-12), 1e-9);
+        };
+        auto unsupported_rate = [&](const Candidate& c) {
+            return c.unsupported_next / mean_thickness(c);
+        };
+        auto rate_tolerance = [&](const Candidate& c) {
+            return tolerance_of(c) / mean_thickness(c);
         };
         auto supported = [&](const Candidate& c) {
             return !params_.require_support || c.unsupported_next <= tolerance_of(c);
@@ -470,6 +486,10 @@ std::vector<Layer> ComponentSlicer::run() {
                     break;
                 }
                 if (c.thickness_ok && !any_fit) any_fit = c;  // the last resort, below
+                if (!parallel && meets_eq9(c) &&
+                    (!tilted ||
+                     unsupported_rate(c) < unsupported_rate(*tilted) - rate_tolerance(c)))
+                    tilted = c;
                 if (parallel || angle_deg(d, d_lower) < eps_angle) break;
                 d = (d + d_lower).normalized();
             }
@@ -500,6 +520,15 @@ std::vector<Layer> ComponentSlicer::run() {
                 if (delta <= params_.min_layer_mm) break;
                 delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
             }
+            // A wall past the overhang angle that the guide leans along (an arm leaning 60
+            // degrees off a column): no single tilt makes the next layer supported, but tilting
+            // gets there layer by layer. A tilted layer replaces the parallel one when it leaves
+            // less unsupported per mm of height (a wedge leaves more in all than a thin parallel
+            // layer, being thicker, but the layers after it leave less).
+            if (!accepted && tilted &&
+                (!eq9_only ||
+                 unsupported_rate(*tilted) < unsupported_rate(*eq9_only) - rate_tolerance(*tilted)))
+                accepted = std::move(tilted);
             if (!accepted && eq9_only) accepted = std::move(eq9_only);
             // No parallel layer fits the thickness bounds at all, but a tilted one did.
             if (!accepted && !fallback && any_fit) fallback = std::move(any_fit);

@@ -390,6 +390,7 @@ TEST(Slicing, LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported) {
         const TopoDS_Shape arm =
             BRepBuilderAPI_Transform(occ_box(-5, -6, 0, 10, 12, 40), lift * tilt, true).Shape();
         const auto s = slice(from_occt(fuse(occ_box(-6, -6, 0, 12, 12, 30), arm)), 0.0, params);
+        ASSERT_EQ(s.axis.branches.size(), 1u);
         ASSERT_EQ(s.result.components.size(), 1u);
         const auto& layers = s.result.layers;
         // Parallel Z layers of min_layer leave a strip of the arm's lower wall unsupported on

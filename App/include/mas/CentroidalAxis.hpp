@@ -97,6 +97,11 @@ struct AxisNode {
     // A point in the region's material, on its plane (interior_point()): unlike the centroid it
     // never lies in a hole (a pipe's bore) or outside a C's mouth. NaN when not known.
     Eigen::Vector3d interior = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+
+    // Where the node's section has material: `interior`, or the centroid for an axis that does
+    // not carry it. (The centroid lies in the bore of a pipe's ring and outside a C's mouth, in
+    // no solid.)
+    Eigen::Vector3d material_point() const { return interior.allFinite() ? interior : position; }
 };
 
 struct AxisLink {

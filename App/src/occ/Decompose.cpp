@@ -528,13 +528,6 @@ struct Plan {
     Vector3d inner;          // a point in the material of its first section
 };
 
-// A point in the material of a node's section (AxisNode::interior): its centroid lies in the
-// bore of a pipe's ring and outside a C's mouth, in no solid. The centroid for an axis that does
-// not carry it.
-Vector3d material_point(const AxisNode& node) {
-    return node.interior.allFinite() ? node.interior : node.position;
-}
-
 class Decomposer {
 public:
     Decomposer(const CentroidalAxis& axis, const DecomposeParams& params)
@@ -553,7 +546,7 @@ public:
         const Vector3d pos_start = axis_.nodes[std::size_t(link.start)].position;
         const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
         out.pos_end = first.position;
-        out.inner = material_point(first);
+        out.inner = first.material_point();
         const double lo_span = std::min(D.dot(pos_start), D.dot(out.pos_end));
         const double hi_span = std::max(D.dot(pos_start), D.dot(out.pos_end));
         const double tol = params_.projection_tolerance_mm;
@@ -673,7 +666,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         const auto father_of = [&](std::size_t b) {
             const int h = holder[std::size_t(axis.branches[b].parent)];
             const Vector3d p =
-                material_point(axis.nodes[std::size_t(axis.branches[b].nodes.front())]);
+                axis.nodes[std::size_t(axis.branches[b].nodes.front())].material_point();
             if (h >= 0 && contains(work[std::size_t(h)].solid, p)) return h;
             for (int k = int(work.size()) - 1; k >= 0; --k)
                 if (contains(work[std::size_t(k)].solid, p)) return k;

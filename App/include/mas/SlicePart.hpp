@@ -35,7 +35,9 @@ struct ComponentLayers {
     int component = -1;
     int first_layer = 0;  // index into SlicedPart::layers
     int layer_count = 0;
-    int guide_nodes = 0;      // axis nodes of its branch inside it, followed by its layers
+    // Axis nodes of its branch whose section's material (AxisNode::material_point) lies in it,
+    // followed by its layers.
+    int guide_nodes = 0;
     double volume_mm3 = 0.0;  // of its mesh
 };
 

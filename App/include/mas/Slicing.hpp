@@ -22,9 +22,10 @@
 //   that height; area(A xor B) = area(A) + area(B) - 2 area(A and B). 0 means the layer deposits
 //   exactly the part; it is exact for parallel layers of prismatic parts.
 // - Sec. 4.2.2's search: from P_lower (the guide point on L) try P_upper at arc length delta
-//   further along the guide (the polyline of the component's axis nodes inside it, extended
-//   straight past both ends), direction D_upper = the guide's direction there (the link), plane
-//   through P_upper normal to D (a plane parallel to L goes exactly delta above it). Accept when
+//   further along the guide (the polyline of the component's axis nodes, those whose section's
+//   material lies in it, since a pipe's centroids lie in its bore; extended straight past both
+//   ends), direction D_upper = the guide's direction there (the link), plane through P_upper
+//   normal to D (a plane parallel to L goes exactly delta above it). Accept when
 //   Eq. 9 holds and the next layer's footprint (the component's section on U) is supported by
 //   this layer (below, with min_layer's allowance).
 //   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then

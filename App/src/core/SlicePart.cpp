@@ -140,9 +140,11 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                     throw Error(ErrorCode::InvalidArgument,
                                 "the axis' branch " + std::to_string(comp.branch) + " names node " +
                                     std::to_string(n) + ", which it lacks");
-                const Eigen::Vector3d& p = axis.nodes[std::size_t(n)].position;
-                if (!inside_mesh(comp.mesh, p)) continue;
-                input.guide.push_back(p);
+                // The node is the component's when its section's material is: a ring's
+                // centroid lies in the bore, outside every component.
+                const AxisNode& node = axis.nodes[std::size_t(n)];
+                if (!inside_mesh(comp.mesh, node.material_point())) continue;
+                input.guide.push_back(node.position);
                 input.guide_nodes.push_back(n);
             }
         }

@@ -612,7 +612,8 @@ const char* link_kind(mas::AxisLink::Kind kind) {
 }
 
 // The axis as plain data; node regions stay in the engine (the Python side has no use for them):
-// each node's interior point stands for its region where the decomposition needs one.
+// each node's interior point stands for its region where the decomposition and the slicer
+// need one.
 bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
     bp::list nodes;
     for (const auto& n : axis.nodes) {

@@ -75,12 +75,13 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
                              const LayerParams& params, const Progress& progress = {});
 
 // Slices components given as meshes (a mesh part is one root component). `axis` is the part's
-// centroidal axis: component c follows the nodes of branch components[c].branch that lie inside
-// its mesh. They are deposited in build_order(); each child's first layer is checked against
-// everything built before it. `progress` (Progress.hpp) follows the build order (a few per cent),
-// the components' layers (each its share by volume, reported after every layer and checked between
-// candidate planes) and the paths (the last tenth, layer by layer), and reaches 1 when done.
-// Throws as slice_component, and InvalidArgument for a component whose parent is not before it.
+// centroidal axis: component c follows the nodes of branch components[c].branch whose section's
+// material (AxisNode::material_point) lies inside its mesh. They are deposited in build_order();
+// each child's first layer is checked against everything built before it. `progress` (Progress.hpp)
+// follows the build order (a few per cent), the components' layers (each its share by volume,
+// reported after every layer and checked between candidate planes) and the paths (the last tenth,
+// layer by layer), and reaches 1 when done. Throws as slice_component, and InvalidArgument for a
+// component whose parent is not before it.
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const Progress& progress = {});

@@ -58,12 +58,15 @@ class AxisNode:
     branch's marching direction), FreeCAD.Vector when FreeCAD is importable, else tuples; ``area``
     (mm², the region's area left after the parts already searched are taken away), ``offset`` (mm,
     normal . point on the plane), ``thickness`` (mm, the length of the slab this node sweeps along
-    its normal), ``branch`` (index into ``CentroidalAxis.branches``), ``incoming_link`` (index into
-    ``CentroidalAxis.links`` of the link ending here, -1 for a root's first node).
+    its normal), ``slab_start`` (mm, normal . point where that slab starts: ``offset``, except for
+    a march's first node, whose slab reaches back to the base plane for a root and to the father
+    section's extent, the paper's Eq. 4 T, for a turned branch), ``branch`` (index into
+    ``CentroidalAxis.branches``), ``incoming_link`` (index into ``CentroidalAxis.links`` of the
+    link ending here, -1 for a root's first node).
     """
 
-    __slots__ = ("area", "offset", "thickness", "branch", "incoming_link", "_position", "_normal",
-                 "_interior")
+    __slots__ = ("area", "offset", "thickness", "slab_start", "branch", "incoming_link",
+                 "_position", "_normal", "_interior")
 
     def __init__(self, data):
         self._position = data["position"]
@@ -73,6 +76,7 @@ class AxisNode:
         self.area = data["area"]
         self.offset = data["offset"]
         self.thickness = data["thickness"]
+        self.slab_start = data["slab_start"]
         self.branch = data["branch"]
         self.incoming_link = data["incoming_link"]
 
@@ -92,6 +96,7 @@ class AxisNode:
             "area_mm2": self.area,
             "offset_mm": self.offset,
             "thickness_mm": self.thickness,
+            "slab_start_mm": self.slab_start,
             "branch": self.branch,
         }
 
@@ -240,8 +245,8 @@ class CentroidalAxis:
         return {
             "nodes": [{"position": tuple(n._position), "normal": tuple(n._normal),
                        "area": n.area, "offset": n.offset, "thickness": n.thickness,
-                       "branch": n.branch, "incoming_link": n.incoming_link,
-                       "interior": tuple(n._interior)}
+                       "slab_start": n.slab_start, "branch": n.branch,
+                       "incoming_link": n.incoming_link, "interior": tuple(n._interior)}
                       for n in self.nodes],
             "links": [{"start": link.start, "end": link.end, "kind": link.kind,
                        "is_break": link.is_break, "turn_deg": link.turn} for link in self.links],
@@ -251,7 +256,7 @@ class CentroidalAxis:
                           "merged_into": b.merged_into} for b in self.branches],
             "params": {key: self.params[key] for key in ("step_mm", "distance_threshold_mm",
                                                          "eps_mm", "break_angle_deg",
-                                                         "base_z_mm")},
+                                                         "base_z_mm", "deflection_mm")},
             "searched_volume_mm3": self.searched_volume,
         }
 

@@ -292,11 +292,18 @@ mas::AxisParams axis_params(const Args& a) {
     return p;
 }
 
+// The part's centroidal axis, knowing the deflection its mesh was tessellated with.
+mas::CentroidalAxis axis_of(const Part& part, const mas::AxisParams& params) {
+    mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, params);
+    axis.deflection_mm = part.deflection_mm;
+    return axis;
+}
+
 int run_axis(const std::vector<std::string>& args) {
     const Args a = parse_args(args, kAxisOptions);
     const mas::AxisParams p = axis_params(a);
     const Part part = load_part(a);
-    const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, p);
+    const mas::CentroidalAxis axis = axis_of(part, p);
     const mas::AxisParams& used = axis.params;
 
     std::ostringstream out;
@@ -316,7 +323,8 @@ int run_axis(const std::vector<std::string>& args) {
             out << (i ? "," : "") << "\n    {\"position\": " << vec(n.position)
                 << ", \"normal\": " << vec(n.normal) << ", \"area_mm2\": " << num(n.area)
                 << ", \"offset_mm\": " << num(n.offset)
-                << ", \"thickness_mm\": " << num(n.thickness) << ", \"branch\": " << n.branch
+                << ", \"thickness_mm\": " << num(n.thickness)
+                << ", \"slab_start_mm\": " << num(n.slab_start) << ", \"branch\": " << n.branch
                 << "}";
         }
         out << "\n  ],\n  \"links\": [";
@@ -388,7 +396,7 @@ int run_decompose(const std::vector<std::string>& args) {
             mas::ErrorCode::NotASolid,
             a.file + ": decomposition splits a BREP solid (STEP, IGES, BREP), not a mesh");
     const mas::Shape solid = part.model.shape.single_solid(a.file);
-    const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, ap);
+    const mas::CentroidalAxis axis = axis_of(part, ap);
     const mas::Decomposition d =
         mas::decompose(solid, axis, dp, report ? stderr_progress() : mas::Progress());
 
@@ -517,7 +525,7 @@ int run_slice(const std::vector<std::string>& args) {
     mas::validate(sp.layers);
     mas::validate(sp.paths);
     const Part part = load_part(a);
-    const mas::CentroidalAxis axis = mas::centroidal_axis(part.mesh, ap);
+    const mas::CentroidalAxis axis = axis_of(part, ap);
     mas::SlicedPart r;
     const mas::Progress progress = report ? stderr_progress() : mas::Progress();
     if (part.model.kind == mas::Model::Kind::Solid) {

@@ -623,6 +623,7 @@ bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
         d["area"] = n.area;
         d["offset"] = n.offset;
         d["thickness"] = n.thickness;
+        d["slab_start"] = n.slab_start;
         d["branch"] = n.branch;
         d["incoming_link"] = n.incoming_link;
         d["interior"] = to_py(n.interior);
@@ -703,10 +704,11 @@ void bind_axis() {
         "The centroidal axis of a closed mesh (make_closed() or tessellate() give one), lengths "
         "in mm, angles in degrees: step <= 0 is derived from the part, distance_threshold <= 0 "
         "is twice the step, base_z NaN is the part's lowest point. Returns a dict: nodes "
-        "[{position, normal, area, offset, thickness, branch, incoming_link}], links [{start, "
-        "end, kind ('step' | 'connecting'), is_break, turn_deg}], branches [{parent, direction, "
-        "nodes, parent_node, first_link, depth, merged_into}], params (the values used: step_mm, "
-        "distance_threshold_mm, eps_mm, break_angle_deg, base_z_mm, min_region_area_mm2), "
+        "[{position, normal, area, offset, thickness, slab_start, branch, incoming_link, "
+        "interior}], links [{start, end, kind ('step' | 'connecting'), is_break, turn_deg}], "
+        "branches [{parent, direction, nodes, parent_node, first_link, depth, merged_into}], "
+        "params (the values used: step_mm, distance_threshold_mm, eps_mm, break_angle_deg, "
+        "base_z_mm, min_region_area_mm2), "
         "searched_volume_mm3, sections_cut. EngineError invalid_argument on NaN or out-of-range "
         "parameters, a step not smaller than the part's height, or a part that does not stand "
         "on base_z; empty_input for an empty mesh.");
@@ -777,10 +779,14 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
         n.area = number_of(nodes[i], "area", what);
         n.offset = number_of(nodes[i], "offset", what);
         n.thickness = number_of(nodes[i], "thickness", what);
+        // Optional: where the node's slab starts (a turned branch's first node: Eq. 4's T).
+        n.slab_start = PyDict_GetItemString(nodes[i].ptr(), "slab_start")
+                           ? number_of(nodes[i], "slab_start", what)
+                           : n.offset;
         n.branch = index_of(nodes[i], "branch", what);
         n.incoming_link = index_of(nodes[i], "incoming_link", what);
         if (!n.position.allFinite() || !n.normal.allFinite() || !std::isfinite(n.area) ||
-            !std::isfinite(n.offset) || !std::isfinite(n.thickness))
+            !std::isfinite(n.offset) || !std::isfinite(n.thickness) || !std::isfinite(n.slab_start))
             invalid_argument(what + " has a NaN or infinite value");
         // Optional: a point in the node's material (the decomposition finds pipes by it).
         if (PyDict_GetItemString(nodes[i].ptr(), "interior")) {
@@ -841,6 +847,12 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
         number_of(params, "distance_threshold_mm", "axis['params']");
     axis.params.break_angle_deg = number_of(params, "break_angle_deg", "axis['params']");
     axis.params.base_z_mm = number_of(params, "base_z_mm", "axis['params']");
+    // Optional: the deflection of the tessellation the axis was cut from (0: not known).
+    if (PyDict_GetItemString(params.ptr(), "deflection_mm")) {
+        axis.deflection_mm = number_of(params, "deflection_mm", "axis['params']");
+        if (!(std::isfinite(axis.deflection_mm) && axis.deflection_mm >= 0.0))
+            invalid_argument("axis['params']['deflection_mm'] must be a non-negative number");
+    }
     if (!(std::isfinite(axis.params.step_mm) && axis.params.step_mm > 0.0) ||
         !(std::isfinite(axis.params.eps_mm) && axis.params.eps_mm >= 0.0))
         invalid_argument("axis['params'] needs a positive step_mm and a non-negative eps_mm");

@@ -119,6 +119,22 @@ void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& me
         const bool root_start = a.branches[std::size_t(a.nodes[n].branch)].parent < 0 &&
                                 a.branches[std::size_t(a.nodes[n].branch)].nodes.front() == int(n);
         EXPECT_EQ(incoming[int(n)], root_start ? 0 : 1) << "node " << n;
+        // A node's slab starts on its plane, but for a march's first node: a root's at the base
+        // plane, a turned branch's at Eq. 4's T, no more than a step (and eps) before its plane.
+        const auto& node = a.nodes[n];
+        const auto& branch = a.branches[std::size_t(node.branch)];
+        const bool turned_start =
+            branch.nodes.front() == int(n) && branch.parent >= 0 &&
+            a.links[std::size_t(branch.first_link)].kind == mas::AxisLink::Kind::Connecting;
+        if (root_start) {
+            EXPECT_EQ(node.slab_start, a.params.base_z_mm) << "node " << n;
+        } else if (turned_start) {
+            EXPECT_LE(node.slab_start, node.offset - a.params.eps_mm + 1e-9) << "node " << n;
+            EXPECT_GE(node.slab_start, node.offset - a.params.eps_mm - a.params.step_mm - 1e-9)
+                << "node " << n;
+        } else {
+            EXPECT_EQ(node.slab_start, node.offset) << "node " << n;
+        }
         if (centroids_inside) {
             EXPECT_TRUE(inside(mesh, a.nodes[n].position))
                 << "node " << n << " at " << a.nodes[n].position.transpose();
@@ -177,6 +193,8 @@ TEST(CentroidalAxis, LBlockRisesThenTurnsIntoTheArm) {
     EXPECT_EQ(arm.parent, 0);
     EXPECT_TRUE(arm.direction.isApprox(Vector3d::UnitX()));
     EXPECT_NEAR(a.nodes[arm.nodes.front()].position.x(), 20.001, 1e-9);
+    // Its first slab reaches back to the column's face, Eq. 4's T.
+    EXPECT_NEAR(a.nodes[arm.nodes.front()].slab_start, 20.0, 1e-9);
     EXPECT_EQ(arm.nodes.size(), 20u);
     for (int n : arm.nodes) {
         EXPECT_NEAR(a.nodes[n].position.y(), 10.0, 1e-6);

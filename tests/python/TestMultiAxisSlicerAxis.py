@@ -187,7 +187,7 @@ class TestAxisOfAnLBlock(AxisTest):
         self.assertEqual(d["searched_volume_mm3"], axis.searched_volume)
         self.assertEqual(len(d["nodes"]), 44)
         self.assertEqual(set(d["nodes"][0]), {"position", "normal", "area_mm2", "offset_mm",
-                                              "thickness_mm", "branch"})
+                                              "thickness_mm", "slab_start_mm", "branch"})
         self.assertEqual(set(d["links"][0]), {"start", "end", "kind", "is_break", "turn_deg"})
         self.assertEqual(set(d["branches"][0]), {"parent", "direction", "nodes", "parent_node",
                                                  "first_link", "depth", "merged_into"})
@@ -195,7 +195,12 @@ class TestAxisOfAnLBlock(AxisTest):
         for node, n in zip(axis.nodes, d["nodes"]):
             self.assertEqual(n["position"], [node.position.x, node.position.y, node.position.z])
             self.assertEqual(n["area_mm2"], node.area)
+            self.assertEqual(n["slab_start_mm"], node.slab_start)
         arm = d["branches"][1]
+        # The arm's first plane is x = 20.001; its slab reaches back to the column's face (T).
+        first = d["nodes"][arm["nodes"][0]]
+        self.assertAlmostEqual(first["offset_mm"], 20.001, delta=1e-9)
+        self.assertAlmostEqual(first["slab_start_mm"], 20.0, delta=1e-9)
         self.assertEqual(arm["direction"], [1.0, 0.0, 0.0])
         self.assertEqual(arm["parent"], 0)
         self.assertEqual(d["links"][arm["first_link"]]["kind"], "connecting")

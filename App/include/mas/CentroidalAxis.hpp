@@ -52,7 +52,9 @@
 // - Section loops are simplified to step / 100 before any Boolean (corners kept: simplify()).
 // - Marches in one direction all read the same sections, cut once on a grid (the part's lowest
 //   offset along the direction + eps + k step): a turned branch starts at the first grid plane at
-//   or past Eq. 4's location, at most one step on.
+//   or past Eq. 4's location, at most one step on. Its first node's slab reaches back to T
+//   (AxisNode::slab_start), so nothing between is left unswept; the decomposition's
+//   section-plane cut is placed from T (Decompose.hpp).
 // - Several regions in the very first section (a part standing on several feet) each root a tree:
 //   the result is a forest with one tree per foot.
 #pragma once
@@ -91,6 +93,11 @@ struct AxisNode {
     double area = 0.0;                                   // region area, mm^2 (after B - Bs)
     double offset = 0.0;                                 // normal . point on the plane, mm
     double thickness = 0.0;  // length of the slab this node sweeps along `normal`, mm
+    // Where that slab starts along `normal` (normal . point), mm: the node's own plane, except
+    // for a march's first node: a root's reaches down to the base plane (eps below), a turned
+    // branch's back from its grid plane to Eq. 4's T (the lower section's extent along the new
+    // direction), up to a step before `offset`.
+    double slab_start = 0.0;
     int branch = -1;
     int incoming_link = -1;  // the link ending at this node, -1 for a root node
     Region2 region;          // the region in PlaneFrame(normal) coordinates
@@ -133,7 +140,11 @@ struct CentroidalAxis {
     std::vector<AxisBranch> branches;
     AxisParams params;                 // with derived values filled in
     double searched_volume_mm3 = 0.0;  // sum of the nodes' slabs (area x thickness)
-    std::size_t sections_cut = 0;      // planes cut from the mesh, for the record
+    // Chordal deflection of the tessellation the sections were cut from, mm; 0 when not known (a
+    // mesh taken as it is). Set by whoever tessellated: section loops on curved faces lie up to
+    // this far inside the solid's surface, and so may an extent such as Eq. 4's T.
+    double deflection_mm = 0.0;
+    std::size_t sections_cut = 0;  // planes cut from the mesh, for the record
 };
 
 // Half the part's thinnest wall (the paper's inc is the smallest distance between two surfaces

@@ -503,6 +503,7 @@ private:
         node.area = area(region);
         node.offset = offset;
         node.thickness = slab_to - slab_from;
+        node.slab_start = slab_from;
         node.branch = branch;
         node.region = region;
         Slab slab{n, slab_from, slab_to, region, {}, branch};

@@ -61,7 +61,9 @@ mas::CentroidalAxis axis_of(const mas::Shape& part, double step) {
     tp.deflection_mm = kDeflection;
     mas::AxisParams ap;
     ap.step_mm = step;
-    return mas::centroidal_axis(mas::tessellate(part, tp), ap);
+    mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
+    axis.deflection_mm = kDeflection;
+    return axis;
 }
 
 // A T: column [0,20]x[0,20]x[0,60] with a crossbar [-30,50]x[0,20]x[40,60] reaching both ways.
@@ -373,23 +375,39 @@ TEST(Decompose, TwoPostsSplitAtThePlateTopAndBuildPlusZ) {
     expect_invariants(d, part);
 }
 
-TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlane) {
+TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlaneAtTheCylindersExtent) {
+    // The boss (radius 6, along X) leaves the cylinder (radius 20) at x = 20: Eq. 4's T. With a
+    // 2.5 mm step the boss' first grid plane is x = -19.999 + 16 x 2.5 = 20.001, T + eps; with a
+    // 3 mm step it is -19.999 + 14 x 3 = 22.001, 2 mm further on. Either way the cut is where the
+    // march started, at T plus the clearance for a T measured on the mesh (eps, the deflection,
+    // step / 100), never past the first plane less eps: it clears the cylinder (x <= 20) and no
+    // more, so that the father keeps no stub of the boss.
     const auto part = cylinder_with_boss();
-    const auto axis = axis_of(part, 2.5);
-    const auto d = mas::decompose(part, axis);
-    ASSERT_EQ(d.components.size(), 2u);
-    const auto& boss = d.components[1];
-    EXPECT_EQ(boss.rule, Rule::SectionPlane);
-    EXPECT_TRUE(boss.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
-    // Cut where the boss' march started: its first node's plane less eps.
-    const auto& first = axis.nodes[axis.branches[boss.branch].nodes.front()];
-    const double cut = first.offset - axis.params.eps_mm;
-    EXPECT_NEAR(bounds(boss.base_face).min().x(), cut, 1e-7);
-    EXPECT_NEAR(bounds(boss.base_face).max().x(), cut, 1e-7);
-    EXPECT_TRUE(near_box(boss.solid, {cut, -6, 14}, {40, 6, 26}, 1e-5));
-    const double boss_volume = M_PI * 36.0 * (40.0 - cut);
-    EXPECT_NEAR(boss.volume_mm3, boss_volume, boss_volume * 1e-6);
-    expect_invariants(d, part);
+    for (const double step : {2.5, 3.0}) {
+        SCOPED_TRACE("step " + std::to_string(step));
+        const auto axis = axis_of(part, step);
+        const auto d = mas::decompose(part, axis);
+        ASSERT_EQ(d.components.size(), 2u);
+        const auto& boss = d.components[1];
+        EXPECT_EQ(boss.rule, Rule::SectionPlane);
+        EXPECT_TRUE(boss.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+        const auto& first = axis.nodes[axis.branches[boss.branch].nodes.front()];
+        EXPECT_NEAR(first.offset, step == 2.5 ? 20.001 : 22.001, 1e-9);
+        // T, on a polygon inscribed in the circle x^2 + z^2 = 400 and simplified by step / 100.
+        EXPECT_LE(first.slab_start, 20.0 + 1e-9);
+        EXPECT_GE(first.slab_start, 20.0 - kDeflection - 0.01 * step);
+        const double cut =
+            std::min(first.offset - axis.params.eps_mm,
+                     first.slab_start + axis.params.eps_mm + kDeflection + 0.01 * step);
+        EXPECT_GE(cut, 20.0);
+        EXPECT_LE(cut, 20.0 + axis.params.eps_mm + kDeflection + 0.01 * step);
+        EXPECT_NEAR(bounds(boss.base_face).min().x(), cut, 1e-7);
+        EXPECT_NEAR(bounds(boss.base_face).max().x(), cut, 1e-7);
+        EXPECT_TRUE(near_box(boss.solid, {cut, -6, 14}, {40, 6, 26}, 1e-5));
+        const double boss_volume = M_PI * 36.0 * (40.0 - cut);
+        EXPECT_NEAR(boss.volume_mm3, boss_volume, boss_volume * 1e-6);
+        expect_invariants(d, part);
+    }
 }
 
 TEST(Decompose, WithoutFallbackARoundBossStaysInItsFather) {

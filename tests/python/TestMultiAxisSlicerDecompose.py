@@ -8,6 +8,7 @@ test (tests/engine/test_decompose.cpp): the cuts are planes of planar faces, so 
 """
 
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -186,6 +187,27 @@ class TestDecomposeApi(DecomposeTest):
         self.assertEqual(len(d), 1)
         self.assertIn("reaches only 50 mm", d.notes[0])
 
+    def test_a_round_boss_is_cut_at_the_extent_of_the_body_it_leaves(self):
+        # A boss (radius 6, along X) on a cylinder (radius 20): no planar face to split at, so the
+        # section-plane fallback cuts where the boss' march started, Eq. 4's T (x = 20, measured on
+        # the mesh), plus eps, the axis' deflection and step / 100, not at its first grid plane
+        # (about x = -19.95 + 14 x 3 = 22.05 with a 3 mm step), which left the father a 2 mm stub.
+        part = Part.makeCylinder(20, 40).fuse(Part.makeCylinder(6, 40, V(0, 0, 20), V(1, 0, 0)))
+        for deflection in (0.02, 0.1):
+            axis = mas.centroidal_axis(part, step=3.0, deflection=deflection)
+            self.assertEqual(axis.params["deflection_mm"], deflection)
+            d = mas.decompose(part, axis=axis)
+            self.assertEqual([c.rule for c in d], ["root", "section_plane"])
+            first = axis.nodes[axis.branches[d[1].branch].nodes[0]]
+            cut = first.slab_start + 0.001 + deflection + 0.03
+            self.assertGreater(first.offset - cut, 1.9)
+            self.assertGreaterEqual(cut, 20.0)
+            self.assertLessEqual(cut, 20.031 + deflection)
+            face = d[1].base_face.BoundBox
+            self.assertAlmostEqual(face.XMin, cut, delta=1e-7)
+            self.assertAlmostEqual(face.XMax, cut, delta=1e-7)
+            self.assertAlmostEqual(d[1].volume, math.pi * 36 * (40 - cut), delta=1e-3)
+
     def test_document_object_and_file_inputs(self):
         folder = tempfile.mkdtemp(prefix="mas_dec_")
         doc = FreeCAD.newDocument("MasDecInputs")
@@ -260,6 +282,15 @@ class TestDecomposeBadInput(DecomposeTest):
         self.assertIn("kind", str(e))
         self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid, axis,
                                      face_angle=float("nan"))
+        nan_start = dict(axis, nodes=[dict(axis["nodes"][0], slab_start=float("nan"))]
+                         + axis["nodes"][1:])
+        e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid,
+                                         nan_start)
+        self.assertIn("nodes'][0]", str(e))
+        bad_deflection = dict(axis, params=dict(axis["params"], deflection_mm=-1.0))
+        e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid,
+                                         bad_deflection)
+        self.assertIn("deflection_mm", str(e))
         self.assertEqual(len(mas._engine.decompose(solid, axis)["components"]), 2)
 
     def test_the_source_is_not_modified(self):

@@ -58,10 +58,16 @@
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
 // - No planar face meets the criteria (a round boss on a round body): the SectionPlane rule (our
 //   documented replacement for the paper's silhouette-edge method) cuts at the plane perpendicular
-//   to D where b's march started (its first node's offset minus the axis' eps): Eq. 4's extent of
-//   the father's section, or up to a step past it where the axis snapped the branch to its section
-//   grid. The same piece selection follows. What lies between the father's surface and that plane
-//   (a sliver of a round boss on a round body) stays in the father.
+//   to D where b's march started: Eq. 4's extent T of the father's section (b's first node's
+//   slab_start), plus a clearance of the axis' eps, the deflection of the mesh T was measured on
+//   (CentroidalAxis::deflection_mm, else the part's default: a loop on a curved face lies up to
+//   that far inside it) and step / 100 (the axis simplifies loops by that much); never past b's
+//   first plane less eps. That plane lies up to a step further on, where the axis snapped the
+//   branch to its grid: cut there, the branch's material before it would stay on the father as a
+//   stub whose underside overhangs (11 mm^2 in all under a crossbar through a round column,
+//   against 0.4 cut at T).
+//   The same piece selection follows. What lies between the father's surface and that plane (the
+//   lens of a round boss on a round body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped: the branch's material stays in its father, and
 //   a note says so.

@@ -530,9 +530,11 @@ struct Plan {
 
 class Decomposer {
 public:
-    Decomposer(const CentroidalAxis& axis, const DecomposeParams& params)
+    // `clearance`: how far past a branch's Eq. 4 extent T the section plane goes (see plan()).
+    Decomposer(const CentroidalAxis& axis, const DecomposeParams& params, double clearance)
         : axis_(axis),
           params_(params),
+          clearance_(clearance),
           cos_face_(std::cos(params.face_angle_deg * kPi / 180.0)),
           min_concave_(params.concave_angle_deg * kPi / 180.0) {}
 
@@ -595,7 +597,10 @@ public:
         }
         if (!params_.section_plane_fallback) return false;
         out.rule = Component::SplitRule::SectionPlane;
-        out.point = D * (first.offset - axis_.params.eps_mm);
+        // Where the march started, Eq. 4's T, plus the clearance: the first node's grid plane can
+        // lie up to a step further on, and the material between, left in the father, would be a
+        // stub of the branch hanging off it (a crossbar through a round column).
+        out.point = D * std::min(first.offset - axis_.params.eps_mm, first.slab_start + clearance_);
         out.normal = D;
         return true;
     }
@@ -608,6 +613,7 @@ public:
 private:
     const CentroidalAxis& axis_;
     const DecomposeParams& params_;
+    double clearance_;
     double cos_face_, min_concave_;
 };
 
@@ -638,7 +644,13 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         root.c.base_origin = Vector3d(box.center().x(), box.center().y(), box.min().z());
         work.push_back(root);
 
-        const Decomposer decomposer(axis, params);
+        // T was measured on a section of the mesh: on a curved face up to the tessellation's
+        // deflection inside the solid, and up to the step / 100 the axis simplifies loops by.
+        const double deflection = axis.deflection_mm > 0.0
+                                      ? axis.deflection_mm
+                                      : effective_deflection(checked, TessellationParams{});
+        const Decomposer decomposer(axis, params,
+                                    axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
         const std::size_t nb = axis.branches.size();
         // The most a branch's component may hold: four times what it and its sub-branches swept
         // (a split plane short of where the march began adds the material between), plus two

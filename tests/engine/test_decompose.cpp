@@ -599,6 +599,33 @@ TEST(DecomposeErrors, AnAxisOfAnotherPartIsRejected) {
         EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
         EXPECT_NE(std::string(e.what()).find("malformed"), std::string::npos) << e.what();
     }
+    // So is a node whose slab would start past its plane or more than a step and eps before it
+    // (the section-plane cut is placed from it), and a deflection that is no length.
+    for (const double shift : {0.01, -2.5 - 0.001 - 0.01}) {
+        auto moved = axis_of(l_block, 2.5);
+        moved.nodes[moved.branches[1].nodes.front()].slab_start =
+            moved.nodes[moved.branches[1].nodes.front()].offset + shift;
+        try {
+            mas::decompose(l_block, moved);
+            ADD_FAILURE() << "no error for a slab starting " << shift << " mm from its plane";
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find("is malformed (its slab starts"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    for (const double bad : {-0.01, std::nan("")}) {
+        auto odd = axis_of(l_block, 2.5);
+        odd.deflection_mm = bad;
+        try {
+            mas::decompose(l_block, odd);
+            ADD_FAILURE() << "no error for a deflection of " << bad;
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find("deflection"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(DecomposeErrors, BadParametersAndCancellationAreReported) {

@@ -473,6 +473,20 @@ void check_axis(const CentroidalAxis& axis, const Eigen::AlignedBox3d& box, doub
                         "decompose: the axis' branch " + std::to_string(b) +
                             " is malformed (a father after it, no nodes or a dangling link)");
     }
+    // A node's slab starts on its plane, or (a march's first node) at most a step and eps before.
+    const double slab_tol = 1e-9 * (1.0 + box.diagonal().norm());
+    for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
+        const auto& n = axis.nodes[i];
+        if (!(n.slab_start <= n.offset + slab_tol &&
+              n.slab_start >= n.offset - axis.params.step_mm - axis.params.eps_mm - slab_tol))
+            throw Error(ErrorCode::InvalidArgument,
+                        "decompose: the axis' node " + std::to_string(i) +
+                            " is malformed (its slab starts past its plane, or more than a step "
+                            "and eps before it)");
+    }
+    if (!(std::isfinite(axis.deflection_mm) && axis.deflection_mm >= 0.0))
+        throw Error(ErrorCode::InvalidArgument,
+                    "decompose: the axis' deflection must be a non-negative number of mm");
     const double grow = std::max(axis.params.step_mm, 0.0) + 1e-6;
     const Eigen::AlignedBox3d grown(box.min() - Vector3d::Constant(grow),
                                     box.max() + Vector3d::Constant(grow));

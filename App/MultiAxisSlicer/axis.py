@@ -283,7 +283,8 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
         thinnest wall within [diagonal / 2000, diagonal / 20]. Must be smaller than the part's
         height.
       * ``distance_threshold``: a part of a section sticking out of the one below with its centre
-        farther than this outside it starts a new branch. None: twice the step.
+        farther than this outside it starts a new branch. None: twice the step, at most a sixth
+        of the size (square root of the area) of the section below.
       * ``eps``: the first plane of a march lies this far inside the part (default 0.001 mm).
       * ``break_angle``: a link turning more than this from the one before it is a C1 break
         (default 30 degrees; 0 to 180).

@@ -181,12 +181,12 @@ class CentroidalAxisFeature(_EngineFeature):
     """Proxy of a ``Part::FeaturePython`` holding the centroidal axis of its ``Source``.
 
     Inputs: Source (a solid or closed mesh standing on its lowest point), Step (mm between
-    sections, 0 = derived from the part), DistanceThreshold (mm, 0 = twice the step), Epsilon (mm),
-    BreakAngle (degrees), Deflection (mm chordal deflection for tessellating a solid, 0 =
-    automatic). Outputs: Shape (a compound of one vertex per node, then one line segment per link:
-    first the ordinary links, then the C1 breaks from edge index BreakEdgeStart on, so that the
-    view provider can colour them), NodeCount, BranchCount, BreakCount, UsedStep,
-    UsedDistanceThreshold, SearchedVolume.
+    sections, 0 = derived from the part), DistanceThreshold (mm, 0 = twice the step, at most a
+    sixth of a section's size), Epsilon (mm), BreakAngle (degrees), Deflection (mm chordal
+    deflection for tessellating a solid, 0 = automatic). Outputs: Shape (a compound of one vertex
+    per node, then one line segment per link: first the ordinary links, then the C1 breaks from
+    edge index BreakEdgeStart on, so that the view provider can colour them), NodeCount,
+    BranchCount, BreakCount, UsedStep, UsedDistanceThreshold, SearchedVolume.
     """
 
     TYPE = "MultiAxisSlicer::CentroidalAxis"
@@ -202,7 +202,7 @@ class CentroidalAxisFeature(_EngineFeature):
                       "its thinnest wall)", 0.0)
         _add_property(obj, "App::PropertyLength", "DistanceThreshold", group,
                       "A section part sticking out farther than this starts a new branch "
-                      "(0 = twice the step)", 0.0)
+                      "(0 = twice the step, at most a sixth of a section's size)", 0.0)
         _add_property(obj, "App::PropertyLength", "Epsilon", group,
                       "Distance of a march's first section inside the part", 0.001)
         _add_property(obj, "App::PropertyAngle", "BreakAngle", group,

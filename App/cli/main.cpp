@@ -288,7 +288,7 @@ mas::AxisParams axis_params(const Args& a) {
     p.base_z_mm = a.number("--base-z", p.base_z_mm);
     if (p.step_mm < 0.0) throw UsageError("--step must be positive (or 0 for derived)");
     if (p.distance_threshold_mm < 0.0)
-        throw UsageError("--distance-threshold must be positive (or 0 for twice the step)");
+        throw UsageError("--distance-threshold must be positive (or 0 for derived)");
     return p;
 }
 

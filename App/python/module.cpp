@@ -703,7 +703,8 @@ void bind_axis() {
          bp::arg("min_region_area") = 1e-6),
         "The centroidal axis of a closed mesh (make_closed() or tessellate() give one), lengths "
         "in mm, angles in degrees: step <= 0 is derived from the part, distance_threshold <= 0 "
-        "is twice the step, base_z NaN is the part's lowest point. Returns a dict: nodes "
+        "is twice the step (at most a sixth of a section's size), base_z NaN is the part's lowest "
+        "point. Returns a dict: nodes "
         "[{position, normal, area, offset, thickness, slab_start, branch, incoming_link, "
         "interior}], links [{start, end, kind ('step' | 'connecting'), is_break, turn_deg}], "
         "branches [{parent, direction, nodes, parent_node, first_link, depth, merged_into}], "

@@ -269,6 +269,49 @@ TEST(CentroidalAxis, CylinderOnABlockTurnsIntoPlusAndMinusX) {
     expect_invariants(a, mesh);
 }
 
+namespace {
+
+// A thick column [0,30]^2 x [0,60] with two square lugs 8 x 8 that stick out 12 mm: along +X at
+// z in [16,24] and along -X at z in [36,44], both at y in [11,19]. With a 4 mm step, the first
+// plane through a lug finds it centred 6 mm outside the column: within twice the step, beyond a
+// sixth of the column's 30 mm size.
+mas::Shape column_with_short_lugs() {
+    return from_occt(fuse(fuse(occ_box(0, 0, 0, 30, 30, 60), occ_box(30, 11, 16, 12, 8, 8)),
+                          occ_box(-12, 11, 36, 12, 8, 8)));
+}
+
+}  // namespace
+
+TEST(CentroidalAxis, ShortLugsOnAThickColumnBranchAtTheDerivedThreshold) {
+    const auto mesh = mesh_of(column_with_short_lugs());
+    mas::AxisParams p;
+    p.step_mm = 4.0;  // the distance threshold is derived: 8 mm, at most 30 / 6 = 5 mm here
+    const auto a = mas::centroidal_axis(mesh, p);
+    EXPECT_EQ(a.params.distance_threshold_mm, 8.0);
+    ASSERT_EQ(a.branches.size(), 3u);
+    std::set<double> dirs;
+    for (int b : children(a, 0)) {
+        const auto& br = a.branches[std::size_t(b)];
+        const double dir = br.direction.x();
+        ASSERT_TRUE(br.direction.isApprox(Vector3d(dir, 0, 0))) << br.direction.transpose();
+        dirs.insert(dir);
+        // From the column's face (x = 30 or x = 0), on the lug's centre line, 8 x 8 throughout.
+        EXPECT_NEAR(a.nodes[std::size_t(br.nodes.front())].slab_start, dir > 0 ? 30.0 : -0.0, 1e-9);
+        for (int n : br.nodes) {
+            EXPECT_NEAR(a.nodes[std::size_t(n)].position.y(), 15.0, 1e-6);
+            EXPECT_NEAR(a.nodes[std::size_t(n)].position.z(), dir > 0 ? 20.0 : 40.0, 1e-6);
+            EXPECT_NEAR(a.nodes[std::size_t(n)].area, 64.0, 1e-6);
+        }
+    }
+    EXPECT_EQ(dirs, (std::set<double>{-1.0, 1.0}));
+    expect_invariants(a, mesh);
+    // A threshold given is used as given: at 8 mm the lugs are no branches.
+    p.distance_threshold_mm = 8.0;
+    const auto given = mas::centroidal_axis(mesh, p);
+    EXPECT_EQ(given.branches.size(), 1u);
+    expect_invariants(given, mesh);
+}
+
 TEST(CentroidalAxis, TwoPostsOnAPlateAreTwoBranches) {
     const auto mesh = mesh_of(mas::test::two_posts());
     mas::AxisParams p;

@@ -464,6 +464,35 @@ TEST(Slicing, ATubesLayersFollowItsAxisAsASolidBarsDo) {
     }
 }
 
+// A thick column [0,30]^2 x [0,60] with two square lugs 8 x 8 sticking out 12 mm, along +X at z in
+// [16,24] and along -X at z in [36,44]. At the derived distance threshold (a 4 mm step) each lug
+// is a branch, cut off at the column's face and built sideways from it: no layer overhangs. Kept
+// in the column, each lug's underside would be a 12 x 8 ledge in the column's layers.
+TEST(Slicing, ShortLugsOnAThickColumnAreBuiltSidewaysWithEveryLayerSupported) {
+    const auto params = default_params();
+    const auto part =
+        from_occt(fuse(fuse(occ_box(0, 0, 0, 30, 30, 60), occ_box(30, 11, 16, 12, 8, 8)),
+                       occ_box(-12, 11, 36, 12, 8, 8)));
+    const auto s = slice(part, 4.0, params);
+    ASSERT_EQ(s.result.components.size(), 3u);
+    EXPECT_EQ(s.result.components[0].layer_count, 30);  // 60 mm at 2 mm
+    for (std::size_t c = 1; c < 3; ++c) {
+        const auto& lug = s.decomposition.components[c];
+        const double dir = lug.build_direction.x();
+        EXPECT_TRUE(lug.build_direction.isApprox(Vector3d(dir, 0, 0), 1e-12));
+        EXPECT_NEAR(lug.volume_mm3, 768.0, 768.0 * 1e-9);  // 12 x 8 x 8
+        const auto& comp = s.result.components[c];
+        EXPECT_EQ(comp.layer_count, 6);  // 12 mm at 2 mm
+        for (int i = 0; i < comp.layer_count; ++i) {
+            const auto& l = s.result.layers[std::size_t(comp.first_layer + i)];
+            EXPECT_TRUE(l.plane.normal.isApprox(lug.build_direction, 1e-9));
+            EXPECT_NEAR(l.area_mm2, 64.0, 1e-6);
+        }
+    }
+    for (const auto& l : s.result.layers) EXPECT_EQ(l.unsupported_area_mm2, 0.0);
+    expect_invariants(s, params, "column with short lugs");
+}
+
 // A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
 // reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
 // where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.

@@ -12,14 +12,18 @@
 //   Booleans' grid) along the shorter of the two outlines is none: it is a hairline the Booleans'
 //   snapping left, such as the one U minus a turn's far pieces keeps along their outline.
 // - Eq. 2 on a region U over its lower region(s) L: the parts of U - L, dA_k, whose centre G_k lies
-//   farther than `distance_threshold` outside L (2-D distance on the plane) start new branches,
-//   unless they are bumps on a large section's surface (which made organic meshes sprout
-//   hundreds of branches): centred and reaching no farther than an eighth of L's size (sqrt of
-//   its area) outside L. One that reaches farther is an overhang growing out of the part, however
-//   near its centre: a twisted blade leaving a hub at a small angle adds a long strip beside the
-//   last one at every plane. The rest of U continues the march. A stick-out touching two or more
-//   lower regions is the bridge where tracks merge (the top of a hole), never a new branch. The
-//   new direction is the one of +-X, +-Y, +-Z closest to G_k - E, E the point of L's boundary
+//   farther than d outside L (2-D distance on the plane) start new branches, unless they are
+//   bumps on a large section's surface (which made organic meshes sprout hundreds of branches):
+//   centred and reaching no farther than an eighth of L's size (sqrt of its area) outside L. One
+//   that reaches farther is an overhang growing out of the part, however near its centre: a
+//   twisted blade leaving a hub at a small angle adds a long strip beside the last one at every
+//   plane. d (Eq. 3) is `distance_threshold`; derived, it is twice the step but at most a sixth
+//   of L's size. The step is half the thinnest wall, and on a thick part two steps can be more
+//   than half what its lugs and bosses stick out (a 30 mm column with 8 mm bosses sticking out
+//   10 mm: step 4.6 mm); those would stay in their father, their undersides overhanging. A sixth
+//   is still past a bump's eighth. The rest of U continues the march. A stick-out touching two or
+//   more lower regions is the bridge where tracks merge (the top of a hole), never a new branch.
+//   The new direction is the one of +-X, +-Y, +-Z closest to G_k - E, E the point of L's boundary
 //   nearest to G_k, plus the step along the march (the paper's Sec. 3.2.1 says G_k - C, C the
 //   lower centroid; that sends a lug sticking out sideways near the end of a long wall along the
 //   wall, past the part, so its material is never searched); the first plane of the new branch
@@ -75,7 +79,9 @@ struct AxisParams {
     // (derive_axis_step): half its thinnest wall, within [diagonal / 2000, diagonal / 20].
     double step_mm = 0.0;
     // A stick-out area whose centre lies farther than this outside the lower section starts a new
-    // branch (paper: d), mm. <= 0: twice the step ("much greater than the step", Sec. 3.2.1).
+    // branch (paper: d), mm. <= 0: derived, twice the step ("much greater than the step", Sec.
+    // 3.2.1), and at each section at most a sixth of the lower section's size (sqrt of its area);
+    // CentroidalAxis::params reports twice the step.
     double distance_threshold_mm = 0.0;
     double eps_mm = 0.001;  // paper's epsilon: the first plane sits this far inside, mm
     double break_angle_deg =

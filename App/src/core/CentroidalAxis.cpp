@@ -296,8 +296,10 @@ constexpr double kHairline = 1e-4;  // mm
 
 class Search {
 public:
-    Search(const TriangleMesh& mesh, const AxisParams& params, const std::function<void()>& cancel)
-        : mesh_(mesh), p_(params), cancel_(cancel) {}
+    // `derived_threshold`: the distance threshold was derived from the step, not given.
+    Search(const TriangleMesh& mesh, const AxisParams& params, bool derived_threshold,
+           const std::function<void()>& cancel)
+        : mesh_(mesh), p_(params), derived_threshold_(derived_threshold), cancel_(cancel) {}
 
     CentroidalAxis run(double base_z) {
         Task root;
@@ -874,7 +876,15 @@ private:
         // farther than that, is one. One that reaches farther is an overhang growing out of the
         // part however near its centre stays (the underside of a blade leaving a hub at a small
         // angle adds a long strip beside the last one at every plane).
-        const double bump = std::sqrt(area(lower)) / 8.0;
+        const double size = std::sqrt(area(lower));
+        const double bump = size / 8.0;
+        // Eq. 3's d. Derived (twice the step), it is at most a sixth of L's size: on a thick part
+        // the step, half its thinnest wall, is a large part of a section, and two steps can be
+        // more than half what a lug or boss sticks out (a 10 mm boss on a 30 mm column, step
+        // 4.6 mm), which would leave it in its father, its underside overhanging. Given, it is
+        // used as given.
+        const double d = derived_threshold_ ? std::min(p_.distance_threshold_mm, size / 6.0)
+                                            : p_.distance_threshold_mm;
         // Whether any point of `piece`'s outline lies farther than `limit` outside every lower
         // region. A point within `limit` of the last point of L found nearest to an earlier one
         // is within `limit` of L: along a stick-out hugging L only every few points need the
@@ -906,7 +916,7 @@ private:
             return false;
         };
         const auto is_far = [&](const Regions2& piece, double centre_distance) {
-            if (centre_distance <= p_.distance_threshold_mm) return false;
+            if (centre_distance <= d) return false;
             return centre_distance > bump || reaches(piece, bump);
         };
         Regions2 far;
@@ -1066,6 +1076,7 @@ private:
 
     const TriangleMesh& mesh_;
     AxisParams p_;
+    bool derived_threshold_;
     const std::function<void()>& cancel_;
     std::vector<AxisNode> nodes_;
     std::vector<AxisLink> links_;
@@ -1140,7 +1151,8 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
             << height << " mm";
         throw Error(ErrorCode::InvalidArgument, msg.str());
     }
-    if (p.distance_threshold_mm <= 0.0) p.distance_threshold_mm = 2.0 * p.step_mm;
+    const bool derived_threshold = p.distance_threshold_mm <= 0.0;
+    if (derived_threshold) p.distance_threshold_mm = 2.0 * p.step_mm;
     double base = box.min().z();
     if (std::isfinite(p.base_z_mm)) {
         if (std::abs(base - p.base_z_mm) > p.eps_mm) {
@@ -1152,7 +1164,7 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
         base = p.base_z_mm;
     }
     p.base_z_mm = base;
-    return Search(mesh, p, throw_on_cancel).run(base);
+    return Search(mesh, p, derived_threshold, throw_on_cancel).run(base);
 }
 
 }  // namespace mas

@@ -374,6 +374,26 @@ class TestCentroidalAxisObject(AxisTest):
         self.assertNotEqual(obj.NodeCount, coarse)
         self.check_l_block_object(obj)
 
+    def test_a_derived_threshold_lets_a_thick_columns_short_lugs_branch(self):
+        # A column [0,30]^2 x [0,60] with 8 x 8 lugs sticking out 12 mm along +X (z 16..24) and -X
+        # (z 36..44), step 4: each lug's first section is centred 6 mm out, within twice the step
+        # (8 mm) but past a sixth of the column's 30 mm size, the most a derived threshold is.
+        column = Part.makeBox(30, 30, 60).fuse(Part.makeBox(12, 8, 8, V(30, 11, 16)))
+        column = column.fuse(Part.makeBox(12, 8, 8, V(-12, 11, 36))).removeSplitter()
+        part = self.doc.addObject("Part::Feature", "LuggedColumn")
+        part.Shape = column
+        obj = mas.make_centroidal_axis(part, step=4.0)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.DistanceThreshold.Value, 0.0)
+        self.assertEqual(obj.UsedDistanceThreshold.Value, 8.0)
+        self.assertEqual(obj.BranchCount, 3)
+        # The same 8 mm given is used as given: the lugs stay with the column.
+        obj.DistanceThreshold = 8.0
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.BranchCount, 1)
+
     def test_source_is_not_modified(self):
         before = self.part.Shape.exportBrepToString()
         obj = mas.make_centroidal_axis(self.part, step=2.5)

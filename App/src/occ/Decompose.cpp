@@ -645,10 +645,11 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         const Eigen::AlignedBox3d box = bounds_of(solid);
         check_axis(axis, box, volume_of(solid));
         const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
+        // The part's default deflection: what slicing tessellates with unless told otherwise.
+        const double default_deflection = effective_deflection(checked, TessellationParams{});
         // A part with C0 geometry, which OCCT's Booleans do not promise to split soundly: every
         // component must also mesh closed at the deflection slicing uses by default, the part's.
-        const double mesh_deflection =
-            has_c0_geometry(solid) ? effective_deflection(checked, TessellationParams{}) : 0.0;
+        const double mesh_deflection = has_c0_geometry(solid) ? default_deflection : 0.0;
 
         Work root;
         root.solid = solid;
@@ -660,9 +661,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
 
         // T was measured on a section of the mesh: on a curved face up to the tessellation's
         // deflection inside the solid, and up to the step / 100 the axis simplifies loops by.
-        const double deflection = axis.deflection_mm > 0.0
-                                      ? axis.deflection_mm
-                                      : effective_deflection(checked, TessellationParams{});
+        const double deflection =
+            axis.deflection_mm > 0.0 ? axis.deflection_mm : default_deflection;
         const Decomposer decomposer(axis, params,
                                     axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
         const std::size_t nb = axis.branches.size();

@@ -42,7 +42,8 @@ const char* kUsage =
     "                                   [--bead-width MM] [--overlap F] [--contours N]\n"
     "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
     "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
-    "                                   [--measure-coverage] [--progress] [--json [OUT.json]]\n"
+    "                                   [--measure-coverage] [--fill-holes MM] [--progress]\n"
+    "                                   [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
     "\n"
     "sections   cut the part with parallel planes STEP mm apart along NORMAL (default 0,0,1 and\n"
@@ -61,7 +62,10 @@ const char* kUsage =
     "           plane below it) and its paths (points, tool axis, thickness).\n"
     "           Defaults: layers 0.5 to 2 mm, volume difference 0.1, bead 1 mm, overlap 0.15,\n"
     "           2 contours, raster infill. A mesh is sliced as one component; a solid is\n"
-    "           decomposed with --min-height at --min-layer.\n"
+    "           decomposed with --min-height at --min-layer. --fill-holes MM deposits a solid's\n"
+    "           round holes up to MM across solid where their axis leans past the overhang\n"
+    "           angle off the build direction (their ceilings would overhang), listing them to\n"
+    "           drill afterwards (default 0: none).\n"
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
     "--json     write JSON instead of text, to OUT.json or standard output\n"
@@ -456,11 +460,11 @@ int run_decompose(const std::vector<std::string>& args) {
 }
 
 const std::set<std::string> kSliceOptions = {
-    "--min-layer",  "--max-layer",      "--max-volume-difference",
-    "--eps-angle",  "--overhang-angle", "--volume-samples",
-    "--bead-width", "--overlap",        "--contours",
-    "--infill",     "--raster-angle",   "--raster-angle-step",
-    "--min-feature"};
+    "--min-layer",   "--max-layer",      "--max-volume-difference",
+    "--eps-angle",   "--overhang-angle", "--volume-samples",
+    "--bead-width",  "--overlap",        "--contours",
+    "--infill",      "--raster-angle",   "--raster-angle-step",
+    "--min-feature", "--fill-holes"};
 
 mas::SlicePartParams slice_params(const Args& a) {
     mas::SlicePartParams p;
@@ -481,6 +485,11 @@ mas::SlicePartParams slice_params(const Args& a) {
     t.raster_angle_step_deg = a.number("--raster-angle-step", t.raster_angle_step_deg);
     t.min_feature_mm = a.number("--min-feature", t.min_feature_mm);
     p.tessellation.deflection_mm = a.number("--deflection", 0.0);
+    p.fill_holes_up_to_mm = a.number("--fill-holes", 0.0);
+    if (!(p.fill_holes_up_to_mm >= 0.0) || !std::isfinite(p.fill_holes_up_to_mm))
+        throw mas::Error(
+            mas::ErrorCode::InvalidArgument,
+            "--fill-holes must be a diameter >= 0 mm, got " + a.options.at("--fill-holes"));
     return p;
 }
 
@@ -557,7 +566,8 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"raster_angle\": " << num(t.raster_angle_deg)
             << ", \"raster_angle_step\": " << num(t.raster_angle_step_deg)
             << ", \"min_feature\": " << num(t.min_feature_mm)
-            << ", \"measure_coverage\": " << (t.measure_coverage ? "true" : "false") << "}"
+            << ", \"measure_coverage\": " << (t.measure_coverage ? "true" : "false")
+            << ", \"fill_holes\": " << num(sp.fill_holes_up_to_mm) << "}"
             << ",\n  \"stats\": {\"layer_count\": " << st.layer_count
             << ", \"min_thickness_mm\": " << num(st.min_thickness_mm)
             << ", \"max_thickness_mm\": " << num(st.max_thickness_mm)
@@ -571,7 +581,22 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"deposit_length_mm\": " << num(st.deposit_length_mm)
             << ", \"travel_length_mm\": " << num(st.travel_length_mm)
             << ", \"centre_line_passes\": " << st.centre_line_passes
-            << ", \"unfilled_features\": " << st.unfilled_features << "},\n  \"build_order\": [";
+            << ", \"unfilled_features\": " << st.unfilled_features
+            << ", \"filled_holes\": " << st.filled_holes
+            << ", \"filled_volume_mm3\": " << num(st.filled_volume_mm3)
+            << "},\n  \"filled_holes\": [";
+        for (std::size_t i = 0; i < r.filled_holes.size(); ++i) {
+            const mas::FilledHole& h = r.filled_holes[i];
+            out << (i ? "," : "") << "\n    {\"component\": " << h.component
+                << ", \"centre\": " << vec(h.centre) << ", \"axis\": " << vec(h.axis)
+                << ", \"diameter_mm\": " << num(h.diameter_mm)
+                << ", \"length_mm\": " << num(h.length_mm)
+                << ", \"volume_mm3\": " << num(h.volume_mm3) << "}";
+        }
+        out << (r.filled_holes.empty() ? "" : "\n  ") << "],\n  \"notes\": [";
+        for (std::size_t i = 0; i < r.notes.size(); ++i)
+            out << (i ? ", " : "") << quoted(r.notes[i]);
+        out << "],\n  \"build_order\": [";
         for (std::size_t i = 0; i < r.build_order.size(); ++i)
             out << (i ? ", " : "") << r.build_order[i];
         out << "],\n  \"components\": [";
@@ -648,7 +673,18 @@ int run_slice(const std::vector<std::string>& args) {
             << num(st.worst_unsupported_area_mm2) << " mm2\n# paths: " << num(st.deposit_length_mm)
             << " mm deposit, " << num(st.travel_length_mm) << " mm travel, "
             << st.centre_line_passes << " centre-line passes, " << st.unfilled_features
-            << " unfilled features\n# build order:";
+            << " unfilled features\n";
+        for (const auto& note : r.notes) out << "# note: " << note << "\n";
+        if (!r.filled_holes.empty())
+            out << "# deposited solid, to drill afterwards: " << st.filled_holes
+                << (st.filled_holes == 1 ? " hole, " : " holes, ") << num(st.filled_volume_mm3)
+                << " mm3\n# component centre axis diameter_mm length_mm\n";
+        for (const mas::FilledHole& h : r.filled_holes)
+            out << "#   " << h.component << " " << num(h.centre.x()) << "," << num(h.centre.y())
+                << "," << num(h.centre.z()) << " " << num(h.axis.x()) << "," << num(h.axis.y())
+                << "," << num(h.axis.z()) << " " << num(h.diameter_mm) << " " << num(h.length_mm)
+                << "\n";
+        out << "# build order:";
         for (const int c : r.build_order) out << " " << c;
         out << "\n# layer component origin normal min_thickness max_thickness area_mm2 "
                "volume_difference unsupported_mm2 paths\n";

@@ -302,6 +302,35 @@ class CliSections(unittest.TestCase):
             flagged += bool(layer["unsupported_regions"])
         self.assertGreater(flagged, 0)
 
+    def test_slice_fills_the_brackets_horizontal_hole_to_drill_it_afterwards(self):
+        """--fill-holes deposits the upright's 12 mm hole solid, so that no layer bridges it, and
+        lists it to drill; the plate's vertical holes stay open."""
+        out = os.path.join(self.tmp.name, "bracket.json")
+        bracket = os.path.join(os.path.dirname(DATA), "..", "examples", "bracket.step")
+        r = run("slice", bracket, "--fill-holes", "12", "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            doc = json.load(f)
+        self.assertEqual(doc["params"]["fill_holes"], 12.0)
+        self.assertEqual(doc["notes"], [])
+        self.assertEqual(len(doc["filled_holes"]), 1)
+        hole = doc["filled_holes"][0]
+        self.assertIn(hole["component"], range(len(doc["components"])))
+        for a, b in zip(hole["centre"], (6.0, 20.0, 40.0)):
+            self.assertAlmostEqual(a, b, places=6)
+        self.assertAlmostEqual(abs(hole["axis"][0]), 1.0, places=12)
+        self.assertAlmostEqual(hole["diameter_mm"], 12.0, places=9)
+        self.assertAlmostEqual(hole["length_mm"], 12.0, places=9)
+        volume = math.pi * 36.0 * 12.0
+        self.assertAlmostEqual(hole["volume_mm3"], volume, delta=1e-6 * volume)
+        self.assertEqual(doc["stats"]["filled_holes"], 1)
+        self.assertAlmostEqual(doc["stats"]["filled_volume_mm3"], hole["volume_mm3"], places=9)
+        for i, layer in enumerate(doc["layers"]):
+            self.assertLessEqual(layer["unsupported_area_mm2"], 1e-3 * layer["area_mm2"], i)
+        text = run("slice", bracket, "--fill-holes", "12")
+        self.assertIn("# deposited solid, to drill afterwards: 1 hole, 1357.", text.stdout)
+        self.assertIn("\n#   {} 6,20,40 ".format(hole["component"]), text.stdout)
+
     def test_slice_text_and_a_mesh_part(self):
         r = run("slice", self.write("box.stl", box_stl(20, 10, 21)), "--max-layer", "3")
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -339,6 +368,11 @@ class CliSections(unittest.TestCase):
         self.expect_error(["slice", brep, "--bead-width", "-1"], 1, "invalid_argument", "bead")
         self.expect_error(["slice", brep, "--infill", "zigzag"], 1, "invalid_argument", "infill")
         self.expect_error(["slice", brep, "--max-layer", "nan"], 2, "max-layer")
+        self.expect_error(["slice", brep, "--fill-holes", "-1"], 1, "invalid_argument",
+                          "--fill-holes must be a diameter")
+        self.expect_error(["slice", brep, "--fill-holes", "nan"], 2, "fill-holes")
+        self.expect_error(["slice", self.write("cube.stl", box_stl(10, 10, 10)), "--fill-holes",
+                           "5"], 1, "invalid_argument", "BREP")
         self.expect_error(["slice", self.write("plate.stl", box_stl(10, 10, 0.3))], 1,
                           "invalid_argument", "min_layer")
 

@@ -8,6 +8,7 @@
 
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
+#include "mas/Holes.hpp"
 #include "mas/Mesh.hpp"
 #include "mas/Paths.hpp"
 #include "mas/Progress.hpp"
@@ -21,6 +22,10 @@ struct SlicePartParams {
     LayerParams layers;
     PathParams paths;
     TessellationParams tessellation;  // for the components' meshes (slice_part only)
+    // slice_part only: round holes up to this diameter (mm) whose axis leans more than
+    // layers.overhang_angle_deg off their component's build direction are deposited solid, to be
+    // drilled afterwards (Holes.hpp). 0 fills none.
+    double fill_holes_up_to_mm = 0.0;
 };
 
 // One sub-component as a closed mesh, the input of slice_components.
@@ -52,8 +57,10 @@ struct SliceStats {
     double worst_unsupported_area_mm2 = 0.0;
     int worst_unsupported_layer = -1;
     double deposit_length_mm = 0.0, travel_length_mm = 0.0;
-    int centre_line_passes = 0;  // regions narrower than a bead, run as one centre line
-    int unfilled_features = 0;   // too small even for that: listed per layer
+    int centre_line_passes = 0;      // regions narrower than a bead, run as one centre line
+    int unfilled_features = 0;       // too small even for that: listed per layer
+    int filled_holes = 0;            // holes deposited solid, to be drilled (slice_part only)
+    double filled_volume_mm3 = 0.0;  // the material that adds (exact, from the BREP)
 };
 
 struct SlicedPart {
@@ -61,6 +68,10 @@ struct SlicedPart {
     std::vector<LayerToolpaths> toolpaths;    // one per layer
     std::vector<ComponentLayers> components;  // indexed by component
     std::vector<int> build_order;             // the components in the order they are deposited
+    // slice_part with fill_holes_up_to_mm: the holes deposited solid, to be drilled afterwards,
+    // component by component; and a note for each hole that qualified and stayed open.
+    std::vector<FilledHole> filled_holes;
+    std::vector<std::string> notes;
     SliceStats stats;
 };
 
@@ -87,12 +98,14 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const Progress& progress = {});
 
 // A closed mesh sliced as one root component (a mesh cannot be decomposed) on its build_plate(),
-// following the axis' first branch.
+// following the axis' first branch. Throws InvalidArgument for fill_holes_up_to_mm > 0: holes are
+// read on a BREP.
 SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
                            const SlicePartParams& params, const Progress& progress = {});
 
-// The decomposition's components tessellated with params.tessellation (the first tenth of
-// `progress`), then slice_components. stats.part_volume_mm3 is the exact solid's volume.
+// The decomposition's components, their holes filled when params.fill_holes_up_to_mm asks it,
+// tessellated with params.tessellation (the first tenth of `progress`), then slice_components.
+// stats.part_volume_mm3 is the exact solid's volume, before any hole is filled.
 SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                       const Decomposition& decomposition, const SlicePartParams& params,
                       const Progress& progress = {});

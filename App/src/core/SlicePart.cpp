@@ -37,6 +37,10 @@ Plane build_plate(const TriangleMesh& mesh) {
 
 SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
                            const SlicePartParams& params, const Progress& progress) {
+    if (params.fill_holes_up_to_mm != 0.0)
+        throw Error(
+            ErrorCode::InvalidArgument,
+            "holes are filled on a solid's BREP: a mesh is sliced as it is (fill no holes)");
     ComponentMesh root;
     root.mesh = mesh;
     root.base = build_plate(mesh);

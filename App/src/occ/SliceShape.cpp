@@ -1,5 +1,6 @@
-// Slicing a BREP part: its sub-components tessellated with the part's deflection, then sliced as
-// meshes (see SlicePart.hpp).
+// Slicing a BREP part: its sub-components, holes filled when asked (Holes.hpp), tessellated with
+// the part's deflection, then sliced as meshes (see SlicePart.hpp).
+#include <cmath>
 #include <string>
 
 #include "ShapeImpl.hpp"
@@ -13,6 +14,11 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                       const Progress& progress) {
     if (decomposition.components.empty())
         throw Error(ErrorCode::EmptyInput, "the decomposition has no component to slice");
+    if (!(params.fill_holes_up_to_mm >= 0.0) || !std::isfinite(params.fill_holes_up_to_mm))
+        throw Error(ErrorCode::InvalidArgument,
+                    "fill_holes_up_to_mm, the largest hole diameter to fill, must be >= 0 mm and "
+                    "finite, got " +
+                        std::to_string(params.fill_holes_up_to_mm));
     const Shape part = solid.single_solid("the part");
     // One deflection for every component: the part's, so that a face shared by a father and its
     // child is approximated alike on both sides.
@@ -21,11 +27,27 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
     std::vector<ComponentMesh> meshes;
     meshes.reserve(decomposition.components.size());
     const Progress tessellating = progress.span(0.0, 0.1, "tessellating the components");
+    std::vector<FilledHole> filled;
+    std::vector<std::string> notes;
+    double filled_volume = 0.0;
     for (std::size_t i = 0; i < decomposition.components.size(); ++i) {
         const Component& c = decomposition.components[i];
         tessellating(double(i) / double(decomposition.components.size()));
+        const std::string what = "component " + std::to_string(i);
+        Shape solid = c.solid;
+        if (params.fill_holes_up_to_mm != 0.0) {
+            HoleFill f = fill_holes(c.solid, c.build_direction, params.fill_holes_up_to_mm,
+                                    params.layers.overhang_angle_deg, part);
+            for (FilledHole& h : f.holes) {
+                h.component = int(i);
+                filled_volume += h.volume_mm3;
+                filled.push_back(h);
+            }
+            for (const std::string& n : f.notes) notes.push_back(what + ": " + n);
+            solid = f.solid;
+        }
         ComponentMesh m;
-        m.mesh = occ::tessellate(c.solid, tessellation, "component " + std::to_string(i));
+        m.mesh = occ::tessellate(solid, tessellation, what);
         m.parent = c.parent;
         m.branch = c.branch < 0 ? 0 : c.branch;
         // The root stands on the build plate; a child on its base face.
@@ -34,6 +56,10 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
     }
     SlicedPart out = slice_components(meshes, axis, params, progress.span(0.1, 1.0));
     out.stats.part_volume_mm3 = part.info().volume_mm3;
+    out.stats.filled_holes = int(filled.size());
+    out.stats.filled_volume_mm3 = filled_volume;
+    out.filled_holes = std::move(filled);
+    out.notes = std::move(notes);
     return out;
 }
 

@@ -1,0 +1,61 @@
+// Holes filled for deposition and drilled afterwards. A round hole whose axis leans more than the
+// overhang angle off a component's build direction has a ceiling: every layer across it overhangs
+// the bore below (the paper's method removes overhangs by changing the build direction, and no
+// direction suits both a hole and the body it goes through). What a process engineer does about
+// it is what slicing does with SlicePartParams::fill_holes_up_to_mm: deposit the hole solid and
+// drill it on the machine afterwards, as every deposited part is finished anyway.
+//
+// A hole is read on the BREP, never on a mesh:
+// - its wall: the component's cylindrical faces that are concave (the material lies outside the
+//   cylinder: the face's outward normal points at the axis) with a diameter up to the limit;
+//   faces on one axis line with one radius (a cylinder split at a seam or by a decomposition
+//   plane) are one hole;
+// - its bottom, when blind: every other face all of whose edges the wall's faces share (a flat
+//   bottom, a drill point's cone);
+// - it is filled when its axis makes more than overhang_angle_deg with the build direction (a
+//   hole along the build direction has walls, no ceiling, and is deposited as it is), and a drill
+//   reaches it: from one of its ends, its axis and four lines 0.9 of its radius off it meet none
+//   of the whole part's faces (a straight stretch of bore between two bends of a channel is no
+//   hole a drill reaches, and stays open with a note). A pipe's straight bore up to the diameter
+//   is a hole too, and so is where a branch's bore pierces the wall of the pipe it leaves.
+// Filling removes those faces with OCCT's BRepAlgoAPI_Defeaturing, which extends the faces the
+// hole went through across it. A fill is kept only when the result is one valid solid that gained
+// material, and no more than the cylinder of the hole's extent along its axis holds; otherwise the
+// hole stays open and a note says why. Holes are filled all at once, else one at a time.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "mas/Shape.hpp"
+
+namespace mas {
+
+struct FilledHole {
+    int component = -1;  // set by slicing; fill_holes() leaves -1
+    // Middle of the hole's extent along its axis (its wall's and bottom's), mm; the axis is a
+    // unit vector, pointing along the build direction where it is not perpendicular to it.
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
+    double diameter_mm = 0.0;
+    double length_mm = 0.0;   // its extent along the axis
+    double volume_mm3 = 0.0;  // material the fill added (exact, from the BREP)
+};
+
+struct HoleFill {
+    Shape solid;                     // the component with its holes filled (the input if none)
+    std::vector<FilledHole> holes;   // the holes filled, in the solid's face order
+    std::vector<std::string> notes;  // one per hole that qualified and stayed open, saying why
+};
+
+// Fills the holes of `solid` (one closed solid) up to `max_diameter_mm` across whose axis leans
+// more than `overhang_angle_deg` off `build_direction`, where a drill reaches them from outside
+// `part` (the whole part `solid` is a component of; null: `solid` itself). max_diameter_mm 0
+// fills none. Throws
+// Error(InvalidArgument) for a negative or non-finite diameter, an angle outside [0, 90) or a
+// zero or non-finite direction, and the errors of Shape::single_solid. The input is not modified.
+HoleFill fill_holes(const Shape& solid, const Eigen::Vector3d& build_direction,
+                    double max_diameter_mm, double overhang_angle_deg, const Shape& part = Shape());
+
+}  // namespace mas

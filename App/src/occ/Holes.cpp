@@ -1,0 +1,321 @@
+// Round holes found on the BREP and filled with OCCT's defeaturing (see Holes.hpp).
+#include "mas/Holes.hpp"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Defeaturing.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <Precision.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <algorithm>
+#include <cmath>
+#include <gp_Lin.hxx>
+#include <limits>
+#include <sstream>
+
+#include "ShapeImpl.hpp"
+
+namespace mas {
+
+namespace {
+
+using Eigen::Vector3d;
+
+constexpr double kPi = 3.14159265358979323846;
+
+Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
+Vector3d vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
+
+double volume_of(const TopoDS_Shape& s) {
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(s, props);
+    return props.Mass();
+}
+
+// One round hole: its wall's faces (and its bottom's, when blind) and its axis line.
+struct Hole {
+    Vector3d point = Vector3d::Zero();  // on the axis
+    Vector3d axis = Vector3d::UnitZ();  // unit
+    double radius = 0.0;
+    double lo = 0.0, hi = 0.0;  // extent along the axis from `point`
+    double turn = 0.0;          // angle the wall's faces span around the axis, radians
+    std::vector<TopoDS_Face> faces;
+
+    Vector3d centre() const { return point + 0.5 * (lo + hi) * axis; }
+    void extend(double t) {
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
+    }
+    // Widens [lo, hi] to the face's extent along the axis: that of its edges, each sampled and
+    // its extremes refined by golden section (a wall's edge where it meets a slanted face is an
+    // ellipse, whose UV box is loose).
+    void extend(const TopoDS_Face& face) {
+        for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+            const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+            if (BRep_Tool::Degenerated(edge)) continue;
+            const BRepAdaptor_Curve c(edge);
+            const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+            auto along = [&](double t) { return (vec(c.Value(t)) - point).dot(axis); };
+            constexpr int n = 32;
+            for (const double sense : {1.0, -1.0}) {
+                int best = 0;
+                for (int i = 1; i <= n; ++i)
+                    if (sense * along(t0 + (t1 - t0) * i / n) >
+                        sense * along(t0 + (t1 - t0) * best / n))
+                        best = i;
+                double a = t0 + (t1 - t0) * std::max(best - 1, 0) / n;
+                double b = t0 + (t1 - t0) * std::min(best + 1, n) / n;
+                const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+                for (int k = 0; k < 80 && b - a > 1e-14 * (1.0 + std::abs(b)); ++k) {
+                    const double x = b - g * (b - a), y = a + g * (b - a);
+                    if (sense * along(x) > sense * along(y))
+                        b = y;
+                    else
+                        a = x;
+                }
+                extend(along(0.5 * (a + b)));
+                extend(along(t0 + (t1 - t0) * best / n));
+            }
+        }
+    }
+    // Whether `other` (a hole's wall or part of it) lies on this one's axis line with its radius.
+    bool same(const Vector3d& p, const Vector3d& a, double r, double tol) const {
+        if (std::abs(r - radius) > tol || a.cross(axis).norm() > 1e-7) return false;
+        const Vector3d d = p - point;
+        return (d - d.dot(axis) * axis).norm() <= tol;
+    }
+};
+
+std::string describe(const Hole& h) {
+    const Vector3d c = h.centre();
+    std::ostringstream s;
+    s.precision(6);
+    s << "the hole " << 2.0 * h.radius << " mm across at (" << c.x() << ", " << c.y() << ", "
+      << c.z() << ") along (" << h.axis.x() << ", " << h.axis.y() << ", " << h.axis.z() << ")";
+    return s.str();
+}
+
+// The holes of `solid` that qualify (Holes.hpp), in face order, less those `skip` names.
+std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& direction,
+                             double max_diameter, double overhang_rad,
+                             const std::vector<Hole>& skip) {
+    TopTools_IndexedMapOfShape faces;
+    TopExp::MapShapes(solid, TopAbs_FACE, faces);
+    std::vector<Hole> holes;
+    std::vector<int> hole_of(std::size_t(faces.Extent()) + 1, -1);
+    for (int i = 1; i <= faces.Extent(); ++i) {
+        const TopoDS_Face face = TopoDS::Face(faces(i));
+        BRepAdaptor_Surface s(face, Standard_True);
+        if (s.GetType() != GeomAbs_Cylinder) continue;
+        const gp_Cylinder cyl = s.Cylinder();
+        const double r = cyl.Radius();
+        if (2.0 * r > max_diameter * (1.0 + 1e-9)) continue;
+        double u0, u1, v0, v1;
+        BRepTools::UVBounds(face, u0, u1, v0, v1);
+        const Vector3d p0 = vec(cyl.Location()), a = vec(cyl.Axis().Direction());
+        // Concave: the outward normal at the face's middle points at the axis.
+        gp_Pnt p;
+        gp_Vec du, dv;
+        s.D1(0.5 * (u0 + u1), 0.5 * (v0 + v1), p, du, dv);
+        Vector3d n(du.Crossed(dv).X(), du.Crossed(dv).Y(), du.Crossed(dv).Z());
+        if (face.Orientation() == TopAbs_REVERSED) n = -n;
+        const Vector3d radial = vec(p) - p0 - (vec(p) - p0).dot(a) * a;
+        if (n.dot(radial) >= 0.0) continue;
+        if (std::acos(std::min(1.0, std::abs(a.dot(direction)))) <= overhang_rad + 1e-9) continue;
+        const double tol = 1e-4 + BRep_Tool::Tolerance(face);
+        int k = -1;
+        for (std::size_t h = 0; h < holes.size(); ++h)
+            if (holes[h].same(p0, a, r, tol)) k = int(h);
+        if (k < 0) {
+            Hole h;
+            h.point = p0;
+            h.axis = a;
+            h.radius = r;
+            h.lo = std::numeric_limits<double>::infinity();
+            h.hi = -h.lo;
+            holes.push_back(h);
+            k = int(holes.size()) - 1;
+        }
+        Hole& h = holes[std::size_t(k)];
+        h.extend(face);
+        h.turn += u1 - u0;
+        h.faces.push_back(face);
+        hole_of[std::size_t(i)] = k;
+    }
+    // A blind hole's bottom: a face all of whose edges it shares with one hole's wall.
+    TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+    TopExp::MapShapesAndAncestors(solid, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+    for (int i = 1; i <= faces.Extent(); ++i) {
+        if (hole_of[std::size_t(i)] >= 0) continue;
+        int owner = -1;
+        bool bottom = true;
+        for (TopExp_Explorer e(faces(i), TopAbs_EDGE); e.More() && bottom; e.Next()) {
+            const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+            if (BRep_Tool::Degenerated(edge)) continue;
+            for (const TopoDS_Shape& f : edge_faces.FindFromKey(e.Current())) {
+                if (f.IsSame(faces(i))) continue;
+                const int k = hole_of[std::size_t(faces.FindIndex(f))];
+                if (k < 0 || (owner >= 0 && k != owner)) bottom = false;
+                owner = k;
+            }
+        }
+        if (!bottom || owner < 0) continue;
+        Hole& h = holes[std::size_t(owner)];
+        h.faces.push_back(TopoDS::Face(faces(i)));
+        h.extend(h.faces.back());
+    }
+    // Only a wall that goes all the way round is a hole: a concave fillet, a slot's round end or
+    // a hole a plane cut lengthwise is not.
+    std::vector<Hole> out;
+    for (const Hole& h : holes) {
+        if (h.turn < 2.0 * kPi - 1e-6) continue;
+        bool skipped = false;
+        for (const Hole& s : skip)
+            if (s.same(h.point, h.axis, h.radius, 1e-4) && (s.centre() - h.centre()).norm() < 1e-4)
+                skipped = true;
+        if (!skipped) out.push_back(h);
+    }
+    return out;
+}
+
+// Whether a drill reaches the hole along its axis from outside `part` at either end: the axis and
+// four lines 0.9 radius off it meet none of the part's faces beyond that end.
+bool drillable(const TopoDS_Shape& part, const Hole& hole) {
+    IntCurvesFace_ShapeIntersector x;
+    x.Load(part, 1e-7);
+    const Vector3d e1 = hole.axis.unitOrthogonal(), e2 = hole.axis.cross(e1);
+    const double r = 0.9 * hole.radius;
+    for (const double sense : {1.0, -1.0}) {
+        const Vector3d end = hole.point + (sense > 0.0 ? hole.hi : hole.lo) * hole.axis;
+        const Vector3d d = sense * hole.axis;
+        bool clear = true;
+        for (const Vector3d& off : {Vector3d(Vector3d::Zero()), Vector3d(r * e1), Vector3d(-r * e1),
+                                    Vector3d(r * e2), Vector3d(-r * e2)}) {
+            const Vector3d p = end + off;
+            x.Perform(gp_Lin(gp_Pnt(p.x(), p.y(), p.z()), gp_Dir(d.x(), d.y(), d.z())), 1e-3,
+                      Precision::Infinite());
+            if (!x.IsDone() || x.NbPnt() > 0) {
+                clear = false;
+                break;
+            }
+        }
+        if (clear) return true;
+    }
+    return false;
+}
+
+// `solid` with `hole`'s faces removed, or a null shape and why not.
+TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const Hole& hole, double& added,
+                  std::string& why) {
+    try {
+        BRepAlgoAPI_Defeaturing df;
+        df.SetShape(solid);
+        for (const TopoDS_Face& f : hole.faces) df.AddFaceToRemove(f);
+        df.SetRunParallel(Standard_False);
+        df.SetToFillHistory(Standard_False);
+        df.Build();
+        if (!df.IsDone() || df.HasErrors()) {
+            why = "OCCT could not close it over (BRepAlgoAPI_Defeaturing failed)";
+            return {};
+        }
+        TopoDS_Shape result;
+        int solids = 0;
+        for (TopExp_Explorer e(df.Shape(), TopAbs_SOLID); e.More(); e.Next(), ++solids)
+            result = e.Current();
+        if (solids != 1 || !BRepCheck_Analyzer(result).IsValid()) {
+            why = "closing it over left no single valid solid";
+            return {};
+        }
+        added = volume_of(result) - volume;
+        if (std::abs(added) <= 1e-9 * volume) {
+            why =
+                "OCCT's defeaturing could not extend the faces around it across it (as where it "
+                "opens into another hole)";
+            return {};
+        }
+        const double most = kPi * hole.radius * hole.radius * (hole.hi - hole.lo);
+        if (!(added > 0.0) || added > most * (1.0 + 1e-6) + 1e-9) {
+            std::ostringstream s;
+            s << "closing it over changed the volume by " << added << " mm^3, not within (0, "
+              << most << "] as its cylinder allows";
+            why = s.str();
+            return {};
+        }
+        return result;
+    } catch (const Standard_Failure& f) {
+        why = occ::failure_message("OCCT failed closing it over", f);
+        return {};
+    }
+}
+
+}  // namespace
+
+HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
+                    double max_diameter_mm, double overhang_angle_deg, const Shape& part) {
+    if (!(max_diameter_mm >= 0.0) || !std::isfinite(max_diameter_mm))
+        throw Error(ErrorCode::InvalidArgument,
+                    "the largest hole to fill must be a diameter >= 0 mm, got " +
+                        std::to_string(max_diameter_mm));
+    if (!(overhang_angle_deg >= 0.0 && overhang_angle_deg < 90.0))
+        throw Error(ErrorCode::InvalidArgument,
+                    "the overhang angle must lie in [0, 90) degrees, got " +
+                        std::to_string(overhang_angle_deg));
+    const double length = build_direction.norm();
+    if (!(length > 0.0) || !std::isfinite(length))
+        throw Error(ErrorCode::InvalidArgument, "the build direction must be a non-zero vector");
+    const Vector3d direction = build_direction / length;
+    HoleFill out;
+    out.solid = input.single_solid("the component");
+    if (max_diameter_mm == 0.0) return out;
+    const double overhang_rad = overhang_angle_deg * kPi / 180.0;
+    TopoDS_Shape solid = occ::occt(out.solid);
+    const TopoDS_Shape whole = part.is_null() ? solid : occ::occt(part.single_solid("the part"));
+    double volume = volume_of(solid);
+    std::vector<Hole> kept_open;
+    // One hole at a time, found again on each result: a fill rebuilds the faces around it. A
+    // round fills a hole, which takes its faces away, or keeps one open: the bound is a guard.
+    TopTools_IndexedMapOfShape faces;
+    TopExp::MapShapes(solid, TopAbs_FACE, faces);
+    for (int round = 0; round <= 2 * faces.Extent(); ++round) {
+        const std::vector<Hole> holes =
+            find_holes(solid, direction, max_diameter_mm, overhang_rad, kept_open);
+        if (holes.empty()) break;
+        const Hole& hole = holes.front();
+        double added = 0.0;
+        std::string why;
+        TopoDS_Shape filled;
+        if (drillable(whole, hole))
+            filled = fill(solid, volume, hole, added, why);
+        else
+            why = "no drill reaches it along its axis from outside the part";
+        if (filled.IsNull()) {
+            out.notes.push_back(describe(hole) + " stays open: " + why);
+            kept_open.push_back(hole);
+            continue;
+        }
+        FilledHole f;
+        f.axis = hole.axis.dot(direction) < 0.0 ? -hole.axis : hole.axis;
+        f.centre = hole.centre();
+        f.diameter_mm = 2.0 * hole.radius;
+        f.length_mm = hole.hi - hole.lo;
+        f.volume_mm3 = added;
+        out.holes.push_back(f);
+        solid = filled;
+        volume += added;
+    }
+    if (!out.holes.empty()) out.solid = occ::wrap(solid);
+    return out;
+}
+
+}  // namespace mas

@@ -1,0 +1,256 @@
+// Holes deposited solid and drilled afterwards (Holes.hpp): which holes are filled, by how much
+// material, and that a part whose only overhang is a hole's ceiling is then built with every
+// layer supported.
+#include <gtest/gtest.h>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <string>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Decompose.hpp"
+#include "mas/Error.hpp"
+#include "mas/Holes.hpp"
+#include "mas/SlicePart.hpp"
+#include "test_parts.hpp"
+
+using Eigen::Vector3d;
+using mas::test::from_occt;
+using mas::test::fuse;
+using mas::test::occ_box;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+TopoDS_Shape occ_cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
+    return BRepPrimAPI_MakeCylinder(
+               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
+               r, h)
+        .Shape();
+}
+
+TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+    BRepAlgoAPI_Cut c(a, b);
+    EXPECT_TRUE(c.IsDone());
+    return c.Shape();
+}
+
+// A clevis ear: a plate [0,40]x[0,20]x[0,5] with an ear [10,30]x[6,14]x[5,50] standing on it. A
+// pin hole of radius 4 goes through the ear along Y at x = 20, z = 20 (8 mm long, through the
+// ear's two faces); `big_hole` adds one of radius 6 at z = 38, `vertical_hole` one of radius 3
+// through the plate along Z at (5, 10).
+TopoDS_Shape clevis_ear(bool big_hole, bool vertical_hole) {
+    TopoDS_Shape s = fuse(occ_box(0, 0, 0, 40, 20, 5), occ_box(10, 6, 5, 20, 8, 45));
+    s = cut(s, occ_cylinder({20, 0, 20}, Vector3d::UnitY(), 4.0, 20.0));
+    if (big_hole) s = cut(s, occ_cylinder({20, 0, 38}, Vector3d::UnitY(), 6.0, 20.0));
+    if (vertical_hole) s = cut(s, occ_cylinder({5, 10, -1}, Vector3d::UnitZ(), 3.0, 10.0));
+    return s;
+}
+
+double volume(const mas::Shape& s) { return s.info().volume_mm3; }
+
+// BREP volumes are exact up to OCCT's integration: a millionth of the part.
+void expect_volume(double actual, double expected, double part) {
+    EXPECT_NEAR(actual, expected, 1e-6 * part);
+}
+
+}  // namespace
+
+TEST(Holes, AHorizontalPinHoleIsFilledAndAVerticalOneAndALargerOneStayOpen) {
+    const mas::Shape part = from_occt(clevis_ear(true, true));
+    const double before = volume(part);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 10.0, 45.0);
+    ASSERT_EQ(f.holes.size(), 1u);
+    EXPECT_TRUE(f.notes.empty());
+    const mas::FilledHole& h = f.holes[0];
+    EXPECT_EQ(h.component, -1);
+    EXPECT_NEAR(std::abs(h.axis.y()), 1.0, 1e-12);
+    EXPECT_NEAR(h.centre.x(), 20.0, 1e-9);
+    EXPECT_NEAR(h.centre.y(), 10.0, 1e-9);
+    EXPECT_NEAR(h.centre.z(), 20.0, 1e-9);
+    EXPECT_NEAR(h.diameter_mm, 8.0, 1e-9);
+    EXPECT_NEAR(h.length_mm, 8.0, 1e-9);  // the ear's thickness, not the tool's 20
+    expect_volume(h.volume_mm3, kPi * 16.0 * 8.0, before);
+    expect_volume(volume(f.solid), before + kPi * 16.0 * 8.0, before);
+    EXPECT_EQ(f.solid.info().solids, 1);
+    // The caller's part is not touched.
+    EXPECT_DOUBLE_EQ(volume(part), before);
+    // The larger hole is filled once the limit takes it: both, one at a time.
+    const mas::HoleFill both = mas::fill_holes(part, Vector3d::UnitZ(), 12.0, 45.0);
+    ASSERT_EQ(both.holes.size(), 2u);
+    double added = 0.0;
+    for (const mas::FilledHole& x : both.holes) added += x.volume_mm3;
+    expect_volume(added, kPi * (16.0 + 36.0) * 8.0, before);
+    expect_volume(volume(both.solid), before + added, before);
+}
+
+TEST(Holes, ABlindHoleIsFilledWithItsBottom) {
+    // 5 deep from the ear's face y = 6, flat-bottomed.
+    TopoDS_Shape s = fuse(occ_box(0, 0, 0, 40, 20, 5), occ_box(10, 6, 5, 20, 8, 45));
+    s = cut(s, occ_cylinder({20, 0, 20}, Vector3d::UnitY(), 4.0, 11.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 8.0, 45.0);
+    ASSERT_EQ(f.holes.size(), 1u);
+    EXPECT_NEAR(f.holes[0].length_mm, 5.0, 1e-9);
+    EXPECT_NEAR(f.holes[0].centre.y(), 8.5, 1e-9);
+    expect_volume(f.holes[0].volume_mm3, kPi * 16.0 * 5.0, volume(part));
+}
+
+TEST(Holes, OnlyAHoleLeaningPastTheOverhangAngleIsFilled) {
+    // Through holes of radius 3 in a 40 mm cube, leaning 30 and 60 degrees off Z in XZ.
+    for (const double lean : {30.0, 60.0}) {
+        const double a = lean * kPi / 180.0;
+        const Vector3d axis(std::sin(a), 0.0, std::cos(a));
+        const TopoDS_Shape cube = occ_box(0, 0, 0, 40, 40, 40);
+        const TopoDS_Shape tool = occ_cylinder(Vector3d(20, 20, 20) - 40.0 * axis, axis, 3.0, 80.0);
+        const mas::Shape part = from_occt(cut(cube, tool));
+        const double hole = 40.0 * 40.0 * 40.0 - volume(part);
+        const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 6.0, 45.0);
+        if (lean < 45.0) {
+            EXPECT_TRUE(f.holes.empty()) << lean;
+            EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
+            // Built along X, the same hole leans 60 degrees off the build direction.
+            const mas::HoleFill x = mas::fill_holes(part, Vector3d::UnitX(), 6.0, 45.0);
+            ASSERT_EQ(x.holes.size(), 1u);
+            EXPECT_GT(x.holes[0].axis.x(), 0.0);  // pointing along the build direction
+            expect_volume(x.holes[0].volume_mm3, hole, 64000.0);
+        } else {
+            ASSERT_EQ(f.holes.size(), 1u) << lean;
+            EXPECT_NEAR(f.holes[0].axis.dot(axis), 1.0, 1e-12);
+            EXPECT_NEAR(f.holes[0].centre.x(), 20.0, 1e-6);
+            EXPECT_NEAR(f.holes[0].centre.z(), 20.0, 1e-6);
+            expect_volume(f.holes[0].volume_mm3, hole, 64000.0);
+            expect_volume(volume(f.solid), 64000.0, 64000.0);
+        }
+    }
+}
+
+TEST(Holes, AClosedCavityNoDrillReachesStaysOpenWithANote) {
+    // A block [0,40]x[0,20]x[0,40] with a closed cylindrical cavity of radius 3 along X from
+    // x = 10 to 30 at y = 10, z = 20: its walls and both ends qualify, but no drill gets in.
+    const TopoDS_Shape block = occ_box(0, 0, 0, 40, 20, 40);
+    const mas::Shape part =
+        from_occt(cut(block, occ_cylinder({10, 10, 20}, Vector3d::UnitX(), 3.0, 20.0)));
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 8.0, 45.0);
+    EXPECT_TRUE(f.holes.empty());
+    ASSERT_EQ(f.notes.size(), 1u);
+    EXPECT_NE(f.notes[0].find("no drill reaches it"), std::string::npos) << f.notes[0];
+    EXPECT_NE(f.notes[0].find("6 mm across at (20, 10, 20)"), std::string::npos) << f.notes[0];
+    EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
+    // Opened to the block's side at x = 40, it is a blind hole 30 deep, drilled from there.
+    const mas::Shape blind =
+        from_occt(cut(block, occ_cylinder({10, 10, 20}, Vector3d::UnitX(), 3.0, 31.0)));
+    const mas::HoleFill g = mas::fill_holes(blind, Vector3d::UnitZ(), 8.0, 45.0);
+    ASSERT_EQ(g.holes.size(), 1u) << (g.notes.empty() ? "" : g.notes[0]);
+    EXPECT_NEAR(g.holes[0].centre.x(), 25.0, 1e-9);
+    EXPECT_NEAR(g.holes[0].length_mm, 30.0, 1e-9);
+    expect_volume(g.holes[0].volume_mm3, kPi * 9.0 * 30.0, 64000.0);
+}
+
+TEST(Holes, AHoleMeetingAnotherStaysOpenWithANote) {
+    // A vertical bore of radius 3 from the top of the block down to z = 20 at x = 10, and a
+    // horizontal one from its axis out through the side x = 40: OCCT's defeaturing does not
+    // close a hole over where it opens into another.
+    TopoDS_Shape s = occ_box(0, 0, 0, 40, 20, 40);
+    s = cut(s, occ_cylinder({10, 10, 20}, Vector3d::UnitZ(), 3.0, 21.0));
+    s = cut(s, occ_cylinder({10, 10, 20}, Vector3d::UnitX(), 3.0, 31.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 8.0, 45.0);
+    EXPECT_TRUE(f.holes.empty());
+    ASSERT_EQ(f.notes.size(), 1u);
+    EXPECT_NE(f.notes[0].find("6 mm across at (25, 10, 20)"), std::string::npos) << f.notes[0];
+    EXPECT_NE(f.notes[0].find("could not extend the faces around it"), std::string::npos)
+        << f.notes[0];
+    EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
+}
+
+TEST(Holes, AConcaveFilletIsNoHole) {
+    // An L of two boxes with a fillet of radius 2 in its inside corner along Y: a quarter of a
+    // concave cylinder lying across the build direction.
+    TopoDS_Shape s = fuse(occ_box(0, 0, 0, 20, 10, 5), occ_box(0, 0, 0, 5, 10, 20));
+    s = fuse(s, occ_box(5, 0, 5, 2, 10, 2));
+    s = cut(s, occ_cylinder({7, -1, 7}, Vector3d::UnitY(), 2.0, 12.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 10.0, 45.0);
+    EXPECT_TRUE(f.holes.empty());
+    EXPECT_TRUE(f.notes.empty());
+    EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
+}
+
+TEST(Holes, BadArgumentsAreNamed) {
+    const mas::Shape part = from_occt(clevis_ear(false, false));
+    auto message = [&](double d, double angle, const Vector3d& dir) {
+        try {
+            mas::fill_holes(part, dir, d, angle);
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message(-1.0, 45.0, Vector3d::UnitZ()).find("diameter"), std::string::npos);
+    EXPECT_NE(message(std::nan(""), 45.0, Vector3d::UnitZ()).find("diameter"), std::string::npos);
+    EXPECT_NE(message(8.0, 90.0, Vector3d::UnitZ()).find("overhang angle"), std::string::npos);
+    EXPECT_NE(message(8.0, 45.0, Vector3d::Zero()).find("build direction"), std::string::npos);
+    // 0 fills nothing.
+    const mas::HoleFill none = mas::fill_holes(part, Vector3d::UnitZ(), 0.0, 45.0);
+    EXPECT_TRUE(none.holes.empty());
+    EXPECT_DOUBLE_EQ(volume(none.solid), volume(part));
+}
+
+TEST(Holes, AFilledPinHoleLeavesEveryLayerOfTheClevisEarSupported) {
+    const mas::Shape part = from_occt(clevis_ear(false, true));
+    mas::TessellationParams tp;
+    tp.deflection_mm = 0.02;
+    const mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
+    const mas::Decomposition d = mas::decompose(part, axis);
+    mas::SlicePartParams params;
+    params.tessellation = tp;
+    const mas::SlicedPart open = mas::slice_part(part, axis, d, params);
+    params.fill_holes_up_to_mm = 8.0;
+    const mas::SlicedPart filled = mas::slice_part(part, axis, d, params);
+    // Open, the layers across the top of the pin hole overhang its bore.
+    EXPECT_GT(open.stats.worst_unsupported_area_mm2, 1.0);
+    EXPECT_EQ(open.stats.filled_holes, 0);
+    EXPECT_TRUE(open.filled_holes.empty());
+    // Filled, none does; the vertical hole in the plate stays.
+    for (const mas::Layer& l : filled.layers)
+        EXPECT_LE(l.unsupported_area_mm2, mas::negligible_unsupported_mm2(l.area_mm2));
+    ASSERT_EQ(filled.filled_holes.size(), 1u);
+    EXPECT_EQ(filled.stats.filled_holes, 1);
+    const mas::FilledHole& h = filled.filled_holes[0];
+    EXPECT_GE(h.component, 0);
+    EXPECT_NEAR(h.diameter_mm, 8.0, 1e-9);
+    EXPECT_NEAR(h.centre.z(), 20.0, 1e-9);
+    const double exact = volume(part);
+    expect_volume(filled.stats.filled_volume_mm3, kPi * 16.0 * 8.0, exact);
+    EXPECT_DOUBLE_EQ(filled.stats.part_volume_mm3, open.stats.part_volume_mm3);
+    // The deposit holds the hole's material: the components' meshes gained it, less what the
+    // tessellation's inscribed facets lose on the part's other round faces.
+    double open_volume = 0.0, filled_volume = 0.0;
+    for (const mas::ComponentLayers& c : open.components) open_volume += c.volume_mm3;
+    for (const mas::ComponentLayers& c : filled.components) filled_volume += c.volume_mm3;
+    EXPECT_NEAR(filled_volume - open_volume, kPi * 16.0 * 8.0, 2.0 * kPi * 4.0 * 8.0 * 0.02);
+}
+
+TEST(Holes, AMeshCannotHaveItsHolesFilled) {
+    const mas::TriangleMesh mesh = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
+    const mas::CentroidalAxis axis = mas::centroidal_axis(mesh, {});
+    mas::SlicePartParams params;
+    params.fill_holes_up_to_mm = 5.0;
+    try {
+        mas::slice_mesh_part(mesh, axis, params);
+        FAIL() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("BREP"), std::string::npos);
+    }
+    const mas::Shape part = from_occt(clevis_ear(false, false));
+    const mas::CentroidalAxis a = mas::centroidal_axis(mas::tessellate(part, {}), {});
+    const mas::Decomposition d = mas::decompose(part, a);
+    params.fill_holes_up_to_mm = -2.0;
+    EXPECT_THROW(mas::slice_part(part, a, d, params), mas::Error);
+}

@@ -19,6 +19,11 @@ out = os.environ.get("MAS_OUT", os.path.join(root, "out"))
 os.makedirs(out, exist_ok=True)
 
 
+# Round holes up to this diameter whose ceilings would overhang are deposited solid and listed to
+# drill afterwards: the bracket's 12 mm pin hole through its upright.
+FILL_HOLES = 12.0
+
+
 def main():
     shape = Part.read(example)
     step = 2.0
@@ -66,7 +71,7 @@ def main():
     # Adaptive multi-axis layers of every sub-component and the bead paths in every layer
     # (paper Sec. 4.2), in the command line's JSON layout, plus a line per layer.
     start = time.perf_counter()
-    sliced = mas.slice(shape, components=parts)
+    sliced = mas.slice(shape, components=parts, fill_holes=FILL_HOLES)
     slice_seconds = time.perf_counter() - start
     with open(os.path.join(out, "slice.json"), "w") as f:
         json.dump(dict(sliced.to_dict(), file=os.path.basename(example), seconds=slice_seconds),
@@ -74,11 +79,20 @@ def main():
     stats = sliced.stats
     with open(os.path.join(out, "layers.txt"), "w") as f:
         f.write("# %s: %d layers in %d sub-components (%.1f ms); thickness %.3f to %.3f mm; "
-                "deposited %.1f of %.1f mm3; worst unsupported area %.2f mm2 (layer %d)\n"
+                "deposited %.1f of %.1f mm3 (%.1f of it in holes filled); worst unsupported area "
+                "%.2f mm2 (layer %d)\n"
                 % (os.path.basename(example), stats["layer_count"], len(sliced.components),
                    1e3 * slice_seconds, stats["min_thickness_mm"], stats["max_thickness_mm"],
                    stats["deposited_volume_mm3"], stats["part_volume_mm3"],
+                   stats["filled_volume_mm3"],
                    stats["worst_unsupported_area_mm2"], stats["worst_unsupported_layer"]))
+        for h in sliced.filled_holes:
+            f.write("# deposited solid, to drill afterwards: a hole %.3f mm across, %.3f mm long, "
+                    "at (%.3f, %.3f, %.3f) along (%g, %g, %g), component %d\n"
+                    % (h.diameter, h.length, h.centre.x, h.centre.y, h.centre.z, h.axis.x,
+                       h.axis.y, h.axis.z, h.component))
+        for note in sliced.notes:
+            f.write("# note: %s\n" % note)
         f.write("# layer component origin_x origin_y origin_z normal_x normal_y normal_z "
                 "min_thickness max_thickness area_mm2 volume_difference unsupported_mm2 "
                 "deposit_mm travel_mm\n")
@@ -101,7 +115,7 @@ def main():
     doc.recompute()
     decomposition_object = mas.make_decomposition(part, axis=axis_object, doc=doc)
     objects.append(decomposition_object)
-    objects.extend(mas.make_slice(decomposition_object, doc=doc))
+    objects.extend(mas.make_slice(decomposition_object, doc=doc, fill_holes=FILL_HOLES))
     doc.recompute()
     for obj in objects:
         if obj.State and "Invalid" in obj.State:
@@ -122,6 +136,10 @@ def main():
                                                 stats["max_thickness_mm"],
                                                 stats["deposit_length_mm"],
                                                 stats["worst_unsupported_area_mm2"]))
+    print("main job: %d hole(s) deposited solid, to drill afterwards: %s"
+          % (len(sliced.filled_holes), ", ".join(
+              "%g mm across at (%g, %g, %g)" % (h.diameter, h.centre.x, h.centre.y, h.centre.z)
+              for h in sliced.filled_holes) or "none"))
     print("main job: done")
 
 

@@ -44,6 +44,7 @@ __all__ = [
     "Decomposition",
     "EngineError",
     "EngineUnavailableError",
+    "FilledHole",
     "Layer",
     "Region",
     "SLICE_DEFAULTS",
@@ -573,4 +574,5 @@ def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
 from .progress import Cancelled  # noqa: E402
 from .axis import AxisBranch, AxisLink, AxisNode, CentroidalAxis, centroidal_axis  # noqa: E402
 from .decompose import Component, Decomposition, decompose  # noqa: E402
-from .slicing import SLICE_DEFAULTS, Layer, SliceResult, ToolPath, slice  # noqa: E402,A001
+from .slicing import (SLICE_DEFAULTS, FilledHole, Layer, SliceResult, ToolPath,  # noqa: E402
+                      slice)  # noqa: A001

@@ -597,6 +597,9 @@ _SLICE_PROPERTIES = (
     ("Strict", "Layers", "strict", "App::PropertyBool",
      "A layer over MaxVolumeDifference even at MinLayer is an error (otherwise it is kept at "
      "MinLayer and counted in LayersOverVolumeDifference)"),
+    ("FillHoles", "Layers", "fill_holes", "App::PropertyLength",
+     "Round holes up to this diameter whose ceilings would overhang (axis past OverhangAngle off "
+     "the build direction) are deposited solid, to be drilled afterwards (0 = none)"),
     ("BeadWidth", "Paths", "bead_width", "App::PropertyLength", "Width of one deposited bead"),
     ("Overlap", "Paths", "overlap", "App::PropertyFloat",
      "Fraction of a bead's width shared with its neighbour"),
@@ -741,7 +744,8 @@ class LayersFeature(_EngineFeature):
 
     Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced,
     each along its own build direction), the layer parameters (MinLayer, MaxLayer,
-    MaxVolumeDifference, EpsAngle, OverhangAngle, VolumeSamples, Strict), the path parameters
+    MaxVolumeDifference, EpsAngle, OverhangAngle, VolumeSamples, Strict, FillHoles), the path
+    parameters
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
     MeasureCoverage) and Deflection (mm chordal deflection for tessellating the components, 0 =
     automatic). Outputs: Shape (a compound of one sub-compound per layer, component by component
@@ -750,7 +754,9 @@ class LayersFeature(_EngineFeature):
     the outlines by component and the faces red), LayerCount, MinThickness, MaxThickness,
     DepositedVolume, MaterialVolume, PartVolume, MaxVolumeDifferenceFound,
     LayersOverVolumeDifference, WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts
-    (tree order), BuildOrder (the components in deposition order) and, per layer,
+    (tree order), BuildOrder (the components in deposition order), the holes deposited solid to
+    drill afterwards (FilledHoleCount, FilledVolume and, per hole, FilledHoleComponents,
+    FilledHoleCentres, FilledHoleAxes, FilledHoleDiameters, FilledHoleLengths) and, per layer,
     LayerComponents, LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses,
     LayerMaxThicknesses, LayerVolumeDifferences, LayerUnsupportedAreas.
 
@@ -795,6 +801,20 @@ class LayersFeature(_EngineFeature):
                  "Number of layers of each component (tree order)", None),
                 ("App::PropertyIntegerList", "BuildOrder",
                  "The components in the order they are deposited (the layers' order)", None),
+                ("App::PropertyInteger", "FilledHoleCount",
+                 "Holes deposited solid, to be drilled afterwards (FillHoles)", 0),
+                ("App::PropertyVolume", "FilledVolume",
+                 "Material those holes add (mm^3)", 0.0),
+                ("App::PropertyIntegerList", "FilledHoleComponents",
+                 "Component of each hole to drill", None),
+                ("App::PropertyVectorList", "FilledHoleCentres",
+                 "Middle of each hole to drill, along its axis", None),
+                ("App::PropertyVectorList", "FilledHoleAxes",
+                 "Axis of each hole to drill (unit)", None),
+                ("App::PropertyFloatList", "FilledHoleDiameters",
+                 "Diameter of each hole to drill (mm)", None),
+                ("App::PropertyFloatList", "FilledHoleLengths",
+                 "Length of each hole to drill, along its axis (mm)", None),
                 ("App::PropertyIntegerList", "LayerComponents",
                  "Component of each layer", None),
                 ("App::PropertyVectorList", "LayerOrigins",
@@ -836,6 +856,21 @@ class LayersFeature(_EngineFeature):
         obj.LayersOverVolumeDifference = stats["layers_over_volume_difference"]
         obj.WorstUnsupportedArea = stats["worst_unsupported_area_mm2"]
         obj.WorstUnsupportedLayer = stats["worst_unsupported_layer"]
+        holes = result.filled_holes
+        obj.FilledHoleCount = len(holes)
+        obj.FilledVolume = stats["filled_volume_mm3"]
+        obj.FilledHoleComponents = [h.component for h in holes]
+        obj.FilledHoleCentres = [FreeCAD.Vector(h.centre) for h in holes]
+        obj.FilledHoleAxes = [FreeCAD.Vector(h.axis) for h in holes]
+        obj.FilledHoleDiameters = [h.diameter for h in holes]
+        obj.FilledHoleLengths = [h.length for h in holes]
+        for h in holes:
+            FreeCAD.Console.PrintMessage(
+                "{}: deposited solid, to drill afterwards: a hole {:.6g} mm across, {:.6g} mm "
+                "long, at ({:.6g}, {:.6g}, {:.6g}) along ({:.6g}, {:.6g}, {:.6g}) (component "
+                "{})\n".format(obj.Label, h.diameter, h.length, *h.centre, *h.axis, h.component))
+        for note in result.notes:
+            FreeCAD.Console.PrintWarning("{}: {}\n".format(obj.Label, note))
         FreeCAD.Console.PrintMessage(
             "{}: {} layers in {} component(s), deposited in the order {}; worst unsupported area "
             "{:.3g} mm^2{}\n".format(
@@ -948,9 +983,10 @@ def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
     returns (layers, toolpath). Recompute the document to compute them.
 
     ``params``: the slicing parameters of ``MultiAxisSlicer.slice`` (min_layer, max_layer,
-    max_volume_difference, eps_angle, overhang_angle, volume_samples, strict, bead_width, overlap,
-    contour_count, infill, raster_angle, raster_angle_step, min_feature, measure_coverage; mm and
-    degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before anything is added.
+    max_volume_difference, eps_angle, overhang_angle, volume_samples, strict, fill_holes,
+    bead_width, overlap, contour_count, infill, raster_angle, raster_angle_step, min_feature,
+    measure_coverage; mm and degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before
+    anything is added.
     ``deflection``: mm for tessellating the components (0 = automatic). ``show_travel``: the
     Toolpath also shows the travel moves. Nothing is changed on the decomposition or its source.
 

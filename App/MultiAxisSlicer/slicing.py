@@ -23,7 +23,7 @@ from . import progress as _progress
 from .axis import CentroidalAxis, _number, centroidal_axis
 from .decompose import Decomposition, decompose
 
-__all__ = ["Layer", "ToolPath", "SliceResult", "slice", "SLICE_DEFAULTS"]
+__all__ = ["Layer", "ToolPath", "FilledHole", "SliceResult", "slice", "SLICE_DEFAULTS"]
 
 # The slicing parameters slice() takes, with their defaults (lengths in mm, angles in degrees).
 SLICE_DEFAULTS = {
@@ -42,6 +42,7 @@ SLICE_DEFAULTS = {
     "raster_angle_step": 90.0,
     "min_feature": 0.0,
     "measure_coverage": False,
+    "fill_holes": 0.0,
 }
 
 _AXIS_KEYS = ("step", "distance_threshold", "eps", "break_angle", "base_z")
@@ -179,6 +180,36 @@ class Layer:
                     self.min_thickness, self.max_thickness, self.volume_difference)
 
 
+class FilledHole:
+    """A round hole deposited solid, to be drilled afterwards (``fill_holes``): ``component``
+    (index of its sub-component), ``centre`` (the middle of its extent along its axis) and
+    ``axis`` (unit, along the build direction where not perpendicular to it) as FreeCAD.Vector,
+    ``diameter`` and ``length`` (its extent along the axis) in mm, ``volume`` (mm³ the fill
+    added)."""
+
+    __slots__ = ("_data",)
+
+    def __init__(self, data):
+        self._data = data
+
+    component = property(lambda self: self._data["component"])
+    centre = property(lambda self: _as_vector(self._data["centre"]))
+    axis = property(lambda self: _as_vector(self._data["axis"]))
+    diameter = property(lambda self: self._data["diameter_mm"])
+    length = property(lambda self: self._data["length_mm"])
+    volume = property(lambda self: self._data["volume_mm3"])
+
+    def to_dict(self):
+        d = self._data
+        return {"component": d["component"], "centre": _as_list(d["centre"]),
+                "axis": _as_list(d["axis"]), "diameter_mm": d["diameter_mm"],
+                "length_mm": d["length_mm"], "volume_mm3": d["volume_mm3"]}
+
+    def __repr__(self):
+        return "<MultiAxisSlicer.FilledHole component={} diameter={:.6g} mm at {}>".format(
+            self.component, self.diameter, tuple(round(c, 6) for c in self._data["centre"]))
+
+
 class SliceResult:
     """The layers of every sub-component and the paths in every layer.
 
@@ -189,9 +220,11 @@ class SliceResult:
     volume_mm3), ``stats`` (dict: layer_count, min_thickness_mm, max_thickness_mm,
     part_volume_mm3, deposited_volume_mm3, material_volume_mm3, max_volume_difference,
     layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
-    deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features), ``params`` (the
-    slicing parameters used), ``axis`` (the ``CentroidalAxis``), ``decomposition`` (the
-    ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
+    deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features, filled_holes,
+    filled_volume_mm3), ``filled_holes`` (``FilledHole`` list: the holes deposited solid, to
+    drill), ``notes`` (one string per hole that qualified for filling and stayed open, saying
+    why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
+    ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
     """
 
     def __init__(self, data, params, axis, decomposition, kind):
@@ -200,6 +233,8 @@ class SliceResult:
         self.components = [dict(c) for c in data["components"]]
         self.build_order = list(data["build_order"])
         self.stats = dict(data["stats"])
+        self.filled_holes = [FilledHole(h) for h in data["filled_holes"]]
+        self.notes = list(data["notes"])
         self.params = dict(params)
         self.axis = axis
         self.decomposition = decomposition
@@ -228,8 +263,8 @@ class SliceResult:
 
     def to_dict(self):
         """JSON-ready plain data in the layout of ``multiaxis-slicer slice FILE --json`` (without
-        its "file"): kind, params, stats, build_order, components, layers (each with its paths
-        and report)."""
+        its "file"): kind, params, stats, filled_holes, notes, build_order, components, layers
+        (each with its paths and report)."""
         layers = []
         for i, layer in enumerate(self.layers):
             d = layer.to_dict()
@@ -238,7 +273,8 @@ class SliceResult:
             d.update(self.layer_report(i))
             layers.append(d)
         return {"kind": self.kind, "params": dict(self.params), "stats": dict(self.stats),
-                "build_order": list(self.build_order),
+                "filled_holes": [h.to_dict() for h in self.filled_holes],
+                "notes": list(self.notes), "build_order": list(self.build_order),
                 "components": [dict(c) for c in self.components], "layers": layers}
 
     def __repr__(self):
@@ -253,7 +289,7 @@ def _slice_params(values):
     """Checks the slicing parameters (ValueError / TypeError naming the bad one) and returns them
     in the engine's names and units."""
     p = {}
-    for name in ("min_layer", "max_layer", "min_feature", "bead_width"):
+    for name in ("min_layer", "max_layer", "min_feature", "bead_width", "fill_holes"):
         p[name] = _number(values[name], name, "millimetres")
     for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step"):
         p[name] = _number(values[name], name, "degrees")
@@ -279,6 +315,9 @@ def _slice_params(values):
     if not (0.0 < p["min_layer"] <= p["max_layer"] < math.inf):
         raise ValueError("need 0 < min_layer <= max_layer, got min_layer {} and max_layer {} "
                          "mm".format(p["min_layer"], p["max_layer"]))
+    if not (p["fill_holes"] >= 0.0 and math.isfinite(p["fill_holes"])):
+        raise ValueError("fill_holes must be a diameter of 0 or more millimetres, got {}".format(
+            p["fill_holes"]))
     if not (p["max_volume_difference"] > 0.0):
         raise ValueError("max_volume_difference must be a positive fraction, got {}".format(
             p["max_volume_difference"]))
@@ -314,6 +353,10 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         and ``raster_angle_step`` (90, added every layer), ``min_feature`` (centre lines shorter
         than this are reported, not run; 0: half a bead), ``measure_coverage`` (also measure the
         area each layer's beads leave uncovered; False).
+      * ``fill_holes``: round holes up to this diameter whose axis leans past ``overhang_angle``
+        off their sub-component's build direction, which a drill reaches from outside the part,
+        are deposited solid, to be drilled afterwards: their ceilings would overhang (0: none; a
+        solid's only). The result's ``filled_holes`` lists them, ``notes`` those left open.
 
     ``progress``: None or ``progress(fraction, stage)``, called now and then with the fraction of
     the whole done (decomposing, when done here, is the first fifth); an exception it raises
@@ -357,6 +400,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         if "deflection" in p:
             raise ValueError("slice: {} is a mesh, sliced as it is; deflection applies to solids "
                              "only".format(what))
+        if p["fill_holes"] > 0.0:
+            raise ValueError("slice: {} is a mesh, sliced as it is; fill_holes needs a solid, on "
+                             "whose BREP holes are recognised".format(what))
         mesh = eng.make_closed(part, what)
         if axis is None:
             axis = centroidal_axis(mesh, **axis_params)

@@ -999,6 +999,8 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             p.paths.measure_coverage = truth();
         else if (key == "deflection")
             p.tessellation.deflection_mm = number();
+        else if (key == "fill_holes")
+            p.fill_holes_up_to_mm = number();
         else
             invalid_argument("unknown slicing parameter '" + key + "'");
     }
@@ -1111,7 +1113,24 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
     stats["travel_length_mm"] = s.travel_length_mm;
     stats["centre_line_passes"] = s.centre_line_passes;
     stats["unfilled_features"] = s.unfilled_features;
+    stats["filled_holes"] = s.filled_holes;
+    stats["filled_volume_mm3"] = s.filled_volume_mm3;
+    bp::list holes;
+    for (const mas::FilledHole& h : r.filled_holes) {
+        bp::dict d;
+        d["component"] = h.component;
+        d["centre"] = to_py(h.centre);
+        d["axis"] = to_py(h.axis);
+        d["diameter_mm"] = h.diameter_mm;
+        d["length_mm"] = h.length_mm;
+        d["volume_mm3"] = h.volume_mm3;
+        holes.append(d);
+    }
+    bp::list notes;
+    for (const std::string& n : r.notes) notes.append(n);
     bp::dict out;
+    out["filled_holes"] = holes;
+    out["notes"] = notes;
     out["layers"] = layers;
     out["components"] = components;
     out["build_order"] = order;
@@ -1177,7 +1196,8 @@ void bind_slice() {
         "min_layer, max_layer, max_volume_difference, eps_angle, initial_offset, overhang_angle, "
         "volume_samples, strict, bead_width, overlap, contour_count, infill ('raster' | "
         "'contour' | 'none'), raster_angle, raster_angle_step, min_feature, measure_coverage, "
-        "deflection (slice_part only); missing ones take the engine's defaults. Returns a dict: "
+        "deflection and fill_holes (the largest hole diameter to deposit solid and drill; "
+        "slice_part only); missing ones take the engine's defaults. Returns a dict: "
         "layers [{component, origin, normal, lower_origin, lower_normal, regions [{outer, "
         "holes}] as 3-D points, area_mm2, min_thickness_mm, max_thickness_mm, volume_mm3, "
         "material_volume_mm3, volume_difference, meets_volume_difference, unsupported_area_mm2, "
@@ -1186,7 +1206,9 @@ void bind_slice() {
         "centre_line_regions, unfilled [{region, area_mm2, centroid}], deposit_length_mm, "
         "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "
         "layer_count, guide_nodes, volume_mm3}] indexed by component, build_order (the "
-        "components in deposition order, the order of the layers), stats {...}. EngineError "
+        "components in deposition order, the order of the layers), stats {...}, filled_holes "
+        "[{component, centre, axis, diameter_mm, length_mm, volume_mm3}], notes [str]. "
+        "EngineError "
         "invalid_argument for bad parameters or a part no layer fits. `progress`: None or "
         "progress(fraction, stage), called now and then from this thread (fraction 0 to 1, never "
         "decreasing, 1 when done); an exception it raises stops the work and is raised here "

@@ -161,7 +161,8 @@ class TestSliceApi(SliceTest):
         data = result.to_dict()
         self.assertEqual(json.loads(json.dumps(data, allow_nan=False)), data)
         self.assertEqual(set(data),
-                         {"kind", "params", "stats", "build_order", "components", "layers"})
+                         {"kind", "params", "stats", "filled_holes", "notes", "build_order",
+                          "components", "layers"})
         self.assertEqual(data["build_order"], [0, 1])  # the column, then the arm on it
         self.assertEqual(data["params"], dict(mas.SLICE_DEFAULTS))
         self.assertEqual(len(data["layers"]), 55)
@@ -317,6 +318,60 @@ class TestSliceProgress(SliceTest):
         for call in (mas.slice, mas.decompose):
             with self.assertRaisesRegex(TypeError, "progress must be None or callable"):
                 call(l_block(), progress=5)
+
+
+def block_with_pin_hole():
+    """A 30 x 10 x 20 block with a horizontal hole of radius 4 along Y at x = 15, z = 10 and a
+    vertical one of radius 2 at (5, 5): only the first has a ceiling."""
+    return Part.makeBox(30, 10, 20).cut(Part.makeCylinder(4, 10, V(15, 0, 10), V(0, 1, 0))).cut(
+        Part.makeCylinder(2, 20, V(5, 5, 0), V(0, 0, 1)))
+
+
+class TestFillHoles(SliceTest):
+    def test_a_filled_hole_leaves_every_layer_supported_and_is_listed_to_drill(self):
+        part = block_with_pin_hole()
+        volume = part.Volume
+        open_ = mas.slice(part)
+        # Open, a layer over the ceiling overhangs the bore by more than a negligible area.
+        worst = open_.layers[open_.stats["worst_unsupported_layer"]]
+        self.assertGreater(worst.unsupported_area, 1e-3 * worst.area)
+        self.assertEqual(open_.filled_holes, [])
+        self.assertEqual(open_.stats["filled_holes"], 0)
+        result = mas.slice(part, fill_holes=8)
+        self.assertEqual(result.params["fill_holes"], 8.0)
+        self.assertEqual(result.stats["worst_unsupported_area_mm2"], 0.0)
+        self.assertEqual(result.stats["worst_unsupported_layer"], -1)
+        self.assertEqual(len(result.filled_holes), 1)
+        self.assertEqual(result.notes, [])
+        hole = result.filled_holes[0]
+        self.assertIsInstance(hole, mas.FilledHole)
+        self.assertEqual(hole.component, 0)
+        self.assertVectorAlmostEqual(hole.centre, (15, 5, 10))
+        self.assertAlmostEqual(abs(hole.axis.y), 1.0, places=12)
+        self.assertAlmostEqual(hole.diameter, 8.0, places=9)
+        self.assertAlmostEqual(hole.length, 10.0, places=9)
+        filled = math.pi * 16.0 * 10.0
+        self.assertAlmostEqual(hole.volume, filled, delta=filled * REL)
+        self.assertEqual(result.stats["filled_holes"], 1)
+        self.assertAlmostEqual(result.stats["filled_volume_mm3"], hole.volume, places=9)
+        self.assertAlmostEqual(result.stats["part_volume_mm3"], volume, delta=volume * REL)
+        d = result.to_dict()
+        self.assertEqual(json.loads(json.dumps(d))["filled_holes"], [hole.to_dict()])
+        self.assertEqual(d["notes"], [])
+        self.assertEqual(part.Volume, volume)  # the caller's shape is not touched
+        # Smaller than the hole: nothing is filled.
+        self.assertEqual(mas.slice(part, fill_holes=7.9).filled_holes, [])
+
+    def test_bad_fill_holes_is_named(self):
+        box = box_20_10_21()
+        with self.assertRaisesRegex(ValueError, "fill_holes"):
+            mas.slice(box, fill_holes=-1.0)
+        with self.assertRaisesRegex(ValueError, "fill_holes"):
+            mas.slice(box, fill_holes=math.nan)
+        with self.assertRaisesRegex(TypeError, "fill_holes"):
+            mas.slice(box, fill_holes="8 mm")
+        with self.assertRaisesRegex(ValueError, "mesh.*fill_holes needs a solid"):
+            mas.slice(fc_mesh(box), fill_holes=8.0)
 
 
 class TestSliceBadInput(SliceTest):
@@ -614,6 +669,39 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(len(layers.Shape.Faces), faces)
         self.assertEqual(list(layers.LayerUnsupportedAreas), areas)
 
+    def test_fill_holes_deposits_a_holes_ceiling_solid_lists_it_and_is_saved(self):
+        self.part.Shape = block_with_pin_hole()
+        _decomposition, layers, _toolpath = self.make(fill_holes=8.0)
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.FillHoles.Value, 8.0)
+        self.assertEqual(layers.FilledHoleCount, 1)
+        self.assertEqual(list(layers.FilledHoleComponents), [0])
+        self.assertVectorAlmostEqual(layers.FilledHoleCentres[0], (15, 5, 10))
+        self.assertAlmostEqual(abs(layers.FilledHoleAxes[0].y), 1.0, places=12)
+        self.assertAlmostEqual(layers.FilledHoleDiameters[0], 8.0, places=9)
+        self.assertAlmostEqual(layers.FilledHoleLengths[0], 10.0, places=9)
+        filled = math.pi * 16.0 * 10.0
+        self.assertAlmostEqual(layers.FilledVolume.Value, filled, delta=filled * REL)
+        self.assertEqual(layers.Shape.Faces, [])  # no unsupported region left
+        self.assertEqual(layers.WorstUnsupportedArea.Value, 0.0)
+        path = os.path.join(self.folder, "filled.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        doc = FreeCAD.openDocument(path)
+        layers = doc.getObject("Layers")
+        self.assertEqual(layers.FillHoles.Value, 8.0)
+        self.assertEqual(layers.FilledHoleCount, 1)
+        self.assertVectorAlmostEqual(layers.FilledHoleCentres[0], (15, 5, 10))
+        # Back to open holes: the ceiling overhangs again and nothing is to drill.
+        layers.FillHoles = 0.0
+        doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.FilledHoleCount, 0)
+        self.assertEqual(list(layers.FilledHoleCentres), [])
+        self.assertEqual(layers.FilledVolume.Value, 0.0)
+        self.assertGreater(layers.WorstUnsupportedArea.Value, 0.0)
+        self.assertGreater(len(layers.Shape.Faces), 0)
+
     def test_save_close_reopen_recompute(self):
         decomposition, layers, toolpath = self.make(max_layer=1.5, infill="contour")
         self.assertEqual(layers.LayerCount, 14)
@@ -700,6 +788,7 @@ class TestLayersObject(SliceObjectTest):
                 (ValueError, "bead_width", dict(bead_width=-1.0)),
                 (ValueError, "infill", dict(infill="bogus")),
                 (ValueError, "min_feature", dict(min_feature=-1.0)),
+                (ValueError, "fill_holes", dict(fill_holes=-1.0)),
                 (ValueError, "deflection", dict(deflection=-0.1)),
                 (TypeError, "unknown parameter.*layer_height", dict(layer_height=1.0))):
             with self.assertRaisesRegex(error, name, msg=str(kwargs)):

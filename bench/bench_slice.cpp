@@ -4,7 +4,8 @@
 // adaptive slicing against planar adaptive slicing along Z (the whole part as one component) and
 // planar uniform slicing along Z (the thickest uniform layer that is no worse than planar adaptive
 // slicing), with the worst unsupported area of each. Run by hand: `build/bench/mas_bench_slice
-// [examples/bracket.step]`.
+// [examples/bracket.step]`. Last, slicing with holes deposited solid to drill (fill_holes) against
+// slicing them open, on parts with horizontal holes: time, worst unsupported area, holes filled.
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -20,6 +21,7 @@
 #include "bench_util.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
+#include "mas/Holes.hpp"
 #include "mas/SlicePart.hpp"
 
 namespace {
@@ -194,5 +196,53 @@ int main(int argc, char** argv) {
         "along +Z; uniform: +Z, the thickest uniform layer no worse than planarZ. Layers of a "
         "multi-axis build are not all comparable in area: the count is a proxy for build "
         "time, as in Yang et al. 2003.)\n");
+
+    // Holes to drill: parts whose only overhangs are the ceilings of horizontal holes.
+    std::vector<Part> holed;
+    if (argc > 1) holed.push_back(all.front());
+    {
+        // A clevis: a 60 x 40 x 6 plate with two 20 x 8 x 40 ears, a 10 mm pin hole through each.
+        TopoDS_Shape s = box(0, 0, 0, 60, 40, 6);
+        for (const double y : {5.0, 27.0})
+            s = fuse(s, BRepAlgoAPI_Cut(box(20, y, 6, 20, 8, 40),
+                                        cylinder({30, y - 1, 32}, Vector3d::UnitY(), 5, 10))
+                            .Shape());
+        holed.push_back({"clevis, 2 pin holes", from_occt(s)});
+    }
+    for (const int n : {3, 6}) {
+        // A 100 x 20 x 100 wall with n x n horizontal holes 6 mm across through it along Y.
+        TopoDS_Shape s = box(0, 0, 0, 100, 20, 100);
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < n; ++k)
+                s = BRepAlgoAPI_Cut(s, cylinder({100.0 * (i + 0.5) / n, -1, 100.0 * (k + 0.5) / n},
+                                                Vector3d::UnitY(), 3, 22))
+                        .Shape();
+        holed.push_back({"wall, " + std::to_string(n * n) + " holes", from_occt(s)});
+    }
+    std::printf(
+        "\n## Holes to drill: slicing with fill_holes = 12 mm against with the holes open\n");
+    std::printf("%-24s %6s %10s %10s %7s %10s %14s %14s\n", "part", "holes", "open ms", "filled ms",
+                "ratio", "fill ms", "unsupp open", "unsupp filled");
+    for (const Part& p : holed) {
+        mas::TessellationParams tp;
+        const mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(p.shape, tp), {});
+        const mas::Decomposition d = mas::decompose(p.shape, axis);
+        mas::SlicePartParams fill = params;
+        fill.fill_holes_up_to_mm = 12.0;
+        mas::SlicedPart open, filled;
+        const double open_ms =
+            time_ms(3, [&] { open = mas::slice_part(p.shape, axis, d, params); });
+        const double filled_ms =
+            time_ms(3, [&] { filled = mas::slice_part(p.shape, axis, d, fill); });
+        // The filling alone, component by component.
+        const double fill_ms = time_ms(3, [&] {
+            for (const mas::Component& c : d.components)
+                mas::fill_holes(c.solid, c.build_direction, 12.0, params.layers.overhang_angle_deg,
+                                p.shape);
+        });
+        std::printf("%-24s %6d %10.1f %10.1f %6.2fx %10.1f %10.2f mm2 %10.2f mm2\n", p.name.c_str(),
+                    filled.stats.filled_holes, open_ms, filled_ms, filled_ms / open_ms, fill_ms,
+                    open.stats.worst_unsupported_area_mm2, filled.stats.worst_unsupported_area_mm2);
+    }
     return 0;
 }

@@ -184,8 +184,8 @@ class FilledHole:
     """A round hole deposited solid, to be drilled afterwards (``fill_holes``): ``component``
     (index of its sub-component), ``centre`` (the middle of its extent along its axis) and
     ``axis`` (unit, along the build direction where not perpendicular to it) as FreeCAD.Vector,
-    ``diameter`` and ``length`` (its extent along the axis) in mm, ``volume`` (mm³ the fill
-    added)."""
+    ``diameter`` and ``length`` (its extent along the axis) in mm. The material the fills add is
+    the result's ``stats["filled_volume_mm3"]``."""
 
     __slots__ = ("_data",)
 
@@ -197,13 +197,12 @@ class FilledHole:
     axis = property(lambda self: _as_vector(self._data["axis"]))
     diameter = property(lambda self: self._data["diameter_mm"])
     length = property(lambda self: self._data["length_mm"])
-    volume = property(lambda self: self._data["volume_mm3"])
 
     def to_dict(self):
         d = self._data
         return {"component": d["component"], "centre": _as_list(d["centre"]),
                 "axis": _as_list(d["axis"]), "diameter_mm": d["diameter_mm"],
-                "length_mm": d["length_mm"], "volume_mm3": d["volume_mm3"]}
+                "length_mm": d["length_mm"]}
 
     def __repr__(self):
         return "<MultiAxisSlicer.FilledHole component={} diameter={:.6g} mm at {}>".format(

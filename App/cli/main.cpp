@@ -590,8 +590,7 @@ int run_slice(const std::vector<std::string>& args) {
             out << (i ? "," : "") << "\n    {\"component\": " << h.component
                 << ", \"centre\": " << vec(h.centre) << ", \"axis\": " << vec(h.axis)
                 << ", \"diameter_mm\": " << num(h.diameter_mm)
-                << ", \"length_mm\": " << num(h.length_mm)
-                << ", \"volume_mm3\": " << num(h.volume_mm3) << "}";
+                << ", \"length_mm\": " << num(h.length_mm) << "}";
         }
         out << (r.filled_holes.empty() ? "" : "\n  ") << "],\n  \"notes\": [";
         for (std::size_t i = 0; i < r.notes.size(); ++i)

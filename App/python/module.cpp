@@ -1123,7 +1123,6 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
         d["axis"] = to_py(h.axis);
         d["diameter_mm"] = h.diameter_mm;
         d["length_mm"] = h.length_mm;
-        d["volume_mm3"] = h.volume_mm3;
         holes.append(d);
     }
     bp::list notes;
@@ -1207,7 +1206,7 @@ void bind_slice() {
         "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "
         "layer_count, guide_nodes, volume_mm3}] indexed by component, build_order (the "
         "components in deposition order, the order of the layers), stats {...}, filled_holes "
-        "[{component, centre, axis, diameter_mm, length_mm, volume_mm3}], notes [str]. "
+        "[{component, centre, axis, diameter_mm, length_mm}], notes [str]. "
         "EngineError "
         "invalid_argument for bad parameters or a part no layer fits. `progress`: None or "
         "progress(fraction, stage), called now and then from this thread (fraction 0 to 1, never "

@@ -4,13 +4,16 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Defeaturing.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
 #include <IntCurvesFace_ShapeIntersector.hxx>
 #include <Precision.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
@@ -189,11 +192,9 @@ std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& directio
     return out;
 }
 
-// Whether a drill reaches the hole along its axis from outside `part` at either end: the axis and
-// four lines 0.9 radius off it meet none of the part's faces beyond that end.
-bool drillable(const TopoDS_Shape& part, const Hole& hole) {
-    IntCurvesFace_ShapeIntersector x;
-    x.Load(part, 1e-7);
+// Whether a drill reaches the hole along its axis from outside the part `x` was loaded with, at
+// either end: the axis and four lines 0.9 radius off it meet none of its faces beyond that end.
+bool drillable(IntCurvesFace_ShapeIntersector& x, const Hole& hole) {
     const Vector3d e1 = hole.axis.unitOrthogonal(), e2 = hole.axis.cross(e1);
     const double r = 0.9 * hole.radius;
     for (const double sense : {1.0, -1.0}) {
@@ -215,13 +216,17 @@ bool drillable(const TopoDS_Shape& part, const Hole& hole) {
     return false;
 }
 
-// `solid` with `hole`'s faces removed, or a null shape and why not.
-TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const Hole& hole, double& added,
-                  std::string& why) {
+// `solid` with the faces of `holes` removed, or a null shape and why not.
+TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const std::vector<Hole>& holes,
+                  double& added, std::string& why) {
     try {
         BRepAlgoAPI_Defeaturing df;
         df.SetShape(solid);
-        for (const TopoDS_Face& f : hole.faces) df.AddFaceToRemove(f);
+        double most = 0.0;  // the holes' cylinders
+        for (const Hole& h : holes) {
+            for (const TopoDS_Face& f : h.faces) df.AddFaceToRemove(f);
+            most += kPi * h.radius * h.radius * (h.hi - h.lo);
+        }
         df.SetRunParallel(Standard_False);
         df.SetToFillHistory(Standard_False);
         df.Build();
@@ -244,7 +249,6 @@ TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const Hole& hole, do
                 "opens into another hole)";
             return {};
         }
-        const double most = kPi * hole.radius * hole.radius * (hole.hi - hole.lo);
         if (!(added > 0.0) || added > most * (1.0 + 1e-6) + 1e-9) {
             std::ostringstream s;
             s << "closing it over changed the volume by " << added << " mm^3, not within (0, "
@@ -257,6 +261,104 @@ TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const Hole& hole, do
         why = occ::failure_message("OCCT failed closing it over", f);
         return {};
     }
+}
+
+// Whether the hole is a plain cylinder between lo and hi: its wall's edges are lines along the axis
+// (seams) and circles of its radius square to it at lo or hi, and its bottom, if any, is flat at
+// one of them. That is a hole drilled square through faces (or a cut) square to its axis, the
+// commonest kind; its plug is that cylinder.
+bool square_ended(const Hole& hole) {
+    const double tol = 1e-6 * (1.0 + hole.hi - hole.lo + hole.radius);
+    auto at_end = [&](const Vector3d& p) {
+        const double t = (p - hole.point).dot(hole.axis);
+        return std::abs(t - hole.lo) <= tol || std::abs(t - hole.hi) <= tol;
+    };
+    for (const TopoDS_Face& face : hole.faces) {
+        BRepAdaptor_Surface s(face, Standard_False);
+        if (s.GetType() == GeomAbs_Plane) {
+            if (vec(s.Plane().Axis().Direction()).cross(hole.axis).norm() > 1e-9) return false;
+        } else if (s.GetType() != GeomAbs_Cylinder) {
+            return false;
+        }
+        for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+            const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+            if (BRep_Tool::Degenerated(edge)) continue;
+            const BRepAdaptor_Curve c(edge);
+            if (c.GetType() == GeomAbs_Line) {
+                if (vec(c.Line().Direction()).cross(hole.axis).norm() > 1e-9) return false;
+            } else if (c.GetType() == GeomAbs_Circle) {
+                const gp_Circ circle = c.Circle();
+                if (std::abs(circle.Radius() - hole.radius) > tol ||
+                    vec(circle.Axis().Direction()).cross(hole.axis).norm() > 1e-9 ||
+                    !at_end(vec(circle.Location())))
+                    return false;
+                const Vector3d d = vec(circle.Location()) - hole.point;
+                if ((d - d.dot(hole.axis) * hole.axis).norm() > tol) return false;
+            } else {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// `solid` with the square-ended `holes` filled by fusing their cylinders in, or a null shape and
+// why not.
+TopoDS_Shape plug(const TopoDS_Shape& solid, double volume, const std::vector<Hole>& holes,
+                  double& added, std::string& why) {
+    try {
+        TopTools_ListOfShape args, tools;
+        args.Append(solid);
+        double most = 0.0;
+        for (const Hole& h : holes) {
+            const Vector3d base = h.point + h.lo * h.axis;
+            tools.Append(
+                BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()),
+                                                gp_Dir(h.axis.x(), h.axis.y(), h.axis.z())),
+                                         h.radius, h.hi - h.lo)
+                    .Shape());
+            most += kPi * h.radius * h.radius * (h.hi - h.lo);
+        }
+        BRepAlgoAPI_Fuse fuse;
+        fuse.SetArguments(args);
+        fuse.SetTools(tools);
+        fuse.SetRunParallel(Standard_False);
+        fuse.SetToFillHistory(Standard_False);
+        fuse.Build();
+        if (!fuse.IsDone() || fuse.HasErrors()) {
+            why = "OCCT could not fuse their plugs in";
+            return {};
+        }
+        ShapeUpgrade_UnifySameDomain unify(fuse.Shape(), Standard_True, Standard_True,
+                                           Standard_False);
+        unify.Build();
+        TopoDS_Shape result;
+        int solids = 0;
+        for (TopExp_Explorer e(unify.Shape(), TopAbs_SOLID); e.More(); e.Next(), ++solids)
+            result = e.Current();
+        if (solids != 1 || !BRepCheck_Analyzer(result).IsValid()) {
+            why = "fusing their plugs in left no single valid solid";
+            return {};
+        }
+        added = volume_of(result) - volume;
+        if (!(added > 0.0) || added > most * (1.0 + 1e-6) + 1e-9) {
+            why = "fusing their plugs in changed the volume by more than their cylinders hold";
+            return {};
+        }
+        return result;
+    } catch (const Standard_Failure& f) {
+        why = occ::failure_message("OCCT failed fusing their plugs in", f);
+        return {};
+    }
+}
+
+FilledHole filled_hole(const Hole& hole, const Vector3d& direction) {
+    FilledHole f;
+    f.axis = hole.axis.dot(direction) < 0.0 ? -hole.axis : hole.axis;
+    f.centre = hole.centre();
+    f.diameter_mm = 2.0 * hole.radius;
+    f.length_mm = hole.hi - hole.lo;
+    return f;
 }
 
 }  // namespace
@@ -276,41 +378,87 @@ HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
         throw Error(ErrorCode::InvalidArgument, "the build direction must be a non-zero vector");
     const Vector3d direction = build_direction / length;
     HoleFill out;
-    out.solid = input.single_solid("the component");
+    out.solid = input;
     if (max_diameter_mm == 0.0) return out;
+    out.solid = input.single_solid("the component");
     const double overhang_rad = overhang_angle_deg * kPi / 180.0;
     TopoDS_Shape solid = occ::occt(out.solid);
-    const TopoDS_Shape whole = part.is_null() ? solid : occ::occt(part.single_solid("the part"));
-    double volume = volume_of(solid);
     std::vector<Hole> kept_open;
-    // One hole at a time, found again on each result: a fill rebuilds the faces around it. A
-    // round fills a hole, which takes its faces away, or keeps one open: the bound is a guard.
+    std::vector<Hole> holes = find_holes(solid, direction, max_diameter_mm, overhang_rad, {});
+    if (holes.empty()) return out;
+    // The holes a drill reaches; a note for each other one.
+    IntCurvesFace_ShapeIntersector part_faces;
+    part_faces.Load(part.is_null() ? solid : occ::occt(part), 1e-7);
+    std::vector<Hole> reached;
+    for (Hole& h : holes) {
+        if (drillable(part_faces, h)) {
+            reached.push_back(std::move(h));
+        } else {
+            out.notes.push_back(describe(h) +
+                                " stays open: no drill reaches it along its axis from outside "
+                                "the part");
+            kept_open.push_back(std::move(h));
+        }
+    }
+    holes = std::move(reached);
+    if (holes.empty()) return out;
+    double volume = volume_of(solid);
+    // Square-ended holes get their cylinders fused in, in one Boolean: far quicker than OCCT's
+    // defeaturing, which closes holes over by rebuilding the faces around each.
+    std::vector<Hole> square, other;
+    for (Hole& h : holes) (square_ended(h) ? square : other).push_back(std::move(h));
+    if (!square.empty()) {
+        double added = 0.0;
+        std::string why;
+        const TopoDS_Shape filled = plug(solid, volume, square, added, why);
+        if (filled.IsNull()) {
+            other.insert(other.end(), square.begin(), square.end());
+        } else {
+            for (const Hole& h : square) out.holes.push_back(filled_hole(h, direction));
+            out.added_volume_mm3 += added;
+            solid = filled;
+            volume += added;
+        }
+    }
+    holes = std::move(other);
+    if (holes.empty()) {
+        out.solid = occ::wrap(solid);
+        return out;
+    }
+    // The others all at once, kept when none of them is left: one defeaturing instead of one a
+    // hole, each on the whole solid.
+    if (holes.size() > 1) {
+        double added = 0.0;
+        std::string why;
+        const TopoDS_Shape filled = fill(solid, volume, holes, added, why);
+        if (!filled.IsNull() &&
+            find_holes(filled, direction, max_diameter_mm, overhang_rad, kept_open).empty()) {
+            for (const Hole& h : holes) out.holes.push_back(filled_hole(h, direction));
+            out.added_volume_mm3 += added;
+            out.solid = occ::wrap(filled);
+            return out;
+        }
+    }
+    // Else one at a time, each found again on the last result (a fill rebuilds the faces around
+    // it), to tell those OCCT fills from those it does not. A round fills a hole, which takes its
+    // faces away, or keeps one open: the bound is a guard.
     TopTools_IndexedMapOfShape faces;
     TopExp::MapShapes(solid, TopAbs_FACE, faces);
     for (int round = 0; round <= 2 * faces.Extent(); ++round) {
-        const std::vector<Hole> holes =
+        const std::vector<Hole> left =
             find_holes(solid, direction, max_diameter_mm, overhang_rad, kept_open);
-        if (holes.empty()) break;
-        const Hole& hole = holes.front();
+        if (left.empty()) break;
+        const Hole& hole = left.front();
         double added = 0.0;
         std::string why;
-        TopoDS_Shape filled;
-        if (drillable(whole, hole))
-            filled = fill(solid, volume, hole, added, why);
-        else
-            why = "no drill reaches it along its axis from outside the part";
+        const TopoDS_Shape filled = fill(solid, volume, {hole}, added, why);
         if (filled.IsNull()) {
             out.notes.push_back(describe(hole) + " stays open: " + why);
             kept_open.push_back(hole);
             continue;
         }
-        FilledHole f;
-        f.axis = hole.axis.dot(direction) < 0.0 ? -hole.axis : hole.axis;
-        f.centre = hole.centre();
-        f.diameter_mm = 2.0 * hole.radius;
-        f.length_mm = hole.hi - hole.lo;
-        f.volume_mm3 = added;
-        out.holes.push_back(f);
+        out.holes.push_back(filled_hole(hole, direction));
+        out.added_volume_mm3 += added;
         solid = filled;
         volume += added;
     }

@@ -40,9 +40,9 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                                     params.layers.overhang_angle_deg, part);
             for (FilledHole& h : f.holes) {
                 h.component = int(i);
-                filled_volume += h.volume_mm3;
                 filled.push_back(h);
             }
+            filled_volume += f.added_volume_mm3;
             for (const std::string& n : f.notes) notes.push_back(what + ": " + n);
             solid = f.solid;
         }

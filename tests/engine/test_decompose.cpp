@@ -29,19 +29,13 @@ using Eigen::Vector3d;
 using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
+using mas::test::occ_cylinder;
 using mas::test::to_occt;
 using Rule = mas::Component::SplitRule;
 
 namespace {
 
 constexpr double kDeflection = 0.02;  // mm, tessellation of every test part for its axis
-
-TopoDS_Shape occ_cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
-    return BRepPrimAPI_MakeCylinder(
-               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
-               r, h)
-        .Shape();
-}
 
 double volume(const TopoDS_Shape& s) {
     GProp_GProps p;

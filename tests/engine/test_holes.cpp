@@ -20,17 +20,11 @@ using Eigen::Vector3d;
 using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
+using mas::test::occ_cylinder;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-TopoDS_Shape occ_cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
-    return BRepPrimAPI_MakeCylinder(
-               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
-               r, h)
-        .Shape();
-}
 
 TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) {
     BRepAlgoAPI_Cut c(a, b);

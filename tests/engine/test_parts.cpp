@@ -40,6 +40,14 @@ TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, doub
     return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
 }
 
+TopoDS_Shape occ_cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double r,
+                          double h) {
+    return BRepPrimAPI_MakeCylinder(
+               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
+               r, h)
+        .Shape();
+}
+
 TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
     BRepAlgoAPI_Fuse f(a, b);
     f.SimplifyResult();

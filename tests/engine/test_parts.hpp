@@ -43,9 +43,12 @@ Shape open_box_shell(double x0, double y0, double z0, double dx, double dy, doub
 // Between the engine's Shape and OCCT, through BREP text as FreeCAD hands shapes over.
 Shape from_occt(const TopoDS_Shape& shape);
 TopoDS_Shape to_occt(const Shape& shape);
-// OCCT building blocks for composite test parts: a box as box() above, and a fusion with the
-// seams between coplanar faces removed.
+// OCCT building blocks for composite test parts: a box as box() above, a cylinder of radius `r`
+// and height `h` whose base centre is `base` and axis `axis` (unit), and a fusion with the seams
+// between coplanar faces removed.
 TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, double dz);
+TopoDS_Shape occ_cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double r,
+                          double h);
 TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b);
 
 }  // namespace mas::test

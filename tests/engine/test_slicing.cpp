@@ -28,19 +28,13 @@ using Eigen::Vector3d;
 using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
+using mas::test::occ_cylinder;
 using mas::test::to_occt;
 
 namespace {
 
 constexpr double kDeflection = 0.02;  // mm: tessellation of the test parts (axis and layers)
 constexpr double kPi = 3.14159265358979323846;
-
-TopoDS_Shape occ_cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
-    return BRepPrimAPI_MakeCylinder(
-               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
-               r, h)
-        .Shape();
-}
 
 // A frustum on z = 0: radius 20 at the bottom, 8 at the top, 30 tall (side 21.8 degrees from Z).
 mas::Shape frustum() { return from_occt(BRepPrimAPI_MakeCone(20.0, 8.0, 30.0).Shape()); }

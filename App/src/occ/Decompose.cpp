@@ -52,12 +52,6 @@ Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Vector3d vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
 gp_Pnt pnt(const Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-double volume_of(const TopoDS_Shape& s) {
-    GProp_GProps props;
-    BRepGProp::VolumeProperties(s, props);
-    return props.Mass();
-}
-
 Eigen::AlignedBox3d bounds_of(const TopoDS_Shape& s) {
     Bnd_Box box;
     BRepBndLib::AddOptimal(s, box, Standard_False, Standard_False);
@@ -643,7 +637,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         // Work on a copy: OCCT's algorithms must never touch the caller's shape.
         const TopoDS_Shape solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
         const Eigen::AlignedBox3d box = bounds_of(solid);
-        check_axis(axis, box, volume_of(solid));
+        check_axis(axis, box, occ::volume_of(solid));
         const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
         // The part's default deflection: what slicing tessellates with unless told otherwise.
         const double default_deflection = effective_deflection(checked, TessellationParams{});
@@ -841,7 +835,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     try {
         for (auto& w : work) {
             w.c.solid = occ::wrap(w.solid);
-            w.c.volume_mm3 = volume_of(w.solid);
+            w.c.volume_mm3 = occ::volume_of(w.solid);
             out.components.push_back(w.c);
         }
         out.notes = std::move(notes);

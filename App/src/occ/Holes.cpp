@@ -6,11 +6,9 @@
 #include <BRepAlgoAPI_Defeaturing.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepCheck_Analyzer.hxx>
-#include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
-#include <GProp_GProps.hxx>
 #include <IntCurvesFace_ShapeIntersector.hxx>
 #include <Precision.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
@@ -39,12 +37,6 @@ constexpr double kPi = 3.14159265358979323846;
 
 Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Vector3d vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
-
-double volume_of(const TopoDS_Shape& s) {
-    GProp_GProps props;
-    BRepGProp::VolumeProperties(s, props);
-    return props.Mass();
-}
 
 // One round hole: its wall's faces (and its bottom's, when blind) and its axis line.
 struct Hole {
@@ -216,6 +208,15 @@ bool drillable(IntCurvesFace_ShapeIntersector& x, const Hole& hole) {
     return false;
 }
 
+// The one solid of `shape`, when it has exactly one and OCCT's check accepts it; else null.
+TopoDS_Shape single_valid_solid(const TopoDS_Shape& shape) {
+    TopoDS_Shape result;
+    int solids = 0;
+    for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next(), ++solids) result = e.Current();
+    if (solids != 1 || !BRepCheck_Analyzer(result).IsValid()) return {};
+    return result;
+}
+
 // `solid` with the faces of `holes` removed, or a null shape and why not.
 TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const std::vector<Hole>& holes,
                   double& added, std::string& why) {
@@ -234,15 +235,12 @@ TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const std::vector<Ho
             why = "OCCT could not close it over (BRepAlgoAPI_Defeaturing failed)";
             return {};
         }
-        TopoDS_Shape result;
-        int solids = 0;
-        for (TopExp_Explorer e(df.Shape(), TopAbs_SOLID); e.More(); e.Next(), ++solids)
-            result = e.Current();
-        if (solids != 1 || !BRepCheck_Analyzer(result).IsValid()) {
+        const TopoDS_Shape result = single_valid_solid(df.Shape());
+        if (result.IsNull()) {
             why = "closing it over left no single valid solid";
             return {};
         }
-        added = volume_of(result) - volume;
+        added = occ::volume_of(result) - volume;
         if (std::abs(added) <= 1e-9 * volume) {
             why =
                 "OCCT's defeaturing could not extend the faces around it across it (as where it "
@@ -332,15 +330,12 @@ TopoDS_Shape plug(const TopoDS_Shape& solid, double volume, const std::vector<Ho
         ShapeUpgrade_UnifySameDomain unify(fuse.Shape(), Standard_True, Standard_True,
                                            Standard_False);
         unify.Build();
-        TopoDS_Shape result;
-        int solids = 0;
-        for (TopExp_Explorer e(unify.Shape(), TopAbs_SOLID); e.More(); e.Next(), ++solids)
-            result = e.Current();
-        if (solids != 1 || !BRepCheck_Analyzer(result).IsValid()) {
+        const TopoDS_Shape result = single_valid_solid(unify.Shape());
+        if (result.IsNull()) {
             why = "fusing their plugs in left no single valid solid";
             return {};
         }
-        added = volume_of(result) - volume;
+        added = occ::volume_of(result) - volume;
         if (!(added > 0.0) || added > most * (1.0 + 1e-6) + 1e-9) {
             why = "fusing their plugs in changed the volume by more than their cylinders hold";
             return {};
@@ -402,7 +397,7 @@ HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
     }
     holes = std::move(reached);
     if (holes.empty()) return out;
-    double volume = volume_of(solid);
+    double volume = occ::volume_of(solid);
     // Square-ended holes get their cylinders fused in, in one Boolean: far quicker than OCCT's
     // defeaturing, which closes holes over by rebuilding the faces around each.
     std::vector<Hole> square, other;

@@ -27,6 +27,12 @@ namespace mas {
 
 namespace occ {
 
+double volume_of(const TopoDS_Shape& shape) {
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(shape, props);
+    return props.Mass();
+}
+
 Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape) {
     Bnd_Box box;
     BRepBndLib::AddOptimal(shape, box, Standard_False, Standard_False);

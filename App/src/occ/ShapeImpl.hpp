@@ -29,6 +29,9 @@ inline const TopoDS_Shape& occt(const Shape& shape) { return shape.impl().shape;
 // an empty box for a shape with no geometry.
 Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape);
 
+// The volume of a shape's solids, mm^3 (BRepGProp).
+double volume_of(const TopoDS_Shape& shape);
+
 // "<what>: <OCCT's message>", with a fallback when OCCT gives none.
 std::string failure_message(const std::string& what, const Standard_Failure& failure);
 

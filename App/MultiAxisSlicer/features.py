@@ -745,10 +745,9 @@ class LayersFeature(_EngineFeature):
     Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced,
     each along its own build direction), the layer parameters (MinLayer, MaxLayer,
     MaxVolumeDifference, EpsAngle, OverhangAngle, VolumeSamples, Strict, FillHoles), the path
-    parameters
-    (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
-    MeasureCoverage) and Deflection (mm chordal deflection for tessellating the components, 0 =
-    automatic). Outputs: Shape (a compound of one sub-compound per layer, component by component
+    parameters (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep,
+    MinFeature, MeasureCoverage) and Deflection (mm chordal deflection for tessellating the
+    components, 0 = automatic). Outputs: Shape (a compound of one sub-compound per layer, component by component
     in build order and bottom to top, each holding one closed wire per loop of its outline, then
     a face per region where it stands on nothing, on the plane below it: the view provider colours
     the outlines by component and the faces red), LayerCount, MinThickness, MaxThickness,

@@ -356,13 +356,52 @@ def layer_edge_colours(shape, components, unsupported_colour):
     return out
 
 
+# Holes deposited solid, to drill afterwards (the Layers' FillHoles): each drawn as its axis and
+# a circle of its diameter at each end, in DrillColor.
+DRILL_COLOUR = (0.0, 0.0, 0.0)  # black: no component's colour
+DRILL_LINE_WIDTH = 3.0
+DRILL_CIRCLE_SEGMENTS = 32
+_DRILL_PROPERTIES = ("FilledHoleCentres", "FilledHoleAxes", "FilledHoleDiameters",
+                     "FilledHoleLengths")
+
+
+def drill_polylines(centres, axes, diameters, lengths, segments=DRILL_CIRCLE_SEGMENTS):
+    """Per hole to drill, three polylines as lists of FreeCAD.Vector: its axis from end to end,
+    then a closed circle of its diameter square to the axis at each end (segments + 1 points,
+    the first repeated last)."""
+    import math
+
+    import FreeCAD
+
+    out = []
+    for c, a, d, length in zip(centres, axes, diameters, lengths):
+        a = FreeCAD.Vector(a)
+        if a.Length == 0.0:
+            continue
+        a.normalize()
+        # Two unit vectors square to the axis.
+        helper = FreeCAD.Vector(1, 0, 0) if abs(a.x) < 0.9 else FreeCAD.Vector(0, 1, 0)
+        u = a.cross(helper)
+        u.normalize()
+        v = a.cross(u)
+        ends = [c - a * (0.5 * length), c + a * (0.5 * length)]
+        out.append(ends)
+        for e in ends:
+            out.append([e + u * (0.5 * d * math.cos(2 * math.pi * k / segments))
+                        + v * (0.5 * d * math.sin(2 * math.pi * k / segments))
+                        for k in range(segments + 1)])
+    return out
+
+
 class ViewProviderLayers(_EdgeColoured):
     """Tree icon and colours of a ``Layers`` object: every layer's outline in its component's
     colour (``component_colour``, as the Component objects), per edge through LineColorArray. The
     object's Shape holds one sub-compound per layer and LayerComponents names each one's
     component. FreeCAD resets LineColorArray when LineColor changes: the colours are rebuilt
     then. The decomposition stays as it is. The Shape's faces mark where a layer is unsupported:
-    ShapeColor (red by default) fills and outlines them."""
+    ShapeColor (red by default) fills and outlines them. The holes deposited solid to drill
+    afterwards (FillHoles) are drawn as their axes and end circles in DrillColor, from the
+    object's FilledHole* properties, in every display mode."""
 
     COLOUR_PROPERTIES = _EdgeColoured.COLOUR_PROPERTIES + ("ShapeColor",)
 
@@ -372,6 +411,56 @@ class ViewProviderLayers(_EdgeColoured):
         vobj.ShapeColor = UNSUPPORTED_COLOUR
         vobj.Proxy = self  # calls attach()
         self.colour_edges(vobj)
+
+    def attach(self, vobj):
+        from pivy import coin
+
+        super().attach(vobj)
+        if "DrillColor" not in vobj.PropertiesList:  # new, or a document from before it
+            vobj.addProperty("App::PropertyColor", "DrillColor", "Object Style",
+                             "Colour of the holes deposited solid, to drill afterwards")
+            vobj.DrillColor = DRILL_COLOUR
+        self.drills = coin.SoSeparator()
+        light = coin.SoLightModel()  # the colour as it is, whatever the lights
+        light.model = coin.SoLightModel.BASE_COLOR
+        self.drill_colour = coin.SoBaseColor()
+        style = coin.SoDrawStyle()
+        style.lineWidth = DRILL_LINE_WIDTH
+        self.drill_points = coin.SoCoordinate3()
+        self.drill_lines = coin.SoLineSet()
+        for node in (light, self.drill_colour, style, self.drill_points, self.drill_lines):
+            self.drills.addChild(node)
+        vobj.RootNode.addChild(self.drills)
+        self.update_drills(vobj)
+
+    def update_drills(self, vobj):
+        """The drill markers from the object's FilledHole* properties and DrillColor."""
+        if getattr(self, "drills", None) is None:
+            return
+        obj = vobj.Object
+        colour = tuple(vobj.DrillColor)[:3] if "DrillColor" in vobj.PropertiesList \
+            else DRILL_COLOUR
+        self.drill_colour.rgb.setValue(*colour)
+        lines = []
+        if obj is not None and all(p in obj.PropertiesList for p in _DRILL_PROPERTIES):
+            lines = drill_polylines(obj.FilledHoleCentres, obj.FilledHoleAxes,
+                                    obj.FilledHoleDiameters, obj.FilledHoleLengths)
+        points = [(p.x, p.y, p.z) for line in lines for p in line]
+        self.drill_lines.numVertices.setNum(0)
+        self.drill_points.point.setNum(0)
+        if points:
+            self.drill_points.point.setValues(0, len(points), points)
+            self.drill_lines.numVertices.setValues(0, len(lines), [len(line) for line in lines])
+
+    def updateData(self, obj, prop):
+        super().updateData(obj, prop)
+        if prop in _DRILL_PROPERTIES and obj.ViewObject is not None:
+            self.update_drills(obj.ViewObject)
+
+    def onChanged(self, vobj, prop):
+        super().onChanged(vobj, prop)
+        if prop == "DrillColor":
+            self.update_drills(vobj)
 
     @staticmethod
     def colour_edges(vobj):

@@ -5,6 +5,7 @@ Run: xvfb-run -a freecad -t TestMultiAxisSlicerGui (tests/run_freecad_test.sh gu
 the add-on staged in the build tree). With MAS_SCREENSHOT_DIR set, saves PNGs of the 3D view there.
 """
 
+import math
 import os
 import shutil
 import subprocess
@@ -748,6 +749,46 @@ class TestSliceCommand(unittest.TestCase):
         layers.ViewObject.ShapeColor = (0.0, 0.0, 1.0)
         process_events()
         self.check_colours(layers, toolpath)
+
+    def test_holes_to_drill_are_drawn_as_their_axes_and_end_circles(self):
+        """With FillHoles, the block's pin hole is deposited solid: no red region is left, and
+        the hole to drill shows as its axis and a circle of its diameter at each end, in
+        DrillColor. Without it, nothing of the kind is drawn."""
+        self.part.Shape = Part.makeBox(30, 10, 20).cut(
+            Part.makeCylinder(4, 10, FreeCAD.Vector(15, 0, 10), FreeCAD.Vector(0, 1, 0)))
+        self.doc.recompute()
+        layers, toolpath = self.run_command(self.part)
+        proxy = layers.ViewObject.Proxy
+        self.assertEqual(proxy.drill_points.point.getNum(), 0)
+        self.assertTrue(same_colour(layers.ViewObject.DrillColor, view_providers.DRILL_COLOUR))
+        layers.FillHoles = 8.0
+        self.doc.recompute()
+        process_events()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.FilledHoleCount, 1)
+        self.assertEqual(len(layers.Shape.Faces), 0)  # nothing unsupported left
+        segments = view_providers.DRILL_CIRCLE_SEGMENTS
+        self.assertEqual([proxy.drill_lines.numVertices[i] for i in range(3)],
+                         [2, segments + 1, segments + 1])
+        points = [FreeCAD.Vector(*proxy.drill_points.point[i].getValue())
+                  for i in range(proxy.drill_points.point.getNum())]
+        self.assertEqual(len(points), 2 * segments + 4)
+        ends = sorted(points[:2], key=lambda p: p.y)
+        for got, want in zip(ends, (FreeCAD.Vector(15, 0, 10), FreeCAD.Vector(15, 10, 10))):
+            self.assertLess((got - want).Length, 1e-5)
+        for p in points[2:]:  # on the circles of radius 4 round the axis, at y = 0 or 10
+            self.assertAlmostEqual(math.hypot(p.x - 15, p.z - 10), 4.0, places=5)
+            self.assertLess(min(abs(p.y), abs(p.y - 10)), 1e-5)
+        layers.ViewObject.DrillColor = (0.0, 0.8, 0.0)
+        process_events()
+        self.assertTrue(same_colour(proxy.drill_colour.rgb[0].getValue(), (0.0, 0.8, 0.0)))
+        toolpath.ViewObject.Visibility = False
+        save_screenshot(self, self.doc, "slice_holes_to_drill.png", see_through=False)
+        layers.FillHoles = 0.0
+        self.doc.recompute()
+        process_events()
+        self.assertEqual(proxy.drill_points.point.getNum(), 0)
+        self.assertGreater(len(layers.Shape.Faces), 0)
 
     def test_command_on_a_solid_decomposes_it_first(self):
         layers, toolpath = self.run_command(self.part)

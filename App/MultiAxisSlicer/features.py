@@ -742,22 +742,22 @@ class LayersFeature(_EngineFeature):
     """Proxy of a ``Part::FeaturePython`` holding the adaptive multi-axis layers of a
     ``Decomposition`` object's part (``MultiAxisSlicer.slice``).
 
-    Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced,
-    each along its own build direction), the layer parameters (MinLayer, MaxLayer,
-    MaxVolumeDifference, EpsAngle, OverhangAngle, VolumeSamples, Strict, FillHoles), the path
-    parameters (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep,
-    MinFeature, MeasureCoverage) and Deflection (mm chordal deflection for tessellating the
-    components, 0 = automatic). Outputs: Shape (a compound of one sub-compound per layer, component by component
-    in build order and bottom to top, each holding one closed wire per loop of its outline, then
-    a face per region where it stands on nothing, on the plane below it: the view provider colours
-    the outlines by component and the faces red), LayerCount, MinThickness, MaxThickness,
-    DepositedVolume, MaterialVolume, PartVolume, MaxVolumeDifferenceFound,
-    LayersOverVolumeDifference, WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts
-    (tree order), BuildOrder (the components in deposition order), the holes deposited solid to
-    drill afterwards (FilledHoleCount, FilledVolume and, per hole, FilledHoleComponents,
-    FilledHoleCentres, FilledHoleAxes, FilledHoleDiameters, FilledHoleLengths) and, per layer,
-    LayerComponents, LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses,
-    LayerMaxThicknesses, LayerVolumeDifferences, LayerUnsupportedAreas.
+    Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced, each
+    along its own build direction), the layer parameters (MinLayer, MaxLayer, MaxVolumeDifference,
+    EpsAngle, OverhangAngle, VolumeSamples, Strict, FillHoles), the path parameters (BeadWidth,
+    Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature, MeasureCoverage) and
+    Deflection (mm chordal deflection for tessellating the components, 0 = automatic). Outputs:
+    Shape (a compound of one sub-compound per layer, component by component in build order and
+    bottom to top, each holding one closed wire per loop of its outline, then a face per region
+    where it stands on nothing, on the plane below it: the view provider colours the outlines by
+    component and the faces red), LayerCount, MinThickness, MaxThickness, DepositedVolume,
+    MaterialVolume, PartVolume, MaxVolumeDifferenceFound, LayersOverVolumeDifference,
+    WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts (tree order), BuildOrder (the
+    components in deposition order), the holes deposited solid to drill afterwards
+    (FilledHoleCount, FilledVolume and, per hole, FilledHoleComponents, FilledHoleCentres,
+    FilledHoleAxes, FilledHoleDiameters, FilledHoleLengths) and, per layer, LayerComponents,
+    LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses, LayerMaxThicknesses,
+    LayerVolumeDifferences, LayerUnsupportedAreas.
 
     The paths are planned in the same computation; the ``Toolpath`` object linked to this one
     shows them. The full result stays in memory only (``slice_result()``)."""

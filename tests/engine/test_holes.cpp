@@ -148,7 +148,8 @@ TEST(Holes, AClosedCavityNoDrillReachesStaysOpenWithANote) {
     const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 8.0, 45.0);
     EXPECT_TRUE(f.holes.empty());
     ASSERT_EQ(f.notes.size(), 1u);
-    EXPECT_NE(f.notes[0].find("no drill reaches it"), std::string::npos) << f.notes[0];
+    EXPECT_NE(f.notes[0].find("no drill of its diameter reaches it"), std::string::npos)
+        << f.notes[0];
     EXPECT_NE(f.notes[0].find("6 mm across at (20, 10, 20)"), std::string::npos) << f.notes[0];
     EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
     // Opened to the block's side at x = 40, it is a blind hole 30 deep, drilled from there.
@@ -188,6 +189,70 @@ TEST(Holes, AHoleMeetingAnotherStaysOpenWithANote) {
     ASSERT_EQ(g.notes.size(), 1u);
     EXPECT_NE(g.notes[0].find("6 mm across at (25, 10, 20)"), std::string::npos) << g.notes[0];
     expect_volume(g.added_volume_mm3, kPi * 4.0 * 40.0, volume(two));
+}
+
+TEST(Holes, ADrillMustFitAllTheWayIn) {
+    // From the face y = 0 of a block [0,40]x[0,20]x[0,40], along Y at x = 20, z = 20: an entry
+    // 9.2 mm across and 5 deep, then a chamber 10 mm across 5 deeper. The entry is a hole a drill
+    // makes; the chamber is not: a 10 mm drill would widen the entry.
+    TopoDS_Shape s = occ_box(0, 0, 0, 40, 20, 40);
+    s = cut(s, occ_cylinder({20, -1, 20}, Vector3d::UnitY(), 4.6, 6.0));
+    s = cut(s, occ_cylinder({20, 5, 20}, Vector3d::UnitY(), 5.0, 5.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 12.0, 45.0);
+    ASSERT_EQ(f.holes.size(), 1u);
+    EXPECT_NEAR(f.holes[0].diameter_mm, 9.2, 1e-9);
+    EXPECT_NEAR(f.holes[0].length_mm, 5.0, 1e-9);
+    ASSERT_EQ(f.notes.size(), 1u);
+    EXPECT_NE(f.notes[0].find("the hole 10 mm across at (20, 7.5, 20)"), std::string::npos)
+        << f.notes[0];
+    EXPECT_NE(f.notes[0].find("no drill of its diameter reaches it"), std::string::npos)
+        << f.notes[0];
+    expect_volume(f.added_volume_mm3, kPi * 4.6 * 4.6 * 5.0, volume(part));
+}
+
+TEST(Holes, AGrooveRoundAPostIsNoHole) {
+    // A ring groove 10 mm across and 5 deep into the face y = 0, round a post 4 mm across: its
+    // outer wall is a concave cylinder all the way round, but a 10 mm drill would take the post.
+    TopoDS_Shape s = occ_box(0, 0, 0, 40, 20, 40);
+    s = cut(s, occ_cylinder({20, -1, 20}, Vector3d::UnitY(), 5.0, 6.0));
+    s = fuse(s, occ_cylinder({20, 0, 20}, Vector3d::UnitY(), 2.0, 5.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 12.0, 45.0);
+    EXPECT_TRUE(f.holes.empty());
+    ASSERT_EQ(f.notes.size(), 1u);
+    EXPECT_NE(f.notes[0].find("it holds material"), std::string::npos) << f.notes[0];
+    EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
+}
+
+TEST(Holes, AChannelWithASlotAlongItIsNoHoleEvenWhereARibCrossesIt) {
+    // A channel of radius 4 along X through a block [0,40]x[0,20]x[0,20] at y = z = 10, open
+    // upwards through a slot 3 mm wide, and a rib x in [18, 22] across both: each stretch of wall
+    // goes only part of the way round, together more than once. Filling would close the slot too.
+    TopoDS_Shape s = occ_box(0, 0, 0, 40, 20, 20);
+    s = cut(s, occ_cylinder({-1, 10, 10}, Vector3d::UnitX(), 4.0, 42.0));
+    s = cut(s, occ_box(-1, 8.5, 10, 42, 3, 11));
+    s = fuse(s, occ_box(18, 0, 0, 4, 20, 20));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 12.0, 45.0);
+    EXPECT_TRUE(f.holes.empty());
+    EXPECT_TRUE(f.notes.empty());
+    EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
+}
+
+TEST(Holes, CoaxialHolesApartAreTwoHoles) {
+    // Two lugs [10,30]x[0,8]x[0,30] and [10,30]x[22,30]x[0,30] on a plate, one pin hole of
+    // radius 4 along Y through both at x = 20, z = 20: two holes of 8, not one of 30.
+    TopoDS_Shape s = occ_box(0, 0, -5, 40, 30, 5);
+    s = fuse(s, occ_box(10, 0, 0, 20, 8, 30));
+    s = fuse(s, occ_box(10, 22, 0, 20, 8, 30));
+    s = cut(s, occ_cylinder({20, -1, 20}, Vector3d::UnitY(), 4.0, 32.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 8.0, 45.0);
+    ASSERT_EQ(f.holes.size(), 2u);
+    for (const mas::FilledHole& h : f.holes) EXPECT_NEAR(h.length_mm, 8.0, 1e-9);
+    EXPECT_NEAR(f.holes[0].centre.y() + f.holes[1].centre.y(), 30.0, 1e-9);
+    expect_volume(f.added_volume_mm3, 2.0 * kPi * 16.0 * 8.0, volume(part));
 }
 
 TEST(Holes, AConcaveFilletIsNoHole) {

@@ -7,27 +7,32 @@
 //
 // A hole is read on the BREP, never on a mesh:
 // - its wall: the component's cylindrical faces that are concave (the material lies outside the
-//   cylinder: the face's outward normal points at the axis) with a diameter up to the limit;
-//   faces on one axis line with one radius (a cylinder split at a seam or by a decomposition
-//   plane) are one hole, when they go all the way round it (a concave fillet, a slot's round end
-//   or a hole a plane cut lengthwise does not);
+//   cylinder: the face's outward normal points at the axis) with a diameter up to the limit, on
+//   one axis line with one radius (a cylinder split at a seam or by a decomposition plane), whose
+//   extents along the axis overlap or touch: coaxial holes apart (a clevis's two lugs) are two,
+//   and a wall a slot or a rib interrupts is pieces. A piece is a hole when its faces go all the
+//   way round (a concave fillet, a slot's round end or a hole a plane cut lengthwise does not);
 // - its bottom, when blind: every other face all of whose edges the wall's faces share (a flat
 //   bottom, a drill point's cone);
 // - it is filled when its axis makes more than overhang_angle_deg with the build direction (a
-//   hole along the build direction has walls, no ceiling, and is deposited as it is), and a drill
-//   reaches it: from one of its ends, its axis and four lines 0.9 of its radius off it meet none
-//   of the whole part's faces (a straight stretch of bore between two bends of a channel is no
-//   hole a drill reaches, and stays open with a note). A pipe's straight bore up to the diameter
-//   is a hole too, and so is where a branch's bore pierces the wall of the pipe it leaves.
+//   hole along the build direction has walls, no ceiling, and is deposited as it is), and when a
+//   drill makes it. Along the axis and along lines 0.5 and 0.99 of the radius off it, on the
+//   whole part: no material within the wall (a post in a ring groove, a rib across a channel),
+//   and, beyond one of its ends, no face in the way (a closed cavity, a chamber behind a narrower
+//   entry, a stretch of channel between two bends). Otherwise it stays open with a note. A
+//   pipe's straight bore up to the diameter is a hole too, and so is where a branch's bore
+//   pierces the wall of the pipe it leaves.
 // A hole that is a plain cylinder (its wall ends in circles square to its axis, its bottom, if
-// any, is flat) is filled by fusing that cylinder in: all such holes in one Boolean. Any other
-// (leaving a slanted face, opening into a bore) is closed over with OCCT's
-// BRepAlgoAPI_Defeaturing, which removes its faces and extends the faces it went through across
-// it: all at once, else, if that fails or leaves one open, one at a time. A fill is kept only
-// when the result is one valid solid that gained material, and no more than the cylinders of the
-// holes' extents along their axes hold; a hole OCCT does not fill stays open with a note saying
-// why. About 4 ms a hole on a wall with 36 holes (bench/bench_slice.cpp); defeaturing takes some
-// 60 ms a hole there.
+// any, is flat) is filled by fusing that cylinder in: all such holes in one Boolean, which adds
+// exactly the cylinders. Any other (leaving a slanted face, opening into a bore) is closed over
+// with OCCT's BRepAlgoAPI_Defeaturing, which removes its faces and extends the faces it went
+// through across it: all at once, else, if that fails or leaves one open, one at a time. That is
+// kept only when the result is one valid solid that gained material, no more than the holes'
+// cylinders hold, lost none of the component and gained none outside the cylinders (Booleans);
+// a hole OCCT does not fill so stays open with a note saying why. About 5 ms a hole on a wall
+// with 36 holes (bench/bench_slice.cpp); defeaturing takes some 60 ms a hole there. A
+// countersink or counterbore is a hole of its own only if it is a cylinder: a countersink's cone
+// stays.
 #pragma once
 
 #include <Eigen/Core>

@@ -3,9 +3,11 @@
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Defeaturing.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
@@ -43,8 +45,9 @@ struct Hole {
     Vector3d point = Vector3d::Zero();  // on the axis
     Vector3d axis = Vector3d::UnitZ();  // unit
     double radius = 0.0;
-    double lo = 0.0, hi = 0.0;  // extent along the axis from `point`
-    double turn = 0.0;          // angle the wall's faces span around the axis, radians
+    double lo = 0.0, hi = 0.0;    // extent along the axis from `point`, bottom included
+    double wlo = 0.0, whi = 0.0;  // its wall's
+    double turn = 0.0;            // angle the wall's faces span around the axis, radians
     std::vector<TopoDS_Face> faces;
 
     Vector3d centre() const { return point + 0.5 * (lo + hi) * axis; }
@@ -107,8 +110,14 @@ std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& directio
                              const std::vector<Hole>& skip) {
     TopTools_IndexedMapOfShape faces;
     TopExp::MapShapes(solid, TopAbs_FACE, faces);
-    std::vector<Hole> holes;
-    std::vector<int> hole_of(std::size_t(faces.Extent()) + 1, -1);
+    // The concave cylindrical faces that qualify, each with its extent along its axis, grouped by
+    // axis line and radius.
+    struct Wall {
+        int face = 0;
+        double lo = 0.0, hi = 0.0, turn = 0.0;
+    };
+    std::vector<Hole> lines;               // one per axis line and radius: point, axis, radius
+    std::vector<std::vector<Wall>> walls;  // per line
     for (int i = 1; i <= faces.Extent(); ++i) {
         const TopoDS_Face face = TopoDS::Face(faces(i));
         BRepAdaptor_Surface s(face, Standard_True);
@@ -129,24 +138,43 @@ std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& directio
         if (n.dot(radial) >= 0.0) continue;
         if (std::acos(std::min(1.0, std::abs(a.dot(direction)))) <= overhang_rad + 1e-9) continue;
         const double tol = 1e-4 + BRep_Tool::Tolerance(face);
-        int k = -1;
-        for (std::size_t h = 0; h < holes.size(); ++h)
-            if (holes[h].same(p0, a, r, tol)) k = int(h);
-        if (k < 0) {
+        std::size_t k = 0;
+        while (k < lines.size() && !lines[k].same(p0, a, r, tol)) ++k;
+        if (k == lines.size()) {
             Hole h;
             h.point = p0;
             h.axis = a;
             h.radius = r;
-            h.lo = std::numeric_limits<double>::infinity();
-            h.hi = -h.lo;
-            holes.push_back(h);
-            k = int(holes.size()) - 1;
+            lines.push_back(h);
+            walls.emplace_back();
         }
-        Hole& h = holes[std::size_t(k)];
-        h.extend(face);
-        h.turn += u1 - u0;
-        h.faces.push_back(face);
-        hole_of[std::size_t(i)] = k;
+        Hole extent = lines[k];
+        extent.lo = std::numeric_limits<double>::infinity();
+        extent.hi = -extent.lo;
+        extent.extend(face);
+        walls[k].push_back({i, extent.lo, extent.hi, u1 - u0});
+    }
+    // A hole is a run of walls along its line whose extents overlap or touch: coaxial holes apart
+    // (two lugs of a clevis) are two, and a wall a slot or rib interrupts is two pieces, each of
+    // which must go round on its own.
+    std::vector<Hole> holes;
+    std::vector<int> hole_of(std::size_t(faces.Extent()) + 1, -1);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+        std::vector<Wall>& w = walls[k];
+        std::sort(w.begin(), w.end(), [](const Wall& a, const Wall& b) { return a.lo < b.lo; });
+        for (std::size_t i = 0; i < w.size(); ++i) {
+            if (i == 0 || w[i].lo > holes.back().whi + 1e-4) {
+                Hole h = lines[k];
+                h.wlo = h.lo = w[i].lo;
+                h.whi = h.hi = w[i].hi;
+                holes.push_back(h);
+            }
+            Hole& h = holes.back();
+            h.whi = h.hi = std::max(h.whi, w[i].hi);
+            h.turn += w[i].turn;
+            h.faces.push_back(TopoDS::Face(faces(w[i].face)));
+            hole_of[std::size_t(w[i].face)] = int(holes.size()) - 1;
+        }
     }
     // A blind hole's bottom: a face all of whose edges it shares with one hole's wall.
     TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
@@ -184,28 +212,50 @@ std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& directio
     return out;
 }
 
-// Whether a drill reaches the hole along its axis from outside the part `x` was loaded with, at
-// either end: the axis and four lines 0.9 radius off it meet none of its faces beyond that end.
-bool drillable(IntCurvesFace_ShapeIntersector& x, const Hole& hole) {
+// What a drill would meet: whether the hole's cylinder holds material within its wall (a post
+// in a ring groove, a rib across a channel: no drill makes that), and whether a drill of its
+// diameter gets to it along its axis from outside the part, from either end. Read along the
+// axis and along lines 0.5 and 0.99 of the radius off it, on the whole part (`x` and `inside`
+// were loaded with it): beyond an end, any face the line meets is in the drill's way (a narrower
+// entry, a wall across it); within the wall, the line is split where it meets faces and the
+// middle of every piece is classified.
+enum class Access { Drillable, HoldsMaterial, Unreachable };
+
+Access access(IntCurvesFace_ShapeIntersector& x, BRepClass3d_SolidClassifier& inside,
+              const Hole& hole) {
+    const double tol = 1e-4;
     const Vector3d e1 = hole.axis.unitOrthogonal(), e2 = hole.axis.cross(e1);
-    const double r = 0.9 * hole.radius;
-    for (const double sense : {1.0, -1.0}) {
-        const Vector3d end = hole.point + (sense > 0.0 ? hole.hi : hole.lo) * hole.axis;
-        const Vector3d d = sense * hole.axis;
-        bool clear = true;
-        for (const Vector3d& off : {Vector3d(Vector3d::Zero()), Vector3d(r * e1), Vector3d(-r * e1),
-                                    Vector3d(r * e2), Vector3d(-r * e2)}) {
-            const Vector3d p = end + off;
-            x.Perform(gp_Lin(gp_Pnt(p.x(), p.y(), p.z()), gp_Dir(d.x(), d.y(), d.z())), 1e-3,
-                      Precision::Infinite());
-            if (!x.IsDone() || x.NbPnt() > 0) {
-                clear = false;
-                break;
-            }
-        }
-        if (clear) return true;
+    std::vector<Vector3d> offsets{Vector3d::Zero()};
+    for (int k = 0; k < 8; ++k) {
+        const double a = kPi * k / 4.0;
+        offsets.push_back(0.99 * hole.radius * (std::cos(a) * e1 + std::sin(a) * e2));
+        if (k % 2 == 0)
+            offsets.push_back(0.5 * hole.radius *
+                              (std::cos(a + kPi / 4) * e1 + std::sin(a + kPi / 4) * e2));
     }
-    return false;
+    bool plus = true, minus = true;  // a drill gets in from that end
+    for (const Vector3d& off : offsets) {
+        const Vector3d origin = hole.point + off;
+        x.Perform(gp_Lin(gp_Pnt(origin.x(), origin.y(), origin.z()),
+                         gp_Dir(hole.axis.x(), hole.axis.y(), hole.axis.z())),
+                  -Precision::Infinite(), Precision::Infinite());
+        if (!x.IsDone()) return Access::Unreachable;
+        std::vector<double> cuts{hole.wlo + tol};
+        for (int i = 1; i <= x.NbPnt(); ++i) {
+            const double w = x.WParameter(i);
+            if (w > hole.hi + tol) plus = false;
+            if (w < hole.lo - tol) minus = false;
+            if (w > hole.wlo + tol && w < hole.whi - tol) cuts.push_back(w);
+        }
+        cuts.push_back(hole.whi - tol);
+        std::sort(cuts.begin(), cuts.end());
+        for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+            const Vector3d m = origin + 0.5 * (cuts[i] + cuts[i + 1]) * hole.axis;
+            inside.Perform(gp_Pnt(m.x(), m.y(), m.z()), 1e-7);
+            if (inside.State() == TopAbs_IN) return Access::HoldsMaterial;
+        }
+    }
+    return plus || minus ? Access::Drillable : Access::Unreachable;
 }
 
 // The one solid of `shape`, when it has exactly one and OCCT's check accepts it; else null.
@@ -215,6 +265,58 @@ TopoDS_Shape single_valid_solid(const TopoDS_Shape& shape) {
     for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next(), ++solids) result = e.Current();
     if (solids != 1 || !BRepCheck_Analyzer(result).IsValid()) return {};
     return result;
+}
+
+// The holes' cylinders grown by `grow` all round, as Boolean tools.
+TopTools_ListOfShape cylinders(const std::vector<Hole>& holes, double grow) {
+    TopTools_ListOfShape out;
+    for (const Hole& h : holes) {
+        const Vector3d base = h.point + (h.lo - grow) * h.axis;
+        out.Append(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()),
+                                                   gp_Dir(h.axis.x(), h.axis.y(), h.axis.z())),
+                                            h.radius + grow, h.hi - h.lo + 2.0 * grow)
+                       .Shape());
+    }
+    return out;
+}
+
+double volume_of_cut(const TopoDS_Shape& shape, const TopTools_ListOfShape& tools) {
+    TopTools_ListOfShape args;
+    args.Append(shape);
+    BRepAlgoAPI_Cut cut;
+    cut.SetArguments(args);
+    cut.SetTools(tools);
+    cut.SetRunParallel(Standard_False);
+    cut.Build();
+    if (!cut.IsDone() || cut.HasErrors()) return -1.0;
+    return occ::volume_of(cut.Shape());
+}
+
+// Whether `after` holds all of `before` and adds material only within the holes' cylinders:
+// what OCCT's defeaturing did is closing the holes over, nothing else.
+bool only_closes_over(const TopoDS_Shape& before, const TopoDS_Shape& after,
+                      const std::vector<Hole>& holes, double volume, std::string& why) {
+    const double tol = 1e-6 * volume + 1e-6;
+    TopTools_ListOfShape result;
+    result.Append(after);
+    const double lost = volume_of_cut(before, result);
+    const TopTools_ListOfShape tools = cylinders(holes, 1e-4);
+    const double outside_after = volume_of_cut(after, tools);
+    const double outside_before = volume_of_cut(before, tools);
+    if (lost < 0.0 || outside_after < 0.0 || outside_before < 0.0) {
+        why = "OCCT could not compare the part before and after closing it over";
+        return false;
+    }
+    if (lost > tol) {
+        why = "closing it over took " + std::to_string(lost) + " mm^3 off the part";
+        return false;
+    }
+    if (outside_after - outside_before > tol) {
+        why = "closing it over added " + std::to_string(outside_after - outside_before) +
+              " mm^3 outside it";
+        return false;
+    }
+    return true;
 }
 
 // `solid` with the faces of `holes` removed, or a null shape and why not.
@@ -254,6 +356,7 @@ TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const std::vector<Ho
             why = s.str();
             return {};
         }
+        if (!only_closes_over(solid, result, holes, volume, why)) return {};
         return result;
     } catch (const Standard_Failure& f) {
         why = occ::failure_message("OCCT failed closing it over", f);
@@ -356,6 +459,97 @@ FilledHole filled_hole(const Hole& hole, const Vector3d& direction) {
     return f;
 }
 
+// fill_holes() past its checks: `out.solid` is the component, `whole` the part.
+void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, double overhang_rad,
+              const TopoDS_Shape& whole) {
+    TopoDS_Shape solid = occ::occt(out.solid);
+    std::vector<Hole> kept_open;
+    IntCurvesFace_ShapeIntersector part_faces;
+    BRepClass3d_SolidClassifier part_inside;
+    bool loaded = false;
+    // Whether a drill makes `h`; if not, a note says why and it is kept open.
+    auto drillable = [&](const Hole& h) {
+        if (!loaded) {
+            part_faces.Load(whole, 1e-7);
+            part_inside.Load(whole);
+            loaded = true;
+        }
+        const Access a = access(part_faces, part_inside, h);
+        if (a == Access::Drillable) return true;
+        out.notes.push_back(describe(h) + " stays open: " +
+                            (a == Access::HoldsMaterial
+                                 ? "it holds material (a post or a rib in it): no drill makes it"
+                                 : "no drill of its diameter reaches it along its axis from "
+                                   "outside the part"));
+        kept_open.push_back(h);
+        return false;
+    };
+    std::vector<Hole> holes;
+    for (Hole& h : find_holes(solid, direction, max_diameter, overhang_rad, {}))
+        if (drillable(h)) holes.push_back(std::move(h));
+    if (holes.empty()) return;
+    double volume = occ::volume_of(solid);
+    // Square-ended holes get their cylinders fused in, in one Boolean: far quicker than OCCT's
+    // defeaturing, which closes holes over by rebuilding the faces around each.
+    std::vector<Hole> square, other;
+    for (Hole& h : holes) (square_ended(h) ? square : other).push_back(std::move(h));
+    if (!square.empty()) {
+        double added = 0.0;
+        std::string why;
+        const TopoDS_Shape filled = plug(solid, volume, square, added, why);
+        if (filled.IsNull()) {
+            other.insert(other.end(), square.begin(), square.end());
+        } else {
+            for (const Hole& h : square) out.holes.push_back(filled_hole(h, direction));
+            out.added_volume_mm3 += added;
+            solid = filled;
+            volume += added;
+        }
+    }
+    holes = std::move(other);
+    // The others all at once, kept when none of them is left: one defeaturing instead of one a
+    // hole, each on the whole solid.
+    if (holes.size() > 1) {
+        double added = 0.0;
+        std::string why;
+        const TopoDS_Shape filled = fill(solid, volume, holes, added, why);
+        if (!filled.IsNull() &&
+            find_holes(filled, direction, max_diameter, overhang_rad, kept_open).empty()) {
+            for (const Hole& h : holes) out.holes.push_back(filled_hole(h, direction));
+            out.added_volume_mm3 += added;
+            out.solid = occ::wrap(filled);
+            return;
+        }
+    }
+    // Else one at a time, each found again on the last result (a fill rebuilds the faces around
+    // it), to tell those OCCT fills from those it does not. A round fills a hole, which takes its
+    // faces away, or keeps one open: the bound is a guard.
+    if (!holes.empty()) {
+        TopTools_IndexedMapOfShape faces;
+        TopExp::MapShapes(solid, TopAbs_FACE, faces);
+        for (int round = 0; round <= 2 * faces.Extent(); ++round) {
+            const std::vector<Hole> left =
+                find_holes(solid, direction, max_diameter, overhang_rad, kept_open);
+            if (left.empty()) break;
+            const Hole& hole = left.front();
+            if (!drillable(hole)) continue;
+            double added = 0.0;
+            std::string why;
+            const TopoDS_Shape filled = fill(solid, volume, {hole}, added, why);
+            if (filled.IsNull()) {
+                out.notes.push_back(describe(hole) + " stays open: " + why);
+                kept_open.push_back(hole);
+                continue;
+            }
+            out.holes.push_back(filled_hole(hole, direction));
+            out.added_volume_mm3 += added;
+            solid = filled;
+            volume += added;
+        }
+    }
+    if (!out.holes.empty()) out.solid = occ::wrap(solid);
+}
+
 }  // namespace
 
 HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
@@ -376,88 +570,13 @@ HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
     out.solid = input;
     if (max_diameter_mm == 0.0) return out;
     out.solid = input.single_solid("the component");
-    const double overhang_rad = overhang_angle_deg * kPi / 180.0;
-    TopoDS_Shape solid = occ::occt(out.solid);
-    std::vector<Hole> kept_open;
-    std::vector<Hole> holes = find_holes(solid, direction, max_diameter_mm, overhang_rad, {});
-    if (holes.empty()) return out;
-    // The holes a drill reaches; a note for each other one.
-    IntCurvesFace_ShapeIntersector part_faces;
-    part_faces.Load(part.is_null() ? solid : occ::occt(part), 1e-7);
-    std::vector<Hole> reached;
-    for (Hole& h : holes) {
-        if (drillable(part_faces, h)) {
-            reached.push_back(std::move(h));
-        } else {
-            out.notes.push_back(describe(h) +
-                                " stays open: no drill reaches it along its axis from outside "
-                                "the part");
-            kept_open.push_back(std::move(h));
-        }
+    try {
+        fill_all(out, direction, max_diameter_mm, overhang_angle_deg * kPi / 180.0,
+                 part.is_null() ? occ::occt(out.solid) : occ::occt(part));
+    } catch (const Standard_Failure& f) {
+        throw Error(ErrorCode::GeometryFailure,
+                    occ::failure_message("OCCT failed filling the component's holes", f));
     }
-    holes = std::move(reached);
-    if (holes.empty()) return out;
-    double volume = occ::volume_of(solid);
-    // Square-ended holes get their cylinders fused in, in one Boolean: far quicker than OCCT's
-    // defeaturing, which closes holes over by rebuilding the faces around each.
-    std::vector<Hole> square, other;
-    for (Hole& h : holes) (square_ended(h) ? square : other).push_back(std::move(h));
-    if (!square.empty()) {
-        double added = 0.0;
-        std::string why;
-        const TopoDS_Shape filled = plug(solid, volume, square, added, why);
-        if (filled.IsNull()) {
-            other.insert(other.end(), square.begin(), square.end());
-        } else {
-            for (const Hole& h : square) out.holes.push_back(filled_hole(h, direction));
-            out.added_volume_mm3 += added;
-            solid = filled;
-            volume += added;
-        }
-    }
-    holes = std::move(other);
-    if (holes.empty()) {
-        out.solid = occ::wrap(solid);
-        return out;
-    }
-    // The others all at once, kept when none of them is left: one defeaturing instead of one a
-    // hole, each on the whole solid.
-    if (holes.size() > 1) {
-        double added = 0.0;
-        std::string why;
-        const TopoDS_Shape filled = fill(solid, volume, holes, added, why);
-        if (!filled.IsNull() &&
-            find_holes(filled, direction, max_diameter_mm, overhang_rad, kept_open).empty()) {
-            for (const Hole& h : holes) out.holes.push_back(filled_hole(h, direction));
-            out.added_volume_mm3 += added;
-            out.solid = occ::wrap(filled);
-            return out;
-        }
-    }
-    // Else one at a time, each found again on the last result (a fill rebuilds the faces around
-    // it), to tell those OCCT fills from those it does not. A round fills a hole, which takes its
-    // faces away, or keeps one open: the bound is a guard.
-    TopTools_IndexedMapOfShape faces;
-    TopExp::MapShapes(solid, TopAbs_FACE, faces);
-    for (int round = 0; round <= 2 * faces.Extent(); ++round) {
-        const std::vector<Hole> left =
-            find_holes(solid, direction, max_diameter_mm, overhang_rad, kept_open);
-        if (left.empty()) break;
-        const Hole& hole = left.front();
-        double added = 0.0;
-        std::string why;
-        const TopoDS_Shape filled = fill(solid, volume, {hole}, added, why);
-        if (filled.IsNull()) {
-            out.notes.push_back(describe(hole) + " stays open: " + why);
-            kept_open.push_back(hole);
-            continue;
-        }
-        out.holes.push_back(filled_hole(hole, direction));
-        out.added_volume_mm3 += added;
-        solid = filled;
-        volume += added;
-    }
-    if (!out.holes.empty()) out.solid = occ::wrap(solid);
     return out;
 }
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <BRepAlgoAPI_Cut.hxx>
-#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <string>
@@ -223,6 +223,48 @@ TEST(Holes, AGrooveRoundAPostIsNoHole) {
     ASSERT_EQ(f.notes.size(), 1u);
     EXPECT_NE(f.notes[0].find("it holds material"), std::string::npos) << f.notes[0];
     EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
+}
+
+TEST(Holes, AGrooveRoundAHollowBossOrAPinOffTheAxisIsNoHole) {
+    // A ring groove 10 mm across and 5 deep into the face y = 0 round a boss 8 mm across with a
+    // bore 6 mm across: the groove holds the boss's ring (no drill makes it), the bore is a
+    // blind hole a 6 mm drill makes.
+    TopoDS_Shape s = occ_box(0, 0, 0, 40, 20, 40);
+    s = cut(s, occ_cylinder({20, -1, 20}, Vector3d::UnitY(), 5.0, 6.0));
+    s = fuse(s, occ_cylinder({20, 0, 20}, Vector3d::UnitY(), 4.0, 5.0));
+    s = cut(s, occ_cylinder({20, -1, 20}, Vector3d::UnitY(), 3.0, 6.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 12.0, 45.0);
+    ASSERT_EQ(f.holes.size(), 1u);
+    EXPECT_NEAR(f.holes[0].diameter_mm, 6.0, 1e-9);
+    ASSERT_EQ(f.notes.size(), 1u);
+    EXPECT_NE(f.notes[0].find("the hole 10 mm across"), std::string::npos) << f.notes[0];
+    EXPECT_NE(f.notes[0].find("it holds material"), std::string::npos) << f.notes[0];
+    expect_volume(f.added_volume_mm3, kPi * 9.0 * 5.0, volume(part));
+    // A pocket 10 mm across and 5 deep with a pin 1.2 mm across standing in it, 3.7 mm off its
+    // axis: no drill makes it either.
+    TopoDS_Shape p = occ_box(0, 0, 0, 40, 20, 40);
+    p = cut(p, occ_cylinder({20, -1, 20}, Vector3d::UnitY(), 5.0, 6.0));
+    p = fuse(p, occ_cylinder({23.7, 0, 20}, Vector3d::UnitY(), 0.6, 5.0));
+    const mas::HoleFill g = mas::fill_holes(from_occt(p), Vector3d::UnitZ(), 12.0, 45.0);
+    EXPECT_TRUE(g.holes.empty());
+    ASSERT_EQ(g.notes.size(), 1u);
+    EXPECT_NE(g.notes[0].find("it holds material"), std::string::npos) << g.notes[0];
+}
+
+TEST(Holes, AHoleThroughABallIsClosedOverAlongItsCurvedMouths) {
+    // A ball 30 mm across with a hole 6 mm across through it along X, 1 mm off its centre: the
+    // mouths lie on the sphere, whose face the hole only goes through (no bottom of it), and the
+    // faces rebuilt across them bulge past the rims.
+    const TopoDS_Shape ball = BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 15.0).Shape();
+    const mas::Shape part =
+        from_occt(cut(ball, occ_cylinder({-20, 0, 1}, Vector3d::UnitX(), 3.0, 40.0)));
+    const double hole = 4.0 / 3.0 * kPi * 15.0 * 15.0 * 15.0 - volume(part);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 6.0, 45.0);
+    ASSERT_EQ(f.holes.size(), 1u) << (f.notes.empty() ? "" : f.notes[0]);
+    EXPECT_NEAR(f.holes[0].centre.x(), 0.0, 1e-6);
+    EXPECT_NEAR(f.holes[0].centre.z(), 1.0, 1e-6);
+    expect_volume(f.added_volume_mm3, hole, volume(part));
 }
 
 TEST(Holes, AChannelWithASlotAlongItIsNoHoleEvenWhereARibCrossesIt) {

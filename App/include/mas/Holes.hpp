@@ -12,27 +12,30 @@
 //   extents along the axis overlap or touch: coaxial holes apart (a clevis's two lugs) are two,
 //   and a wall a slot or a rib interrupts is pieces. A piece is a hole when its faces go all the
 //   way round (a concave fillet, a slot's round end or a hole a plane cut lengthwise does not);
-// - its bottom, when blind: every other face all of whose edges the wall's faces share (a flat
-//   bottom, a drill point's cone);
+// - its bottom, when blind: a plane, a cone or a sphere no wider than the hole all of whose edges
+//   the wall's faces share (a flat bottom, a drill point, a ball end; a sphere or torus the hole
+//   goes through has only its seams for other edges, and is no bottom);
 // - it is filled when its axis makes more than overhang_angle_deg with the build direction (a
 //   hole along the build direction has walls, no ceiling, and is deposited as it is), and when a
-//   drill makes it. Along the axis and along lines 0.5 and 0.99 of the radius off it, on the
-//   whole part: no material within the wall (a post in a ring groove, a rib across a channel),
-//   and, beyond one of its ends, no face in the way (a closed cavity, a chamber behind a narrower
-//   entry, a stretch of channel between two bends). Otherwise it stays open with a note. A
-//   pipe's straight bore up to the diameter is a hole too, and so is where a branch's bore
-//   pierces the wall of the pipe it leaves.
+//   drill makes it: the whole part has no material within its wall (a post or a hollow boss in a
+//   ring groove, a pin, a rib across a channel), nor, beyond one of its ends, within its radius (a
+//   closed cavity, a chamber behind a narrower entry, a stretch of channel between two bends).
+//   Read exactly, with one Boolean for all of a component's holes: the part in common with probe
+//   cylinders 0.01 mm (at most 1 % of the radius) inside each hole, one along its wall and one from
+//   each end out past the part, each piece of the common traced to its probe by the Boolean's
+//   history. Otherwise it stays open with a note. A pipe's straight bore up to the diameter is a
+//   hole too, and so is where a branch's bore pierces the wall of the pipe it leaves.
 // A hole that is a plain cylinder (its wall ends in circles square to its axis, its bottom, if
 // any, is flat) is filled by fusing that cylinder in: all such holes in one Boolean, which adds
 // exactly the cylinders. Any other (leaving a slanted face, opening into a bore) is closed over
 // with OCCT's BRepAlgoAPI_Defeaturing, which removes its faces and extends the faces it went
 // through across it: all at once, else, if that fails or leaves one open, one at a time. That is
 // kept only when the result is one valid solid that gained material, no more than the holes'
-// cylinders hold, lost none of the component and gained none outside the cylinders (Booleans);
-// a hole OCCT does not fill so stays open with a note saying why. About 5 ms a hole on a wall
-// with 36 holes (bench/bench_slice.cpp); defeaturing takes some 60 ms a hole there. A
-// countersink or counterbore is a hole of its own only if it is a cylinder: a countersink's cone
-// stays.
+// cylinders hold, lost none of the component and gained none outside the cylinders, open-ended (a
+// face rebuilt across a mouth in a curved face bulges past the rim; Booleans); a hole OCCT does
+// not fill so stays open with a note saying why. About 5 ms a hole on a wall with 36 holes
+// (bench/bench_slice.cpp); defeaturing takes some 60 ms a hole there. A countersink or counterbore
+// is a hole of its own only if it is a cylinder: a countersink's cone stays.
 #pragma once
 
 #include <Eigen/Core>

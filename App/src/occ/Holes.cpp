@@ -3,15 +3,18 @@
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Defeaturing.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBndLib.hxx>
 #include <BRepCheck_Analyzer.hxx>
-#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
-#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
 #include <Precision.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
@@ -23,7 +26,6 @@
 #include <TopoDS_Face.hxx>
 #include <algorithm>
 #include <cmath>
-#include <gp_Lin.hxx>
 #include <limits>
 #include <sstream>
 
@@ -195,6 +197,12 @@ std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& directio
         }
         if (!bottom || owner < 0) continue;
         Hole& h = holes[std::size_t(owner)];
+        // A flat bottom, a drill point's cone or a ball end's sphere no wider than the hole: a
+        // sphere or torus the hole merely goes through has its seams for other edges.
+        const BRepAdaptor_Surface bs(TopoDS::Face(faces(i)), Standard_False);
+        if (bs.GetType() != GeomAbs_Plane && bs.GetType() != GeomAbs_Cone &&
+            !(bs.GetType() == GeomAbs_Sphere && bs.Sphere().Radius() <= h.radius * (1.0 + 1e-6)))
+            continue;
         h.faces.push_back(TopoDS::Face(faces(i)));
         h.extend(h.faces.back());
     }
@@ -212,50 +220,101 @@ std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& directio
     return out;
 }
 
-// What a drill would meet: whether the hole's cylinder holds material within its wall (a post
-// in a ring groove, a rib across a channel: no drill makes that), and whether a drill of its
-// diameter gets to it along its axis from outside the part, from either end. Read along the
-// axis and along lines 0.5 and 0.99 of the radius off it, on the whole part (`x` and `inside`
-// were loaded with it): beyond an end, any face the line meets is in the drill's way (a narrower
-// entry, a wall across it); within the wall, the line is split where it meets faces and the
-// middle of every piece is classified.
+TopoDS_Shape make_cylinder(const Vector3d& base, const Vector3d& axis, double radius,
+                           double length) {
+    return BRepPrimAPI_MakeCylinder(
+               gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(axis.x(), axis.y(), axis.z())),
+               radius, length)
+        .Shape();
+}
+
+// What a drill would meet. Within the hole's wall, material means no drill makes it (a post in
+// a ring groove, a rib across a channel); beyond an end, material blocks that end (a narrower
+// entry, a wall across it, a closed cavity's ends). Exact, with one Boolean for all the holes:
+// the whole part in common with, per hole, three probe cylinders a hair inside its radius: one
+// along its wall, one from each end out past the part. Each piece of material in common goes
+// to the probes it came from (the Boolean's history).
 enum class Access { Drillable, HoldsMaterial, Unreachable };
 
-Access access(IntCurvesFace_ShapeIntersector& x, BRepClass3d_SolidClassifier& inside,
-              const Hole& hole) {
-    const double tol = 1e-4;
-    const Vector3d e1 = hole.axis.unitOrthogonal(), e2 = hole.axis.cross(e1);
-    std::vector<Vector3d> offsets{Vector3d::Zero()};
-    for (int k = 0; k < 8; ++k) {
-        const double a = kPi * k / 4.0;
-        offsets.push_back(0.99 * hole.radius * (std::cos(a) * e1 + std::sin(a) * e2));
-        if (k % 2 == 0)
-            offsets.push_back(0.5 * hole.radius *
-                              (std::cos(a + kPi / 4) * e1 + std::sin(a + kPi / 4) * e2));
+std::vector<Access> access(const TopoDS_Shape& whole, const std::vector<Hole>& holes) {
+    struct Probe {
+        std::size_t hole;
+        int side;  // 0: along the wall, +1 / -1: beyond the upper / lower end
+        Vector3d base;
+        double radius, length;
+    };
+    // mm off the hole's wall and ends, well within a drill's tolerance, and far enough for OCCT's
+    // Booleans not to meet nearly coincident surfaces.
+    const double gap = 1e-2;
+    Bnd_Box part_box;
+    BRepBndLib::Add(whole, part_box);
+    double x0, y0, z0, x1, y1, z1;
+    part_box.Get(x0, y0, z0, x1, y1, z1);
+    std::vector<Probe> probes;
+    std::vector<TopoDS_Shape> probe_shapes;
+    TopTools_ListOfShape args, tools;
+    args.Append(whole);
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+        const Hole& h = holes[i];
+        const double r = h.radius - std::min(gap, 1e-2 * h.radius);
+        const double along = h.whi - h.wlo - 2.0 * gap;
+        if (along > 0.0) probes.push_back({i, 0, h.point + (h.wlo + gap) * h.axis, r, along});
+        // The part's extent along the axis: a probe reaches past it, no further.
+        double first = std::numeric_limits<double>::infinity(), last = -first;
+        for (const double x : {x0, x1})
+            for (const double y : {y0, y1})
+                for (const double z : {z0, z1}) {
+                    const double t = (Vector3d(x, y, z) - h.point).dot(h.axis);
+                    first = std::min(first, t);
+                    last = std::max(last, t);
+                }
+        if (last > h.hi + gap)
+            probes.push_back({i, 1, h.point + (h.hi + gap) * h.axis, r, last + 1.0 - h.hi - gap});
+        if (first < h.lo - gap)
+            probes.push_back(
+                {i, -1, h.point + (first - 1.0) * h.axis, r, h.lo - gap - first + 1.0});
     }
-    bool plus = true, minus = true;  // a drill gets in from that end
-    for (const Vector3d& off : offsets) {
-        const Vector3d origin = hole.point + off;
-        x.Perform(gp_Lin(gp_Pnt(origin.x(), origin.y(), origin.z()),
-                         gp_Dir(hole.axis.x(), hole.axis.y(), hole.axis.z())),
-                  -Precision::Infinite(), Precision::Infinite());
-        if (!x.IsDone()) return Access::Unreachable;
-        std::vector<double> cuts{hole.wlo + tol};
-        for (int i = 1; i <= x.NbPnt(); ++i) {
-            const double w = x.WParameter(i);
-            if (w > hole.hi + tol) plus = false;
-            if (w < hole.lo - tol) minus = false;
-            if (w > hole.wlo + tol && w < hole.whi - tol) cuts.push_back(w);
-        }
-        cuts.push_back(hole.whi - tol);
-        std::sort(cuts.begin(), cuts.end());
-        for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-            const Vector3d m = origin + 0.5 * (cuts[i] + cuts[i + 1]) * hole.axis;
-            inside.Perform(gp_Pnt(m.x(), m.y(), m.z()), 1e-7);
-            if (inside.State() == TopAbs_IN) return Access::HoldsMaterial;
-        }
+    for (const Probe& p : probes) {
+        probe_shapes.push_back(make_cylinder(p.base, holes[p.hole].axis, p.radius, p.length));
+        tools.Append(probe_shapes.back());
     }
-    return plus || minus ? Access::Drillable : Access::Unreachable;
+    std::vector<Access> out(holes.size(), Access::Drillable);
+    BRepAlgoAPI_Common common;
+    common.SetArguments(args);
+    common.SetTools(tools);
+    common.SetRunParallel(Standard_False);
+    common.SetToFillHistory(Standard_True);
+    common.Build();
+    if (!common.IsDone() || common.HasErrors()) {
+        std::fill(out.begin(), out.end(), Access::Unreachable);  // unknown: leave them open
+        return out;
+    }
+    // A probe meets material when pieces of it are in the common: itself, whole (not split, not
+    // deleted), or the pieces it was split into.
+    const double tiny = 1e-9 * occ::volume_of(whole) + 1e-12;
+    std::vector<char> hit(probes.size(), 0);
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+        const TopoDS_Shape& probe = probe_shapes[k];
+        if (common.IsDeleted(probe)) continue;
+        const TopTools_ListOfShape& pieces = common.Modified(probe);
+        double in = 0.0;
+        if (pieces.IsEmpty()) {
+            in = occ::volume_of(probe);
+        } else {
+            for (const TopoDS_Shape& piece : pieces) in += occ::volume_of(piece);
+        }
+        hit[k] = in > tiny;
+    }
+    std::vector<char> plus(holes.size(), 0), minus(holes.size(), 0);
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+        if (!hit[k]) continue;
+        const std::size_t i = probes[k].hole;
+        if (probes[k].side == 0) out[i] = Access::HoldsMaterial;
+        (probes[k].side > 0 ? plus : minus)[i] = probes[k].side != 0;
+    }
+    for (std::size_t i = 0; i < holes.size(); ++i)
+        if (out[i] == Access::Drillable && plus[i] && minus[i]) out[i] = Access::Unreachable;
+    return out;
 }
 
 // The one solid of `shape`, when it has exactly one and OCCT's check accepts it; else null.
@@ -267,16 +326,12 @@ TopoDS_Shape single_valid_solid(const TopoDS_Shape& shape) {
     return result;
 }
 
-// The holes' cylinders grown by `grow` all round, as Boolean tools.
-TopTools_ListOfShape cylinders(const std::vector<Hole>& holes, double grow) {
+// The holes' cylinders grown by `grow` all round and `far` past both ends, as Boolean tools.
+TopTools_ListOfShape cylinders(const std::vector<Hole>& holes, double grow, double far) {
     TopTools_ListOfShape out;
-    for (const Hole& h : holes) {
-        const Vector3d base = h.point + (h.lo - grow) * h.axis;
-        out.Append(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()),
-                                                   gp_Dir(h.axis.x(), h.axis.y(), h.axis.z())),
-                                            h.radius + grow, h.hi - h.lo + 2.0 * grow)
-                       .Shape());
-    }
+    for (const Hole& h : holes)
+        out.Append(make_cylinder(h.point + (h.lo - far) * h.axis, h.axis, h.radius + grow,
+                                 h.hi - h.lo + 2.0 * far));
     return out;
 }
 
@@ -292,15 +347,20 @@ double volume_of_cut(const TopoDS_Shape& shape, const TopTools_ListOfShape& tool
     return occ::volume_of(cut.Shape());
 }
 
-// Whether `after` holds all of `before` and adds material only within the holes' cylinders:
-// what OCCT's defeaturing did is closing the holes over, nothing else.
+// Whether `after` holds all of `before` and adds material only within the holes' cylinders
+// (open-ended: a face rebuilt across a hole's mouth in a curved face bulges past its rim): what
+// OCCT's defeaturing did is closing the holes over, nothing else.
 bool only_closes_over(const TopoDS_Shape& before, const TopoDS_Shape& after,
                       const std::vector<Hole>& holes, double volume, std::string& why) {
-    const double tol = 1e-6 * volume + 1e-6;
+    double most = 0.0;
+    for (const Hole& h : holes) most += kPi * h.radius * h.radius * (h.hi - h.lo);
+    const double tol = 1e-6 * most + 1e-9 * volume + 1e-9;
+    Bnd_Box box;
+    BRepBndLib::Add(before, box);
     TopTools_ListOfShape result;
     result.Append(after);
     const double lost = volume_of_cut(before, result);
-    const TopTools_ListOfShape tools = cylinders(holes, 1e-4);
+    const TopTools_ListOfShape tools = cylinders(holes, 1e-4, std::sqrt(box.SquareExtent()) + 1.0);
     const double outside_after = volume_of_cut(after, tools);
     const double outside_before = volume_of_cut(before, tools);
     if (lost < 0.0 || outside_after < 0.0 || outside_before < 0.0) {
@@ -412,12 +472,7 @@ TopoDS_Shape plug(const TopoDS_Shape& solid, double volume, const std::vector<Ho
         args.Append(solid);
         double most = 0.0;
         for (const Hole& h : holes) {
-            const Vector3d base = h.point + h.lo * h.axis;
-            tools.Append(
-                BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()),
-                                                gp_Dir(h.axis.x(), h.axis.y(), h.axis.z())),
-                                         h.radius, h.hi - h.lo)
-                    .Shape());
+            tools.Append(make_cylinder(h.point + h.lo * h.axis, h.axis, h.radius, h.hi - h.lo));
             most += kPi * h.radius * h.radius * (h.hi - h.lo);
         }
         BRepAlgoAPI_Fuse fuse;
@@ -464,29 +519,27 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
               const TopoDS_Shape& whole) {
     TopoDS_Shape solid = occ::occt(out.solid);
     std::vector<Hole> kept_open;
-    IntCurvesFace_ShapeIntersector part_faces;
-    BRepClass3d_SolidClassifier part_inside;
-    bool loaded = false;
-    // Whether a drill makes `h`; if not, a note says why and it is kept open.
-    auto drillable = [&](const Hole& h) {
-        if (!loaded) {
-            part_faces.Load(whole, 1e-7);
-            part_inside.Load(whole);
-            loaded = true;
+    // The holes a drill makes; for each other one a note says why, and it is kept open.
+    auto drillable = [&](std::vector<Hole> found) {
+        const std::vector<Access> a = access(whole, found);
+        std::vector<Hole> out_holes;
+        for (std::size_t i = 0; i < found.size(); ++i) {
+            if (a[i] == Access::Drillable) {
+                out_holes.push_back(std::move(found[i]));
+                continue;
+            }
+            out.notes.push_back(
+                describe(found[i]) + " stays open: " +
+                (a[i] == Access::HoldsMaterial
+                     ? "it holds material (a post or a rib in it): no drill makes it"
+                     : "no drill of its diameter reaches it along its axis from outside the "
+                       "part"));
+            kept_open.push_back(std::move(found[i]));
         }
-        const Access a = access(part_faces, part_inside, h);
-        if (a == Access::Drillable) return true;
-        out.notes.push_back(describe(h) + " stays open: " +
-                            (a == Access::HoldsMaterial
-                                 ? "it holds material (a post or a rib in it): no drill makes it"
-                                 : "no drill of its diameter reaches it along its axis from "
-                                   "outside the part"));
-        kept_open.push_back(h);
-        return false;
+        return out_holes;
     };
-    std::vector<Hole> holes;
-    for (Hole& h : find_holes(solid, direction, max_diameter, overhang_rad, {}))
-        if (drillable(h)) holes.push_back(std::move(h));
+    std::vector<Hole> holes =
+        drillable(find_holes(solid, direction, max_diameter, overhang_rad, {}));
     if (holes.empty()) return;
     double volume = occ::volume_of(solid);
     // Square-ended holes get their cylinders fused in, in one Boolean: far quicker than OCCT's
@@ -507,6 +560,7 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
         }
     }
     holes = std::move(other);
+    const std::vector<Hole> checked_holes = holes;
     // The others all at once, kept when none of them is left: one defeaturing instead of one a
     // hole, each on the whole solid.
     if (holes.size() > 1) {
@@ -531,8 +585,16 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
             const std::vector<Hole> left =
                 find_holes(solid, direction, max_diameter, overhang_rad, kept_open);
             if (left.empty()) break;
-            const Hole& hole = left.front();
-            if (!drillable(hole)) continue;
+            // Checked already, unless a fill changed it.
+            bool checked = false;
+            for (const Hole& h : checked_holes)
+                if (h.same(left.front().point, left.front().axis, left.front().radius, 1e-4) &&
+                    (h.centre() - left.front().centre()).norm() < 1e-4)
+                    checked = true;
+            const std::vector<Hole> one =
+                checked ? std::vector<Hole>{left.front()} : drillable({left.front()});
+            if (one.empty()) continue;
+            const Hole& hole = one.front();
             double added = 0.0;
             std::string why;
             const TopoDS_Shape filled = fill(solid, volume, {hole}, added, why);

@@ -310,6 +310,26 @@ TEST(Holes, AConcaveFilletIsNoHole) {
     EXPECT_DOUBLE_EQ(volume(f.solid), volume(part));
 }
 
+TEST(Holes, CancellingStopsTheFill) {
+    const mas::Shape part = from_occt(clevis_ear(true, false));
+    int calls = 0;
+    const mas::Progress cancel([&](double, const std::string&) {
+        ++calls;
+        throw mas::Error(mas::ErrorCode::Cancelled, "stop");
+    });
+    try {
+        mas::fill_holes(part, Vector3d::UnitZ(), 12.0, 45.0, mas::Shape(), cancel);
+        FAIL() << "not cancelled";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::Cancelled);
+    }
+    EXPECT_EQ(calls, 1);
+    // With no hole to fill, it is never asked.
+    mas::fill_holes(part, Vector3d::UnitZ(), 0.0, 45.0, mas::Shape(), cancel);
+    mas::fill_holes(part, Vector3d::UnitY(), 12.0, 45.0, mas::Shape(), cancel);  // along them
+    EXPECT_EQ(calls, 1);
+}
+
 TEST(Holes, BadArgumentsAreNamed) {
     const mas::Shape part = from_occt(clevis_ear(false, false));
     auto message = [&](double d, double angle, const Vector3d& dir) {

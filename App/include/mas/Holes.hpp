@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "mas/Progress.hpp"
 #include "mas/Shape.hpp"
 
 namespace mas {
@@ -66,10 +67,13 @@ struct HoleFill {
 // Fills the holes of `solid` (one closed solid) up to `max_diameter_mm` across whose axis leans
 // more than `overhang_angle_deg` off `build_direction`, where a drill reaches them from outside
 // `part` (the whole part `solid` is a component of, one solid as Shape::single_solid returns it;
-// null: `solid` itself). max_diameter_mm 0 fills none and returns `solid` as it is. Throws
-// Error(InvalidArgument) for a negative or non-finite diameter, an angle outside [0, 90) or a
-// zero or non-finite direction, and the errors of Shape::single_solid. The input is not modified.
+// null: `solid` itself). max_diameter_mm 0 fills none and returns `solid` as it is. `progress`
+// is checked before each Boolean and each hole filled alone (Progress.hpp): what it throws leaves
+// fill_holes. Throws Error(InvalidArgument) for a negative or non-finite diameter, an angle
+// outside [0, 90) or a zero or non-finite direction, Error(GeometryFailure) when OCCT fails, and
+// the errors of Shape::single_solid. The input is not modified.
 HoleFill fill_holes(const Shape& solid, const Eigen::Vector3d& build_direction,
-                    double max_diameter_mm, double overhang_angle_deg, const Shape& part = Shape());
+                    double max_diameter_mm, double overhang_angle_deg, const Shape& part = Shape(),
+                    const Progress& progress = {});
 
 }  // namespace mas

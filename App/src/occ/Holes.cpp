@@ -516,11 +516,13 @@ FilledHole filled_hole(const Hole& hole, const Vector3d& direction) {
 
 // fill_holes() past its checks: `out.solid` is the component, `whole` the part.
 void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, double overhang_rad,
-              const TopoDS_Shape& whole) {
+              const TopoDS_Shape& whole, const Progress& progress) {
     TopoDS_Shape solid = occ::occt(out.solid);
     std::vector<Hole> kept_open;
     // The holes a drill makes; for each other one a note says why, and it is kept open.
     auto drillable = [&](std::vector<Hole> found) {
+        if (found.empty()) return found;
+        progress.check();
         const std::vector<Access> a = access(whole, found);
         std::vector<Hole> out_holes;
         for (std::size_t i = 0; i < found.size(); ++i) {
@@ -547,6 +549,7 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
     std::vector<Hole> square, other;
     for (Hole& h : holes) (square_ended(h) ? square : other).push_back(std::move(h));
     if (!square.empty()) {
+        progress.check();
         double added = 0.0;
         std::string why;
         const TopoDS_Shape filled = plug(solid, volume, square, added, why);
@@ -564,6 +567,7 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
     // The others all at once, kept when none of them is left: one defeaturing instead of one a
     // hole, each on the whole solid.
     if (holes.size() > 1) {
+        progress.check();
         double added = 0.0;
         std::string why;
         const TopoDS_Shape filled = fill(solid, volume, holes, added, why);
@@ -594,6 +598,7 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
             const std::vector<Hole> one =
                 checked ? std::vector<Hole>{left.front()} : drillable({left.front()});
             if (one.empty()) continue;
+            progress.check();
             const Hole& hole = one.front();
             double added = 0.0;
             std::string why;
@@ -615,7 +620,8 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
 }  // namespace
 
 HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
-                    double max_diameter_mm, double overhang_angle_deg, const Shape& part) {
+                    double max_diameter_mm, double overhang_angle_deg, const Shape& part,
+                    const Progress& progress) {
     if (!(max_diameter_mm >= 0.0) || !std::isfinite(max_diameter_mm))
         throw Error(ErrorCode::InvalidArgument,
                     "the largest hole to fill must be a diameter >= 0 mm, got " +
@@ -634,7 +640,7 @@ HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
     out.solid = input.single_solid("the component");
     try {
         fill_all(out, direction, max_diameter_mm, overhang_angle_deg * kPi / 180.0,
-                 part.is_null() ? occ::occt(out.solid) : occ::occt(part));
+                 part.is_null() ? occ::occt(out.solid) : occ::occt(part), progress);
     } catch (const Standard_Failure& f) {
         throw Error(ErrorCode::GeometryFailure,
                     occ::failure_message("OCCT failed filling the component's holes", f));

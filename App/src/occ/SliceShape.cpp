@@ -26,7 +26,10 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
     tessellation.deflection_mm = effective_deflection(part, params.tessellation);
     std::vector<ComponentMesh> meshes;
     meshes.reserve(decomposition.components.size());
-    const Progress tessellating = progress.span(0.0, 0.1, "tessellating the components");
+    const Progress tessellating = progress.span(0.0, 0.1,
+                                                params.fill_holes_up_to_mm != 0.0
+                                                    ? "filling holes, tessellating the components"
+                                                    : "tessellating the components");
     std::vector<FilledHole> filled;
     std::vector<std::string> notes;
     double filled_volume = 0.0;
@@ -36,8 +39,10 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         const std::string what = "component " + std::to_string(i);
         Shape solid = c.solid;
         if (params.fill_holes_up_to_mm != 0.0) {
+            const double n = double(decomposition.components.size());
             HoleFill f = fill_holes(c.solid, c.build_direction, params.fill_holes_up_to_mm,
-                                    params.layers.overhang_angle_deg, part);
+                                    params.layers.overhang_angle_deg, part,
+                                    tessellating.span(double(i) / n, double(i + 1) / n));
             for (FilledHole& h : f.holes) {
                 h.component = int(i);
                 filled.push_back(h);

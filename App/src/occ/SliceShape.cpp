@@ -39,16 +39,16 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         const std::string what = "component " + std::to_string(i);
         Shape solid = c.solid;
         if (params.fill_holes_up_to_mm != 0.0) {
-            const double n = double(decomposition.components.size());
+            const double count = double(decomposition.components.size());
             HoleFill f = fill_holes(c.solid, c.build_direction, params.fill_holes_up_to_mm,
                                     params.layers.overhang_angle_deg, part,
-                                    tessellating.span(double(i) / n, double(i + 1) / n));
+                                    tessellating.span(double(i) / count, double(i + 1) / count));
             for (FilledHole& h : f.holes) {
                 h.component = int(i);
                 filled.push_back(h);
             }
             filled_volume += f.added_volume_mm3;
-            for (const std::string& n : f.notes) notes.push_back(what + ": " + n);
+            for (const std::string& note : f.notes) notes.push_back(what + ": " + note);
             solid = f.solid;
         }
         ComponentMesh m;

@@ -21,7 +21,6 @@
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <ShapeFix_Shape.hxx>
-#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
@@ -146,12 +145,6 @@ std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& s) {
     return out;
 }
 
-TopoDS_Shape unify(const TopoDS_Shape& s) {
-    ShapeUpgrade_UnifySameDomain u(s, Standard_True, Standard_True, Standard_False);
-    u.Build();
-    return u.Shape();
-}
-
 // Whether any face or edge of `s` is only C0 (a kink inside one surface or curve). OCCT's
 // Booleans expect C1 arguments; the splits of a C0 part (a tube swept along a helix, whose
 // surface the sweep made C0) can pass the shape check and still mesh with edges shared by three
@@ -194,7 +187,7 @@ bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, double mesh_defle
     for (int attempt = 0; attempt < 3; ++attempt) {
         progress.check();
         TopoDS_Shape s = piece;
-        if (attempt == 0) s = unified.IsNull() ? unify(piece) : unified;
+        if (attempt == 0) s = unified.IsNull() ? occ::unify(piece) : unified;
         if (attempt == 2) {
             ShapeFix_Shape fix(piece);
             fix.Perform();
@@ -432,7 +425,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             if (!fuse.IsDone() || fuse.HasErrors()) return SplitOutcome::Failed;
             father_new = fuse.Shape();
         }
-        const TopoDS_Shape unified = unify(father_new);
+        const TopoDS_Shape unified = occ::unify(father_new);
         if (solids_of(unified).size() != 1) return SplitOutcome::Apart;
         progress.check();
         if (!valid_solid(father_new, father_out, mesh_deflection, progress, unified))

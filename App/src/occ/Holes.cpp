@@ -16,7 +16,6 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <Precision.hxx>
-#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
@@ -30,6 +29,7 @@
 #include <sstream>
 
 #include "ShapeImpl.hpp"
+#include "mas/Mesh.hpp"
 
 namespace mas {
 
@@ -53,6 +53,8 @@ struct Hole {
     std::vector<TopoDS_Face> faces;
 
     Vector3d centre() const { return point + 0.5 * (lo + hi) * axis; }
+    // The volume of its cylinder over its extent: at least what filling it adds.
+    double cylinder_volume() const { return kPi * radius * radius * (hi - lo); }
     void extend(double t) {
         lo = std::min(lo, t);
         hi = std::max(hi, t);
@@ -250,6 +252,7 @@ std::vector<Access> access(const TopoDS_Shape& whole, const std::vector<Hole>& h
     BRepBndLib::Add(whole, part_box);
     double x0, y0, z0, x1, y1, z1;
     part_box.Get(x0, y0, z0, x1, y1, z1);
+    const Eigen::AlignedBox3d bounds(Vector3d(x0, y0, z0), Vector3d(x1, y1, z1));
     std::vector<Probe> probes;
     std::vector<TopoDS_Shape> probe_shapes;
     TopTools_ListOfShape args, tools;
@@ -260,14 +263,8 @@ std::vector<Access> access(const TopoDS_Shape& whole, const std::vector<Hole>& h
         const double along = h.whi - h.wlo - 2.0 * gap;
         if (along > 0.0) probes.push_back({i, 0, h.point + (h.wlo + gap) * h.axis, r, along});
         // The part's extent along the axis: a probe reaches past it, no further.
-        double first = std::numeric_limits<double>::infinity(), last = -first;
-        for (const double x : {x0, x1})
-            for (const double y : {y0, y1})
-                for (const double z : {z0, z1}) {
-                    const double t = (Vector3d(x, y, z) - h.point).dot(h.axis);
-                    first = std::min(first, t);
-                    last = std::max(last, t);
-                }
+        double first, last;
+        range_along(bounds.translated(-h.point), h.axis, first, last);
         if (last > h.hi + gap)
             probes.push_back({i, 1, h.point + (h.hi + gap) * h.axis, r, last + 1.0 - h.hi - gap});
         if (first < h.lo - gap)
@@ -353,7 +350,7 @@ double volume_of_cut(const TopoDS_Shape& shape, const TopTools_ListOfShape& tool
 bool only_closes_over(const TopoDS_Shape& before, const TopoDS_Shape& after,
                       const std::vector<Hole>& holes, double volume, std::string& why) {
     double most = 0.0;
-    for (const Hole& h : holes) most += kPi * h.radius * h.radius * (h.hi - h.lo);
+    for (const Hole& h : holes) most += h.cylinder_volume();
     const double tol = 1e-6 * most + 1e-9 * volume + 1e-9;
     Bnd_Box box;
     BRepBndLib::Add(before, box);
@@ -388,7 +385,7 @@ TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const std::vector<Ho
         double most = 0.0;  // the holes' cylinders
         for (const Hole& h : holes) {
             for (const TopoDS_Face& f : h.faces) df.AddFaceToRemove(f);
-            most += kPi * h.radius * h.radius * (h.hi - h.lo);
+            most += h.cylinder_volume();
         }
         df.SetRunParallel(Standard_False);
         df.SetToFillHistory(Standard_False);
@@ -473,7 +470,7 @@ TopoDS_Shape plug(const TopoDS_Shape& solid, double volume, const std::vector<Ho
         double most = 0.0;
         for (const Hole& h : holes) {
             tools.Append(make_cylinder(h.point + h.lo * h.axis, h.axis, h.radius, h.hi - h.lo));
-            most += kPi * h.radius * h.radius * (h.hi - h.lo);
+            most += h.cylinder_volume();
         }
         BRepAlgoAPI_Fuse fuse;
         fuse.SetArguments(args);
@@ -485,10 +482,7 @@ TopoDS_Shape plug(const TopoDS_Shape& solid, double volume, const std::vector<Ho
             why = "OCCT could not fuse their plugs in";
             return {};
         }
-        ShapeUpgrade_UnifySameDomain unify(fuse.Shape(), Standard_True, Standard_True,
-                                           Standard_False);
-        unify.Build();
-        const TopoDS_Shape result = single_valid_solid(unify.Shape());
+        const TopoDS_Shape result = single_valid_solid(occ::unify(fuse.Shape()));
         if (result.IsNull()) {
             why = "fusing their plugs in left no single valid solid";
             return {};

@@ -10,6 +10,7 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
@@ -31,6 +32,12 @@ double volume_of(const TopoDS_Shape& shape) {
     GProp_GProps props;
     BRepGProp::VolumeProperties(shape, props);
     return props.Mass();
+}
+
+TopoDS_Shape unify(const TopoDS_Shape& shape) {
+    ShapeUpgrade_UnifySameDomain u(shape, Standard_True, Standard_True, Standard_False);
+    u.Build();
+    return u.Shape();
 }
 
 Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape) {

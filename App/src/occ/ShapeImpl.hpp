@@ -32,6 +32,9 @@ Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape);
 // The volume of a shape's solids, mm^3 (BRepGProp).
 double volume_of(const TopoDS_Shape& shape);
 
+// `shape` with the seams between faces (and edges) on one surface (curve) removed.
+TopoDS_Shape unify(const TopoDS_Shape& shape);
+
 // "<what>: <OCCT's message>", with a fallback when OCCT gives none.
 std::string failure_message(const std::string& what, const Standard_Failure& failure);
 

@@ -424,6 +424,18 @@ TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     p.base_z_mm = 5.0;
     EXPECT_NO_THROW(mas::centroidal_axis(mesh, p));
     EXPECT_THROW(mas::centroidal_axis(mas::TriangleMesh{}), mas::Error);
+    // A step that would take more sections across the part than the axis may have nodes is named
+    // before the grids are allocated (1e-9 mm on this 10 mm box would take gigabytes): the limit
+    // is exactly max_nodes sections across the part's largest extent.
+    p = {};
+    p.max_nodes = 1000;
+    p.step_mm = 10.0 / 999.0;
+    EXPECT_NO_THROW(mas::centroidal_axis(mesh, p));
+    p.step_mm = 10.0 / 1001.0;
+    expect_error(p, "too small for this part");
+    p = {};
+    p.step_mm = 1e-9;
+    expect_error(p, "200000");
 }
 
 TEST(CentroidalAxis, DerivedStepIgnoresTinySectionsOfRoundedTips) {

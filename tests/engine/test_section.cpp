@@ -165,6 +165,11 @@ TEST(SectionErrors, BadPlanesAndStepsAreNamed) {
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, -1.0); }, "step");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, nan); }, "step");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 0}, 1.0); }, "zero vector");
+    // 1 mm / 1e-5 mm is exactly the limit; a hair less is over it, named before any is cut.
+    EXPECT_EQ(mas::parallel_planes(m, {0, 0, 1}, 1.0 / double(mas::kMaxParallelPlanes)).size(),
+              mas::kMaxParallelPlanes);
+    expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, 0.99e-5); }, "too small");
+    expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, 1e-12); }, "100000");
 }
 
 // ---- tessellated parts (mesh kernel on OCCT's tessellation) -------------------------------------

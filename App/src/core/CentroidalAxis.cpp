@@ -1151,6 +1151,18 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
             << height << " mm";
         throw Error(ErrorCode::InvalidArgument, msg.str());
     }
+    // Each direction's grid holds a plane per step across the part: a step so small that one
+    // march could pass more planes than the axis may have nodes is named before any is allocated
+    // (a 10 mm part at 1e-7 mm would take tens of gigabytes).
+    const double planes = box.sizes().maxCoeff() / p.step_mm;
+    if (planes > double(p.max_nodes)) {
+        std::ostringstream msg;
+        msg << "centroidal axis: step " << p.step_mm
+            << " mm is too small for this part: across its " << box.sizes().maxCoeff()
+            << " mm it would take " << planes << " sections, more than " << p.max_nodes
+            << " (the most nodes an axis may have)";
+        throw Error(ErrorCode::InvalidArgument, msg.str());
+    }
     const bool derived_threshold = p.distance_threshold_mm <= 0.0;
     if (derived_threshold) p.distance_threshold_mm = 2.0 * p.step_mm;
     double base = box.min().z();

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <memory>
 #include <numeric>
+#include <sstream>
 #include <thread>
 
 #include "SectionGrid.hpp"
@@ -466,9 +467,12 @@ std::vector<Plane> parallel_planes(const TriangleMesh& mesh, const Eigen::Vector
     }
     const double extent = hi - lo;
     const double count = std::ceil(extent / step_mm - 1e-9);
-    if (count > 1e7)
-        throw Error(ErrorCode::InvalidArgument, "step " + std::to_string(step_mm) +
-                                                    " mm would give more than 10 million planes");
+    if (count > double(kMaxParallelPlanes)) {
+        std::ostringstream msg;
+        msg << "step " << step_mm << " mm is too small: it would cut the part's " << extent
+            << " mm extent with " << count << " planes, more than " << kMaxParallelPlanes;
+        throw Error(ErrorCode::InvalidArgument, msg.str());
+    }
     std::vector<Plane> planes;
     const auto n = static_cast<std::size_t>(std::max(1.0, count));
     planes.reserve(n);

@@ -47,6 +47,20 @@ def _add_property(obj, type_id, name, group, doc, default=None, attr=0):
     return True
 
 
+def failure(obj):
+    """None when ``obj`` is computed: valid and not waiting for a recompute. Otherwise what stops
+    it, as "Label: message": its own error, or that of an object it depends on (FreeCAD does not
+    recompute an object whose input failed: it stays touched, valid, and says nothing)."""
+    if obj.isValid() and "Touched" not in obj.State:
+        return None
+    if not obj.isValid():
+        return "{}: {}".format(obj.Label, obj.getStatusString())
+    for dependency in obj.OutListRecursive:
+        if not dependency.isValid():
+            return "{}: {}".format(dependency.Label, dependency.getStatusString())
+    return "{}: not recomputed".format(obj.Label)
+
+
 class _EngineFeature:
     """What every proxy here shares: recompute errors reported by their message, nothing to save
     beyond the properties, a view provider when the GUI opens a document made without it.
@@ -568,7 +582,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, DecompositionFeature.VIEW_PROVIDER)
     obj.recompute(True)  # with what it depends on: the count decides the Component objects
-    if obj.isValid():
+    if failure(obj) is None:
         sync_components(obj)
     return obj
 

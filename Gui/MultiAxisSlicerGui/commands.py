@@ -103,8 +103,11 @@ class _PartCommand:
             _undo_cancelled(doc, self.TRANSACTION, source, visibility)
             return
         doc.commitTransaction()
-        if not obj.isValid():  # the object stays so that its parameters can be fixed
-            MultiAxisSlicerGui.show_error("{}: {}".format(obj.Label, obj.getStatusString()))
+        import MultiAxisSlicer.features as features
+
+        message = features.failure(obj)
+        if message is not None:  # the object stays so that its parameters (or input) can be fixed
+            MultiAxisSlicerGui.show_error(message)
 
 
 class SectionsCommand(_PartCommand):
@@ -163,7 +166,7 @@ class DecomposeCommand(_PartCommand):
             obj = features.make_decomposition(source, doc=doc,
                                               min_component_height=min_component_height)
             part = source
-        if obj.isValid() and part is not None and part.ViewObject is not None:
+        if features.failure(obj) is None and part is not None and part.ViewObject is not None:
             part.ViewObject.Visibility = False  # the components take its place in the view
         return obj
 
@@ -235,28 +238,30 @@ class SliceCommand(_PartCommand):
                 if features.is_decomposition(source):
                     decomposition = source
                     busy.stage("Using the decomposition '{}'".format(source.Label))
+                    if "Touched" in decomposition.State:  # changed since: as it is now
+                        decomposition.recompute(True)
                 else:
                     busy.stage("Decomposing '{}'...".format(source.Label))
                     # No sub-component thinner than the layers (the default MinLayer).
                     decomposition = DecomposeCommand().make(
                         source, doc, mas.SLICE_DEFAULTS["min_layer"])
-                if decomposition.isValid():  # a cancelled one is not
+                if features.failure(decomposition) is None:  # a cancelled one is not
                     layers, toolpath = features.make_slice(decomposition, doc=doc)
                     busy.stage("Slicing '{}' into layers...".format(source.Label))
                     doc.recompute([layers])  # one stage at a time, for the feedback
-                    if layers.isValid():
+                    if features.failure(layers) is None:
                         busy.stage("Drawing the bead paths...")
                         doc.recompute([toolpath])
                     if not busy.cancelled():  # else nothing is kept: no more work
                         doc.recompute()
-                    failed = next((o for o in (layers, toolpath) if not o.isValid()), None)
+                    failed = features.failure(layers) or features.failure(toolpath)
                     if failed is None:  # the layers take the part's place in the view
                         part = features.decomposition_inputs(decomposition)[0]
                         for o in [part] + features.components_of(decomposition):
                             if o.ViewObject is not None:
                                 o.ViewObject.Visibility = False
                 else:
-                    failed = decomposition
+                    failed = features.failure(decomposition)
                 cancelled = busy.cancelled()
         except Exception as error:  # creating the objects failed: leave nothing behind
             doc.abortTransaction()
@@ -268,7 +273,7 @@ class SliceCommand(_PartCommand):
             return
         doc.commitTransaction()
         if failed is not None:  # the objects stay so that their parameters can be fixed
-            MultiAxisSlicerGui.show_error("{}: {}".format(failed.Label, failed.getStatusString()))
+            MultiAxisSlicerGui.show_error(failed)
 
 
 FreeCADGui.addCommand(SectionsCommand.NAME, SectionsCommand())

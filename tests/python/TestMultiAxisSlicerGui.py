@@ -597,6 +597,25 @@ class TestDecomposeCommand(unittest.TestCase):
         self.assertIn("not a solid", boxes[0].text())
         self.assertTrue(self.part.ViewObject.Visibility)  # nothing replaced it
 
+    def test_command_on_a_failing_axis_shows_the_axis_message(self):
+        # FreeCAD leaves an object whose input failed touched and valid, without a word: the
+        # command names the axis' error, and the part stays in view.
+        import MultiAxisSlicer as mas
+
+        axis = mas.make_centroidal_axis(self.part, step=1e6)
+        self.doc.recompute()
+        self.assertIn("Invalid", axis.State)
+        obj = self.run_command(axis)
+        self.assertIsNotNone(obj)
+        self.assertEqual(obj.ComponentCount, 0)
+        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                                     "MultiAxisSlicerError")
+                 if b.isVisible()]
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("CentroidalAxis: ", boxes[0].text())
+        self.assertIn("not smaller than the part's height", boxes[0].text())
+        self.assertTrue(self.part.ViewObject.Visibility)
+
 
 class TestSliceCommand(unittest.TestCase):
     def setUp(self):
@@ -821,6 +840,19 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())
         self.assertIsNone(QtGui.QApplication.overrideCursor())
+
+    def test_command_on_a_failing_axis_shows_the_axis_message(self):
+        import MultiAxisSlicer as mas
+
+        axis = mas.make_centroidal_axis(self.part, step=1e6)
+        self.doc.recompute()
+        layers, toolpath = self.run_command(axis)
+        self.assertIsNone(layers)  # nothing to slice: the decomposition's axis failed
+        boxes = self.error_boxes()
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("CentroidalAxis: ", boxes[0].text())
+        self.assertIn("not smaller than the part's height", boxes[0].text())
+        self.assertTrue(self.part.ViewObject.Visibility)
 
     def test_cancel_in_the_progress_dialog_undoes_the_command(self):
         before = self.part.Shape.exportBrepToString()

@@ -7,9 +7,11 @@
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepOffsetAPI_ThruSections.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
+#include <Eigen/Geometry>
 #include <StlAPI_Writer.hxx>
 #include <cmath>
 #include <fstream>
@@ -94,8 +96,13 @@ void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& me
         for (int n : br.nodes) EXPECT_EQ(a.nodes[std::size_t(n)].branch, int(b));
         if (br.parent < 0) {
             EXPECT_EQ(br.first_link, -1);
-            EXPECT_NEAR(a.nodes[std::size_t(br.nodes.front())].offset,
-                        a.params.base_z_mm + a.params.eps_mm, 1e-12);
+            // On a grid plane: the first at eps above the base, or a later one where the part
+            // stands on a vertex or an edge and the sections below are a hair wide.
+            const double k = (a.nodes[std::size_t(br.nodes.front())].offset -
+                              (a.params.base_z_mm + a.params.eps_mm)) /
+                             a.params.step_mm;
+            EXPECT_NEAR(k, std::round(k), 1e-9);
+            EXPECT_GE(k, -1e-9);
         } else {
             ASSERT_GE(br.first_link, 0);
             const auto& l = a.links[std::size_t(br.first_link)];
@@ -149,6 +156,13 @@ void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& me
             slab_error +=
                 std::abs(a.nodes[std::size_t(l.end)].area - a.nodes[std::size_t(l.start)].area) *
                 a.params.step_mm;
+    // A root starting above its first grid plane sweeps from the base with its first section:
+    // off by at most that slab's whole volume.
+    for (const auto& br : a.branches) {
+        const auto& first = a.nodes[std::size_t(br.nodes.front())];
+        if (br.parent < 0 && first.offset > a.params.base_z_mm + a.params.eps_mm + 1e-9)
+            slab_error += first.area * first.thickness;
+    }
     const double volume = mas::check_mesh(mesh).volume_mm3;
     EXPECT_NEAR(a.searched_volume_mm3, volume, slab_error + 1e-6 * volume);
 }
@@ -170,6 +184,47 @@ TEST(CentroidalAxis, BoxIsOneVerticalBranchThroughItsCentre) {
     EXPECT_EQ(a.links.size(), 14u);
     for (const auto& l : a.links) EXPECT_FALSE(l.is_break);
     EXPECT_NEAR(a.searched_volume_mm3, 6000.0, 1e-9);
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, CubeStandingOnAVertexIsSearchedFromItsFirstRealSection) {
+    // A 10 mm cube on its corner, its main diagonal vertical. eps above the corner its section is
+    // a triangle a few microns wide, which no section above overlaps by more than the Booleans
+    // resolve: the march used to end there, with one node and the cube unsearched.
+    auto mesh = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
+    const Eigen::Quaterniond turn =
+        Eigen::Quaterniond::FromTwoVectors(Vector3d(1, 1, 1).normalized(), Vector3d::UnitZ());
+    for (auto& v : mesh.vertices) v = turn * v;
+    const auto a = mas::centroidal_axis(mesh);
+    ASSERT_EQ(a.branches.size(), 1u);
+    const double height = 10.0 * std::sqrt(3.0);
+    EXPECT_EQ(a.nodes.size(),
+              std::size_t(std::ceil((height - a.params.eps_mm) / a.params.step_mm - 1e-9)) - 1);
+    EXPECT_GT(a.nodes.front().offset, a.params.eps_mm + a.params.step_mm / 2);
+    EXPECT_EQ(a.nodes.front().slab_start, 0.0);  // sweeping the corner too
+    for (const auto& node : a.nodes) {
+        // Three-fold symmetry: on the diagonal. Up to the cube's three nearest corners the
+        // sections are equilateral triangles, x + y + z = h sqrt(3): area (3 sqrt(3) / 2) h^2.
+        EXPECT_NEAR(node.position.head<2>().norm(), 0.0, 1e-9) << node.position.transpose();
+        if (node.offset < height / 3.0)
+            EXPECT_NEAR(node.area, 1.5 * std::sqrt(3.0) * node.offset * node.offset,
+                        1e-9 * node.area);
+    }
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {
+    // No section at all eps above the tip (a disc 0.001 mm across is a sliver): the axis used to
+    // be empty. Nodes on the cone's axis, areas pi r^2 within perimeter x deflection.
+    const auto mesh = mesh_of(from_occt(BRepPrimAPI_MakeCone(0.0, 10.0, 20.0).Shape()));
+    const auto a = mas::centroidal_axis(mesh);
+    ASSERT_EQ(a.branches.size(), 1u);
+    EXPECT_GT(a.nodes.size(), 20u);
+    for (const auto& node : a.nodes) {
+        const double r = node.offset / 2.0;
+        EXPECT_NEAR(node.position.head<2>().norm(), 0.0, kDeflection);
+        EXPECT_NEAR(node.area, M_PI * r * r, 2.0 * M_PI * r * kDeflection);
+    }
     expect_invariants(a, mesh);
 }
 
@@ -397,6 +452,16 @@ TEST(CentroidalAxis, DerivedStepIsHalfTheThinnestWallWithinClamps) {
 
 TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     const auto mesh = mas::test::box_mesh(0, 0, 5, 10, 10, 10);
+    auto expect_error_on = [&](const mas::TriangleMesh& m, const std::string& word,
+                               mas::AxisParams p = {}) {
+        try {
+            mas::centroidal_axis(m, p);
+            ADD_FAILURE() << "no error for " << word;
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+        }
+    };
     auto expect_error = [&](mas::AxisParams p, const std::string& word) {
         try {
             mas::centroidal_axis(mesh, p);
@@ -436,6 +501,11 @@ TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     p = {};
     p.step_mm = 1e-9;
     expect_error(p, "200000");
+    p = {};
+    p.eps_mm = 10.0;  // the first plane would lie on the box's top
+    expect_error(p, "eps 10 mm is not smaller than the part's height");
+    // A part drawn in metres: no section reaches the sliver area. An empty axis is an error.
+    expect_error_on(mas::test::box_mesh(0, 0, 0, 5e-4, 5e-4, 0.01), "no section of the part");
 }
 
 TEST(CentroidalAxis, DerivedStepIgnoresTinySectionsOfRoundedTips) {

@@ -480,6 +480,14 @@ private:
         return keep_larger(std::move(out), p_.min_region_area_mm2);
     }
 
+    // Whether a root's first section is too small to start a march: a sliver, or a speck less than
+    // half a step across. A step above a vertex or a tip the part's flanks have outgrown a speck
+    // on every side by far more than its size, which Eq. 3 (d at most a sixth of the lower
+    // section's size) reads as a stick-out far outside it: the march would end there.
+    bool speck(const Region2& r) const {
+        return area(r) <= p_.min_region_area_mm2 || bounds(r).diagonal().norm() < p_.step_mm / 2.0;
+    }
+
     int new_branch(const Vector3d& dir, int parent, int parent_node) {
         AxisBranch b;
         b.direction = dir;
@@ -741,7 +749,7 @@ private:
         // first node's slab reaches back to T, so nothing between is left unswept).
         const double first_k = std::ceil((task.start - g.origin) / p_.step_mm - 1e-9);
         if (first_k >= double(g.count)) return;
-        const std::size_t k0 = static_cast<std::size_t>(std::max(0.0, first_k));
+        std::size_t k0 = static_cast<std::size_t>(std::max(0.0, first_k));
         const std::size_t count = g.count;
         auto offset_of = [&](std::size_t k) { return offset(g, k); };
         auto slab_end = [&](std::size_t k) { return std::min(offset_of(k + 1), g.hi); };
@@ -763,7 +771,15 @@ private:
                                        }),
                         first.end());
         } else {
+            // The root. A part standing on a vertex or a tip has, eps above its base, a speck of
+            // a section (or none), and the march would end a step above it, the part unsearched.
+            // The root starts at the first plane with more than specks, its first slab still
+            // reaching down to the base.
             first = unswept(g, k0, nullptr);
+            while (k0 + 1 < count && std::all_of(first.begin(), first.end(),
+                                                 [&](const Region2& r) { return speck(r); })) {
+                first = unswept(g, ++k0, nullptr);
+            }
         }
         std::vector<Track> tracks;
         for (const auto& region : first) {
@@ -1163,6 +1179,12 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
             << " (the most nodes an axis may have)";
         throw Error(ErrorCode::InvalidArgument, msg.str());
     }
+    if (p.eps_mm >= height) {
+        std::ostringstream msg;
+        msg << "centroidal axis: eps " << p.eps_mm << " mm is not smaller than the part's height "
+            << height << " mm";
+        throw Error(ErrorCode::InvalidArgument, msg.str());
+    }
     const bool derived_threshold = p.distance_threshold_mm <= 0.0;
     if (derived_threshold) p.distance_threshold_mm = 2.0 * p.step_mm;
     double base = box.min().z();
@@ -1176,7 +1198,15 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
         base = p.base_z_mm;
     }
     p.base_z_mm = base;
-    return Search(mesh, p, derived_threshold, throw_on_cancel).run(base);
+    CentroidalAxis axis = Search(mesh, p, derived_threshold, throw_on_cancel).run(base);
+    if (axis.nodes.empty()) {
+        std::ostringstream msg;
+        msg << "centroidal axis: no section of the part has an area over " << p.min_region_area_mm2
+            << " mm^2 (its box is " << box.sizes().x() << " x " << box.sizes().y() << " x "
+            << box.sizes().z() << " mm: lengths are in millimetres)";
+        throw Error(ErrorCode::InvalidArgument, msg.str());
+    }
+    return axis;
 }
 
 }  // namespace mas

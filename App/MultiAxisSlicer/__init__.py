@@ -478,19 +478,35 @@ def parallel_planes(obj, normal=(0, 0, 1), step=1.0, deflection=None):
     return [(_as_vector(o), _as_vector(v)) for o, v in _engine.parallel_planes(mesh, n, step)]
 
 
-def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None):
+_SECTIONS_PER_REPORT = 500  # sections() with a progress callback cuts this many planes at a time
+
+
+def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None, progress=None):
     """Cross-sections of a solid or closed mesh by parallel planes ``step`` mm apart along
     ``normal``, across the part's whole extent, each plane in the middle of its slab.
 
     ``obj``: see ``to_engine_mesh``. Returns a list of ``Section``, in order along the normal.
-    Raises ValueError for ``step <= 0`` or a zero/NaN ``normal``, TypeError for a wrong type, and
-    EngineError (with ``code``) for a part the engine cannot cut.
+    ``progress``: None or ``progress(fraction, stage)``, called after every 500 planes with the
+    fraction of the planes cut; an exception it raises (``Cancelled``) stops the work and is
+    raised again (see ``MultiAxisSlicer.progress``). Raises ValueError for ``step <= 0`` or a
+    zero/NaN ``normal``, TypeError for a wrong type, and EngineError (with ``code``) for a part
+    the engine cannot cut, or a step that would give more than 100000 planes.
     """
+    from . import progress as _progress
+
     n = _direction(normal)
     step = _length(step, "step")
+    _progress.check(progress)
     mesh = to_engine_mesh(obj, deflection)
     planes = _engine.parallel_planes(mesh, n, step)
-    return [Section(d) for d in _engine.slice(mesh, planes, True)]
+    if progress is None:
+        return [Section(d) for d in _engine.slice(mesh, planes, True)]
+    out = []
+    for start in range(0, len(planes), _SECTIONS_PER_REPORT):
+        chunk = planes[start:start + _SECTIONS_PER_REPORT]
+        out += [Section(d) for d in _engine.slice(mesh, chunk, True)]
+        progress(len(out) / len(planes), "cutting {} sections".format(len(planes)))
+    return out
 
 
 def section(obj, origin, normal, deflection=None):

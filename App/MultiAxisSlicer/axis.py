@@ -15,6 +15,7 @@ import math
 import numbers
 
 from . import _as_list, _as_vector, _deflection_mm, _length, _model, _require_engine
+from . import progress as _progress
 
 __all__ = ["AxisBranch", "AxisLink", "AxisNode", "CentroidalAxis", "centroidal_axis"]
 
@@ -270,7 +271,7 @@ class CentroidalAxis:
 
 
 def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_angle=30.0,
-                    base_z=None, deflection=None):
+                    base_z=None, deflection=None, progress=None):
     """The centroidal axis of one solid or closed mesh standing on the plane z = ``base_z``.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a closed ``Mesh.Mesh``, a document
@@ -292,12 +293,19 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
         lowest point is not on this plane (within eps) is an error.
       * ``deflection``: chordal deflection for tessellating a solid (None: derived from its size,
         see ``deflection()``); a mesh is used as it is.
+      * ``progress``: None or ``progress(fraction, stage)``, reported as the march takes each
+        plane, with the volume swept so far over the part's; an exception it raises
+        (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
+        Computing an axis takes milliseconds at the derived step; a small given one may take
+        long.
 
     Returns a ``CentroidalAxis``. Raises ValueError for a parameter out of range (``step <= 0``,
     NaN, a negative threshold), TypeError for a wrong type, and EngineError (with ``code``) for a
     part the engine cannot use: not_a_solid (a face, a shell), multiple_solids, open_mesh,
     empty_input, read_failed, invalid_argument (a step not smaller than the part's height, a part
-    that does not stand on ``base_z``). Nothing the caller passed is modified.
+    that does not stand on ``base_z``, an eps not below the part's height, a part with no
+    section larger than a sliver, a step so small that more than 200000 sections would cross the
+    part). Nothing the caller passed is modified.
     """
     step_mm = 0.0 if step is None else _length(step, "step")
     threshold_mm = (0.0 if distance_threshold is None
@@ -306,6 +314,7 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
     angle_deg = _break_angle(break_angle)
     base_z_mm = _base_z(base_z)
     d = _deflection_mm(deflection)
+    _progress.check(progress)
     eng = _require_engine()
     kind, part, what = _model(shape)
     if kind == "solid":
@@ -316,5 +325,5 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
         deflection_mm = 0.0
         mesh = eng.make_closed(part, what)
     data = eng.centroidal_axis(mesh, step=step_mm, distance_threshold=threshold_mm, eps=eps_mm,
-                               break_angle=angle_deg, base_z=base_z_mm)
+                               break_angle=angle_deg, base_z=base_z_mm, progress=progress)
     return CentroidalAxis(data, kind, mesh.triangle_count(), deflection_mm)

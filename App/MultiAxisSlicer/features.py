@@ -153,17 +153,22 @@ class SectionsFeature(_EngineFeature):
         if obj.Source is None:
             raise ValueError("{}: Source is not set".format(obj.Label))
         deflection = obj.Deflection.Value or None
-        result = mas.sections(obj.Source, normal=obj.Normal, step=obj.Step.Value,
-                              deflection=deflection)
-        obj.Shape = sections_shape(result)
+        with _progress.reporting("Cutting '{}'".format(obj.Label)) as progress:
+            result = mas.sections(obj.Source, normal=obj.Normal, step=obj.Step.Value,
+                                  deflection=deflection, progress=_progress.span(progress, 0, 0.5))
+            shape = sections_shape(result, _progress.span(progress, 0.5, 1.0))
+        obj.Shape = shape
         obj.SectionCount = len(result)
         obj.TotalArea = sum(s.area for s in result)
 
 
-def sections_shape(sections):
-    """A compound of closed polygonal wires, one per section loop (outer loops and holes)."""
+def sections_shape(sections, progress=None):
+    """A compound of closed polygonal wires, one per section loop (outer loops and holes).
+    ``progress``: None or ``progress(fraction, stage)``, called every 500 sections."""
     wires = []
-    for s in sections:
+    for i, s in enumerate(sections):
+        if progress is not None and i % 500 == 0:
+            progress(i / len(sections), "drawing the section outlines")
         for region in s.regions:
             for loop in region.loops:
                 if len(loop) >= 3:
@@ -246,15 +251,17 @@ class CentroidalAxisFeature(_EngineFeature):
         """Properties -> engine -> Shape and the result properties. Raises on bad input."""
         if obj.Source is None:
             raise ValueError("{}: Source is not set".format(obj.Label))
-        axis = mas.centroidal_axis(
-            obj.Source,
-            step=obj.Step.Value or None,
-            distance_threshold=obj.DistanceThreshold.Value or None,
-            eps=obj.Epsilon.Value,
-            break_angle=obj.BreakAngle.Value,
-            deflection=obj.Deflection.Value or None,
-        )
-        shape, break_edge_start = axis_shape(axis)
+        with _progress.reporting("Centroidal axis of '{}'".format(obj.Label)) as progress:
+            axis = mas.centroidal_axis(
+                obj.Source,
+                step=obj.Step.Value or None,
+                distance_threshold=obj.DistanceThreshold.Value or None,
+                eps=obj.Epsilon.Value,
+                break_angle=obj.BreakAngle.Value,
+                deflection=obj.Deflection.Value or None,
+                progress=_progress.span(progress, 0, 0.8),
+            )
+            shape, break_edge_start = axis_shape(axis, _progress.span(progress, 0.8, 1.0))
         # BreakEdgeStart before Shape: the view provider colours the edges when the Shape changes.
         obj.BreakEdgeStart = break_edge_start
         obj.Shape = shape
@@ -266,13 +273,16 @@ class CentroidalAxisFeature(_EngineFeature):
         obj.SearchedVolume = axis.searched_volume
 
 
-def axis_shape(axis):
+def axis_shape(axis, progress=None):
     """(compound, break_edge_start): one vertex per node in node order, then one line segment per
     link, ordinary links first (in link order), then the breaks; break_edge_start is the index of
-    the first break among the compound's edges."""
+    the first break among the compound's edges. ``progress``: None or ``progress(fraction,
+    stage)``, called every 1000 links."""
     points = [FreeCAD.Vector(n.position) for n in axis.nodes]
     ordinary, breaks = [], []
-    for link in axis.links:
+    for i, link in enumerate(axis.links):
+        if progress is not None and i % 1000 == 0:
+            progress(i / len(axis.links), "drawing the links")
         a, b = points[link.start], points[link.end]
         if a.isEqual(b, 1e-9):  # no edge for a zero-length link (nodes lie a step apart)
             continue

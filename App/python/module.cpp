@@ -671,7 +671,8 @@ bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
 }
 
 bp::dict centroidal_axis(const mas::TriangleMesh& mesh, double step, double distance_threshold,
-                         double eps, double break_angle, double base_z, double min_region_area) {
+                         double eps, double break_angle, double base_z, double min_region_area,
+                         const bp::object& progress) {
     mas::AxisParams params;
     params.step_mm = finite_number(step, "step");  // <= 0: derived from the part
     params.distance_threshold_mm = finite_number(distance_threshold, "distance_threshold");
@@ -682,10 +683,8 @@ bp::dict centroidal_axis(const mas::TriangleMesh& mesh, double step, double dist
     params.base_z_mm = base_z;
     params.min_region_area_mm2 = finite_number(min_region_area, "min_region_area");
     mas::CentroidalAxis axis;
-    {
-        GilRelease nogil;
-        axis = mas::centroidal_axis(mesh, params);
-    }
+    run_reporting(progress,
+                  [&](const mas::Progress& p) { axis = mas::centroidal_axis(mesh, params, p); });
     return axis_to_py(axis);
 }
 
@@ -700,7 +699,7 @@ void bind_axis() {
         (bp::arg("mesh"), bp::arg("step") = 0.0, bp::arg("distance_threshold") = 0.0,
          bp::arg("eps") = 0.001, bp::arg("break_angle") = 30.0,
          bp::arg("base_z") = std::numeric_limits<double>::quiet_NaN(),
-         bp::arg("min_region_area") = 1e-6),
+         bp::arg("min_region_area") = 1e-6, bp::arg("progress") = bp::object()),
         "The centroidal axis of a closed mesh (make_closed() or tessellate() give one), lengths "
         "in mm, angles in degrees: step <= 0 is derived from the part, distance_threshold <= 0 "
         "is twice the step (at most a sixth of a section's size), base_z NaN is the part's lowest "
@@ -712,7 +711,9 @@ void bind_axis() {
         "base_z_mm, min_region_area_mm2), "
         "searched_volume_mm3, sections_cut. EngineError invalid_argument on NaN or out-of-range "
         "parameters, a step not smaller than the part's height, or a part that does not stand "
-        "on base_z; empty_input for an empty mesh.");
+        "on base_z; empty_input for an empty mesh. `progress`: None or progress(fraction, stage), "
+        "called now and then from this thread with the volume swept so far over the part's; an "
+        "exception it raises stops the search and is raised again here.");
     bp::def("derive_axis_step", &derive_axis_step, bp::arg("mesh"),
             "The step (mm) centroidal_axis() derives when none is given: half the part's thinnest "
             "wall, within [diagonal / 2000, diagonal / 20].");

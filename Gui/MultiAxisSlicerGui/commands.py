@@ -127,7 +127,8 @@ class SectionsCommand(_PartCommand):
 
 class CentroidalAxisCommand(_PartCommand):
     """The centroidal axis of the selected solid or mesh, as a parametric CentroidalAxis object.
-    Computing it takes milliseconds: no progress dialog."""
+    Computing it takes milliseconds at the derived step; a small given step may take long, and
+    the recompute then shows its progress with Cancel, like every object's here."""
 
     NAME = "MultiAxisSlicer_CentroidalAxis"
     TRANSACTION = "Centroidal axis"

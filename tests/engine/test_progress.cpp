@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -93,6 +94,31 @@ TEST(Progress, AnEmptyProgressReportsNothing) {
     none.check();
     none.span(0.2, 0.4, "x")(1.0);
     EXPECT_FALSE(mas::Progress(mas::Progress::Report{}));
+}
+
+TEST(Progress, AxisReportsTheVolumeSweptSoFar) {
+    // A 10 x 20 x 30 box, step 2: the march takes plane k (at 0.001 + 2k) once the nodes below
+    // it have swept 200 x (2.001 + 2 (k - 1)) of its 6000 mm^3.
+    const auto mesh = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    mas::AxisParams params;
+    params.step_mm = 2.0;
+    Reports r;
+    const auto axis = mas::centroidal_axis(mesh, params, recorder(r));
+    ASSERT_EQ(axis.nodes.size(), 15u);
+    expect_never_back_and_done(r);
+    for (int k = 1; k < 15; ++k) {
+        const double want = 200.0 * (2.001 + 2.0 * (k - 1)) / 6000.0;
+        EXPECT_TRUE(std::any_of(r.begin(), r.end(),
+                                [&](const auto& x) { return std::abs(x.first - want) < 1e-12; }))
+            << "plane " << k;
+    }
+    // A report that throws stops the search, its exception unchanged.
+    int calls = 0;
+    EXPECT_THROW(mas::centroidal_axis(mesh, params, mas::Progress([&](double, const std::string&) {
+                                          if (++calls == 5) throw Stop{};
+                                      })),
+                 Stop);
+    EXPECT_EQ(calls, 5);
 }
 
 TEST(Progress, DecompositionReportsBranchByBranchUpToOne) {

@@ -50,6 +50,31 @@ class TestSectionsOfPlanarParts(support.EngineTestCase):
             for p in region.outer:
                 self.assertAlmostEqual(p.z, z, places=9)
 
+    def test_progress_is_reported_every_500_planes_and_a_raise_stops_it(self):
+        reports = []
+        result = mas.sections(box_10_20_30(), step=0.025,
+                              progress=lambda f, s: reports.append((f, s)))
+        self.assertEqual(len(result), 1200)
+        self.assertEqual(reports, [(500 / 1200, "cutting 1200 sections"),
+                                   (1000 / 1200, "cutting 1200 sections"),
+                                   (1.0, "cutting 1200 sections")])
+        # The same sections as cut all at once.
+        whole = mas.sections(box_10_20_30(), step=0.025)
+        self.assertEqual([s.origin for s in result], [s.origin for s in whole])
+        self.assertEqual([s.area for s in result], [s.area for s in whole])
+
+        def stop(fraction, stage):
+            raise mas.Cancelled("enough")
+
+        with self.assertRaisesRegex(mas.Cancelled, "enough"):
+            mas.sections(box_10_20_30(), step=0.025, progress=stop)
+        with self.assertRaisesRegex(TypeError, "progress must be"):
+            mas.sections(box_10_20_30(), progress="yes")
+
+    def test_a_step_giving_over_100000_planes_is_named(self):
+        with self.assertRaisesRegex(mas.EngineError, "too small.*more than 100000"):
+            mas.sections(box_10_20_30(), step=1e-4)
+
     def test_box_sections_along_x_have_exact_area(self):
         result = mas.sections(box_10_20_30(), normal=(1, 0, 0), step=2.5)
         self.assertEqual(len(result), 4)

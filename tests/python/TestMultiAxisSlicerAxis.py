@@ -146,6 +146,25 @@ class TestAxisOfABox(AxisTest):
         self.assertEqual(axis.params["break_angle_deg"], 45.0)
 
 
+class TestAxisProgress(AxisTest):
+    def test_progress_reports_the_volume_swept_and_a_raise_stops_it(self):
+        reports = []
+        axis = mas.centroidal_axis(box_10_20_30(), step=2.0,
+                                   progress=lambda f, s: reports.append(f))
+        self.assertEqual(len(axis.nodes), 15)
+        self.assertEqual(reports[-1], 1.0)
+        self.assertEqual(reports, sorted(reports))
+        self.assertGreater(len(reports), 1)
+
+        def stop(fraction, stage):
+            raise mas.Cancelled("enough")
+
+        with self.assertRaisesRegex(mas.Cancelled, "enough"):
+            mas.centroidal_axis(box_10_20_30(), step=2.0, progress=stop)
+        with self.assertRaisesRegex(TypeError, "progress must be"):
+            mas.centroidal_axis(box_10_20_30(), progress=3)
+
+
 class TestAxisOfAnLBlock(AxisTest):
     def test_l_block_rises_then_turns_into_the_arm(self):
         self.check_l_block_axis(mas.centroidal_axis(l_block(), step=2.5))

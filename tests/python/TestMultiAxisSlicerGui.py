@@ -127,6 +127,28 @@ class TestSectionsCommand(unittest.TestCase):
         FreeCADGui.Selection.addSelection(self.box)
         self.assertTrue(self.command().isActive())
 
+    def test_cancel_in_the_progress_dialog_undoes_the_command(self):
+        # Sections a hair apart take long: the recompute shows its progress and can be cancelled.
+        undo = self.doc.UndoCount
+        with Canceller(self, "Cutting") as canceller:
+            FreeCADGui.Selection.addSelection(self.box)
+            FreeCADGui.runCommand(COMMAND)
+            process_events()
+        self.assertEqual(canceller.clicks, 1)
+        self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
+        self.assertEqual(self.doc.UndoCount, undo)
+        # Recomputing an object runs it again, reporting as it goes.
+        import MultiAxisSlicer.features as features
+
+        obj = features.make_sections(self.box, step=0.01)
+        with Canceller(self, "Cutting") as canceller:
+            self.doc.recompute()
+        self.assertEqual(canceller.clicks, 1)
+        self.assertIn("cancelled by the user", obj.getStatusString())
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.SectionCount, 4000)
+
     def test_command_creates_a_sections_object_on_the_selected_box(self):
         before = self.box.Shape.exportBrepToString()
         FreeCADGui.Selection.addSelection(self.box)
@@ -232,6 +254,16 @@ class TestCentroidalAxisCommand(unittest.TestCase):
         self.assertFalse(self.command().isActive())
         FreeCADGui.Selection.addSelection(self.part)
         self.assertTrue(self.command().isActive())
+
+    def test_cancel_in_the_progress_dialog_undoes_the_command(self):
+        undo = self.doc.UndoCount
+        with Canceller(self, "Centroidal axis") as canceller:
+            self.assertIsNone(self.run_command())
+        self.assertEqual(canceller.clicks, 1)
+        self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+        self.assertEqual(self.doc.UndoCount, undo)
+        obj = self.run_command()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
 
     def test_command_creates_an_axis_with_breaks_in_their_own_colour(self):
         before = self.part.Shape.exportBrepToString()

@@ -71,6 +71,7 @@
 
 #include "mas/Mesh.hpp"
 #include "mas/Polygon2.hpp"
+#include "mas/Progress.hpp"
 
 namespace mas {
 
@@ -175,6 +176,11 @@ double derive_axis_step(const TriangleMesh& mesh);
 // line, such as a cylinder or a torus lying down, has a long section and starts at eps.)
 CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params = {},
                                const std::function<void()>& throw_on_cancel = {});
+
+// The same, reporting to `progress` (Progress.hpp) the volume swept so far over the part's, as
+// the march takes each plane, and 1 when done; its Report may throw to stop the search.
+CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
+                               const Progress& progress);
 
 // Distance from a point to a region in the same 2-D frame: 0 inside, else to the nearest edge of
 // the outer loop (holes count as outside: a point in a hole is at its distance to the hole edge).

@@ -20,6 +20,7 @@
 
 #include "SectionGrid.hpp"
 #include "mas/Error.hpp"
+#include "mas/Progress.hpp"
 #include "mas/Section.hpp"
 
 namespace mas {
@@ -297,9 +298,11 @@ constexpr double kHairline = 1e-4;  // mm
 class Search {
 public:
     // `derived_threshold`: the distance threshold was derived from the step, not given.
+    // `checkpoint(searched_mm3)` is called now and then from this thread with the volume swept so
+    // far; it may throw to stop the search.
     Search(const TriangleMesh& mesh, const AxisParams& params, bool derived_threshold,
-           const std::function<void()>& cancel)
-        : mesh_(mesh), p_(params), derived_threshold_(derived_threshold), cancel_(cancel) {}
+           const std::function<void(double)>& checkpoint)
+        : mesh_(mesh), p_(params), derived_threshold_(derived_threshold), checkpoint_(checkpoint) {}
 
     CentroidalAxis run(double base_z) {
         Task root;
@@ -513,6 +516,7 @@ private:
         node.area = area(region);
         node.offset = offset;
         node.thickness = slab_to - slab_from;
+        searched_ += node.area * node.thickness;
         node.slab_start = slab_from;
         node.branch = branch;
         node.region = region;
@@ -582,7 +586,7 @@ private:
             std::this_thread::yield();  // being cut by the other thread
         }
         try {
-            if (on_search && cancel_) cancel_();
+            if (on_search) checkpoint_(searched_);
             const double tol = p_.step_mm / 100.0;
             // Each plane's regions simplified as soon as it is cut, in parallel. Isolated: while
             // waiting for its planes this thread must not pick up a Lookahead's task, which
@@ -790,7 +794,7 @@ private:
 
         Lookahead ahead(*this, g, k0 + 1);
         for (std::size_t k = k0 + 1; k < count && !tracks.empty(); ++k) {
-            if (cancel_) cancel_();
+            checkpoint_(searched_);
             // Each upper region alone in a list, as the Booleans take it (no copies).
             std::vector<Eigen::AlignedBox2d> near;
             for (const auto& t : tracks) near.push_back(t.box);
@@ -1093,7 +1097,8 @@ private:
     const TriangleMesh& mesh_;
     AxisParams p_;
     bool derived_threshold_;
-    const std::function<void()>& cancel_;
+    const std::function<void(double)>& checkpoint_;
+    double searched_ = 0.0;  // the nodes' slabs so far, mm^3
     std::vector<AxisNode> nodes_;
     std::vector<AxisLink> links_;
     std::vector<AxisBranch> branches_;
@@ -1142,8 +1147,10 @@ double derive_axis_step(const TriangleMesh& mesh) {
     return std::clamp(width / 2.0, diag / 2000.0, diag / 20.0);
 }
 
-CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
-                               const std::function<void()>& throw_on_cancel) {
+namespace {
+
+CentroidalAxis compute_axis(const TriangleMesh& mesh, const AxisParams& params,
+                            const std::function<void(double)>& checkpoint) {
     if (mesh.empty()) throw Error(ErrorCode::EmptyInput, "centroidal axis: the mesh is empty");
     AxisParams p = params;
     auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
@@ -1198,7 +1205,7 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
         base = p.base_z_mm;
     }
     p.base_z_mm = base;
-    CentroidalAxis axis = Search(mesh, p, derived_threshold, throw_on_cancel).run(base);
+    CentroidalAxis axis = Search(mesh, p, derived_threshold, checkpoint).run(base);
     if (axis.nodes.empty()) {
         std::ostringstream msg;
         msg << "centroidal axis: no section of the part has an area over " << p.min_region_area_mm2
@@ -1206,6 +1213,31 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
             << box.sizes().z() << " mm: lengths are in millimetres)";
         throw Error(ErrorCode::InvalidArgument, msg.str());
     }
+    return axis;
+}
+
+}  // namespace
+
+CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
+                               const std::function<void()>& throw_on_cancel) {
+    return compute_axis(mesh, params, [&](double) {
+        if (throw_on_cancel) throw_on_cancel();
+    });
+}
+
+CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
+                               const Progress& progress) {
+    // The fraction done is the volume swept over the part's (divergence theorem on the mesh).
+    double volume = 0.0;
+    for (const Eigen::Vector3i& t : mesh.triangles)
+        volume += mesh.vertices[std::size_t(t[0])].dot(
+                      mesh.vertices[std::size_t(t[1])].cross(mesh.vertices[std::size_t(t[2])])) /
+                  6.0;
+    volume = std::abs(volume);
+    CentroidalAxis axis = compute_axis(mesh, params, [&](double searched) {
+        progress(volume > 0.0 ? std::min(searched / volume, 1.0) : 0.0);
+    });
+    progress(1.0);
     return axis;
 }
 

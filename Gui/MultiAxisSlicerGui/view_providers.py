@@ -216,8 +216,24 @@ class ViewProviderDecomposition(_Stateless):
             o = d.getObject(name) if d is not None else None
             if o is None or getattr(d, "Transacting", False) or "Invalid" in o.State:
                 return
-            if len(features.components_of(o)) != o.ComponentCount:
+            if getattr(d, "Recomputing", False):
+                # The recompute that changed the count goes on (the objects after it report
+                # progress, which lets this timer fire): objects can be neither added nor removed
+                # until it ends.
+                QtCore.QTimer.singleShot(50, sync)
+                return
+            if len(features.components_of(o)) == o.ComponentCount:
+                return
+            # Into the transaction still open, if any (a command's); else an undo step of its own
+            # that says what it is.
+            own = not d.HasPendingTransaction
+            if own:
+                d.openTransaction("Components of '{}'".format(o.Label))
+            try:
                 features.sync_components(o)
+            finally:
+                if own:
+                    d.commitTransaction()
 
         QtCore.QTimer.singleShot(0, sync)
 

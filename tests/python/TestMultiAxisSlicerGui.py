@@ -873,6 +873,40 @@ class TestSliceCommand(unittest.TestCase):
         self.assertIn("not a solid", boxes[0].text())
         self.assertIsNone(QtGui.QApplication.overrideCursor())
 
+    def test_components_follow_a_source_change_that_the_layers_recompute_after(self):
+        # The Decomposition's new count asks for its components to be synchronised once events
+        # are processed; the Layers after it in the same recompute process events as they report
+        # (every report here): the synchronisation waits for the recompute's end instead of
+        # failing in it, which left a component broken for good.
+        import time
+
+        import MultiAxisSlicer.features as features
+
+        decomposition = features.make_decomposition(self.part)
+        features.make_slice(decomposition)
+        self.doc.recompute()
+        process_events()
+        self.assertEqual(len(features.components_of(decomposition)), 2)
+        saved = progress.INTERVAL
+        progress.INTERVAL = 0.0
+        try:
+            self.doc.openTransaction("Shorten")
+            self.part.Shape = Part.makeBox(20, 20, 30)
+            self.doc.commitTransaction()
+            self.doc.recompute()
+        finally:
+            progress.INTERVAL = saved
+        self.assertEqual(decomposition.ComponentCount, 1)
+        deadline = time.monotonic() + 5.0
+        while len(features.components_of(decomposition)) != 1 and time.monotonic() < deadline:
+            process_events()
+            time.sleep(0.01)
+        self.assertEqual(len(features.components_of(decomposition)), 1)
+        self.assertEqual([(o.Name, o.getStatusString()) for o in self.doc.Objects
+                          if not o.isValid()], [])
+        # Its own undo step, named; the next one takes the source back.
+        self.assertEqual(self.doc.UndoNames[:2], ["Components of 'Decomposition'", "Shorten"])
+
     def test_command_on_a_failing_axis_shows_the_axis_message(self):
         import MultiAxisSlicer as mas
 

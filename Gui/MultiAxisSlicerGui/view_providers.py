@@ -186,12 +186,16 @@ class ViewProviderDecomposition(_Stateless):
             return []
 
     def onDelete(self, vobj, subelements):
-        """Deleting the decomposition deletes its components (they only show its solids)."""
+        """Deleting the decomposition deletes its components (they only show its solids) and
+        shows the part again, which the Decompose command hid."""
         import MultiAxisSlicer.features as features
 
         obj = vobj.Object
         for c in features.components_of(obj):
             obj.Document.removeObject(c.Name)
+        source = obj.Source if obj.Source is not None else getattr(obj.Axis, "Source", None)
+        if source is not None and source.ViewObject is not None:
+            source.ViewObject.Visibility = True
         return True
 
     def updateData(self, obj, prop):
@@ -485,6 +489,18 @@ class ViewProviderLayers(_EdgeColoured):
             return  # still being set up or restored
         _set_line_colours(vobj, layer_edge_colours(obj.Shape, obj.LayerComponents,
                                                    tuple(vobj.ShapeColor)[:3]))
+
+    def onDelete(self, vobj, subelements):
+        """Deleting the layers shows the components they were sliced from again (the Slice
+        command hid them, and the part)."""
+        import MultiAxisSlicer.features as features
+
+        decomposition = getattr(vobj.Object, "Decomposition", None)
+        if decomposition is not None:
+            for c in features.components_of(decomposition):
+                if c.ViewObject is not None:
+                    c.ViewObject.Visibility = True
+        return True
 
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("Slice.svg")

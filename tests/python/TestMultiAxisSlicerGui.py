@@ -562,11 +562,14 @@ class TestDecomposeCommand(unittest.TestCase):
             process_events()
             self.assertEqual(len(features_of().components_of(obj)), 2)
             self.assertTrue(all(o.isValid() for o in self.doc.Objects))
+            part = self.doc.getObject("L")
+            self.assertFalse(part.ViewObject.Visibility)
             FreeCADGui.getDocument(self.doc.Name).getObject(obj.Name).Proxy.onDelete(
                 obj.ViewObject, [])
             self.doc.removeObject(obj.Name)
             process_events()
             self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+            self.assertTrue(part.ViewObject.Visibility)  # in view again
         finally:
             shutil.rmtree(folder)
 
@@ -872,6 +875,18 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())
         self.assertIsNone(QtGui.QApplication.overrideCursor())
+
+    def test_deleting_the_layers_shows_the_components_again(self):
+        import MultiAxisSlicer.features as features
+
+        layers, toolpath = self.run_command(self.part)
+        components = features.components_of(layers.Decomposition)
+        self.assertEqual([c.ViewObject.Visibility for c in components], [False, False])
+        self.doc.removeObject(toolpath.Name)
+        self.assertTrue(layers.ViewObject.Proxy.onDelete(layers.ViewObject, []))
+        self.doc.removeObject(layers.Name)
+        process_events()
+        self.assertEqual([c.ViewObject.Visibility for c in components], [True, True])
 
     def test_components_follow_a_source_change_that_the_layers_recompute_after(self):
         # The Decomposition's new count asks for its components to be synchronised once events

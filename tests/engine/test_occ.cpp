@@ -493,6 +493,30 @@ TEST_F(OccReadModel, FilesCutAnywhereAreReadFailed) {
     }
 }
 
+// Damaged files that OCCT's translator and shape check dereference into the void (an access
+// violation, which ended the process, FreeCAD with it): errors naming the file instead.
+TEST_F(OccReadModel, DamagedFilesAreErrorsNotCrashes) {
+    // A STEP entity that a vertex refers to is missing.
+    std::string step = read_text(std::string(MAS_TEST_DATA) + "/box_10x20x30.step");
+    const std::size_t at = step.find("\n#176 = CARTESIAN_POINT");
+    ASSERT_NE(at, std::string::npos);
+    step.erase(at + 1, step.find('\n', at + 1) - at);
+    const std::string step_file = write_text("missing_point.step", step);
+    EXPECT_TRUE(throws_error([&] { model_mesh(read_model(step_file)); }, ErrorCode::EmptyInput,
+                             "only damaged entities"));
+    // A BREP plane whose directions are zero vectors.
+    std::istringstream brep(read_text(std::string(MAS_TEST_DATA) + "/l_block.brep"));
+    std::string damaged;
+    int line_number = 0;
+    for (std::string line; std::getline(brep, line);)
+        damaged +=
+            (++line_number == 73 ? std::string("1 27.3 0 37.6 -0 -1 -0 0 0 -1 -0 -0 0 ") : line) +
+            "\n";
+    const std::string brep_file = write_text("zero_direction.brep", damaged);
+    EXPECT_TRUE(throws_error([&] { model_mesh(read_model(brep_file)); }, ErrorCode::NotASolid,
+                             "zero_direction.brep: an invalid solid"));
+}
+
 TEST_F(OccReadModel, GarbageFilesAreReadFailed) {
     const std::string garbage = "this is not a CAD file\n\x01\x02\x03 at all\n";
     for (const char* name : {"junk.step", "junk.igs", "junk.brep"}) {

@@ -306,6 +306,19 @@ class TestBadInput(support.EngineTestCase):
             with open(path, "w") as f:
                 f.write("1 2 3\n")
             self.assertRaisesEngineError("unsupported_format", mas.sections, path)
+            # A damaged STEP file (an entity a vertex refers to is missing) crashed FreeCAD in
+            # OCCT's translator; FreeCAD goes on, and so does the engine.
+            path = os.path.join(folder, "damaged.step")
+            box = Part.makeBox(10, 20, 30)
+            box.exportStep(path)
+            with open(path) as f:
+                lines = f.read().split("\n")
+            point = next(i for i, line in enumerate(lines) if "CARTESIAN_POINT" in line
+                         and "(10.,0.,0.)" in line)
+            with open(path, "w") as f:
+                f.write("\n".join(lines[:point] + lines[point + 1:]))
+            self.assertRaisesEngineError("empty_input", mas.sections, path)
+            self.assertEqual(len(mas.sections(box, step=10.0)), 3)
         finally:
             shutil.rmtree(folder)
 

@@ -45,12 +45,17 @@ int count_of(const TopoDS_Shape& s, TopAbs_ShapeEnum type) {
 template <class Reader>
 TopoDS_Shape read_exchange(const std::string& path, const char* format) {
     Reader reader;
-    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    if (occ::catching_signals([&] { return reader.ReadFile(path.c_str()); }) != IFSelect_RetDone)
         throw Error(ErrorCode::ReadFailed, path + ": unreadable or truncated " + format + " file");
-    reader.TransferRoots();
-    TopoDS_Shape shape = reader.OneShape();
+    // A damaged file (an entity referring to one that is missing) crashes the translator: caught.
+    TopoDS_Shape shape = occ::catching_signals([&] {
+        reader.TransferRoots();
+        return reader.OneShape();
+    });
     if (shape.IsNull())
-        throw Error(ErrorCode::EmptyInput, path + ": the " + format + " file holds no shape");
+        throw Error(ErrorCode::EmptyInput, path + ": the " + format +
+                                               " file holds no shape OCCT can translate (none, "
+                                               "or only damaged entities)");
     return shape;
 }
 

@@ -10,6 +10,7 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
+#include <OSD.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -19,6 +20,7 @@
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
 #include <algorithm>
+#include <cfenv>
 #include <sstream>
 #include <vector>
 
@@ -56,6 +58,19 @@ Shape wrap(const TopoDS_Shape& shape) {
     return Shape(std::move(impl));
 }
 
+SignalHandlers::SignalHandlers() : saved_(NSIG) {
+    for (int sig = 1; sig < NSIG; ++sig) sigaction(sig, nullptr, &saved_[std::size_t(sig)]);
+    traps_ = fegetexcept();
+    OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
+}
+
+SignalHandlers::~SignalHandlers() {
+    for (int sig = 1; sig < NSIG; ++sig)
+        if (sig != SIGKILL && sig != SIGSTOP) sigaction(sig, &saved_[std::size_t(sig)], nullptr);
+    fedisableexcept(FE_ALL_EXCEPT);
+    if (traps_ > 0) feenableexcept(traps_);
+}
+
 std::string failure_message(const std::string& what, const Standard_Failure& failure) {
     const char* text = failure.GetMessageString();
     std::string message = text != nullptr ? text : "";
@@ -85,7 +100,7 @@ TopoDS_Shape read_brep(std::istream& in, const std::string& what) {
         std::istringstream stream(text);
         stream.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
         BRep_Builder builder;
-        BRepTools::Read(shape, stream, builder);
+        occ::catching_signals([&] { BRepTools::Read(shape, stream, builder); });
     } catch (const std::ios_base::failure&) {
         throw Error(ErrorCode::ReadFailed, what + ": truncated or malformed BREP data");
     } catch (const Standard_Failure& e) {
@@ -248,8 +263,7 @@ Shape Shape::single_solid(const std::string& what) const {
                                                   ", 0 solids)");
         }
 
-        BRepCheck_Analyzer check(solid);
-        if (!check.IsValid())
+        if (!occ::catching_signals([&] { return BRepCheck_Analyzer(solid).IsValid(); }))
             throw Error(ErrorCode::NotASolid,
                         what +
                             ": an invalid solid (OCCT's shape check finds faults in its faces, "

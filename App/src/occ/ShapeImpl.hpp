@@ -3,10 +3,19 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TopoDS_Shape.hxx>
+#include <csignal>
 #include <istream>
 #include <string>
+#include <vector>
+
+// OCCT turns a fatal signal into a long jump to the nearest OCC_CATCH_SIGNALS only in code built
+// with this (Debian's OCCT is): the engine's OCCT files are (CMakeLists.txt).
+#if !defined(OCC_CONVERT_SIGNALS)
+#error "App/src/occ is compiled with OCC_CONVERT_SIGNALS"
+#endif
 
 #include "mas/Error.hpp"
 #include "mas/Shape.hpp"
@@ -34,6 +43,32 @@ double volume_of(const TopoDS_Shape& shape);
 
 // `shape` with the seams between faces (and edges) on one surface (curve) removed.
 TopoDS_Shape unify(const TopoDS_Shape& shape);
+
+// While alive, OCCT's signal handlers (OSD::SetSignal, floating-point traps off) replace the
+// process's; they are put back, with its floating-point traps, when it dies.
+class SignalHandlers {
+public:
+    SignalHandlers();
+    ~SignalHandlers();
+    SignalHandlers(const SignalHandlers&) = delete;
+    SignalHandlers& operator=(const SignalHandlers&) = delete;
+
+private:
+    std::vector<struct sigaction> saved_;
+    int traps_ = 0;
+};
+
+// work(), with a fatal signal on this thread within it (an access violation: OCCT's readers and
+// checkers dereference what a damaged file lacks, a STEP entity's missing reference, a BREP
+// plane's zero direction) thrown as a Standard_Failure (Standard_AccessViolation, ...) instead of
+// ending the process, FreeCAD with it. What work() had built by then is leaked, not destroyed.
+// A signal on another thread still ends the process.
+template <class Work>
+auto catching_signals(Work&& work) -> decltype(work()) {
+    const SignalHandlers handlers;
+    OCC_CATCH_SIGNALS
+    return work();
+}
 
 // "<what>: <OCCT's message>", with a fallback when OCCT gives none.
 std::string failure_message(const std::string& what, const Standard_Failure& failure);

@@ -206,9 +206,10 @@ TEST(CentroidalAxis, CubeStandingOnAVertexIsSearchedFromItsFirstRealSection) {
         // Three-fold symmetry: on the diagonal. Up to the cube's three nearest corners the
         // sections are equilateral triangles, x + y + z = h sqrt(3): area (3 sqrt(3) / 2) h^2.
         EXPECT_NEAR(node.position.head<2>().norm(), 0.0, 1e-9) << node.position.transpose();
-        if (node.offset < height / 3.0)
+        if (node.offset < height / 3.0) {
             EXPECT_NEAR(node.area, 1.5 * std::sqrt(3.0) * node.offset * node.offset,
                         1e-9 * node.area);
+        }
     }
     expect_invariants(a, mesh);
 }

@@ -221,6 +221,15 @@ TEST(OccTessellate, EffectiveDeflectionIsDerivedFromTheBoundingBox) {
     EXPECT_DOUBLE_EQ(effective_deflection(small, automatic), 0.005);
     EXPECT_DOUBLE_EQ(effective_deflection(mid, explicit_d), 0.02);
     EXPECT_DOUBLE_EQ(effective_deflection(mid, negative), effective_deflection(mid, automatic));
+    // A deflection finer than 1e-5 of the diagonal would take minutes and gigabytes: named.
+    TessellationParams fine;
+    fine.deflection_mm = 1.001e-5 * std::sqrt(300.0);
+    EXPECT_DOUBLE_EQ(effective_deflection(mid, fine), fine.deflection_mm);
+    fine.deflection_mm = 0.999e-5 * std::sqrt(300.0);
+    EXPECT_TRUE(throws_error([&] { effective_deflection(mid, fine); }, ErrorCode::InvalidArgument,
+                             "is too fine for a part"));
+    EXPECT_TRUE(throws_error([&] { tessellate(mid, fine); }, ErrorCode::InvalidArgument,
+                             "tessellation deflection"));
 }
 
 TEST(OccTessellate, NonFiniteDeflectionIsInvalidArgument) {

@@ -65,6 +65,11 @@ struct TessellationParams {
     double angular_deflection_rad = 0.35;  // ~20 degrees, bounds facet normals on tight curves
 };
 
+// A given deflection below this fraction of the part's bounding-box diagonal is InvalidArgument.
+inline constexpr double kMinDeflectionRatio = 1e-5;
+
+// params.deflection_mm, or the one derived from the part. Throws InvalidArgument for a deflection
+// that is not finite or finer than kMinDeflectionRatio of the part's diagonal.
 double effective_deflection(const Shape& solid, const TessellationParams& params);
 
 // Tessellates one closed solid into a closed, outward-oriented, welded triangle mesh.

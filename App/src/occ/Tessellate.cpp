@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 #include "ShapeImpl.hpp"
@@ -161,11 +162,22 @@ double effective_deflection(const Shape& solid, const TessellationParams& params
     const double d = params.deflection_mm;
     if (!std::isfinite(d))
         throw Error(ErrorCode::InvalidArgument, "tessellation deflection must be a finite number");
-    if (d > 0.0) return d;
     try {
         const double diagonal = bbox_diagonal(occ::occt(solid));
         if (!(diagonal > 0.0))
             throw Error(ErrorCode::EmptyInput, "tessellation input: the shape has no extent");
+        if (d > 0.0) {
+            // Finer than this, the facets of curved faces would run into the millions (and OCCT
+            // spends minutes and gigabytes on them) for no section worth having.
+            if (d < kMinDeflectionRatio * diagonal) {
+                std::ostringstream msg;
+                msg << "tessellation deflection " << d << " mm is too fine for a part " << diagonal
+                    << " mm across: at least " << kMinDeflectionRatio * diagonal << " mm ("
+                    << kMinDeflectionRatio << " of its diagonal)";
+                throw Error(ErrorCode::InvalidArgument, msg.str());
+            }
+            return d;
+        }
         return std::clamp(5e-4 * diagonal, 0.005, 0.1);
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("tessellation input", e));

@@ -539,15 +539,24 @@ TEST(Paths, ABeadTooSmallForTheRegionIsRefusedUpFront) {
     params.bead_width_mm = 1e-3;  // contour-parallel: ~59000 offset levels
     params.infill = mas::InfillPattern::Contour;
     EXPECT_THROW(mas::plan_layer_paths(plate, params, 0, {0, 0}), mas::Error);
-    params.bead_width_mm = 5e-5;  // raster: ~2.4 million lines
+    auto expect_refused = [&](const mas::PathParams& p, const std::string& words) {
+        try {
+            mas::plan_layer_paths(plate, p, 0, {0, 0});
+            ADD_FAILURE() << "no error";
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+    };
     params.infill = mas::InfillPattern::Raster;
-    try {
-        mas::plan_layer_paths(plate, params, 0, {0, 0});
-        ADD_FAILURE() << "no error";
-    } catch (const mas::Error& e) {
-        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
-        EXPECT_NE(std::string(e.what()).find("bead_width_mm"), std::string::npos) << e.what();
-    }
+    // Ordering the segments of n lines takes time growing as n^2: at most 10000 lines. A 0.01 mm
+    // bead at the default overlap (0.15) spaces them 0.0085 mm apart: ~11700 across 100 mm.
+    params.bead_width_mm = 0.01;
+    expect_refused(params, "bead_width_mm 0.01 x (1 - overlap 0.15)) is too small for a region");
+    // The spacing is what counts: a 1 mm bead overlapping its neighbour all but entirely.
+    params.bead_width_mm = 1.0;
+    params.overlap = 0.9999;
+    expect_refused(params, "(1 - overlap 0.9999)) is too small");
 }
 
 TEST(Paths, InfillPatternNamesRoundTrip) {

@@ -71,7 +71,9 @@ constexpr double kPi = 3.14159265358979323846;
 // squared off).
 constexpr double kMiterLimit = 2.0;
 constexpr double kMaxFacingDeviation = 3 * kPi / 8;  // medial-axis edges kept (see top of file)
-constexpr std::size_t kMaxRasterLines = 1000000;     // per infill piece: guards a tiny bead width
+// Raster lines per infill piece: guards a tiny bead spacing. Ordering the lines' segments takes
+// time growing with their square: 10000 lines (a 1 m piece at a 0.1 mm spacing) take a second.
+constexpr std::size_t kMaxRasterLines = 10000;
 constexpr int kMaxLevels = 10000;  // offset levels per region: guards a tiny bead width
 constexpr int kMaxCentreLinesPerPiece = 32;
 
@@ -724,8 +726,10 @@ std::vector<double> raster_positions(const Piece& piece, const Eigen::Vector2d& 
     const double lo = t0 + margin, hi = t1 - margin;
     if (hi - lo <= 1e-9) return {0.5 * (t0 + t1)};
     if ((hi - lo) / set.s > double(kMaxRasterLines))
-        invalid("bead_width_mm " + number(set.w) +
-                " is too small for the region: over a million raster lines");
+        invalid("the bead spacing " + number(set.s) + " mm (bead_width_mm " + number(set.w) +
+                " x (1 - overlap " + number(set.overlap) + ")) is too small for a region " +
+                number(hi - lo) + " mm across: over " + std::to_string(kMaxRasterLines) +
+                " raster lines");
     std::vector<double> extremes{lo, hi};
     for (const auto& loop : piece.loops) {
         const std::size_t m = loop.size();
@@ -837,7 +841,8 @@ RegionPlan plan_region(const Region2& region, int index, const Settings& set,
                                   ? across
                                   : std::min(across, double(set.contour_count) + 1.0);
         if (levels > double(kMaxLevels))
-            invalid("bead_width_mm " + number(set.w) + " is too small for a region " +
+            invalid("the bead spacing " + number(set.s) + " mm (bead_width_mm " + number(set.w) +
+                    " x (1 - overlap " + number(set.overlap) + ")) is too small for a region " +
                     number(box.sizes().minCoeff()) + " mm across: over " +
                     std::to_string(kMaxLevels) + " offset levels");
     }

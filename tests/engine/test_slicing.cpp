@@ -637,6 +637,11 @@ TEST(SlicingErrors, BadParametersAreNamed) {
     p.layers.max_layer_mm = std::nan("");
     expect_invalid(p, "max_layer");
     p = default_params();
+    p.layers.max_layer_mm = 1e300;  // once one layer 32 mm thick on this 10 mm box
+    expect_invalid(p, "max_layer must be at most");
+    p.layers.max_layer_mm = mas::kMaxLayerLimitMm;
+    EXPECT_NO_THROW(mas::validate(p.layers));
+    p = default_params();
     p.layers.max_volume_difference = 0.0;
     expect_invalid(p, "max_volume_difference");
     p = default_params();

@@ -91,8 +91,13 @@ struct LayerParams {
     std::size_t max_layers = 100000;  // per component: guard against runaway slicing
 };
 
+// The largest max_layer_mm accepted (a kilometre): thicker, adding it to a plane's offset would
+// lose the part's height to rounding.
+inline constexpr double kMaxLayerLimitMm = 1e6;
+
 // Throws mas::Error(InvalidArgument) naming the parameter (min_layer > max_layer, a non-positive
-// or NaN length, a volume difference not > 0, an angle out of range, volume_samples < 1).
+// or NaN length, max_layer over kMaxLayerLimitMm, a volume difference not > 0, an angle out of
+// range, volume_samples < 1).
 void validate(const LayerParams& params);
 
 // One sub-component to slice.

@@ -600,6 +600,11 @@ void validate(const LayerParams& p) {
     };
     positive(p.min_layer_mm, "min_layer");
     positive(p.max_layer_mm, "max_layer");
+    // Layer planes are placed by adding a thickness to an offset: beyond this, the sum would lose
+    // the part's whole height to rounding (1e300 gave one layer 32 mm thick on a 30 mm box).
+    if (p.max_layer_mm > kMaxLayerLimitMm)
+        invalid("max_layer must be at most " + mm(kMaxLayerLimitMm) + ", got " +
+                mm(p.max_layer_mm));
     if (p.min_layer_mm > p.max_layer_mm)
         invalid("min_layer (" + mm(p.min_layer_mm) + ") is greater than max_layer (" +
                 mm(p.max_layer_mm) + ")");

@@ -691,6 +691,29 @@ TEST(SlicingErrors, CancellationStopsTheWork) {
     EXPECT_EQ(calls, 5);
 }
 
+TEST(SlicingErrors, ADecompositionOfAnotherPartIsNamed) {
+    // Once sliced as given: the box's layers, reported for the cylinder.
+    const auto box = mas::test::box(0, 0, 0, 10, 20, 30);
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const auto axis = mas::centroidal_axis(mas::tessellate(box, tp), {});
+    const auto d = mas::decompose(box, axis);
+    auto expect_other = [&](const mas::Shape& part, const std::string& words) {
+        try {
+            mas::slice_part(part, axis, d, default_params());
+            ADD_FAILURE() << "no error";
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+    };
+    expect_other(mas::test::from_occt(mas::test::occ_cylinder({5, 10, 0}, {0, 0, 1}, 15.0, 30.0)),
+                 "its components hold 6000");
+    // The same volume elsewhere.
+    expect_other(mas::test::box(100, 0, 0, 10, 20, 30), "reach outside this part's box");
+    EXPECT_NO_THROW(mas::slice_part(box, axis, d, default_params()));
+}
+
 TEST(Slicing, InsideMeshTellsInsideFromOutside) {
     const auto mesh = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
     EXPECT_TRUE(mas::inside_mesh(mesh, {5, 5, 5}));

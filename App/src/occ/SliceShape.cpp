@@ -1,6 +1,7 @@
 // Slicing a BREP part: its sub-components, holes filled when asked (Holes.hpp), tessellated with
 // the part's deflection, then sliced as meshes (see SlicePart.hpp).
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "ShapeImpl.hpp"
@@ -8,6 +9,40 @@
 #include "mas/SlicePart.hpp"
 
 namespace mas {
+
+namespace {
+
+// The decomposition must be of this part: its components fill the part's volume (within a
+// thousandth: they are cut from it by Booleans) and lie within its box.
+void check_components(const Shape& part, const Decomposition& decomposition) {
+    const TopoDS_Shape& whole = occ::occt(part);
+    const double volume = occ::volume_of(whole);
+    Eigen::AlignedBox3d box = occ::tight_bounds(whole);
+    const double reach = 1e-3 * box.diagonal().norm();
+    box.min().array() -= reach;
+    box.max().array() += reach;
+    double sum = 0.0;
+    try {
+        for (const Component& c : decomposition.components) {
+            const TopoDS_Shape& s = occ::occt(c.solid);
+            sum += occ::volume_of(s);
+            if (!box.contains(occ::tight_bounds(s)))
+                throw Error(ErrorCode::InvalidArgument,
+                            "slice: the decomposition is of another part (its components reach "
+                            "outside this part's box)");
+        }
+    } catch (const Standard_Failure& e) {
+        throw Error(ErrorCode::GeometryFailure, occ::failure_message("slice: a component", e));
+    }
+    if (std::abs(sum - volume) > 1e-3 * volume) {
+        std::ostringstream msg;
+        msg << "slice: the decomposition is of another part (its components hold " << sum
+            << " mm^3, this part " << volume << " mm^3)";
+        throw Error(ErrorCode::InvalidArgument, msg.str());
+    }
+}
+
+}  // namespace
 
 SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                       const Decomposition& decomposition, const SlicePartParams& params,
@@ -20,6 +55,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                     "finite, got " +
                         std::to_string(params.fill_holes_up_to_mm));
     const Shape part = solid.single_solid("the part");
+    check_components(part, decomposition);
     // One deflection for every component: the part's, so that a face shared by a father and its
     // child is approximated alike on both sides.
     TessellationParams tessellation = params.tessellation;

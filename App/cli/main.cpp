@@ -164,6 +164,14 @@ struct Args {
     double number(const std::string& name, double fallback) const {
         return has(name) ? parse_number(options.at(name), name) : fallback;
     }
+    // A count: a whole number within int's range (range checks beyond that are the engine's).
+    int integer(const std::string& name, int fallback) const {
+        if (!has(name)) return fallback;
+        const double v = parse_number(options.at(name), name);
+        if (v != std::floor(v) || std::abs(v) > 1e9)
+            throw UsageError(name + " must be a whole number, got '" + options.at(name) + "'");
+        return int(v);
+    }
 };
 
 Args parse_args(const std::vector<std::string>& args, const std::set<std::string>& allowed) {
@@ -187,6 +195,9 @@ Args parse_args(const std::vector<std::string>& args, const std::set<std::string
         }
     }
     if (a.file.empty()) throw UsageError("no input FILE given");
+    std::error_code same;
+    if (!a.json_path.empty() && std::filesystem::equivalent(a.json_path, a.file, same))
+        throw UsageError("--json " + a.json_path + " would overwrite the input FILE");
     return a;
 }
 
@@ -216,7 +227,7 @@ void write_output(const Args& a, const std::string& text) {
     if (a.json && !a.json_path.empty()) {
         std::ofstream file(a.json_path);
         if (!(file << text))
-            throw mas::Error(mas::ErrorCode::ReadFailed, a.json_path + ": cannot write the file");
+            throw mas::Error(mas::ErrorCode::WriteFailed, a.json_path + ": cannot write the file");
     } else {
         std::cout << text;
     }
@@ -409,7 +420,7 @@ int run_decompose(const std::vector<std::string>& args) {
         const std::string dir = a.options.at("--step-dir");
         std::error_code ec;
         std::filesystem::create_directories(dir, ec);
-        if (ec) throw mas::Error(mas::ErrorCode::ReadFailed, dir + ": cannot create the folder");
+        if (ec) throw mas::Error(mas::ErrorCode::WriteFailed, dir + ": cannot create the folder");
         for (std::size_t i = 0; i < d.components.size(); ++i) {
             std::ostringstream name;
             name << "component_" << std::setw(3) << std::setfill('0') << i + 1 << ".step";
@@ -474,11 +485,11 @@ mas::SlicePartParams slice_params(const Args& a) {
     l.max_volume_difference = a.number("--max-volume-difference", l.max_volume_difference);
     l.eps_angle_deg = a.number("--eps-angle", l.eps_angle_deg);
     l.overhang_angle_deg = a.number("--overhang-angle", l.overhang_angle_deg);
-    l.volume_samples = int(a.number("--volume-samples", l.volume_samples));
+    l.volume_samples = a.integer("--volume-samples", l.volume_samples);
     mas::PathParams& t = p.paths;
     t.bead_width_mm = a.number("--bead-width", t.bead_width_mm);
     t.overlap = a.number("--overlap", t.overlap);
-    t.contour_count = int(a.number("--contours", t.contour_count));
+    t.contour_count = a.integer("--contours", t.contour_count);
     if (a.has("--infill"))
         t.infill = mas::infill_pattern_from_string(a.options.at("--infill").c_str());
     t.raster_angle_deg = a.number("--raster-angle", t.raster_angle_deg);

@@ -145,6 +145,16 @@ class CliSections(unittest.TestCase):
         self.expect_error(["sections", box, "--normal", "1,2"], 2, "X,Y,Z")
         self.expect_error(["sections"], 2, "FILE")
         self.expect_error(["explode", box], 2, "unknown command")
+        # The input is never overwritten, an output that cannot be written is named as such.
+        copy = self.write("copy.step", open(box).read())
+        self.expect_error(["sections", copy, "--json", copy], 2, "would overwrite the input")
+        self.assertEqual(open(copy).read(), open(box).read())
+        self.expect_error(["sections", box, "--json", os.path.join(copy, "out.json")], 1,
+                          "write_failed", "cannot write")
+        # Counts are whole numbers (1e20 used to wrap to -2147483648, 4.7 to run as 4).
+        self.expect_error(["slice", box, "--volume-samples", "4.7"], 2, "--volume-samples",
+                          "whole number")
+        self.expect_error(["slice", box, "--contours", "1e10"], 2, "--contours", "whole number")
 
     def test_axis_of_the_l_block_turns_into_the_arm(self):
         r = run("axis", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--json")

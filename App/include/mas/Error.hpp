@@ -12,6 +12,7 @@ enum class ErrorCode {
     InvalidArgument,      // a parameter out of its range (zero step, zero normal, NaN, ...)
     EmptyInput,           // an empty file, a shape or mesh with nothing in it
     ReadFailed,           // a file that does not exist, cannot be read or is truncated
+    WriteFailed,          // an output file that cannot be written
     UnsupportedFormat,    // a file extension the engine does not read
     NotASolid,            // a face, a wire, an open shell where a closed solid is expected
     MultipleSolids,       // several solids where exactly one is expected

@@ -10,6 +10,8 @@ const char* to_string(ErrorCode code) {
             return "empty_input";
         case ErrorCode::ReadFailed:
             return "read_failed";
+        case ErrorCode::WriteFailed:
+            return "write_failed";
         case ErrorCode::UnsupportedFormat:
             return "unsupported_format";
         case ErrorCode::NotASolid:

@@ -15,7 +15,7 @@ void write_step(const Shape& shape, const std::string& path) {
         if (writer.Transfer(occ::occt(shape), STEPControl_AsIs) != IFSelect_RetDone)
             throw Error(ErrorCode::GeometryFailure, path + ": the shape cannot be written as STEP");
         if (writer.Write(path.c_str()) != IFSelect_RetDone)
-            throw Error(ErrorCode::ReadFailed, path + ": cannot write the file");
+            throw Error(ErrorCode::WriteFailed, path + ": cannot write the file");
     } catch (const Standard_Failure& failure) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message(path, failure));
     }

@@ -185,12 +185,16 @@ def make_sections(source, normal=(0, 0, 1), step=5.0, deflection=0.0, name="Sect
         doc = source.Document if source is not None else FreeCAD.ActiveDocument
     if doc is None:
         raise ValueError("no document to add the Sections object to")
+    # Checked before anything is added: bad arguments leave the document as it was.
+    normal = FreeCAD.Vector(*mas._direction(normal))
+    step = mas._length(step, "step")
+    deflection = mas._length(deflection, "deflection", allow_zero=True)
     obj = doc.addObject("Part::FeaturePython", name)
     SectionsFeature(obj)
     obj.Source = source
-    obj.Normal = FreeCAD.Vector(*mas._direction(normal))
-    obj.Step = mas._length(step, "step")
-    obj.Deflection = mas._length(deflection, "deflection", allow_zero=True)
+    obj.Normal = normal
+    obj.Step = step
+    obj.Deflection = deflection
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, SectionsFeature.VIEW_PROVIDER)
     return obj

@@ -458,6 +458,14 @@ class TestSectionsObject(support.EngineTestCase):
         self.doc.recompute()
         self.check_box_sections(obj, 3)
 
+    def test_bad_arguments_add_nothing(self):
+        names = [o.Name for o in self.doc.Objects]
+        for kwargs in (dict(normal=(0, 0, 0)), dict(step=-1.0), dict(step=float("nan")),
+                       dict(deflection=-1.0)):
+            with self.assertRaises(ValueError, msg=kwargs):
+                mas.make_sections(self.box, **kwargs)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
     def test_save_close_reopen_recompute(self):
         obj = mas.make_sections(self.box, normal=(0, 0, 1), step=10.0, deflection=0.02)
         self.doc.recompute()

@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "mas/Error.hpp"
 #include "mas/Mesh.hpp"
@@ -77,6 +80,58 @@ TEST(MeshCheck, InsideOutMeshIsFlippedNotRejected) {
     EXPECT_LT(mas::check_mesh(m).volume_mm3, 0.0);
     mas::require_closed_mesh(m, "box");
     EXPECT_NEAR(mas::check_mesh(m).volume_mm3, 8.0, 1e-12);
+}
+
+namespace {
+
+// Boxes (x0, y0, z0, dx, dy, dz) as the shells of one mesh, those marked inward facing in.
+mas::TriangleMesh shells(const std::vector<std::array<double, 6>>& boxes,
+                         const std::vector<bool>& inward) {
+    mas::TriangleMesh out;
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+        const auto& x = boxes[b];
+        auto m = mas::test::box_mesh(x[0], x[1], x[2], x[3], x[4], x[5]);
+        const int base = int(out.vertices.size());
+        for (const auto& v : m.vertices) out.vertices.push_back(v);
+        for (auto t : m.triangles) {
+            if (inward[b]) std::swap(t[1], t[2]);
+            out.triangles.push_back(t.array() + base);
+        }
+    }
+    return out;
+}
+
+std::string shell_error(mas::TriangleMesh m) {
+    try {
+        mas::require_closed_mesh(m, "part.stl");
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::NotASolid) << e.what();
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(MeshCheck, ShellsMustBoundOneSolid) {
+    // Solids: two bodies apart; a box with a cavity (its shell facing in); an island in the
+    // cavity (facing out again).
+    EXPECT_EQ(shell_error(shells({{0, 0, 0, 10, 10, 10}, {20, 0, 0, 10, 10, 10}}, {0, 0})), "");
+    EXPECT_EQ(shell_error(shells({{0, 0, 0, 10, 10, 10}, {2, 2, 2, 6, 6, 6}}, {0, 1})), "");
+    EXPECT_EQ(shell_error(shells({{0, 0, 0, 10, 10, 10}, {2, 2, 2, 6, 6, 6}, {4, 4, 4, 2, 2, 2}},
+                                 {0, 1, 0})),
+              "");
+    // Not: two boxes overlapping (sliced as 2000 mm^3 of which 1750 exist), one inside another
+    // facing the same way, a body on its own inside out.
+    EXPECT_NE(shell_error(shells({{0, 0, 0, 10, 10, 10}, {7.5, 0, 0, 10, 10, 10}}, {0, 0}))
+                  .find("lies inside another but faces out (overlapping shells)"),
+              std::string::npos);
+    EXPECT_NE(shell_error(shells({{0, 0, 0, 10, 10, 10}, {2, 2, 2, 6, 6, 6}}, {0, 0}))
+                  .find("shell 2 (12 triangles, facing out) lies inside another"),
+              std::string::npos);
+    EXPECT_NE(shell_error(shells({{0, 0, 0, 10, 10, 10}, {20, 0, 0, 1, 1, 1}}, {0, 1}))
+                  .find("faces in (inside out)"),
+              std::string::npos);
 }
 
 TEST(MeshWeld, TriangleSoupBecomesClosed) {

@@ -18,6 +18,101 @@ namespace {
 
 bool finite(const Eigen::Vector3d& p) { return p.allFinite(); }
 
+// Generalised winding number of `point` about the triangles `tris` of `mesh`: the sum of their
+// signed solid angles over 4 pi (Van Oosterom & Strackee). +1 inside an outward shell, -1 inside
+// an inward one, 0 outside, +-1/2 on it.
+double winding(const TriangleMesh& mesh, const std::vector<std::size_t>& tris,
+               const Eigen::Vector3d& point) {
+    double total = 0.0;
+    for (const std::size_t i : tris) {
+        const Eigen::Vector3i& t = mesh.triangles[i];
+        const Eigen::Vector3d a = mesh.vertices[std::size_t(t[0])] - point;
+        const Eigen::Vector3d b = mesh.vertices[std::size_t(t[1])] - point;
+        const Eigen::Vector3d c = mesh.vertices[std::size_t(t[2])] - point;
+        const double la = a.norm(), lb = b.norm(), lc = c.norm();
+        total += 2.0 * std::atan2(a.dot(b.cross(c)),
+                                  la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
+    }
+    return total / (4.0 * 3.14159265358979323846);
+}
+
+// A closed, consistently oriented mesh of several shells (connected by their vertices) is a solid
+// only if each shell bounds material on its inner side: an outer shell faces out, a cavity's
+// shell, inside one outer shell, faces in, an island in a cavity out again. So a shell nested in
+// the others to winding number k must face out for k = 0 and in for k = 1; any other k (shells
+// overlapping, or one inside another of the same orientation) is no solid. The centroids of up to
+// 32 of each shell's triangles are tested against the shells whose box holds them (a point lying
+// on another shell tells nothing and is skipped). Throws NotASolid naming the first fault.
+void check_shells(const TriangleMesh& mesh, const std::string& what) {
+    const std::size_t nv = mesh.vertices.size();
+    std::vector<std::size_t> root(nv);
+    for (std::size_t i = 0; i < nv; ++i) root[i] = i;
+    const auto find = [&](std::size_t i) {
+        while (root[i] != i) i = root[i] = root[root[i]];
+        return i;
+    };
+    for (const auto& t : mesh.triangles)
+        for (int k = 1; k < 3; ++k) {
+            const std::size_t a = find(std::size_t(t[0])), b = find(std::size_t(t[k]));
+            if (a != b) root[std::max(a, b)] = std::min(a, b);
+        }
+    std::unordered_map<std::size_t, std::size_t> shell_of;  // root vertex -> shell index
+    std::vector<std::vector<std::size_t>> tris;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const std::size_t r = find(std::size_t(mesh.triangles[i][0]));
+        const auto [it, added] = shell_of.emplace(r, tris.size());
+        if (added) tris.emplace_back();
+        tris[it->second].push_back(i);
+    }
+    if (tris.size() < 2) return;
+    std::vector<double> volume(tris.size(), 0.0);
+    std::vector<Eigen::AlignedBox3d> box(tris.size());
+    for (std::size_t s = 0; s < tris.size(); ++s) {
+        for (const std::size_t i : tris[s]) {
+            const Eigen::Vector3i& t = mesh.triangles[i];
+            const Eigen::Vector3d &p0 = mesh.vertices[std::size_t(t[0])],
+                                  &p1 = mesh.vertices[std::size_t(t[1])],
+                                  &p2 = mesh.vertices[std::size_t(t[2])];
+            volume[s] += p0.dot(p1.cross(p2)) / 6.0;
+            box[s].extend(p0);
+            box[s].extend(p1);
+            box[s].extend(p2);
+        }
+    }
+    for (std::size_t s = 0; s < tris.size(); ++s) {
+        const std::size_t stride = std::max<std::size_t>(1, tris[s].size() / 32);
+        for (std::size_t j = 0; j < tris[s].size(); j += stride) {
+            const Eigen::Vector3i& t = mesh.triangles[tris[s][j]];
+            const Eigen::Vector3d p =
+                (mesh.vertices[std::size_t(t[0])] + mesh.vertices[std::size_t(t[1])] +
+                 mesh.vertices[std::size_t(t[2])]) /
+                3.0;
+            double depth = 0.0;
+            bool on_another = false;
+            for (std::size_t o = 0; o < tris.size() && !on_another; ++o) {
+                if (o == s || !box[o].contains(p)) continue;
+                const double w = winding(mesh, tris[o], p);
+                if (std::abs(w - std::round(w)) > 0.25) on_another = true;
+                depth += std::round(w);
+            }
+            if (on_another) continue;
+            const bool outward = volume[s] > 0.0;
+            if ((depth == 0.0 && outward) || (depth == 1.0 && !outward)) continue;
+            std::ostringstream msg;
+            msg << what << ": the mesh is not one solid: of its " << tris.size()
+                << " shells, shell " << s + 1 << " (" << tris[s].size() << " triangles, facing "
+                << (outward ? "out" : "in") << ") ";
+            if (depth == 0.0)
+                msg << "lies outside the others but faces in (inside out)";
+            else if (depth == 1.0)
+                msg << "lies inside another but faces out (overlapping shells)";
+            else
+                msg << "lies inside " << depth << " others at once (overlapping shells)";
+            throw Error(ErrorCode::NotASolid, msg.str());
+        }
+    }
+}
+
 }  // namespace
 
 MeshReport check_mesh(const TriangleMesh& mesh) {
@@ -92,6 +187,7 @@ void require_closed_mesh(TriangleMesh& mesh, const std::string& what) {
         throw Error(ErrorCode::EmptyInput, what + ": every triangle of the mesh is degenerate");
     if (r.volume_mm3 < 0.0)  // closed and consistent, but inside out
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+    check_shells(mesh, what);
 }
 
 std::size_t weld_vertices(TriangleMesh& mesh, double tolerance_mm) {

@@ -508,7 +508,8 @@ TEST(Paths, ValidateNamesTheBadParameter) {
         }
         EXPECT_THROW(mas::plan_layer_paths(rectangle(), p, 0, {0, 0}), mas::Error);
     };
-    for (double w : {0.0, -1.0, std::nan("")}) {
+    // 1e300 overflowed the Booleans' integer grid ("Coordinate outside allowed range").
+    for (double w : {0.0, -1.0, std::nan(""), 1e300, 1001.0}) {
         mas::PathParams p;
         p.bead_width_mm = w;
         expect_invalid(p, "bead_width_mm");

@@ -62,9 +62,11 @@ struct PathParams {
     bool measure_coverage = false;
 };
 
+inline constexpr double kMaxBeadWidthMm = 1000.0;
+
 // Throws mas::Error(InvalidArgument) naming the parameter: a bead width that is not positive and
-// finite, an overlap outside [0, 1), a negative contour count, a non-finite angle, a negative
-// min_feature_mm or a non-positive arc tolerance.
+// finite or over kMaxBeadWidthMm, an overlap outside [0, 1), a negative contour count, a non-finite
+// angle, a negative min_feature_mm or a non-positive arc tolerance.
 void validate(const PathParams& params);
 
 struct Path2 {

@@ -1014,6 +1014,10 @@ const char* to_string(Path2::Kind kind) {
 void validate(const PathParams& p) {
     if (!(p.bead_width_mm > 0.0) || !std::isfinite(p.bead_width_mm))
         invalid("bead_width_mm must be positive and finite, got " + number(p.bead_width_mm));
+    // Beads are offsets on the Booleans' integer grid (a micron): a metre is far past any torch.
+    if (p.bead_width_mm > kMaxBeadWidthMm)
+        invalid("bead_width_mm must be at most " + number(kMaxBeadWidthMm) + " mm, got " +
+                number(p.bead_width_mm));
     if (!(p.overlap >= 0.0 && p.overlap < 1.0))
         invalid("overlap must be in [0, 1), got " + number(p.overlap));
     if (p.contour_count < 0)

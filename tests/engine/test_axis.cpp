@@ -214,6 +214,17 @@ TEST(CentroidalAxis, CubeStandingOnAVertexIsSearchedFromItsFirstRealSection) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, AThinPinIsNoSpeck) {
+    // A 0.3 mm pin 20 mm tall at a 1 mm step: a node per plane from eps up, not one slab.
+    const auto mesh = mas::test::box_mesh(0, 0, 0, 0.3, 0.3, 20);
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.nodes.size(), 20u);
+    EXPECT_NEAR(a.nodes.front().offset, 0.001, 1e-12);
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {
     // No section at all eps above the tip (a disc 0.001 mm across is a sliver): the axis used to
     // be empty. Nodes on the cone's axis, areas pi r^2 within perimeter x deflection.

@@ -11,6 +11,7 @@
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
@@ -541,6 +542,35 @@ TEST(Decompose, AChildReachesTheLeastComponentHeight) {
     ASSERT_EQ(d.notes.size(), 1u);
     EXPECT_NE(d.notes[0].find("reaches only 50 mm"), std::string::npos) << d.notes[0];
     expect_invariants(d, part);
+}
+
+TEST(Decompose, PartsStandingOnATipAreDecomposed) {
+    // Their axis starts a step or more above the base, its first slab reaching down to it: the
+    // decomposition takes it ("the axis' node 0 is malformed" before), at the derived step and at
+    // a given one.
+    gp_Trsf corner;  // the 10 mm cube on its corner, tilted 30, 40, 50 degrees
+    gp_Trsf y, z;
+    corner.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 30.0 * M_PI / 180.0);
+    y.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), 40.0 * M_PI / 180.0);
+    z.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 50.0 * M_PI / 180.0);
+    corner.PreMultiply(y);
+    corner.PreMultiply(z);
+    const auto cube =
+        from_occt(BRepBuilderAPI_Transform(occ_box(0, 0, 0, 10, 10, 10), corner, true).Shape());
+    const auto cone = from_occt(BRepPrimAPI_MakeCone(0.0, 10.0, 20.0).Shape());
+    const auto needle = from_occt(BRepPrimAPI_MakeCone(0.0, 2.0, 50.0).Shape());
+    for (const auto* part : {&cube, &cone, &needle}) {
+        for (const double step : {0.0, 1.0}) {
+            const auto axis = axis_of(*part, step);
+            ASSERT_FALSE(axis.nodes.empty());
+            EXPECT_GT(axis.nodes.front().offset, axis.params.base_z_mm + axis.params.eps_mm);
+            const auto d = mas::decompose(*part, axis);
+            ASSERT_FALSE(d.components.empty());
+            double total = 0.0;
+            for (const auto& c : d.components) total += volume(to_occt(c.solid));
+            EXPECT_NEAR(total, volume(to_occt(*part)), 1e-6 * volume(to_occt(*part)));
+        }
+    }
 }
 
 TEST(Decompose, SourceShapeIsUnchanged) {

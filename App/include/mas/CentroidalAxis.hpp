@@ -172,8 +172,8 @@ double derive_axis_step(const TriangleMesh& mesh);
 // base, a speck of a section or none; a step above, its flanks have outgrown the speck on every
 // side by far more than its size, which Eq. 3 would read as a stick-out far outside it, ending
 // the march. The root starts at the first grid plane with a section over min_region_area_mm2 and
-// at least half a step across, its first slab reaching down to the base. (A part on an edge or a
-// line, such as a cylinder or a torus lying down, has a long section and starts at eps.)
+// at least a twentieth of a step across, its first slab reaching down to the base. (A part on an
+// edge or a line, such as a cylinder or a torus lying down, has a long section and starts at eps.)
 CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params = {},
                                const std::function<void()>& throw_on_cancel = {});
 

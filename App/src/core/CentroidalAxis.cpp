@@ -484,11 +484,12 @@ private:
     }
 
     // Whether a root's first section is too small to start a march: a sliver, or a speck less than
-    // half a step across. A step above a vertex or a tip the part's flanks have outgrown a speck
-    // on every side by far more than its size, which Eq. 3 (d at most a sixth of the lower
-    // section's size) reads as a stick-out far outside it: the march would end there.
+    // a twentieth of a step across (what eps above a vertex or a tip cuts). A step above it the
+    // part's flanks have outgrown it on every side by far more than its size, which Eq. 3 (d at
+    // most a sixth of the lower section's size) reads as a stick-out far outside it: the march
+    // would end there. A thin stem or pin is wider than that at any sensible step, and kept.
     bool speck(const Region2& r) const {
-        return area(r) <= p_.min_region_area_mm2 || bounds(r).diagonal().norm() < p_.step_mm / 2.0;
+        return area(r) <= p_.min_region_area_mm2 || bounds(r).diagonal().norm() < p_.step_mm / 20.0;
     }
 
     int new_branch(const Vector3d& dir, int parent, int parent_node) {
@@ -1234,8 +1235,9 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
                       mesh.vertices[std::size_t(t[1])].cross(mesh.vertices[std::size_t(t[2])])) /
                   6.0;
     volume = std::abs(volume);
+    // The slabs may sweep a little more than the volume: 1 only when done.
     CentroidalAxis axis = compute_axis(mesh, params, [&](double searched) {
-        progress(volume > 0.0 ? std::min(searched / volume, 1.0) : 0.0);
+        progress(volume > 0.0 ? std::min(searched / volume, 0.99) : 0.0);
     });
     progress(1.0);
     return axis;

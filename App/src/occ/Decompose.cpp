@@ -460,12 +460,19 @@ void check_axis(const CentroidalAxis& axis, const Eigen::AlignedBox3d& box, doub
                         "decompose: the axis' branch " + std::to_string(b) +
                             " is malformed (a father after it, no nodes or a dangling link)");
     }
-    // A node's slab starts on its plane, or (a march's first node) at most a step and eps before.
+    // A node's slab starts on its plane, or (a march's first node) at most a step and eps before;
+    // a root's first node's at the base plane, however far below (a part standing on a tip).
     const double slab_tol = 1e-9 * (1.0 + box.diagonal().norm());
+    std::vector<char> root_start(axis.nodes.size(), 0);
+    for (const auto& br : axis.branches)
+        if (br.parent < 0) root_start[std::size_t(br.nodes.front())] = 1;
     for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
         const auto& n = axis.nodes[i];
+        const bool from_base =
+            root_start[i] && std::abs(n.slab_start - axis.params.base_z_mm) <= slab_tol;
         if (!(n.slab_start <= n.offset + slab_tol &&
-              n.slab_start >= n.offset - axis.params.step_mm - axis.params.eps_mm - slab_tol))
+              (from_base ||
+               n.slab_start >= n.offset - axis.params.step_mm - axis.params.eps_mm - slab_tol)))
             throw Error(ErrorCode::InvalidArgument,
                         "decompose: the axis' node " + std::to_string(i) +
                             " is malformed (its slab starts past its plane, or more than a step "

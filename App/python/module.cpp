@@ -451,6 +451,7 @@ mas::TriangleMesh make_closed(const mas::TriangleMesh& mesh, const std::string& 
     mas::TriangleMesh copy = mesh;
     GilRelease nogil;
     mas::require_closed_mesh(copy, what);
+    mas::require_one_solid(copy, what);
     return copy;
 }
 
@@ -478,7 +479,9 @@ void bind_mesh() {
 
     bp::def("make_closed", &make_closed, (bp::arg("mesh"), bp::arg("what") = "mesh"),
             "A checked copy of `mesh`: EngineError empty_input / open_mesh / non_finite_coordinate "
-            "unless it is a closed, consistently oriented surface; an inside-out mesh is flipped.");
+            "unless it is a closed, consistently oriented surface, not_a_solid unless its shells "
+            "bound one solid (none overlapping, a cavity's facing in); an inside-out mesh is "
+            "flipped.");
 }
 
 // ---- stage: reading parts

@@ -13,13 +13,16 @@
 #include <Standard_Failure.hxx>
 #include <StlAPI_Writer.hxx>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
@@ -230,6 +233,12 @@ TEST(OccTessellate, EffectiveDeflectionIsDerivedFromTheBoundingBox) {
                              "is too fine for a part"));
     EXPECT_TRUE(throws_error([&] { tessellate(mid, fine); }, ErrorCode::InvalidArgument,
                              "tessellation deflection"));
+    // Over 10 m across, the derived deflection is the floor, not the 0.1 mm cap below it.
+    const Shape huge = test::box(0, 0, 0, 20000, 10000, 10000);
+    EXPECT_NEAR(effective_deflection(huge, automatic), 1e-5 * std::sqrt(6e8), 1e-9);
+    TessellationParams derived;
+    derived.deflection_mm = effective_deflection(huge, automatic);
+    EXPECT_NO_THROW(effective_deflection(huge, derived));
 }
 
 TEST(OccTessellate, NonFiniteDeflectionIsInvalidArgument) {
@@ -524,6 +533,45 @@ TEST_F(OccReadModel, DamagedFilesAreErrorsNotCrashes) {
     const std::string brep_file = write_text("zero_direction.brep", damaged);
     EXPECT_TRUE(throws_error([&] { model_mesh(read_model(brep_file)); }, ErrorCode::NotASolid,
                              "zero_direction.brep: an invalid solid"));
+}
+
+// Catching OCCT's signals borrows the process's handlers of the fatal signals only while a read
+// runs, on any thread: Ctrl-C's handler is never taken, and every handler is back afterwards,
+// however the reads on several threads interleave. (OCCT's STEP parser keeps global state: reads
+// on several threads garbled each other until they were made to take turns.)
+TEST_F(OccReadModel, ReadingLeavesTheProcessSignalHandlersAsTheyWere) {
+    std::string step = read_text(std::string(MAS_TEST_DATA) + "/box_10x20x30.step");
+    const std::string good = write_text("good.step", step);
+    const std::size_t at = step.find("\n#176 = CARTESIAN_POINT");
+    ASSERT_NE(at, std::string::npos);
+    step.erase(at + 1, step.find('\n', at + 1) - at);
+    const std::string damaged = write_text("damaged.step", step);
+
+    struct sigaction mine = {}, before_int = {}, before_segv = {}, now = {};
+    mine.sa_handler = [](int) {};
+    sigemptyset(&mine.sa_mask);
+    ASSERT_EQ(sigaction(SIGINT, &mine, &before_int), 0);
+    ASSERT_EQ(sigaction(SIGSEGV, &mine, &before_segv), 0);
+    std::atomic<bool> int_taken{false};
+    std::vector<std::thread> readers;
+    for (int t = 0; t < 4; ++t)
+        readers.emplace_back([&] {
+            for (int i = 0; i < 5; ++i) {
+                EXPECT_NO_THROW(read_model(good));
+                EXPECT_THROW(read_model(damaged), mas::Error);
+                struct sigaction during = {};
+                sigaction(SIGINT, nullptr, &during);
+                if (during.sa_handler != mine.sa_handler) int_taken = true;
+            }
+        });
+    for (auto& r : readers) r.join();
+    EXPECT_FALSE(int_taken);
+    sigaction(SIGINT, nullptr, &now);
+    EXPECT_EQ(now.sa_handler, mine.sa_handler);
+    sigaction(SIGSEGV, nullptr, &now);
+    EXPECT_EQ(now.sa_handler, mine.sa_handler);
+    sigaction(SIGINT, &before_int, nullptr);
+    sigaction(SIGSEGV, &before_segv, nullptr);
 }
 
 TEST_F(OccReadModel, GarbageFilesAreReadFailed) {

@@ -43,10 +43,13 @@ MeshReport check_mesh(const TriangleMesh& mesh);
 // Throws mas::Error (EmptyInput, NonFiniteCoordinate, OpenMesh) unless the mesh is a closed,
 // consistently oriented surface with finite coordinates. `what` names the input in the message.
 // A closed mesh with inward normals (negative volume) is flipped in place rather than rejected.
-// A mesh of several shells must bound one solid: outer shells facing out, a cavity's shell facing
-// in (NotASolid for overlapping shells, a shell inside another of the same orientation, or one
-// inside out on its own).
 void require_closed_mesh(TriangleMesh& mesh, const std::string& what);
+
+// For a closed mesh given as a mesh (a file, a script's), after require_closed_mesh: throws
+// mas::Error(NotASolid) unless its shells bound one solid, outer shells facing out and a cavity's
+// shell facing in (overlapping shells, a shell inside another of the same orientation, one inside
+// out on its own). A tessellated BREP solid is one by construction and is not checked.
+void require_one_solid(const TriangleMesh& mesh, const std::string& what);
 
 // Merges vertices closer than `tolerance_mm` (STL and OFF soups repeat vertices per triangle) and
 // drops triangles that collapse. Returns the number of vertices removed.

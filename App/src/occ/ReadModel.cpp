@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <system_error>
 
 #include "ShapeImpl.hpp"
@@ -42,8 +43,13 @@ int count_of(const TopoDS_Shape& s, TopAbs_ShapeEnum type) {
 }
 
 // STEP and IGES share XSControl_Reader: read, translate every root, take them as one shape.
+// OCCT's STEP and IGES parsers keep global state: two reads at once (scripts on several threads)
+// garble each other ("unreadable" good files). One at a time.
+std::mutex exchange_mutex;
+
 template <class Reader>
 TopoDS_Shape read_exchange(const std::string& path, const char* format) {
+    const std::lock_guard<std::mutex> one_at_a_time(exchange_mutex);
     Reader reader;
     if (occ::catching_signals([&] { return reader.ReadFile(path.c_str()); }) != IFSelect_RetDone)
         throw Error(ErrorCode::ReadFailed, path + ": unreadable or truncated " + format + " file");
@@ -229,6 +235,7 @@ TriangleMesh model_mesh(const Model& model, const TessellationParams& params) {
     if (model.kind == Model::Kind::Solid) return occ::tessellate(model.shape, params, what);
     TriangleMesh mesh = model.mesh;
     require_closed_mesh(mesh, what);
+    require_one_solid(mesh, what);
     return mesh;
 }
 

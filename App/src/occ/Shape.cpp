@@ -21,6 +21,8 @@
 #include <TopoDS_Solid.hxx>
 #include <algorithm>
 #include <cfenv>
+#include <iterator>
+#include <mutex>
 #include <sstream>
 #include <vector>
 
@@ -58,15 +60,42 @@ Shape wrap(const TopoDS_Shape& shape) {
     return Shape(std::move(impl));
 }
 
-SignalHandlers::SignalHandlers() : saved_(NSIG) {
-    for (int sig = 1; sig < NSIG; ++sig) sigaction(sig, nullptr, &saved_[std::size_t(sig)]);
+namespace {
+
+// The process's handlers while OCCT's are in, and how many SignalHandlers hold them in.
+std::mutex signal_mutex;
+int signal_holders = 0;
+std::vector<struct sigaction> process_handlers(NSIG);
+constexpr int kFatalSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL};
+
+bool fatal(int sig) {
+    return std::find(std::begin(kFatalSignals), std::end(kFatalSignals), sig) !=
+           std::end(kFatalSignals);
+}
+
+}  // namespace
+
+SignalHandlers::SignalHandlers() {
     traps_ = fegetexcept();
+    const std::lock_guard<std::mutex> lock(signal_mutex);
+    if (signal_holders++ > 0) {
+        fedisableexcept(FE_ALL_EXCEPT);  // what OSD::SetSignal does for the first one's thread
+        return;
+    }
+    for (int sig = 1; sig < NSIG; ++sig) sigaction(sig, nullptr, &process_handlers[sig]);
     OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
+    // OSD::SetSignal takes SIGINT, SIGHUP, SIGQUIT and more too: those go back at once.
+    for (int sig = 1; sig < NSIG; ++sig)
+        if (!fatal(sig) && sig != SIGKILL && sig != SIGSTOP)
+            sigaction(sig, &process_handlers[sig], nullptr);
 }
 
 SignalHandlers::~SignalHandlers() {
-    for (int sig = 1; sig < NSIG; ++sig)
-        if (sig != SIGKILL && sig != SIGSTOP) sigaction(sig, &saved_[std::size_t(sig)], nullptr);
+    {
+        const std::lock_guard<std::mutex> lock(signal_mutex);
+        if (--signal_holders == 0)
+            for (const int sig : kFatalSignals) sigaction(sig, &process_handlers[sig], nullptr);
+    }
     fedisableexcept(FE_ALL_EXCEPT);
     if (traps_ > 0) feenableexcept(traps_);
 }

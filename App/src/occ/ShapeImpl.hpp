@@ -9,7 +9,6 @@
 #include <csignal>
 #include <istream>
 #include <string>
-#include <vector>
 
 // OCCT turns a fatal signal into a long jump to the nearest OCC_CATCH_SIGNALS only in code built
 // with this (Debian's OCCT is): the engine's OCCT files are (CMakeLists.txt).
@@ -44,8 +43,10 @@ double volume_of(const TopoDS_Shape& shape);
 // `shape` with the seams between faces (and edges) on one surface (curve) removed.
 TopoDS_Shape unify(const TopoDS_Shape& shape);
 
-// While alive, OCCT's signal handlers (OSD::SetSignal, floating-point traps off) replace the
-// process's; they are put back, with its floating-point traps, when it dies.
+// While any is alive (on any thread), OCCT's handlers for the fatal signals (SIGSEGV, SIGBUS,
+// SIGFPE, SIGILL; OSD::SetSignal) replace the process's; every other signal keeps its handler
+// (Ctrl-C stays Python's or the shell's). The last one to die puts the process's back. Each also
+// turns its thread's floating-point traps off while alive, and back on after.
 class SignalHandlers {
 public:
     SignalHandlers();
@@ -54,15 +55,15 @@ public:
     SignalHandlers& operator=(const SignalHandlers&) = delete;
 
 private:
-    std::vector<struct sigaction> saved_;
     int traps_ = 0;
 };
 
 // work(), with a fatal signal on this thread within it (an access violation: OCCT's readers and
 // checkers dereference what a damaged file lacks, a STEP entity's missing reference, a BREP
 // plane's zero direction) thrown as a Standard_Failure (Standard_AccessViolation, ...) instead of
-// ending the process, FreeCAD with it. What work() had built by then is leaked, not destroyed.
-// A signal on another thread still ends the process.
+// ending the process, FreeCAD with it. The jump out of OCCT skips destructors: what work() had
+// built is leaked, and a fault inside the allocator could leave its lock held. A fatal signal on
+// another thread meanwhile makes OCCT end the process (exit(1)), as the signal would have.
 template <class Work>
 auto catching_signals(Work&& work) -> decltype(work()) {
     const SignalHandlers handlers;

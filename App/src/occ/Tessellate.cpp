@@ -178,7 +178,8 @@ double effective_deflection(const Shape& solid, const TessellationParams& params
             }
             return d;
         }
-        return std::clamp(5e-4 * diagonal, 0.005, 0.1);
+        // Over 10 m across, the 0.1 mm cap would be finer than the floor: the floor then.
+        return std::max(std::clamp(5e-4 * diagonal, 0.005, 0.1), kMinDeflectionRatio * diagonal);
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("tessellation input", e));
     }

@@ -478,7 +478,9 @@ def parallel_planes(obj, normal=(0, 0, 1), step=1.0, deflection=None):
     return [(_as_vector(o), _as_vector(v)) for o, v in _engine.parallel_planes(mesh, n, step)]
 
 
-_SECTIONS_PER_REPORT = 500  # sections() with a progress callback cuts this many planes at a time
+# sections() with a progress callback cuts up to this many planes in one call; more in about ten
+# calls of at least 500 (each call prepares the mesh again: a few tenths of a second on a large one).
+_SECTIONS_IN_ONE_CALL = 2000
 
 
 def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None, progress=None):
@@ -486,9 +488,10 @@ def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None, progress=None):
     ``normal``, across the part's whole extent, each plane in the middle of its slab.
 
     ``obj``: see ``to_engine_mesh``. Returns a list of ``Section``, in order along the normal.
-    ``progress``: None or ``progress(fraction, stage)``, called after every 500 planes with the
-    fraction of the planes cut; an exception it raises (``Cancelled``) stops the work and is
-    raised again (see ``MultiAxisSlicer.progress``). Raises ValueError for ``step <= 0`` or a
+    ``progress``: None or ``progress(fraction, stage)``, called with the fraction of the planes
+    cut: once at the end for up to 2000 planes, else about ten times (every tenth, at least 500
+    planes apart); an exception it raises (``Cancelled``) stops the work and is raised again (see
+    ``MultiAxisSlicer.progress``). Raises ValueError for ``step <= 0`` or a
     zero/NaN ``normal``, TypeError for a wrong type, and EngineError (with ``code``) for a part
     the engine cannot cut, or a step that would give more than 100000 planes.
     """
@@ -502,8 +505,9 @@ def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None, progress=None):
     if progress is None:
         return [Section(d) for d in _engine.slice(mesh, planes, True)]
     out = []
-    for start in range(0, len(planes), _SECTIONS_PER_REPORT):
-        chunk = planes[start:start + _SECTIONS_PER_REPORT]
+    size = len(planes) if len(planes) <= _SECTIONS_IN_ONE_CALL else max(500, -(-len(planes) // 10))
+    for start in range(0, len(planes), size):
+        chunk = planes[start:start + size]
         out += [Section(d) for d in _engine.slice(mesh, chunk, True)]
         progress(len(out) / len(planes), "cutting {} sections".format(len(planes)))
     return out

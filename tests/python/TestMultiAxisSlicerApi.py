@@ -50,16 +50,18 @@ class TestSectionsOfPlanarParts(support.EngineTestCase):
             for p in region.outer:
                 self.assertAlmostEqual(p.z, z, places=9)
 
-    def test_progress_is_reported_every_500_planes_and_a_raise_stops_it(self):
+    def test_progress_is_reported_every_tenth_of_the_planes_and_a_raise_stops_it(self):
         reports = []
-        result = mas.sections(box_10_20_30(), step=0.025,
+        result = mas.sections(box_10_20_30(), step=0.005,
                               progress=lambda f, s: reports.append((f, s)))
-        self.assertEqual(len(result), 1200)
-        self.assertEqual(reports, [(500 / 1200, "cutting 1200 sections"),
-                                   (1000 / 1200, "cutting 1200 sections"),
-                                   (1.0, "cutting 1200 sections")])
+        self.assertEqual(len(result), 6000)
+        self.assertEqual(reports, [(600 * k / 6000, "cutting 6000 sections") for k in range(1, 11)])
+        # Up to 2000 planes in one call, reported at the end.
+        few = []
+        mas.sections(box_10_20_30(), step=0.025, progress=lambda f, s: few.append(f))
+        self.assertEqual(few, [1.0])
         # The same sections as cut all at once.
-        whole = mas.sections(box_10_20_30(), step=0.025)
+        whole = mas.sections(box_10_20_30(), step=0.005)
         self.assertEqual([s.origin for s in result], [s.origin for s in whole])
         self.assertEqual([s.area for s in result], [s.area for s in whole])
 
@@ -67,7 +69,7 @@ class TestSectionsOfPlanarParts(support.EngineTestCase):
             raise mas.Cancelled("enough")
 
         with self.assertRaisesRegex(mas.Cancelled, "enough"):
-            mas.sections(box_10_20_30(), step=0.025, progress=stop)
+            mas.sections(box_10_20_30(), step=0.005, progress=stop)
         with self.assertRaisesRegex(TypeError, "progress must be"):
             mas.sections(box_10_20_30(), progress="yes")
 

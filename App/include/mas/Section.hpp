@@ -87,12 +87,14 @@ std::vector<Section> slice_mesh(const TriangleMesh& mesh, const std::vector<Plan
 
 Section slice_mesh(const TriangleMesh& mesh, const Plane& plane, const SliceParams& params = {});
 
+// The most planes parallel_planes() gives: their sections would take gigabytes.
+inline constexpr std::size_t kMaxParallelPlanes = 100000;
+
 // Planes with unit `normal` across the mesh's whole extent along it, `step_mm` apart, each in the
 // middle of its slab: at min + (i + 1/2) step for i = 0 .. floor((max - min) / step) - 1, plus one
 // more in the middle of a remaining partial slab. Throws mas::Error(InvalidArgument) on a step that
 // is not positive and finite, a zero normal, or a step so small that it would give more than
-// kMaxParallelPlanes planes (their sections would take gigabytes: caught before any is cut).
-inline constexpr std::size_t kMaxParallelPlanes = 100000;
+// kMaxParallelPlanes planes (caught before any is cut).
 std::vector<Plane> parallel_planes(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
                                    double step_mm);
 

@@ -83,11 +83,16 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
             box[s].extend(p2);
         }
     }
-    // The solid angles one point of each shell costs, over all shells: the budget's share.
+    // The shells each shell's points may lie in (their boxes meet), and the solid angles one point
+    // of each shell costs, over all shells: the budget's share.
+    std::vector<std::vector<std::size_t>> near(tris.size());
     double per_point = 0.0;
     for (std::size_t s = 0; s < tris.size(); ++s)
         for (std::size_t o = 0; o < tris.size(); ++o)
-            if (o != s && box[o].intersects(box[s])) per_point += double(tris[o].size());
+            if (o != s && box[o].intersects(box[s])) {
+                near[s].push_back(o);
+                per_point += double(tris[o].size());
+            }
     const std::size_t points =
         per_point > 0.0 ? std::size_t(std::clamp(std::floor(2e7 / per_point), 1.0, 32.0)) : 1;
     for (std::size_t s = 0; s < tris.size(); ++s) {
@@ -100,10 +105,13 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
                 3.0;
             double depth = 0.0;
             bool on_another = false;
-            for (std::size_t o = 0; o < tris.size() && !on_another; ++o) {
-                if (o == s || !box[o].contains(p)) continue;
+            for (const std::size_t o : near[s]) {
+                if (!box[o].contains(p)) continue;
                 const double w = winding(mesh, tris[o], p);
-                if (std::abs(w - std::round(w)) > 0.25) on_another = true;
+                if (std::abs(w - std::round(w)) > 0.25) {
+                    on_another = true;
+                    break;
+                }
                 depth += std::round(w);
             }
             if (on_another) continue;

@@ -13,8 +13,8 @@ namespace mas {
 namespace {
 
 // The decomposition must be of this part: its components fill the part's volume (within a
-// thousandth: they are cut from it by Booleans) and lie within its box.
-void check_components(const Shape& part, const Decomposition& decomposition) {
+// thousandth: they are cut from it by Booleans) and lie within its box. Returns that volume, mm^3.
+double check_components(const Shape& part, const Decomposition& decomposition) {
     const TopoDS_Shape& whole = occ::occt(part);
     const double volume = occ::volume_of(whole);
     Eigen::AlignedBox3d box = occ::tight_bounds(whole);
@@ -40,6 +40,7 @@ void check_components(const Shape& part, const Decomposition& decomposition) {
             << " mm^3, this part " << volume << " mm^3)";
         throw Error(ErrorCode::InvalidArgument, msg.str());
     }
+    return volume;
 }
 
 }  // namespace
@@ -55,7 +56,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                     "finite, got " +
                         std::to_string(params.fill_holes_up_to_mm));
     const Shape part = solid.single_solid("the part");
-    check_components(part, decomposition);
+    const double part_volume = check_components(part, decomposition);
     // One deflection for every component: the part's, so that a face shared by a father and its
     // child is approximated alike on both sides.
     TessellationParams tessellation = params.tessellation;
@@ -96,7 +97,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         meshes.push_back(std::move(m));
     }
     SlicedPart out = slice_components(meshes, axis, params, progress.span(0.1, 1.0));
-    out.stats.part_volume_mm3 = part.info().volume_mm3;
+    out.stats.part_volume_mm3 = part_volume;
     out.stats.filled_holes = int(filled.size());
     out.stats.filled_volume_mm3 = filled_volume;
     out.filled_holes = std::move(filled);

@@ -189,8 +189,9 @@ TEST(CentroidalAxis, BoxIsOneVerticalBranchThroughItsCentre) {
 
 TEST(CentroidalAxis, CubeStandingOnAVertexIsSearchedFromItsFirstRealSection) {
     // A 10 mm cube on its corner, its main diagonal vertical. eps above the corner its section is
-    // a triangle a few microns wide, which no section above overlaps by more than the Booleans
-    // resolve: the march used to end there, with one node and the cube unsearched.
+    // a triangle a few microns wide, which the section a step above outgrows on every side by far
+    // more than Eq. 3's d (a sixth of the speck's size): the march used to end there, with one
+    // node and the cube unsearched.
     auto mesh = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
     const Eigen::Quaterniond turn =
         Eigen::Quaterniond::FromTwoVectors(Vector3d(1, 1, 1).normalized(), Vector3d::UnitZ());

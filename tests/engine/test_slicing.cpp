@@ -74,7 +74,8 @@ mas::SlicePartParams default_params() {
     return p;
 }
 
-Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& params) {
+// The part's axis (at `step`, 0: derived) and decomposition, not yet sliced.
+Sliced decomposed(const mas::Shape& part, double step = 0.0) {
     mas::TessellationParams tp;
     tp.deflection_mm = kDeflection;
     mas::AxisParams ap;
@@ -82,6 +83,11 @@ Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& pa
     Sliced s;
     s.axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
     s.decomposition = mas::decompose(part, s.axis);
+    return s;
+}
+
+Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& params) {
+    Sliced s = decomposed(part, step);
     s.result = mas::slice_part(part, s.axis, s.decomposition, params);
     return s;
 }
@@ -677,12 +683,9 @@ TEST(SlicingErrors, NoFeasibleLayerIsAnError) {
 
 TEST(SlicingErrors, CancellationStopsTheWork) {
     const auto part = mas::test::box(0, 0, 0, 10, 10, 30);
-    mas::TessellationParams tp;
-    tp.deflection_mm = kDeflection;
-    const auto axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
-    const auto d = mas::decompose(part, axis);
+    const Sliced s = decomposed(part);
     int calls = 0;
-    EXPECT_THROW(mas::slice_part(part, axis, d, default_params(),
+    EXPECT_THROW(mas::slice_part(part, s.axis, s.decomposition, default_params(),
                                  mas::Progress([&](double, const std::string&) {
                                      if (++calls == 5)
                                          throw mas::Error(mas::ErrorCode::Cancelled, "stop");
@@ -694,13 +697,10 @@ TEST(SlicingErrors, CancellationStopsTheWork) {
 TEST(SlicingErrors, ADecompositionOfAnotherPartIsNamed) {
     // Once sliced as given: the box's layers, reported for the cylinder.
     const auto box = mas::test::box(0, 0, 0, 10, 20, 30);
-    mas::TessellationParams tp;
-    tp.deflection_mm = kDeflection;
-    const auto axis = mas::centroidal_axis(mas::tessellate(box, tp), {});
-    const auto d = mas::decompose(box, axis);
+    const Sliced s = decomposed(box);
     auto expect_other = [&](const mas::Shape& part, const std::string& words) {
         try {
-            mas::slice_part(part, axis, d, default_params());
+            mas::slice_part(part, s.axis, s.decomposition, default_params());
             ADD_FAILURE() << "no error";
         } catch (const mas::Error& e) {
             EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
@@ -711,7 +711,7 @@ TEST(SlicingErrors, ADecompositionOfAnotherPartIsNamed) {
                  "its components hold 6000");
     // The same volume elsewhere.
     expect_other(mas::test::box(100, 0, 0, 10, 20, 30), "reach outside this part's box");
-    EXPECT_NO_THROW(mas::slice_part(box, axis, d, default_params()));
+    EXPECT_NO_THROW(mas::slice_part(box, s.axis, s.decomposition, default_params()));
 }
 
 TEST(Slicing, InsideMeshTellsInsideFromOutside) {

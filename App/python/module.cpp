@@ -200,7 +200,7 @@ Eigen::Vector3d vector3(const bp::object& value, const std::string& what) {
 
 double finite_number(double x, const std::string& what) {
     if (!std::isfinite(x))
-        invalid_argument(what + " must be a finite number, got " + std::to_string(x));
+        invalid_argument(what + " must be a finite number, got " + mas::format_number(x));
     return x;
 }
 

@@ -163,6 +163,8 @@ TEST(SectionErrors, BadPlanesAndStepsAreNamed) {
     expect_invalid([&] { mas::slice_mesh(m, mas::Plane{{0, 0, nan}, {0, 0, 1}}); }, "NaN");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, 0.0); }, "step");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, -1.0); }, "step");
+    // The value is shown as given, however small (not as std::to_string's "-0.000000").
+    expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, -2.5e-7); }, "(got -2.5e-07)");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, nan); }, "step");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 0}, 1.0); }, "zero vector");
     // 1 mm / 1e-5 mm is exactly the limit; a hair less is over it, named before any is cut.

@@ -650,6 +650,8 @@ TEST(SlicingErrors, BadParametersAreNamed) {
     p = default_params();
     p.layers.max_volume_difference = 0.0;
     expect_invalid(p, "max_volume_difference");
+    p.layers.max_volume_difference = -3e-8;  // shown as given, not as "-0.000000"
+    expect_invalid(p, "max_volume_difference must be a positive, finite number, got -3e-08");
     p = default_params();
     p.paths.bead_width_mm = 0.0;
     expect_invalid(p, "bead");

@@ -1,5 +1,7 @@
 #include "mas/Error.hpp"
 
+#include <sstream>
+
 namespace mas {
 
 const char* to_string(ErrorCode code) {
@@ -28,6 +30,13 @@ const char* to_string(ErrorCode code) {
             return "cancelled";
     }
     return "unknown";
+}
+
+std::string format_number(double value) {
+    std::ostringstream out;
+    out.precision(6);
+    out << value;
+    return out.str();
 }
 
 }  // namespace mas

@@ -77,12 +77,6 @@ constexpr std::size_t kMaxRasterLines = 10000;
 constexpr int kMaxLevels = 10000;  // offset levels per region: guards a tiny bead width
 constexpr int kMaxCentreLinesPerPiece = 32;
 
-std::string number(double v) {
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
-
 [[noreturn]] void invalid(const std::string& message) {
     throw Error(ErrorCode::InvalidArgument, message);
 }
@@ -726,10 +720,10 @@ std::vector<double> raster_positions(const Piece& piece, const Eigen::Vector2d& 
     const double lo = t0 + margin, hi = t1 - margin;
     if (hi - lo <= 1e-9) return {0.5 * (t0 + t1)};
     if ((hi - lo) / set.s > double(kMaxRasterLines))
-        invalid("the bead spacing " + number(set.s) + " mm (bead_width_mm " + number(set.w) +
-                " x (1 - overlap " + number(set.overlap) + ")) is too small for a region " +
-                number(hi - lo) + " mm across: over " + std::to_string(kMaxRasterLines) +
-                " raster lines");
+        invalid("the bead spacing " + format_number(set.s) + " mm (bead_width_mm " +
+                format_number(set.w) + " x (1 - overlap " + format_number(set.overlap) +
+                ")) is too small for a region " + format_number(hi - lo) + " mm across: over " +
+                std::to_string(kMaxRasterLines) + " raster lines");
     std::vector<double> extremes{lo, hi};
     for (const auto& loop : piece.loops) {
         const std::size_t m = loop.size();
@@ -841,10 +835,10 @@ RegionPlan plan_region(const Region2& region, int index, const Settings& set,
                                   ? across
                                   : std::min(across, double(set.contour_count) + 1.0);
         if (levels > double(kMaxLevels))
-            invalid("the bead spacing " + number(set.s) + " mm (bead_width_mm " + number(set.w) +
-                    " x (1 - overlap " + number(set.overlap) + ")) is too small for a region " +
-                    number(box.sizes().minCoeff()) + " mm across: over " +
-                    std::to_string(kMaxLevels) + " offset levels");
+            invalid("the bead spacing " + format_number(set.s) + " mm (bead_width_mm " +
+                    format_number(set.w) + " x (1 - overlap " + format_number(set.overlap) +
+                    ")) is too small for a region " + format_number(box.sizes().minCoeff()) +
+                    " mm across: over " + std::to_string(kMaxLevels) + " offset levels");
     }
     while (!queue.empty()) {
         Work work = std::move(queue.front());
@@ -1013,26 +1007,28 @@ const char* to_string(Path2::Kind kind) {
 
 void validate(const PathParams& p) {
     if (!(p.bead_width_mm > 0.0) || !std::isfinite(p.bead_width_mm))
-        invalid("bead_width_mm must be positive and finite, got " + number(p.bead_width_mm));
+        invalid("bead_width_mm must be positive and finite, got " + format_number(p.bead_width_mm));
     // Beads are offsets on the Booleans' integer grid (a micron): a metre is far past any torch.
     if (p.bead_width_mm > kMaxBeadWidthMm)
-        invalid("bead_width_mm must be at most " + number(kMaxBeadWidthMm) + " mm, got " +
-                number(p.bead_width_mm));
+        invalid("bead_width_mm must be at most " + format_number(kMaxBeadWidthMm) + " mm, got " +
+                format_number(p.bead_width_mm));
     if (!(p.overlap >= 0.0 && p.overlap < 1.0))
-        invalid("overlap must be in [0, 1), got " + number(p.overlap));
+        invalid("overlap must be in [0, 1), got " + format_number(p.overlap));
     if (p.contour_count < 0)
         invalid("contour_count must be >= 0, got " + std::to_string(p.contour_count));
     if (p.infill != InfillPattern::Raster && p.infill != InfillPattern::Contour &&
         p.infill != InfillPattern::None)
         invalid("infill must be raster, contour or none, got " + std::to_string(int(p.infill)));
     if (!std::isfinite(p.raster_angle_deg))
-        invalid("raster_angle_deg must be finite, got " + number(p.raster_angle_deg));
+        invalid("raster_angle_deg must be finite, got " + format_number(p.raster_angle_deg));
     if (!std::isfinite(p.raster_angle_step_deg))
-        invalid("raster_angle_step_deg must be finite, got " + number(p.raster_angle_step_deg));
+        invalid("raster_angle_step_deg must be finite, got " +
+                format_number(p.raster_angle_step_deg));
     if (!(p.min_feature_mm >= 0.0) || !std::isfinite(p.min_feature_mm))
-        invalid("min_feature_mm must be >= 0 and finite, got " + number(p.min_feature_mm));
+        invalid("min_feature_mm must be >= 0 and finite, got " + format_number(p.min_feature_mm));
     if (!(p.arc_tolerance_mm > 0.0) || !std::isfinite(p.arc_tolerance_mm))
-        invalid("arc_tolerance_mm must be positive and finite, got " + number(p.arc_tolerance_mm));
+        invalid("arc_tolerance_mm must be positive and finite, got " +
+                format_number(p.arc_tolerance_mm));
 }
 
 double seam_angle(int layer_index) {

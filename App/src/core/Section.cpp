@@ -456,7 +456,7 @@ std::vector<Plane> parallel_planes(const TriangleMesh& mesh, const Eigen::Vector
     if (!std::isfinite(step_mm) || !(step_mm > 0.0))
         throw Error(
             ErrorCode::InvalidArgument,
-            "step must be a positive number of millimetres (got " + std::to_string(step_mm) + ")");
+            "step must be a positive number of millimetres (got " + format_number(step_mm) + ")");
     const Plane unit = make_plane(Eigen::Vector3d::Zero(), normal);
     if (mesh.vertices.empty()) throw Error(ErrorCode::EmptyInput, "the mesh has no vertices");
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;

@@ -24,12 +24,7 @@ constexpr double kLengthTolerance = 1e-9;  // mm: slack on the thickness bounds 
     throw Error(ErrorCode::InvalidArgument, message);
 }
 
-std::string mm(double x) {
-    std::ostringstream s;
-    s.precision(6);
-    s << x << " mm";
-    return s.str();
-}
+std::string mm(double x) { return format_number(x) + " mm"; }
 
 double angle_deg(const Vector3d& a, const Vector3d& b) {
     return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
@@ -537,9 +532,9 @@ std::vector<Layer> ComponentSlicer::run() {
             if (!fallback)
                 invalid("component " + std::to_string(input_.component) + ": no layer between " +
                         mm(params_.min_layer_mm) + " and " + mm(params_.max_layer_mm) +
-                        " fits above the plane through (" + std::to_string(lower.plane.origin.x()) +
-                        ", " + std::to_string(lower.plane.origin.y()) + ", " +
-                        std::to_string(lower.plane.origin.z()) +
+                        " fits above the plane through (" + format_number(lower.plane.origin.x()) +
+                        ", " + format_number(lower.plane.origin.y()) + ", " +
+                        format_number(lower.plane.origin.z()) +
                         "); the layer thickness bounds are too narrow for this part");
             if (params_.strict) {
                 std::ostringstream s;
@@ -596,7 +591,7 @@ void validate(const LayerParams& p) {
     auto positive = [](double x, const char* name) {
         if (!(std::isfinite(x) && x > 0.0))
             invalid(std::string(name) + " must be a positive, finite number, got " +
-                    std::to_string(x));
+                    format_number(x));
     };
     positive(p.min_layer_mm, "min_layer");
     positive(p.max_layer_mm, "max_layer");
@@ -610,7 +605,7 @@ void validate(const LayerParams& p) {
                 mm(p.max_layer_mm) + ")");
     positive(p.max_volume_difference, "max_volume_difference");
     if (!(p.eps_angle_deg > 0.0 && p.eps_angle_deg < 90.0))
-        invalid("eps_angle must be in (0, 90) degrees, got " + std::to_string(p.eps_angle_deg));
+        invalid("eps_angle must be in (0, 90) degrees, got " + format_number(p.eps_angle_deg));
     if (!(std::isfinite(p.initial_offset_mm) && p.initial_offset_mm >= 0.0 &&
           p.initial_offset_mm < p.min_layer_mm))
         invalid("initial_offset must be in [0, min_layer) mm, got " +

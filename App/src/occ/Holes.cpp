@@ -365,11 +365,11 @@ bool only_closes_over(const TopoDS_Shape& before, const TopoDS_Shape& after,
         return false;
     }
     if (lost > tol) {
-        why = "closing it over took " + std::to_string(lost) + " mm^3 off the part";
+        why = "closing it over took " + format_number(lost) + " mm^3 off the part";
         return false;
     }
     if (outside_after - outside_before > tol) {
-        why = "closing it over added " + std::to_string(outside_after - outside_before) +
+        why = "closing it over added " + format_number(outside_after - outside_before) +
               " mm^3 outside it";
         return false;
     }
@@ -619,11 +619,11 @@ HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
     if (!(max_diameter_mm >= 0.0) || !std::isfinite(max_diameter_mm))
         throw Error(ErrorCode::InvalidArgument,
                     "the largest hole to fill must be a diameter >= 0 mm, got " +
-                        std::to_string(max_diameter_mm));
+                        format_number(max_diameter_mm));
     if (!(overhang_angle_deg >= 0.0 && overhang_angle_deg < 90.0))
         throw Error(ErrorCode::InvalidArgument,
                     "the overhang angle must lie in [0, 90) degrees, got " +
-                        std::to_string(overhang_angle_deg));
+                        format_number(overhang_angle_deg));
     const double length = build_direction.norm();
     if (!(length > 0.0) || !std::isfinite(length))
         throw Error(ErrorCode::InvalidArgument, "the build direction must be a non-zero vector");

@@ -54,7 +54,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         throw Error(ErrorCode::InvalidArgument,
                     "fill_holes_up_to_mm, the largest hole diameter to fill, must be >= 0 mm and "
                     "finite, got " +
-                        std::to_string(params.fill_holes_up_to_mm));
+                        format_number(params.fill_holes_up_to_mm));
     const Shape part = solid.single_solid("the part");
     const double part_volume = check_components(part, decomposition);
     // One deflection for every component: the part's, so that a face shared by a father and its

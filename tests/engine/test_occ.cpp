@@ -3,15 +3,20 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepGProp.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <GProp_GProps.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
 #include <StlAPI_Writer.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -19,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <gp_Pln.hxx>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -134,6 +140,39 @@ TEST(OccShape, SingleSolidRejectsTwoSolids) {
 
     EXPECT_TRUE(throws_error([&] { boxes.single_solid("part"); }, ErrorCode::MultipleSolids,
                              "part: 2 solids where one is expected"));
+}
+
+TEST(OccShape, SingleSolidRejectsFacesBesideTheSolidAndLeavesOutLooseEdges) {
+    // A compound of a box and things beside it: once the faces were dropped without a word.
+    const auto compound = [](const std::vector<TopoDS_Shape>& extra) {
+        BRep_Builder b;
+        TopoDS_Compound c;
+        b.MakeCompound(c);
+        b.Add(c, test::to_occt(test::box(0, 0, 0, 10, 10, 10)));
+        for (const auto& s : extra) b.Add(c, s);
+        return test::from_occt(c);
+    };
+    const TopoDS_Shape face = test::to_occt(test::single_face());
+    const TopoDS_Shape edge = BRepBuilderAPI_MakeEdge(gp_Pnt(20, 0, 0), gp_Pnt(30, 0, 0)).Edge();
+    EXPECT_TRUE(throws_error([&] { compound({face}).single_solid("part"); }, ErrorCode::NotASolid,
+                             "part: one solid and 1 face outside it"));
+    EXPECT_TRUE(throws_error(
+        [&] {
+            compound({face, edge}).single_solid("p");
+        },
+        ErrorCode::NotASolid, "p: one solid and 1 face outside it"));
+    const TopoDS_Shape lid =
+        BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 10), gp_Dir(0, 0, 1)), 0, 5, 0, 5).Face();
+    EXPECT_TRUE(throws_error(
+        [&] {
+            compound({face, lid}).single_solid("part");
+        },
+        ErrorCode::NotASolid, "part: one solid and 2 faces outside it"));
+    // A loose edge (an axis, a sketch line) holds no material: the box alone comes back.
+    const Shape solid = compound({edge}).single_solid("part");
+    EXPECT_EQ(solid.info().solids, 1);
+    EXPECT_EQ(solid.info().edges, 12);
+    EXPECT_NEAR(solid.info().volume_mm3, 1000.0, 1e-9);
 }
 
 TEST(OccShape, SingleSolidRejectsAnOpenShell) {

@@ -245,6 +245,17 @@ class TestBadInput(support.EngineTestCase):
         e = self.assertRaisesEngineError("multiple_solids", mas.sections, two)
         self.assertIn("2 solids", str(e))
 
+    def test_faces_beside_the_solid_are_rejected_loose_edges_left_out(self):
+        box = box_10_20_30()
+        lid = Part.makePlane(10, 20, V(0, 0, 30))
+        e = self.assertRaisesEngineError(
+            "not_a_solid", mas.centroidal_axis, Part.makeCompound([box, lid])
+        )
+        self.assertIn("one solid and 1 face outside it", str(e))
+        line = Part.makeLine(V(20, 0, 0), V(20, 0, 30))
+        s = mas.section(Part.makeCompound([box, line]), (0, 0, 10), (0, 0, 1))
+        self.assertAlmostEqual(s.area, 200.0, places=9)
+
     def test_null_shape_is_empty_input(self):
         self.assertRaisesEngineError("empty_input", mas.sections, Part.Shape())
 

@@ -44,7 +44,8 @@ public:
     // Throws Error(NotASolid / MultipleSolids / EmptyInput) unless the shape holds exactly one
     // closed solid; `what` names the input in the message. Returns that solid. A lone closed shell
     // (some exporters write solids so) counts as the solid it bounds; an inside-out solid comes
-    // back turned right side out.
+    // back turned right side out. Faces outside the solid are an error (NotASolid: they may be
+    // material meant for the part); loose edges and vertices are left out.
     Shape single_solid(const std::string& what) const;
 
     struct Impl;

@@ -265,6 +265,15 @@ Shape Shape::single_solid(const std::string& what) const {
             for (TopExp_Explorer x(solid, TopAbs_SHELL); x.More(); x.Next())
                 if (!BRep_Tool::IsClosed(x.Current()))
                     throw Error(ErrorCode::NotASolid, open_shell_message(what, x.Current()));
+            // A face beside the solid may be material the part is meant to have (a wall left as
+            // a surface, a lid not yet fused): building the solid without it would be a guess.
+            // Loose edges and vertices (axes, sketches) hold no material and are left out.
+            const int loose = free_count(s, TopAbs_FACE, TopAbs_SOLID);
+            if (loose > 0)
+                throw Error(ErrorCode::NotASolid,
+                            what + ": one solid and " + counted(loose, "face", "faces") +
+                                " outside it; give the solid alone, or fuse the faces' "
+                                "material into it");
         } else if (faces == 0) {
             if (extent(s, TopAbs_EDGE) == 0 && extent(s, TopAbs_VERTEX) == 0)
                 throw Error(ErrorCode::EmptyInput, what + ": the shape has nothing in it");

@@ -765,6 +765,39 @@ TEST(OccExactSection, ObliquePlaneCutsACylinderInAnEllipse) {
     EXPECT_LE((s.centroid - Vector3d(0, 0, 20)).norm(), 1e-9);
 }
 
+TEST(OccExactSection, PlaneAcrossATorusTubeOffItsAxisHasTheIntegratedAreaAndCentroids) {
+    // The plane x = c (c < R - r) cuts the tube in two ovals whose boundary OCCT can only trace.
+    // With rho = R + r sin(t) the distance from the axis, each oval's area is
+    // 2 r^2 * integral of cos^2(t) rho / sqrt(rho^2 - c^2) over t in [-pi/2, pi/2], and its
+    // moment about y = 0 is pi r^2 R, so its centroid lies at y = +-pi r^2 R / area.
+    const double major = 20.0, minor = 5.0;
+    const Shape torus = test::torus(major, minor);
+    for (const double c : {0.5, 4.0}) {
+        SCOPED_TRACE(c);
+        const int n = 20000;
+        double area = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double t = -M_PI / 2 + (i + 0.5) * M_PI / n;
+            const double rho = major + minor * std::sin(t);
+            area += 2.0 * minor * minor * std::cos(t) * std::cos(t) * rho /
+                    std::sqrt(rho * rho - c * c) * (M_PI / n);
+        }
+        const double y = M_PI * minor * minor * major / area;
+
+        const Section s =
+            exact_sections(torus, {make_plane(Vector3d(c, 0, 0), Vector3d::UnitX())})[0];
+
+        ASSERT_EQ(s.regions.size(), 2u);
+        for (const auto& region : s.regions) {
+            EXPECT_NEAR(region.area, area, 1e-6 * area);
+            EXPECT_NEAR(region.centroid.x(), c, 1e-9);
+            EXPECT_NEAR(std::abs(region.centroid.y()), y, 1e-6 * y);
+            EXPECT_NEAR(region.centroid.z(), 0.0, 1e-6);
+        }
+        EXPECT_NEAR(s.regions[0].centroid.y() + s.regions[1].centroid.y(), 0.0, 1e-6);
+    }
+}
+
 TEST(OccExactSection, PlaneMissingTheSolidGivesAnEmptySection) {
     const Shape box = test::box(0, 0, 0, 10, 10, 10);
     const Vector3d origin(0, 0, 50);

@@ -78,8 +78,6 @@ double exact_surface_area(const Shape& s) {
     return props.Mass();
 }
 
-double mesh_volume(const TriangleMesh& m) { return check_mesh(m).volume_mm3; }
-
 // ---- Shape: BREP text, info, single_solid ------------------------------------------------------
 
 TEST(OccShape, BrepRoundTripPreservesVolume) {

@@ -148,13 +148,14 @@ class TestAxisOfABox(AxisTest):
 
 class TestAxisProgress(AxisTest):
     def test_progress_reports_the_volume_swept_and_a_raise_stops_it(self):
-        reports = []
+        reports, stages = [], set()
         axis = mas.centroidal_axis(box_10_20_30(), step=2.0,
-                                   progress=lambda f, s: reports.append(f))
+                                   progress=lambda f, s: (reports.append(f), stages.add(s)))
         self.assertEqual(len(axis.nodes), 15)
         self.assertEqual(reports[-1], 1.0)
         self.assertEqual(reports, sorted(reports))
         self.assertGreater(len(reports), 1)
+        self.assertEqual(stages, {"centroidal axis"})  # every report names its stage
 
         def stop(fraction, stage):
             raise mas.Cancelled("enough")

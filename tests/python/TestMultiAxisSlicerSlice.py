@@ -242,6 +242,10 @@ class TestSliceProgress(SliceTest):
         at = [next((i for i, s in enumerate(stages) if s.startswith(o)), None) for o in order]
         self.assertNotIn(None, at, dict(zip(order, at)))
         self.assertEqual(at, sorted(at))
+        # Every report names its stage, the last ones too (the end of decomposing, and of all).
+        self.assertNotIn("", stages)
+        self.assertEqual(reports[-1], (1.0, "slicing"))
+        self.assertIn((0.2, "decomposing"), reports)
         # The decomposition's reports fill the first fifth, the slicing's the rest.
         split = [f for f, s in reports if s.startswith("splitting")]
         self.assertLessEqual(max(split), 0.2)

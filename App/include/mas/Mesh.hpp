@@ -40,6 +40,16 @@ struct MeshReport {
 
 MeshReport check_mesh(const TriangleMesh& mesh);
 
+// The signed volume of the tetrahedron (origin, a, b, c): summed over a closed mesh's triangles,
+// the volume it bounds (divergence theorem), > 0 for outward normals.
+inline double tetra_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& c) {
+    return a.dot(b.cross(c)) / 6.0;
+}
+
+// The signed volume a closed mesh bounds (check_mesh's volume_mm3, without the edge checks).
+double mesh_volume(const TriangleMesh& mesh);
+
 // Throws mas::Error (EmptyInput, NonFiniteCoordinate, OpenMesh) unless the mesh is a closed,
 // consistently oriented surface with finite coordinates. `what` names the input in the message.
 // A closed mesh with inward normals (negative volume) is flipped in place rather than rejected.

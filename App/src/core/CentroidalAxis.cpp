@@ -1228,18 +1228,14 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
 
 CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
                                const Progress& progress) {
-    // The fraction done is the volume swept over the part's (divergence theorem on the mesh).
-    double volume = 0.0;
-    for (const Eigen::Vector3i& t : mesh.triangles)
-        volume += mesh.vertices[std::size_t(t[0])].dot(
-                      mesh.vertices[std::size_t(t[1])].cross(mesh.vertices[std::size_t(t[2])])) /
-                  6.0;
-    volume = std::abs(volume);
+    const Progress marching = progress.span(0.0, 1.0, "centroidal axis");
+    // The fraction done is the volume swept over the part's.
+    const double volume = std::abs(mesh_volume(mesh));
     // The slabs may sweep a little more than the volume: 1 only when done.
     CentroidalAxis axis = compute_axis(mesh, params, [&](double searched) {
-        progress(volume > 0.0 ? std::min(searched / volume, 0.99) : 0.0);
+        marching(volume > 0.0 ? std::min(searched / volume, 0.99) : 0.0);
     });
-    progress(1.0);
+    marching(1.0);
     return axis;
 }
 

@@ -77,7 +77,7 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
             const Eigen::Vector3d &p0 = mesh.vertices[std::size_t(t[0])],
                                   &p1 = mesh.vertices[std::size_t(t[1])],
                                   &p2 = mesh.vertices[std::size_t(t[2])];
-            volume[s] += p0.dot(p1.cross(p2)) / 6.0;
+            volume[s] += tetra_volume(p0, p1, p2);
             box[s].extend(p0);
             box[s].extend(p1);
             box[s].extend(p2);
@@ -135,6 +135,14 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
     }
 }
 
+double mesh_volume(const TriangleMesh& mesh) {
+    double volume = 0.0;
+    for (const Eigen::Vector3i& t : mesh.triangles)
+        volume += tetra_volume(mesh.vertices[std::size_t(t[0])], mesh.vertices[std::size_t(t[1])],
+                               mesh.vertices[std::size_t(t[2])]);
+    return volume;
+}
+
 MeshReport check_mesh(const TriangleMesh& mesh) {
     MeshReport r;
     r.vertices = mesh.vertices.size();
@@ -165,10 +173,7 @@ MeshReport check_mesh(const TriangleMesh& mesh) {
             const auto lo = std::min(a, b), hi = std::max(a, b);
             uses.push_back({(std::uint64_t(lo) << 32) | hi, a < b ? 1 : -1});
         }
-        const Eigen::Vector3d& p0 = mesh.vertices[t[0]];
-        const Eigen::Vector3d& p1 = mesh.vertices[t[1]];
-        const Eigen::Vector3d& p2 = mesh.vertices[t[2]];
-        r.volume_mm3 += p0.dot(p1.cross(p2)) / 6.0;
+        r.volume_mm3 += tetra_volume(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
     }
     std::sort(uses.begin(), uses.end(),
               [](const EdgeUse& x, const EdgeUse& y) { return x.key < y.key; });

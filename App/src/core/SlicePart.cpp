@@ -102,7 +102,8 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
-                            const Progress& progress) {
+                            const Progress& caller) {
+    const Progress progress = caller.span(0.0, 1.0, "slicing");
     validate(params.layers);
     validate(params.paths);
     if (components.empty()) throw Error(ErrorCode::EmptyInput, "no component to slice");

@@ -628,7 +628,8 @@ private:
 }  // namespace
 
 Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
-                        const DecomposeParams& params, const Progress& progress) {
+                        const DecomposeParams& params, const Progress& caller) {
+    const Progress progress = caller.span(0.0, 1.0, "decomposing");
     check_params(params);
     const Shape checked = input.single_solid("decompose");
     std::vector<Work> work;

@@ -33,7 +33,8 @@ const char* kUsage =
     "       multiaxis-slicer axis FILE [--step MM] [--distance-threshold MM] [--eps MM]\n"
     "                                  [--break-angle DEG] [--base-z MM] [--deflection MM]\n"
     "                                  [--json [OUT.json]]\n"
-    "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG] [--no-fallback]\n"
+    "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG]\n"
+    "                                       [--concave-angle DEG] [--no-fallback]\n"
     "                                       [--min-height MM] [--step-dir DIR] [--progress]\n"
     "                                       [--json [OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
@@ -101,6 +102,12 @@ mas::Progress stderr_progress() {
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+// A value the command line gives in the right form but out of its range: refused as the engine
+// refuses it (invalid_argument, exit status 1), before the part is read.
+[[noreturn]] void out_of_range(const std::string& message) {
+    throw mas::Error(mas::ErrorCode::InvalidArgument, message);
+}
 
 double parse_number(const std::string& text, const std::string& what) {
     std::size_t used = 0;
@@ -212,7 +219,9 @@ struct Part {
 
 Part load_part(const Args& a) {
     const double deflection = a.number("--deflection", 0.0);
-    if (deflection < 0.0) throw UsageError("--deflection must be positive (or 0 for automatic)");
+    if (deflection < 0.0)
+        out_of_range("--deflection must be positive (or 0 for automatic), got " +
+                     mas::format_number(deflection));
     Part part;
     part.model = mas::read_model(a.file);
     mas::TessellationParams tp;
@@ -236,11 +245,12 @@ void write_output(const Args& a, const std::string& text) {
 int run_sections(const std::vector<std::string>& args) {
     const Args a = parse_args(args, {"--normal", "--step", "--deflection"});
     const double step_mm = a.number("--step", 1.0);
-    if (!(step_mm > 0.0)) throw UsageError("--step must be positive, got " + num(step_mm));
+    if (!(step_mm > 0.0))
+        out_of_range("--step must be positive, got " + mas::format_number(step_mm));
     const Eigen::Vector3d normal = a.has("--normal")
                                        ? parse_vector(a.options.at("--normal"), "--normal")
                                        : Eigen::Vector3d(0, 0, 1);
-    if (normal.norm() < 1e-12) throw UsageError("--normal must not be the zero vector");
+    if (normal.norm() < 1e-12) out_of_range("--normal must not be the zero vector");
     const Part part = load_part(a);
     const mas::TriangleMesh& mesh = part.mesh;
     const double deflection = part.deflection_mm;
@@ -252,8 +262,9 @@ int run_sections(const std::vector<std::string>& args) {
     if (a.json) {
         out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
             << ",\n  \"triangles\": " << mesh.triangles.size()
-            << ",\n  \"deflection_mm\": " << num(deflection) << ",\n  \"normal\": " << vec(n)
-            << ",\n  \"step_mm\": " << num(step_mm) << ",\n  \"sections\": [";
+            << ",\n  \"deflection_mm\": " << mas::format_number(deflection)
+            << ",\n  \"normal\": " << vec(n) << ",\n  \"step_mm\": " << num(step_mm)
+            << ",\n  \"sections\": [";
         for (std::size_t i = 0; i < sections.size(); ++i) {
             const auto& s = sections[i];
             out << (i ? "," : "") << "\n    {\"offset_mm\": " << num(n.dot(s.plane.origin))
@@ -271,7 +282,7 @@ int run_sections(const std::vector<std::string>& args) {
     } else {
         out << "# " << a.file << ": " << part.kind() << ", " << mesh.triangles.size()
             << " triangles";
-        if (deflection > 0.0) out << ", deflection " << num(deflection) << " mm";
+        if (deflection > 0.0) out << ", deflection " << mas::format_number(deflection) << " mm";
         out << "\n# normal " << num(n.x()) << "," << num(n.y()) << "," << num(n.z()) << ", step "
             << num(step_mm) << " mm, " << sections.size() << " sections\n";
         out << "# offset_mm regions holes area_mm2 centroid_x centroid_y centroid_z\n";
@@ -301,9 +312,12 @@ mas::AxisParams axis_params(const Args& a) {
     p.eps_mm = a.number("--eps", p.eps_mm);
     p.break_angle_deg = a.number("--break-angle", p.break_angle_deg);
     p.base_z_mm = a.number("--base-z", p.base_z_mm);
-    if (p.step_mm < 0.0) throw UsageError("--step must be positive (or 0 for derived)");
+    if (p.step_mm < 0.0)
+        out_of_range("--step must be positive (or 0 for derived), got " +
+                     mas::format_number(p.step_mm));
     if (p.distance_threshold_mm < 0.0)
-        throw UsageError("--distance-threshold must be positive (or 0 for derived)");
+        out_of_range("--distance-threshold must be positive (or 0 for derived), got " +
+                     mas::format_number(p.distance_threshold_mm));
     return p;
 }
 

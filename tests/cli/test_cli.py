@@ -5,6 +5,7 @@ Run by ctest with MAS_CLI (the program) and MAS_TEST_DATA (tests/data) in the en
 import json
 import math
 import os
+import re
 import subprocess
 import tempfile
 import unittest
@@ -138,10 +139,22 @@ class CliSections(unittest.TestCase):
         self.expect_error(["sections", self.write("nan.stl", box_stl(1, 1, 1, nan=True))], 1,
                           "non_finite")
         self.expect_error(["sections", self.write("part.xyz", "x")], 1, "unsupported")
-        self.expect_error(["sections", box, "--step", "0"], 2, "--step", "positive")
-        self.expect_error(["sections", box, "--step", "-2"], 2, "--step")
-        self.expect_error(["sections", box, "--step", "nan"], 2, "--step")
-        self.expect_error(["sections", box, "--normal", "0,0,0"], 2, "zero vector")
+        # Status 2: the command line is not understood; 1: a value out of its range, refused as
+        # the engine refuses one (axis --step -1 gave 2, --eps -1 gave 1).
+        self.expect_error(["sections", box, "--step", "0"], 1, "invalid_argument", "--step",
+                          "positive")
+        self.expect_error(["sections", box, "--step", "-2"], 1, "invalid_argument", "--step")
+        self.expect_error(["sections", box, "--step", "nan"], 2, "--step", "finite")
+        self.expect_error(["sections", box, "--step", "2mm"], 2, "--step", "number")
+        self.expect_error(["sections", box, "--normal", "0,0,0"], 1, "invalid_argument",
+                          "zero vector")
+        self.expect_error(["sections", box, "--deflection", "-0.1"], 1, "invalid_argument",
+                          "--deflection", "got -0.1")
+        self.expect_error(["axis", box, "--step", "-1"], 1, "invalid_argument", "--step")
+        self.expect_error(["axis", box, "--distance-threshold", "-1"], 1, "invalid_argument")
+        self.expect_error(["axis", box, "--eps", "-1"], 1, "invalid_argument", "eps")
+        self.expect_error(["slice", box, "--infill", "bogus"], 1, "invalid_argument", "infill")
+        self.expect_error(["slice", box, "--min-layer", "3"], 1, "invalid_argument", "min_layer")
         self.expect_error(["sections", box, "--normal", "1,2"], 2, "X,Y,Z")
         self.expect_error(["sections"], 2, "FILE")
         self.expect_error(["explode", box], 2, "unknown command")
@@ -189,7 +202,7 @@ class CliSections(unittest.TestCase):
     def test_axis_bad_input(self):
         box = os.path.join(DATA, "box_10x20x30.step")
         self.expect_error(["axis", box, "--step", "40"], 1, "invalid_argument", "height")
-        self.expect_error(["axis", box, "--step", "-1"], 2, "--step")
+        self.expect_error(["axis", box, "--step", "-1"], 1, "invalid_argument", "--step")
         self.expect_error(["axis", box, "--base-z", "-5"], 1, "does not stand on its base plane")
         self.expect_error(["axis", box, "--break-angle", "400"], 1, "break angle")
         self.expect_error(["axis", os.path.join(DATA, "two_boxes.step")], 1, "multiple_solids")
@@ -353,7 +366,7 @@ class CliSections(unittest.TestCase):
         for command, stages in (
                 ("decompose", ["splitting at branch 0 of 2", "splitting at branch 1 of 2"]),
                 ("slice", ["splitting at branch 0 of 2", "splitting at branch 1 of 2",
-                           "tessellating the components",
+                           "decomposing", "tessellating the components",
                            "ordering the components", "slicing component 0 (1 of 2)",
                            "slicing component 1 (2 of 2)", "planning the bead paths"])):
             plain = run(command, brep, "--json")
@@ -393,6 +406,17 @@ class CliSections(unittest.TestCase):
             r = run(command, "--help")
             self.assertEqual(r.returncode, 0, command)
             self.assertIn("multiaxis-slicer " + command + " FILE", r.stdout)
+        # The usage lists, command by command, the options the README's synopses list.
+        usage = run("--help").stdout.split("\n\n")[0]
+        with open(os.path.join(os.path.dirname(__file__), "..", "..", "README.md")) as f:
+            readme = f.read().split("## Command line", 1)[1].split("\n## ", 1)[0]
+        for command in ("sections", "axis", "decompose", "slice"):
+            def options(text):
+                block = re.split(r"multiaxis-slicer (?=[\w-])", text)
+                synopsis = next(b for b in block if b.startswith(command + " "))
+                synopsis = synopsis.split("```")[0]
+                return set(re.findall(r"--[a-z][a-z-]*", synopsis))
+            self.assertEqual(options(usage), options(readme), command)
         r = run("frobnicate", "--help")  # an unknown command is still named as such
         self.assertEqual(r.returncode, 2)
         self.assertIn("unknown command 'frobnicate'", r.stderr)

@@ -333,7 +333,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     first branch.
 
     ``axis``: the part's ``CentroidalAxis``; None: computed here (with ``step``,
-    ``distance_threshold``, ``eps``, ``break_angle``, ``base_z`` from ``params`` when given).
+    ``distance_threshold``, ``eps``, ``break_angle``, ``base_z`` from ``params`` when given; with
+    an axis or components given they must stay unset, ValueError otherwise).
     ``components``: the part's ``Decomposition`` (from ``decompose(shape, axis)``); None: computed
     here with the axis. ``deflection``: chordal deflection for tessellating the components (mm;
     None: derived from the part's size).
@@ -380,9 +381,11 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     if components is not None and not isinstance(components, Decomposition):
         raise TypeError("components must be a Decomposition (from decompose()) or None, got "
                         "{}".format(type(components).__name__))
-    if axis is not None and axis_params:
-        raise ValueError("slice: an axis is given, so the axis parameters ({}) would be ignored; "
-                         "pass one or the other".format(", ".join(sorted(axis_params))))
+    if (axis is not None or components is not None) and axis_params:
+        raise ValueError("slice: {} is given, so the axis parameters ({}) would be ignored; pass "
+                         "one or the other".format("an axis" if axis is not None else
+                                                   "a decomposition (which carries its axis)",
+                                                   ", ".join(sorted(axis_params))))
     if components is not None and axis is not None and components.axis is not axis:
         raise ValueError("slice: the decomposition given follows another axis than the one given")
     if deflection is not None:

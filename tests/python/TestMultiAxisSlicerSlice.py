@@ -401,6 +401,18 @@ class TestSliceBadInput(SliceTest):
         with self.assertRaisesRegex(TypeError, "Decomposition"):
             mas.slice(box_20_10_21(), components=[])
 
+    def test_axis_parameters_beside_a_given_axis_or_decomposition_are_refused(self):
+        # They would be ignored: the decomposition carries the axis it was made with (a step
+        # beside it used to be dropped without a word).
+        box = box_20_10_21()
+        axis = mas.centroidal_axis(box, step=3.0)
+        with self.assertRaisesRegex(ValueError, "an axis is given.*step"):
+            mas.slice(box, axis=axis, step=2.0)
+        components = mas.decompose(box, axis=axis)
+        with self.assertRaisesRegex(ValueError, "a decomposition .* given.*break_angle, step"):
+            mas.slice(box, components=components, step=2.0, break_angle=20)
+        self.assertIs(mas.slice(box, components=components).axis, axis)
+
 
 class TestUnsupportedRegions(SliceTest):
     def test_a_shelf_sliced_as_a_mesh_shows_where_its_first_layer_stands_on_nothing(self):

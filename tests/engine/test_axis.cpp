@@ -461,6 +461,18 @@ TEST(CentroidalAxis, DerivedStepIsHalfTheThinnestWallWithinClamps) {
     EXPECT_NEAR(mas::derive_axis_step(wire), std::sqrt(0.08 + 160000.0) / 2000.0, 1e-12);
     const auto cube = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
     EXPECT_NEAR(mas::derive_axis_step(cube), std::sqrt(300.0) / 20.0, 1e-12);
+    // Lying flat, thinner than diagonal / 2000: at most half the height, so that the axis of a
+    // 100 x 100 x 0.05 shim (once "step 0.0707 mm is not smaller than the part's height") and
+    // of the wire lying down are computed at their derived step.
+    const auto shim = mas::test::box_mesh(0, 0, 0, 100, 100, 0.05);
+    EXPECT_NEAR(mas::derive_axis_step(shim), 0.025, 1e-12);
+    const auto s = mas::centroidal_axis(shim);
+    ASSERT_EQ(s.nodes.size(), 2u);
+    EXPECT_NEAR(s.nodes[1].position.z(), 0.026, 1e-12);
+    for (const auto& node : s.nodes) EXPECT_NEAR(node.area, 10000.0, 1e-6);
+    const auto lying = mas::test::box_mesh(0, 0, 0, 400, 0.2, 0.2);
+    EXPECT_NEAR(mas::derive_axis_step(lying), 0.1, 1e-12);
+    EXPECT_NO_THROW(mas::centroidal_axis(lying));
 }
 
 TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {

@@ -77,7 +77,8 @@ namespace mas {
 
 struct AxisParams {
     // Distance between consecutive sections (paper: inc), mm. <= 0: derived from the part
-    // (derive_axis_step): half its thinnest wall, within [diagonal / 2000, diagonal / 20].
+    // (derive_axis_step): half its thinnest wall, within [diagonal / 2000, diagonal / 20], at most
+    // half the part's height.
     double step_mm = 0.0;
     // A stick-out area whose centre lies farther than this outside the lower section starts a new
     // branch (paper: d), mm. <= 0: derived, twice the step ("much greater than the step", Sec.
@@ -159,7 +160,8 @@ struct CentroidalAxis {
 // 2 x area / perimeter (the width of a long strip) of the elongated regions (P^2 / A >= 21, about
 // 3:1 and thinner) among sections along X, Y and Z (16 planes each); compact regions count only
 // when no section has an elongated one, since a plane grazing a rounded tip cuts a tiny disc that
-// says nothing about wall thickness. Clamped to [diagonal / 2000, diagonal / 20].
+// says nothing about wall thickness. Clamped to [diagonal / 2000, diagonal / 20], then at most half
+// the part's height (z extent), which the march's step must stay under.
 double derive_axis_step(const TriangleMesh& mesh);
 
 // Throws mas::Error: InvalidArgument for bad parameters (a step that is not positive and finite,

@@ -1145,7 +1145,10 @@ double derive_axis_step(const TriangleMesh& mesh) {
         }
     double width = std::isfinite(wall) ? wall : compact;
     if (!std::isfinite(width)) width = diag / 10.0;
-    return std::clamp(width / 2.0, diag / 2000.0, diag / 20.0);
+    // The march needs a step under the height: a part lying flat thinner than diagonal / 2000 (a
+    // 100 x 100 x 0.05 mm shim) would otherwise fail on its derived step.
+    const double height = box.max().z() - box.min().z();
+    return std::min(std::clamp(width / 2.0, diag / 2000.0, diag / 20.0), height / 2.0);
 }
 
 namespace {

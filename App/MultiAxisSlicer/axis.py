@@ -195,7 +195,8 @@ class CentroidalAxis:
     used, derived ones filled in: ``step_mm``, ``distance_threshold_mm``, ``eps_mm``,
     ``break_angle_deg``, ``base_z_mm``, ``deflection_mm``: the chordal deflection a solid was
     tessellated with, 0.0 for a mesh used as it is), ``searched_volume`` (mm³, the volume of the
-    slabs the nodes swept: the part's volume, each region searched once), ``sections_cut`` (planes
+    slabs the nodes swept, section area times slab thickness; every region is searched once, so
+    it is the part's volume for prisms along the march and near it otherwise), ``sections_cut`` (planes
     cut from the mesh), ``kind`` ("solid" or "mesh"), ``triangles`` (of the mesh that was cut).
     """
 
@@ -293,8 +294,9 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
         lowest point is not on this plane (within eps) is an error.
       * ``deflection``: chordal deflection for tessellating a solid (None: derived from its size,
         see ``deflection()``); a mesh is used as it is.
-      * ``progress``: None or ``progress(fraction, stage)``, reported as the march takes each
-        plane, with the volume swept so far over the part's; an exception it raises
+      * ``progress``: None or ``progress(fraction, stage)``, reported as the march goes (at most
+        every 10 ms, and at the end), with the volume swept so far over the part's, under the
+        stage "centroidal axis"; an exception it raises
         (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
         Computing an axis takes milliseconds at the derived step; a small given one may take
         long.

@@ -4,7 +4,7 @@
 ``Sections``: the cross-sections of a solid or closed mesh by parallel planes, as a compound of
 closed wires. ``CentroidalAxis``: the part's centroidal axis, as a compound of vertices (nodes) and
 line segments (links). ``Decomposition``: the part's sub-components, as a compound of solids in
-tree order, with one ``Component`` object per solid (Component001, ...) for the tree and the 3D
+tree order, with one ``Component`` object per solid (labelled Component001, ...) for the tree and the 3D
 view. ``Layers``: a decomposition's adaptive multi-axis layers, as a compound of their outlines;
 ``Toolpath``: the bead paths planned in them, as a compound of polylines. Thin like FreeCAD's own
 features: properties -> MultiAxisSlicer -> Shape.
@@ -247,8 +247,8 @@ class CentroidalAxisFeature(_EngineFeature):
         _add_property(obj, "App::PropertyLength", "UsedDistanceThreshold", result,
                       "The distance threshold used", 0.0, _OUTPUT)
         _add_property(obj, "App::PropertyVolume", "SearchedVolume", result,
-                      "Volume swept by the nodes' sections: the part's volume when every region "
-                      "was searched once", 0.0, _OUTPUT)
+                      "Volume swept by the nodes' slabs (section area x slab thickness): near "
+                      "the part's, as every region is searched once", 0.0, _OUTPUT)
 
     @staticmethod
     def recompute(obj):

@@ -8,7 +8,8 @@ decreasing; 1 when done) and the stage in words ("slicing component 2 (3 of 5)")
 work it raises: ``Cancelled`` by convention, or any exception, which the computation raises again
 unchanged. Nothing the caller passed is modified by a stopped computation. Python's signal
 handlers run at the engine's reports too, with or without a callback: Ctrl-C stops the work with
-``KeyboardInterrupt`` within about 10 ms::
+``KeyboardInterrupt`` at the next report (every few milliseconds while slicing; OCCT's Booleans
+run to their end, so decomposing may take up to about half a second)::
 
     def progress(fraction, stage):
         print("{:4.0%} {}".format(fraction, stage))

@@ -46,7 +46,9 @@
 //   axis-aligned, so a slab meets a plane in its own region or in a union of rectangles). Search
 //   is branch-first: a new branch is searched to its end before its father's march continues,
 //   so the father's later sections no longer see the branch's material, and no part of the solid
-//   is searched twice. The slabs' volumes add up to the part's volume (tested). A march subtracts
+//   is searched twice. The slabs' volumes (section area x thickness) add up to the part's volume
+//   for prisms along the march (tested), and near it otherwise: by how much the sections change
+//   within a slab (the example bracket: +5 %). A march subtracts
 //   the slabs only from the regions whose box meets one of its tracks' boxes: it reads no others.
 // - FindConnectingLink: a branch that turned is tied to the node of its father branch nearest to
 //   its first node; a branch born of a split is tied to the lower node it split from.

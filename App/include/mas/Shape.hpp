@@ -61,8 +61,8 @@ private:
 // by at most about that much along their boundary.
 struct TessellationParams {
     // mm; <= 0 means "derive from the part": 0.05% of the bounding-box diagonal, clamped to
-    // [0.005, 0.1] mm (0.01 mm on a 20 mm part, 0.1 mm on a 200 mm-plus part), and never finer
-    // than kMinDeflectionRatio of the diagonal (parts over 10 m across).
+    // [0.005, 0.1] mm (0.01 mm for a 20 mm diagonal, 0.1 mm for diagonals over 200 mm), and never
+    // finer than kMinDeflectionRatio of the diagonal (parts over 10 m across).
     double deflection_mm = 0.0;
     double angular_deflection_rad = 0.35;  // ~20 degrees, bounds facet normals on tight curves
 };

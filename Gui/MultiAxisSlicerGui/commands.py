@@ -24,6 +24,16 @@ def _selected_part():
     return None
 
 
+def _recompute_new(doc, before):
+    """Recomputes the objects not in `before` (names) and what they depend on, nothing else: a
+    command computes its own objects. (A whole-document recompute also ran every other touched
+    object, such as Layers whose recompute the user had cancelled: its progress dialog came up in
+    the middle of an unrelated command, whose work its Cancel then undid.)"""
+    new = [o for o in doc.Objects if o.Name not in before]
+    if new:
+        doc.recompute(new)
+
+
 def _visibility(doc):
     """{object name: visible} of the document's objects, to restore after a cancel."""
     return {o.Name: o.ViewObject.Visibility for o in doc.Objects if o.ViewObject is not None}
@@ -89,11 +99,12 @@ class _PartCommand:
         doc = source.Document
         watch = _CancelWatch()
         visibility = _visibility(doc)
+        before = {o.Name for o in doc.Objects}
         doc.openTransaction(self.TRANSACTION)
         try:
             obj = self.make(source, doc)
             if not watch.cancelled():  # else no more work
-                doc.recompute()
+                _recompute_new(doc, before)
         except Exception as error:  # creating the object failed: leave nothing behind
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(
@@ -232,6 +243,7 @@ class SliceCommand(_PartCommand):
             return
         doc = source.Document
         visibility = _visibility(doc)
+        before = {o.Name for o in doc.Objects}
         failed = None
         doc.openTransaction(self.TRANSACTION)
         try:
@@ -254,7 +266,7 @@ class SliceCommand(_PartCommand):
                         busy.stage("Drawing the bead paths...")
                         doc.recompute([toolpath])
                     if not busy.cancelled():  # else nothing is kept: no more work
-                        doc.recompute()
+                        _recompute_new(doc, before)
                     failed = features.failure(layers) or features.failure(toolpath)
                     if failed is None:  # the layers take the part's place in the view
                         part = features.decomposition_inputs(decomposition)[0]

@@ -149,6 +149,27 @@ class TestSectionsCommand(unittest.TestCase):
         self.assertTrue(obj.isValid(), obj.getStatusString())
         self.assertEqual(obj.SectionCount, 4000)
 
+    def test_command_computes_its_own_object_only(self):
+        # Another object waiting for a recompute (a slow one: 4000 sections) is left alone: a
+        # whole-document recompute ran it inside the command, and a Cancel in its progress
+        # dialog undid the command.
+        import MultiAxisSlicer.features as features
+
+        waiting = features.make_sections(self.box, step=0.01)
+        self.assertIn("Touched", waiting.State)
+        other = self.doc.addObject("Part::Box", "Other")
+        other.Placement.Base = FreeCAD.Vector(100, 0, 0)  # not recomputed yet either
+        FreeCADGui.Selection.addSelection(other)
+        FreeCADGui.runCommand(COMMAND)
+        process_events()
+        new = [o for o in self.doc.Objects if o.Name not in ("Box", "Sections", "Other")]
+        self.assertEqual(len(new), 1)
+        self.assertTrue(new[0].isValid(), new[0].getStatusString())
+        self.assertEqual(new[0].SectionCount, 2)  # the new box (its source), 10 mm / 5 mm
+        self.assertNotIn("Touched", other.State)
+        self.assertIn("Touched", waiting.State)
+        self.assertEqual(waiting.SectionCount, 0)
+
     def test_command_creates_a_sections_object_on_the_selected_box(self):
         before = self.box.Shape.exportBrepToString()
         FreeCADGui.Selection.addSelection(self.box)

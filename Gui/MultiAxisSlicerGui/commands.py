@@ -24,6 +24,44 @@ def _selected_part():
     return None
 
 
+# This workbench's results, which are no part to work on: their type -> what they are, in words.
+_RESULTS = {
+    "MultiAxisSlicer::Sections": "a Sections object (cross-sections)",
+    "MultiAxisSlicer::CentroidalAxis": "a CentroidalAxis object",
+    "MultiAxisSlicer::Decomposition": "a Decomposition object",
+    "MultiAxisSlicer::Layers": "a Layers object",
+    "MultiAxisSlicer::Toolpath": "a Toolpath object",
+}
+
+
+def _part_problem(source, split=False):
+    """None when the selected `source` can be the part a command works on; else why not, naming
+    what to select. `split`: the command decomposes, which needs a BREP solid. A selection that can never
+    work (a sketch, a lone face, two solids, a mesh to split, one of this workbench's results) is
+    so refused before anything is made: the command used to leave an object failing for good."""
+    kind = getattr(getattr(source, "Proxy", None), "Type", None)
+    if kind in _RESULTS:
+        return "'{}' is {}, not a part: select the solid or mesh it was made from.".format(
+            source.Label, _RESULTS[kind])
+    if "Touched" in source.State or "Invalid" in source.State:
+        source.recompute(True)  # checked as it will be used (a new Part::Box has no shape yet)
+        if "Invalid" in source.State:
+            return "'{}' failed to recompute: {}".format(source.Label, source.getStatusString())
+    try:
+        model, part, what = mas._model(source)
+        if model == "mesh":
+            if split:
+                return ("'{}' is a mesh: decomposing splits a BREP solid into solids. Make a "
+                        "solid of it first (Part > Create shape from mesh, then Part > Convert to "
+                        "solid) and select that.".format(source.Label))
+            mas._require_engine().make_closed(part, what)
+        else:
+            part.single_solid(what)
+    except mas.EngineError as error:  # it names the object: "'Part': not a solid (...)"
+        return str(error)
+    return None
+
+
 def _recompute_new(doc, before):
     """Recomputes the objects not in `before` (names) and what they depend on, nothing else: a
     command computes its own objects. (A whole-document recompute also ran every other touched
@@ -88,6 +126,10 @@ class _PartCommand:
     def make(self, source, doc):
         raise NotImplementedError
 
+    def input_problem(self, source):
+        """Why the selected `source` can be no input (None when it can): see _part_problem."""
+        return _part_problem(source)
+
     def Activated(self):
         source = _selected_part()
         if source is None:
@@ -95,6 +137,10 @@ class _PartCommand:
             return
         if not mas.engine_available():
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
+            return
+        problem = self.input_problem(source)
+        if problem is not None:
+            MultiAxisSlicerGui.show_error("{}: {}".format(self.TRANSACTION, problem))
             return
         doc = source.Document
         watch = _CancelWatch()
@@ -166,6 +212,15 @@ class DecomposeCommand(_PartCommand):
                "branches, each built from its base face along its own direction (a parametric "
                "Decomposition object with Component001, ...; select a CentroidalAxis object to "
                "use its parameters)")
+
+    def input_problem(self, source):
+        import MultiAxisSlicer.features as features
+
+        if features.is_centroidal_axis(source):  # its source is the part
+            if source.Source is None:
+                return "the CentroidalAxis object '{}' has no Source.".format(source.Label)
+            return _part_problem(source.Source, split=True)
+        return _part_problem(source, split=True)
 
     def make(self, source, doc, min_component_height=0.0):
         import MultiAxisSlicer.features as features
@@ -240,6 +295,11 @@ class SliceCommand(_PartCommand):
             return
         if not mas.engine_available():
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
+            return
+        problem = (None if features.is_decomposition(source) else
+                   DecomposeCommand().input_problem(source))
+        if problem is not None:
+            MultiAxisSlicerGui.show_error("{}: {}".format(self.TRANSACTION, problem))
             return
         doc = source.Document
         visibility = _visibility(doc)

@@ -329,14 +329,35 @@ class TestCentroidalAxisCommand(unittest.TestCase):
 
         self.part.Shape = Part.makePlane(10, 10)
         self.doc.recompute()
+        undo = self.doc.UndoCount
         obj = self.run_command()
-        self.assertIsNotNone(obj)  # it stays, so that its Source can be fixed
-        self.assertIn("Invalid", obj.State)
+        self.assertIsNone(obj)  # refused before anything is made: it could never work
+        self.assertEqual(self.doc.UndoCount, undo)
         boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
                                                                      "MultiAxisSlicerError")
                  if b.isVisible()]
         self.assertEqual(len(boxes), 1)
-        self.assertIn("not a solid", boxes[0].text())
+        self.assertIn("Centroidal axis: 'L': not a solid (1 face, 0 solids)", boxes[0].text())
+        for box in boxes:
+            box.close()
+        # One of this workbench's results is no part either: it names what to select.
+        import MultiAxisSlicer.features as features
+
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        sections = features.make_sections(self.part)
+        self.doc.recompute()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(sections)
+        FreeCADGui.runCommand(AXIS_COMMAND)
+        process_events()
+        self.assertIsNone(self.doc.getObject("CentroidalAxis"))
+        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                                     "MultiAxisSlicerError")
+                 if b.isVisible()]
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("'Sections' is a Sections object (cross-sections), not a part: select the "
+                      "solid or mesh it was made from", boxes[0].text())
 
     def test_view_settings_survive_save_and_reopen(self):
         obj = self.run_command()
@@ -643,15 +664,41 @@ class TestDecomposeCommand(unittest.TestCase):
     def test_command_on_a_face_shows_the_engine_message(self):
         self.part.Shape = Part.makePlane(10, 10)
         self.doc.recompute()
+        undo = self.doc.UndoCount
         obj = self.run_command(self.part)
-        self.assertIsNotNone(obj)
-        self.assertIn("Invalid", obj.State)
+        self.assertIsNone(obj)  # refused before anything is made: it could never work
+        self.assertEqual(self.doc.UndoCount, undo)
         boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
                                                                      "MultiAxisSlicerError")
                  if b.isVisible()]
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())
         self.assertTrue(self.part.ViewObject.Visibility)  # nothing replaced it
+
+    def test_command_on_a_mesh_says_a_solid_is_needed(self):
+        # A mesh (or an axis computed on one) cannot be split into solids: refused up front,
+        # saying how to make a solid of it; the axis of the same mesh is fine.
+        import Mesh
+        import MultiAxisSlicer.features as features
+
+        mesh = self.doc.addObject("Mesh::Feature", "Scan")
+        mesh.Mesh = Mesh.Mesh(l_block().tessellate(0.01))
+        self.doc.recompute()
+        axis = features.make_centroidal_axis(mesh)
+        self.doc.recompute()
+        self.assertTrue(axis.isValid(), axis.getStatusString())
+        undo = self.doc.UndoCount
+        for selected in (mesh, axis):
+            FreeCADGui.Selection.clearSelection()
+            obj = self.run_command(selected)
+            self.assertIsNone(obj, selected.Label)
+            self.assertEqual(self.doc.UndoCount, undo)
+            boxes = [b for b in FreeCADGui.getMainWindow().findChildren(
+                QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()]
+            self.assertEqual(len(boxes), 1, selected.Label)
+            self.assertIn("Decompose: 'Scan' is a mesh: decomposing splits a BREP solid",
+                          boxes[0].text())
+            boxes[0].close()
 
     def test_command_on_a_failing_axis_shows_the_axis_message(self):
         # FreeCAD leaves an object whose input failed touched and valid, without a word: the
@@ -890,8 +937,11 @@ class TestSliceCommand(unittest.TestCase):
     def test_command_on_a_face_shows_the_engine_message(self):
         self.part.Shape = Part.makePlane(10, 10)
         self.doc.recompute()
+        undo = self.doc.UndoCount
         layers, toolpath = self.run_command(self.part)
-        self.assertIsNone(layers)  # nothing to slice: the decomposition failed
+        self.assertIsNone(layers)  # refused before anything is made
+        self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+        self.assertEqual(self.doc.UndoCount, undo)
         boxes = self.error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())

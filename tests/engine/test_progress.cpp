@@ -10,6 +10,7 @@
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
+#include "mas/Paths.hpp"
 #include "mas/Progress.hpp"
 #include "mas/Shape.hpp"
 #include "mas/SlicePart.hpp"
@@ -187,4 +188,30 @@ TEST(Progress, AnExceptionFromTheReportStopsSlicingUnchanged) {
     const mas::SlicedPart sliced = mas::slice_part(p.part, p.axis, p.d, p.params, recorder(r));
     EXPECT_GT(sliced.layers.size(), 0u);
     expect_never_back_and_done(r);
+}
+
+TEST(Progress, OneLayersPathsCanBeStoppedWhileTheyArePlanned) {
+    // A 100 x 100 mm layer at a 0.05 mm bead: 2400 raster lines, ordered nearest-next. A layer's
+    // paths were planned without a report (the example bracket at a 0.01 mm bead: 5 s in its
+    // first layer, the GUI with no dialog and no Cancel).
+    mas::Region2 square;
+    square.outer.points = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+    mas::PathParams params;
+    params.bead_width_mm = 0.05;
+    int checks = 0;
+    EXPECT_THROW(mas::plan_layer_paths({square}, params, 0, {0, 0},
+                                       mas::Progress([&](double f, const std::string&) {
+                                           EXPECT_EQ(f, 0.0);  // checks, no fraction
+                                           if (++checks == 20) throw Stop{};
+                                       })),
+                 Stop);
+    EXPECT_EQ(checks, 20);
+    // Without a caller the paths are the same as with one that lets them run.
+    int all = 0;
+    const mas::LayerPaths2 checked = mas::plan_layer_paths(
+        {square}, params, 0, {0, 0}, mas::Progress([&](double, const std::string&) { ++all; }));
+    EXPECT_GT(all, 40);
+    const mas::LayerPaths2 plain = mas::plan_layer_paths({square}, params, 0, {0, 0});
+    ASSERT_EQ(checked.paths.size(), plain.paths.size());
+    EXPECT_EQ(checked.deposit_length_mm, plain.deposit_length_mm);
 }

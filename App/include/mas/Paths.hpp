@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "mas/Polygon2.hpp"
+#include "mas/Progress.hpp"
 
 namespace mas {
 
@@ -108,8 +109,10 @@ double seam_angle(int layer_index);
 // The paths of one layer whose deposited area is `regions` (a layer's regions in its plane
 // frame). `layer_index` counts layers of the whole build and sets the raster angle and the seam;
 // `start` is where the head is when the layer begins (the end of the previous layer's last path).
-// Throws mas::Error(InvalidArgument) for invalid params (see validate).
+// Throws mas::Error(InvalidArgument) for invalid params (see validate). `progress` is checked
+// between offset levels and while ordering (a fine bead on a large layer takes seconds), so that
+// the caller may stop the work; it reports no fraction.
 LayerPaths2 plan_layer_paths(const Regions2& regions, const PathParams& params, int layer_index,
-                             const Eigen::Vector2d& start);
+                             const Eigen::Vector2d& start, const Progress& progress = {});
 
 }  // namespace mas

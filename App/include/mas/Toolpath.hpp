@@ -35,8 +35,9 @@ struct LayerToolpaths {
 
 // The paths of `layer`; `layer_index` counts layers over the whole build (raster angle, seam).
 // `from` is where the head is (the previous layer's last point): the first travel starts there;
-// without it the layer starts at its first deposit path.
+// without it the layer starts at its first deposit path. `progress`: as plan_layer_paths'.
 LayerToolpaths plan_toolpaths(const Layer& layer, int layer_index, const PathParams& params,
-                              const std::optional<Eigen::Vector3d>& from = std::nullopt);
+                              const std::optional<Eigen::Vector3d>& from = std::nullopt,
+                              const Progress& progress = {});
 
 }  // namespace mas

@@ -814,7 +814,7 @@ std::vector<Path2> raster(const Pieces& infill, const Settings& set, int region)
 }
 
 RegionPlan plan_region(const Region2& region, int index, const Settings& set,
-                       std::vector<UnfilledFeature>& unfilled) {
+                       std::vector<UnfilledFeature>& unfilled, const Progress& progress) {
     RegionPlan plan;
     plan.region = index;
     plan.contour_count = set.contour_count;
@@ -841,6 +841,7 @@ RegionPlan plan_region(const Region2& region, int index, const Settings& set,
                     " mm across: over " + std::to_string(kMaxLevels) + " offset levels");
     }
     while (!queue.empty()) {
+        progress.check();
         Work work = std::move(queue.front());
         queue.pop_front();
         const int level = work.level;
@@ -864,8 +865,10 @@ RegionPlan plan_region(const Region2& region, int index, const Settings& set,
             // than it doubles); the rest is the raster's scallops, reported only from w^2 / 4
             // up (the coverage measure counts them all).
             std::vector<Path2> lines = raster(centres, set, index);
+            progress.check();
             if (!uncovered.empty()) {
                 const Paths beads = thicken(lines, 0.5 * set.w, set.arc_units);
+                progress.check();
                 for (const Piece& r : boolean(ClipperLib::ctDifference, uncovered, beads))
                     if (area_mm2(r.loops) >= set.residue_min_area)
                         narrow_piece(r, r.loops, uncovered, 0.25 * set.w * set.w, 0.25 * set.w,
@@ -955,9 +958,11 @@ double nearest_entry(const std::vector<Item>& items, const std::vector<char>& do
 
 // Greedy nearest-next over one group, every loop after its parent; appends to `out` and moves
 // `pos` to the last path's end.
-void order_group(std::vector<Item> items, Eigen::Vector2d& pos, std::vector<Path2>& out) {
+void order_group(std::vector<Item> items, Eigen::Vector2d& pos, std::vector<Path2>& out,
+                 const Progress& progress) {
     std::vector<char> done(items.size(), 0);
     for (std::size_t k = 0; k < items.size(); ++k) {
+        if (k % 64 == 0) progress.check();  // each pick scans every item left
         std::size_t best = 0;
         bool reverse = false;
         nearest_entry(items, done, pos, best, reverse);
@@ -1039,7 +1044,7 @@ double seam_angle(int layer_index) {
 }
 
 LayerPaths2 plan_layer_paths(const Regions2& regions, const PathParams& params, int layer_index,
-                             const Eigen::Vector2d& start) {
+                             const Eigen::Vector2d& start, const Progress& progress) {
     validate(params);
     if (!start.allFinite())
         throw Error(ErrorCode::NonFiniteCoordinate, "start point has NaN or infinite coordinates");
@@ -1062,7 +1067,7 @@ LayerPaths2 plan_layer_paths(const Regions2& regions, const PathParams& params, 
     LayerPaths2 out;
     std::vector<RegionPlan> plans;
     for (std::size_t i = 0; i < regions.size(); ++i) {
-        RegionPlan plan = plan_region(regions[i], int(i), set, out.unfilled);
+        RegionPlan plan = plan_region(regions[i], int(i), set, out.unfilled, progress);
         if (plan.centre_line) out.centre_line_regions.push_back(int(i));
         link_parents(plan.contours);
         link_parents(plan.infill);
@@ -1089,8 +1094,8 @@ LayerPaths2 plan_layer_paths(const Regions2& regions, const PathParams& params, 
             }
         }
         done[best] = 1;
-        order_group(std::move(plans[best].contours), pos, out.paths);
-        order_group(std::move(plans[best].infill), pos, out.paths);
+        order_group(std::move(plans[best].contours), pos, out.paths, progress);
+        order_group(std::move(plans[best].infill), pos, out.paths, progress);
     }
 
     pos = start;

@@ -195,9 +195,9 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
             s.worst_unsupported_area_mm2 = l.unsupported_area_mm2;
             s.worst_unsupported_layer = int(i);
         }
-        LayerToolpaths paths =
-            plan_toolpaths(l, int(i), params.paths,
-                           has_head ? std::optional<Eigen::Vector3d>(head) : std::nullopt);
+        LayerToolpaths paths = plan_toolpaths(
+            l, int(i), params.paths, has_head ? std::optional<Eigen::Vector3d>(head) : std::nullopt,
+            paths_progress);
         for (auto it = paths.paths.rbegin(); it != paths.paths.rend(); ++it)
             if (!it->points.empty()) {
                 head = it->points.back();

@@ -18,14 +18,16 @@ const char* to_string(ToolPath::Kind kind) {
 }
 
 LayerToolpaths plan_toolpaths(const Layer& layer, int layer_index, const PathParams& params,
-                              const std::optional<Eigen::Vector3d>& from) {
+                              const std::optional<Eigen::Vector3d>& from,
+                              const Progress& progress) {
     const PlaneFrame frame(layer.plane.normal);
     const Eigen::Vector2d start =
         from
             ? frame.to_2d(*from)
             : (layer.regions.empty() ? Eigen::Vector2d::Zero()
                                      : Eigen::Vector2d(layer.regions.front().outer.points.front()));
-    const LayerPaths2 planned = plan_layer_paths(layer.regions, params, layer_index, start);
+    const LayerPaths2 planned =
+        plan_layer_paths(layer.regions, params, layer_index, start, progress);
 
     LayerToolpaths out;
     out.tool_axis = layer.plane.normal;

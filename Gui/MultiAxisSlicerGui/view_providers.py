@@ -139,12 +139,12 @@ class ViewProviderCentroidalAxis(_Stateless):
 
 
 # Sub-components: one distinct colour each, the root first (a qualitative palette, Tableau 10,
-# with the grey left out so that no component looks like an ordinary FreeCAD solid).
+# with the grey left out so that no component looks like an ordinary FreeCAD solid, and the red,
+# which marks what is wrong: unsupported regions, the axis' breaks).
 COMPONENT_COLOURS = [
     (0.12, 0.47, 0.71),  # blue
     (1.00, 0.50, 0.05),  # orange
     (0.17, 0.63, 0.17),  # green
-    (0.84, 0.15, 0.16),  # red
     (0.58, 0.40, 0.74),  # purple
     (0.55, 0.34, 0.29),  # brown
     (0.89, 0.47, 0.76),  # pink
@@ -154,7 +154,7 @@ COMPONENT_COLOURS = [
 
 
 def component_colour(index):
-    """The colour of component `index` (tree order); the palette repeats after nine."""
+    """The colour of component `index` (tree order); the palette repeats after eight."""
     return COMPONENT_COLOURS[index % len(COMPONENT_COLOURS)]
 
 

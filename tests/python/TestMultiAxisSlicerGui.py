@@ -530,6 +530,15 @@ class TestDecomposeCommand(unittest.TestCase):
             self.assertTrue(same_colour(a, b), (a, b))
         return components
 
+    def test_component_colours_stay_clear_of_the_reds_that_mark_faults(self):
+        # A red component could not be told from the unsupported regions drawn over it, the
+        # axis' breaks or the contour paths (the fourth colour was Tableau's red).
+        reds = [view_providers.UNSUPPORTED_COLOUR, view_providers.AXIS_BREAK_COLOR,
+                view_providers.TOOLPATH_COLOURS["ContourColor"][0]]
+        for colour in view_providers.COMPONENT_COLOURS:
+            for red in reds:
+                self.assertGreater(math.dist(colour, red), 0.4, (colour, red))
+
     def test_command_needs_one_selected_part(self):
         self.assertFalse(FreeCADGui.Command.get(DECOMPOSE_COMMAND).isActive())
         FreeCADGui.Selection.addSelection(self.part)

@@ -278,6 +278,22 @@ class ViewProviderComponent(_Stateless):
             return
         vobj.ShapeColor = component_colour(obj.Index)
 
+    def onDelete(self, vobj, subelements):
+        """A component only shows one solid of its decomposition, which would still slice it and
+        bring it back on its next recompute: deleting it alone is refused, saying so. With its
+        Decomposition it goes (the Decomposition's own delete takes its components)."""
+        import FreeCADGui
+
+        decomposition = getattr(vobj.Object, "Decomposition", None)
+        if decomposition is None or decomposition in FreeCADGui.Selection.getSelection():
+            return True
+        MultiAxisSlicerGui.show_error(
+            "'{}' is one sub-component of '{}' and cannot be deleted on its own: the "
+            "decomposition would still hold it (and slice it). Hide it, change the "
+            "decomposition's parameters, or delete the decomposition.".format(
+                vobj.Object.Label, decomposition.Label))
+        return False
+
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("Decompose.svg")
 

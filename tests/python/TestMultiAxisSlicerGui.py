@@ -530,6 +530,35 @@ class TestDecomposeCommand(unittest.TestCase):
             self.assertTrue(same_colour(a, b), (a, b))
         return components
 
+    def test_a_component_is_not_deleted_on_its_own(self):
+        # Its decomposition would still hold (and slice) it: refused, with a message saying what
+        # to do instead; with the decomposition selected too, everything goes.
+        import MultiAxisSlicer.features as features
+
+        decomposition = self.run_command(self.part)
+        components = features.components_of(decomposition)
+        self.assertEqual(len(components), 2)
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(components[1])
+        FreeCADGui.runCommand("Std_Delete")
+        process_events()
+        self.assertEqual(len(features.components_of(decomposition)), 2)
+        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(
+            QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()]
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("cannot be deleted on its own", boxes[0].text())
+        for box in boxes:
+            box.close()
+        # Selected with its decomposition, it may go. (Std_Delete then asks about the
+        # dependencies in a modal dialog: the view provider is asked directly.)
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(decomposition)
+        FreeCADGui.Selection.addSelection(components[1])
+        vobj = components[1].ViewObject
+        self.assertTrue(vobj.Proxy.onDelete(vobj, []))
+        FreeCADGui.Selection.clearSelection()
+        self.assertFalse(vobj.Proxy.onDelete(vobj, []))
+
     def test_component_colours_stay_clear_of_the_reds_that_mark_faults(self):
         # A red component could not be told from the unsupported regions drawn over it, the
         # axis' breaks or the contour paths (the fourth colour was Tableau's red).

@@ -86,9 +86,13 @@ def _undo_cancelled(doc, transaction, source, visibility):
         obj = doc.getObject(name)
         if obj is not None and obj.ViewObject is not None:
             obj.ViewObject.Visibility = visible
-    message = "{} of '{}' cancelled".format(transaction, source.Label)
-    FreeCADGui.getMainWindow().statusBar().showMessage(message, 10000)
+    message = "{} of '{}' cancelled: nothing was made".format(transaction, source.Label)
     FreeCAD.Console.PrintMessage(message + "\n")
+    # After FreeCAD's own "Recompute failed!", which it shows for the stopped recompute.
+    from PySide import QtCore
+
+    status = FreeCADGui.getMainWindow().statusBar()
+    QtCore.QTimer.singleShot(0, lambda: status.showMessage(message, 10000))
 
 
 class _CancelWatch:
@@ -148,9 +152,10 @@ class _PartCommand:
         before = {o.Name for o in doc.Objects}
         doc.openTransaction(self.TRANSACTION)
         try:
-            obj = self.make(source, doc)
-            if not watch.cancelled():  # else no more work
-                _recompute_new(doc, before)
+            with MultiAxisSlicerGui.progress.command_running():
+                obj = self.make(source, doc)
+                if not watch.cancelled():  # else no more work
+                    _recompute_new(doc, before)
         except Exception as error:  # creating the object failed: leave nothing behind
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(
@@ -307,7 +312,7 @@ class SliceCommand(_PartCommand):
         failed = None
         doc.openTransaction(self.TRANSACTION)
         try:
-            with _Busy() as busy:
+            with _Busy() as busy, MultiAxisSlicerGui.progress.command_running():
                 if features.is_decomposition(source):
                     decomposition = source
                     busy.stage("Using the decomposition '{}'".format(source.Label))

@@ -137,6 +137,10 @@ class TestSectionsCommand(unittest.TestCase):
         self.assertEqual(canceller.clicks, 1)
         self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
         self.assertEqual(self.doc.UndoCount, undo)
+        # The status bar says so, after FreeCAD's own "Recompute failed!" for the stopped one.
+        process_events()
+        self.assertEqual(FreeCADGui.getMainWindow().statusBar().currentMessage(),
+                         "Cross-sections of 'Box' cancelled: nothing was made")
         # Recomputing an object runs it again, reporting as it goes.
         import MultiAxisSlicer.features as features
 
@@ -144,7 +148,7 @@ class TestSectionsCommand(unittest.TestCase):
         with Canceller(self, "Cutting") as canceller:
             self.doc.recompute()
         self.assertEqual(canceller.clicks, 1)
-        self.assertIn("cancelled by the user", obj.getStatusString())
+        self.assertIn("cancelled by the user; recompute to run it again", obj.getStatusString())
         self.doc.recompute()
         self.assertTrue(obj.isValid(), obj.getStatusString())
         self.assertEqual(obj.SectionCount, 4000)

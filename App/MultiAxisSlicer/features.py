@@ -18,6 +18,7 @@ features: properties -> MultiAxisSlicer -> Shape.
 """
 
 import functools
+import re
 
 import FreeCAD
 import Part
@@ -31,6 +32,17 @@ from MultiAxisSlicer.decompose import _angle
 # is a bug and keeps its traceback.
 _USER_ERRORS = (mas.EngineError, mas.EngineUnavailableError, ValueError, TypeError,
                 mas.Cancelled)
+
+def _names(*pairs):
+    """PROPERTY_NAMES entries: (parameter as the engine or the API spells it, property). A
+    parameter matches as a whole word, with an "_mm" or "_deg" suffix too."""
+    return tuple((r"\b{}(?:_mm|_deg)?\b".format(name), prop) for name, prop in pairs)
+
+
+_AXIS_NAMES = _names(("step", "Step"), ("distance_threshold", "DistanceThreshold"),
+                     ("eps", "Epsilon"), ("break_angle", "BreakAngle"),
+                     ("break angle", "BreakAngle"), ("deflection", "Deflection"))
+
 
 # Output properties: read-only in the property editor (1), and setting them does not touch the
 # object again (8, App::Prop_Output).
@@ -70,6 +82,9 @@ class _EngineFeature:
 
     TYPE = ""
     VIEW_PROVIDER = ""
+    # (regular expression, property): how the engine and the scripting API name a parameter in a
+    # message, and the property that sets it here. A message on the object names the property.
+    PROPERTY_NAMES = ()
 
     def __init__(self, obj):
         self.Type = self.TYPE
@@ -91,8 +106,19 @@ class _EngineFeature:
         try:
             self.recompute(obj)
         except _USER_ERRORS as error:
-            return error
+            return self._in_property_names(error)
         return None
+
+    def _in_property_names(self, error):
+        """`error` with the parameters its message names called by their properties ("min_layer"
+        -> "MinLayer"), as the user sees them in the property editor."""
+        if len(error.args) != 1 or not isinstance(error.args[0], str):
+            return error
+        message = error.args[0]
+        for pattern, prop in self.PROPERTY_NAMES:
+            message = re.sub(pattern, prop, message)
+        error.args = (message,)
+        return error
 
     def _recompute_raising(self, obj):
         self.recompute(obj)
@@ -130,6 +156,7 @@ class SectionsFeature(_EngineFeature):
 
     TYPE = "MultiAxisSlicer::Sections"
     VIEW_PROVIDER = "ViewProviderSections"
+    PROPERTY_NAMES = _names(("step", "Step"), ("deflection", "Deflection"), ("normal", "Normal"))
 
     @staticmethod
     def ensure_properties(obj):
@@ -214,6 +241,7 @@ class CentroidalAxisFeature(_EngineFeature):
 
     TYPE = "MultiAxisSlicer::CentroidalAxis"
     VIEW_PROVIDER = "ViewProviderCentroidalAxis"
+    PROPERTY_NAMES = _AXIS_NAMES
 
     @staticmethod
     def ensure_properties(obj):
@@ -344,6 +372,10 @@ class DecompositionFeature(_EngineFeature):
 
     TYPE = "MultiAxisSlicer::Decomposition"
     VIEW_PROVIDER = "ViewProviderDecomposition"
+    PROPERTY_NAMES = _AXIS_NAMES + _names(
+        ("face_angle", "FaceAngle"), ("concave_angle", "ConcaveAngle"),
+        ("min_component_height", "MinComponentHeight"),
+        ("section_plane_fallback", "SectionPlaneFallback"))
 
     @staticmethod
     def ensure_properties(obj):
@@ -792,6 +824,10 @@ class LayersFeature(_EngineFeature):
 
     TYPE = "MultiAxisSlicer::Layers"
     VIEW_PROVIDER = "ViewProviderLayers"
+    PROPERTY_NAMES = _names(
+        *[(param, prop) for prop, _, param, _, _ in _SLICE_PROPERTIES if "_" in param],
+        ("fill_holes_up_to", "FillHoles"), ("deflection", "Deflection")) + (
+        (r"\b(overlap)\b(?= must)", "Overlap"), (r"\binfill\b(?= must)", "Infill"))
 
     @staticmethod
     def ensure_properties(obj):

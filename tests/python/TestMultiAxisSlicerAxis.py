@@ -505,7 +505,8 @@ class TestCentroidalAxisObject(AxisTest):
         obj.Epsilon = 0.0
         self.doc.recompute()
         self.assertIn("Invalid", obj.State)
-        self.assertIn("eps", obj.getStatusString())
+        self.assertEqual(obj.getStatusString(),
+                         "Epsilon must be a positive number of millimetres, got 0.0")
         obj.Source = None
         self.doc.recompute()
         self.assertIn("Source is not set", obj.getStatusString())

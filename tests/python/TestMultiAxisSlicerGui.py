@@ -1092,7 +1092,7 @@ class TestSliceCommand(unittest.TestCase):
         layers.MinLayer = 3.0
         self.doc.recompute()
         self.assertIn("Invalid", layers.State)
-        self.assertIn("min_layer", layers.getStatusString())
+        self.assertIn("MinLayer", layers.getStatusString())
         layers.MinLayer = 0.5
         self.doc.recompute()
         process_events()

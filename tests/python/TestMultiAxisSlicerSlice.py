@@ -769,15 +769,17 @@ class TestLayersObject(SliceObjectTest):
         layers.MinLayer = 3.0  # more than MaxLayer
         self.doc.recompute()
         self.assertIn("Invalid", layers.State)
-        self.assertIn("min_layer", layers.getStatusString())
+        # In the properties' names, as the property editor shows them (not "min_layer").
+        self.assertEqual(layers.getStatusString(),
+                         "need 0 < MinLayer <= MaxLayer, got MinLayer 3.0 and MaxLayer 2.0 mm")
         layers.MinLayer = 0.5
         layers.BeadWidth = 0.0
         self.doc.recompute()
         self.assertIn("Invalid", layers.State)
-        self.assertIn("bead_width", layers.getStatusString())
+        self.assertIn("BeadWidth must be a positive number", layers.getStatusString())
         layers.BeadWidth = -1.0  # a length property keeps it at 0
         self.doc.recompute()
-        self.assertIn("bead_width", layers.getStatusString())
+        self.assertIn("BeadWidth must be a positive number", layers.getStatusString())
         layers.BeadWidth = 1.0
         layers.Decomposition = None
         self.doc.recompute()
@@ -832,7 +834,7 @@ class TestLayersObject(SliceObjectTest):
         output = result.stdout + result.stderr
         self.assertIn("STATES ['Invalid']", output.replace("'Touched', ", ""))
         self.assertIn("OTHER ['Invalid']", output.replace("'Touched', ", ""))
-        self.assertIn("need 0 < min_layer <= max_layer", output)
+        self.assertIn("need 0 < MinLayer <= MaxLayer", output)
         self.assertIn("not a Decomposition object", output)
         self.assertNotIn("Traceback", output)
 

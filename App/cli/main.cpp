@@ -262,9 +262,8 @@ int run_sections(const std::vector<std::string>& args) {
     if (a.json) {
         out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
             << ",\n  \"triangles\": " << mesh.triangles.size()
-            << ",\n  \"deflection_mm\": " << mas::format_number(deflection)
-            << ",\n  \"normal\": " << vec(n) << ",\n  \"step_mm\": " << num(step_mm)
-            << ",\n  \"sections\": [";
+            << ",\n  \"deflection_mm\": " << num(deflection) << ",\n  \"normal\": " << vec(n)
+            << ",\n  \"step_mm\": " << num(step_mm) << ",\n  \"sections\": [";
         for (std::size_t i = 0; i < sections.size(); ++i) {
             const auto& s = sections[i];
             out << (i ? "," : "") << "\n    {\"offset_mm\": " << num(n.dot(s.plane.origin))
@@ -282,7 +281,7 @@ int run_sections(const std::vector<std::string>& args) {
     } else {
         out << "# " << a.file << ": " << part.kind() << ", " << mesh.triangles.size()
             << " triangles";
-        if (deflection > 0.0) out << ", deflection " << mas::format_number(deflection) << " mm";
+        if (deflection > 0.0) out << ", deflection " << num(deflection) << " mm";
         out << "\n# normal " << num(n.x()) << "," << num(n.y()) << "," << num(n.z()) << ", step "
             << num(step_mm) << " mm, " << sections.size() << " sections\n";
         out << "# offset_mm regions holes area_mm2 centroid_x centroid_y centroid_z\n";

@@ -70,6 +70,9 @@ class CliSections(unittest.TestCase):
         doc = self.json_sections(os.path.join(DATA, "box_10x20x30.step"), "--step", "5")
         self.assertEqual(doc["kind"], "solid")
         self.assertEqual(len(doc["sections"]), 6)
+        # The derived deflection, 0.05 % of the diagonal, to the engine's precision (JSON numbers
+        # round-trip the engine's doubles).
+        self.assertAlmostEqual(doc["deflection_mm"], 0.0005 * math.sqrt(1400.0), places=14)
         for i, s in enumerate(doc["sections"]):
             self.assertAlmostEqual(s["offset_mm"], 2.5 + 5 * i, places=9)
             self.assertAlmostEqual(s["area_mm2"], 200.0, places=6)

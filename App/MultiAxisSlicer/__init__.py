@@ -568,7 +568,8 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     """Adds a parametric ``Decomposition`` object (FreeCAD only) splitting the document object
     ``source`` (optionally following the ``CentroidalAxis`` object ``axis``, whose parameters are
     then used), computes it and adds one ``Component`` object per sub-component (labelled
-    Component001, ... in tree order). Returns the Decomposition object. See ``MultiAxisSlicer.features``."""
+    Component001, ... in tree order). Returns the Decomposition object. See
+    ``MultiAxisSlicer.features``."""
     from . import features
 
     return features.make_decomposition(source, axis=axis, face_angle=face_angle,

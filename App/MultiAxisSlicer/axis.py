@@ -196,8 +196,9 @@ class CentroidalAxis:
     ``break_angle_deg``, ``base_z_mm``, ``deflection_mm``: the chordal deflection a solid was
     tessellated with, 0.0 for a mesh used as it is), ``searched_volume`` (mm³, the volume of the
     slabs the nodes swept, section area times slab thickness; every region is searched once, so
-    it is the part's volume for prisms along the march and near it otherwise), ``sections_cut`` (planes
-    cut from the mesh), ``kind`` ("solid" or "mesh"), ``triangles`` (of the mesh that was cut).
+    it is the part's volume for prisms along the march and near it otherwise), ``sections_cut``
+    (planes cut from the mesh), ``kind`` ("solid" or "mesh"), ``triangles`` (of the mesh that was
+    cut).
     """
 
     def __init__(self, data, kind, triangles, deflection_mm):

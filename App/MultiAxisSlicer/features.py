@@ -4,10 +4,10 @@
 ``Sections``: the cross-sections of a solid or closed mesh by parallel planes, as a compound of
 closed wires. ``CentroidalAxis``: the part's centroidal axis, as a compound of vertices (nodes) and
 line segments (links). ``Decomposition``: the part's sub-components, as a compound of solids in
-tree order, with one ``Component`` object per solid (labelled Component001, ...) for the tree and the 3D
-view. ``Layers``: a decomposition's adaptive multi-axis layers, as a compound of their outlines;
-``Toolpath``: the bead paths planned in them, as a compound of polylines. Thin like FreeCAD's own
-features: properties -> MultiAxisSlicer -> Shape.
+tree order, with one ``Component`` object per solid (labelled Component001, ...) for the tree and
+the 3D view. ``Layers``: a decomposition's adaptive multi-axis layers, as a compound of their
+outlines; ``Toolpath``: the bead paths planned in them, as a compound of polylines. Thin like
+FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
 
     import MultiAxisSlicer.features as features
     obj = features.make_sections(doc.Box, normal=(0, 0, 1), step=2.0)
@@ -32,6 +32,7 @@ from MultiAxisSlicer.decompose import _angle
 # is a bug and keeps its traceback.
 _USER_ERRORS = (mas.EngineError, mas.EngineUnavailableError, ValueError, TypeError,
                 mas.Cancelled)
+
 
 def _names(*pairs):
     """PROPERTY_NAMES entries: (parameter as the engine or the API spells it, property). A

@@ -101,10 +101,10 @@ Section section_by(const TopoDS_Shape& solid, BRepClass3d_SolidClassifier& insid
     const gp_Pln pln(gp_Pnt(plane.origin.x(), plane.origin.y(), plane.origin.z()),
                      gp_Dir(plane.normal.x(), plane.normal.y(), plane.normal.z()));
     BRepAlgoAPI_Section section(solid, pln, Standard_False);
-    // Curves OCCT can only trace (a plane across a torus' tube, a cone's oblique cut through a
-    // fillet) come as B-splines fitted to the traced points; without the fit they are the raw
-    // polylines, whose faces were 3 % short on a torus (152.4 mm2 for 157.1) and whose plane
-    // OCCT's face builder then fitted askew. Lines, circles and ellipses stay exact either way.
+    // Curves OCCT can only trace (a plane across a torus' tube, off its axis) come as B-splines
+    // fitted to the traced points; without the fit they are the raw polylines, whose faces were
+    // 3 % short on a torus (152.4 mm2 for 157.1), one of them built askew by OCCT's face maker.
+    // Lines, circles and ellipses stay exact either way.
     // Never touch the argument (Shape is shared and immutable; the Boolean may grow tolerances).
     section.Approximation(Standard_True);
     section.SetNonDestructive(Standard_True);

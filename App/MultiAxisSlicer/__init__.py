@@ -523,11 +523,14 @@ def section(obj, origin, normal, deflection=None):
 
 def exact_sections(shape, planes, loop_deflection=0.01):
     """OCCT's exact sections of a solid (no tessellation), as ``Section`` objects: the reference the
-    mesh-based ``sections()`` is checked against, about 100x slower.
+    mesh-based ``sections()`` is checked against, 13 to 23 times slower on the example bracket and
+    about 500 times across a torus' tube.
 
     ``shape``: a solid as ``to_engine_mesh`` accepts it (not a mesh). ``planes``: [(origin, normal),
     ...], e.g. from ``parallel_planes()``. Region loops are discretised within ``loop_deflection``
-    mm; areas and centroids are exact.
+    mm. Areas and centroids are exact where the section's curves are lines, circles or ellipses;
+    where OCCT can only trace them (a torus off its axis, a B-spline surface), within perimeter x
+    ``loop_deflection`` of the traced loops.
     """
     planes = _planes(planes)
     loop_deflection = _length(loop_deflection, "loop_deflection")

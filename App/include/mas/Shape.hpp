@@ -96,8 +96,11 @@ Model read_model(const std::string& path);
 TriangleMesh model_mesh(const Model& model, const TessellationParams& params = {});
 
 // OCCT's exact section (BRepAlgoAPI_Section, edges joined into wires, wires into faces, areas and
-// centroids from BRepGProp): the reference for checking the mesh kernel, about 100x slower. Loops
-// are discretised with `loop_deflection_mm` for the 2-D regions.
+// centroids from BRepGProp): the reference for checking the mesh kernel, 13 to 23 times slower on
+// the example bracket, about 500 times across a torus' tube. Loops are discretised with
+// `loop_deflection_mm` for the 2-D regions. Areas and centroids are exact for sections bounded by
+// lines, circles and ellipses; where OCCT can only trace the curves, they come from its face when
+// that agrees with the discretised loops within perimeter x loop deflection, else from the loops.
 std::vector<Section> exact_sections(const Shape& solid, const std::vector<Plane>& planes,
                                     double loop_deflection_mm = 0.01);
 

@@ -132,7 +132,7 @@ Eigen::Vector3d parse_vector(const std::string& text, const std::string& what) {
             parse_number(parts[2], what)};
 }
 
-// Minimal JSON output: numbers with enough digits to round-trip the engine's doubles.
+// Minimal JSON output: numbers to 15 significant digits (the engine's doubles within 1e-15).
 std::string num(double v) {
     std::ostringstream s;
     s << std::setprecision(15) << v;

@@ -70,8 +70,8 @@ class CliSections(unittest.TestCase):
         doc = self.json_sections(os.path.join(DATA, "box_10x20x30.step"), "--step", "5")
         self.assertEqual(doc["kind"], "solid")
         self.assertEqual(len(doc["sections"]), 6)
-        # The derived deflection, 0.05 % of the diagonal, to the engine's precision (JSON numbers
-        # round-trip the engine's doubles).
+        # The derived deflection, 0.05 % of the diagonal, to the 15 digits JSON numbers carry (not
+        # the 6 of a message).
         self.assertAlmostEqual(doc["deflection_mm"], 0.0005 * math.sqrt(1400.0), places=14)
         for i, s in enumerate(doc["sections"]):
             self.assertAlmostEqual(s["offset_mm"], 2.5 + 5 * i, places=9)

@@ -653,6 +653,14 @@ TEST(SlicingErrors, BadParametersAreNamed) {
     p.layers.max_volume_difference = -3e-8;  // shown as given, not as "-0.000000"
     expect_invalid(p, "max_volume_difference must be a positive, finite number, got -3e-08");
     p = default_params();
+    p.layers.overhang_angle_deg = 95.0;
+    try {
+        mas::validate(p.layers);
+        ADD_FAILURE() << "no error for overhang_angle";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(std::string(e.what()), "overhang_angle must be in [0, 90) degrees, got 95");
+    }
+    p = default_params();
     p.paths.bead_width_mm = 0.0;
     expect_invalid(p, "bead");
     p = default_params();

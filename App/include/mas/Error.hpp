@@ -25,9 +25,9 @@ enum class ErrorCode {
 // Stable lower-case name of a code, e.g. "open_mesh"; used by the Python binding and the CLI.
 const char* to_string(ErrorCode code);
 
-// A number as messages show it: six significant digits, exponent when needed ("0.25", "1e-07",
-// "1e+300", "nan"). (std::to_string's fixed six decimals show 1e-7 as "0.000000".)
-std::string format_number(double value);
+// A number as messages show it: `digits` significant digits, exponent when needed ("0.25",
+// "1e-07", "1e+300", "nan"). (std::to_string's fixed six decimals show 1e-7 as "0.000000".)
+std::string format_number(double value, int digits = 6);
 
 class Error : public std::runtime_error {
 public:

@@ -32,9 +32,9 @@ const char* to_string(ErrorCode code) {
     return "unknown";
 }
 
-std::string format_number(double value) {
+std::string format_number(double value, int digits) {
     std::ostringstream out;
-    out.precision(6);
+    out.precision(digits);
     out << value;
     return out.str();
 }

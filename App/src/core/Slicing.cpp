@@ -609,10 +609,10 @@ void validate(const LayerParams& p) {
     if (!(std::isfinite(p.initial_offset_mm) && p.initial_offset_mm >= 0.0 &&
           p.initial_offset_mm < p.min_layer_mm))
         invalid("initial_offset must be in [0, min_layer) mm, got " +
-                std::to_string(p.initial_offset_mm));
+                format_number(p.initial_offset_mm));
     if (!(p.overhang_angle_deg >= 0.0 && p.overhang_angle_deg < 90.0))
         invalid("overhang_angle must be in [0, 90) degrees, got " +
-                std::to_string(p.overhang_angle_deg));
+                format_number(p.overhang_angle_deg));
     if (p.volume_samples < 1 || p.volume_samples > 64)
         invalid("volume_samples must be in [1, 64], got " + std::to_string(p.volume_samples));
     if (p.max_layers < 1) invalid("max_layers must be at least 1");

@@ -505,8 +505,8 @@ void check_axis(const CentroidalAxis& axis, const Eigen::AlignedBox3d& box, doub
             slack += axis.nodes[i].area * axis.nodes[i].thickness;
     if (std::abs(axis.searched_volume_mm3 - volume) > slack)
         throw Error(ErrorCode::InvalidArgument,
-                    what + " (it sweeps " + format_number(axis.searched_volume_mm3) +
-                        " mm^3, the part has " + format_number(volume) + " mm^3)");
+                    what + " (it sweeps " + format_number(axis.searched_volume_mm3, 10) +
+                        " mm^3, the part has " + format_number(volume, 10) + " mm^3)");
 }
 
 void check_params(const DecomposeParams& p) {

@@ -115,10 +115,12 @@ class _EngineFeature:
         -> "MinLayer"), as the user sees them in the property editor."""
         if len(error.args) != 1 or not isinstance(error.args[0], str):
             return error
-        message = error.args[0]
-        for pattern, prop in self.PROPERTY_NAMES:
-            message = re.sub(pattern, prop, message)
-        error.args = (message,)
+        # Not inside quotes, where the message names an object by its label ('Part').
+        pieces = re.split(r"('[^']*')", error.args[0])
+        for i in range(0, len(pieces), 2):
+            for pattern, prop in self.PROPERTY_NAMES:
+                pieces[i] = re.sub(pattern, prop, pieces[i])
+        error.args = ("".join(pieces),)
         return error
 
     def _recompute_raising(self, obj):
@@ -828,7 +830,7 @@ class LayersFeature(_EngineFeature):
     PROPERTY_NAMES = _names(
         *[(param, prop) for prop, _, param, _, _ in _SLICE_PROPERTIES if "_" in param],
         ("fill_holes_up_to", "FillHoles"), ("deflection", "Deflection")) + (
-        (r"\b(overlap)\b(?= must)", "Overlap"), (r"\binfill\b(?= must)", "Infill"))
+        (r"\boverlap\b(?= must| [0-9])", "Overlap"), (r"\binfill\b(?= must)", "Infill"))
 
     @staticmethod
     def ensure_properties(obj):

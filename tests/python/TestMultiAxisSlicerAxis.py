@@ -507,6 +507,14 @@ class TestCentroidalAxisObject(AxisTest):
         self.assertIn("Invalid", obj.State)
         self.assertEqual(obj.getStatusString(),
                          "Epsilon must be a positive number of millimetres, got 0.0")
+        obj.Epsilon = 0.001
+        # A label in the message stays as the user typed it; only parameter names are renamed.
+        self.part.Label = "step eps deflection"
+        self.part.Shape = Part.makePlane(10, 10)
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertTrue(obj.getStatusString().startswith("'step eps deflection': not a solid"),
+                        obj.getStatusString())
         obj.Source = None
         self.doc.recompute()
         self.assertIn("Source is not set", obj.getStatusString())

@@ -63,14 +63,14 @@ def _part_problem(source, split=False):
     return None
 
 
-def _recompute_new(doc, before):
-    """Recomputes the objects not in `before` (names) and what they depend on, nothing else: a
-    command computes its own objects. (A whole-document recompute also ran every other touched
-    object, such as Layers whose recompute the user had cancelled: its progress dialog came up in
-    the middle of an unrelated command, whose work its Cancel then undid.)"""
-    new = [o for o in doc.Objects if o.Name not in before]
-    if new:
-        doc.recompute(new)
+def _recompute_new(doc, before, also=()):
+    """Recomputes the objects not in `before` (names), the objects `also`, and what they depend on;
+    nothing else: a command computes its own objects. (A whole-document recompute also ran every
+    other touched object, such as Layers whose recompute the user had cancelled: its progress
+    dialog came up in the middle of an unrelated command, whose work its Cancel then undid.)"""
+    objects = [o for o in doc.Objects if o.Name not in before] + list(also)
+    if objects:
+        doc.recompute(objects)
 
 
 def _visibility(doc):
@@ -153,10 +153,9 @@ class _PartCommand:
         before = {o.Name for o in doc.Objects}
         doc.openTransaction(self.TRANSACTION)
         try:
-            with MultiAxisSlicerGui.progress.command_running():
-                obj = self.make(source, doc)
-                if not watch.cancelled():  # else no more work
-                    _recompute_new(doc, before)
+            obj = self.make(source, doc)
+            if not watch.cancelled():  # else no more work
+                _recompute_new(doc, before)
         except Exception as error:  # creating the object failed: leave nothing behind
             doc.abortTransaction()
             MultiAxisSlicerGui.show_error(
@@ -313,7 +312,7 @@ class SliceCommand(_PartCommand):
         failed = None
         doc.openTransaction(self.TRANSACTION)
         try:
-            with _Busy() as busy, MultiAxisSlicerGui.progress.command_running():
+            with _Busy() as busy:
                 if features.is_decomposition(source):
                     decomposition = source
                     busy.stage("Using the decomposition '{}'".format(source.Label))
@@ -332,7 +331,8 @@ class SliceCommand(_PartCommand):
                         busy.stage("Drawing the bead paths...")
                         doc.recompute([toolpath])
                     if not busy.cancelled():  # else nothing is kept: no more work
-                        _recompute_new(doc, before)
+                        # The decomposition's components too: they follow it when it changed.
+                        _recompute_new(doc, before, features.components_of(decomposition))
                     failed = features.failure(layers) or features.failure(toolpath)
                     if failed is None:  # the layers take the part's place in the view
                         part = features.decomposition_inputs(decomposition)[0]

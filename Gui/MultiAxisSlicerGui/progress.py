@@ -13,7 +13,6 @@ thread that called it): at most every ``INTERVAL`` seconds, and without user inp
 dialog is up, so that nothing but Cancel can reach the document while it recomputes.
 """
 
-import contextlib
 import time
 
 import MultiAxisSlicer.progress as _progress
@@ -24,20 +23,6 @@ INTERVAL = 0.05  # s between two rounds of event processing
 _RANGE = 1000  # the bar's steps
 
 _cancels = 0  # how many recomputes the user cancelled in this session
-_commands = 0  # commands running now, which undo what a cancel stops (command_running())
-
-
-@contextlib.contextmanager
-def command_running():
-    """Marks the recomputes inside as a command's, which undoes what it made on a cancel: the
-    cancel's message then says no more than that (not "recompute to run it again": the object
-    is gone)."""
-    global _commands
-    _commands += 1
-    try:
-        yield
-    finally:
-        _commands -= 1
 
 
 def cancel_count():
@@ -99,8 +84,7 @@ class ProgressDialog:
     def _cancelled(self):
         global _cancels
         _cancels += 1
-        raise _progress.Cancelled("cancelled by the user" if _commands else
-                                  "cancelled by the user; recompute to run it again")
+        raise _progress.Cancelled("cancelled by the user; recompute to run it again")
 
     def __exit__(self, *exc):
         if self.dialog is not None:

@@ -843,6 +843,26 @@ class TestSliceCommand(unittest.TestCase):
         FreeCADGui.Selection.addSelection(self.part)
         self.assertTrue(FreeCADGui.Command.get(SLICE_COMMAND).isActive())
 
+    def test_slicing_a_decomposition_whose_part_changed_brings_its_components_along(self):
+        # The command recomputes the decomposition (its part changed since) and its Component
+        # objects with it, not only the layers and paths it makes.
+        import MultiAxisSlicer.features as features
+
+        decomposition = mas.make_decomposition(self.part)
+        self.doc.recompute()
+        shape = l_block()
+        shape.scale(2.0)
+        self.part.Shape = shape
+        layers, toolpath = self.run_command(decomposition)
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        components = features.components_of(decomposition)
+        self.assertEqual(len(components), decomposition.ComponentCount)
+        for c, volume in zip(components, decomposition.Volumes):
+            self.assertNotIn("Touched", c.State, c.Label)
+            self.assertAlmostEqual(c.Shape.Volume, volume, delta=1e-6 * volume)
+        self.assertAlmostEqual(sum(decomposition.Volumes), shape.Volume,
+                               delta=1e-6 * shape.Volume)
+
     def test_command_slices_a_selected_decomposition(self):
         decomposition = mas.make_decomposition(self.part)
         self.doc.recompute()

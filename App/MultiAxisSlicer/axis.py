@@ -283,8 +283,8 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
 
     Parameters (lengths in mm, angles in degrees; FreeCAD Quantities are accepted):
       * ``step``: distance between consecutive sections. None: derived from the part, half its
-        thinnest wall within [diagonal / 2000, diagonal / 20]. Must be smaller than the part's
-        height.
+        thinnest wall within [diagonal / 2000, diagonal / 20], at most half the part's height. A
+        given step must be smaller than the part's height.
       * ``distance_threshold``: a part of a section sticking out of the one below with its centre
         farther than this outside it starts a new branch. None: twice the step, at most a sixth
         of the size (square root of the area) of the section below.

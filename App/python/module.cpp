@@ -719,7 +719,7 @@ void bind_axis() {
         "exception it raises stops the search and is raised again here.");
     bp::def("derive_axis_step", &derive_axis_step, bp::arg("mesh"),
             "The step (mm) centroidal_axis() derives when none is given: half the part's thinnest "
-            "wall, within [diagonal / 2000, diagonal / 20].");
+            "wall, within [diagonal / 2000, diagonal / 20], at most half the part's height.");
 }
 
 // ---- stage: decomposition into sub-components

@@ -77,7 +77,7 @@ class ViewProviderCentroidalAxis(_Stateless):
                          "Colour of the links that are C1 breaks")
         vobj.BreakLineColor = AXIS_BREAK_COLOR
         vobj.addProperty("App::PropertyBool", "DrawOnTop", "Object Style",
-                         "Draw the axis over the part it lies in")
+                         "Draw the axis over the part it lies in and over other objects")
         vobj.DrawOnTop = True
         vobj.LineColor = AXIS_LINE_COLOR
         vobj.LineWidth = AXIS_LINE_WIDTH
@@ -90,8 +90,10 @@ class ViewProviderCentroidalAxis(_Stateless):
         from pivy import coin
 
         self.Object = vobj.Object
-        # Depth test off for this object's nodes only (the root is a separator): drawn after the
-        # part, the axis shows through it.
+        # For this object's nodes only (the root is a separator): no depth test, so the axis shows
+        # through what was drawn before it, and every fragment written at the nearest depth (a
+        # depth range of [0, 0]), so that what is drawn after it (Components made later, which
+        # come later in the scene) stays behind it.
         self._depth = coin.SoDepthBuffer()
         self._depth.function = coin.SoDepthBuffer.ALWAYS
         vobj.RootNode.insertChild(self._depth, 0)
@@ -103,6 +105,7 @@ class ViewProviderCentroidalAxis(_Stateless):
             return
         on_top = vobj.DrawOnTop if "DrawOnTop" in vobj.PropertiesList else True
         depth.function = depth.ALWAYS if on_top else depth.LESS
+        depth.range.setValue(0.0, 0.0 if on_top else 1.0)
 
     def updateData(self, obj, prop):
         if prop == "Shape" and obj.ViewObject is not None:

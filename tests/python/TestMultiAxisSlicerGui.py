@@ -363,6 +363,48 @@ class TestCentroidalAxisCommand(unittest.TestCase):
         self.assertIn("'Sections' is a Sections object (cross-sections), not a part: select the "
                       "solid or mesh it was made from", boxes[0].text())
 
+    def axis_pixels(self):
+        """Pixels of the 3D view (front view, fitted, white background) in the axis' LineColor."""
+        view = FreeCADGui.getDocument(self.doc.Name).ActiveView
+        view.viewFront()
+        view.fitAll()
+        process_events()
+        folder = tempfile.mkdtemp(prefix="mas_gui_on_top_")
+        try:
+            path = os.path.join(folder, "view.png")
+            view.saveImage(path, 400, 400, "White")
+            image = QtGui.QImage(path)
+        finally:
+            shutil.rmtree(folder)
+        want = [round(255 * c) for c in view_providers.AXIS_LINE_COLOR]
+        count = 0
+        for y in range(image.height()):
+            for x in range(image.width()):
+                pixel = QtGui.QColor(image.pixel(x, y))
+                if all(abs(a - b) <= 24 for a, b in
+                       zip((pixel.red(), pixel.green(), pixel.blue()), want)):
+                    count += 1
+        return count
+
+    def test_the_axis_is_drawn_over_solids_made_after_it(self):
+        """DrawOnTop: the axis shows through its part, and through a solid added to the document
+        after it (the Components of a Decomposition are): later objects come later in the scene.
+        Without DrawOnTop the part hides the axis inside it."""
+        obj = self.run_command()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.part.ViewObject.Visibility = False
+        cover = self.doc.addObject("Part::Feature", "Cover")  # made after the axis
+        cover.Shape = l_block()
+        self.doc.recompute()
+        process_events()
+        # The column's run alone (40 mm of 60 at 400 pixels for about 75 mm) spans some 200
+        # pixels, 3 pixels wide.
+        self.assertGreater(self.axis_pixels(), 300)
+        obj.ViewObject.DrawOnTop = False
+        self.assertEqual(self.axis_pixels(), 0)
+        obj.ViewObject.DrawOnTop = True
+        self.assertGreater(self.axis_pixels(), 300)
+
     def test_view_settings_survive_save_and_reopen(self):
         obj = self.run_command()
         obj.Step = 2.5

@@ -571,11 +571,26 @@ bp::list slice(const mas::TriangleMesh& mesh, const bp::object& planes_py, bool 
     return sections_to_py(sections);
 }
 
+bp::list section_point_counts(const mas::TriangleMesh& mesh, const bp::object& planes_py) {
+    const std::vector<mas::Plane> planes = planes_from_py(planes_py);
+    std::vector<std::size_t> counts;
+    {
+        GilRelease nogil;
+        counts = mas::section_point_counts(mesh, planes);
+    }
+    bp::list out;
+    for (std::size_t c : counts) out.append(c);
+    return out;
+}
+
 void bind_section() {
     bp::def(
         "parallel_planes", &parallel_planes, (bp::arg("mesh"), bp::arg("normal"), bp::arg("step")),
         "[(origin, normal), ...]: planes `step` mm apart across the mesh along `normal`, each in "
         "the middle of its slab. EngineError invalid_argument on a bad step or normal.");
+    bp::def("section_point_counts", &section_point_counts, (bp::arg("mesh"), bp::arg("planes")),
+            "[count, ...]: how many loop points the section by each plane holds (the plane's "
+            "crossings with the mesh's facets), counted without cutting.");
     bp::def(
         "slice", &slice, (bp::arg("mesh"), bp::arg("planes"), bp::arg("build_regions") = true),
         "Cuts a closed mesh by planes [(origin, normal), ...]; one dict per plane: origin, normal, "

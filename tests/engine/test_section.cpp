@@ -136,6 +136,39 @@ TEST(SectionBatch, CancelStopsTheWork) {
     }
 }
 
+TEST(SectionPointCounts, CountWhatEachPlaneCutsWithoutCutting) {
+    // A 12-facet box: a plane across it crosses the 8 facets of four sides, one point each. A
+    // vertex on a plane counts as above it: the bottom (z = 0) is not cut, the top (z = 10) is,
+    // as slice_mesh() cuts them. Duplicates count for each plane.
+    const auto box = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
+    const std::vector<mas::Plane> planes = {plane(0, 0, 5, 0, 0, 1),  plane(0, 0, 0, 0, 0, 1),
+                                            plane(0, 0, 10, 0, 0, 1), plane(0, 0, 12, 0, 0, 1),
+                                            plane(3, 0, 0, 2, 0, 0),  plane(0, 0, 5, 0, 0, 1)};
+    EXPECT_EQ(mas::section_point_counts(box, planes), (std::vector<std::size_t>{8, 0, 8, 0, 8, 8}));
+    EXPECT_TRUE(mas::slice_mesh(box, planes[1]).empty());
+    EXPECT_FALSE(mas::slice_mesh(box, planes[2]).empty());
+
+    // On a tessellated sphere, along two normals at once: the points of every loop slice_mesh()
+    // builds, outer loops and holes.
+    const auto sphere = mesh_of(mas::test::sphere(10.0)).mesh;
+    std::vector<mas::Plane> mixed = mas::parallel_planes(sphere, {1, 2, 3}, 0.7);
+    for (const auto& p : mas::parallel_planes(sphere, {0, 0, 1}, 1.3)) mixed.push_back(p);
+    const auto counts = mas::section_point_counts(sphere, mixed);
+    const auto sections = mas::slice_mesh(sphere, mixed);
+    ASSERT_EQ(counts.size(), mixed.size());
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < mixed.size(); ++i) {
+        std::size_t points = 0;
+        for (const auto& r : sections[i].regions) {
+            points += r.shape.outer.points.size();
+            for (const auto& hole : r.shape.holes) points += hole.points.size();
+        }
+        EXPECT_EQ(counts[i], points) << "plane " << i;
+        total += counts[i];
+    }
+    EXPECT_GT(total, 1000u);
+}
+
 TEST(SectionPlanes, ParallelPlanesSitInTheMiddleOfTheirSlabs) {
     const auto m = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
     const auto planes = mas::parallel_planes(m, {0, 0, 2}, 2.5);

@@ -87,6 +87,14 @@ std::vector<Section> slice_mesh(const TriangleMesh& mesh, const std::vector<Plan
 
 Section slice_mesh(const TriangleMesh& mesh, const Plane& plane, const SliceParams& params = {});
 
+// How many points the section of `mesh` by each plane holds (before points closer than the merge
+// tolerance are merged): the plane's crossings with the mesh's facets, counted without cutting, in
+// O(V log P); result[i] belongs to planes[i]. slice_mesh() keeps about 35 bytes per point: callers
+// that keep or draw many sections check the total first (the Python sections()), or cut a few
+// million points at a time (the command line's `sections`).
+std::vector<std::size_t> section_point_counts(const TriangleMesh& mesh,
+                                              const std::vector<Plane>& planes);
+
 // The most planes parallel_planes() gives: their sections would take gigabytes.
 inline constexpr std::size_t kMaxParallelPlanes = 100000;
 

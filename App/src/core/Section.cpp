@@ -451,6 +451,49 @@ Section slice_mesh(const TriangleMesh& mesh, const Plane& plane, const SlicePara
     return slice_mesh(mesh, std::vector<Plane>{plane}, params).front();
 }
 
+std::vector<std::size_t> section_point_counts(const TriangleMesh& mesh,
+                                              const std::vector<Plane>& planes) {
+    // A facet crosses the plane at height d when min h < d <= max h (a vertex on the plane counts
+    // as above it): the sorted planes upper_bound(min h) .. upper_bound(max h) - 1. Each facet
+    // adds one to that range of a difference array.
+    std::vector<Plane> checked(planes.size());
+    for (std::size_t i = 0; i < planes.size(); ++i)
+        checked[i] = make_plane(planes[i].origin, planes[i].normal);
+    std::vector<std::size_t> counts(planes.size(), 0);
+    std::vector<char> done(planes.size(), 0);
+    for (std::size_t i = 0; i < checked.size(); ++i) {
+        if (done[i]) continue;
+        const Eigen::Vector3d n = checked[i].normal;
+        std::vector<std::pair<double, std::size_t>> sorted;  // (height, plane)
+        for (std::size_t j = i; j < checked.size(); ++j)
+            if (!done[j] && (checked[j].normal - n).squaredNorm() < 1e-24) {  // as slice_mesh
+                sorted.emplace_back(n.dot(checked[j].origin), j);
+                done[j] = 1;
+            }
+        std::sort(sorted.begin(), sorted.end());
+        std::vector<double> heights(sorted.size());
+        for (std::size_t k = 0; k < sorted.size(); ++k) heights[k] = sorted[k].first;
+        std::vector<std::size_t> rank(mesh.vertices.size());  // planes at or below the vertex
+        for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+            rank[v] = std::size_t(
+                std::upper_bound(heights.begin(), heights.end(), n.dot(mesh.vertices[v])) -
+                heights.begin());
+        std::vector<std::ptrdiff_t> diff(sorted.size() + 1, 0);
+        for (const Eigen::Vector3i& t : mesh.triangles) {
+            const std::size_t a = rank[std::size_t(t[0])], b = rank[std::size_t(t[1])],
+                              c = rank[std::size_t(t[2])];
+            ++diff[std::min({a, b, c})];
+            --diff[std::max({a, b, c})];
+        }
+        std::ptrdiff_t running = 0;
+        for (std::size_t k = 0; k < sorted.size(); ++k) {
+            running += diff[k];
+            counts[sorted[k].second] = std::size_t(running);
+        }
+    }
+    return counts;
+}
+
 std::vector<Plane> parallel_planes(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
                                    double step_mm) {
     if (!std::isfinite(step_mm) || !(step_mm > 0.0))

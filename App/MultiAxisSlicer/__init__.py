@@ -47,6 +47,7 @@ __all__ = [
     "FilledHole",
     "Layer",
     "Region",
+    "MAX_SECTION_POINTS",
     "SLICE_DEFAULTS",
     "Section",
     "SliceResult",
@@ -482,6 +483,10 @@ def parallel_planes(obj, normal=(0, 0, 1), step=1.0, deflection=None):
 # calls of at least 500 (each call prepares the mesh again: a few tenths of a second on a large one).
 _SECTIONS_IN_ONE_CALL = 2000
 
+# sections() keeps every loop point as Python floats, about 230 bytes each (2.3 GB at this limit,
+# measured): a step that would give more is refused before anything is cut.
+MAX_SECTION_POINTS = 10000000
+
 
 def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None, progress=None):
     """Cross-sections of a solid or closed mesh by parallel planes ``step`` mm apart along
@@ -493,8 +498,16 @@ def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None, progress=None):
     planes apart); an exception it raises (``Cancelled``) stops the work and is raised again (see
     ``MultiAxisSlicer.progress``). Raises ValueError for ``step <= 0`` or a
     zero/NaN ``normal``, TypeError for a wrong type, and EngineError (with ``code``) for a part
-    the engine cannot cut, or a step that would give more than 100000 planes.
+    the engine cannot cut, or a step that would give more than 100000 planes or sections holding
+    more than ``MAX_SECTION_POINTS`` loop points (counted before anything is cut).
     """
+    return _parallel_sections(obj, normal, step, deflection, progress, MAX_SECTION_POINTS,
+                              "sections() keeps")
+
+
+def _parallel_sections(obj, normal, step, deflection, progress, max_points, keeps):
+    """sections(), refusing sections that hold more than ``max_points`` loop points; ``keeps``
+    says who holds them in the message ("sections() keeps")."""
     from . import progress as _progress
 
     n = _direction(normal)
@@ -502,6 +515,13 @@ def sections(obj, normal=(0, 0, 1), step=1.0, deflection=None, progress=None):
     _progress.check(progress)
     mesh = to_engine_mesh(obj, deflection)
     planes = _engine.parallel_planes(mesh, n, step)
+    points = sum(_engine.section_point_counts(mesh, planes))
+    if points > max_points:
+        raise _engine_error(
+            "invalid_argument",
+            "step {:.6g} mm is too small for this part: its {} sections would hold {} loop "
+            "points, more than the {} {}; use a larger step".format(
+                step, len(planes), points, max_points, keeps))
     if progress is None:
         return [Section(d) for d in _engine.slice(mesh, planes, True)]
     out = []

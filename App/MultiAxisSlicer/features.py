@@ -149,6 +149,11 @@ class _EngineFeature:
         self.Type = self.TYPE
 
 
+# A Sections object's loops become FreeCAD polygons, about 570 bytes a point, and Coin's copy on
+# top (measured): past this many points a Step is refused, before anything is cut.
+MAX_DRAWN_SECTION_POINTS = 2000000
+
+
 class SectionsFeature(_EngineFeature):
     """Proxy of a ``Part::FeaturePython`` holding cross-sections of its ``Source``.
 
@@ -184,8 +189,10 @@ class SectionsFeature(_EngineFeature):
             raise ValueError("{}: Source is not set".format(obj.Label))
         deflection = obj.Deflection.Value or None
         with _progress.reporting("Cutting '{}'".format(obj.Label)) as progress:
-            result = mas.sections(obj.Source, normal=obj.Normal, step=obj.Step.Value,
-                                  deflection=deflection, progress=_progress.span(progress, 0, 0.5))
+            result = mas._parallel_sections(
+                obj.Source, obj.Normal, obj.Step.Value, deflection,
+                _progress.span(progress, 0, 0.5), MAX_DRAWN_SECTION_POINTS,
+                "a Sections object draws")
             shape = sections_shape(result, _progress.span(progress, 0.5, 1.0))
         obj.Shape = shape
         obj.SectionCount = len(result)

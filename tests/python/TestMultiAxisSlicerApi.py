@@ -311,6 +311,31 @@ class TestBadInput(support.EngineTestCase):
         self.assertRaisesEngineError("invalid_argument", mas._engine.slice, mesh,
                                      [((0, 0, float("nan")), (0, 0, 1))])
 
+    def test_sections_that_would_hold_too_many_points_are_refused_before_cutting(self):
+        # A 10 x 20 x 30 box of 12 facets, cut every 10 mm: each plane crosses 8 facets, 24 loop
+        # points in all, counted without cutting.
+        box = box_10_20_30()
+        mesh = mas.to_engine_mesh(box)
+        planes = mas._engine.parallel_planes(mesh, (0, 0, 1), 10.0)
+        self.assertEqual(mas._engine.section_point_counts(mesh, planes), [8, 8, 8])
+        self.assertEqual(len(mas._parallel_sections(box, (0, 0, 1), 10.0, None, None, 24,
+                                                    "a test keeps")), 3)
+        with self.assertRaises(mas.EngineError) as caught:
+            mas._parallel_sections(box, (0, 0, 1), 10.0, None, None, 23, "a test keeps")
+        self.assertEqual(caught.exception.code, "invalid_argument")
+        self.assertEqual(str(caught.exception),
+                         "step 10 mm is too small for this part: its 3 sections would hold 24 loop "
+                         "points, more than the 23 a test keeps; use a larger step")
+        # sections() keeps MAX_SECTION_POINTS: a 1 mm disc of 20 mm cut every 0.01 um would
+        # hold some 100 million, refused at once, not after gigabytes.
+        disc = Part.makeCylinder(10, 1)
+        with self.assertRaises(mas.EngineError) as caught:
+            mas.sections(disc, step=1e-5, deflection=0.001)
+        self.assertRegex(str(caught.exception),
+                         r"^step 1e-05 mm is too small for this part: its 100000 sections would "
+                         r"hold \d+ loop points, more than the 10000000 sections\(\) keeps; use a "
+                         r"larger step$")
+
     def test_files_the_engine_cannot_read(self):
         self.assertRaisesEngineError("read_failed", mas.sections, "/nonexistent/part.step")
         folder = tempfile.mkdtemp(prefix="mas_api_")
@@ -537,6 +562,23 @@ class TestSectionsObject(support.EngineTestCase):
         self.doc.recompute()
         self.assertIn("Invalid", obj.State)
         self.assertIn("zero vector", obj.getStatusString())
+
+    def test_a_step_too_fine_to_draw_marks_the_object(self):
+        """A Sections object draws at most MAX_DRAWN_SECTION_POINTS loop points (some 2 GB):
+        every 0.2 um through a 10 mm cylinder is refused before anything is cut."""
+        cylinder = self.doc.addObject("Part::Feature", "Cylinder")
+        cylinder.Shape = Part.makeCylinder(10, 10)
+        obj = mas.make_sections(cylinder, step=2e-4)
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertRegex(obj.getStatusString(),
+                         r"Step 0.0002 mm is too small for this part: its 50000 sections would "
+                         r"hold \d+ loop points, more than the 2000000 a Sections object draws; "
+                         r"use a larger Step")
+        obj.Step = 0.5
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.SectionCount, 20)
 
     def test_missing_source_marks_the_object(self):
         obj = mas.make_sections(self.box)

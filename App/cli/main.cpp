@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -232,14 +233,41 @@ Part load_part(const Args& a) {
     return part;
 }
 
-void write_output(const Args& a, const std::string& text) {
-    if (a.json && !a.json_path.empty()) {
-        std::ofstream file(a.json_path);
-        if (!(file << text))
-            throw mas::Error(mas::ErrorCode::WriteFailed, a.json_path + ": cannot write the file");
-    } else {
-        std::cout << text;
+// Writes what `write` puts out to the --json file, or to standard output. A file this call made
+// that fails half-written (an error while writing, a full disk) is removed; one that was there
+// before (a device, an earlier result) is not.
+void write_output(const Args& a, const std::function<void(std::ostream&)>& write) {
+    if (!(a.json && !a.json_path.empty())) {
+        write(std::cout);
+        return;
     }
+    const mas::Error cannot_write(mas::ErrorCode::WriteFailed,
+                                  a.json_path + ": cannot write the file");
+    std::error_code ignored;
+    // Not even a dangling symbolic link there.
+    const bool made_here =
+        !std::filesystem::exists(std::filesystem::symlink_status(a.json_path, ignored));
+    std::ofstream file(a.json_path);
+    if (!file) throw cannot_write;  // nothing written: the path is left as it was
+    const auto remove_file = [&] {
+        file.close();
+        if (made_here) std::filesystem::remove(a.json_path, ignored);
+    };
+    try {
+        write(file);
+        file.close();
+    } catch (...) {
+        remove_file();
+        throw;
+    }
+    if (!file) {
+        remove_file();
+        throw cannot_write;
+    }
+}
+
+void write_output(const Args& a, const std::string& text) {
+    write_output(a, [&](std::ostream& out) { out << text; });
 }
 
 int run_sections(const std::vector<std::string>& args) {
@@ -255,45 +283,59 @@ int run_sections(const std::vector<std::string>& args) {
     const mas::TriangleMesh& mesh = part.mesh;
     const double deflection = part.deflection_mm;
     const auto planes = mas::parallel_planes(mesh, normal, step_mm);
-    const auto sections = mas::slice_mesh(mesh, planes);
     const Eigen::Vector3d n = planes.front().normal;
+    // Only areas, centroids and counts are written: the planes are cut a few million section
+    // points at a time, so that memory stays bounded however fine the step.
+    constexpr std::size_t kPointsPerCut = 4000000;
+    const std::vector<std::size_t> points = mas::section_point_counts(mesh, planes);
+    const auto each_section = [&](const auto& f) {
+        for (std::size_t begin = 0, end = 0; begin < planes.size(); begin = end) {
+            for (std::size_t held = 0;
+                 end < planes.size() && (end == begin || held + points[end] <= kPointsPerCut);
+                 ++end)
+                held += points[end];
+            const auto cut = mas::slice_mesh(
+                mesh, std::vector<mas::Plane>(planes.begin() + std::ptrdiff_t(begin),
+                                              planes.begin() + std::ptrdiff_t(end)));
+            for (std::size_t i = 0; i < cut.size(); ++i) f(begin + i, cut[i]);
+        }
+    };
 
-    std::ostringstream out;
-    if (a.json) {
-        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
-            << ",\n  \"triangles\": " << mesh.triangles.size()
-            << ",\n  \"deflection_mm\": " << num(deflection) << ",\n  \"normal\": " << vec(n)
-            << ",\n  \"step_mm\": " << num(step_mm) << ",\n  \"sections\": [";
-        for (std::size_t i = 0; i < sections.size(); ++i) {
-            const auto& s = sections[i];
-            out << (i ? "," : "") << "\n    {\"offset_mm\": " << num(n.dot(s.plane.origin))
-                << ", \"area_mm2\": " << num(s.area) << ", \"centroid\": " << vec(s.centroid)
-                << ", \"regions\": [";
-            for (std::size_t k = 0; k < s.regions.size(); ++k) {
-                const auto& r = s.regions[k];
-                out << (k ? ", " : "") << "{\"area_mm2\": " << num(r.area)
-                    << ", \"centroid\": " << vec(r.centroid)
-                    << ", \"holes\": " << r.shape.holes.size() << "}";
-            }
-            out << "]}";
+    write_output(a, [&](std::ostream& out) {
+        if (a.json) {
+            out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
+                << ",\n  \"triangles\": " << mesh.triangles.size()
+                << ",\n  \"deflection_mm\": " << num(deflection) << ",\n  \"normal\": " << vec(n)
+                << ",\n  \"step_mm\": " << num(step_mm) << ",\n  \"sections\": [";
+            each_section([&](std::size_t i, const mas::Section& s) {
+                out << (i ? "," : "") << "\n    {\"offset_mm\": " << num(n.dot(s.plane.origin))
+                    << ", \"area_mm2\": " << num(s.area) << ", \"centroid\": " << vec(s.centroid)
+                    << ", \"regions\": [";
+                for (std::size_t k = 0; k < s.regions.size(); ++k) {
+                    const auto& r = s.regions[k];
+                    out << (k ? ", " : "") << "{\"area_mm2\": " << num(r.area)
+                        << ", \"centroid\": " << vec(r.centroid)
+                        << ", \"holes\": " << r.shape.holes.size() << "}";
+                }
+                out << "]}";
+            });
+            out << "\n  ]\n}\n";
+        } else {
+            out << "# " << a.file << ": " << part.kind() << ", " << mesh.triangles.size()
+                << " triangles";
+            if (deflection > 0.0) out << ", deflection " << num(deflection) << " mm";
+            out << "\n# normal " << num(n.x()) << "," << num(n.y()) << "," << num(n.z())
+                << ", step " << num(step_mm) << " mm, " << planes.size() << " sections\n";
+            out << "# offset_mm regions holes area_mm2 centroid_x centroid_y centroid_z\n";
+            each_section([&](std::size_t, const mas::Section& s) {
+                std::size_t holes = 0;
+                for (const auto& r : s.regions) holes += r.shape.holes.size();
+                out << std::fixed << std::setprecision(4) << n.dot(s.plane.origin) << " "
+                    << s.regions.size() << " " << holes << " " << s.area << " " << s.centroid.x()
+                    << " " << s.centroid.y() << " " << s.centroid.z() << "\n";
+            });
         }
-        out << "\n  ]\n}\n";
-    } else {
-        out << "# " << a.file << ": " << part.kind() << ", " << mesh.triangles.size()
-            << " triangles";
-        if (deflection > 0.0) out << ", deflection " << num(deflection) << " mm";
-        out << "\n# normal " << num(n.x()) << "," << num(n.y()) << "," << num(n.z()) << ", step "
-            << num(step_mm) << " mm, " << sections.size() << " sections\n";
-        out << "# offset_mm regions holes area_mm2 centroid_x centroid_y centroid_z\n";
-        for (const auto& s : sections) {
-            std::size_t holes = 0;
-            for (const auto& r : s.regions) holes += r.shape.holes.size();
-            out << std::fixed << std::setprecision(4) << n.dot(s.plane.origin) << " "
-                << s.regions.size() << " " << holes << " " << s.area << " " << s.centroid.x() << " "
-                << s.centroid.y() << " " << s.centroid.z() << "\n";
-        }
-    }
-    write_output(a, out.str());
+    });
     return 0;
 }
 

@@ -668,6 +668,33 @@ TEST(SlicingErrors, BadParametersAreNamed) {
     expect_invalid(p, "bead");
 }
 
+TEST(SlicingErrors, AMinLayerThatWouldAllowTooManyLayersIsRefusedAtOnce) {
+    // 1e-15 mm on a 30 mm box sliced a layer at a time up to the 100000-layer limit (51 s) before
+    // failing. Refused up front: the 10 x 20 x 30 box is sqrt(1400) mm across, so at most
+    // 100000 layers fit when min_layer >= sqrt(1400) / 100000.
+    const auto part = mas::test::box(0, 0, 0, 10, 20, 30);
+    auto p = default_params();
+    p.layers.min_layer_mm = 1e-15;
+    try {
+        slice(part, 2.0, p);
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_EQ(std::string(e.what()),
+                  "min_layer 1e-15 mm is too small for component 0, 37.4166 mm across: more than "
+                  "100000 layers of it would fit; the least is 0.000374166 mm");
+    }
+    // The bound itself, exactly, on the 12-facet box with a limit of 10 layers.
+    const auto box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    mas::LayerParams layers;
+    layers.max_layers = 10;
+    layers.min_layer_mm = std::sqrt(1400.0) / 10.0;
+    layers.max_layer_mm = 5.0;
+    EXPECT_NO_THROW(mas::validate(layers, box, "the box"));
+    layers.min_layer_mm *= 1.0 - 1e-12;
+    EXPECT_THROW(mas::validate(layers, box, "the box"), mas::Error);
+}
+
 TEST(SlicingErrors, NoFeasibleLayerIsAnError) {
     // A 0.4 mm plate cannot hold a 0.5 mm layer.
     try {

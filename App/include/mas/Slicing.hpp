@@ -65,6 +65,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "mas/Mesh.hpp"
@@ -99,6 +100,12 @@ inline constexpr double kMaxLayerLimitMm = 1e6;
 // or NaN length, max_layer over kMaxLayerLimitMm, a volume difference not > 0, an angle out of
 // range, volume_samples < 1).
 void validate(const LayerParams& params);
+
+// Throws mas::Error(InvalidArgument) when min_layer_mm is so small beside `mesh` that more than
+// max_layers layers of it would fit across the mesh's bounding-box diagonal: such a component could
+// run to the layer limit, a layer at a time, before failing (1e-15 mm on a 30 mm box ran 51 s).
+// `what` names the mesh in the message ("component 2").
+void validate(const LayerParams& params, const TriangleMesh& mesh, const std::string& what);
 
 // One sub-component to slice.
 struct ComponentSlicingInput {

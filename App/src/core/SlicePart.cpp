@@ -121,6 +121,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                                                  "'s mesh is not a closed surface: it cannot be "
                                                  "sliced");
         volumes[c] = report.volume_mm3;
+        validate(params.layers, comp.mesh, "component " + std::to_string(c));
     }
     SlicedPart out;
     out.components.resize(components.size());

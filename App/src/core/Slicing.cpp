@@ -618,6 +618,17 @@ void validate(const LayerParams& p) {
     if (p.max_layers < 1) invalid("max_layers must be at least 1");
 }
 
+void validate(const LayerParams& p, const TriangleMesh& mesh, const std::string& what) {
+    validate(p);
+    Eigen::AlignedBox3d box;
+    for (const Vector3d& v : mesh.vertices) box.extend(v);
+    const double size = box.isEmpty() ? 0.0 : box.diagonal().norm();
+    if (size / p.min_layer_mm > double(p.max_layers))
+        invalid("min_layer " + mm(p.min_layer_mm) + " is too small for " + what + ", " + mm(size) +
+                " across: more than " + std::to_string(p.max_layers) +
+                " layers of it would fit; the least is " + mm(size / double(p.max_layers)));
+}
+
 namespace {
 
 // A region's loops (outer first, then holes) in 3-D, on `plane`, from PlaneFrame(plane.normal)
@@ -716,6 +727,7 @@ std::vector<Layer> slice_component(const ComponentSlicingInput& input, const Lay
         input.base.normal.norm() < 1e-12)
         invalid("component " + std::to_string(input.component) +
                 " has a non-finite or zero base plane");
+    validate(params, *input.mesh, "component " + std::to_string(input.component));
     ComponentSlicingInput checked = input;
     checked.base = make_plane(input.base.origin, input.base.normal);
     ComponentSlicer slicer(checked, params, report.volume_mm3, progress);

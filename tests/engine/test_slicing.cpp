@@ -751,6 +751,35 @@ TEST(SlicingErrors, ADecompositionOfAnotherPartIsNamed) {
     EXPECT_NO_THROW(mas::slice_part(box, s.axis, s.decomposition, default_params()));
 }
 
+TEST(SlicingErrors, AMeshWithTheAxisOfAnotherPartIsNamed) {
+    // A mesh sliced with another part's axis was accepted: its layers followed the other axis,
+    // 1 m away. The axis is checked as decompose() checks it on a solid.
+    const auto mesh = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    mas::AxisParams ap;
+    ap.step_mm = 2.0;
+    const auto own = mas::centroidal_axis(mesh, ap);
+    auto expect_other = [&](const mas::CentroidalAxis& axis, const std::string& words) {
+        try {
+            mas::slice_mesh_part(mesh, axis, default_params());
+            ADD_FAILURE() << "no error for " << words;
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_EQ(std::string(e.what()).rfind("slice: " + words, 0), 0u) << e.what();
+        }
+    };
+    // The same box 1 m away: its nodes lie outside this box grown by a step.
+    expect_other(mas::centroidal_axis(mas::test::box_mesh(1000, 1000, 0, 10, 20, 30), ap),
+                 "the axis was computed for a different part than the one given (a node lies "
+                 "outside the part's bounding box)");
+    // A box of half the height in the same place: it sweeps half the volume.
+    expect_other(mas::centroidal_axis(mas::test::box_mesh(0, 0, 0, 10, 20, 15), ap),
+                 "the axis was computed for a different part than the one given (it sweeps");
+    auto broken = own;
+    broken.links.front().end = int(broken.nodes.size());
+    expect_other(broken, "the axis has a dangling link");
+    EXPECT_EQ(mas::slice_mesh_part(mesh, own, default_params()).layers.size(), 15u);
+}
+
 TEST(Slicing, InsideMeshTellsInsideFromOutside) {
     const auto mesh = mas::test::box_mesh(0, 0, 0, 10, 10, 10);
     EXPECT_TRUE(mas::inside_mesh(mesh, {5, 5, 5}));

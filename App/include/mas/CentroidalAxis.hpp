@@ -69,6 +69,7 @@
 #include <Eigen/Geometry>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "mas/Mesh.hpp"
@@ -185,6 +186,15 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
 // the march takes each plane, and 1 when done; its Report may throw to stop the search.
 CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
                                const Progress& progress);
+
+// Throws mas::Error(InvalidArgument), its message starting with `caller` ("decompose"), unless
+// `axis` is well formed (links and branches point at nodes that exist, fathers come first, slabs
+// start where their nodes' planes allow) and belongs to the part whose bounding box is `box` and
+// volume `volume_mm3`: its nodes inside the box grown by a step, its swept volume the part's
+// within 5 % plus what the slabs' approximation can be off by. Decomposing a solid and slicing a
+// mesh check the axis they are given with it.
+void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& box,
+                        double volume_mm3, const std::string& caller);
 
 // Distance from a point to a region in the same 2-D frame: 0 inside, else to the nearest edge of
 // the outer loop (holes count as outside: a point in a hole is at its distance to the hole edge).

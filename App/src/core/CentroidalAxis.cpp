@@ -1242,4 +1242,76 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
     return axis;
 }
 
+void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& box, double volume,
+                        const std::string& caller) {
+    const std::string what =
+        caller + ": the axis was computed for a different part than the one given";
+    if (axis.nodes.empty() || axis.branches.empty())
+        throw Error(ErrorCode::InvalidArgument, caller + ": the centroidal axis is empty");
+    // Indices first: everything below follows them.
+    const auto node_ok = [&](int n) { return n >= 0 && std::size_t(n) < axis.nodes.size(); };
+    for (const auto& l : axis.links)
+        if (!node_ok(l.start) || !node_ok(l.end))
+            throw Error(ErrorCode::InvalidArgument, caller + ": the axis has a dangling link");
+    for (std::size_t b = 0; b < axis.branches.size(); ++b) {
+        const auto& br = axis.branches[b];
+        bool ok = br.parent < int(b) && !br.nodes.empty() &&
+                  std::all_of(br.nodes.begin(), br.nodes.end(), node_ok) &&
+                  br.first_link < int(axis.links.size());
+        if (ok && br.parent >= 0)
+            ok = br.first_link >= 0 && axis.links[std::size_t(br.first_link)].end == br.nodes[0];
+        if (!ok)
+            throw Error(ErrorCode::InvalidArgument,
+                        caller + ": the axis' branch " + std::to_string(b) +
+                            " is malformed (a father after it, no nodes or a dangling link)");
+    }
+    // A node's slab starts on its plane, or (a march's first node) at most a step and eps before;
+    // a root's first node's at the base plane, however far below (a part standing on a tip).
+    const double slab_tol = 1e-9 * (1.0 + box.diagonal().norm());
+    std::vector<char> root_start(axis.nodes.size(), 0);
+    for (const auto& br : axis.branches)
+        if (br.parent < 0) root_start[std::size_t(br.nodes.front())] = 1;
+    for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
+        const auto& n = axis.nodes[i];
+        const bool from_base =
+            root_start[i] && std::abs(n.slab_start - axis.params.base_z_mm) <= slab_tol;
+        if (!(n.slab_start <= n.offset + slab_tol &&
+              (from_base ||
+               n.slab_start >= n.offset - axis.params.step_mm - axis.params.eps_mm - slab_tol)))
+            throw Error(ErrorCode::InvalidArgument,
+                        caller + ": the axis' node " + std::to_string(i) +
+                            " is malformed (its slab starts past its plane, or more than a step "
+                            "and eps before it)");
+    }
+    if (!(std::isfinite(axis.deflection_mm) && axis.deflection_mm >= 0.0))
+        throw Error(ErrorCode::InvalidArgument,
+                    caller + ": the axis' deflection must be a non-negative number of mm");
+    const double grow = std::max(axis.params.step_mm, 0.0) + 1e-6;
+    const Eigen::AlignedBox3d grown(box.min() - Vector3d::Constant(grow),
+                                    box.max() + Vector3d::Constant(grow));
+    for (const auto& n : axis.nodes)
+        if (!grown.contains(n.position))
+            throw Error(ErrorCode::InvalidArgument,
+                        what + " (a node lies outside the part's bounding box)");
+    // The slabs approximate the part's volume: a slab takes the section at its lower plane over
+    // one step, so it is off by at most the section's change to the next node, and a branch's
+    // last slab (unless cut short at the part's extent) by at most its own volume.
+    double slack = 0.05 * volume;
+    std::vector<char> continues(axis.nodes.size(), 0);
+    for (const auto& l : axis.links) {
+        if (l.kind != AxisLink::Kind::Step) continue;
+        continues[std::size_t(l.start)] = 1;
+        slack +=
+            std::abs(axis.nodes[std::size_t(l.end)].area - axis.nodes[std::size_t(l.start)].area) *
+            axis.params.step_mm;
+    }
+    for (std::size_t i = 0; i < axis.nodes.size(); ++i)
+        if (!continues[i] && axis.nodes[i].thickness >= axis.params.step_mm - 1e-9)
+            slack += axis.nodes[i].area * axis.nodes[i].thickness;
+    if (std::abs(axis.searched_volume_mm3 - volume) > slack)
+        throw Error(ErrorCode::InvalidArgument,
+                    what + " (it sweeps " + format_number(axis.searched_volume_mm3, 10) +
+                        " mm^3, the part has " + format_number(volume, 10) + " mm^3)");
+}
+
 }  // namespace mas

@@ -41,6 +41,11 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
         throw Error(
             ErrorCode::InvalidArgument,
             "holes are filled on a solid's BREP: a mesh is sliced as it is (fill no holes)");
+    const MeshReport report = check_mesh(mesh);
+    if (!report.closed() || report.non_finite_vertices)
+        throw Error(ErrorCode::OpenMesh,
+                    "the part's mesh is not a closed surface: it cannot be sliced");
+    check_axis_belongs(axis, bounding_box(mesh), report.volume_mm3, "slice");
     ComponentMesh root;
     root.mesh = mesh;
     root.base = build_plate(mesh);

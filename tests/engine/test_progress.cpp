@@ -132,12 +132,13 @@ TEST(Progress, DecompositionReportsBranchByBranchUpToOne) {
     EXPECT_EQ(d.components.size(), 3u);
     expect_never_back_and_done(r);
     EXPECT_GE(r.size(), axis.branches.size());
-    // Within the split that cuts both posts off: when it starts, once the siblings sharing its
-    // plane are known, before each of the two posts' pieces is checked (each valid at once), and
-    // before and as the rest of the plate is.
+    // Within the split that cuts both posts off: when it starts, as the other post is tried for
+    // the same plane (one report per sibling tried: 400 posts ran 8 s without one), once the
+    // siblings sharing its plane are known, before each of the two posts' pieces is checked
+    // (each valid at once), and before and as the rest of the plate is.
     const long in_split = std::count_if(
         r.begin(), r.end(), [](const auto& x) { return x.second == "splitting at branch 1 of 3"; });
-    EXPECT_EQ(in_split, 6);
+    EXPECT_EQ(in_split, 7);
 }
 
 TEST(Progress, SlicingReportsEveryStageInOrderUpToOne) {

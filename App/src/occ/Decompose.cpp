@@ -683,6 +683,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             std::vector<Vector3d> inner{p.inner};
             std::vector<double> most{max_volume[b]};
             for (std::size_t c = b + 1; c < nb; ++c) {
+                at.check();  // each sibling classifies a point in the father and scans its faces
                 if (holder[c] >= 0 || !splits(c)) continue;
                 const int cp = axis.branches[c].parent;
                 if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch

@@ -69,6 +69,26 @@ TEST(MeshCheck, NanVertexIsRejectedByName) {
     }
 }
 
+TEST(MeshCheck, CoordinatesBeyondTheRangeAreRejectedByName) {
+    // A cube 1e301 mm on a side gave an infinite section area and a NaN centroid (invalid JSON,
+    // exit status 0). Up to kMaxCoordinateMm (1e9 mm) from the origin along each axis is fine.
+    auto far = mas::test::box_mesh(-1e9, 0, 0, 1, 1, 1);
+    EXPECT_NO_THROW(mas::require_closed_mesh(far, "far.stl"));
+    far = mas::test::box_mesh(0, 0, 0, 1, 1, 2e9);
+    try {
+        mas::require_closed_mesh(far, "tall.stl");
+        FAIL();
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::NonFiniteCoordinate);
+        EXPECT_EQ(std::string(e.what()),
+                  "tall.stl: a vertex lies 2e+09 mm from the origin along an axis, beyond the "
+                  "1e+09 mm (1000 km) the engine works in: areas and volumes would overflow");
+    }
+    auto huge = mas::test::box_mesh(0, 0, 0, 1e301, 1e301, 1e301);
+    EXPECT_EQ(code_of([&] { mas::require_closed_mesh(huge, "huge"); }),
+              ErrorCode::NonFiniteCoordinate);
+}
+
 TEST(MeshCheck, EmptyMeshIsEmptyInput) {
     mas::TriangleMesh m;
     EXPECT_EQ(code_of([&] { mas::require_closed_mesh(m, "x"); }), ErrorCode::EmptyInput);

@@ -17,7 +17,7 @@ enum class ErrorCode {
     NotASolid,            // a face, a wire, an open shell where a closed solid is expected
     MultipleSolids,       // several solids where exactly one is expected
     OpenMesh,             // a triangle mesh with holes or non-manifold edges
-    NonFiniteCoordinate,  // NaN or infinite coordinates in the input
+    NonFiniteCoordinate,  // NaN, infinite or out-of-range (kMaxCoordinateMm) coordinates
     GeometryFailure,      // the geometry kernel failed on valid-looking input
     Cancelled,            // the caller cancelled a long computation
 };

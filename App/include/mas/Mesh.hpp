@@ -50,8 +50,13 @@ inline double tetra_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
 // The signed volume a closed mesh bounds (check_mesh's volume_mm3, without the edge checks).
 double mesh_volume(const TriangleMesh& mesh);
 
+// The farthest a vertex may lie from the origin along an axis, mm (1000 km): beyond, a section's
+// area or a mesh's volume overflows (a cube of 1e301 mm gave an infinite area and a NaN centroid).
+inline constexpr double kMaxCoordinateMm = 1e9;
+
 // Throws mas::Error (EmptyInput, NonFiniteCoordinate, OpenMesh) unless the mesh is a closed,
-// consistently oriented surface with finite coordinates. `what` names the input in the message.
+// consistently oriented surface with finite coordinates within kMaxCoordinateMm of the origin.
+// `what` names the input in the message.
 // A closed mesh with inward normals (negative volume) is flipped in place rather than rejected.
 void require_closed_mesh(TriangleMesh& mesh, const std::string& what);
 

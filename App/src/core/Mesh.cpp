@@ -201,6 +201,15 @@ void require_closed_mesh(TriangleMesh& mesh, const std::string& what) {
         throw Error(ErrorCode::NonFiniteCoordinate,
                     what + ": " + std::to_string(r.non_finite_vertices) +
                         " vertices have NaN or infinite coordinates");
+    double farthest = 0.0;
+    for (const Eigen::Vector3d& v : mesh.vertices)
+        farthest = std::max(farthest, v.cwiseAbs().maxCoeff());
+    if (farthest > kMaxCoordinateMm)
+        throw Error(ErrorCode::NonFiniteCoordinate,
+                    what + ": a vertex lies " + format_number(farthest) +
+                        " mm from the origin along an axis, beyond the " +
+                        format_number(kMaxCoordinateMm) +
+                        " mm (1000 km) the engine works in: areas and volumes would overflow");
     if (!r.closed()) {
         std::ostringstream msg;
         msg << what << ": the mesh is not a closed solid (" << r.boundary_edges

@@ -164,9 +164,12 @@ def _direction(value, name="normal"):
     v = _vector3(value, name)
     if not all(math.isfinite(c) for c in v):
         raise ValueError("{} has NaN or infinite coordinates: {}".format(name, v))
-    if math.sqrt(sum(c * c for c in v)) <= 1e-12:
+    scale = max(abs(c) for c in v)
+    if scale == 0.0 or scale * math.sqrt(sum((c / scale) ** 2 for c in v)) <= 1e-12:
         raise ValueError("{} is the zero vector".format(name))
-    return v
+    # A vector whose length would overflow ((1e300, 1e300, 1e300)) comes down to 1 along its
+    # largest coordinate; any other is kept as given.
+    return tuple(c / scale for c in v) if scale > 1e150 else v
 
 
 def _point(value, name):

@@ -200,6 +200,13 @@ TEST(SectionErrors, BadPlanesAndStepsAreNamed) {
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, -2.5e-7); }, "(got -2.5e-07)");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 1}, nan); }, "step");
     expect_invalid([&] { mas::parallel_planes(m, {0, 0, 0}, 1.0); }, "zero vector");
+    expect_invalid([&] { mas::make_plane({0, 0, 0}, {1e-13, 0, 0}); }, "zero vector");
+    // A normal whose length overflows is still a direction (it came out as the zero vector).
+    const Vector3d diagonal = Vector3d::Ones().normalized();
+    expect_near(mas::make_plane({0, 0, 0}, {1e300, 1e300, 1e300}).normal, diagonal, 1e-15);
+    expect_near(mas::parallel_planes(m, {1e300, 1e300, 1e300}, 0.5).front().normal, diagonal,
+                1e-15);
+    expect_near(mas::make_plane({0, 0, 0}, {0, -1e308, 0}).normal, {0, -1, 0}, 0.0);
     // 1 mm / 1e-5 mm is exactly the limit; a hair less is over it, named before any is cut.
     EXPECT_EQ(mas::parallel_planes(m, {0, 0, 1}, 1.0 / double(mas::kMaxParallelPlanes)).size(),
               mas::kMaxParallelPlanes);

@@ -303,6 +303,17 @@ class TestBadInput(support.EngineTestCase):
         with self.assertRaisesRegex(ValueError, "deflection"):
             mas.sections(box_10_20_30(), deflection=-0.1)
 
+    def test_a_normal_whose_length_overflows_is_still_a_direction(self):
+        # (1e300, 1e300, 1e300) came out of parallel_planes() as the zero vector, and sections()
+        # called it one.
+        box = box_10_20_30()
+        for origin, normal in mas.parallel_planes(box, normal=(1e300, 1e300, 1e300), step=10.0):
+            for c in normal:
+                self.assertAlmostEqual(c, 1 / math.sqrt(3), places=15)
+        along = mas.sections(box, normal=(1e300, 1e300, 1e300), step=10.0)
+        diagonal = mas.sections(box, normal=(1, 1, 1), step=10.0)
+        self.assertEqual([s.area for s in along], [s.area for s in diagonal])
+
     def test_engine_checks_planes_too(self):
         mesh = mas.to_engine_mesh(box_10_20_30())
         planes = mas._engine.parallel_planes

@@ -39,9 +39,12 @@ Plane make_plane(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal) {
         throw Error(ErrorCode::InvalidArgument, "plane origin has NaN or infinite coordinates");
     if (!normal.allFinite())
         throw Error(ErrorCode::InvalidArgument, "plane normal has NaN or infinite coordinates");
-    const double len = normal.norm();
-    if (!(len > 1e-12)) throw Error(ErrorCode::InvalidArgument, "plane normal is the zero vector");
-    return Plane{origin, normal / len};
+    // Scaled before it is measured: the norm of (1e300, 1e300, 1e300) overflows to infinity.
+    const double scale = normal.cwiseAbs().maxCoeff();
+    const Eigen::Vector3d scaled = scale > 0.0 ? Eigen::Vector3d(normal / scale) : normal;
+    if (!(scale * scaled.norm() > 1e-12))
+        throw Error(ErrorCode::InvalidArgument, "plane normal is the zero vector");
+    return Plane{origin, scaled.normalized()};
 }
 
 PlaneFrame::PlaneFrame(const Eigen::Vector3d& unit_normal) : normal(unit_normal) {

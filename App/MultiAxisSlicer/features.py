@@ -213,11 +213,21 @@ def sections_shape(sections, progress=None):
     return Part.makeCompound(wires)
 
 
+def _check_source(source, function, what="source"):
+    """TypeError unless ``source`` is None or a document object: a make_*() function links it
+    (a shape or a file name is for the functions of MultiAxisSlicer itself)."""
+    if source is not None and not isinstance(source, FreeCAD.DocumentObject):
+        raise TypeError("{}() needs a document object as its {} (a Part or Mesh object; "
+                        "MultiAxisSlicer's functions take shapes, meshes and files), got {}".format(
+                            function, what, type(source).__name__))
+
+
 def make_sections(source, normal=(0, 0, 1), step=5.0, deflection=0.0, name="Sections", doc=None):
     """Adds a ``Sections`` object cutting ``source`` to ``doc`` (default: the source's document) and
     returns it; recompute the document to compute it. The source is not changed.
 
     In the GUI it gets its view provider (icon, line colour)."""
+    _check_source(source, "make_sections")
     if doc is None:
         doc = source.Document if source is not None else FreeCAD.ActiveDocument
     if doc is None:
@@ -341,6 +351,7 @@ def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, br
     The source is not changed.
 
     In the GUI it gets its view provider (icon, nodes as points, links as lines, breaks in red)."""
+    _check_source(source, "make_centroidal_axis")
     if doc is None:
         doc = source.Document if source is not None else FreeCAD.ActiveDocument
     if doc is None:
@@ -615,6 +626,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     invalid with the message, without components. The source is not changed.
 
     In the GUI the objects get their view providers (one distinct colour per component)."""
+    _check_source(source, "make_decomposition")
     if axis is not None and not is_centroidal_axis(axis):
         raise TypeError("axis must be a CentroidalAxis object, got {}".format(
             getattr(axis, "TypeId", type(axis).__name__)))

@@ -513,6 +513,18 @@ class TestSectionsObject(support.EngineTestCase):
                        dict(deflection=-1.0)):
             with self.assertRaises(ValueError, msg=kwargs):
                 mas.make_sections(self.box, **kwargs)
+        # A shape, a file name or a class where the document object belongs (AttributeError:
+        # 'str' object has no attribute 'Document', a traceback from inside the function).
+        for make in (mas.make_sections, mas.make_centroidal_axis, mas.make_decomposition):
+            for source, kind in ((self.box.Shape, "Solid"), ("box.step", "str"),
+                                 (Part.Shape, "type")):
+                with self.assertRaises(TypeError) as caught:
+                    make(source)
+                self.assertEqual(
+                    str(caught.exception),
+                    "{}() needs a document object as its source (a Part or Mesh object; "
+                    "MultiAxisSlicer's functions take shapes, meshes and files), got {}".format(
+                        make.__name__, kind))
         self.assertEqual([o.Name for o in self.doc.Objects], names)
 
     def test_save_close_reopen_recompute(self):

@@ -153,6 +153,11 @@ TEST(MeshCheck, ShellsMustBoundOneSolid) {
     EXPECT_NE(shell_error(shells({{0, 0, 0, 10, 10, 10}, {20, 0, 0, 1, 1, 1}}, {0, 1}))
                   .find("faces in (inside out)"),
               std::string::npos);
+    // Two cubes overlapping at a corner, in a 5 mm cube: no facet centre of either lies in the
+    // other, but a corner does (sliced as 2000 mm^3 of which 1875 exist, the overlap twice).
+    EXPECT_NE(shell_error(shells({{0, 0, 0, 10, 10, 10}, {5, 5, 5, 10, 10, 10}}, {0, 0}))
+                  .find("lies inside another but faces out (overlapping shells"),
+              std::string::npos);
 }
 
 TEST(MeshWeld, TriangleSoupBecomesClosed) {

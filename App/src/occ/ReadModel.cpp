@@ -124,8 +124,9 @@ TopoDS_Shape read_brep_file(const std::string& path) {
 
 // RWStl reads as many facets as a truncated STL holds and reports success; the cut then shows up
 // later, as a mesh with holes. Say "truncated" instead: a binary STL is exactly 84 bytes plus 50
-// per facet announced in its header, an ASCII one ends with "endsolid".
-void require_complete_stl(const std::string& path) {
+// per facet announced in its header, an ASCII one ends with "endsolid". Returns whether the file
+// is ASCII and holds "nan" or "inf" somewhere (any case): a coordinate may be one.
+bool require_complete_stl(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -133,22 +134,29 @@ void require_complete_stl(const std::string& path) {
         const auto* p = reinterpret_cast<const unsigned char*>(bytes.data()) + 80;
         const std::uint64_t facets =
             p[0] | (p[1] << 8) | (p[2] << 16) | (std::uint64_t(p[3]) << 24);
-        if (bytes.size() == 84 + 50 * facets) return;  // a complete binary STL
+        if (bytes.size() == 84 + 50 * facets) return false;  // a complete binary STL
     }
     const auto first = bytes.find_first_not_of(" \t\r\n");
     if (first != std::string::npos && bytes.compare(first, 5, "solid") == 0) {
         const auto last = bytes.find_last_not_of(" \t\r\n");
         const auto line = bytes.rfind('\n', last);
         const std::string tail = bytes.substr(line == std::string::npos ? 0 : line + 1);
-        if (tail.find("endsolid") != std::string::npos) return;  // a complete ASCII STL
-        throw Error(ErrorCode::ReadFailed, path + ": truncated ASCII STL file (no 'endsolid')");
+        if (tail.find("endsolid") == std::string::npos)
+            throw Error(ErrorCode::ReadFailed, path + ": truncated ASCII STL file (no 'endsolid')");
+        const auto holds = [&](const char* word) {  // case-insensitively
+            return std::search(bytes.begin(), bytes.end(), word, word + 3, [](char a, char b) {
+                       return std::tolower(static_cast<unsigned char>(a)) == b;
+                   }) != bytes.end();
+        };
+        return holds("nan") || holds("inf");
     }
     throw Error(ErrorCode::ReadFailed,
                 path + ": truncated or not an STL file (its size does not match its facet count)");
 }
 
-// RWStl's ASCII parser gives up on a "nan" or "inf" coordinate in some positions (and reads it in
-// others): when it fails, look for one, so the message names the real problem.
+// RWStl's ASCII parser gives up on a "nan" or "inf" coordinate in some positions, and in others
+// drops the facet (the mesh then has holes): look for one first, so the message names the real
+// problem.
 bool ascii_stl_has_non_finite(const std::string& path) {
     std::ifstream in(path);
     for (std::string word; in >> word;) {
@@ -165,15 +173,13 @@ bool ascii_stl_has_non_finite(const std::string& path) {
 }
 
 TriangleMesh read_stl(const std::string& path) {
-    require_complete_stl(path);
+    if (require_complete_stl(path) && ascii_stl_has_non_finite(path))
+        throw Error(ErrorCode::NonFiniteCoordinate,
+                    path + ": a vertex has NaN or infinite coordinates");
     // RWStl reads ASCII and binary STL and merges coincident nodes, so the mesh comes out welded.
     const Handle(Poly_Triangulation) tri = RWStl::ReadFile(path.c_str());
-    if (tri.IsNull()) {
-        if (ascii_stl_has_non_finite(path))
-            throw Error(ErrorCode::NonFiniteCoordinate,
-                        path + ": a vertex has NaN or infinite coordinates");
+    if (tri.IsNull())
         throw Error(ErrorCode::ReadFailed, path + ": unreadable or truncated STL file");
-    }
     TriangleMesh mesh;
     mesh.vertices.reserve(tri->NbNodes());
     for (int i = 1; i <= tri->NbNodes(); ++i) {

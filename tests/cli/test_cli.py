@@ -181,6 +181,20 @@ class CliSections(unittest.TestCase):
                           1, "open_mesh", "boundary edges")
         self.expect_error(["sections", self.write("nan.stl", box_stl(1, 1, 1, nan=True))], 1,
                           "non_finite")
+        # Where OCCT's reader drops the facets with a "nan" instead of failing ("open_mesh: 4
+        # boundary edges" was the message).
+        dropped = box_stl(10, 10, 10).replace("vertex 0 10 10", "vertex nan 10 10")
+        self.expect_error(["sections", self.write("dropped.stl", dropped)], 1,
+                          "non_finite_coordinate", "dropped.stl: a vertex has NaN or infinite")
+        # A closed surface folded flat holds nothing (it gave one empty section, exit status 0):
+        # a box whose top corners lie on its bottom ones, each a vertex of its own.
+        corners = ["%d %d 0" % (10 * (i & 1), 10 * ((i >> 1) & 1)) for i in range(8)]
+        quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+        faces = ["3 %d %d %d" % t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+        flat = self.write("flat.off", "\n".join(["OFF", "8 12 0"] + corners + faces) + "\n")
+        for command in ("sections", "axis", "slice"):
+            self.expect_error([command, flat], 1, "empty_input",
+                              "flat.off: the mesh encloses no volume (0 mm^3")
         self.expect_error(["sections", self.write("part.xyz", "x")], 1, "unsupported")
         # Status 2: the command line is not understood; 1: a value out of its range, refused as
         # the engine refuses one (axis --step -1 gave 2, --eps -1 gave 1).

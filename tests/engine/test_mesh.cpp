@@ -92,6 +92,18 @@ TEST(MeshCheck, CoordinatesBeyondTheRangeAreRejectedByName) {
 TEST(MeshCheck, EmptyMeshIsEmptyInput) {
     mas::TriangleMesh m;
     EXPECT_EQ(code_of([&] { mas::require_closed_mesh(m, "x"); }), ErrorCode::EmptyInput);
+    // Closed and consistent, but folded flat: its top lies on its bottom.
+    auto flat = mas::test::box_mesh(0, 0, 0, 10, 10, 0);
+    try {
+        mas::require_closed_mesh(flat, "flat.off");
+        FAIL();
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::EmptyInput);
+        EXPECT_EQ(std::string(e.what()),
+                  "flat.off: the mesh encloses no volume (0 mm^3 within a box 14.1421 mm across)");
+    }
+    auto thin = mas::test::box_mesh(0, 0, 0, 1000, 1000, 1e-3);  // a foil still holds material
+    EXPECT_NO_THROW(mas::require_closed_mesh(thin, "foil.off"));
 }
 
 TEST(MeshCheck, InsideOutMeshIsFlippedNotRejected) {

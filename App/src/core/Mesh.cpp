@@ -227,6 +227,13 @@ void require_closed_mesh(TriangleMesh& mesh, const std::string& what) {
     }
     if (r.degenerate_triangles == r.triangles)
         throw Error(ErrorCode::EmptyInput, what + ": every triangle of the mesh is degenerate");
+    // A closed surface folded flat (a square's top lying on its bottom) holds no material: its
+    // sections are empty and its axis has no height.
+    const double size = bounding_box(mesh).diagonal().norm();
+    if (!(std::abs(r.volume_mm3) > 1e-12 * size * size * size))
+        throw Error(ErrorCode::EmptyInput, what + ": the mesh encloses no volume (" +
+                                               format_number(r.volume_mm3) + " mm^3 within a box " +
+                                               format_number(size) + " mm across)");
     if (r.volume_mm3 < 0.0)  // closed and consistent, but inside out
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
 }

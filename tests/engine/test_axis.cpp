@@ -380,6 +380,55 @@ TEST(CentroidalAxis, ShortLugsOnAThickColumnBranchAtTheDerivedThreshold) {
     expect_invariants(given, mesh);
 }
 
+TEST(CentroidalAxis, ALugCentredWithinASixthOfTheColumnsSizeStaysInIt) {
+    // The column above with a lug sticking out 9 mm instead of 12: [30,39]x[11,19]x[16,24]. With
+    // a 4 mm step the derived d is min(8, 30 / 6) = 5 mm (CentroidalAxis.hpp, Eq. 3); the lug's
+    // section is centred 4.5 mm outside the column, within d, so it is no turn: one branch. (At
+    // an eighth of the size, the bump distance 3.75 mm, it would be far; it then reaches out less
+    // than half the column's size and stays in it all the same.) The planes through the lug,
+    // z = 16.001 and 20.001, carry column and lug: 900 + 72 mm^2, centroid x = (900 x 15 + 72 x
+    // 34.5) / 972.
+    const auto mesh =
+        mesh_of(from_occt(fuse(occ_box(0, 0, 0, 30, 30, 60), occ_box(30, 11, 16, 9, 8, 8))));
+    mas::AxisParams p;
+    p.step_mm = 4.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 1u);
+    ASSERT_EQ(a.nodes.size(), 15u);  // z = 0.001 ... 56.001
+    for (const auto& node : a.nodes) {
+        const bool lug = node.offset > 16.0 && node.offset < 24.0;
+        EXPECT_NEAR(node.area, lug ? 972.0 : 900.0, 1e-6) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.x(), lug ? (900.0 * 15.0 + 72.0 * 34.5) / 972.0 : 15.0, kGrid)
+            << "z = " << node.offset;
+        EXPECT_NEAR(node.position.y(), 15.0, kGrid);
+    }
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, AStickOutLessThanAStepSidewaysIsNoTurn) {
+    // A 4 x 4 column [0,4]^2 x [0,20] widening at z = 10 by a ledge [4,5.5]x[0,4]x[10,20], step 2.
+    // On the plane z = 10.001 the ledge is centred 0.75 mm outside the column: past the derived
+    // d (a sixth of the column's 4 mm size, 0.67) and the bump distance (an eighth, 0.5), so it is
+    // far. Its direction is the axis nearest G - E plus the step along the march
+    // (CentroidalAxis.hpp: the 3-D vector between sections a step apart), (0.75, 0, 2): +Z, still
+    // along the march, so no turn. One branch, whose nodes move onto the wider section: 4 x 4 up
+    // to z = 10, 5.5 x 4 centred on x = 2.75 above.
+    const auto mesh =
+        mesh_of(from_occt(fuse(occ_box(0, 0, 0, 4, 4, 20), occ_box(0, 0, 10, 5.5, 4, 10))));
+    mas::AxisParams p;
+    p.step_mm = 2.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 1u);
+    ASSERT_EQ(a.nodes.size(), 10u);  // z = 0.001 ... 18.001
+    for (const auto& node : a.nodes) {
+        const bool wide = node.offset > 10.0;
+        EXPECT_NEAR(node.area, wide ? 22.0 : 16.0, 1e-9) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.x(), wide ? 2.75 : 2.0, kGrid) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.y(), 2.0, kGrid);
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, TwoPostsOnAPlateAreTwoBranches) {
     const auto mesh = mesh_of(mas::test::two_posts());
     mas::AxisParams p;
@@ -403,6 +452,34 @@ TEST(CentroidalAxis, TwoPostsOnAPlateAreTwoBranches) {
     EXPECT_NEAR(xs[0], 5.0, kGrid);
     EXPECT_NEAR(xs[1], 35.0, kGrid);
     expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, ASplitIsOneC1BreakNotTwo) {
+    // The two posts at a 1 mm step. Each post's first link runs from the plate's last node,
+    // (20, 5, 4.001), to the post's first, (5, 5, 5.001) or (35, 5, 5.001): 15 mm sideways for
+    // 1 mm up, a turn of atan(15) = 86.2 degrees from the plate's +Z march, a C1 break (Sec.
+    // 3.2.3). The post's next link turns as far back to +Z, but only undoes that connector
+    // (CentroidalAxis.hpp: a link after a break is none): two breaks in all, one per post.
+    const auto mesh = mesh_of(mas::test::two_posts());
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const double connector_turn = std::atan(15.0) * 180.0 / M_PI;
+    int breaks = 0;
+    for (const auto& l : a.links) breaks += l.is_break;
+    EXPECT_EQ(breaks, 2);
+    const auto kids = children(a, 0);
+    ASSERT_EQ(kids.size(), 2u);
+    for (int b : kids) {
+        const auto& br = a.branches[std::size_t(b)];
+        const auto& tie = a.links[std::size_t(br.first_link)];
+        EXPECT_TRUE(tie.is_break);
+        EXPECT_NEAR(tie.turn_deg, connector_turn, 1e-3);
+        ASSERT_GE(br.nodes.size(), 2u);
+        const auto& back = a.links[std::size_t(a.nodes[std::size_t(br.nodes[1])].incoming_link)];
+        EXPECT_FALSE(back.is_break);
+        EXPECT_NEAR(back.turn_deg, connector_turn, 1e-3);
+    }
 }
 
 TEST(CentroidalAxis, BrepAndStlOfOnePartGiveOneAxisWithinTheDeflection) {
@@ -531,6 +608,44 @@ TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     expect_error(p, "eps 10 mm is not smaller than the part's height");
     // A part drawn in metres: no section reaches the sliver area. An empty axis is an error.
     expect_error_on(mas::test::box_mesh(0, 0, 0, 5e-4, 5e-4, 0.01), "no section of the part");
+}
+
+TEST(CentroidalAxisErrors, AStepEqualToThePartsHeightIsNotSmallerThanIt) {
+    // The step must be smaller than the part's height (CentroidalAxis.cpp's message, "not smaller
+    // than the part's height"): a 10 mm box at a 10 mm step is refused, as at 12 mm above.
+    mas::AxisParams p;
+    p.step_mm = 10.0;
+    try {
+        mas::centroidal_axis(mas::test::box_mesh(0, 0, 0, 10, 10, 10), p);
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("step 10 mm is not smaller than the part's height"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(CentroidalAxisErrors, APartMoreThanEpsAboveItsBasePlaneDoesNotStandOnIt) {
+    // AxisParams::base_z_mm: a part whose lowest point lies above the base plane by more than eps
+    // (0.001 mm) does not touch it. A box floating 0.002 mm above z = 0 is an error; 0.0005 mm
+    // below its bottom, within eps, the plane is the part's base.
+    const auto mesh = mas::test::box_mesh(0, 0, 0.002, 10, 10, 10);
+    mas::AxisParams p;
+    p.base_z_mm = 0.0;
+    try {
+        mas::centroidal_axis(mesh, p);
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("does not stand on its base plane z = 0 mm"),
+                  std::string::npos)
+            << e.what();
+    }
+    p.base_z_mm = 0.0015;
+    const auto a = mas::centroidal_axis(mesh, p);
+    EXPECT_EQ(a.params.base_z_mm, 0.0015);
+    EXPECT_NEAR(a.nodes.front().offset, 0.0015 + p.eps_mm, 1e-12);
 }
 
 TEST(CentroidalAxis, DerivedStepIgnoresTinySectionsOfRoundedTips) {

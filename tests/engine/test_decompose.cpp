@@ -6,6 +6,8 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
@@ -13,6 +15,7 @@
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <cmath>
@@ -347,6 +350,45 @@ TEST(Decompose, AWallWithAHoleThroughItIsOneComponent) {
     const auto d = mas::decompose(part, axis_of(part, 2.0));
     ASSERT_EQ(d.components.size(), 1u);
     EXPECT_EQ(d.components[0].rule, Rule::Root);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, ADraftedFaceAtTheJunctionSplitsWhenOneEndOfItMeetsTheSpan) {
+    // The L-block with its column's +X face drafted 5 degrees below the arm: x = 20 + 40 tan 5 at
+    // z = 0 to x = 20 at the arm's underside, z = 40. That face is within face_angle of +X (1)
+    // and meets the arm's underside in a concave edge (2); along D = +X it spans [20, 23.5].
+    // Eq. 5's interval runs from the column's node (x = 10.1) to the arm's first one (22.501, on
+    // the first grid plane past the column's extent): only the face's end at 20 lies in it.
+    // Criterion (3) asks for Proj_min OR Proj_max in it (Decompose.hpp): the drafted face is the
+    // splitting face. Its whole plane cuts the column's top a little, from x = 20 at z = 40 to
+    // 20 - 20 tan 5 at z = 60: the arm takes that wedge, 20 deep, 4000 tan 5 mm^3, and is built
+    // along the face's normal. (Requiring both ends in the interval, it fell back to the section
+    // plane, 0.26 mm past x = 20, and left a sliver of the arm on the column.)
+    const double draft = 5.0 * M_PI / 180.0;
+    BRepBuilderAPI_MakePolygon outline;
+    for (const auto& [x, z] : {std::pair{0.0, 0.0},
+                               {20.0 + 40.0 * std::tan(draft), 0.0},
+                               {20.0, 40.0},
+                               {20.0, 60.0},
+                               {0.0, 60.0}})
+        outline.Add(gp_Pnt(x, 0, z));
+    outline.Close();
+    const TopoDS_Shape column =
+        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(0, 20, 0))
+            .Shape();
+    const auto part = from_occt(fuse(column, occ_box(20, 0, 40, 50, 20, 20)));
+    const auto axis = axis_of(part, 2.5);
+    ASSERT_EQ(axis.branches.size(), 2u);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& arm = d.components[1];
+    EXPECT_EQ(arm.rule, Rule::PlanarFace);
+    EXPECT_TRUE(arm.build_direction.isApprox(Vector3d(std::cos(draft), 0, std::sin(draft)), 1e-9));
+    const double wedge = 4000.0 * std::tan(draft);
+    EXPECT_NEAR(arm.volume_mm3, 20000.0 + wedge, 20000.0 * 1e-6);
+    EXPECT_TRUE(near_box(arm.solid, {20.0 - 20.0 * std::tan(draft), 0, 40}, {70, 20, 60}));
+    EXPECT_NEAR(d.components[0].volume_mm3, 24000.0 + 16000.0 * std::tan(draft) - wedge,
+                24000.0 * 1e-6);
     expect_invariants(d, part);
 }
 

@@ -172,6 +172,20 @@ TEST(MeshCheck, ShellsMustBoundOneSolid) {
               std::string::npos);
 }
 
+TEST(MeshCheck, CubesTouchingAlongAnEdgeAreNonManifold) {
+    // Two unit cubes sharing only the edge x = y = 1, z in [0,1]: welded, each cube's two faces
+    // at that edge make it an edge of four triangles (Mesh.hpp: non-manifold, more than two), and
+    // no closed surface. Every other edge is used twice, consistently.
+    auto m = shells({{0, 0, 0, 1, 1, 1}, {1, 1, 0, 1, 1, 1}}, {0, 0});
+    EXPECT_EQ(mas::weld_vertices(m, 1e-9), 2u);  // the shared edge's two ends
+    const auto r = mas::check_mesh(m);
+    EXPECT_EQ(r.non_manifold_edges, 1u);
+    EXPECT_EQ(r.boundary_edges, 0u);
+    EXPECT_EQ(r.inconsistent_edges, 0u);
+    EXPECT_FALSE(r.closed());
+    EXPECT_EQ(code_of([&] { mas::require_closed_mesh(m, "cubes"); }), ErrorCode::OpenMesh);
+}
+
 TEST(MeshWeld, TriangleSoupBecomesClosed) {
     const auto indexed = mas::test::box_mesh(0, 0, 0, 1, 1, 1);
     mas::TriangleMesh soup;

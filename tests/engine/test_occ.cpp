@@ -15,8 +15,11 @@
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
 #include <StlAPI_Writer.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
+#include <TopoDS_Solid.hxx>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -178,6 +181,24 @@ TEST(OccShape, SingleSolidRejectsAnOpenShell) {
 
     // The missing top face leaves its four edges used by one face each.
     EXPECT_TRUE(throws_error([&] { shell.single_solid("part"); }, ErrorCode::NotASolid,
+                             "part: an open shell, not a closed solid (4 boundary edges)"));
+}
+
+TEST(OccShape, SingleSolidNamesAnOpenShellInsideASolid) {
+    // The open shell above made the one shell of a solid: it is no closed solid either, and the
+    // message says why as it does for the shell alone, rather than OCCT's shape check's "an
+    // invalid solid" (Shape.hpp: exactly one closed solid).
+    const TopoDS_Shape open = test::to_occt(test::open_box_shell(0, 0, 0, 10, 10, 10));
+    TopExp_Explorer x(open, TopAbs_SHELL);
+    ASSERT_TRUE(x.More());
+    BRep_Builder b;
+    TopoDS_Solid solid;
+    b.MakeSolid(solid);
+    b.Add(solid, TopoDS::Shell(x.Current()));
+    const Shape s = test::from_occt(solid);
+    ASSERT_EQ(s.info().solids, 1);
+
+    EXPECT_TRUE(throws_error([&] { s.single_solid("part"); }, ErrorCode::NotASolid,
                              "part: an open shell, not a closed solid (4 boundary edges)"));
 }
 

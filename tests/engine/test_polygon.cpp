@@ -56,6 +56,19 @@ TEST(Polygon, InteriorPointLiesInTheMaterialNotInTheBore) {
     EXPECT_NEAR(m.y(), 1.0, 1e-12);
 }
 
+TEST(Polygon, InteriorPointIsTheMiddleOfTheWidestSpanNotTheFirst) {
+    // Polygon2.hpp: the middle of the widest inside span of the line through the centroid. The
+    // square [0,10]^2 with a slot [1,3]x[2,8] has its centroid on y = 5 (the slot is symmetric
+    // about it); that line runs inside over [0,1], then [3,10]: the point is the middle of the
+    // second, x = 6.5, not of the first one found.
+    mas::Region2 r{rect(0, 0, 10, 10), {rect(1, 2, 3, 8)}};
+    std::reverse(r.holes[0].points.begin(), r.holes[0].points.end());
+    EXPECT_NEAR(mas::centroid(r).y(), 5.0, 1e-12);
+    const Eigen::Vector2d p = mas::interior_point(r);
+    EXPECT_NEAR(p.x(), 6.5, 1e-12);
+    EXPECT_NEAR(p.y(), 5.0, 1e-12);
+}
+
 TEST(Polygon, RegionsFromLoopsNestHolesInSmallestOuter) {
     auto big = rect(0, 0, 100, 100), hole = rect(10, 10, 90, 90), island = rect(40, 40, 60, 60);
     std::reverse(hole.points.begin(), hole.points.end());

@@ -168,10 +168,10 @@ struct CentroidalAxis {
 double derive_axis_step(const TriangleMesh& mesh);
 
 // Throws mas::Error: InvalidArgument for bad parameters (a step that is not positive and finite,
-// or larger than the part's height, or so small that more than max_nodes sections would cross the
-// part; an eps not smaller than the part's height), InvalidArgument when the part does not touch
-// base_z or no section of it is larger than min_region_area_mm2 (an empty axis), EmptyInput for an
-// empty mesh, Cancelled via throw_on_cancel. `mesh` must be closed.
+// or not smaller than the part's height, or so small that more than max_nodes sections would cross
+// the part; an eps not smaller than the part's height), InvalidArgument when the part does not
+// touch base_z or no section of it is larger than min_region_area_mm2 (an empty axis), EmptyInput
+// for an empty mesh, Cancelled via throw_on_cancel. `mesh` must be closed.
 //
 // A part standing on a vertex or a tip (a cube on its corner, a cone on its tip) has, eps above its
 // base, a speck of a section or none; a step above, its flanks have outgrown the speck on every

@@ -224,7 +224,8 @@ def _label(obj):
 
 def _engine_shape_from_part(shape, what):
     if shape.isNull():
-        raise _engine_error("empty_input", "{}: the shape is empty".format(what))
+        raise _engine_error("empty_input", "{} is empty".format(what) if what == "the shape"
+                            else "{}: the shape is empty".format(what))
     return _require_engine().Shape.from_brep_string(shape.exportBrepToString())
 
 

@@ -28,7 +28,9 @@ def _number(value, name, unit):
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         value = getattr(value, "Value", value)
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
-            raise TypeError("{} must be a number of {}, got {!r}".format(name, unit, value))
+            # "a number of millimetres", "a number (a fraction)"
+            what = "({})".format(unit) if unit.startswith("a ") else "of " + unit
+            raise TypeError("{} must be a number {}, got {!r}".format(name, what, value))
     return float(value)
 
 

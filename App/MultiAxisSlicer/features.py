@@ -66,11 +66,14 @@ def failure(obj):
     recompute an object whose input failed: it stays touched, valid, and says nothing)."""
     if obj.isValid() and "Touched" not in obj.State:
         return None
-    if not obj.isValid():
-        return "{}: {}".format(obj.Label, obj.getStatusString())
-    for dependency in obj.OutListRecursive:
-        if not dependency.isValid():
-            return "{}: {}".format(dependency.Label, dependency.getStatusString())
+    for failed in [obj] + obj.OutListRecursive:
+        if not failed.isValid():
+            status = failed.getStatusString()
+            # Messages that name their object already ("Sections: Source is not set") keep one
+            # label.
+            if status.startswith(failed.Label + ":"):
+                return status
+            return "{}: {}".format(failed.Label, status)
     return "{}: not recomputed".format(obj.Label)
 
 

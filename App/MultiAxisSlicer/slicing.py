@@ -293,8 +293,8 @@ def _slice_params(values):
     for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step"):
         p[name] = _number(values[name], name, "degrees")
     p["max_volume_difference"] = _number(values["max_volume_difference"],
-                                         "max_volume_difference", "fraction")
-    p["overlap"] = _number(values["overlap"], "overlap", "fraction")
+                                         "max_volume_difference", "a fraction")
+    p["overlap"] = _number(values["overlap"], "overlap", "a fraction")
     for name in ("volume_samples", "contour_count"):
         v = values[name]
         if isinstance(v, bool) or not isinstance(v, numbers.Integral):
@@ -308,9 +308,9 @@ def _slice_params(values):
         raise ValueError("infill must be 'raster', 'contour' or 'none', got {!r}".format(
             values["infill"]))
     p["infill"] = values["infill"]
-    if not (p["bead_width"] > 0.0):
-        raise ValueError("bead_width must be a positive number of millimetres, got {}".format(
-            p["bead_width"]))
+    if not (0.0 < p["bead_width"] < math.inf):
+        raise ValueError("bead_width must be a positive, finite number of millimetres, got "
+                         "{}".format(p["bead_width"]))
     if not (0.0 < p["min_layer"] <= p["max_layer"] < math.inf):
         raise ValueError("need 0 < min_layer <= max_layer, got min_layer {} and max_layer {} "
                          "mm".format(p["min_layer"], p["max_layer"]))

@@ -965,13 +965,16 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             return x;
         };
         auto integer = [&]() {
-            const long x = PyLong_AsLong(value.ptr());
+            int overflow = 0;
+            const long x = PyLong_AsLongAndOverflow(value.ptr(), &overflow);
             if (x == -1 && PyErr_Occurred()) {
                 PyErr_Clear();
                 invalid_argument(key + " must be an integer");
             }
-            if (x < std::numeric_limits<int>::min() || x > std::numeric_limits<int>::max())
-                invalid_argument(key + " is out of range");
+            if (overflow != 0 || x < std::numeric_limits<int>::min() ||
+                x > std::numeric_limits<int>::max())
+                invalid_argument(key + " is out of range, got " +
+                                 bp::extract<std::string>(bp::str(value))());
             return int(x);
         };
         auto truth = [&]() {

@@ -303,6 +303,13 @@ class TestBadInput(support.EngineTestCase):
         with self.assertRaisesRegex(ValueError, "deflection"):
             mas.sections(box_10_20_30(), deflection=-0.1)
 
+    def test_empty_inputs_read_as_they_are(self):
+        # They read "the shape: the shape is empty" and "': no such file".
+        self.assertEqual(str(self.assertRaisesEngineError("empty_input", mas.sections,
+                                                          Part.Shape())), "the shape is empty")
+        self.assertEqual(str(self.assertRaisesEngineError("read_failed", mas.sections, "")),
+                         "no file name given (an empty path)")
+
     def test_a_normal_whose_length_overflows_is_still_a_direction(self):
         # (1e300, 1e300, 1e300) came out of parallel_planes() as the zero vector, and sections()
         # called it one.
@@ -609,6 +616,9 @@ class TestSectionsObject(support.EngineTestCase):
         self.doc.recompute()
         self.assertIn("Invalid", obj.State)
         self.assertIn("Source is not set", obj.getStatusString())
+        # Named once ("Sections: Sections: Source is not set" before).
+        import MultiAxisSlicer.features as features
+        self.assertEqual(features.failure(obj), "Sections: Source is not set")
 
     def test_failing_recompute_prints_the_message_without_a_traceback(self):
         script = support.write_dedented(self.folder, "fail.py", """

@@ -392,6 +392,16 @@ class TestSliceBadInput(SliceTest):
                 (TypeError, "unknown parameter.*layer_height", dict(layer_height=1.0))):
             with self.assertRaisesRegex(error, name, msg=str(kwargs)):
                 mas.slice(box, **kwargs)
+        # Messages as they read: an integer too large for the engine is out of range, not "not an
+        # integer"; a fraction is a fraction (it read "a number of fraction").
+        with self.assertRaises(mas.EngineError) as caught:
+            mas.slice(box, volume_samples=10 ** 30)
+        self.assertEqual(str(caught.exception),
+                         "volume_samples is out of range, got " + str(10 ** 30))
+        with self.assertRaises(TypeError) as caught:
+            mas.slice(box, max_volume_difference="x")
+        self.assertEqual(str(caught.exception),
+                         "max_volume_difference must be a number (a fraction), got 'x'")
 
     def test_none_and_faces_are_rejected(self):
         with self.assertRaisesRegex(TypeError, "None"):
@@ -776,10 +786,10 @@ class TestLayersObject(SliceObjectTest):
         layers.BeadWidth = 0.0
         self.doc.recompute()
         self.assertIn("Invalid", layers.State)
-        self.assertIn("BeadWidth must be a positive number", layers.getStatusString())
+        self.assertIn("BeadWidth must be a positive, finite number", layers.getStatusString())
         layers.BeadWidth = -1.0  # a length property keeps it at 0
         self.doc.recompute()
-        self.assertIn("BeadWidth must be a positive number", layers.getStatusString())
+        self.assertIn("BeadWidth must be a positive, finite number", layers.getStatusString())
         layers.BeadWidth = 1.0
         layers.Decomposition = None
         self.doc.recompute()
@@ -803,6 +813,7 @@ class TestLayersObject(SliceObjectTest):
                 (ValueError, "min_layer", dict(min_layer=3.0, max_layer=2.0)),
                 (ValueError, "bead_width", dict(bead_width=0.0)),
                 (ValueError, "bead_width", dict(bead_width=-1.0)),
+                (ValueError, "bead_width must be a positive, finite", dict(bead_width=math.inf)),
                 (ValueError, "infill", dict(infill="bogus")),
                 (ValueError, "min_feature", dict(min_feature=-1.0)),
                 (ValueError, "fill_holes", dict(fill_holes=-1.0)),

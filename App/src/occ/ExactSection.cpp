@@ -47,7 +47,9 @@ Polygon2 discretise(const TopoDS_Wire& wire, const TopoDS_Face& face, const Plan
         const BRepAdaptor_Curve curve(edge);
         GCPnts_QuasiUniformDeflection points(curve, deflection);
         if (!points.IsDone() || points.NbPoints() < 2)
-            throw Error(ErrorCode::GeometryFailure, "exact section: cannot discretise an edge");
+            throw Error(ErrorCode::GeometryFailure,
+                        "exact section: OCCT cannot discretise an edge within loop_deflection " +
+                            format_number(deflection) + " mm");
         std::vector<Eigen::Vector2d> along;
         along.reserve(points.NbPoints());
         for (int i = 1; i <= points.NbPoints(); ++i)

@@ -203,6 +203,7 @@ TriangleMesh read_stl(const std::string& path) {
 
 Model read_model(const std::string& path) {
     std::error_code ec;
+    if (path.empty()) throw Error(ErrorCode::ReadFailed, "no file name given (an empty path)");
     if (!fs::exists(path, ec)) throw Error(ErrorCode::ReadFailed, path + ": no such file");
     if (!fs::is_regular_file(path, ec)) throw Error(ErrorCode::ReadFailed, path + ": not a file");
     if (fs::file_size(path, ec) == 0 && !ec)

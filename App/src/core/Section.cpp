@@ -39,12 +39,13 @@ Plane make_plane(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal) {
         throw Error(ErrorCode::InvalidArgument, "plane origin has NaN or infinite coordinates");
     if (!normal.allFinite())
         throw Error(ErrorCode::InvalidArgument, "plane normal has NaN or infinite coordinates");
-    // Scaled before it is measured: the norm of (1e300, 1e300, 1e300) overflows to infinity.
-    const double scale = normal.cwiseAbs().maxCoeff();
-    const Eigen::Vector3d scaled = scale > 0.0 ? Eigen::Vector3d(normal / scale) : normal;
-    if (!(scale * scaled.norm() > 1e-12))
-        throw Error(ErrorCode::InvalidArgument, "plane normal is the zero vector");
-    return Plane{origin, scaled.normalized()};
+    const double len = normal.norm();
+    if (std::isinf(len)) {  // (1e300, 1e300, 1e300): scaled down first, it is a direction
+        const Eigen::Vector3d scaled = normal / normal.cwiseAbs().maxCoeff();
+        return Plane{origin, scaled / scaled.norm()};
+    }
+    if (!(len > 1e-12)) throw Error(ErrorCode::InvalidArgument, "plane normal is the zero vector");
+    return Plane{origin, normal / len};
 }
 
 PlaneFrame::PlaneFrame(const Eigen::Vector3d& unit_normal) : normal(unit_normal) {

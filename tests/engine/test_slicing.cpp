@@ -783,10 +783,10 @@ TEST(SlicingErrors, BadParametersAreNamed) {
     expect_invalid(p, "bead");
 }
 
-TEST(SlicingErrors, AMinLayerThatWouldAllowTooManyLayersIsRefusedAtOnce) {
+TEST(SlicingErrors, AMinLayerBelowAMillionthOfThePartIsRefusedAtOnce) {
     // 1e-15 mm on a 30 mm box sliced a layer at a time up to the 100000-layer limit (51 s) before
-    // failing. Refused up front: the 10 x 20 x 30 box is sqrt(1400) mm across, so at most
-    // 100000 layers fit when min_layer >= sqrt(1400) / 100000.
+    // failing. Refused up front: the 10 x 20 x 30 box is sqrt(1400) mm across, so min_layer must
+    // be at least sqrt(1400) x 1e-6.
     const auto part = mas::test::box(0, 0, 0, 10, 20, 30);
     auto p = default_params();
     p.layers.min_layer_mm = 1e-15;
@@ -796,18 +796,20 @@ TEST(SlicingErrors, AMinLayerThatWouldAllowTooManyLayersIsRefusedAtOnce) {
     } catch (const mas::Error& e) {
         EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
         EXPECT_EQ(std::string(e.what()),
-                  "min_layer 1e-15 mm is too small for component 0, 37.4166 mm across: more than "
-                  "100000 layers of it would fit; the least is 0.000374166 mm");
+                  "min_layer 1e-15 mm is too small for component 0, 37.4166 mm across: less than "
+                  "a millionth of its size; the least is 3.74166e-05 mm");
     }
-    // The bound itself, exactly, on the 12-facet box with a limit of 10 layers.
+    // The bound itself, exactly, on the 12-facet box.
     const auto box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
     mas::LayerParams layers;
-    layers.max_layers = 10;
-    layers.min_layer_mm = std::sqrt(1400.0) / 10.0;
-    layers.max_layer_mm = 5.0;
+    layers.min_layer_mm = std::sqrt(1400.0) * mas::kMinLayerFraction;
     EXPECT_NO_THROW(mas::validate(layers, box, "the box"));
     layers.min_layer_mm *= 1.0 - 1e-12;
     EXPECT_THROW(mas::validate(layers, box, "the box"), mas::Error);
+    // A thin layer on a large part is a real setting: a 1.5 m x 1 m x 5 mm plate at 0.01 mm.
+    const auto plate = mas::test::box_mesh(0, 0, 0, 1500, 1000, 5);
+    layers.min_layer_mm = 0.01;
+    EXPECT_NO_THROW(mas::validate(layers, plate, "the plate"));
 }
 
 TEST(SlicingErrors, NoFeasibleLayerIsAnError) {

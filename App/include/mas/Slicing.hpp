@@ -101,10 +101,14 @@ inline constexpr double kMaxLayerLimitMm = 1e6;
 // range, volume_samples < 1).
 void validate(const LayerParams& params);
 
-// Throws mas::Error(InvalidArgument) when min_layer_mm is so small beside `mesh` that more than
-// max_layers layers of it would fit across the mesh's bounding-box diagonal: such a component could
-// run to the layer limit, a layer at a time, before failing (1e-15 mm on a 30 mm box ran 51 s).
-// `what` names the mesh in the message ("component 2").
+// The thinnest min_layer_mm a component takes, as a fraction of its bounding-box diagonal.
+inline constexpr double kMinLayerFraction = 1e-6;
+
+// Throws mas::Error(InvalidArgument) when min_layer_mm is below kMinLayerFraction of `mesh`'s
+// bounding-box diagonal: a layer a millionth of the part is no deposit, and one near the rounding
+// of its coordinates stalls the slicer (1e-15 mm on a 30 mm box ran 51 s to the 100000-layer
+// limit; 1e-12 left a 1e-13 mm layer). A 1.5 m plate takes 0.01 mm. `what` names the mesh in the
+// message ("component 2").
 void validate(const LayerParams& params, const TriangleMesh& mesh, const std::string& what);
 
 // One sub-component to slice.

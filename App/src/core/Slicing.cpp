@@ -623,10 +623,10 @@ void validate(const LayerParams& p, const TriangleMesh& mesh, const std::string&
     Eigen::AlignedBox3d box;
     for (const Vector3d& v : mesh.vertices) box.extend(v);
     const double size = box.isEmpty() ? 0.0 : box.diagonal().norm();
-    if (size / p.min_layer_mm > double(p.max_layers))
+    if (p.min_layer_mm < kMinLayerFraction * size)
         invalid("min_layer " + mm(p.min_layer_mm) + " is too small for " + what + ", " + mm(size) +
-                " across: more than " + std::to_string(p.max_layers) +
-                " layers of it would fit; the least is " + mm(size / double(p.max_layers)));
+                " across: less than a millionth of its size; the least is " +
+                mm(kMinLayerFraction * size));
 }
 
 namespace {

@@ -915,6 +915,19 @@ TEST(SlicingErrors, AMeshWithTheAxisOfAnotherPartIsNamed) {
     broken.links.front().end = int(broken.nodes.size());
     expect_other(broken, "the axis has a dangling link");
     EXPECT_EQ(mas::slice_mesh_part(mesh, own, default_params()).layers.size(), 15u);
+    // A part's own axis at a coarse step passes, though its slabs overshoot: a sphere of radius
+    // 10 at a 7 mm step sweeps some 5500 mm^3 of 4180, most of it in the first slab, which
+    // reaches down to the base with its node's section. (Refused as another part's before, and on
+    // the solid by decompose() too.)
+    const mas::Shape sphere = mas::test::sphere(10.0);
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const auto round = mas::tessellate(sphere, tp);
+    ap.step_mm = 7.0;
+    const auto coarse = mas::centroidal_axis(round, ap);
+    EXPECT_GT(coarse.searched_volume_mm3, 1.25 * mas::mesh_volume(round));
+    EXPECT_NO_THROW(mas::slice_mesh_part(round, coarse, default_params()));
+    EXPECT_NO_THROW(mas::decompose(sphere, coarse));
 }
 
 TEST(Slicing, InsideMeshTellsInsideFromOutside) {

@@ -1294,10 +1294,10 @@ void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& b
             throw Error(ErrorCode::InvalidArgument,
                         what + " (a node lies outside the part's bounding box)");
     // The slabs approximate the part's volume: a slab takes the section at its lower plane over
-    // one step, so it is off by at most the section's change to the next node, a branch's last
-    // slab (unless cut short at the part's extent) by at most its own volume, and so is a root's
-    // first, which reaches down to the base with its node's section (a sphere at a step of 7 of
-    // its 20 mm sweeps 5536 mm^3 of 4183).
+    // one step, so it is off by at most the section's change to the next node, and a branch's
+    // last slab (unless cut short at the part's extent) by at most its own volume. A root's first
+    // slab also reaches down from its plane to the base with its node's section: off by up to that
+    // much more (a sphere at a step of 7 of its 20 mm sweeps 5536 mm^3 of 4183).
     double slack = 0.05 * volume;
     std::vector<char> continues(axis.nodes.size(), 0);
     for (const auto& l : axis.links) {
@@ -1307,10 +1307,12 @@ void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& b
             std::abs(axis.nodes[std::size_t(l.end)].area - axis.nodes[std::size_t(l.start)].area) *
             axis.params.step_mm;
     }
-    for (std::size_t i = 0; i < axis.nodes.size(); ++i)
-        if (root_start[i] ||
-            (!continues[i] && axis.nodes[i].thickness >= axis.params.step_mm - 1e-9))
-            slack += axis.nodes[i].area * axis.nodes[i].thickness;
+    for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
+        const AxisNode& n = axis.nodes[i];
+        if (!continues[i] && n.thickness >= axis.params.step_mm - 1e-9)
+            slack += n.area * n.thickness;
+        if (root_start[i]) slack += n.area * std::max(n.offset - n.slab_start, 0.0);
+    }
     if (std::abs(axis.searched_volume_mm3 - volume) > slack)
         throw Error(ErrorCode::InvalidArgument,
                     what + " (it sweeps " + format_number(axis.searched_volume_mm3, 10) +

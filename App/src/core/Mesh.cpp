@@ -72,6 +72,7 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
     }
     if (tris.size() < 2) return;
     std::vector<double> volume(tris.size(), 0.0);
+    const Eigen::Vector3d apex = volume_apex(mesh);
     std::vector<Eigen::AlignedBox3d> box(tris.size());
     for (std::size_t s = 0; s < tris.size(); ++s) {
         for (const std::size_t i : tris[s]) {
@@ -79,7 +80,7 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
             const Eigen::Vector3d &p0 = mesh.vertices[std::size_t(t[0])],
                                   &p1 = mesh.vertices[std::size_t(t[1])],
                                   &p2 = mesh.vertices[std::size_t(t[2])];
-            volume[s] += tetra_volume(p0, p1, p2);
+            volume[s] += tetra_volume(p0 - apex, p1 - apex, p2 - apex);
             box[s].extend(p0);
             box[s].extend(p1);
             box[s].extend(p2);
@@ -145,9 +146,11 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
 
 double mesh_volume(const TriangleMesh& mesh) {
     double volume = 0.0;
+    const Eigen::Vector3d apex = volume_apex(mesh);
     for (const Eigen::Vector3i& t : mesh.triangles)
-        volume += tetra_volume(mesh.vertices[std::size_t(t[0])], mesh.vertices[std::size_t(t[1])],
-                               mesh.vertices[std::size_t(t[2])]);
+        volume += tetra_volume(mesh.vertices[std::size_t(t[0])] - apex,
+                               mesh.vertices[std::size_t(t[1])] - apex,
+                               mesh.vertices[std::size_t(t[2])] - apex);
     return volume;
 }
 
@@ -166,6 +169,7 @@ MeshReport check_mesh(const TriangleMesh& mesh) {
     std::vector<EdgeUse> uses;
     uses.reserve(mesh.triangles.size() * 3);
     const auto n = static_cast<int>(mesh.vertices.size());
+    const Eigen::Vector3d apex = volume_apex(mesh);
     for (const auto& t : mesh.triangles) {
         if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
             ++r.degenerate_triangles;
@@ -181,7 +185,8 @@ MeshReport check_mesh(const TriangleMesh& mesh) {
             const auto lo = std::min(a, b), hi = std::max(a, b);
             uses.push_back({(std::uint64_t(lo) << 32) | hi, a < b ? 1 : -1});
         }
-        r.volume_mm3 += tetra_volume(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+        r.volume_mm3 += tetra_volume(mesh.vertices[t[0]] - apex, mesh.vertices[t[1]] - apex,
+                                     mesh.vertices[t[2]] - apex);
     }
     std::sort(uses.begin(), uses.end(),
               [](const EdgeUse& x, const EdgeUse& y) { return x.key < y.key; });
@@ -216,8 +221,7 @@ void require_closed_mesh(TriangleMesh& mesh, const std::string& what) {
         throw Error(ErrorCode::NonFiniteCoordinate,
                     what + ": a vertex lies " + format_number(farthest) +
                         " mm from the origin along an axis, beyond the " +
-                        format_number(kMaxCoordinateMm) +
-                        " mm (1000 km) the engine works in: areas and volumes would overflow");
+                        format_number(kMaxCoordinateMm) + " mm (1000 km) the engine works within");
     if (!r.closed()) {
         std::ostringstream msg;
         msg << what << ": the mesh is not a closed solid (" << r.boundary_edges

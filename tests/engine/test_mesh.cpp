@@ -179,6 +179,19 @@ TEST(MeshCheck, ShellsMustBoundOneSolid) {
     EXPECT_NE(shell_error(shells({{0, 0, 0, 10, 10, 10}, {20, 0, 0, 1, 1, 1}}, {0, 1}))
                   .find("faces in (inside out)"),
               std::string::npos);
+    // An island in a cavity touching it at one corner: a tetrahedron with a vertex of its own on
+    // the cavity's corner (2, 2, 2). A point there is on the cavity, not inside or outside it.
+    auto island = shells({{0, 0, 0, 10, 10, 10}, {2, 2, 2, 6, 6, 6}}, {0, 1});
+    const int base = int(island.vertices.size());
+    for (const Eigen::Vector3d& v : {Eigen::Vector3d(2, 2, 2), Eigen::Vector3d(5, 3, 3),
+                                     Eigen::Vector3d(3, 5, 3), Eigen::Vector3d(3, 3, 5)})
+        island.vertices.push_back(v);
+    for (const Eigen::Vector3i& t : {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3),
+                                     Eigen::Vector3i(0, 3, 2), Eigen::Vector3i(1, 2, 3)})
+        island.triangles.push_back(t.array() + base);
+    // Facing out: the box less the cavity plus the tetrahedron, 1000 - 216 + 20 / 6 mm^3.
+    ASSERT_NEAR(mas::check_mesh(island).volume_mm3, 784.0 + 20.0 / 6.0, 1e-9);
+    EXPECT_EQ(shell_error(island), "");
     // Two cubes overlapping at a corner, in a 5 mm cube: no facet centre of either lies in the
     // other, but a corner does (sliced as 2000 mm^3 of which 1875 exist, the overlap twice).
     EXPECT_NE(shell_error(shells({{0, 0, 0, 10, 10, 10}, {5, 5, 5, 10, 10, 10}}, {0, 0}))

@@ -99,18 +99,22 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
     const std::size_t points =
         per_point > 0.0 ? std::size_t(std::clamp(std::floor(2e7 / per_point), 1.0, 32.0)) : 1;
     for (std::size_t s = 0; s < tris.size(); ++s) {
-        // Facet centres, and the shell's corners: two cubes overlapping at a corner have no
-        // facet centre inside each other, but each has a vertex inside the other.
+        // Facet centres, and points by the shell's corners: two cubes overlapping at a corner
+        // have no facet centre inside each other, but each has a corner inside the other. The
+        // point lies just inside the facet, off the corner itself, which may sit exactly on
+        // another shell's vertex (an island touching its cavity's corner), where the winding
+        // number is a fraction that tells nothing.
         std::vector<Eigen::Vector3d> samples;
         const std::size_t stride = std::max<std::size_t>(1, tris[s].size() / points);
         for (std::size_t j = 0; j < tris[s].size(); j += stride) {
             const Eigen::Vector3i& t = mesh.triangles[tris[s][j]];
-            samples.push_back((mesh.vertices[std::size_t(t[0])] + mesh.vertices[std::size_t(t[1])] +
-                               mesh.vertices[std::size_t(t[2])]) /
-                              3.0);
+            const Eigen::Vector3d centre =
+                (mesh.vertices[std::size_t(t[0])] + mesh.vertices[std::size_t(t[1])] +
+                 mesh.vertices[std::size_t(t[2])]) /
+                3.0;
+            samples.push_back(centre);
+            samples.push_back(0.98 * mesh.vertices[std::size_t(t[0])] + 0.02 * centre);
         }
-        for (std::size_t j = 0; j < tris[s].size(); j += stride)
-            samples.push_back(mesh.vertices[std::size_t(mesh.triangles[tris[s][j]][0])]);
         for (const Eigen::Vector3d& p : samples) {
             double depth = 0.0;
             bool on_another = false;

@@ -1,6 +1,8 @@
 // multiaxis-slicer: the engine on STEP / IGES / BREP / STL / OFF files, outside FreeCAD.
 // Sub-commands grow with the pipeline: `sections` (cross-section areas and centroids), `axis` (the
 // centroidal axis), `decompose` (the tree of sub-components), `slice` (layers and paths).
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -233,36 +235,51 @@ Part load_part(const Args& a) {
     return part;
 }
 
-// Writes what `write` puts out to the --json file, or to standard output. A file this call made
-// that fails half-written (an error while writing, a full disk) is removed; one that was there
-// before (a device, an earlier result) is not.
+// Writes what `write` puts out to the --json file, or to standard output. A file is written whole
+// or not at all: into a new file beside it, renamed over it once complete, so that a failure while
+// writing (a full disk, an error half way) leaves what was there before, and no partial file. A
+// path that is there and is no regular file (a device, a pipe) is written directly.
 void write_output(const Args& a, const std::function<void(std::ostream&)>& write) {
     if (!(a.json && !a.json_path.empty())) {
         write(std::cout);
         return;
     }
+    namespace fs = std::filesystem;
     const mas::Error cannot_write(mas::ErrorCode::WriteFailed,
                                   a.json_path + ": cannot write the file");
-    std::error_code ignored;
-    // Not even a dangling symbolic link there.
-    const bool made_here =
-        !std::filesystem::exists(std::filesystem::symlink_status(a.json_path, ignored));
-    std::ofstream file(a.json_path);
-    if (!file) throw cannot_write;  // nothing written: the path is left as it was
-    const auto remove_file = [&] {
-        file.close();
-        if (made_here) std::filesystem::remove(a.json_path, ignored);
-    };
+    std::error_code ec;
+    const fs::file_status status = fs::status(a.json_path, ec);
+    if (fs::exists(status) && !fs::is_regular_file(status)) {
+        std::ofstream direct(a.json_path);
+        if (!direct) throw cannot_write;
+        write(direct);
+        direct.close();
+        if (!direct) throw cannot_write;
+        return;
+    }
+    // Through a symbolic link, the file it names is replaced, not the link.
+    std::error_code resolved;
+    const fs::path target =
+        fs::exists(status) ? fs::canonical(a.json_path, resolved) : fs::path(a.json_path);
+    if (resolved) throw cannot_write;
+    fs::path partial;
+    for (int k = 0;; ++k) {
+        partial = target;
+        partial += ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(k);
+        if (!fs::exists(fs::symlink_status(partial, ec))) break;
+    }
+    std::ofstream file(partial);
+    if (!file) throw cannot_write;  // nothing made: the path is left as it was
     try {
         write(file);
         file.close();
+        std::error_code renamed;
+        if (file) fs::rename(partial, target, renamed);
+        if (!file || renamed) throw cannot_write;
     } catch (...) {
-        remove_file();
+        file.close();
+        fs::remove(partial, ec);
         throw;
-    }
-    if (!file) {
-        remove_file();
-        throw cannot_write;
     }
 }
 

@@ -6,6 +6,8 @@ import json
 import math
 import os
 import re
+import resource
+import signal
 import subprocess
 import sys
 import tempfile
@@ -221,13 +223,36 @@ class CliSections(unittest.TestCase):
         self.assertEqual(open(copy).read(), open(box).read())
         self.expect_error(["sections", box, "--json", os.path.join(copy, "out.json")], 1,
                           "write_failed", "cannot write")
-        # A write that fails part way (a full disk) is named too, and what was there before the
-        # program ran stays: the device here.
-        if os.path.exists("/dev/full"):
-            for command in ("sections", "axis"):
-                self.expect_error([command, box, "--json", "/dev/full"], 1, "write_failed",
-                                  "/dev/full: cannot write")
-                self.assertTrue(os.path.exists("/dev/full"))
+        # A write that fails part way (a full disk: here a file size limit) is named too, and
+        # leaves what was there before and no partial file: an earlier result stays whole, a new
+        # file is not made. (The output went straight into the file: a failure left it cut off.)
+        earlier = self.write("earlier.json", "previous\n")
+        new = os.path.join(self.tmp.name, "new.json")
+
+        def small_files():
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a failed write, not a killed program
+            resource.setrlimit(resource.RLIMIT_FSIZE, (100, 100))
+
+        for out in (earlier, new):
+            r = subprocess.run([CLI, "sections", box, "--step", "0.5", "--json", out],
+                               capture_output=True, text=True, timeout=120,
+                               preexec_fn=small_files)
+            self.assertEqual(r.returncode, 1, r.stderr)
+            self.assertIn("write_failed", r.stderr)
+            self.assertIn(out + ": cannot write the file", r.stderr)
+        with open(earlier) as f:
+            self.assertEqual(f.read(), "previous\n")
+        self.assertFalse(os.path.exists(new))
+        self.assertEqual([n for n in os.listdir(self.tmp.name) if "json" in n], ["earlier.json"])
+        # Written whole, a result replaces the earlier one, through a symbolic link the file it
+        # names; a device is written directly.
+        link = os.path.join(self.tmp.name, "link.json")
+        os.symlink(earlier, link)
+        self.assertEqual(run("sections", box, "--step", "10", "--json", link).returncode, 0)
+        self.assertTrue(os.path.islink(link))
+        with open(earlier) as f:
+            self.assertEqual(len(json.load(f)["sections"]), 3)
+        self.assertEqual(run("sections", box, "--step", "10", "--json", "/dev/null").returncode, 0)
         # Counts are whole numbers (1e20 used to wrap to -2147483648, 4.7 to run as 4).
         self.expect_error(["slice", box, "--volume-samples", "4.7"], 2, "--volume-samples",
                           "whole number")

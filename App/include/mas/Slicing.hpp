@@ -92,6 +92,12 @@ struct LayerParams {
     std::size_t max_layers = 100000;  // per component: guard against runaway slicing
 };
 
+// Eq. 6's Delta: how far above a plane its section is cut, mm (initial_offset_mm, or 1e-3 x
+// min_layer_mm when that is 0).
+double base_offset(const LayerParams& params);
+// tan(overhang_angle): how far a layer may overhang the one below per mm of its thickness.
+double overhang_allowance(const LayerParams& params);
+
 // The largest max_layer_mm accepted (a kilometre): thicker, adding it to a plane's offset would
 // lose the part's height to rounding.
 inline constexpr double kMaxLayerLimitMm = 1e6;

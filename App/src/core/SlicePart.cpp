@@ -60,13 +60,14 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
     order.reserve(n);
     // A component's support can only change when a mesh reaching its base is built: the boxes
     // tell which, and only those are cut again. A mesh reaches it when it comes within max_layer
-    // of the base plane (far more than the section's offset) and within reach of the component
-    // sideways: its section below the plane helps only within the overhang allowance of the
-    // first layer's footprint, which lies in the component's box. (Without the second test, each
-    // post built on a plate of 900 made every other post's support stale: cubic work.)
+    // of the base plane (far more than the section's offset) and near the component's box: its
+    // section just below the plane helps only within the overhang allowance (sideways) of the
+    // first layer's footprint just above it (two offsets apart along the normal), which lies in
+    // the component's box. (Without the second test, each post built on a plate of 900 made
+    // every other post's support stale: cubic work.)
     const double reach = std::max(
         params.max_layer_mm,
-        params.min_layer_mm * std::tan(params.overhang_angle_deg * std::acos(-1.0) / 180.0));
+        std::hypot(params.min_layer_mm * overhang_allowance(params), 2.0 * base_offset(params)));
     std::vector<Eigen::AlignedBox3d> boxes(n), reach_of(n);
     for (std::size_t c = 0; c < n; ++c) {
         boxes[c] = bounding_box(components[c].mesh);

@@ -12,6 +12,14 @@
 
 namespace mas {
 
+double base_offset(const LayerParams& params) {
+    return params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
+}
+
+double overhang_allowance(const LayerParams& params) {
+    return std::tan(params.overhang_angle_deg * 3.14159265358979323846 / 180.0);
+}
+
 namespace {
 
 using Eigen::Vector2d;
@@ -217,16 +225,6 @@ struct Candidate {
     double unsupported_next = 0.0;  // of `next` outside `region` grown by the allowance
     bool thickness_ok = false;
 };
-
-// Eq. 6's Delta: how far above a plane its section is cut.
-double base_offset(const LayerParams& params) {
-    return params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
-}
-
-// tan(overhang angle): how far a layer may overhang the one below per mm of its thickness.
-double overhang_allowance(const LayerParams& params) {
-    return std::tan(params.overhang_angle_deg * kPi / 180.0);
-}
 
 // What the meshes deposited before a component give its first layer to stand on: their sections
 // just below its base plane (Eq. 6's offset), one layer with `base` as its top.

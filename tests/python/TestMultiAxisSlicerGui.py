@@ -387,9 +387,9 @@ class TestCentroidalAxisCommand(unittest.TestCase):
         return count
 
     def test_the_axis_is_drawn_over_solids_made_after_it(self):
-        """DrawOnTop: the axis shows through its part, and through a solid added to the document
-        after it (the Components of a Decomposition are): later objects come later in the scene.
-        Without DrawOnTop the part hides the axis inside it."""
+        """DrawOnTop: the axis shows through a solid added to the document after it, as the
+        Components of a Decomposition are (later objects come later in the scene), here a copy
+        of its part with the part itself hidden. Without DrawOnTop that solid hides the axis."""
         obj = self.run_command()
         self.assertTrue(obj.isValid(), obj.getStatusString())
         self.part.ViewObject.Visibility = False

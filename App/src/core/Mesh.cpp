@@ -42,12 +42,12 @@ double winding(const TriangleMesh& mesh, const std::vector<std::size_t>& tris,
 // only if each shell bounds material on its inner side: an outer shell faces out, a cavity's
 // shell, inside one outer shell, faces in, an island in a cavity out again. So a shell nested in
 // the others to winding number k must face out for k = 0 and in for k = 1; any other k (shells
-// overlapping, or one inside another of the same orientation) is no solid. The centroids and first
-// corners of up to 32 of each shell's triangles are tested against the shells whose box holds
-// them (a point lying on another shell tells nothing and is skipped), fewer when the shells are
-// large and nested: at most about 4e7 solid angles in all (two seconds), and at least two points
-// per shell. Shells that cross with no tested point inside each other (two bars crossing like a
-// plus sign) pass unseen.
+// overlapping, or one inside another of the same orientation) is no solid. The centroids of up to
+// 32 of each shell's triangles, and a point just inside each by its first corner, are tested
+// against the shells whose box holds them (a point lying on another shell tells nothing and is
+// skipped), fewer when the shells are large and nested: at most about 4e7 solid angles in all
+// (two seconds), and at least two points per shell. Shells that cross with no tested point inside
+// each other (two bars crossing like a plus sign) pass unseen.
 // Throws NotASolid naming the first fault.
 void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
     const std::size_t nv = mesh.vertices.size();

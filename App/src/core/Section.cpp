@@ -384,6 +384,31 @@ void slice_group(const TriangleMesh& mesh, const Eigen::Vector3d& normal,
     });
 }
 
+// The planes with their normals made unit (make_plane), and their indices grouped by normal:
+// planes whose normals, once normalised, are equal (to 1e-12) are cut as one grid. Each group lists
+// its planes in their given order.
+std::vector<Plane> unit_planes(const std::vector<Plane>& planes) {
+    std::vector<Plane> out(planes.size());
+    for (std::size_t i = 0; i < planes.size(); ++i)
+        out[i] = make_plane(planes[i].origin, planes[i].normal);
+    return out;
+}
+
+std::vector<std::vector<std::size_t>> group_by_normal(const std::vector<Plane>& unit) {
+    std::vector<std::vector<std::size_t>> groups;
+    std::vector<char> done(unit.size(), 0);
+    for (std::size_t i = 0; i < unit.size(); ++i) {
+        if (done[i]) continue;
+        std::vector<std::size_t>& which = groups.emplace_back();
+        for (std::size_t j = i; j < unit.size(); ++j)
+            if (!done[j] && (unit[j].normal - unit[i].normal).squaredNorm() < 1e-24) {
+                which.push_back(j);
+                done[j] = 1;
+            }
+    }
+    return groups;
+}
+
 }  // namespace
 
 std::vector<Section> slice_mesh(const TriangleMesh& mesh, const std::vector<Plane>& planes,
@@ -399,23 +424,13 @@ std::vector<Section> slice_mesh(const TriangleMesh& mesh, const std::vector<Plan
         if (throw_on_cancel && std::this_thread::get_id() == caller) throw_on_cancel();
     };
 
-    // Group planes by (exactly equal, once normalised) normal.
-    std::vector<Plane> checked(planes.size());
+    const std::vector<Plane> checked = unit_planes(planes);
     for (std::size_t i = 0; i < planes.size(); ++i) {
-        checked[i] = make_plane(planes[i].origin, planes[i].normal);
         out[i].plane = checked[i];
         out[i].centroid = checked[i].origin;
     }
-    std::vector<char> done(planes.size(), 0);
-    for (std::size_t i = 0; i < planes.size(); ++i) {
-        if (done[i]) continue;
-        const Eigen::Vector3d n = checked[i].normal;
-        std::vector<std::size_t> which;
-        for (std::size_t j = i; j < planes.size(); ++j)
-            if (!done[j] && (checked[j].normal - n).squaredNorm() < 1e-24) {
-                which.push_back(j);
-                done[j] = 1;
-            }
+    for (const std::vector<std::size_t>& which : group_by_normal(checked)) {
+        const Eigen::Vector3d n = checked[which.front()].normal;
         std::vector<double> offsets(which.size());
         for (std::size_t k = 0; k < which.size(); ++k) offsets[k] = n.dot(checked[which[k]].origin);
         std::vector<std::size_t> order(which.size());
@@ -460,20 +475,12 @@ std::vector<std::size_t> section_point_counts(const TriangleMesh& mesh,
     // A facet crosses the plane at height d when min h < d <= max h (a vertex on the plane counts
     // as above it): the sorted planes upper_bound(min h) .. upper_bound(max h) - 1. Each facet
     // adds one to that range of a difference array.
-    std::vector<Plane> checked(planes.size());
-    for (std::size_t i = 0; i < planes.size(); ++i)
-        checked[i] = make_plane(planes[i].origin, planes[i].normal);
+    const std::vector<Plane> checked = unit_planes(planes);
     std::vector<std::size_t> counts(planes.size(), 0);
-    std::vector<char> done(planes.size(), 0);
-    for (std::size_t i = 0; i < checked.size(); ++i) {
-        if (done[i]) continue;
-        const Eigen::Vector3d n = checked[i].normal;
+    for (const std::vector<std::size_t>& which : group_by_normal(checked)) {  // as slice_mesh
+        const Eigen::Vector3d n = checked[which.front()].normal;
         std::vector<std::pair<double, std::size_t>> sorted;  // (height, plane)
-        for (std::size_t j = i; j < checked.size(); ++j)
-            if (!done[j] && (checked[j].normal - n).squaredNorm() < 1e-24) {  // as slice_mesh
-                sorted.emplace_back(n.dot(checked[j].origin), j);
-                done[j] = 1;
-            }
+        for (const std::size_t j : which) sorted.emplace_back(n.dot(checked[j].origin), j);
         std::sort(sorted.begin(), sorted.end());
         std::vector<double> heights(sorted.size());
         for (std::size_t k = 0; k < sorted.size(); ++k) heights[k] = sorted[k].first;

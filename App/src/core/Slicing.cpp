@@ -12,14 +12,6 @@
 
 namespace mas {
 
-double base_offset(const LayerParams& params) {
-    return params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
-}
-
-double overhang_allowance(const LayerParams& params) {
-    return std::tan(params.overhang_angle_deg * 3.14159265358979323846 / 180.0);
-}
-
 namespace {
 
 using Eigen::Vector2d;
@@ -616,10 +608,17 @@ void validate(const LayerParams& p) {
     if (p.max_layers < 1) invalid("max_layers must be at least 1");
 }
 
+double base_offset(const LayerParams& params) {
+    return params.initial_offset_mm > 0.0 ? params.initial_offset_mm : 1e-3 * params.min_layer_mm;
+}
+
+double overhang_allowance(const LayerParams& params) {
+    return std::tan(params.overhang_angle_deg * kPi / 180.0);
+}
+
 void validate(const LayerParams& p, const TriangleMesh& mesh, const std::string& what) {
     validate(p);
-    Eigen::AlignedBox3d box;
-    for (const Vector3d& v : mesh.vertices) box.extend(v);
+    const Eigen::AlignedBox3d box = bounding_box(mesh);
     const double size = box.isEmpty() ? 0.0 : box.diagonal().norm();
     if (p.min_layer_mm < kMinLayerFraction * size)
         invalid("min_layer " + mm(p.min_layer_mm) + " is too small for " + what + ", " + mm(size) +

@@ -59,6 +59,17 @@ mas::Shape bent_bar() {
     return from_occt(s);
 }
 
+// A 12 x 12 x 30 column on z = 0 centred on the Z axis, with a 10 x 12 x 40 arm centred on an
+// axis that leaves (0, 0, 24) along (sin lean, 0, cos lean).
+mas::Shape leaning_arm(double lean_deg) {
+    gp_Trsf tilt, lift;
+    tilt.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), lean_deg * kPi / 180.0);
+    lift.SetTranslation(gp_Vec(0, 0, 24));
+    const TopoDS_Shape arm =
+        BRepBuilderAPI_Transform(occ_box(-5, -6, 0, 10, 12, 40), lift * tilt, true).Shape();
+    return from_occt(fuse(occ_box(-6, -6, 0, 12, 12, 30), arm));
+}
+
 // A T: column [0,20]x[0,20]x[0,60] with a crossbar [-30,50]x[0,20]x[40,60] reaching both ways.
 mas::Shape t_block() {
     return from_occt(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(-30, 0, 40, 80, 20, 20)));
@@ -371,15 +382,13 @@ TEST(Slicing, AWallJustPastTheOverhangAngleIsBuiltInThinLayers) {
     EXPECT_GE(layers.back().lower.origin.z(), 35.0 - params.layers.max_layer_mm - 1e-9);
 }
 
-// An arm leaning `lean` degrees from the vertical off the top of a column: a 12 x 12 x 30 column
-// and a 10 x 12 x 40 bar centred on the arm's axis, which leaves (0, 0, 24) along
-// (sin lean, 0, cos lean). Each Z section moves less than the distance threshold, so the axis
-// marches on in Z and the arm stays in the column's component, yet the centroids lean along the
-// arm: the layers must tilt with them. No one tilt the thickness bounds allow makes the next layer
-// supported (the arm's walls lie lean - 45 degrees past the overhang angle), so the search used to
-// keep the layers parallel and every one of the arm's thin layers overhung; it now tilts a little
-// at a time, each tilt leaving less unsupported per mm of height, until the layers lie square to
-// the arm.
+// An arm leaning `lean` degrees from the vertical off the top of a column (leaning_arm). Each Z
+// section moves less than the distance threshold, so the axis marches on in Z and the arm stays
+// in the column's component, yet the centroids lean along the arm: the layers must tilt with them.
+// No one tilt the thickness bounds allow makes the next layer supported (the arm's walls lie lean -
+// 45 degrees past the overhang angle), so the search used to keep the layers parallel and every one
+// of the arm's thin layers overhung; it now tilts a little at a time, each tilt leaving less
+// unsupported per mm of height, until the layers lie square to the arm.
 TEST(Slicing, LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported) {
     // 16 sections per layer, as for the bend: 4 leave 0.8 % of quadrature error in the material.
     auto params = default_params();
@@ -389,12 +398,7 @@ TEST(Slicing, LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported) {
         SCOPED_TRACE("lean " + std::to_string(lean));
         const double a = lean * kPi / 180.0;
         const Vector3d arm_axis(std::sin(a), 0.0, std::cos(a));
-        gp_Trsf tilt, lift;
-        tilt.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), a);
-        lift.SetTranslation(gp_Vec(0, 0, 24));
-        const TopoDS_Shape arm =
-            BRepBuilderAPI_Transform(occ_box(-5, -6, 0, 10, 12, 40), lift * tilt, true).Shape();
-        const auto s = slice(from_occt(fuse(occ_box(-6, -6, 0, 12, 12, 30), arm)), 0.0, params);
+        const auto s = slice(leaning_arm(lean), 0.0, params);
         ASSERT_EQ(s.axis.branches.size(), 1u);
         ASSERT_EQ(s.result.components.size(), 1u);
         const auto& layers = s.result.layers;
@@ -711,13 +715,7 @@ TEST(Slicing, AWedgeLayersOverhangAllowanceIsTakenOnItsThinSide) {
     // thin side's.
     auto params = default_params();
     params.layers.volume_samples = 16;
-    const double lean = 65.0 * kPi / 180.0;
-    gp_Trsf tilt, lift;
-    tilt.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), lean);
-    lift.SetTranslation(gp_Vec(0, 0, 24));
-    const TopoDS_Shape arm =
-        BRepBuilderAPI_Transform(occ_box(-5, -6, 0, 10, 12, 40), lift * tilt, true).Shape();
-    const auto s = slice(from_occt(fuse(occ_box(-6, -6, 0, 12, 12, 30), arm)), 0.0, params);
+    const auto s = slice(leaning_arm(65.0), 0.0, params);
     ASSERT_EQ(s.result.components.size(), 1u);
     const auto& layers = s.result.layers;
     const double allowance = std::tan(params.layers.overhang_angle_deg * kPi / 180.0);

@@ -161,6 +161,12 @@ def component_colour(index):
     return COMPONENT_COLOURS[index % len(COMPONENT_COLOURS)]
 
 
+def _decomposed_part(decomposition):
+    """The part a Decomposition object splits: its Source, else its Axis object's."""
+    source = getattr(decomposition, "Source", None)
+    return source if source is not None else getattr(decomposition.Axis, "Source", None)
+
+
 class ViewProviderDecomposition(_Stateless):
     """Tree icon and colours of a ``Decomposition`` object. Its Component objects are its children
     in the tree (Component001, ... in tree order) and are what the 3D view shows; the object's own
@@ -190,14 +196,17 @@ class ViewProviderDecomposition(_Stateless):
 
     def onDelete(self, vobj, subelements):
         """Deleting the decomposition deletes its components (they only show its solids) and
-        shows the part again, which the Decompose command hid."""
+        shows the part again, which the Decompose command hid, unless another decomposition of
+        it is left: its components still show the part."""
         import MultiAxisSlicer.features as features
 
         obj = vobj.Object
         for c in features.components_of(obj):
             obj.Document.removeObject(c.Name)
-        source = obj.Source if obj.Source is not None else getattr(obj.Axis, "Source", None)
-        if source is not None and source.ViewObject is not None:
+        source = _decomposed_part(obj)
+        others = [o for o in obj.Document.Objects
+                  if o is not obj and features.is_decomposition(o) and _decomposed_part(o) is source]
+        if source is not None and source.ViewObject is not None and not others:
             source.ViewObject.Visibility = True
         return True
 

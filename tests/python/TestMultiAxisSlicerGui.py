@@ -699,6 +699,27 @@ class TestDecomposeCommand(unittest.TestCase):
         finally:
             shutil.rmtree(folder)
 
+    def test_deleting_one_of_two_decompositions_leaves_the_part_hidden(self):
+        # The other decomposition's components still show the part: showing it too would draw
+        # the part over them. Deleting the last one shows it again.
+        import MultiAxisSlicer.features as features
+
+        first = self.run_command(self.part)
+        FreeCADGui.Selection.clearSelection()
+        self.part.ViewObject.Visibility = True  # the user looks at the part again
+        self.run_command(self.part)
+        second = [o for o in self.doc.Objects
+                  if features.is_decomposition(o) and o is not first][0]
+        self.assertTrue(second.isValid(), second.getStatusString())
+        self.assertFalse(self.part.ViewObject.Visibility)
+        for obj, shown in ((first, False), (second, True)):
+            name = obj.Name
+            self.assertTrue(obj.ViewObject.Proxy.onDelete(obj.ViewObject, []))
+            self.doc.removeObject(name)
+            process_events()
+            self.assertEqual(self.part.ViewObject.Visibility, shown, name)
+        self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+
     def test_a_document_made_without_the_gui_gets_its_colours(self):
         folder = tempfile.mkdtemp(prefix="mas_gui_dec_")
         try:

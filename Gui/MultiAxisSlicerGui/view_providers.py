@@ -204,8 +204,8 @@ class ViewProviderDecomposition(_Stateless):
         for c in features.components_of(obj):
             obj.Document.removeObject(c.Name)
         source = _decomposed_part(obj)
-        others = [o for o in obj.Document.Objects
-                  if o is not obj and features.is_decomposition(o) and _decomposed_part(o) is source]
+        others = [o for o in obj.Document.Objects if o is not obj
+                  and features.is_decomposition(o) and _decomposed_part(o) is source]
         if source is not None and source.ViewObject is not None and not others:
             source.ViewObject.Visibility = True
         return True

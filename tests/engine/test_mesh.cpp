@@ -245,3 +245,50 @@ TEST(ReadOff, BadFilesNameTheProblem) {
         }),
         ErrorCode::NonFiniteCoordinate);
 }
+
+std::string message_of(const std::string& text) {
+    try {
+        mas::read_off(temp_file("bad.off", text));
+    } catch (const mas::Error& e) {
+        return std::string(to_string(e.code())) + ": " + e.what();
+    }
+    ADD_FAILURE() << "read without error: " << text;
+    return "";
+}
+
+TEST(ReadOff, CountsTheFileCannotHoldAreRefusedBeforeAnythingIsAllocated) {
+    // A file of a few bytes announcing 10^11 vertices or faces, or a face of 2 x 10^9 corners,
+    // used to reserve them: std::bad_alloc, or 8 GB zeroed for the corners. Every vertex takes
+    // at least three numbers, every face four, every corner one.
+    const std::string path = ::testing::TempDir() + "bad.off";
+    EXPECT_EQ(message_of("OFF\n100000000000 1 0\n0 0 0\n"),
+              "read_failed: " + path +
+                  ": truncated OFF file: it announces 100000000000 vertices and holds at most 1");
+    EXPECT_EQ(message_of("OFF\n3 100000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+              "read_failed: " + path +
+                  ": truncated OFF file: it announces 100000000000 faces and holds at most 1");
+    EXPECT_EQ(message_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n"),
+              "read_failed: " + path +
+                  ": truncated OFF file: a face announces 2000000000 corners and the file holds "
+                  "at most 4 more numbers");
+}
+
+TEST(ReadOff, EveryNumberIsReadWholeAndNamedWhenBad) {
+    const std::string path = ::testing::TempDir() + "bad.off";
+    // Text after a number was ignored: "1x" read as 1.
+    EXPECT_EQ(message_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1x 0\n3 0 1 2\n"),
+              "read_failed: " + path + ": bad vertex coordinate '1x'");
+    EXPECT_EQ(message_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n"),
+              "read_failed: " + path + ": bad vertex index '1.5' in a face");
+    EXPECT_EQ(message_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+              "read_failed: " + path + ": bad vertex index '3' in a face (3 vertices)");
+    EXPECT_EQ(message_of("OFF\nthree 1 0\n"), "read_failed: " + path + ": bad OFF counts line");
+    // A coordinate past a double's range is named (the message named its vertex's x).
+    EXPECT_EQ(message_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1e400 0\n3 0 1 2\n"),
+              "non_finite_coordinate: " + path +
+                  ": vertex coordinate '1e400' is beyond the range of a number");
+    // One below it is a coordinate of 0 (or next to it), not an error.
+    const auto m =
+        mas::read_off(temp_file("tiny.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1e-400 0\n3 0 1 2\n"));
+    EXPECT_LT(std::abs(m.vertices[2].y()), 1e-300);
+}

@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 
@@ -314,51 +318,145 @@ void range_along(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& directio
     }
 }
 
+namespace {
+
+// An OFF file's text, comments (#...) removed, read number by number.
+class OffText {
+public:
+    OffText(std::istream& in, const std::string& path) : path_(path) {
+        for (std::string line; std::getline(in, line);) {
+            const auto hash = line.find('#');
+            if (hash != std::string::npos) line.erase(hash);
+            text_ += line;
+            text_ += '\n';
+        }
+    }
+
+    // The next whitespace-separated token; false at the end.
+    bool next(std::string& token) {
+        while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+        if (pos_ == text_.size()) return false;
+        const std::size_t start = pos_;
+        while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_])))
+            ++pos_;
+        token.assign(text_, start, pos_ - start);
+        return true;
+    }
+
+    // Past the end of the current line (what a face line carries after its indices: colours).
+    void skip_line() {
+        pos_ = text_.find('\n', pos_);
+        if (pos_ == std::string::npos) pos_ = text_.size();
+    }
+
+    // At most how many more tokens the text holds: each takes a character and a separator. What
+    // a count announced beyond that is a truncated (or garbled) file; checked before reserving
+    // room for it, so that a few bytes cannot ask for gigabytes.
+    long long tokens_left() const { return static_cast<long long>(text_.size() - pos_ + 1) / 2; }
+
+    // A whole integer token (none of "1.5", "1x"), or nullopt.
+    std::optional<long long> integer() {
+        last_.clear();
+        std::string token;
+        if (!next(token)) return std::nullopt;
+        last_ = token;
+        errno = 0;
+        char* end = nullptr;
+        const long long value = std::strtoll(token.c_str(), &end, 10);
+        if (errno == ERANGE || end != token.c_str() + token.size()) return std::nullopt;
+        return value;
+    }
+
+    // A whole coordinate token; "nan" and "inf" parse (require_closed_mesh names them later).
+    double coordinate() {
+        std::string token;
+        if (!next(token))
+            throw Error(ErrorCode::ReadFailed, path_ + ": truncated OFF file (vertices)");
+        errno = 0;
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (end != token.c_str() + token.size())
+            throw Error(ErrorCode::ReadFailed, path_ + ": bad vertex coordinate '" + token + "'");
+        // Past a double's range (1e400) is an error; below it (1e-400) a coordinate next to 0.
+        if (errno == ERANGE && std::isinf(value))
+            throw Error(ErrorCode::NonFiniteCoordinate, path_ + ": vertex coordinate '" + token +
+                                                            "' is beyond the range of a number");
+        return value;
+    }
+
+    // The token integer() last read ("" at the end of the text).
+    const std::string& last() const { return last_; }
+
+private:
+    std::string path_, text_, last_;
+    std::size_t pos_ = 0;
+};
+
+}  // namespace
+
 TriangleMesh read_off(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
-    // Comments (#...) may appear anywhere; strip them while tokenising.
-    std::stringstream body;
-    for (std::string line; std::getline(in, line);) {
-        const auto hash = line.find('#');
-        if (hash != std::string::npos) line.erase(hash);
-        body << line << '\n';
-    }
+    OffText text(in, path);
     std::string header;
-    if (!(body >> header)) throw Error(ErrorCode::EmptyInput, path + ": the file is empty");
+    if (!text.next(header)) throw Error(ErrorCode::EmptyInput, path + ": the file is empty");
     if (header != "OFF")
         throw Error(ErrorCode::ReadFailed, path + ": not an OFF file (header '" + header + "')");
-    long nv = -1, nf = -1, ne = -1;
-    if (!(body >> nv >> nf >> ne) || nv < 0 || nf < 0)
+    const auto nv = text.integer(), nf = text.integer(), ne = text.integer();
+    if (!nv || !nf || !ne || *nv < 0 || *nf < 0)
         throw Error(ErrorCode::ReadFailed, path + ": bad OFF counts line");
+    const auto truncated = [&](const std::string& what) {
+        return Error(ErrorCode::ReadFailed, path + ": truncated OFF file: " + what);
+    };
+    if (*nv > text.tokens_left() / 3)
+        throw truncated("it announces " + std::to_string(*nv) + " vertices and holds at most " +
+                        std::to_string(text.tokens_left() / 3));
+    if (*nv > std::numeric_limits<int>::max())
+        throw Error(ErrorCode::ReadFailed, path + ": " + std::to_string(*nv) +
+                                               " vertices, more than a mesh here can index");
     TriangleMesh mesh;
-    mesh.vertices.resize(static_cast<std::size_t>(nv));
-    for (auto& v : mesh.vertices) {
-        std::string x, y, z;  // read as text so that "nan" parses instead of failing the stream
-        if (!(body >> x >> y >> z))
-            throw Error(ErrorCode::ReadFailed, path + ": truncated OFF file (vertices)");
-        try {
-            v = {std::stod(x), std::stod(y), std::stod(z)};
-        } catch (const std::exception&) {
-            throw Error(ErrorCode::ReadFailed, path + ": bad vertex coordinate '" + x + "'");
-        }
-        if (!v.allFinite())
+    mesh.vertices.reserve(static_cast<std::size_t>(*nv));
+    for (long long i = 0; i < *nv; ++i) {
+        const double x = text.coordinate(), y = text.coordinate(), z = text.coordinate();
+        mesh.vertices.emplace_back(x, y, z);
+        if (!mesh.vertices.back().allFinite())
             throw Error(ErrorCode::NonFiniteCoordinate,
                         path + ": a vertex has NaN or infinite coordinates");
     }
-    mesh.triangles.reserve(static_cast<std::size_t>(nf));
-    for (long f = 0; f < nf; ++f) {
-        int k = 0;
-        if (!(body >> k) || k < 3)
+    if (*nf > text.tokens_left() / 4)
+        throw truncated("it announces " + std::to_string(*nf) + " faces and holds at most " +
+                        std::to_string(text.tokens_left() / 4));
+    mesh.triangles.reserve(static_cast<std::size_t>(*nf));
+    std::vector<int> idx;
+    for (long long f = 0; f < *nf; ++f) {
+        const auto k = text.integer();
+        if (!k && text.last().empty())
             throw Error(ErrorCode::ReadFailed, path + ": truncated OFF file (faces)");
-        std::vector<int> idx(static_cast<std::size_t>(k));
-        for (int& i : idx)
-            if (!(body >> i) || i < 0 || i >= nv)
-                throw Error(ErrorCode::ReadFailed, path + ": bad vertex index in a face");
-        // Per-face colours may follow on the same line; skip the rest of it.
-        std::string rest;
-        std::getline(body, rest);
-        for (int j = 1; j + 1 < k; ++j) mesh.triangles.emplace_back(idx[0], idx[j], idx[j + 1]);
+        if (!k || *k < 3)
+            throw Error(ErrorCode::ReadFailed,
+                        path + ": bad corner count '" + text.last() + "' in a face (3 or more)");
+        if (*k > text.tokens_left())
+            throw truncated("a face announces " + std::to_string(*k) +
+                            " corners and the file holds at most " +
+                            std::to_string(text.tokens_left()) + " more numbers");
+        idx.clear();
+        for (long long c = 0; c < *k; ++c) {
+            const auto i = text.integer();
+            if (!i) {
+                if (text.last().empty())
+                    throw Error(ErrorCode::ReadFailed, path + ": truncated OFF file (faces)");
+                throw Error(ErrorCode::ReadFailed,
+                            path + ": bad vertex index '" + text.last() + "' in a face");
+            }
+            if (*i < 0 || *i >= *nv)
+                throw Error(ErrorCode::ReadFailed, path + ": bad vertex index '" + text.last() +
+                                                       "' in a face (" + std::to_string(*nv) +
+                                                       " vertices)");
+            idx.push_back(static_cast<int>(*i));
+        }
+        text.skip_line();  // per-face colours may follow on the same line
+        for (std::size_t j = 1; j + 1 < idx.size(); ++j)
+            mesh.triangles.emplace_back(idx[0], idx[j], idx[j + 1]);
     }
     if (mesh.triangles.empty()) throw Error(ErrorCode::EmptyInput, path + ": no faces");
     return mesh;

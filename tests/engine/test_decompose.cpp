@@ -447,6 +447,46 @@ TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlaneAtTheCylindersExte
     }
 }
 
+TEST(Decompose, SquareArmsMeetingAtARoundColumnAreCutAtItsExtentWhenTheirFacesCannot) {
+    // A column of radius 6 with two square arms 10 x 10 along +X and +Y at z in [15, 25] (an L
+    // seen from above). The planar face nearest the +X arm's junction is the +Y arm's side x = 5,
+    // which has a concave edge where the arms meet; its plane also cuts the column off down to the
+    // plate, so its piece cannot be a child. The arm then tries the section plane, at the
+    // column's extent (Eq. 4's T = 6) plus the clearance, which cuts the arm alone. (It used to
+    // stay in the root, its underside overhanging: 1300 mm2 unsupported with four arms.)
+    const double step = 2.5;
+    const auto part = from_occt(fuse(
+        fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 6, 25), occ_box(0, -5, 15, 25, 10, 10)),
+        occ_box(-5, 0, 15, 10, 25, 10)));
+    const auto axis = axis_of(part, step);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 3u);
+    EXPECT_TRUE(d.notes.empty()) << d.notes.front();
+    for (int k : {0, 1}) {
+        const Vector3d along = k == 0 ? Vector3d::UnitX() : Vector3d::UnitY();
+        const Vector3d across = k == 0 ? Vector3d::UnitY() : Vector3d::UnitX();
+        const mas::Component* arm = nullptr;
+        for (const auto& c : d.components)
+            if (c.build_direction.isApprox(along, 1e-12)) arm = &c;
+        ASSERT_NE(arm, nullptr) << "no component built along " << along.transpose();
+        EXPECT_EQ(arm->parent, 0);
+        EXPECT_EQ(arm->rule, Rule::SectionPlane);
+        const auto& first = axis.nodes[axis.branches[arm->branch].nodes.front()];
+        EXPECT_LE(first.slab_start, 6.0 + 1e-9);
+        EXPECT_GE(first.slab_start, 6.0 - kDeflection - 0.01 * step);
+        const double cut =
+            std::min(first.offset - axis.params.eps_mm,
+                     first.slab_start + axis.params.eps_mm + kDeflection + 0.01 * step);
+        EXPECT_GE(cut, 6.0);
+        EXPECT_NEAR(along.dot(bounds(arm->base_face).min()), cut, 1e-7);
+        EXPECT_NEAR(along.dot(bounds(arm->base_face).max()), cut, 1e-7);
+        EXPECT_TRUE(near_box(arm->solid, cut * along - 5.0 * across + Vector3d(0, 0, 15),
+                             25.0 * along + 5.0 * across + Vector3d(0, 0, 25), 1e-5));
+        EXPECT_NEAR(arm->volume_mm3, 100.0 * (25.0 - cut), 1e-6 * arm->volume_mm3);
+    }
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, WithoutFallbackARoundBossStaysInItsFather) {
     const auto part = cylinder_with_boss();
     mas::DecomposeParams p;

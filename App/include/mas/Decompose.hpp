@@ -54,9 +54,15 @@
 //     section): it is mostly other branches' material (a sliver the sections left beside a pipe
 //     tee's branch would cut the branch pipe in two with its plane);
 //   - is no valid solid, whatever is tried.
+//   When the plane was a planar face's, the branch then tries the section plane (below) once
+//   instead, and is noted only if that is refused too. A face's whole plane can reach far past
+//   the branch: with two square arms meeting at a round column, the side of one arm, nearest the
+//   other's junction, cuts the column off down to the plate; the section plane at the column's
+//   extent cuts the arm alone.
 // - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
-// - No planar face meets the criteria (a round boss on a round body): the SectionPlane rule (our
+// - No planar face meets the criteria (a round boss on a round body), or its split was refused:
+//   the SectionPlane rule (our
 //   documented replacement for the paper's silhouette-edge method) cuts at the plane perpendicular
 //   to D where b's march started: Eq. 4's extent T of the father's section (b's first node's
 //   slab_start), plus a clearance of the axis' eps, the deflection of the mesh T was measured on
@@ -69,8 +75,8 @@
 //   The same piece selection follows. What lies between the father's surface and that plane (the
 //   lens of a round boss on a round body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
-//   several pieces or no valid solid, is skipped: the branch's material stays in its father, and
-//   a note says so.
+//   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
+//   the branch's material stays in its father, and a note says so.
 // - Branches of one direction that split around a hole and merge again beyond it (AxisBranch::
 //   merged_into) make no cut: a wall with a hole through it is one sub-component.
 // - Several roots (a part on several feet) share the one root component.
@@ -95,7 +101,8 @@ struct DecomposeParams {
     double concave_angle_deg = 1.0;
     // Criterion (3): slack on Eq. 5's interval [D.Pos_start, D.Pos_end], mm.
     double projection_tolerance_mm = 0.01;
-    // Cut at the plane where a branch's march started when no planar face qualifies.
+    // Cut at the plane where a branch's march started when no planar face qualifies, or when
+    // the split at the one that does is refused.
     bool section_plane_fallback = true;
     // A child must reach at least this far past its splitting plane, mm, and at least one axis
     // step; a thinner piece stays in its father. Slicing sets its min_layer here, so that no

@@ -474,9 +474,11 @@ public:
           min_concave_(params.concave_angle_deg * kPi / 180.0) {}
 
     // The splitting plane for branch b on the father solid `fs` (edge-face map `e2f`): the
-    // criteria's face nearest the junction, else the section plane; false for none.
+    // criteria's face nearest the junction, else (or with `section_only`) the section plane;
+    // false for none.
     bool plan(std::size_t b, const TopoDS_Shape& fs,
-              const TopTools_IndexedDataMapOfShapeListOfShape& e2f, Plan& out) const {
+              const TopTools_IndexedDataMapOfShapeListOfShape& e2f, Plan& out,
+              bool section_only = false) const {
         const AxisBranch& br = axis_.branches[b];
         const AxisLink& link = axis_.links[std::size_t(br.first_link)];
         const Vector3d D = br.direction.normalized();
@@ -504,24 +506,29 @@ public:
         }
         reach.min().array() -= axis_.params.step_mm;
         reach.max().array() += axis_.params.step_mm;
-        for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {
-            PlanarFace pf;
-            if (!planar(TopoDS::Face(x.Current()), pf)) continue;
-            if (std::abs(pf.normal.dot(D)) < cos_face_) continue;  // (1)
-            double lo, hi;
-            projection_range(pf.face, D, lo, hi);
-            const auto in_span = [&](double v) { return v >= lo_span - tol && v <= hi_span + tol; };
-            if (!in_span(lo) && !in_span(hi)) continue;  // (3)
-            const Eigen::AlignedBox3d box = occ::tight_bounds(pf.face);
-            Eigen::AlignedBox2d across;
-            for (int corner = 0; corner < 8; ++corner)
-                across.extend(frame.to_2d(box.corner(Eigen::AlignedBox3d::CornerType(corner))));
-            if (!across.intersects(reach)) continue;                 // over the branch
-            if (!has_concave_edge(pf, e2f, min_concave_)) continue;  // (2)
-            const double d = std::abs(D.dot(pf.point) - junction);
-            if (d < best) {
-                best = d;
-                chosen = pf;
+        // Retried after a planar face's split was refused: the section plane only.
+        if (!section_only) {
+            for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {
+                PlanarFace pf;
+                if (!planar(TopoDS::Face(x.Current()), pf)) continue;
+                if (std::abs(pf.normal.dot(D)) < cos_face_) continue;  // (1)
+                double lo, hi;
+                projection_range(pf.face, D, lo, hi);
+                const auto in_span = [&](double v) {
+                    return v >= lo_span - tol && v <= hi_span + tol;
+                };
+                if (!in_span(lo) && !in_span(hi)) continue;  // (3)
+                const Eigen::AlignedBox3d box = occ::tight_bounds(pf.face);
+                Eigen::AlignedBox2d across;
+                for (int corner = 0; corner < 8; ++corner)
+                    across.extend(frame.to_2d(box.corner(Eigen::AlignedBox3d::CornerType(corner))));
+                if (!across.intersects(reach)) continue;                 // over the branch
+                if (!has_concave_edge(pf, e2f, min_concave_)) continue;  // (2)
+                const double d = std::abs(D.dot(pf.point) - junction);
+                if (d < best) {
+                    best = d;
+                    chosen = pf;
+                }
             }
         }
         if (!chosen.face.IsNull()) {
@@ -641,6 +648,20 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                  << "): " << why << "; its material stays in component " << kept_in;
             notes.push_back(line.str());
         };
+        // Branches whose split at a planar face was refused (its piece took the father's footing,
+        // or reached other branches' material, ...): they try the section plane at Eq. 4's T
+        // instead. (The side face of one of two square arms meeting at a round column, chosen for
+        // the other, cuts through the column down to the plate: that arm stayed in the root,
+        // overhanging.)
+        std::vector<char> section_only(nb, 0);
+        const auto retry = [&](std::size_t g, const Plan& p) {
+            if (p.rule != Component::SplitRule::PlanarFace || !params.section_plane_fallback ||
+                section_only[g])
+                return false;
+            section_only[g] = 1;
+            holder[g] = -1;
+            return true;
+        };
         for (std::size_t b = 0; b < nb; ++b) {
             if (holder[b] >= 0) continue;  // cut with an earlier sibling
             const Progress at = progress.span(
@@ -666,7 +687,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             TopTools_IndexedDataMapOfShapeListOfShape e2f;
             TopExp::MapShapesAndAncestors(fs, TopAbs_EDGE, TopAbs_FACE, e2f);
             Plan p;
-            if (!decomposer.plan(b, fs, e2f, p)) {
+            if (!decomposer.plan(b, fs, e2f, p, section_only[b])) {
                 note(b,
                      params.section_plane_fallback
                          ? "no splitting plane could be placed"
@@ -690,7 +711,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end()) continue;
                 if (father_of(c) != father) continue;
                 Plan q;
-                if (!decomposer.plan(c, fs, e2f, q) || !Decomposer::same_plane(p, q, plane_tol))
+                if (!decomposer.plan(c, fs, e2f, q, section_only[c]) ||
+                    !Decomposer::same_plane(p, q, plane_tol))
                     continue;
                 group.push_back(c);
                 inner.push_back(q.inner);
@@ -721,13 +743,22 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                         ? "the split at the chosen plane would leave its father in pieces"
                         : "the split at the chosen plane would leave its father no valid solid "
                           "(OCCT's check, or a closed mesh)";
-                note(b, why, father);
+                if (retry(b, p))
+                    --b;  // once more at the section plane (b > 0: the root never splits)
+                else
+                    note(b, why, father);
                 continue;
             }
             if (outcome == SplitOutcome::Split) work[std::size_t(father)].solid = father_new;
+            bool again = false;  // b itself tries the section plane
             for (std::size_t k = 0; k < group.size(); ++k) {
                 const std::size_t g = group[k];
                 if (!children[k].kept_because.empty()) {
+                    // A sibling's retry comes in its own pass, later in this loop.
+                    if (retry(g, p)) {
+                        again = again || g == b;
+                        continue;
+                    }
                     holder[g] = father;
                     note(g, children[k].kept_because, father);
                     continue;
@@ -737,6 +768,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                     // sibling's piece or back in the father).
                     if (k > 0)
                         holder[g] = -1;
+                    else if (retry(g, p))
+                        again = true;
                     else
                         note(g, "the split left no piece holding its first node", father);
                     continue;
@@ -755,6 +788,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 holder[g] = int(work.size());
                 work.push_back(child);
             }
+            if (again) --b;  // once more at the section plane (b > 0: the root never splits)
         }
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));

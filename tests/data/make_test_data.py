@@ -44,3 +44,20 @@ profile = Part.Wire(Part.makeCircle(3, V(20, 0, 0), V(0, 1, 0.2387)))
 coil = Part.Wire(helix).makePipeShell([profile], True, True)
 coil = coil.fuse(Part.makeCylinder(6, 3, V(20, 0, -3))).removeSplitter()
 coil.Solids[0].exportStep(os.path.join(here, "coil_c0.step"))
+
+# pins_on_column.step   a column of radius 8 with two pins of radius 2.5 reaching 30 mm out of it:
+# one level at z = 32 towards 190 degrees, one rising 35 degrees at z = 48.5 towards 242.5
+# degrees. A valid solid whose fused cylinders' edges have curves off their faces (FreeCAD's Check
+# geometry: BOPAlgo_InvalidCurveOnSurface); a split of it passed OCCT's shape check and meshed
+# with an edge shared by three triangles
+import math
+
+
+def pin(z, azimuth, elevation):
+    a, e = math.radians(azimuth), math.radians(elevation)
+    return Part.makeCylinder(2.5, 30, V(0, 0, z),
+                             V(math.cos(a) * math.cos(e), math.sin(a) * math.cos(e), math.sin(e)))
+
+
+pins = Part.makeCylinder(8, 80).fuse([pin(32, 190, 0), pin(48.5, 242.5, 35)]).removeSplitter()
+pins.Solids[0].exportStep(os.path.join(here, "pins_on_column.step"))

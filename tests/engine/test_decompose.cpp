@@ -655,6 +655,28 @@ TEST(Decompose, PartsStandingOnATipAreDecomposed) {
     }
 }
 
+TEST(Decompose, APartWithCurvesOffItsFacesIsSplitOnlyWherePiecesMeshClosed) {
+    // tests/data/pins_on_column.step: two pins on a column, a valid solid whose fused cylinders'
+    // edges have curves off their faces (OCCT's curve-on-surface check). One split of it (the
+    // column above the level pin, cut for the rising pin's branch) passed the shape check and
+    // meshed with an edge shared by three triangles at the part's deflection, so slicing stopped
+    // there. Such a split is now refused, with a note, and every component meshes closed.
+    const mas::Model model = mas::read_model(std::string(MAS_TEST_DATA) + "/pins_on_column.step");
+    const mas::Shape& part = model.shape;
+    mas::TessellationParams tp;  // the part's own deflection, which slicing uses
+    tp.deflection_mm = mas::effective_deflection(part, mas::TessellationParams{});
+    mas::AxisParams ap;
+    ap.step_mm = 0.0;  // derived, as by default
+    mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
+    axis.deflection_mm = tp.deflection_mm;
+    const auto d = mas::decompose(part, axis);
+    ASSERT_GE(d.components.size(), 2u);  // the level pin is still cut off
+    for (std::size_t i = 0; i < d.components.size(); ++i)
+        EXPECT_NO_THROW(mas::tessellate(d.components[i].solid, tp)) << "component " << i;
+    EXPECT_FALSE(d.notes.empty());
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, SourceShapeIsUnchanged) {
     const auto part = t_block();
     const std::string before = part.to_brep_string();

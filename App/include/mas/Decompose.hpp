@@ -24,8 +24,11 @@
 //   (interior_point()), also when finding the father: a pipe's first section is a ring whose
 //   centroid lies in the bore, in no solid. Each component is a solid OCCT's shape check accepts:
 //   the piece with its seams removed, else as the split left it, else as ShapeFix makes it. On a
-//   part with C0 faces or edges, which OCCT's Booleans do not promise to split soundly, it must
-//   also mesh closed at the part's default deflection (what slicing uses).
+//   part with C0 faces or edges, or with edges whose curves stray off their faces (FreeCAD's
+//   Check geometry: BOPAlgo_InvalidCurveOnSurface, common where cylinders were fused), which
+//   OCCT's Booleans do not promise to split soundly, it must also mesh closed at the part's
+//   default deflection (what slicing uses). (Meshing every piece of every part would add a
+//   quarter to the time of slicing some.)
 //   The child's base face is its face on the plane under Pos_end (the largest one when none is:
 //   a plane cuts a half ring standing on its rim in two faces, one at each end); build_direction
 //   = minus its outward normal (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The
@@ -55,10 +58,10 @@
 //     tee's branch would cut the branch pipe in two with its plane);
 //   - is no valid solid, whatever is tried.
 //   When the plane was a planar face's, the branch then tries the section plane (below) once
-//   instead, and is noted only if that is refused too. A face's whole plane can reach far past
-//   the branch: with two square arms meeting at a round column, the side of one arm, nearest the
-//   other's junction, cuts the column off down to the plate; the section plane at the column's
-//   extent cuts the arm alone.
+//   instead, unless its piece was too short, and is noted only if that is refused too. A face's
+//   whole plane can reach far past the branch: with two square arms meeting at a round column, the
+//   side of one arm, nearest the other's junction, cuts the column off down to the plate; the
+//   section plane at the column's extent cuts the arm alone.
 // - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
 // - No planar face meets the criteria (a round boss on a round body), or its split was refused:

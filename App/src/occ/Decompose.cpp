@@ -2,6 +2,7 @@
 // the face's plane with BRepAlgoAPI_Splitter, the other pieces fused back. See Decompose.hpp.
 #include "mas/Decompose.hpp"
 
+#include <BOPAlgo_ArgumentAnalyzer.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
@@ -162,6 +163,28 @@ bool has_c0_geometry(const TopoDS_Shape& s) {
     return false;
 }
 
+// Whether an edge's curve on one of its faces strays from its 3-D curve by more than the edge's
+// tolerance (what FreeCAD's Check geometry reports as BOPAlgo_InvalidCurveOnSurface; common where
+// cylinders were fused, and 54 of 142 test parts have it). A split of such a part can also pass
+// the shape check and mesh with edges shared by three triangles: two slanted pins on a column,
+// whose cut-off upper column stopped slicing.
+bool has_invalid_curve_on_surface(const TopoDS_Shape& s) {
+    BOPAlgo_ArgumentAnalyzer check;
+    check.SetShape1(s);
+    check.ArgumentTypeMode() = Standard_False;
+    check.SelfInterMode() = Standard_False;
+    check.SmallEdgeMode() = Standard_False;
+    check.RebuildFaceMode() = Standard_False;
+    check.TangentMode() = Standard_False;
+    check.MergeVertexMode() = Standard_False;
+    check.MergeEdgeMode() = Standard_False;
+    check.ContinuityMode() = Standard_False;
+    check.CurveOnSurfaceMode() = Standard_True;
+    check.StopOnFirstFaulty() = Standard_True;
+    check.Perform();
+    return check.HasFaulty();
+}
+
 // Whether OCCT meshes `solid` into a closed surface at `deflection` mm, as slicing will; always
 // true for `deflection` 0 (no check asked).
 bool meshes_closed(const TopoDS_Shape& solid, double deflection) {
@@ -214,6 +237,9 @@ struct Child {
     Vector3d base_origin, base_normal;
     // Why the piece holding the point stayed in the father instead (empty when it did not).
     std::string kept_because;
+    // Kept for reaching less than the least height past the plane: another plane near the
+    // junction would not do better.
+    bool too_short = false;
 };
 
 // What a father stands on, which no split may take from it: the root's footing on the build plate
@@ -343,6 +369,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                     << " mm (the axis step or the least component height): too thin to build "
                        "on its own";
                 children[k].kept_because = why.str();
+                children[k].too_short = true;
                 continue;
             }
             // A piece far bigger than what the branch and its sub-branches swept is mostly other
@@ -576,9 +603,13 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
         // The part's default deflection: what slicing tessellates with unless told otherwise.
         const double default_deflection = effective_deflection(checked, TessellationParams{});
-        // A part with C0 geometry, which OCCT's Booleans do not promise to split soundly: every
-        // component must also mesh closed at the deflection slicing uses by default, the part's.
-        const double mesh_deflection = has_c0_geometry(solid) ? default_deflection : 0.0;
+        // A part with C0 geometry, or with curves off their faces, which OCCT's Booleans do not
+        // promise to split soundly: every component must also mesh closed at the deflection
+        // slicing uses by default, the part's. (Checked on every part, meshing each piece would
+        // add a quarter to the time of slicing a flanged bend or a flat torus.)
+        const double mesh_deflection = has_c0_geometry(solid) || has_invalid_curve_on_surface(solid)
+                                           ? default_deflection
+                                           : 0.0;
 
         Work root;
         root.solid = solid;
@@ -649,7 +680,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             notes.push_back(line.str());
         };
         // Branches whose split at a planar face was refused (its piece took the father's footing,
-        // or reached other branches' material, ...): they try the section plane at Eq. 4's T
+        // reached other branches' material, or was no valid solid; not one too short, which a
+        // plane near the junction cannot lengthen): they try the section plane at Eq. 4's T
         // instead. (The side face of one of two square arms meeting at a round column, chosen for
         // the other, cuts through the column down to the plate: that arm stayed in the root,
         // overhanging.)
@@ -755,7 +787,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 const std::size_t g = group[k];
                 if (!children[k].kept_because.empty()) {
                     // A sibling's retry comes in its own pass, later in this loop.
-                    if (retry(g, p)) {
+                    if (!children[k].too_short && retry(g, p)) {
                         again = again || g == b;
                         continue;
                     }

@@ -61,3 +61,23 @@ def pin(z, azimuth, elevation):
 
 pins = Part.makeCylinder(8, 80).fuse([pin(32, 190, 0), pin(48.5, 242.5, 35)]).removeSplitter()
 pins.Solids[0].exportStep(os.path.join(here, "pins_on_column.step"))
+
+# pipe_cross.step       a hollow four-way pipe cross (outer radius 14, bore 10) along +-X and +-Z,
+# moved 250 mm down before its seams are removed, then put back on z = 0: OCCT cannot split it at
+# its side arms, and its failed attempts used to alter the father they were given (the root then
+# failed OCCT's shape check, and slicing stopped)
+arms, bores = [], []
+for d in (V(1, 0, 0), V(-1, 0, 0), V(0, 0, 1), V(0, 0, -1)):
+    length = 60 if d.z < 0 else 55
+    arms.append(Part.makeCylinder(14, length, V(0, 0, 60), d))
+    bores.append(Part.makeCylinder(10, length + 2, V(0, 0, 60) - d, d))
+cross = arms[0]
+for arm in arms[1:]:
+    cross = cross.fuse(arm)
+cross = cross.removeSplitter()
+for bore in bores:
+    cross = cross.cut(bore)
+cross.translate(V(0, 0, -250))
+cross = cross.removeSplitter()
+cross.translate(V(0, 0, -cross.BoundBox.ZMin))
+cross.exportStep(os.path.join(here, "pipe_cross.step"))

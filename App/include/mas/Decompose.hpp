@@ -79,7 +79,8 @@
 //   lens of a round boss on a round body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
-//   the branch's material stays in its father, and a note says so.
+//   the branch's material stays in its father, as it was (each split works on a copy: a failed
+//   one can alter the solid it is given), and a note says so.
 // - Branches of one direction that split around a hole and merge again beyond it (AxisBranch::
 //   merged_into) make no cut: a wall with a hole through it is one sub-component.
 // - Several roots (a part on several feet) share the one root component.

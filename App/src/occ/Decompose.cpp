@@ -331,7 +331,10 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
 
         BRepAlgoAPI_Splitter splitter;
         TopTools_ListOfShape args, tools;
-        args.Append(father);
+        // A copy: a failed split can leave the solid it was given altered, non-destructive mode
+        // notwithstanding (a pipe cross whose side arms OCCT cannot cut then failed the shape
+        // check as the root component).
+        args.Append(BRepBuilderAPI_Copy(father).Shape());
         tools.Append(tool);
         splitter.SetArguments(args);
         splitter.SetTools(tools);

@@ -87,8 +87,9 @@ std::vector<int> children(const mas::CentroidalAxis& a, int parent) {
 void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& mesh,
                        bool centroids_inside = true) {
     ASSERT_FALSE(a.nodes.empty());
-    // The branch structure is a forest rooted at the base: parents come first, nodes belong to
-    // exactly the branch that lists them.
+    // The branch structure is a forest rooted at the base (and where material the march from the
+    // base cannot reach begins): parents come first, nodes belong to exactly the branch that lists
+    // them.
     for (std::size_t b = 0; b < a.branches.size(); ++b) {
         const auto& br = a.branches[b];
         EXPECT_LT(br.parent, int(b));
@@ -134,7 +135,10 @@ void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& me
             branch.nodes.front() == int(n) && branch.parent >= 0 &&
             a.links[std::size_t(branch.first_link)].kind == mas::AxisLink::Kind::Connecting;
         if (root_start) {
-            EXPECT_EQ(node.slab_start, a.params.base_z_mm) << "node " << n;
+            // From the base; or, material the march from the base cannot reach (hanging under a
+            // bridge), from the grid plane below the one where it begins.
+            if (node.slab_start != a.params.base_z_mm)
+                EXPECT_NEAR(node.slab_start, node.offset - a.params.step_mm, 1e-9) << "node " << n;
         } else if (turned_start) {
             EXPECT_LE(node.slab_start, node.offset - a.params.eps_mm + 1e-9) << "node " << n;
             EXPECT_GE(node.slab_start, node.offset - a.params.eps_mm - a.params.step_mm - 1e-9)
@@ -451,6 +455,36 @@ TEST(CentroidalAxis, TwoPostsOnAPlateAreTwoBranches) {
     std::sort(xs.begin(), xs.end());
     EXPECT_NEAR(xs[0], 5.0, kGrid);
     EXPECT_NEAR(xs[1], 35.0, kGrid);
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, MaterialHangingUnderABridgeRootsATreeWhereItBegins) {
+    // The block under the arch's beam first appears at z = 15, beside no section below it: the
+    // march from the base never reaches it (the legs' tracks meet the beam, which it hangs from).
+    // It used to be left out, a quarter of the part unswept, and the decomposition then took the
+    // axis for another part's. It is searched up from its first grid plane, 15.001 at a 2.5 mm
+    // step, to the last one below the beam, 37.501: a root of its own, its first slab reaching
+    // back to the plane before.
+    const auto mesh = mesh_of(mas::test::arch_with_pendant());
+    mas::AxisParams p;
+    p.step_mm = 2.5;
+    const auto a = mas::centroidal_axis(mesh, p);
+    std::vector<int> hanging;
+    for (std::size_t b = 0; b < a.branches.size(); ++b)
+        if (a.branches[b].parent < 0 && a.nodes[a.branches[b].nodes.front()].offset > 1.0)
+            hanging.push_back(int(b));
+    ASSERT_EQ(hanging.size(), 1u);
+    const auto& br = a.branches[std::size_t(hanging[0])];
+    EXPECT_TRUE(br.direction.isApprox(Vector3d::UnitZ()));
+    ASSERT_EQ(br.nodes.size(), 10u);
+    for (std::size_t i = 0; i < br.nodes.size(); ++i) {
+        const auto& node = a.nodes[std::size_t(br.nodes[i])];
+        EXPECT_NEAR(node.offset, 15.001 + 2.5 * double(i), 1e-9);
+        EXPECT_NEAR(node.position.x(), 30.0, kGrid);
+        EXPECT_NEAR(node.position.y(), 10.0, kGrid);
+        EXPECT_NEAR(node.area, 400.0, 1e-6);
+    }
+    EXPECT_NEAR(a.nodes[std::size_t(br.nodes.front())].slab_start, 12.501, 1e-9);
     expect_invariants(a, mesh);
 }
 

@@ -96,6 +96,12 @@ Shape two_posts() {
     return from_occt(fuse(base, posts));
 }
 
+Shape arch_with_pendant() {
+    const TopoDS_Shape legs = fuse(occ_box(0, 0, 0, 10, 20, 40), occ_box(50, 0, 0, 10, 20, 40));
+    const TopoDS_Shape beam = fuse(occ_box(0, 0, 40, 60, 20, 10), occ_box(20, 0, 15, 20, 20, 25));
+    return from_occt(fuse(legs, beam));
+}
+
 Shape pipe_tee() {
     auto pipe = [](const gp_Ax2& axis, double r, double h) {
         return BRepPrimAPI_MakeCylinder(axis, r, h).Shape();

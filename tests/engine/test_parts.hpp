@@ -25,6 +25,10 @@ Shape plate_with_hole();
 // Two 10 x 10 posts on one 40 x 10 x 5 base plate [0,40]x[0,10]x[0,5]: posts
 // [0,10]x[0,10]x[5,30] and [30,40]x[0,10]x[5,30]; one solid, two regions above z = 5.
 Shape two_posts();
+// An arch with a block hanging under its beam: legs [0,10]x[0,20]x[0,40] and [50,60]x[0,20]x[0,40],
+// beam [0,60]x[0,20]x[40,50], block [20,40]x[0,20]x[15,40]. The block first appears at z = 15, in
+// mid-air, and joins the rest only at the beam.
+Shape arch_with_pendant();
 // A pipe tee: a pipe of radius 10 with a bore of 8, 60 tall on z = 0 along Z, and a branch of the
 // same pipe reaching +Y from its axis at z = 35, 35 long.
 Shape pipe_tee();

@@ -712,6 +712,22 @@ TEST(Slicing, LayersFollowAGuideTurningByMoreThanATenthOfEpsAngle) {
     expect_invariants(s, params, "bar leaning 0.5 degrees");
 }
 
+TEST(Slicing, ABlockHangingUnderABridgeIsSlicedWithItsFirstLayerUnsupported) {
+    // The block first appears at z = 15 in mid-air (test_parts.hpp): sliced with the root, in Z,
+    // its first layer rests on nothing, all 400 mm^2 of it (the legs lie 10 mm away, past any
+    // allowance), and is reported so. (The decomposition used to refuse the part: the axis had
+    // missed the block, and was taken for another part's.)
+    const auto params = default_params();
+    const auto s = slice(mas::test::arch_with_pendant(), 2.5, params);
+    std::size_t first = s.result.layers.size();
+    for (std::size_t i = 0; i < s.result.layers.size() && first == s.result.layers.size(); ++i)
+        if (s.result.layers[i].area_mm2 > 400.0 + 1e-6) first = i;  // more than the two legs
+    ASSERT_LT(first, s.result.layers.size());
+    EXPECT_NEAR(s.result.layers[first].area_mm2, 800.0, 1e-6);
+    EXPECT_NEAR(s.result.layers[first].unsupported_area_mm2, 400.0, 1e-6);
+    expect_invariants(s, params, "arch with a pendant", false);
+}
+
 TEST(Slicing, AWedgeLayersOverhangAllowanceIsTakenOnItsThinSide) {
     // Slicing.hpp's support: a layer's footprint may reach past the layer below by the overhang
     // allowance, the layer's MIN thickness x tan(overhang_angle). The arm leaning 65 degrees off

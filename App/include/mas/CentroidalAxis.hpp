@@ -63,6 +63,13 @@
 //   section-plane cut is placed from T (Decompose.hpp).
 // - Several regions in the very first section (a part standing on several feet) each root a tree:
 //   the result is a forest with one tree per foot.
+// - Material the march from the base cannot reach, because it first appears in mid-air and joins
+//   the rest only further up (a block hanging under a bridge, a hopper's cone below the ring its
+//   legs carry), is searched upward from the first grid plane that cuts it, after the search from
+//   the base: it roots a tree of its own there, its first slab reaching back one step. Built from
+//   there, its first layer rests on nothing (slicing reports it unsupported). This is looked for
+//   only when the slabs fall short of the part's volume by more than their own error, so that
+//   a part the search from the base covers gets the same axis as before.
 #pragma once
 
 #include <Eigen/Core>

@@ -295,6 +295,32 @@ Regions2 keep_larger(Regions2 regions, double min_area) {
 // feature the axis resolves.
 constexpr double kHairline = 1e-4;  // mm
 
+// How far the slabs' volume (the sum of area x thickness) may stray from the part's: a slab takes
+// the section at its lower plane over one step, so it is off by at most the section's change to
+// the next node, and a branch's last slab (unless cut short at the part's extent) by at most its
+// own volume. A root's first slab also reaches down from its plane to where it starts (the base)
+// with its node's section: off by up to that much more (a sphere at a step of 7 of its 20 mm
+// sweeps 5536 mm^3 of 4183). Plus 5 % of the volume.
+double sweep_slack(const std::vector<AxisNode>& nodes, const std::vector<AxisLink>& links,
+                   const std::vector<AxisBranch>& branches, double step, double volume) {
+    std::vector<char> root_start(nodes.size(), 0);
+    for (const auto& br : branches)
+        if (br.parent < 0 && !br.nodes.empty()) root_start[std::size_t(br.nodes.front())] = 1;
+    double slack = 0.05 * volume;
+    std::vector<char> continues(nodes.size(), 0);
+    for (const auto& l : links) {
+        if (l.kind != AxisLink::Kind::Step) continue;
+        continues[std::size_t(l.start)] = 1;
+        slack += std::abs(nodes[std::size_t(l.end)].area - nodes[std::size_t(l.start)].area) * step;
+    }
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const AxisNode& n = nodes[i];
+        if (!continues[i] && n.thickness >= step - 1e-9) slack += n.area * n.thickness;
+        if (root_start[i]) slack += n.area * std::max(n.offset - n.slab_start, 0.0);
+    }
+    return slack;
+}
+
 class Search {
 public:
     // `derived_threshold`: the distance threshold was derived from the step, not given.
@@ -310,6 +336,7 @@ public:
         root.start = base_z + p_.eps_mm;
         root.slab_start = base_z;
         search(root, 0);
+        search_unreached();
         connect_turned_branches();
         mark_breaks();
         CentroidalAxis axis;
@@ -323,6 +350,42 @@ public:
     }
 
 private:
+    // Material the march from the base never reaches, because it first appears above the part's
+    // lower sections and joins them only further up: a block hanging under a bridge, a hopper's
+    // cone below the ring its legs carry. B - Bs still holds it when the search ends. Each such
+    // piece is searched upward from its lowest grid plane and roots a tree of its own there (as a
+    // second foot on the plate does); built from there, its first layer rests on nothing, which
+    // slicing reports as unsupported. Looked for only while the slabs fall short of the part's
+    // volume by more than their own error (sweep_slack), so that a part the search covers is left
+    // as it was; a piece must be wider than a tenth of a step (2 x area / outline), not a
+    // hairline the Booleans leave along swept outlines.
+    void search_unreached() {
+        const double volume = std::abs(mesh_volume(mesh_));
+        const auto short_of_volume = [&] {
+            return volume - searched_ > sweep_slack(nodes_, links_, branches_, p_.step_mm, volume);
+        };
+        if (!short_of_volume()) return;
+        Grid& g = grid(Vector3d::UnitZ());
+        for (std::size_t k = 1; k < g.count && short_of_volume(); ++k) {
+            checkpoint_(searched_);
+            bool found = false;
+            for (const Region2& r : unswept(g, k, nullptr)) {
+                if (speck(r) || 2.0 * area(r) / outline_of(r) <= p_.step_mm / 10.0) continue;
+                Task task;
+                task.direction = Vector3d::UnitZ();
+                task.start = offset(g, k);
+                task.slab_start = offset(g, k - 1);
+                task.constraints.push_back(
+                    Slab{task.direction, offset(g, k - 1), offset(g, k) + p_.step_mm, r, {}});
+                const std::size_t before = nodes_.size();
+                search(task, 0);
+                found = nodes_.size() > before;  // its first node sweeps r from plane k - 1 on
+                if (found) break;
+            }
+            if (found) --k;  // plane k once more: what the march left of it
+        }
+    }
+
     // One march: a direction, its first plane, and where it comes from.
     struct Task {
         Vector3d direction;
@@ -1293,26 +1356,9 @@ void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& b
         if (!grown.contains(n.position))
             throw Error(ErrorCode::InvalidArgument,
                         what + " (a node lies outside the part's bounding box)");
-    // The slabs approximate the part's volume: a slab takes the section at its lower plane over
-    // one step, so it is off by at most the section's change to the next node, and a branch's
-    // last slab (unless cut short at the part's extent) by at most its own volume. A root's first
-    // slab also reaches down from its plane to the base with its node's section: off by up to that
-    // much more (a sphere at a step of 7 of its 20 mm sweeps 5536 mm^3 of 4183).
-    double slack = 0.05 * volume;
-    std::vector<char> continues(axis.nodes.size(), 0);
-    for (const auto& l : axis.links) {
-        if (l.kind != AxisLink::Kind::Step) continue;
-        continues[std::size_t(l.start)] = 1;
-        slack +=
-            std::abs(axis.nodes[std::size_t(l.end)].area - axis.nodes[std::size_t(l.start)].area) *
-            axis.params.step_mm;
-    }
-    for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
-        const AxisNode& n = axis.nodes[i];
-        if (!continues[i] && n.thickness >= axis.params.step_mm - 1e-9)
-            slack += n.area * n.thickness;
-        if (root_start[i]) slack += n.area * std::max(n.offset - n.slab_start, 0.0);
-    }
+    // The slabs approximate the part's volume (sweep_slack).
+    const double slack =
+        sweep_slack(axis.nodes, axis.links, axis.branches, axis.params.step_mm, volume);
     if (std::abs(axis.searched_volume_mm3 - volume) > slack)
         throw Error(ErrorCode::InvalidArgument,
                     what + " (it sweeps " + format_number(axis.searched_volume_mm3, 10) +

@@ -2,7 +2,7 @@
 // the face's plane with BRepAlgoAPI_Splitter, the other pieces fused back. See Decompose.hpp.
 #include "mas/Decompose.hpp"
 
-#include <BOPAlgo_ArgumentAnalyzer.hxx>
+#include <BOPTools_AlgoTools.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
@@ -168,21 +168,26 @@ bool has_c0_geometry(const TopoDS_Shape& s) {
 // cylinders were fused, and 54 of 142 test parts have it). A split of such a part can also pass
 // the shape check and mesh with edges shared by three triangles: two slanted pins on a column,
 // whose cut-off upper column stopped slicing.
-bool has_invalid_curve_on_surface(const TopoDS_Shape& s) {
-    BOPAlgo_ArgumentAnalyzer check;
-    check.SetShape1(s);
-    check.ArgumentTypeMode() = Standard_False;
-    check.SelfInterMode() = Standard_False;
-    check.SmallEdgeMode() = Standard_False;
-    check.RebuildFaceMode() = Standard_False;
-    check.TangentMode() = Standard_False;
-    check.MergeVertexMode() = Standard_False;
-    check.MergeEdgeMode() = Standard_False;
-    check.ContinuityMode() = Standard_False;
-    check.CurveOnSurfaceMode() = Standard_True;
-    check.StopOnFirstFaulty() = Standard_True;
-    check.Perform();
-    return check.HasFaulty();
+bool has_invalid_curve_on_surface(const TopoDS_Shape& s, const Progress& progress) {
+    // BOPAlgo_ArgumentAnalyzer's test, stopping at the first fault (the analyzer goes through
+    // every face and edge whatever it is told: 2 s on a part of 1275 faces) and between faces
+    // checking for a cancel.
+    for (TopExp_Explorer f(s, TopAbs_FACE); f.More(); f.Next()) {
+        progress.check();
+        const TopoDS_Face& face = TopoDS::Face(f.Current());
+        for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+            const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+            Standard_Real distance = 0.0, parameter = 0.0;
+            try {
+                if (BOPTools_AlgoTools::ComputeTolerance(face, edge, distance, parameter) &&
+                    distance > BRep_Tool::Tolerance(edge))
+                    return true;
+            } catch (const Standard_Failure&) {
+                return true;  // as the analyzer: a pair OCCT cannot measure counts as faulty
+            }
+        }
+    }
+    return false;
 }
 
 // Whether OCCT meshes `solid` into a closed surface at `deflection` mm, as slicing will; always
@@ -610,9 +615,10 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         // promise to split soundly: every component must also mesh closed at the deflection
         // slicing uses by default, the part's. (Checked on every part, meshing each piece would
         // add a quarter to the time of slicing a flanged bend or a flat torus.)
-        const double mesh_deflection = has_c0_geometry(solid) || has_invalid_curve_on_surface(solid)
-                                           ? default_deflection
-                                           : 0.0;
+        const double mesh_deflection =
+            has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, progress)
+                ? default_deflection
+                : 0.0;
 
         Work root;
         root.solid = solid;

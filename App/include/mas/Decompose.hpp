@@ -65,18 +65,16 @@
 // - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
 // - No planar face meets the criteria (a round boss on a round body), or its split was refused:
-//   the SectionPlane rule (our
-//   documented replacement for the paper's silhouette-edge method) cuts at the plane perpendicular
-//   to D where b's march started: Eq. 4's extent T of the father's section (b's first node's
-//   slab_start), plus a clearance of the axis' eps, the deflection of the mesh T was measured on
-//   (CentroidalAxis::deflection_mm, else the part's default: a loop on a curved face lies up to
-//   that far inside it) and step / 100 (the axis simplifies loops by that much); never past b's
-//   first plane less eps. That plane lies up to a step further on, where the axis snapped the
-//   branch to its grid: cut there, the branch's material before it would stay on the father as a
-//   stub whose underside overhangs (11 mm^2 in all under a crossbar through a round column,
-//   against 0.4 cut at T).
-//   The same piece selection follows. What lies between the father's surface and that plane (the
-//   lens of a round boss on a round body) stays in the father.
+//   the SectionPlane rule (our documented replacement for the paper's silhouette-edge method)
+//   cuts at the plane perpendicular to D where b's march started: Eq. 4's extent T of the father's
+//   section (b's first node's slab_start), plus a clearance of the axis' eps, the deflection of the
+//   mesh T was measured on (CentroidalAxis::deflection_mm, else the part's default: a loop on a
+//   curved face lies up to that far inside it) and step / 100 (the axis simplifies loops by that
+//   much); never past b's first plane less eps. That plane lies up to a step further on, where the
+//   axis snapped the branch to its grid: cut there, the branch's material before it would stay on
+//   the father as a stub whose underside overhangs (11 mm^2 in all under a crossbar through a round
+//   column, against 0.4 cut at T). The same piece selection follows. What lies between the father's
+//   surface and that plane (the lens of a round boss on a round body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
 //   the branch's material stays in its father, as it was (each split works on a copy: a failed

@@ -615,10 +615,10 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         // promise to split soundly: every component must also mesh closed at the deflection
         // slicing uses by default, the part's. (Checked on every part, meshing each piece would
         // add a quarter to the time of slicing a flanged bend or a flat torus.)
-        const double mesh_deflection =
-            has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, progress)
-                ? default_deflection
-                : 0.0;
+        const Progress checking = progress.span(0.0, 0.0, "checking edges against their faces");
+        const bool unsound =
+            has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, checking);
+        const double mesh_deflection = unsound ? default_deflection : 0.0;
 
         Work root;
         root.solid = solid;
@@ -746,7 +746,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             std::vector<double> most{max_volume[b]};
             for (std::size_t c = b + 1; c < nb; ++c) {
                 at.check();  // each sibling classifies a point in the father and scans its faces
-                if (holder[c] >= 0 || !splits(c)) continue;
+                if (holder[c] >= 0 || !splits(c) || rejoins(c)) continue;
                 const int cp = axis.branches[c].parent;
                 if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch
                 if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end()) continue;

@@ -65,11 +65,12 @@
 //   the result is a forest with one tree per foot.
 // - Material the march from the base cannot reach, because it first appears in mid-air and joins
 //   the rest only further up (a block hanging under a bridge, a hopper's cone below the ring its
-//   legs carry), is searched upward from the first grid plane that cuts it, after the search from
-//   the base: it roots a tree of its own there, its first slab reaching back one step. Built from
-//   there, its first layer rests on nothing (slicing reports it unsupported). This is looked for
-//   only when the slabs fall short of the part's volume by more than their own error, so that
-//   a part the search from the base covers gets the same axis as before.
+//   legs carry), is searched after the search from the base, upward from the first +Z grid plane
+//   where it overlaps nothing on the plane below: it roots a tree of its own there, its first
+//   slab reaching back one step. Built from there, its first layer rests on nothing (slicing
+//   reports it unsupported). When the slabs account for the part's volume within their error,
+//   only regions whose box meets no region's box on the plane below are looked at, so that a part
+//   with nothing hanging gets the same axis as before, at the cost of a test of boxes.
 #pragma once
 
 #include <Eigen/Core>
@@ -112,9 +113,10 @@ struct AxisNode {
     double offset = 0.0;                                 // normal . point on the plane, mm
     double thickness = 0.0;  // length of the slab this node sweeps along `normal`, mm
     // Where that slab starts along `normal` (normal . point), mm: the node's own plane, except
-    // for a march's first node: a root's reaches down to the base plane (eps below), a turned
-    // branch's back from its grid plane to Eq. 4's T (the lower section's extent along the new
-    // direction), up to a step before `offset`.
+    // for a march's first node: a root's reaches down to the base plane (eps below; one step
+    // below for a root of material hanging in mid-air), a turned branch's back from its grid
+    // plane to Eq. 4's T (the lower section's extent along the new direction), up to a step
+    // before `offset`.
     double slab_start = 0.0;
     int branch = -1;
     int incoming_link = -1;  // the link ending at this node, -1 for a root node

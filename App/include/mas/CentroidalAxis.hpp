@@ -64,13 +64,15 @@
 // - Several regions in the very first section (a part standing on several feet) each root a tree:
 //   the result is a forest with one tree per foot.
 // - Material the march from the base cannot reach, because it first appears in mid-air and joins
-//   the rest only further up (a block hanging under a bridge, a hopper's cone below the ring its
-//   legs carry), is searched after the search from the base, upward from the first +Z grid plane
-//   where it overlaps nothing on the plane below: it roots a tree of its own there, its first
-//   slab reaching back one step. Built from there, its first layer rests on nothing (slicing
-//   reports it unsupported). When the slabs account for the part's volume within their error,
-//   only regions whose box meets no region's box on the plane below are looked at, so that a part
-//   with nothing hanging gets the same axis as before, at the cost of a test of boxes.
+//   the rest only further up (a block hanging under a bridge, a box under a table top), is
+//   searched after the search from the base, upward from each +Z grid plane where it overlaps
+//   nothing on the plane below: it roots a tree of its own there, its first slab reaching back
+//   one step. Built from there, its first layer rests on nothing (slicing reports it
+//   unsupported). This is done only when the slabs fall short of the part's volume by more than
+//   their own error, so that a part the search from the base covers keeps its axis; a hanging
+//   piece within that error (a small hopper's cone under the ring its legs carry) stays
+//   unsearched and is built with its father's component all the same. (Looked for everywhere,
+//   it gave CGAL's armadillo 342 branches instead of 65, in three times the time.)
 #pragma once
 
 #include <Eigen/Core>

@@ -165,7 +165,7 @@ bool has_c0_geometry(const TopoDS_Shape& s) {
 
 // Whether an edge's curve on one of its faces strays from its 3-D curve by more than the edge's
 // tolerance (what FreeCAD's Check geometry reports as BOPAlgo_InvalidCurveOnSurface; common where
-// cylinders were fused, and 54 of 142 test parts have it). A split of such a part can also pass
+// cylinders were fused: 54 of 142 survey parts have it). A split of such a part can also pass
 // the shape check and mesh with edges shared by three triangles: two slanted pins on a column,
 // whose cut-off upper column stopped slicing.
 bool has_invalid_curve_on_surface(const TopoDS_Shape& s, const Progress& progress) {

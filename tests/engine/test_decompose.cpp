@@ -125,6 +125,18 @@ mas::Shape lying_rotor() {
     return from_occt(s);
 }
 
+// Where the SectionPlane rule cuts the branch whose first node is `first` (Decompose.hpp): at T,
+// the march's start (`first.slab_start`, which must lie within the mesh's deflection and the
+// loops' simplification, step / 100, below the exact `t`), plus eps, the deflection and step /
+// 100; never past the first plane less eps.
+double section_plane_cut(const mas::CentroidalAxis& axis, const mas::AxisNode& first, double t) {
+    const double step = axis.params.step_mm;
+    EXPECT_LE(first.slab_start, t + 1e-9);
+    EXPECT_GE(first.slab_start, t - kDeflection - 0.01 * step);
+    return std::min(first.offset - axis.params.eps_mm,
+                    first.slab_start + axis.params.eps_mm + kDeflection + 0.01 * step);
+}
+
 // Every decomposition must satisfy these, whatever the part.
 void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
     ASSERT_FALSE(d.components.empty());
@@ -442,11 +454,7 @@ TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlaneAtTheCylindersExte
         const auto& first = axis.nodes[axis.branches[boss.branch].nodes.front()];
         EXPECT_NEAR(first.offset, step == 2.5 ? 20.001 : 22.001, 1e-9);
         // T, on a polygon inscribed in the circle x^2 + z^2 = 400 and simplified by step / 100.
-        EXPECT_LE(first.slab_start, 20.0 + 1e-9);
-        EXPECT_GE(first.slab_start, 20.0 - kDeflection - 0.01 * step);
-        const double cut =
-            std::min(first.offset - axis.params.eps_mm,
-                     first.slab_start + axis.params.eps_mm + kDeflection + 0.01 * step);
+        const double cut = section_plane_cut(axis, first, 20.0);
         EXPECT_GE(cut, 20.0);
         EXPECT_LE(cut, 20.0 + axis.params.eps_mm + kDeflection + 0.01 * step);
         EXPECT_NEAR(bounds(boss.base_face).min().x(), cut, 1e-7);
@@ -483,11 +491,7 @@ TEST(Decompose, SquareArmsMeetingAtARoundColumnAreCutAtItsExtentWhenTheirFacesCa
         EXPECT_EQ(arm->parent, 0);
         EXPECT_EQ(arm->rule, Rule::SectionPlane);
         const auto& first = axis.nodes[axis.branches[arm->branch].nodes.front()];
-        EXPECT_LE(first.slab_start, 6.0 + 1e-9);
-        EXPECT_GE(first.slab_start, 6.0 - kDeflection - 0.01 * step);
-        const double cut =
-            std::min(first.offset - axis.params.eps_mm,
-                     first.slab_start + axis.params.eps_mm + kDeflection + 0.01 * step);
+        const double cut = section_plane_cut(axis, first, 6.0);
         EXPECT_GE(cut, 6.0);
         EXPECT_NEAR(along.dot(bounds(arm->base_face).min()), cut, 1e-7);
         EXPECT_NEAR(along.dot(bounds(arm->base_face).max()), cut, 1e-7);

@@ -502,6 +502,39 @@ TEST(Decompose, SquareArmsMeetingAtARoundColumnAreCutAtItsExtentWhenTheirFacesCa
     expect_invariants(d, part);
 }
 
+TEST(Decompose, SiblingsRefusedTheirSharedPlanarFaceEachTryTheSectionPlane) {
+    // A column of radius 6 with a wall [-5,5] x [0,25] x [10,40] reaching +Y and two square arms
+    // [0,25] x [-5,5] reaching +X, at z in [12, 18] and [30, 36]. Both arms choose the wall's side
+    // x = 5 (its faces between the arms), so they are cut in one split; its plane cuts the column
+    // down to the plate, and both pieces are refused. The first arm, leading the split, tried the
+    // section plane; the second was noted and kept in the root, its underside overhanging. Each
+    // now tries it, and each is cut at the column's extent.
+    const auto part = from_occt(fuse(
+        fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 6, 40), occ_box(-5, 0, 10, 10, 25, 30)),
+        fuse(occ_box(0, -5, 12, 25, 10, 6), occ_box(0, -5, 30, 25, 10, 6))));
+    const auto axis = axis_of(part, 2.5);
+    const auto d = mas::decompose(part, axis);
+    EXPECT_TRUE(d.notes.empty()) << d.notes.front();
+    ASSERT_EQ(d.components.size(), 4u);
+    std::vector<double> bottoms;
+    for (const auto& c : d.components) {
+        if (!c.build_direction.isApprox(Vector3d::UnitX(), 1e-12)) continue;
+        EXPECT_EQ(c.parent, 0);
+        EXPECT_EQ(c.rule, Rule::SectionPlane);
+        const double cut =
+            section_plane_cut(axis, axis.nodes[axis.branches[c.branch].nodes.front()], 6.0);
+        const double z = bounds(c.solid).min().z();
+        EXPECT_TRUE(near_box(c.solid, {cut, -5, z}, {25, 5, z + 6}, 1e-5));
+        EXPECT_NEAR(c.volume_mm3, 60.0 * (25.0 - cut), 1e-6 * c.volume_mm3);
+        bottoms.push_back(z);
+    }
+    std::sort(bottoms.begin(), bottoms.end());
+    ASSERT_EQ(bottoms.size(), 2u);
+    EXPECT_NEAR(bottoms[0], 12.0, 1e-6);
+    EXPECT_NEAR(bottoms[1], 30.0, 1e-6);
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, WithoutFallbackARoundBossStaysInItsFather) {
     const auto part = cylinder_with_boss();
     mas::DecomposeParams p;

@@ -324,11 +324,15 @@ double sweep_slack(const std::vector<AxisNode>& nodes, const std::vector<AxisLin
 class Search {
 public:
     // `derived_threshold`: the distance threshold was derived from the step, not given.
-    // `checkpoint(searched_mm3)` is called now and then from this thread with the volume swept so
-    // far; it may throw to stop the search.
+    // `volume`: the mesh's, mm^3. `checkpoint(searched_mm3)` is called now and then from this
+    // thread with the volume swept so far; it may throw to stop the search.
     Search(const TriangleMesh& mesh, const AxisParams& params, bool derived_threshold,
-           const std::function<void(double)>& checkpoint)
-        : mesh_(mesh), p_(params), derived_threshold_(derived_threshold), checkpoint_(checkpoint) {}
+           double volume, const std::function<void(double)>& checkpoint)
+        : mesh_(mesh),
+          p_(params),
+          derived_threshold_(derived_threshold),
+          volume_(volume),
+          checkpoint_(checkpoint) {}
 
     CentroidalAxis run(double base_z) {
         Task root;
@@ -364,8 +368,7 @@ private:
     // branches into 342, and took three times as long: a hanging piece within the slabs' error,
     // such as a small hopper's cone under the ring its legs carry, stays unsearched.)
     void search_unreached() {
-        const double volume = std::abs(mesh_volume(mesh_));
-        if (volume - searched_ <= sweep_slack(nodes_, links_, branches_, p_.step_mm, volume))
+        if (volume_ - searched_ <= sweep_slack(nodes_, links_, branches_, p_.step_mm, volume_))
             return;
         Grid& g = grid(Vector3d::UnitZ());
         for (std::size_t k = 1; k < g.count; ++k) {
@@ -1178,6 +1181,7 @@ private:
     const TriangleMesh& mesh_;
     AxisParams p_;
     bool derived_threshold_;
+    double volume_;  // the mesh's, mm^3
     const std::function<void(double)>& checkpoint_;
     double searched_ = 0.0;  // the nodes' slabs so far, mm^3
     std::vector<AxisNode> nodes_;
@@ -1233,6 +1237,8 @@ double derive_axis_step(const TriangleMesh& mesh) {
 
 namespace {
 
+// `checkpoint(fraction)` is called now and then with the volume swept so far over the part's
+// (at most 0.99: the slabs may sweep a little more than the volume); it may throw to stop.
 CentroidalAxis compute_axis(const TriangleMesh& mesh, const AxisParams& params,
                             const std::function<void(double)>& checkpoint) {
     if (mesh.empty()) throw Error(ErrorCode::EmptyInput, "centroidal axis: the mesh is empty");
@@ -1289,7 +1295,11 @@ CentroidalAxis compute_axis(const TriangleMesh& mesh, const AxisParams& params,
         base = p.base_z_mm;
     }
     p.base_z_mm = base;
-    CentroidalAxis axis = Search(mesh, p, derived_threshold, checkpoint).run(base);
+    const double volume = std::abs(mesh_volume(mesh));
+    const std::function<void(double)> swept = [&](double searched) {
+        checkpoint(volume > 0.0 ? std::min(searched / volume, 0.99) : 0.0);
+    };
+    CentroidalAxis axis = Search(mesh, p, derived_threshold, volume, swept).run(base);
     if (axis.nodes.empty()) {
         std::ostringstream msg;
         msg << "centroidal axis: no section of the part has an area over " << p.min_region_area_mm2
@@ -1312,12 +1322,8 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
 CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params,
                                const Progress& progress) {
     const Progress marching = progress.span(0.0, 1.0, "centroidal axis");
-    // The fraction done is the volume swept over the part's.
-    const double volume = std::abs(mesh_volume(mesh));
-    // The slabs may sweep a little more than the volume: 1 only when done.
-    CentroidalAxis axis = compute_axis(mesh, params, [&](double searched) {
-        marching(volume > 0.0 ? std::min(searched / volume, 0.99) : 0.0);
-    });
+    // The fraction done is the volume swept over the part's; 1 only when done.
+    CentroidalAxis axis = compute_axis(mesh, params, marching);
     marching(1.0);
     return axis;
 }

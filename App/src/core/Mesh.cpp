@@ -22,6 +22,15 @@ namespace {
 
 bool finite(const Eigen::Vector3d& p) { return p.allFinite(); }
 
+// Triangle t's share of the mesh's volume: the signed volume of the tetrahedron it makes with
+// `apex` (volume_apex(mesh)).
+double volume_share(const TriangleMesh& mesh, const Eigen::Vector3i& t,
+                    const Eigen::Vector3d& apex) {
+    return tetra_volume(mesh.vertices[std::size_t(t[0])] - apex,
+                        mesh.vertices[std::size_t(t[1])] - apex,
+                        mesh.vertices[std::size_t(t[2])] - apex);
+}
+
 // Generalised winding number of `point` about the triangles `tris` of `mesh`: the sum of their
 // signed solid angles over 4 pi (Van Oosterom & Strackee). +1 inside an outward shell, -1 inside
 // an inward one, 0 outside, +-1/2 on it.
@@ -84,7 +93,7 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
             const Eigen::Vector3d &p0 = mesh.vertices[std::size_t(t[0])],
                                   &p1 = mesh.vertices[std::size_t(t[1])],
                                   &p2 = mesh.vertices[std::size_t(t[2])];
-            volume[s] += tetra_volume(p0 - apex, p1 - apex, p2 - apex);
+            volume[s] += volume_share(mesh, t, apex);
             box[s].extend(p0);
             box[s].extend(p1);
             box[s].extend(p2);
@@ -155,10 +164,7 @@ void require_one_solid(const TriangleMesh& mesh, const std::string& what) {
 double mesh_volume(const TriangleMesh& mesh) {
     double volume = 0.0;
     const Eigen::Vector3d apex = volume_apex(mesh);
-    for (const Eigen::Vector3i& t : mesh.triangles)
-        volume += tetra_volume(mesh.vertices[std::size_t(t[0])] - apex,
-                               mesh.vertices[std::size_t(t[1])] - apex,
-                               mesh.vertices[std::size_t(t[2])] - apex);
+    for (const Eigen::Vector3i& t : mesh.triangles) volume += volume_share(mesh, t, apex);
     return volume;
 }
 
@@ -193,8 +199,7 @@ MeshReport check_mesh(const TriangleMesh& mesh) {
             const auto lo = std::min(a, b), hi = std::max(a, b);
             uses.push_back({(std::uint64_t(lo) << 32) | hi, a < b ? 1 : -1});
         }
-        r.volume_mm3 += tetra_volume(mesh.vertices[t[0]] - apex, mesh.vertices[t[1]] - apex,
-                                     mesh.vertices[t[2]] - apex);
+        r.volume_mm3 += volume_share(mesh, t, apex);
     }
     std::sort(uses.begin(), uses.end(),
               [](const EdgeUse& x, const EdgeUse& y) { return x.key < y.key; });

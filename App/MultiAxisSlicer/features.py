@@ -467,6 +467,12 @@ class DecompositionFeature(_EngineFeature):
         obj.Shape = Part.makeCompound([c.shape for c in result])
 
 
+def decomposed_part(obj):
+    """The part a Decomposition object splits: its Source, else its Axis object's (None for
+    neither). Unchecked: decomposition_inputs() says what is wrong with the links."""
+    return obj.Source if obj.Source is not None else getattr(obj.Axis, "Source", None)
+
+
 def decomposition_inputs(obj):
     """(source, keyword arguments of ``MultiAxisSlicer.decompose``) of a Decomposition object, from
     its properties and its Axis object's. Raises ValueError / TypeError for inconsistent links."""
@@ -474,7 +480,7 @@ def decomposition_inputs(obj):
     if axis_obj is not None and not is_centroidal_axis(axis_obj):
         raise TypeError("{}: Axis '{}' is not a CentroidalAxis object".format(
             obj.Label, axis_obj.Label))
-    source = obj.Source if obj.Source is not None else getattr(axis_obj, "Source", None)
+    source = decomposed_part(obj)
     if axis_obj is not None and axis_obj.Source is not None and source != axis_obj.Source:
         raise ValueError("{}: Axis '{}' belongs to '{}', not to the Source '{}'".format(
             obj.Label, axis_obj.Label, axis_obj.Source.Label, source.Label))

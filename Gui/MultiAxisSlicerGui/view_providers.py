@@ -161,12 +161,6 @@ def component_colour(index):
     return COMPONENT_COLOURS[index % len(COMPONENT_COLOURS)]
 
 
-def _decomposed_part(decomposition):
-    """The part a Decomposition object splits: its Source, else its Axis object's."""
-    source = getattr(decomposition, "Source", None)
-    return source if source is not None else getattr(decomposition.Axis, "Source", None)
-
-
 class ViewProviderDecomposition(_Stateless):
     """Tree icon and colours of a ``Decomposition`` object. Its Component objects are its children
     in the tree (Component001, ... in tree order) and are what the 3D view shows; the object's own
@@ -203,9 +197,9 @@ class ViewProviderDecomposition(_Stateless):
         obj = vobj.Object
         for c in features.components_of(obj):
             obj.Document.removeObject(c.Name)
-        source = _decomposed_part(obj)
+        source = features.decomposed_part(obj)
         others = [o for o in obj.Document.Objects if o is not obj
-                  and features.is_decomposition(o) and _decomposed_part(o) is source]
+                  and features.is_decomposition(o) and features.decomposed_part(o) is source]
         if source is not None and source.ViewObject is not None and not others:
             source.ViewObject.Visibility = True
         return True

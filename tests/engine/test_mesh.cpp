@@ -26,6 +26,17 @@ ErrorCode code_of(const std::function<void()>& f) {
     return ErrorCode::Cancelled;
 }
 
+// "code: message" of the mas::Error `f` throws ("", and a failure, when it throws none).
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const mas::Error& e) {
+        return std::string(to_string(e.code())) + ": " + e.what();
+    }
+    ADD_FAILURE() << "no mas::Error thrown";
+    return "";
+}
+
 std::string temp_file(const std::string& name, const std::string& text) {
     const std::string path = ::testing::TempDir() + name;
     std::ofstream(path) << text;
@@ -60,13 +71,9 @@ TEST(MeshCheck, FlippedTriangleIsInconsistent) {
 TEST(MeshCheck, NanVertexIsRejectedByName) {
     auto m = mas::test::box_mesh(0, 0, 0, 1, 1, 1);
     m.vertices[3].x() = std::numeric_limits<double>::quiet_NaN();
-    try {
-        mas::require_closed_mesh(m, "part.stl");
-        FAIL();
-    } catch (const mas::Error& e) {
-        EXPECT_EQ(e.code(), ErrorCode::NonFiniteCoordinate);
-        EXPECT_NE(std::string(e.what()).find("part.stl"), std::string::npos);
-    }
+    const std::string error = error_of([&] { mas::require_closed_mesh(m, "part.stl"); });
+    EXPECT_EQ(error.rfind("non_finite_coordinate: ", 0), 0u) << error;
+    EXPECT_NE(error.find("part.stl"), std::string::npos) << error;
 }
 
 TEST(MeshCheck, VolumesOfPartsFarFromTheOriginAreExact) {
@@ -89,15 +96,9 @@ TEST(MeshCheck, CoordinatesBeyondTheRangeAreRejectedByName) {
     auto far = mas::test::box_mesh(-1e9, 0, 0, 1, 1, 1);
     EXPECT_NO_THROW(mas::require_closed_mesh(far, "far.stl"));
     far = mas::test::box_mesh(0, 0, 0, 1, 1, 2e9);
-    try {
-        mas::require_closed_mesh(far, "tall.stl");
-        FAIL();
-    } catch (const mas::Error& e) {
-        EXPECT_EQ(e.code(), ErrorCode::NonFiniteCoordinate);
-        EXPECT_EQ(std::string(e.what()),
-                  "tall.stl: a vertex lies 2e+09 mm from the origin along an axis, beyond the "
-                  "1e+09 mm (1000 km) the engine works within");
-    }
+    EXPECT_EQ(error_of([&] { mas::require_closed_mesh(far, "tall.stl"); }),
+              "non_finite_coordinate: tall.stl: a vertex lies 2e+09 mm from the origin along an "
+              "axis, beyond the 1e+09 mm (1000 km) the engine works within");
     auto huge = mas::test::box_mesh(0, 0, 0, 1e301, 1e301, 1e301);
     EXPECT_EQ(code_of([&] { mas::require_closed_mesh(huge, "huge"); }),
               ErrorCode::NonFiniteCoordinate);
@@ -108,14 +109,9 @@ TEST(MeshCheck, EmptyMeshIsEmptyInput) {
     EXPECT_EQ(code_of([&] { mas::require_closed_mesh(m, "x"); }), ErrorCode::EmptyInput);
     // Closed and consistent, but folded flat: its top lies on its bottom.
     auto flat = mas::test::box_mesh(0, 0, 0, 10, 10, 0);
-    try {
-        mas::require_closed_mesh(flat, "flat.off");
-        FAIL();
-    } catch (const mas::Error& e) {
-        EXPECT_EQ(e.code(), ErrorCode::EmptyInput);
-        EXPECT_EQ(std::string(e.what()),
-                  "flat.off: the mesh encloses no volume (0 mm^3 within a box 14.1421 mm across)");
-    }
+    EXPECT_EQ(error_of([&] { mas::require_closed_mesh(flat, "flat.off"); }),
+              "empty_input: flat.off: the mesh encloses no volume (0 mm^3 within a box 14.1421 "
+              "mm across)");
     auto thin = mas::test::box_mesh(0, 0, 0, 1000, 1000, 1e-3);  // a foil still holds material
     EXPECT_NO_THROW(mas::require_closed_mesh(thin, "foil.off"));
 }
@@ -246,14 +242,9 @@ TEST(ReadOff, BadFilesNameTheProblem) {
         ErrorCode::NonFiniteCoordinate);
 }
 
+// error_of() reading `text` as an OFF file.
 std::string message_of(const std::string& text) {
-    try {
-        mas::read_off(temp_file("bad.off", text));
-    } catch (const mas::Error& e) {
-        return std::string(to_string(e.code())) + ": " + e.what();
-    }
-    ADD_FAILURE() << "read without error: " << text;
-    return "";
+    return error_of([&] { mas::read_off(temp_file("bad.off", text)); });
 }
 
 TEST(ReadOff, CountsTheFileCannotHoldAreRefusedBeforeAnythingIsAllocated) {

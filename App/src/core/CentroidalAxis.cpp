@@ -295,6 +295,14 @@ Regions2 keep_larger(Regions2 regions, double min_area) {
 // feature the axis resolves.
 constexpr double kHairline = 1e-4;  // mm
 
+// Per node, whether it is a root's first node.
+std::vector<char> root_starts(std::size_t node_count, const std::vector<AxisBranch>& branches) {
+    std::vector<char> out(node_count, 0);
+    for (const auto& br : branches)
+        if (br.parent < 0 && !br.nodes.empty()) out[std::size_t(br.nodes.front())] = 1;
+    return out;
+}
+
 // How far the slabs' volume (the sum of area x thickness) may stray from the part's: a slab takes
 // the section at its lower plane over one step, so it is off by at most the section's change to
 // the next node, and a branch's last slab (unless cut short at the part's extent) by at most its
@@ -303,9 +311,7 @@ constexpr double kHairline = 1e-4;  // mm
 // sweeps 5536 mm^3 of 4183). Plus 5 % of the volume.
 double sweep_slack(const std::vector<AxisNode>& nodes, const std::vector<AxisLink>& links,
                    const std::vector<AxisBranch>& branches, double step, double volume) {
-    std::vector<char> root_start(nodes.size(), 0);
-    for (const auto& br : branches)
-        if (br.parent < 0 && !br.nodes.empty()) root_start[std::size_t(br.nodes.front())] = 1;
+    const std::vector<char> root_start = root_starts(nodes.size(), branches);
     double slack = 0.05 * volume;
     std::vector<char> continues(nodes.size(), 0);
     for (const auto& l : links) {
@@ -1354,9 +1360,7 @@ void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& b
     // A node's slab starts on its plane, or (a march's first node) at most a step and eps before;
     // a root's first node's at the base plane, however far below (a part standing on a tip).
     const double slab_tol = 1e-9 * (1.0 + box.diagonal().norm());
-    std::vector<char> root_start(axis.nodes.size(), 0);
-    for (const auto& br : axis.branches)
-        if (br.parent < 0) root_start[std::size_t(br.nodes.front())] = 1;
+    const std::vector<char> root_start = root_starts(axis.nodes.size(), axis.branches);
     for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
         const auto& n = axis.nodes[i];
         const bool from_base =

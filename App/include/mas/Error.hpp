@@ -19,6 +19,7 @@ enum class ErrorCode {
     OpenMesh,             // a triangle mesh with holes or non-manifold edges
     NonFiniteCoordinate,  // NaN, infinite or out-of-range (kMaxCoordinateMm) coordinates
     GeometryFailure,      // the geometry kernel failed on valid-looking input
+    UnreachableOrientation,  // a tool axis the machine's rotary axes cannot turn to the nozzle
     Cancelled,            // the caller cancelled a long computation
 };
 

@@ -26,6 +26,8 @@ const char* to_string(ErrorCode code) {
             return "non_finite_coordinate";
         case ErrorCode::GeometryFailure:
             return "geometry_failure";
+        case ErrorCode::UnreachableOrientation:
+            return "unreachable_orientation";
         case ErrorCode::Cancelled:
             return "cancelled";
     }

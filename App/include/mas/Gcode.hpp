@@ -1,0 +1,107 @@
+// The post-processor: a sliced part's deposition paths as a 5-axis G-code program, in LinuxCNC's
+// RS274NGC dialect, for a machine whose nozzle stays vertical (machine +Z) while a tilting rotary
+// table turns the part under it: A tilts the table about X, C turns the part about the table's
+// normal (LinuxCNC's xyzac-trt-kins).
+//
+// How it reads the machine, and the choices made (each tested in tests/engine/test_gcode.cpp and,
+// through LinuxCNC's rs274 interpreter, in tests/cli/test_cli.py):
+// - Coordinates. X Y Z are the part's own coordinates in mm: the nozzle tip's position in the
+//   table's frame, which is what a controller with tool-centre-point kinematics takes
+//   (xyzac-trt-kins moves the joints so that the tip follows them whatever A and C are). Set the
+//   work offset (G54) so that the part's origin is where the part sits on the table. A and C are in
+//   degrees.
+// - Orientation. Each layer is deposited with its normal n, the tool axis, turned to machine +Z:
+//   towards the nozzle, which points down. xyzac-trt-kins maps a part vector v to Rx(A) Rz(C) v, so
+//   with the tilt theta = atan2(hypot(n.x, n.y), n.z) in [0, 180] degrees, n needs either
+//   A = theta, C = atan2(n.x, n.y), or A = -theta, C + 180. Of the solutions within the limits, the
+//   one nearest the previous (A, C) is taken (the sum of both moves), C moved by the multiple of
+//   360 that brings it nearest the previous C within its limits. A vertical n (theta under 1e-9
+//   rad) keeps the previous C. A layer no solution reaches is an error (unreachable_orientation)
+//   naming the layer, its tool axis, the tilt it needs and the limits.
+// - Deposition. A deposit path runs at G1 with the deposition output on: M62 P<n> switches it
+//   with the start of the path's first move, M63 P<n> off with the start of the retract after it.
+//   M65 P<n> switches it off at once at the start and at the end of the program.
+// - Feed. A constant powder or wire rate builds a bead the thicker the slower the nozzle moves, so
+//   where the deposit under a path is t thick (a tilted layer's thickness varies across it) the
+//   feed is F = feed x reference / t, kept within [feed / max_feed_ratio, feed x max_feed_ratio]
+//   (moves held at a bound are counted). A segment across which t changes by more than a twentieth
+//   is cut into pieces that each change by at most that, each at the feed of its middle.
+//   max_feed_ratio = 1 keeps the feed constant.
+// - Travel, within a layer and between layers of one component: G0 back along the tool axis by
+//   `clearance_mm`, G0 to `clearance_mm` along the next tool axis from the next path's start
+//   (turning the table on the way), G1 down to it at the feed. Both ends lie above the plane on top
+//   of the last layer deposited, so the whole move does.
+// - Travel between components, and to the first and from the last layer: out along the tool axis
+//   to a sphere holding everything the program deposits (every layer's outline, and its thickness
+//   under it) plus `clearance_mm`, along that sphere's meridians over its top (G0 steps of at most
+//   10 degrees, the table turning in proportion), and in along the next tool axis. The meridians
+//   keep the route's height between its two ends and the sphere's top; a tool axis tilted past
+//   90 degrees from low material can still take it below the build plate's level.
+// - Not checked: the nozzle's body against what is deposited (the paper's Eq. 10), and the X Y Z
+//   travel limits, which depend on where the table pivots.
+#pragma once
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "mas/Progress.hpp"
+#include "mas/SlicePart.hpp"
+#include "mas/Toolpath.hpp"
+
+namespace mas {
+
+struct MachineParams {
+    // Travel limits of the table's axes, degrees (LinuxCNC's sample xyzac-trt.ini).
+    double a_min_deg = -100.0, a_max_deg = 50.0;
+    double c_min_deg = -36000.0, c_max_deg = 36000.0;
+    double feed_mm_min =
+        600.0;  // deposition feed where the deposit is reference_thickness_mm thick
+    // 0: half-way between the thinnest and the thickest deposit of the program.
+    double reference_thickness_mm = 0.0;
+    double max_feed_ratio = 4.0;  // the feed stays within [feed / ratio, feed x ratio]; >= 1
+    double clearance_mm = 2.0;    // retract along the tool axis, and the margin of the sphere; > 0
+    int deposit_output = 0;       // the digital output (M62/M63/M65 P) that switches deposition
+};
+
+// Throws mas::Error(InvalidArgument) naming the first parameter out of its range.
+void validate(const MachineParams& params);
+
+// What the post-processor reads of one layer.
+struct GcodeLayer {
+    int component = 0;
+    Eigen::Vector3d tool_axis = Eigen::Vector3d::UnitZ();  // unit length
+    std::vector<ToolPath> paths;                           // travel moves are not followed
+    std::vector<Eigen::Vector3d> outline;  // every point of its regions' loops, on its plane
+    double max_thickness_mm = 0.0;         // the deposit under its plane reaches no deeper
+};
+
+// The layers of a sliced part, in their build order.
+std::vector<GcodeLayer> gcode_layers(const SlicedPart& part);
+
+// The table's angles (degrees) that turn `tool_axis` (unit length) to machine +Z, nearest to
+// (previous_a, previous_c) as above; false when no solution lies within the limits.
+struct TableAngles {
+    double a_deg = 0.0, c_deg = 0.0;
+};
+bool table_angles(const Eigen::Vector3d& tool_axis, const MachineParams& params, double previous_a,
+                  double previous_c, TableAngles& out);
+
+struct GcodeStats {
+    int lines = 0;
+    int deposit_moves = 0;       // G1 moves with deposition on
+    int feed_limited_moves = 0;  // of those, held at a bound of the feed range
+    int reorientations = 0;      // moves that turn the table
+    double a_min_deg = 0.0, a_max_deg = 0.0, c_min_deg = 0.0, c_max_deg = 0.0;  // used
+    double deposit_length_mm = 0.0;
+    double deposit_time_min = 0.0;  // the deposit moves at their feeds
+    double rapid_length_mm = 0.0;   // of the tool tip, in the part's frame
+    double reference_thickness_mm = 0.0;
+};
+
+// The program. Throws InvalidArgument for bad params or a layer without a unit tool axis,
+// EmptyInput when no layer deposits anything, Error(UnreachableOrientation) as above. `progress`
+// is reported per layer and may cancel.
+std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachineParams& params,
+                        GcodeStats* stats = nullptr, const Progress& progress = {});
+
+}  // namespace mas

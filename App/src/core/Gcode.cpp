@@ -1,0 +1,459 @@
+// The post-processor (see Gcode.hpp).
+#include "mas/Gcode.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "mas/Error.hpp"
+
+namespace mas {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegree = kPi / 180.0;
+constexpr double kVerticalTilt = 1e-9;   // rad: a tool axis this close to +Z keeps C
+constexpr double kThicknessStep = 0.05;  // a piece of a deposit move changes t by at most this
+constexpr double kArcStepDeg = 10.0;     // the longest step of a route around the sphere
+constexpr double kSamePoint = 1e-6;      // mm: a path starting where the last ended continues it
+constexpr double kLimitSlack = 1e-9;     // degrees: rounding past a limit still reaches it
+
+std::string fixed(double value, int decimals) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    std::string s = buffer;
+    // "-0.0000" is 0.
+    if (s.front() == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+    return s;
+}
+
+std::string vector_text(Eigen::Vector3d v) {
+    v += Eigen::Vector3d::Zero();  // -0 reads as 0
+    return format_number(v.x()) + " " + format_number(v.y()) + " " + format_number(v.z());
+}
+
+// The G-code text and the machine's modal state; words that did not change are left out, X Y Z
+// excepted.
+class Program {
+public:
+    explicit Program(GcodeStats& stats) : stats_(stats) {}
+
+    void line(const std::string& text) {
+        out_ << text << '\n';
+        ++stats_.lines;
+    }
+    void comment(const std::string& text) { line("(" + text + ")"); }
+
+    // G0 to `p` with the table at `angles`.
+    void rapid(const Eigen::Vector3d& p, const TableAngles& angles) {
+        if (started_) stats_.rapid_length_mm += (p - position_).norm();
+        move("G0", p, angles, std::string());
+    }
+    // G1 to `p` at `feed` mm/min, the table where it is.
+    void feed(const Eigen::Vector3d& p, double feed_mm_min) {
+        move("G1", p, angles_, fixed(feed_mm_min, 1));
+    }
+
+    const Eigen::Vector3d& position() const { return position_; }
+    const TableAngles& angles() const { return angles_; }
+    bool started() const { return started_; }
+    std::string text() const { return out_.str(); }
+
+private:
+    void move(const char* code, const Eigen::Vector3d& p, const TableAngles& angles,
+              const std::string& feed) {
+        std::string s = code;
+        s += " X" + fixed(p.x(), 4) + " Y" + fixed(p.y(), 4) + " Z" + fixed(p.z(), 4);
+        const std::string a = fixed(angles.a_deg, 4), c = fixed(angles.c_deg, 4);
+        const bool turns = !started_ || a != a_word_ || c != c_word_;
+        if (a != a_word_ || !started_) s += " A" + a;
+        if (c != c_word_ || !started_) s += " C" + c;
+        if (!feed.empty() && feed != f_word_) {
+            s += " F" + feed;
+            f_word_ = feed;
+        }
+        if (turns && started_) ++stats_.reorientations;
+        if (!started_) {
+            stats_.a_min_deg = stats_.a_max_deg = angles.a_deg;
+            stats_.c_min_deg = stats_.c_max_deg = angles.c_deg;
+        }
+        stats_.a_min_deg = std::min(stats_.a_min_deg, angles.a_deg);
+        stats_.a_max_deg = std::max(stats_.a_max_deg, angles.a_deg);
+        stats_.c_min_deg = std::min(stats_.c_min_deg, angles.c_deg);
+        stats_.c_max_deg = std::max(stats_.c_max_deg, angles.c_deg);
+        a_word_ = a;
+        c_word_ = c;
+        angles_ = angles;
+        position_ = p;
+        started_ = true;
+        line(s);
+    }
+
+    GcodeStats& stats_;
+    std::ostringstream out_;
+    Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
+    TableAngles angles_;
+    std::string a_word_, c_word_, f_word_;
+    bool started_ = false;
+};
+
+// The sphere every route between components keeps to.
+struct Sphere {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double radius = 0.0;
+
+    // Where the ray from `q` (inside) along the unit `direction` leaves the sphere.
+    Eigen::Vector3d exit(const Eigen::Vector3d& q, const Eigen::Vector3d& direction) const {
+        const Eigen::Vector3d d = q - centre;
+        const double b = d.dot(direction);
+        const double c = d.squaredNorm() - radius * radius;
+        return q + direction * (-b + std::sqrt(std::max(0.0, b * b - c)));
+    }
+};
+
+// Unit vectors from `from` to `to` along the great circle through them, at most kArcStepDeg
+// apart, `to` included, `from` not.
+std::vector<Eigen::Vector3d> arc(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    const double angle = std::acos(std::clamp(from.dot(to), -1.0, 1.0));
+    std::vector<Eigen::Vector3d> out;
+    if (angle < 1e-12) return out;
+    Eigen::Vector3d ortho = to - from * from.dot(to);
+    if (ortho.norm() < 1e-12) {  // opposite: any great circle
+        ortho = from.unitOrthogonal();
+    }
+    ortho.normalize();
+    const int steps = std::max(1, static_cast<int>(std::ceil(angle / (kArcStepDeg * kDegree))));
+    for (int i = 1; i < steps; ++i) {
+        const double phi = angle * i / steps;
+        out.push_back(from * std::cos(phi) + ortho * std::sin(phi));
+    }
+    out.push_back(to);
+    return out;
+}
+
+std::string layer_name(std::size_t index, const GcodeLayer& layer) {
+    return "layer " + std::to_string(index) + " (component " + std::to_string(layer.component) +
+           ")";
+}
+
+}  // namespace
+
+void validate(const MachineParams& p) {
+    auto fail = [](const std::string& what) { throw Error(ErrorCode::InvalidArgument, what); };
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (!finite(p.a_min_deg) || !finite(p.a_max_deg) || !(p.a_min_deg < p.a_max_deg))
+        fail("machine: A's limits must be finite with min < max, got " +
+             format_number(p.a_min_deg) + " to " + format_number(p.a_max_deg) + " degrees");
+    if (!finite(p.c_min_deg) || !finite(p.c_max_deg) || !(p.c_min_deg < p.c_max_deg))
+        fail("machine: C's limits must be finite with min < max, got " +
+             format_number(p.c_min_deg) + " to " + format_number(p.c_max_deg) + " degrees");
+    if (!finite(p.feed_mm_min) || !(p.feed_mm_min > 0.0))
+        fail("machine: feed must be > 0 mm/min, got " + format_number(p.feed_mm_min));
+    if (!finite(p.reference_thickness_mm) || !(p.reference_thickness_mm >= 0.0))
+        fail("machine: reference thickness must be >= 0 mm (0: derived), got " +
+             format_number(p.reference_thickness_mm));
+    if (!finite(p.max_feed_ratio) || !(p.max_feed_ratio >= 1.0))
+        fail("machine: max feed ratio must be >= 1, got " + format_number(p.max_feed_ratio));
+    if (!finite(p.clearance_mm) || !(p.clearance_mm > 0.0))
+        fail("machine: clearance must be > 0 mm, got " + format_number(p.clearance_mm));
+    if (p.deposit_output < 0 || p.deposit_output > 63)
+        fail("machine: the deposition output must be a digital output 0 to 63, got " +
+             std::to_string(p.deposit_output));
+}
+
+std::vector<GcodeLayer> gcode_layers(const SlicedPart& part) {
+    std::vector<GcodeLayer> out;
+    out.reserve(part.layers.size());
+    for (std::size_t i = 0; i < part.layers.size(); ++i) {
+        const Layer& layer = part.layers[i];
+        GcodeLayer g;
+        g.component = layer.component;
+        g.tool_axis = i < part.toolpaths.size() ? part.toolpaths[i].tool_axis : layer.plane.normal;
+        if (i < part.toolpaths.size()) g.paths = part.toolpaths[i].paths;
+        for (std::size_t r = 0; r < layer.regions.size(); ++r)
+            for (const auto& loop : layer.loops_3d(r))
+                g.outline.insert(g.outline.end(), loop.begin(), loop.end());
+        g.max_thickness_mm = layer.max_thickness_mm;
+        out.push_back(std::move(g));
+    }
+    return out;
+}
+
+bool table_angles(const Eigen::Vector3d& n, const MachineParams& p, double previous_a,
+                  double previous_c, TableAngles& out) {
+    const double r = std::hypot(n.x(), n.y());
+    const bool vertical = std::atan2(r, n.z()) < kVerticalTilt;
+    const double tilt = vertical ? 0.0 : std::atan2(r, n.z()) / kDegree;
+    const double c0 = vertical ? previous_c : std::atan2(n.x(), n.y()) / kDegree;
+    bool found = false;
+    double best = std::numeric_limits<double>::infinity();
+    for (const double sign : {1.0, -1.0}) {
+        if (vertical && sign < 0.0) break;
+        double a = sign * tilt;
+        if (a < p.a_min_deg - kLimitSlack || a > p.a_max_deg + kLimitSlack) continue;
+        a = std::clamp(a, p.a_min_deg, p.a_max_deg);
+        const double c = sign > 0.0 ? c0 : c0 + 180.0;
+        // C + 360 k nearest the previous C, else the nearest within the limits.
+        double k = std::round((previous_c - c) / 360.0);
+        if (c + 360.0 * k > p.c_max_deg) k = std::floor((p.c_max_deg - c) / 360.0);
+        if (c + 360.0 * k < p.c_min_deg) k = std::ceil((p.c_min_deg - c) / 360.0);
+        const double cc = c + 360.0 * k;
+        if (cc > p.c_max_deg || cc < p.c_min_deg) continue;
+        const double cost = std::abs(a - previous_a) + std::abs(cc - previous_c);
+        if (cost < best) {
+            best = cost;
+            out.a_deg = a;
+            out.c_deg = cc;
+            found = true;
+        }
+    }
+    return found;
+}
+
+std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachineParams& params,
+                        GcodeStats* stats_out, const Progress& progress) {
+    validate(params);
+    // What the program deposits, and where.
+    std::vector<std::size_t> used;
+    double t_min = std::numeric_limits<double>::infinity(), t_max = 0.0;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        const GcodeLayer& layer = layers[i];
+        const Eigen::Vector3d& n = layer.tool_axis;
+        if (!n.allFinite() || std::abs(n.norm() - 1.0) > 1e-6)
+            throw Error(ErrorCode::InvalidArgument, layer_name(i, layer) + ": its tool axis (" +
+                                                        vector_text(n) + ") is not a unit vector");
+        if (!std::isfinite(layer.max_thickness_mm) || layer.max_thickness_mm < 0.0)
+            throw Error(ErrorCode::InvalidArgument, layer_name(i, layer) + ": its thickness " +
+                                                        format_number(layer.max_thickness_mm) +
+                                                        " mm is not >= 0");
+        bool deposits = false;
+        for (const ToolPath& path : layer.paths) {
+            if (!path.deposit() || path.points.empty()) continue;
+            if (path.thickness_mm.size() != path.points.size())
+                throw Error(ErrorCode::InvalidArgument,
+                            layer_name(i, layer) + ": a path has " +
+                                std::to_string(path.points.size()) + " points and " +
+                                std::to_string(path.thickness_mm.size()) + " thicknesses");
+            for (std::size_t k = 0; k < path.points.size(); ++k) {
+                const double t = path.thickness_mm[k];
+                if (!path.points[k].allFinite() || !std::isfinite(t))
+                    throw Error(ErrorCode::NonFiniteCoordinate,
+                                layer_name(i, layer) +
+                                    ": a path point or its thickness is not "
+                                    "finite");
+                lo = lo.cwiseMin(path.points[k]);
+                hi = hi.cwiseMax(path.points[k]);
+                t_min = std::min(t_min, t);
+                t_max = std::max(t_max, t);
+            }
+            deposits = true;
+        }
+        for (const Eigen::Vector3d& q : layer.outline) {
+            if (!q.allFinite())
+                throw Error(ErrorCode::NonFiniteCoordinate,
+                            layer_name(i, layer) + ": an outline point is not finite");
+            lo = lo.cwiseMin(q);
+            hi = hi.cwiseMax(q);
+        }
+        if (deposits) used.push_back(i);
+    }
+    if (used.empty()) throw Error(ErrorCode::EmptyInput, "G-code: no layer has a path to deposit");
+
+    GcodeStats stats;
+    const double reference = params.reference_thickness_mm > 0.0
+                                 ? params.reference_thickness_mm
+                                 : std::max(0.5 * (t_min + t_max), 1e-9);
+    stats.reference_thickness_mm = reference;
+    const double f_lo = params.feed_mm_min / params.max_feed_ratio;
+    const double f_hi = params.feed_mm_min * params.max_feed_ratio;
+    // Thicknesses beyond these give a feed at a bound.
+    const double t_lo = reference / params.max_feed_ratio, t_hi = reference * params.max_feed_ratio;
+
+    Sphere sphere;
+    sphere.centre = 0.5 * (lo + hi);
+    for (const std::size_t i : used) {
+        const GcodeLayer& layer = layers[i];
+        auto reach = [&](const Eigen::Vector3d& q) {
+            sphere.radius =
+                std::max(sphere.radius,
+                         (q - sphere.centre).norm() + layer.max_thickness_mm + params.clearance_mm);
+        };
+        for (const Eigen::Vector3d& q : layer.outline) reach(q);
+        for (const ToolPath& path : layer.paths)
+            if (path.deposit())
+                for (const Eigen::Vector3d& q : path.points) reach(q);
+    }
+    const Eigen::Vector3d top = Eigen::Vector3d::UnitZ();
+
+    // The table's angles of every layer used, checked before a line is written.
+    std::vector<TableAngles> angles(layers.size());
+    {
+        TableAngles previous{std::clamp(0.0, params.a_min_deg, params.a_max_deg),
+                             std::clamp(0.0, params.c_min_deg, params.c_max_deg)};
+        for (const std::size_t i : used) {
+            const GcodeLayer& layer = layers[i];
+            if (!table_angles(layer.tool_axis, params, previous.a_deg, previous.c_deg, angles[i])) {
+                const Eigen::Vector3d& n = layer.tool_axis;
+                const double tilt = std::atan2(std::hypot(n.x(), n.y()), n.z()) / kDegree;
+                throw Error(ErrorCode::UnreachableOrientation,
+                            layer_name(i, layer) + ": its tool axis (" + vector_text(n) +
+                                ") needs the table tilted " + format_number(tilt, 4) +
+                                " degrees one way or the other, beyond A's limits " +
+                                format_number(params.a_min_deg) + " to " +
+                                format_number(params.a_max_deg) + " (C " +
+                                format_number(params.c_min_deg) + " to " +
+                                format_number(params.c_max_deg) + ")");
+            }
+            previous = angles[i];
+        }
+    }
+
+    Program g(stats);
+    const std::string out_n = " P" + std::to_string(params.deposit_output);
+    int component_count = 0;
+    {
+        std::vector<int> seen;
+        for (const std::size_t i : used)
+            if (std::find(seen.begin(), seen.end(), layers[i].component) == seen.end())
+                seen.push_back(layers[i].component);
+        component_count = static_cast<int>(seen.size());
+    }
+    g.comment("Multi-Axis Slicer: " + std::to_string(used.size()) + " layers of " +
+              std::to_string(component_count) + " components");
+    g.comment("machine: tilting rotary table XYZAC (LinuxCNC xyzac-trt-kins), A " +
+              format_number(params.a_min_deg) + " to " + format_number(params.a_max_deg) +
+              " deg, C " + format_number(params.c_min_deg) + " to " +
+              format_number(params.c_max_deg) + " deg");
+    g.comment("X Y Z: the part's coordinates in mm (set G54 to the part's origin on the table)");
+    g.comment("deposition: digital output" + out_n + ", feed " + format_number(params.feed_mm_min) +
+              " mm/min at " + format_number(reference, 4) + " mm thick, within " +
+              format_number(f_lo) + " to " + format_number(f_hi) + " mm/min");
+    g.line("G21 G90 G94 G17 G40 G49 G54");
+    g.line("G64 P0.01");
+    g.line("M65" + out_n);
+
+    // Around the sphere over its top from `from` (on it) to `to` (on it), the table turning from
+    // the angles at `from` to `to_angles` in proportion to the way.
+    auto round_the_top = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                             const TableAngles& to_angles) {
+        const TableAngles start = g.angles();
+        const Eigen::Vector3d u0 = (from - sphere.centre) / sphere.radius;
+        const Eigen::Vector3d u1 = (to - sphere.centre) / sphere.radius;
+        std::vector<Eigen::Vector3d> way = arc(u0, top);
+        const std::vector<Eigen::Vector3d> down = arc(top, u1);
+        way.insert(way.end(), down.begin(), down.end());
+        for (std::size_t k = 0; k < way.size(); ++k) {
+            const double s = static_cast<double>(k + 1) / static_cast<double>(way.size());
+            const TableAngles at{start.a_deg + s * (to_angles.a_deg - start.a_deg),
+                                 start.c_deg + s * (to_angles.c_deg - start.c_deg)};
+            g.rapid(k + 1 == way.size() ? to : sphere.centre + sphere.radius * way[k], at);
+        }
+    };
+
+    bool depositing = false;
+    auto stop_deposit = [&] {
+        if (!depositing) return;
+        g.line("M63" + out_n);
+        depositing = false;
+    };
+
+    int previous_component = 0;
+    bool first = true;
+    for (std::size_t u = 0; u < used.size(); ++u) {
+        const std::size_t i = used[u];
+        progress(static_cast<double>(u) / static_cast<double>(used.size()));
+        const GcodeLayer& layer = layers[i];
+        const Eigen::Vector3d& n = layer.tool_axis;
+        const TableAngles& a = angles[i];
+        g.comment(layer_name(i, layer) + ": tool axis " + vector_text(n) + ", A " +
+                  format_number(a.a_deg, 8) + " C " + format_number(a.c_deg, 8));
+        bool first_path = true;
+        for (const ToolPath& path : layer.paths) {
+            if (!path.deposit() || path.points.empty()) continue;
+            const Eigen::Vector3d& s = path.points.front();
+            const Eigen::Vector3d approach = s + n * params.clearance_mm;
+            const bool new_component =
+                first_path && !first && layer.component != previous_component;
+            const bool continues = !first && !new_component &&
+                                   (g.position() - s).norm() <= kSamePoint &&
+                                   g.angles().a_deg == a.a_deg && g.angles().c_deg == a.c_deg;
+            if (first) {
+                // From the sphere's top down to the first path.
+                const Eigen::Vector3d from = sphere.centre + sphere.radius * top;
+                g.rapid(from, a);
+                round_the_top(from, sphere.exit(s, n), a);
+                g.rapid(approach, a);
+                g.feed(s, params.feed_mm_min);
+                first = false;
+            } else if (new_component) {
+                // Out along the tool axis the last layer was deposited with, round the sphere.
+                stop_deposit();
+                const Eigen::Vector3d out =
+                    sphere.exit(g.position(), layers[used[u - 1]].tool_axis);
+                g.rapid(out, g.angles());
+                round_the_top(out, sphere.exit(s, n), a);
+                g.rapid(approach, a);
+                g.feed(s, params.feed_mm_min);
+            } else if (!continues) {
+                stop_deposit();
+                const Eigen::Vector3d& back = first_path ? layers[used[u - 1]].tool_axis : n;
+                g.rapid(g.position() + back * params.clearance_mm, g.angles());
+                g.rapid(approach, a);
+                g.feed(s, params.feed_mm_min);
+            }
+            first_path = false;
+            if (!depositing) {
+                g.line("M62" + out_n);
+                depositing = true;
+            }
+            for (std::size_t k = 1; k < path.points.size(); ++k) {
+                const Eigen::Vector3d& p0 = path.points[k - 1];
+                const Eigen::Vector3d& p1 = path.points[k];
+                const double length = (p1 - p0).norm();
+                if (length < 1e-9) continue;
+                const double t0 = path.thickness_mm[k - 1], t1 = path.thickness_mm[k];
+                int pieces = 1;
+                if (params.max_feed_ratio > 1.0) {
+                    const double c0 = std::clamp(t0, t_lo, t_hi), c1 = std::clamp(t1, t_lo, t_hi);
+                    pieces = std::max(
+                        1, static_cast<int>(std::ceil(
+                               std::abs(c1 - c0) / (kThicknessStep * std::min(c0, c1)) - 1e-9)));
+                }
+                for (int j = 0; j < pieces; ++j) {
+                    const double s1 = static_cast<double>(j + 1) / pieces;
+                    const double mid = (j + 0.5) / pieces;
+                    const double t = t0 + mid * (t1 - t0);
+                    double f = params.feed_mm_min;
+                    if (params.max_feed_ratio > 1.0) {
+                        f = t > 0.0 ? params.feed_mm_min * reference / t
+                                    : std::numeric_limits<double>::infinity();
+                        if (f < f_lo || f > f_hi) ++stats.feed_limited_moves;
+                        f = std::clamp(f, f_lo, f_hi);
+                    }
+                    g.feed(p0 + s1 * (p1 - p0), f);
+                    ++stats.deposit_moves;
+                    stats.deposit_length_mm += length / pieces;
+                    stats.deposit_time_min += length / pieces / f;
+                }
+            }
+        }
+        previous_component = layer.component;
+    }
+    // Out to the sphere and up to its top.
+    stop_deposit();
+    const Eigen::Vector3d out = sphere.exit(g.position(), layers[used.back()].tool_axis);
+    g.rapid(out, g.angles());
+    round_the_top(out, sphere.centre + sphere.radius * top, g.angles());
+    g.line("M65" + out_n);
+    g.line("M2");
+    progress(1.0);
+    if (stats_out) *stats_out = stats;
+    return g.text();
+}
+
+}  // namespace mas

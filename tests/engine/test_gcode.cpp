@@ -1,0 +1,466 @@
+// The post-processor (Gcode.hpp): table angles, deposition switching, feeds and travel routes,
+// read back from the program text by a small reader of the words it writes.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mas/Error.hpp"
+#include "mas/Gcode.hpp"
+#include "mas/SlicePart.hpp"
+#include "test_parts.hpp"
+
+namespace {
+
+using Eigen::Vector3d;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+// The program writes X Y Z A C with 4 decimals: a read-back value is within half a unit of that.
+constexpr double kWord = 0.5e-4 + 1e-12;
+
+// Where the table at (a, c) turns a part vector: LinuxCNC's xyzac-trt-kins, Rx(a) Rz(c).
+Vector3d turned(const Vector3d& v, double a_deg, double c_deg) {
+    return (Eigen::AngleAxisd(a_deg * kDeg, Vector3d::UnitX()) *
+            Eigen::AngleAxisd(c_deg * kDeg, Vector3d::UnitZ()))
+               .toRotationMatrix() *
+           v;
+}
+
+struct Move {
+    bool rapid = false;
+    Vector3d p = Vector3d::Zero();
+    double a = 0.0, c = 0.0, f = 0.0;
+    bool depositing = false;  // the deposition output is on during this move
+    int line = 0;
+};
+
+struct Read {
+    std::vector<Move> moves;
+    int m62 = 0, m63 = 0, m65 = 0;
+    bool ended = false;
+    std::string first_motion_line;
+};
+
+// The moves of a program as a controller runs them: modal words carried over, M62/M63 taking
+// effect with the next move.
+Read read_program(const std::string& text) {
+    Read r;
+    std::istringstream in(text);
+    std::string line;
+    Move state;
+    bool on = false;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        const auto open = line.find('(');
+        if (open != std::string::npos) line.erase(open);
+        std::istringstream words(line);
+        std::string w;
+        bool motion = false, rapid = false;
+        while (words >> w) {
+            const char letter = w[0];
+            const double value = std::stod(w.substr(1));
+            switch (letter) {
+                case 'G':
+                    if (value == 0.0 || value == 1.0) {
+                        motion = true;
+                        rapid = value == 0.0;
+                    }
+                    break;
+                case 'M':
+                    if (value == 62.0) {
+                        on = true;
+                        ++r.m62;
+                    } else if (value == 63.0) {
+                        on = false;
+                        ++r.m63;
+                    } else if (value == 65.0) {
+                        on = false;
+                        ++r.m65;
+                    } else if (value == 2.0) {
+                        r.ended = true;
+                    }
+                    break;
+                case 'X':
+                    state.p.x() = value;
+                    break;
+                case 'Y':
+                    state.p.y() = value;
+                    break;
+                case 'Z':
+                    state.p.z() = value;
+                    break;
+                case 'A':
+                    state.a = value;
+                    break;
+                case 'C':
+                    state.c = value;
+                    break;
+                case 'F':
+                    state.f = value;
+                    break;
+                default:
+                    break;
+            }
+        }
+        if (motion) {
+            state.rapid = rapid;
+            state.depositing = on;
+            state.line = number;
+            r.moves.push_back(state);
+        }
+    }
+    return r;
+}
+
+mas::ToolPath path(mas::ToolPath::Kind kind, std::vector<Vector3d> points,
+                   std::vector<double> thickness) {
+    mas::ToolPath p;
+    p.kind = kind;
+    p.points = std::move(points);
+    p.thickness_mm = std::move(thickness);
+    return p;
+}
+
+// A square loop of side 10 at height z around (x0, y0), 1 mm thick.
+mas::GcodeLayer square_layer(int component, double x0, double y0, double z) {
+    mas::GcodeLayer l;
+    l.component = component;
+    const std::vector<Vector3d> loop = {
+        {x0, y0, z}, {x0 + 10, y0, z}, {x0 + 10, y0 + 10, z}, {x0, y0 + 10, z}, {x0, y0, z}};
+    l.paths.push_back(path(mas::ToolPath::Kind::Contour, loop, std::vector<double>(5, 1.0)));
+    l.outline = loop;
+    l.max_thickness_mm = 1.0;
+    return l;
+}
+
+// A layer deposited along +Y on the plane y = y0 (a side arm), one straight bead along X.
+mas::GcodeLayer side_layer(int component, double y0) {
+    mas::GcodeLayer l;
+    l.component = component;
+    l.tool_axis = Vector3d::UnitY();
+    l.paths.push_back(path(mas::ToolPath::Kind::Infill, {{2, y0, 5}, {8, y0, 5}}, {1.0, 1.0}));
+    l.outline = {{0, y0, 0}, {10, y0, 0}, {10, y0, 10}, {0, y0, 10}};
+    l.max_thickness_mm = 1.0;
+    return l;
+}
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const mas::Error& e) {
+        return std::string(mas::to_string(e.code())) + ": " + e.what();
+    }
+    return "no error";
+}
+
+TEST(TableAngles, TurnEveryReachableAxisToTheNozzleWithinTheLimits) {
+    const mas::MachineParams m;  // A -100 to 50
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> tilt(0.0, 100.0), turn(-180.0, 180.0);
+    for (int i = 0; i < 500; ++i) {
+        const double t = tilt(random) * kDeg, c = turn(random) * kDeg;
+        const Vector3d n(std::sin(t) * std::cos(c), std::sin(t) * std::sin(c), std::cos(t));
+        mas::TableAngles a;
+        ASSERT_TRUE(mas::table_angles(n, m, 0.0, 0.0, a)) << n.transpose();
+        EXPECT_LE((turned(n, a.a_deg, a.c_deg) - Vector3d::UnitZ()).norm(), 1e-12);
+        EXPECT_GE(a.a_deg, m.a_min_deg);
+        EXPECT_LE(a.a_deg, m.a_max_deg);
+        // Past A's 50 degrees only the negative tilt reaches.
+        if (t / kDeg > 50.0) EXPECT_LT(a.a_deg, -50.0);
+    }
+}
+
+TEST(TableAngles, ExactSolutionsAndTheNearestOfTwo) {
+    const mas::MachineParams m;
+    mas::TableAngles a;
+    // Vertical: no tilt, C stays where it was.
+    ASSERT_TRUE(mas::table_angles(Vector3d::UnitZ(), m, 0.0, 37.0, a));
+    EXPECT_EQ(a.a_deg, 0.0);
+    EXPECT_EQ(a.c_deg, 37.0);
+    // +Y needs 90 degrees: beyond A's 50, so -90 with C turned half round.
+    ASSERT_TRUE(mas::table_angles(Vector3d::UnitY(), m, 0.0, 0.0, a));
+    EXPECT_NEAR(a.a_deg, -90.0, 1e-12);
+    EXPECT_NEAR(std::abs(a.c_deg), 180.0, 1e-12);  // as near as each other
+    // 30 degrees towards -X: (30, -90) or (-30, 90); the nearer to the previous angles wins.
+    const Vector3d n(-0.5, 0.0, std::sqrt(0.75));
+    ASSERT_TRUE(mas::table_angles(n, m, 0.0, -80.0, a));
+    EXPECT_NEAR(a.a_deg, 30.0, 1e-12);
+    EXPECT_NEAR(a.c_deg, -90.0, 1e-12);
+    ASSERT_TRUE(mas::table_angles(n, m, 0.0, 80.0, a));
+    EXPECT_NEAR(a.a_deg, -30.0, 1e-12);
+    EXPECT_NEAR(a.c_deg, 90.0, 1e-12);
+    // C follows the previous C round and round rather than unwinding.
+    ASSERT_TRUE(mas::table_angles(n, m, 0.0, 700.0, a));
+    EXPECT_NEAR(a.c_deg, 630.0, 1e-9);
+    EXPECT_NEAR(a.a_deg, 30.0, 1e-12);
+    // -Z needs 180 degrees: out of reach; a table that tilts +-180 reaches it.
+    EXPECT_FALSE(mas::table_angles(-Vector3d::UnitZ(), m, 0.0, 0.0, a));
+    mas::MachineParams wide;
+    wide.a_min_deg = -180.0;
+    wide.a_max_deg = 180.0;
+    ASSERT_TRUE(mas::table_angles(-Vector3d::UnitZ(), wide, 0.0, 0.0, a));
+    EXPECT_NEAR(std::abs(a.a_deg), 180.0, 1e-12);
+    // C limited to +-90: the solution whose C fits is taken even when A is farther.
+    mas::MachineParams narrow;
+    narrow.c_min_deg = -90.0;
+    narrow.c_max_deg = 90.0;
+    const Vector3d back(0.0, -0.5, std::sqrt(0.75));  // C = 180 or 0
+    ASSERT_TRUE(mas::table_angles(back, narrow, 30.0, 0.0, a));
+    EXPECT_NEAR(a.a_deg, -30.0, 1e-12);
+    EXPECT_NEAR(a.c_deg, 0.0, 1e-12);
+}
+
+TEST(Gcode, DepositsEveryPathPointInOrderWithTheOutputOnAndTheTableTurnedToItsAxis) {
+    // Two layers of a square tower (component 0), then a side arm deposited along +Y
+    // (component 1).
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2),
+                                           side_layer(1, 11)};
+    mas::MachineParams m;
+    m.max_feed_ratio = 1.0;
+    mas::GcodeStats stats;
+    const std::string text = mas::write_gcode(layers, m, &stats);
+    const Read r = read_program(text);
+    EXPECT_TRUE(r.ended);
+    EXPECT_EQ(r.m62, 3);  // one per layer: each layer's loop is one path
+    EXPECT_EQ(r.m63, 3);
+    EXPECT_EQ(r.m65, 2);
+
+    // The deposit moves, in order, end exactly at the paths' points after their first.
+    std::vector<Vector3d> expected;
+    std::vector<Vector3d> axes;
+    for (const auto& l : layers)
+        for (const auto& p : l.paths)
+            for (std::size_t k = 1; k < p.points.size(); ++k) {
+                expected.push_back(p.points[k]);
+                axes.push_back(l.tool_axis);
+            }
+    std::vector<Move> deposits;
+    for (const Move& mv : r.moves)
+        if (mv.depositing) deposits.push_back(mv);
+    ASSERT_EQ(deposits.size(), expected.size());
+    EXPECT_EQ(stats.deposit_moves, static_cast<int>(expected.size()));
+    for (std::size_t k = 0; k < deposits.size(); ++k) {
+        EXPECT_FALSE(deposits[k].rapid) << "line " << deposits[k].line;
+        EXPECT_LE((deposits[k].p - expected[k]).cwiseAbs().maxCoeff(), kWord) << k;
+        EXPECT_LE((turned(axes[k], deposits[k].a, deposits[k].c) - Vector3d::UnitZ()).norm(), 1e-6)
+            << k;
+        EXPECT_EQ(deposits[k].f, 600.0);
+    }
+    // Each path starts with the output off at its first point, reached at G1.
+    for (std::size_t k = 1; k < r.moves.size(); ++k)
+        if (r.moves[k].depositing && !r.moves[k - 1].depositing) {
+            EXPECT_FALSE(r.moves[k - 1].rapid);
+            EXPECT_NEAR(r.moves[k - 1].f, 600.0, 0.0);
+        }
+    EXPECT_NEAR(stats.deposit_length_mm, 40.0 + 40.0 + 6.0, 1e-12);
+    EXPECT_NEAR(stats.deposit_time_min, 86.0 / 600.0, 1e-15);
+    EXPECT_EQ(stats.feed_limited_moves, 0);
+    EXPECT_NEAR(stats.a_min_deg, -90.0, 1e-12);
+    EXPECT_NEAR(stats.a_max_deg, 0.0, 0.0);
+}
+
+TEST(Gcode, TravelsBetweenComponentsRoundASphereClearOfEverythingDeposited) {
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2),
+                                           side_layer(1, 11)};
+    mas::MachineParams m;
+    m.clearance_mm = 3.0;
+    const Read r = read_program(mas::write_gcode(layers, m));
+    // The moves between the tower's last deposit and the arm's first.
+    std::size_t last0 = 0, first1 = 0;
+    for (std::size_t k = 0; k < r.moves.size(); ++k)
+        if (r.moves[k].depositing) {
+            if (r.moves[k].a == 0.0) last0 = k;
+            if (r.moves[k].a != 0.0 && first1 == 0) first1 = k;
+        }
+    ASSERT_GT(first1, last0 + 3);
+    std::vector<Vector3d> material;
+    for (const auto& l : layers)
+        for (const Vector3d& q : l.outline) material.push_back(q);
+    // Out along +Z from the tower's top, round the sphere, in along +Y to the arm: every point
+    // of the route before the approach keeps more than the clearance from the material, and the
+    // table turns only on the sphere.
+    const Move& out = r.moves[last0 + 1];
+    EXPECT_TRUE(out.rapid);
+    EXPECT_NEAR(out.p.x(), r.moves[last0].p.x(), kWord);
+    EXPECT_NEAR(out.p.y(), r.moves[last0].p.y(), kWord);
+    EXPECT_GT(out.p.z(), 2.0 + m.clearance_mm);
+    EXPECT_EQ(out.a, 0.0);
+    double top = -1e300;
+    for (std::size_t k = last0 + 1; k + 2 < first1; ++k) {
+        const Move& mv = r.moves[k];
+        EXPECT_TRUE(mv.rapid) << "line " << mv.line;
+        for (const Vector3d& q : material)
+            EXPECT_GT((mv.p - q).norm(), m.clearance_mm) << "line " << mv.line;
+        top = std::max(top, mv.p.z());
+    }
+    EXPECT_GT(top, out.p.z());
+    const Move& approach = r.moves[first1 - 2];
+    const Move& plunge = r.moves[first1 - 1];
+    EXPECT_TRUE(approach.rapid);
+    EXPECT_FALSE(plunge.rapid);
+    EXPECT_LE((approach.p - Vector3d(2, 11 + 3, 5)).cwiseAbs().maxCoeff(), kWord);
+    EXPECT_LE((plunge.p - Vector3d(2, 11, 5)).cwiseAbs().maxCoeff(), kWord);
+    EXPECT_NEAR(approach.a, -90.0, kWord);
+    // Between the tower's two layers: straight up by the clearance and over.
+    for (std::size_t k = 0; k < last0; ++k)
+        if (r.moves[k].depositing && !r.moves[k + 1].depositing) {
+            EXPECT_LE((r.moves[k + 1].p - (r.moves[k].p + Vector3d(0, 0, 3))).norm(), 2 * kWord);
+            break;
+        }
+}
+
+TEST(Gcode, FeedFollowsTheThicknessWithinItsRange) {
+    // One bead 20 mm long whose deposit thickens from 0.5 to 2 mm (a tilted layer), and one at
+    // 0.1 mm, too thin for the range.
+    mas::GcodeLayer l;
+    l.paths.push_back(path(mas::ToolPath::Kind::Infill, {{0, 0, 1}, {20, 0, 1}}, {0.5, 2.0}));
+    l.paths.push_back(path(mas::ToolPath::Kind::Infill, {{0, 5, 1}, {20, 5, 1}}, {0.1, 0.1}));
+    l.outline = {{0, 0, 1}, {20, 0, 1}, {20, 5, 1}, {0, 5, 1}};
+    l.max_thickness_mm = 2.0;
+    mas::MachineParams m;
+    m.reference_thickness_mm = 1.0;
+    m.max_feed_ratio = 4.0;
+    mas::GcodeStats stats;
+    const Read r = read_program(mas::write_gcode({l}, m, &stats));
+    std::vector<Move> first, second;
+    for (const Move& mv : r.moves)
+        if (mv.depositing) (mv.p.y() == 0.0 ? first : second).push_back(mv);
+    ASSERT_GT(first.size(), 1u);
+    Vector3d from(0, 0, 1);
+    double t_from = 0.5;
+    for (const Move& mv : first) {
+        // Along the bead, thickness is linear in x: 0.5 + 1.5 x / 20.
+        const double t_to = 0.5 + 1.5 * mv.p.x() / 20.0;
+        EXPECT_LE(std::abs(t_to - t_from), 0.05 * std::min(t_from, t_to) + 1e-4) << mv.p.x();
+        const double mid = 0.5 * (t_from + t_to);
+        EXPECT_NEAR(mv.f, 600.0 * 1.0 / mid, 0.05 + 1e-9) << mv.p.x();
+        from = mv.p;
+        t_from = t_to;
+    }
+    EXPECT_NEAR(from.x(), 20.0, kWord);
+    // 0.1 mm would need 6000 mm/min: held at 4 x 600.
+    ASSERT_EQ(second.size(), 1u);
+    EXPECT_EQ(second[0].f, 2400.0);
+    EXPECT_EQ(stats.feed_limited_moves, 1);
+    EXPECT_EQ(stats.deposit_moves, static_cast<int>(first.size() + second.size()));
+    // A derived reference is half-way between the thinnest and thickest deposit.
+    m.reference_thickness_mm = 0.0;
+    mas::GcodeStats derived;
+    mas::write_gcode({l}, m, &derived);
+    EXPECT_NEAR(derived.reference_thickness_mm, 0.5 * (0.1 + 2.0), 1e-15);
+}
+
+TEST(Gcode, BadInputNamesTheProblem) {
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2)};
+    mas::GcodeLayer under = square_layer(3, 0, 0, 3);
+    under.tool_axis = -Vector3d::UnitZ();
+    layers.push_back(under);
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams()); }),
+              "unreachable_orientation: layer 2 (component 3): its tool axis (0 0 -1) needs the "
+              "table tilted 180 degrees one way or the other, beyond A's limits -100 to 50 (C "
+              "-36000 to 36000)");
+    layers.pop_back();
+
+    auto bad = [&](auto set) {
+        mas::MachineParams m;
+        set(m);
+        return error_of([&] { mas::write_gcode(layers, m); });
+    };
+    EXPECT_EQ(bad([](auto& m) { m.a_max_deg = -200; }),
+              "invalid_argument: machine: A's limits must be finite with min < max, got -100 to "
+              "-200 degrees");
+    EXPECT_EQ(bad([](auto& m) { m.c_min_deg = NAN; }),
+              "invalid_argument: machine: C's limits must be finite with min < max, got nan to "
+              "36000 degrees");
+    EXPECT_EQ(bad([](auto& m) { m.feed_mm_min = 0; }),
+              "invalid_argument: machine: feed must be > 0 mm/min, got 0");
+    EXPECT_EQ(bad([](auto& m) { m.reference_thickness_mm = -1; }),
+              "invalid_argument: machine: reference thickness must be >= 0 mm (0: derived), got "
+              "-1");
+    EXPECT_EQ(bad([](auto& m) { m.max_feed_ratio = 0.5; }),
+              "invalid_argument: machine: max feed ratio must be >= 1, got 0.5");
+    EXPECT_EQ(bad([](auto& m) { m.clearance_mm = INFINITY; }),
+              "invalid_argument: machine: clearance must be > 0 mm, got inf");
+    EXPECT_EQ(bad([](auto& m) { m.deposit_output = 64; }),
+              "invalid_argument: machine: the deposition output must be a digital output 0 to "
+              "63, got 64");
+
+    EXPECT_EQ(error_of([] { mas::write_gcode({}, mas::MachineParams()); }),
+              "empty_input: G-code: no layer has a path to deposit");
+    std::vector<mas::GcodeLayer> skewed = {square_layer(0, 0, 0, 1)};
+    skewed[0].tool_axis = Vector3d(0, 0, 2);
+    EXPECT_EQ(error_of([&] { mas::write_gcode(skewed, mas::MachineParams()); }),
+              "invalid_argument: layer 0 (component 0): its tool axis (0 0 2) is not a unit "
+              "vector");
+    skewed = {square_layer(0, 0, 0, 1)};
+    skewed[0].paths[0].thickness_mm.pop_back();
+    EXPECT_EQ(error_of([&] { mas::write_gcode(skewed, mas::MachineParams()); }),
+              "invalid_argument: layer 0 (component 0): a path has 5 points and 4 thicknesses");
+    skewed = {square_layer(0, 0, 0, 1)};
+    skewed[0].paths[0].points[2].x() = NAN;
+    EXPECT_EQ(error_of([&] { mas::write_gcode(skewed, mas::MachineParams()); }),
+              "non_finite_coordinate: layer 0 (component 0): a path point or its thickness is "
+              "not finite");
+}
+
+TEST(Gcode, CancelsBetweenLayers) {
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2)};
+    int calls = 0;
+    const mas::Progress progress([&](double, const std::string&) {
+        if (++calls == 2) throw mas::Error(mas::ErrorCode::Cancelled, "stop");
+    });
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams(), nullptr, progress); }),
+              "cancelled: stop");
+}
+
+TEST(Gcode, ASlicedLBlockDepositsEveryPathOfEveryLayer) {
+    // The L-block's arm is built sideways: the table turns to every layer's normal, and every
+    // deposit point of the slicer is reached, in build order.
+    mas::TessellationParams tp;
+    tp.deflection_mm = 0.05;
+    const mas::Shape part = mas::test::l_block();
+    const mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp));
+    const mas::Decomposition d = mas::decompose(part, axis);
+    mas::SlicePartParams p;
+    p.tessellation = tp;
+    const mas::SlicedPart sliced = mas::slice_part(part, axis, d, p);
+    ASSERT_GE(sliced.components.size(), 2u);
+    const std::vector<mas::GcodeLayer> layers = mas::gcode_layers(sliced);
+    mas::GcodeStats stats;
+    const Read r = read_program(mas::write_gcode(layers, mas::MachineParams(), &stats));
+    std::vector<Vector3d> expected, axes;
+    double length = 0.0;
+    for (const auto& l : layers)
+        for (const auto& path : l.paths) {
+            if (!path.deposit()) continue;
+            for (std::size_t k = 1; k < path.points.size(); ++k) {
+                if ((path.points[k] - path.points[k - 1]).norm() < 1e-9) continue;
+                expected.push_back(path.points[k]);
+                axes.push_back(l.tool_axis);
+                length += (path.points[k] - path.points[k - 1]).norm();
+            }
+        }
+    // Pieces of a move end on it: the expected points are the ends of runs of moves.
+    std::size_t e = 0;
+    bool turned_away = false;
+    for (const Move& mv : r.moves) {
+        if (!mv.depositing) continue;
+        ASSERT_LT(e, expected.size());
+        EXPECT_LE((turned(axes[e], mv.a, mv.c) - Vector3d::UnitZ()).norm(), 1e-5);
+        turned_away = turned_away || mv.a != 0.0;
+        if ((mv.p - expected[e]).cwiseAbs().maxCoeff() <= kWord) ++e;
+    }
+    EXPECT_EQ(e, expected.size());
+    EXPECT_TRUE(turned_away);
+    EXPECT_NEAR(stats.deposit_length_mm, length, 1e-6 * length);
+    EXPECT_NEAR(stats.deposit_length_mm, sliced.stats.deposit_length_mm,
+                1e-9 * sliced.stats.deposit_length_mm);
+}
+
+}  // namespace

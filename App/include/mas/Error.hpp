@@ -9,18 +9,18 @@
 namespace mas {
 
 enum class ErrorCode {
-    InvalidArgument,      // a parameter out of its range (zero step, zero normal, NaN, ...)
-    EmptyInput,           // an empty file, a shape or mesh with nothing in it
-    ReadFailed,           // a file that does not exist, cannot be read or is truncated
-    WriteFailed,          // an output file that cannot be written
-    UnsupportedFormat,    // a file extension the engine does not read
-    NotASolid,            // a face, a wire, an open shell where a closed solid is expected
-    MultipleSolids,       // several solids where exactly one is expected
-    OpenMesh,             // a triangle mesh with holes or non-manifold edges
-    NonFiniteCoordinate,  // NaN, infinite or out-of-range (kMaxCoordinateMm) coordinates
-    GeometryFailure,      // the geometry kernel failed on valid-looking input
+    InvalidArgument,         // a parameter out of its range (zero step, zero normal, NaN, ...)
+    EmptyInput,              // an empty file, a shape or mesh with nothing in it
+    ReadFailed,              // a file that does not exist, cannot be read or is truncated
+    WriteFailed,             // an output file that cannot be written
+    UnsupportedFormat,       // a file extension the engine does not read
+    NotASolid,               // a face, a wire, an open shell where a closed solid is expected
+    MultipleSolids,          // several solids where exactly one is expected
+    OpenMesh,                // a triangle mesh with holes or non-manifold edges
+    NonFiniteCoordinate,     // NaN, infinite or out-of-range (kMaxCoordinateMm) coordinates
+    GeometryFailure,         // the geometry kernel failed on valid-looking input
     UnreachableOrientation,  // a tool axis the machine's rotary axes cannot turn to the nozzle
-    Cancelled,            // the caller cancelled a long computation
+    Cancelled,               // the caller cancelled a long computation
 };
 
 // Stable lower-case name of a code, e.g. "open_mesh"; used by the Python binding and the CLI.

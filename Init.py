@@ -38,7 +38,8 @@ def _multi_axis_slicer_init():
             sys.path.insert(0, path)
     if has_tests:
         FreeCAD.__unit_test__ += ["TestMultiAxisSlicerApi", "TestMultiAxisSlicerAxis",
-                                  "TestMultiAxisSlicerDecompose", "TestMultiAxisSlicerSlice"]
+                                  "TestMultiAxisSlicerDecompose", "TestMultiAxisSlicerSlice",
+                                  "TestMultiAxisSlicerGcode"]
 
 
 _multi_axis_slicer_init()

@@ -45,7 +45,9 @@ __all__ = [
     "EngineError",
     "EngineUnavailableError",
     "FilledHole",
+    "GcodeProgram",
     "Layer",
+    "MACHINE_DEFAULTS",
     "MAX_SECTION_POINTS",
     "Region",
     "SLICE_DEFAULTS",
@@ -58,6 +60,7 @@ __all__ = [
     "centroidal_axis",
     "decompose",
     "exact_sections",
+    "gcode",
     "make_centroidal_axis",
     "make_decomposition",
     "make_sections",
@@ -624,3 +627,4 @@ from .axis import AxisBranch, AxisLink, AxisNode, CentroidalAxis, centroidal_axi
 from .decompose import Component, Decomposition, decompose  # noqa: E402
 from .slicing import (SLICE_DEFAULTS, FilledHole, Layer, SliceResult, ToolPath,  # noqa: E402
                       slice)  # noqa: A001
+from .gcode import MACHINE_DEFAULTS, GcodeProgram, gcode  # noqa: E402

@@ -260,6 +260,12 @@ class SliceResult:
                 "travel_length_mm": d["travel_length_mm"],
                 "uncovered_area_mm2": d["uncovered_area_mm2"]}
 
+    def gcode(self, progress=None, **machine):
+        """The 5-axis G-code program that deposits this result: ``MultiAxisSlicer.gcode(self,
+        progress, **machine)`` (see there for the machine parameters)."""
+        from .gcode import gcode
+        return gcode(self, progress, **machine)
+
     def to_dict(self):
         """JSON-ready plain data in the layout of ``multiaxis-slicer slice FILE --json`` (without
         its "file"): kind, params, stats, filled_holes, notes, build_order, components, layers

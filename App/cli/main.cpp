@@ -23,6 +23,7 @@
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
+#include "mas/Gcode.hpp"
 #include "mas/Progress.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
@@ -47,7 +48,7 @@ const char* kUsage =
     "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
     "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
     "                                   [--measure-coverage] [--fill-holes MM] [--progress]\n"
-    "                                   [--json [OUT.json]]\n"
+    "                                   [--gcode OUT.ngc [machine options]] [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
     "\n"
     "sections   cut the part with parallel planes STEP mm apart along NORMAL (default 0,0,1 and\n"
@@ -70,6 +71,13 @@ const char* kUsage =
     "           round holes up to MM across solid where their axis leans past the overhang\n"
     "           angle off the build direction (their ceilings would overhang), listing them to\n"
     "           drill afterwards (default 0: none).\n"
+    "           --gcode OUT.ngc also writes the 5-axis program (LinuxCNC, tilting rotary table\n"
+    "           XYZAC, xyzac-trt-kins; X Y Z in the part's coordinates): machine options\n"
+    "           --a-limits MIN,MAX (degrees, default -100,50), --c-limits MIN,MAX (-36000,36000),\n"
+    "           --feed MM/MIN (600, at the reference thickness), --reference-thickness MM (0:\n"
+    "           half-way between the thinnest and thickest deposit), --max-feed-ratio R (4: the\n"
+    "           feed within feed/R to feed*R as the thickness varies; 1: constant), --clearance\n"
+    "           MM (2: retract along the tool axis), --deposit-output N (0: M62/M63 P0).\n"
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
     "--json     write JSON instead of text, to OUT.json or standard output\n"
@@ -126,13 +134,22 @@ double parse_number(const std::string& text, const std::string& what) {
     return v;
 }
 
-Eigen::Vector3d parse_vector(const std::string& text, const std::string& what) {
+// `count` comma-separated numbers, `form` ("X,Y,Z") naming them in the message.
+std::vector<double> parse_numbers(const std::string& text, std::size_t count,
+                                  const std::string& what, const std::string& form) {
     std::vector<std::string> parts;
     std::stringstream in(text);
     for (std::string item; std::getline(in, item, ',');) parts.push_back(item);
-    if (parts.size() != 3) throw UsageError(what + " must be X,Y,Z, got '" + text + "'");
-    return {parse_number(parts[0], what), parse_number(parts[1], what),
-            parse_number(parts[2], what)};
+    if (parts.size() != count || (!text.empty() && text.back() == ','))
+        throw UsageError(what + " must be " + form + ", got '" + text + "'");
+    std::vector<double> out;
+    for (const auto& part : parts) out.push_back(parse_number(part, what));
+    return out;
+}
+
+Eigen::Vector3d parse_vector(const std::string& text, const std::string& what) {
+    const std::vector<double> v = parse_numbers(text, 3, what, "X,Y,Z");
+    return {v[0], v[1], v[2]};
 }
 
 // Minimal JSON output: numbers to 15 significant digits (the engine's doubles within 1e-15).
@@ -239,18 +256,15 @@ Part load_part(const Args& a) {
 // or not at all: into a new file beside it, renamed over it once complete, so that a failure while
 // writing (a full disk, an error half way) leaves what was there before, and no partial file. A
 // path that is there and is no regular file (a device, a pipe) is written directly.
-void write_output(const Args& a, const std::function<void(std::ostream&)>& write) {
-    if (!(a.json && !a.json_path.empty())) {
-        write(std::cout);
-        return;
-    }
+// Writes `path` whole or not at all: through a partial file renamed over it (a device or a pipe
+// is written directly).
+void write_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
     namespace fs = std::filesystem;
-    const mas::Error cannot_write(mas::ErrorCode::WriteFailed,
-                                  a.json_path + ": cannot write the file");
+    const mas::Error cannot_write(mas::ErrorCode::WriteFailed, path + ": cannot write the file");
     std::error_code ec;
-    const fs::file_status status = fs::status(a.json_path, ec);
+    const fs::file_status status = fs::status(path, ec);
     if (fs::exists(status) && !fs::is_regular_file(status)) {
-        std::ofstream direct(a.json_path);
+        std::ofstream direct(path);
         if (!direct) throw cannot_write;
         write(direct);
         direct.close();
@@ -259,8 +273,7 @@ void write_output(const Args& a, const std::function<void(std::ostream&)>& write
     }
     // Through a symbolic link, the file it names is replaced, not the link.
     std::error_code resolved;
-    const fs::path target =
-        fs::exists(status) ? fs::canonical(a.json_path, resolved) : fs::path(a.json_path);
+    const fs::path target = fs::exists(status) ? fs::canonical(path, resolved) : fs::path(path);
     if (resolved) throw cannot_write;
     fs::path partial;
     for (int k = 0;; ++k) {
@@ -281,6 +294,13 @@ void write_output(const Args& a, const std::function<void(std::ostream&)>& write
         fs::remove(partial, ec);
         throw;
     }
+}
+
+void write_output(const Args& a, const std::function<void(std::ostream&)>& write) {
+    if (a.json && !a.json_path.empty())
+        write_file(a.json_path, write);
+    else
+        write(std::cout);
 }
 
 void write_output(const Args& a, const std::string& text) {
@@ -549,6 +569,48 @@ const std::set<std::string> kSliceOptions = {
     "--infill",      "--raster-angle",   "--raster-angle-step",
     "--min-feature", "--fill-holes"};
 
+const std::set<std::string> kMachineOptions = {
+    "--a-limits",       "--c-limits",  "--feed",          "--reference-thickness",
+    "--max-feed-ratio", "--clearance", "--deposit-output"};
+
+// The machine for --gcode; its options without --gcode are a usage error.
+mas::MachineParams machine_params(const Args& a) {
+    mas::MachineParams m;
+    if (!a.has("--gcode")) {
+        for (const auto& option : kMachineOptions)
+            if (a.has(option)) throw UsageError(option + " is for the G-code: give --gcode OUT");
+        return m;
+    }
+    if (a.has("--a-limits")) {
+        const auto v = parse_numbers(a.options.at("--a-limits"), 2, "--a-limits", "MIN,MAX");
+        m.a_min_deg = v[0];
+        m.a_max_deg = v[1];
+    }
+    if (a.has("--c-limits")) {
+        const auto v = parse_numbers(a.options.at("--c-limits"), 2, "--c-limits", "MIN,MAX");
+        m.c_min_deg = v[0];
+        m.c_max_deg = v[1];
+    }
+    m.feed_mm_min = a.number("--feed", m.feed_mm_min);
+    m.reference_thickness_mm = a.number("--reference-thickness", m.reference_thickness_mm);
+    m.max_feed_ratio = a.number("--max-feed-ratio", m.max_feed_ratio);
+    m.clearance_mm = a.number("--clearance", m.clearance_mm);
+    m.deposit_output = a.integer("--deposit-output", m.deposit_output);
+    mas::validate(m);
+    const std::string& path = a.options.at("--gcode");
+    std::error_code same;
+    if (std::filesystem::equivalent(path, a.file, same))
+        throw UsageError("--gcode " + path + " would overwrite the input FILE");
+    if (a.json && !a.json_path.empty() && path == a.json_path)
+        throw UsageError("--gcode and --json name the same file " + path);
+    // Before the slicing: a folder that is not there fails now, not after minutes.
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder, same))
+        throw mas::Error(mas::ErrorCode::WriteFailed,
+                         path + ": cannot write the file: no folder " + folder.string());
+    return m;
+}
+
 mas::SlicePartParams slice_params(const Args& a) {
     mas::SlicePartParams p;
     mas::LayerParams& l = p.layers;
@@ -597,6 +659,8 @@ void write_region(std::ostream& out, const std::vector<std::vector<Eigen::Vector
 int run_slice(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
     allowed.insert(kSliceOptions.begin(), kSliceOptions.end());
+    allowed.insert(kMachineOptions.begin(), kMachineOptions.end());
+    allowed.insert("--gcode");
     std::vector<std::string> rest;
     bool strict = false, coverage = false, report = false;
     for (const auto& arg : args) {
@@ -616,6 +680,7 @@ int run_slice(const std::vector<std::string>& args) {
     sp.paths.measure_coverage = coverage;
     mas::validate(sp.layers);
     mas::validate(sp.paths);
+    const mas::MachineParams machine = machine_params(a);
     const Part part = load_part(a);
     const mas::CentroidalAxis axis = axis_of(part, ap);
     mas::SlicedPart r;
@@ -629,6 +694,11 @@ int run_slice(const std::vector<std::string>& args) {
         r = mas::slice_part(solid, axis, d, sp, progress.span(0.2, 1.0));
     } else {
         r = mas::slice_mesh_part(part.mesh, axis, sp, progress);  // a mesh cannot be split
+    }
+    mas::GcodeStats gs;
+    if (a.has("--gcode")) {
+        const std::string program = mas::write_gcode(mas::gcode_layers(r), machine, &gs);
+        write_file(a.options.at("--gcode"), [&](std::ostream& file) { file << program; });
     }
     const mas::SliceStats& st = r.stats;
     std::ostringstream out;
@@ -675,7 +745,21 @@ int run_slice(const std::vector<std::string>& args) {
                 << ", \"diameter_mm\": " << num(h.diameter_mm)
                 << ", \"length_mm\": " << num(h.length_mm) << "}";
         }
-        out << (r.filled_holes.empty() ? "" : "\n  ") << "],\n  \"notes\": [";
+        out << (r.filled_holes.empty() ? "" : "\n  ") << "],\n  \"gcode\": ";
+        if (a.has("--gcode"))
+            out << "{\"file\": " << quoted(a.options.at("--gcode")) << ", \"lines\": " << gs.lines
+                << ", \"deposit_moves\": " << gs.deposit_moves
+                << ", \"feed_limited_moves\": " << gs.feed_limited_moves
+                << ", \"reorientations\": " << gs.reorientations << ", \"a_range_deg\": ["
+                << num(gs.a_min_deg) << ", " << num(gs.a_max_deg) << "], \"c_range_deg\": ["
+                << num(gs.c_min_deg) << ", " << num(gs.c_max_deg)
+                << "], \"deposit_length_mm\": " << num(gs.deposit_length_mm)
+                << ", \"deposit_time_min\": " << num(gs.deposit_time_min)
+                << ", \"rapid_length_mm\": " << num(gs.rapid_length_mm)
+                << ", \"reference_thickness_mm\": " << num(gs.reference_thickness_mm) << "}";
+        else
+            out << "null";
+        out << ",\n  \"notes\": [";
         for (std::size_t i = 0; i < r.notes.size(); ++i)
             out << (i ? ", " : "") << quoted(r.notes[i]);
         out << "],\n  \"build_order\": [";
@@ -757,6 +841,12 @@ int run_slice(const std::vector<std::string>& args) {
             << st.centre_line_passes << " centre-line passes, " << st.unfilled_features
             << " unfilled features\n";
         for (const auto& note : r.notes) out << "# note: " << note << "\n";
+        if (a.has("--gcode"))
+            out << "# G-code: " << a.options.at("--gcode") << ", " << gs.lines << " lines, "
+                << gs.deposit_moves << " deposit moves (" << gs.feed_limited_moves
+                << " at a feed limit), A " << num(gs.a_min_deg) << " to " << num(gs.a_max_deg)
+                << " deg, C " << num(gs.c_min_deg) << " to " << num(gs.c_max_deg)
+                << " deg, deposit time " << num(gs.deposit_time_min) << " min\n";
         if (!r.filled_holes.empty())
             out << "# deposited solid, to drill afterwards: " << st.filled_holes
                 << (st.filled_holes == 1 ? " hole, " : " holes, ") << num(st.filled_volume_mm3)

@@ -4,6 +4,7 @@
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
+#include "mas/Gcode.hpp"
 #include "mas/Mesh.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
@@ -1249,6 +1250,156 @@ void bind_slice() {
             .c_str());
 }
 
+// ---- stage: post-processor
+// ---------------------------------------------------------------------------------
+
+// Points from a sequence of 3-sequences.
+std::vector<Eigen::Vector3d> points_from(const bp::object& value, const std::string& what) {
+    bp::handle<> seq = fast_sequence(value, what);
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    std::vector<Eigen::Vector3d> out;
+    out.reserve(std::size_t(n));
+    for (Py_ssize_t k = 0; k < n; ++k)
+        out.push_back(vector3(bp::object(bp::handle<>(bp::borrowed(items[k]))),
+                              what + "[" + std::to_string(k) + "]"));
+    return out;
+}
+
+std::vector<Eigen::Vector3d> points_of(const bp::object& value, const char* key,
+                                       const std::string& what) {
+    return points_from(required(value, key, what), what + "['" + key + "']");
+}
+
+mas::ToolPath::Kind path_kind(const std::string& name, const std::string& what) {
+    for (const auto kind : {mas::ToolPath::Kind::Travel, mas::ToolPath::Kind::Contour,
+                            mas::ToolPath::Kind::Infill, mas::ToolPath::Kind::CentreLine})
+        if (name == mas::to_string(kind)) return kind;
+    invalid_argument(what + " is no path kind: '" + name + "'");
+    return mas::ToolPath::Kind::Travel;
+}
+
+// The layers as slice_part() returns them: component, tool_axis, max_thickness_mm, regions
+// [{outer, holes}], paths [{kind, points, thickness_mm}].
+std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
+    bp::handle<> seq = fast_sequence(value, "layers");
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    std::vector<mas::GcodeLayer> layers(static_cast<std::size_t>(n));
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        const bp::object item(bp::handle<>(bp::borrowed(items[i])));
+        const std::string what = "layers[" + std::to_string(i) + "]";
+        mas::GcodeLayer& l = layers[std::size_t(i)];
+        l.component = index_of(item, "component", what);
+        l.tool_axis = vector3(required(item, "tool_axis", what), what + "['tool_axis']");
+        l.max_thickness_mm = number_of(item, "max_thickness_mm", what);
+        const std::vector<bp::object> regions = items_of(item, "regions", what);
+        for (std::size_t r = 0; r < regions.size(); ++r) {
+            const std::string rw = what + "['regions'][" + std::to_string(r) + "]";
+            for (const auto& q : points_of(regions[r], "outer", rw)) l.outline.push_back(q);
+            const std::vector<bp::object> holes = items_of(regions[r], "holes", rw);
+            for (std::size_t h = 0; h < holes.size(); ++h)
+                for (const auto& q :
+                     points_from(holes[h], rw + "['holes'][" + std::to_string(h) + "]"))
+                    l.outline.push_back(q);
+        }
+        const std::vector<bp::object> paths = items_of(item, "paths", what);
+        for (std::size_t k = 0; k < paths.size(); ++k) {
+            const std::string pw = what + "['paths'][" + std::to_string(k) + "]";
+            mas::ToolPath path;
+            const bp::extract<std::string> kind(required(paths[k], "kind", pw));
+            if (!kind.check()) invalid_argument(pw + "['kind'] must be a string");
+            path.kind = path_kind(kind(), pw + "['kind']");
+            path.points = points_of(paths[k], "points", pw);
+            const std::vector<bp::object> t = items_of(paths[k], "thickness_mm", pw);
+            for (std::size_t j = 0; j < t.size(); ++j)
+                path.thickness_mm.push_back(
+                    number_at(t[j].ptr(), pw + "['thickness_mm']", Py_ssize_t(j)));
+            l.paths.push_back(std::move(path));
+        }
+    }
+    return layers;
+}
+
+mas::MachineParams machine_from_py(const bp::dict& d) {
+    mas::MachineParams m;
+    const bp::list keys = d.keys();
+    for (bp::ssize_t i = 0; i < bp::len(keys); ++i) {
+        const bp::extract<std::string> key_text(keys[i]);
+        if (!key_text.check()) invalid_argument("machine parameter names must be strings");
+        const std::string key = key_text();
+        const bp::object value = d[keys[i]];
+        const double x = PyFloat_AsDouble(value.ptr());
+        if (x == -1.0 && PyErr_Occurred()) {
+            PyErr_Clear();
+            invalid_argument("machine parameter " + key + " must be a number");
+        }
+        if (key == "a_min")
+            m.a_min_deg = x;
+        else if (key == "a_max")
+            m.a_max_deg = x;
+        else if (key == "c_min")
+            m.c_min_deg = x;
+        else if (key == "c_max")
+            m.c_max_deg = x;
+        else if (key == "feed")
+            m.feed_mm_min = x;
+        else if (key == "reference_thickness")
+            m.reference_thickness_mm = x;
+        else if (key == "max_feed_ratio")
+            m.max_feed_ratio = x;
+        else if (key == "clearance")
+            m.clearance_mm = x;
+        else if (key == "deposit_output") {
+            if (x != std::floor(x) || !(std::abs(x) < 1e9))
+                invalid_argument("machine parameter deposit_output must be a whole number");
+            m.deposit_output = int(x);
+        } else
+            invalid_argument("unknown machine parameter '" + key + "'");
+    }
+    return m;
+}
+
+bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
+                     const bp::object& progress) {
+    const mas::MachineParams machine = machine_from_py(machine_py);
+    mas::validate(machine);
+    const std::vector<mas::GcodeLayer> layers = gcode_layers_from_py(layers_py);
+    std::string text;
+    mas::GcodeStats s;
+    run_reporting(progress,
+                  [&](const mas::Progress& p) { text = mas::write_gcode(layers, machine, &s, p); });
+    bp::dict stats;
+    stats["lines"] = s.lines;
+    stats["deposit_moves"] = s.deposit_moves;
+    stats["feed_limited_moves"] = s.feed_limited_moves;
+    stats["reorientations"] = s.reorientations;
+    stats["a_range_deg"] = bp::make_tuple(s.a_min_deg, s.a_max_deg);
+    stats["c_range_deg"] = bp::make_tuple(s.c_min_deg, s.c_max_deg);
+    stats["deposit_length_mm"] = s.deposit_length_mm;
+    stats["deposit_time_min"] = s.deposit_time_min;
+    stats["rapid_length_mm"] = s.rapid_length_mm;
+    stats["reference_thickness_mm"] = s.reference_thickness_mm;
+    bp::dict out;
+    out["text"] = text;
+    out["stats"] = stats;
+    return out;
+}
+
+void bind_gcode() {
+    bp::def("write_gcode", &write_gcode,
+            (bp::arg("layers"), bp::arg("machine"), bp::arg("progress") = bp::object()),
+            "The 5-axis G-code program (LinuxCNC, tilting rotary table XYZAC, xyzac-trt-kins) "
+            "that deposits `layers` (slice_part()'s layer dicts, in build order). `machine`: a "
+            "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
+            "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
+            "deposit_output; missing ones take the engine's defaults. Returns {text, stats "
+            "{lines, deposit_moves, feed_limited_moves, reorientations, a_range_deg, c_range_deg, "
+            "deposit_length_mm, deposit_time_min, rapid_length_mm, reference_thickness_mm}}. "
+            "EngineError invalid_argument for bad parameters, unreachable_orientation for a "
+            "layer the table cannot turn to the nozzle. `progress` as slice_part()'s.");
+}
+
 }  // namespace
 
 BOOST_PYTHON_MODULE(_engine) {
@@ -1286,4 +1437,5 @@ BOOST_PYTHON_MODULE(_engine) {
     bind_axis();
     bind_decompose();
     bind_slice();
+    bind_gcode();
 }

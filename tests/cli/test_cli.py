@@ -528,5 +528,148 @@ class CliSections(unittest.TestCase):
         self.assertIn("unknown command 'frobnicate'", r.stderr)
 
 
+# A machine LinuxCNC's rs274 interprets programs for: XYZAC, millimetres and degrees.
+RS274_INI = """[EMC]
+MACHINE = mas-xyzac-trt
+[RS274NGC]
+PARAMETER_FILE = mas.var
+[TRAJ]
+COORDINATES = XYZAC
+LINEAR_UNITS = mm
+ANGULAR_UNITS = deg
+[KINS]
+KINEMATICS = xyzac-trt-kins
+JOINTS = 5
+"""
+
+
+def table_turns(v, a_deg, c_deg):
+    """Where the table at (A, C) turns a part vector: LinuxCNC's xyzac-trt-kins, Rx(A) Rz(C)."""
+    a, c = math.radians(a_deg), math.radians(c_deg)
+    x = math.cos(c) * v[0] - math.sin(c) * v[1]
+    y = math.sin(c) * v[0] + math.cos(c) * v[1]
+    return (x, math.cos(a) * y - math.sin(a) * v[2], math.sin(a) * y + math.cos(a) * v[2])
+
+
+class CliGcode(unittest.TestCase):
+    """slice --gcode: the program LinuxCNC's interpreter reads, moves checked against the layers."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def interpret(self, program):
+        """rs274's canonical commands for `program`, in a fresh HOME and parameter file."""
+        home = tempfile.mkdtemp(dir=self.tmp.name)
+        ini = os.path.join(home, "mas.ini")
+        with open(ini, "w") as f:
+            f.write(RS274_INI)
+        tools = os.path.join(home, "tool.tbl")
+        open(tools, "w").close()
+        canon = os.path.join(home, "out.canon")
+        r = subprocess.run(["rs274", "-g", "-i", ini, "-t", tools, "-v",
+                            os.path.join(home, "mas.var"), program, canon],
+                           capture_output=True, text=True, stdin=subprocess.DEVNULL,
+                           env=dict(os.environ, HOME=home), cwd=home, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        with open(canon) as f:
+            return [line.split("N..... ", 1)[1] for line in f.read().splitlines()
+                    if "N..... " in line]
+
+    def test_the_l_blocks_program_runs_in_linuxcnc_and_deposits_every_path(self):
+        program = os.path.join(self.tmp.name, "l_block.ngc")
+        out = os.path.join(self.tmp.name, "slice.json")
+        r = run("slice", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--gcode", program,
+                "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            doc = json.load(f)
+        canon = self.interpret(program)
+        self.assertEqual(canon[-2:], ["PROGRAM_END()", "ON_RESET()"])
+
+        # The deposit moves: STRAIGHT_FEED while motion output 0 is set.
+        on, deposits = False, []
+        for c in canon:
+            if c == "SET_MOTION_OUTPUT_BIT(0)":
+                on = True
+            elif c == "CLEAR_MOTION_OUTPUT_BIT(0)":
+                on = False
+            elif c.startswith("STRAIGHT_TRAVERSE"):
+                self.assertFalse(on, "a rapid with the deposition on")
+            elif c.startswith("STRAIGHT_FEED") and on:
+                deposits.append([float(v) for v in c[len("STRAIGHT_FEED("):-1].split(",")])
+        self.assertFalse(on)
+        self.assertEqual(len(deposits), doc["gcode"]["deposit_moves"])
+
+        # Every point after a path's first, in build order, at the end of a deposit move (4
+        # decimals), the table turning the layer's normal up to the nozzle (+Z).
+        expected = []
+        for layer in doc["layers"]:
+            for path in layer["paths"]:
+                if path["kind"] == "travel":
+                    continue
+                for a, b in zip(path["points"], path["points"][1:]):
+                    if math.dist(a, b) > 1e-9:
+                        expected.append((b, layer["normal"]))
+        k = 0
+        for x, y, z, a, b_axis, c in deposits:
+            self.assertLess(k, len(expected))
+            point, normal = expected[k]
+            self.assertEqual(b_axis, 0.0)
+            self.assertGreaterEqual(a, -100.0)
+            self.assertLessEqual(a, 50.0)
+            up = table_turns(normal, a, c)
+            self.assertAlmostEqual(up[2], 1.0, places=6)
+            if max(abs(u - v) for u, v in zip((x, y, z), point)) <= 0.5e-4 + 1e-9:
+                k += 1
+        self.assertEqual(k, len(expected))
+        # The arm (component 1, along +X) tilts the table 90 degrees.
+        self.assertEqual(doc["gcode"]["a_range_deg"], [-90, 0])
+        self.assertAlmostEqual(doc["gcode"]["deposit_length_mm"], doc["stats"]["deposit_length_mm"],
+                               places=6)
+
+    def test_text_summary_and_machine_options(self):
+        program = os.path.join(self.tmp.name, "l.ngc")
+        r = run("slice", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--gcode", program,
+                "--feed", "900", "--max-feed-ratio", "1", "--deposit-output", "3",
+                "--a-limits", "-120,120", "--clearance", "5")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        summary = [line for line in r.stdout.splitlines() if line.startswith("# G-code:")]
+        self.assertEqual(len(summary), 1)
+        self.assertIn(program, summary[0])
+        with open(program) as f:
+            text = f.read()
+        self.assertIn("M62 P3", text)
+        self.assertNotIn("P0\n", text.split("G64", 1)[1])
+        canon = self.interpret(program)
+        feeds = {c for c in canon if c.startswith("SET_FEED_RATE(") and c != "SET_FEED_RATE(0.0000)"}
+        self.assertEqual(feeds, {"SET_FEED_RATE(900.0000)"})
+        # With A free to +90, the arm needs no half turn of C.
+        self.assertTrue(any(c.startswith("STRAIGHT_FEED") and c.endswith(", 90.0000, 0.0000, 90.0000)")
+                            for c in canon))
+
+    def test_bad_machine_input(self):
+        brep = os.path.join(DATA, "l_block.brep")
+        program = os.path.join(self.tmp.name, "l.ngc")
+        expect = CliSections.expect_error
+        # The arm needs A at 90 degrees one way or the other.
+        expect(self, ["slice", brep, "--step", "2.5", "--gcode", program, "--a-limits", "-45,45"],
+               1, "unreachable_orientation", "component 1", "tilted 90 degrees", "-45 to 45")
+        self.assertFalse(os.path.exists(program))
+        expect(self, ["slice", brep, "--feed", "900"], 2, "--feed is for the G-code")
+        expect(self, ["slice", brep, "--gcode", program, "--a-limits", "10"], 2,
+               "--a-limits must be MIN,MAX")
+        expect(self, ["slice", brep, "--gcode", program, "--c-limits", "0,nan"], 2, "c-limits")
+        expect(self, ["slice", brep, "--gcode", program, "--feed", "0"], 1, "invalid_argument",
+               "feed must be > 0")
+        expect(self, ["slice", brep, "--gcode", program, "--deposit-output", "1.5"], 2,
+               "whole number")
+        expect(self, ["slice", brep, "--gcode", brep], 2, "would overwrite the input FILE")
+        expect(self, ["slice", brep, "--gcode", os.path.join(self.tmp.name, "no", "l.ngc")], 1,
+               "write_failed", "no folder")
+
+
 if __name__ == "__main__":
     unittest.main()

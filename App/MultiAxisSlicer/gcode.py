@@ -1,0 +1,132 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The post-processor: a sliced part as a 5-axis G-code program, for scripts and FreeCAD.
+
+The program is for LinuxCNC (RS274NGC) on a machine whose nozzle stays vertical while a tilting
+rotary table turns the part under it: A tilts the table about X, C turns the part about the
+table's normal (LinuxCNC's ``xyzac-trt-kins``, which moves the joints so that the nozzle tip
+follows the part's own X Y Z). The engine's header App/include/mas/Gcode.hpp explains how the
+angles, the deposition output, the feed and the travel moves are chosen. Re-exported by the
+package::
+
+    import MultiAxisSlicer as mas
+    result = mas.slice(App.ActiveDocument.Part)
+    program = mas.gcode(result, feed=900, a_min=-100, a_max=50)
+    program.write("/tmp/part.ngc")
+    print(program.stats["deposit_time_min"], program.stats["a_range_deg"])
+"""
+
+import numbers
+
+from . import _require_engine
+from . import progress as _progress
+from .axis import _number
+
+__all__ = ["GcodeProgram", "gcode", "MACHINE_DEFAULTS"]
+
+# The machine parameters gcode() takes, with their defaults (angles in degrees, lengths in mm,
+# feeds in mm/min). The angle limits are those of LinuxCNC's sample xyzac-trt configuration.
+MACHINE_DEFAULTS = {
+    "a_min": -100.0,
+    "a_max": 50.0,
+    "c_min": -36000.0,
+    "c_max": 36000.0,
+    "feed": 600.0,
+    "reference_thickness": 0.0,
+    "max_feed_ratio": 4.0,
+    "clearance": 2.0,
+    "deposit_output": 0,
+}
+
+
+class GcodeProgram:
+    """A G-code program: ``text`` (str), ``stats`` (dict: lines, deposit_moves,
+    feed_limited_moves, reorientations, a_range_deg and c_range_deg (the angles used, as (min,
+    max)), deposit_length_mm, deposit_time_min (the deposit moves at their feeds),
+    rapid_length_mm, reference_thickness_mm) and ``machine`` (the machine parameters used)."""
+
+    def __init__(self, data, machine):
+        self.text = data["text"]
+        self.stats = dict(data["stats"])
+        self.stats["a_range_deg"] = tuple(self.stats["a_range_deg"])
+        self.stats["c_range_deg"] = tuple(self.stats["c_range_deg"])
+        self.machine = dict(machine)
+
+    def write(self, path):
+        """Writes the program to ``path`` (whole: through a temporary file beside it, renamed)."""
+        import os
+        import tempfile
+        path = os.fspath(path)
+        folder = os.path.dirname(os.path.abspath(path))
+        fd, partial = tempfile.mkstemp(prefix=os.path.basename(path) + ".", suffix=".partial",
+                                       dir=folder)
+        try:
+            with os.fdopen(fd, "w", newline="\n") as f:
+                f.write(self.text)
+            os.replace(partial, path)
+        except BaseException:
+            try:
+                os.unlink(partial)
+            except OSError:
+                pass
+            raise
+
+    def __str__(self):
+        return self.text
+
+    def __repr__(self):
+        s = self.stats
+        return ("<MultiAxisSlicer.GcodeProgram lines={} deposit={:.6g} mm A=[{:.4g}, {:.4g}] "
+                "deg>").format(s["lines"], s["deposit_length_mm"], *s["a_range_deg"])
+
+
+def _machine_params(values):
+    """Checks the machine parameters' names and types (TypeError naming the bad one); the engine
+    checks their ranges."""
+    unknown = sorted(set(values) - set(MACHINE_DEFAULTS))
+    if unknown:
+        raise TypeError("unknown machine parameter(s): {}; known: {}".format(
+            ", ".join(unknown), ", ".join(MACHINE_DEFAULTS)))
+    p = dict(MACHINE_DEFAULTS)
+    for name in ("a_min", "a_max", "c_min", "c_max"):
+        p[name] = _number(values.get(name, p[name]), name, "degrees")
+    for name in ("reference_thickness", "clearance"):
+        p[name] = _number(values.get(name, p[name]), name, "millimetres")
+    p["feed"] = _number(values.get("feed", p["feed"]), "feed", "millimetres per minute")
+    p["max_feed_ratio"] = _number(values.get("max_feed_ratio", p["max_feed_ratio"]),
+                                  "max_feed_ratio", "a ratio")
+    output = values.get("deposit_output", p["deposit_output"])
+    if isinstance(output, bool) or not isinstance(output, numbers.Integral):
+        raise TypeError("deposit_output must be an integer, got {!r}".format(output))
+    p["deposit_output"] = int(output)
+    return p
+
+
+def gcode(result, progress=None, **machine):
+    """The 5-axis G-code program that deposits a ``SliceResult`` (from ``slice()``), layer by
+    layer in its build order.
+
+    Machine parameters (defaults in ``MACHINE_DEFAULTS``; FreeCAD Quantities accepted):
+      * ``a_min``, ``a_max`` (-100, 50), ``c_min``, ``c_max`` (-36000, 36000): the table's travel
+        limits, degrees. A layer whose tool axis no angle within them turns up to the nozzle is an
+        error naming the layer (EngineError ``unreachable_orientation``).
+      * ``feed``: the deposition feed, mm/min, where the deposit is ``reference_thickness`` mm
+        thick (600; 0: half-way between the thinnest and the thickest deposit). Where a tilted
+        layer is thinner the nozzle goes faster, in proportion, within ``feed / max_feed_ratio``
+        to ``feed * max_feed_ratio`` (4; 1 keeps the feed constant).
+      * ``clearance``: how far the nozzle retracts along the tool axis between paths, and its
+        margin round the part between components, mm (2).
+      * ``deposit_output``: the digital output that switches deposition (M62/M63 P, 0).
+
+    ``progress``: as ``slice()``'s, reported layer by layer. Returns a ``GcodeProgram``. Raises
+    TypeError for an unknown parameter or one of the wrong type, EngineError ``invalid_argument``
+    for one out of its range (a feed of 0, A's limits the wrong way round, an output beyond 63),
+    ``unreachable_orientation`` as above, ``empty_input`` when nothing is deposited.
+    """
+    from .slicing import SliceResult
+    if not isinstance(result, SliceResult):
+        raise TypeError("gcode() needs a SliceResult (from MultiAxisSlicer.slice()), got "
+                        "{!r}".format(type(result).__name__))
+    p = _machine_params(machine)
+    _progress.check(progress)
+    eng = _require_engine()
+    return GcodeProgram(eng.write_gcode(result._data["layers"], p, progress), p)

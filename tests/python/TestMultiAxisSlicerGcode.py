@@ -1,0 +1,143 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The post-processor from scripts (MultiAxisSlicer.gcode) and as a document object
+(MachineProgram), in freecadcmd: the program, its figures, bad machine parameters."""
+
+import math
+import os
+import tempfile
+import unittest
+
+import FreeCAD
+
+import MultiAxisSlicer as mas
+import MultiAxisSlicerTestSupport as support
+from MultiAxisSlicerTestSupport import l_block
+
+
+def table_turns(v, a_deg, c_deg):
+    """Where the table at (A, C) turns a part vector: LinuxCNC's xyzac-trt-kins, Rx(A) Rz(C)."""
+    a, c = math.radians(a_deg), math.radians(c_deg)
+    x = math.cos(c) * v[0] - math.sin(c) * v[1]
+    y = math.sin(c) * v[0] + math.cos(c) * v[1]
+    return (x, math.cos(a) * y - math.sin(a) * v[2], math.sin(a) * y + math.cos(a) * v[2])
+
+
+def deposit_moves(text):
+    """[(x, y, z, a, c, f)] of the moves made with the deposition output on (M62 .. M63)."""
+    state = {"X": 0.0, "Y": 0.0, "Z": 0.0, "A": 0.0, "C": 0.0, "F": 0.0}
+    on, out = False, []
+    for line in text.splitlines():
+        line = line.split("(", 1)[0].split()
+        if not line:
+            continue
+        if line[0] == "M62":
+            on = True
+        elif line[0] in ("M63", "M65"):
+            on = False
+        elif line[0] in ("G0", "G1"):
+            for word in line[1:]:
+                state[word[0]] = float(word[1:])
+            if on:
+                out.append(tuple(state[k] for k in "XYZACF"))
+    return out
+
+
+class GcodeTest(support.EngineTestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.result = mas.slice(l_block(), step=2.5)
+
+
+class TestGcodeApi(GcodeTest):
+    def test_every_deposit_point_with_the_table_turned_to_its_layer(self):
+        program = mas.gcode(self.result)
+        self.assertIsInstance(program, mas.GcodeProgram)
+        self.assertEqual(program.machine, mas.MACHINE_DEFAULTS)
+        moves = deposit_moves(program.text)
+        self.assertEqual(len(moves), program.stats["deposit_moves"])
+        expected = []
+        for i, layer in enumerate(self.result.layers):
+            for path in self.result.paths(i):
+                if not path.deposit:
+                    continue
+                points = path.points
+                for a, b in zip(points, points[1:]):
+                    if (b - a).Length > 1e-9:
+                        expected.append((b, layer.normal))
+        k = 0
+        for x, y, z, a, c, _f in moves:
+            point, normal = expected[k]
+            self.assertAlmostEqual(table_turns(normal, a, c)[2], 1.0, places=6)
+            if max(abs(x - point.x), abs(y - point.y), abs(z - point.z)) <= 0.5e-4 + 1e-9:
+                k += 1
+        self.assertEqual(k, len(expected))
+        self.assertEqual(program.stats["a_range_deg"], (-90.0, 0.0))
+        self.assertAlmostEqual(program.stats["deposit_length_mm"],
+                               self.result.stats["deposit_length_mm"], places=6)
+        self.assertEqual(program.stats["lines"], len(program.text.splitlines()))
+        self.assertEqual(str(program), program.text)
+
+    def test_the_same_program_as_the_command_line(self):
+        """Scripting and the command line run one engine on the same layers: the same text."""
+        with support.scratch_folder("mas_gcode_") as folder:
+            part = os.path.join(folder, "l.brep")
+            l_block().exportBrep(part)
+            result = mas.slice(part, step=2.5)
+            ngc = os.path.join(folder, "l.ngc")
+            self.cli_json(folder, "slice", part, "--step", "2.5", "--gcode", ngc, "--feed", "750",
+                          "--clearance", "4")
+            with open(ngc) as f:
+                self.assertEqual(result.gcode(feed=750, clearance=4).text, f.read())
+
+    def test_write_and_machine_parameters(self):
+        program = self.result.gcode(feed=FreeCAD.Units.Quantity("900 mm"), max_feed_ratio=1,
+                                    deposit_output=5, a_min=-120, a_max=120)
+        self.assertEqual({m[5] for m in deposit_moves(program.text)}, {900.0})
+        self.assertIn("M62 P5", program.text)
+        with support.scratch_folder("mas_gcode_") as folder:
+            path = os.path.join(folder, "l.ngc")
+            program.write(path)
+            with open(path) as f:
+                self.assertEqual(f.read(), program.text)
+            self.assertEqual(os.listdir(folder), ["l.ngc"])
+            with self.assertRaises(OSError):
+                program.write(os.path.join(folder, "missing", "l.ngc"))
+            self.assertEqual(os.listdir(folder), ["l.ngc"])
+
+    def test_progress_and_cancel(self):
+        # Reports come at most every 10 ms (and at the end): few on a fast program.
+        seen = []
+        self.result.gcode(progress=lambda f, stage: seen.append(f))
+        self.assertTrue(seen)
+        self.assertEqual(seen, sorted(seen))
+        self.assertEqual(seen[-1], 1.0)
+
+        def stop(fraction, stage):
+            raise mas.Cancelled("enough")
+
+        with self.assertRaisesRegex(mas.Cancelled, "enough"):
+            self.result.gcode(progress=stop)
+
+    def test_bad_machine_parameters(self):
+        e = self.assertRaisesEngineError("unreachable_orientation", self.result.gcode, a_min=-45,
+                                         a_max=45)
+        self.assertIn("component 1", str(e))
+        self.assertIn("tilted 90 degrees", str(e))
+        self.assertRaisesEngineError("invalid_argument", self.result.gcode, feed=0)
+        self.assertRaisesEngineError("invalid_argument", self.result.gcode, a_min=10, a_max=0)
+        self.assertRaisesEngineError("invalid_argument", self.result.gcode, clearance=math.nan)
+        self.assertRaisesEngineError("invalid_argument", self.result.gcode, deposit_output=64)
+        with self.assertRaisesRegex(TypeError, "unknown machine parameter.*fed"):
+            self.result.gcode(fed=10)
+        with self.assertRaisesRegex(TypeError, "feed must be a number"):
+            self.result.gcode(feed="fast")
+        with self.assertRaisesRegex(TypeError, "deposit_output must be an integer"):
+            self.result.gcode(deposit_output=1.5)
+        with self.assertRaisesRegex(TypeError, "needs a SliceResult"):
+            mas.gcode(l_block())
+        with self.assertRaisesRegex(TypeError, "progress"):
+            self.result.gcode(progress=3)
+
+
+if __name__ == "__main__":
+    unittest.main()

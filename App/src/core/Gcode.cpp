@@ -45,7 +45,12 @@ public:
         out_ << text << '\n';
         ++stats_.lines;
     }
-    void comment(const std::string& text) { line("(" + text + ")"); }
+    // RS274NGC comments do not nest: brackets stand for parentheses inside one.
+    void comment(std::string text) {
+        std::replace(text.begin(), text.end(), '(', '[');
+        std::replace(text.begin(), text.end(), ')', ']');
+        line("(" + text + ")");
+    }
 
     // G0 to `p` with the table at `angles`.
     void rapid(const Eigen::Vector3d& p, const TableAngles& angles) {
@@ -325,11 +330,11 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     }
     g.comment("Multi-Axis Slicer: " + std::to_string(used.size()) + " layers of " +
               std::to_string(component_count) + " components");
-    g.comment("machine: tilting rotary table XYZAC (LinuxCNC xyzac-trt-kins), A " +
+    g.comment("machine: tilting rotary table XYZAC, LinuxCNC xyzac-trt-kins, A " +
               format_number(params.a_min_deg) + " to " + format_number(params.a_max_deg) +
               " deg, C " + format_number(params.c_min_deg) + " to " +
               format_number(params.c_max_deg) + " deg");
-    g.comment("X Y Z: the part's coordinates in mm (set G54 to the part's origin on the table)");
+    g.comment("X Y Z: the part's coordinates in mm; set G54 to the part's origin on the table");
     g.comment("deposition: digital output" + out_n + ", feed " + format_number(params.feed_mm_min) +
               " mm/min at " + format_number(reference, 4) + " mm thick, within " +
               format_number(f_lo) + " to " + format_number(f_hi) + " mm/min");
@@ -370,8 +375,9 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         const GcodeLayer& layer = layers[i];
         const Eigen::Vector3d& n = layer.tool_axis;
         const TableAngles& a = angles[i];
-        g.comment(layer_name(i, layer) + ": tool axis " + vector_text(n) + ", A " +
-                  format_number(a.a_deg, 8) + " C " + format_number(a.c_deg, 8));
+        g.comment("layer " + std::to_string(i) + ", component " + std::to_string(layer.component) +
+                  ": tool axis " + vector_text(n) + ", A " + format_number(a.a_deg, 8) + " C " +
+                  format_number(a.c_deg, 8));
         bool first_path = true;
         for (const ToolPath& path : layer.paths) {
             if (!path.deposit() || path.points.empty()) continue;

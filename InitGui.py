@@ -11,8 +11,8 @@ class MultiAxisSlicerWorkbench(Workbench):  # noqa: F821 (Workbench comes from F
     """Multi-Axis Slicer: cross-sections of solids and meshes, towards multi-axis build plans."""
 
     MenuText = "Multi-Axis Slicer"
-    ToolTip = ("Cross-sections, centroidal axis, decomposition and multi-axis layers and paths of "
-               "solids and meshes")
+    ToolTip = ("Cross-sections, centroidal axis, decomposition, multi-axis layers and paths of "
+               "solids and meshes, and their 5-axis G-code")
 
     def __init__(self):
         import MultiAxisSlicerGui
@@ -23,7 +23,8 @@ class MultiAxisSlicerWorkbench(Workbench):  # noqa: F821 (Workbench comes from F
         import MultiAxisSlicerGui.commands as commands
 
         names = [commands.SectionsCommand.NAME, commands.CentroidalAxisCommand.NAME,
-                 commands.DecomposeCommand.NAME, commands.SliceCommand.NAME]
+                 commands.DecomposeCommand.NAME, commands.SliceCommand.NAME,
+                 commands.MachineProgramCommand.NAME, commands.ExportGcodeCommand.NAME]
         self.appendToolbar("Multi-Axis Slicer", names)
         self.appendMenu("Multi-Axis Slicer", names)
 

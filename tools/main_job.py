@@ -1,6 +1,6 @@
 # The README's main job, run headless by `tools/setup.sh demo` (freecadcmd tools/main_job.py):
 # the whole pipeline on the bundled example part, results under out/. Today the pipeline ends at
-# the layers and their deposition paths; each stage added to the product extends this job.
+# the 5-axis G-code (out/bracket.ngc); each stage added to the product extends this job.
 #   MAS_EXAMPLE  the part (default examples/bracket.step)
 #   MAS_OUT      the output folder (default out/)
 import json
@@ -105,8 +105,13 @@ def main():
                     % (i, layer.component, o.x, o.y, o.z, n.x, n.y, n.z, layer.min_thickness,
                        layer.max_thickness, layer.area, layer.volume_difference,
                        layer.unsupported_area, deposit, travel))
+    # The machine program: LinuxCNC G-code for a tilting rotary table (XYZAC).
+    start = time.perf_counter()
+    program = sliced.gcode()
+    gcode_seconds = time.perf_counter() - start
+    program.write(os.path.join(out, "bracket.ngc"))
     # The same as a FreeCAD document: the part with parametric Sections, CentroidalAxis,
-    # Decomposition (and its Component objects), Layers and Toolpath objects.
+    # Decomposition (and its Component objects), Layers, Toolpath and MachineProgram objects.
     doc = FreeCAD.newDocument("MainJob")
     part = doc.addObject("Part::Feature", "Bracket")
     part.Shape = shape
@@ -115,7 +120,9 @@ def main():
     doc.recompute()
     decomposition_object = mas.make_decomposition(part, axis=axis_object, doc=doc)
     objects.append(decomposition_object)
-    objects.extend(mas.make_slice(decomposition_object, doc=doc, fill_holes=FILL_HOLES))
+    layers_object, toolpath_object = mas.make_slice(decomposition_object, doc=doc,
+                                                    fill_holes=FILL_HOLES)
+    objects += [layers_object, toolpath_object, mas.make_machine_program(layers_object, doc=doc)]
     doc.recompute()
     for obj in objects:
         if obj.State and "Invalid" in obj.State:
@@ -140,6 +147,11 @@ def main():
           % (len(sliced.filled_holes), ", ".join(
               "%g mm across at (%g, %g, %g)" % (h.diameter, h.centre.x, h.centre.y, h.centre.z)
               for h in sliced.filled_holes) or "none"))
+    g = program.stats
+    print("main job: G-code in %.1f ms: %d lines, %d deposit moves, A %g to %g deg, deposit time "
+          "%.1f min; wrote %s" % (1e3 * gcode_seconds, g["lines"], g["deposit_moves"],
+                                  *g["a_range_deg"], g["deposit_time_min"],
+                                  os.path.join(out, "bracket.ngc")))
     print("main job: done")
 
 

@@ -63,6 +63,7 @@ __all__ = [
     "gcode",
     "make_centroidal_axis",
     "make_decomposition",
+    "make_machine_program",
     "make_sections",
     "make_slice",
     "parallel_planes",
@@ -619,6 +620,17 @@ def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
 
     return features.make_slice(decomposition, deflection=deflection, show_travel=show_travel,
                                name=name, toolpath_name=toolpath_name, doc=doc, **params)
+
+
+def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
+    """Adds a parametric ``MachineProgram`` object (FreeCAD only) writing the 5-axis G-code that
+    deposits a ``Layers`` (or ``Toolpath``) object's layers; returns it. Recompute the document to
+    compute it; ``features.export_gcode(obj, path)`` writes the program. ``machine`` are
+    ``gcode()``'s machine parameters (a_min, a_max, feed, clearance, ...), their names and types
+    checked before anything is added. See ``MultiAxisSlicer.features``."""
+    from . import features
+
+    return features.make_machine_program(layers, name=name, doc=doc, **machine)
 
 
 # The centroidal axis, the decomposition and the slicing (after the helpers above, which they use).

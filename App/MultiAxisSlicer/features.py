@@ -6,7 +6,8 @@ closed wires. ``CentroidalAxis``: the part's centroidal axis, as a compound of v
 line segments (links). ``Decomposition``: the part's sub-components, as a compound of solids in
 tree order, with one ``Component`` object per solid (labelled Component001, ...) for the tree and
 the 3D view. ``Layers``: a decomposition's adaptive multi-axis layers, as a compound of their
-outlines; ``Toolpath``: the bead paths planned in them, as a compound of polylines. Thin like
+outlines; ``Toolpath``: the bead paths planned in them, as a compound of polylines;
+``MachineProgram``: the 5-axis G-code that deposits them, its travel moves as polylines. Thin like
 FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
 
     import MultiAxisSlicer.features as features
@@ -14,7 +15,9 @@ FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
     axis = features.make_centroidal_axis(doc.Box, step=2.0)
     parts = features.make_decomposition(doc.Box, axis=axis)   # computes it, adds the components
     layers, toolpath = features.make_slice(parts, max_layer=1.5, bead_width=1.2)
+    program = features.make_machine_program(layers, feed=900)
     doc.recompute()
+    features.export_gcode(program, "/tmp/part.ngc")
 """
 
 import functools
@@ -26,6 +29,7 @@ import Part
 import MultiAxisSlicer as mas
 from MultiAxisSlicer import progress as _progress
 from MultiAxisSlicer.decompose import _angle
+from MultiAxisSlicer.gcode import _machine_params
 
 # Bad input the user can fix (a face instead of a solid, an open mesh, Step = 0, no Source), or a
 # recompute the user cancelled: FreeCAD shows the object as failed with the message. Anything else
@@ -1106,6 +1110,221 @@ def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
         _attach_view_provider(layers, LayersFeature.VIEW_PROVIDER)
         _attach_view_provider(toolpath, ToolpathFeature.VIEW_PROVIDER)
     return layers, toolpath
+
+
+# ---- the machine program: MachineProgram ------------------------------------------------------
+
+# The machine parameters a MachineProgram object holds as properties: (property, gcode()
+# parameter, property type, tooltip). Their defaults are MultiAxisSlicer.MACHINE_DEFAULTS.
+_MACHINE_PROPERTIES = (
+    ("AMin", "a_min", "App::PropertyAngle", "Least tilt of the table (A, about X)"),
+    ("AMax", "a_max", "App::PropertyAngle", "Greatest tilt of the table (A, about X)"),
+    ("CMin", "c_min", "App::PropertyFloat",
+     "Least turn of the table (C, about its normal), degrees: far out for a table that turns "
+     "without end"),
+    ("CMax", "c_max", "App::PropertyFloat",
+     "Greatest turn of the table (C, about its normal), degrees"),
+    ("Feed", "feed", "App::PropertyFloat",
+     "Deposition feed, mm/min, where the deposit is ReferenceThickness thick"),
+    ("ReferenceThickness", "reference_thickness", "App::PropertyLength",
+     "Deposit thickness at which the nozzle moves at Feed: faster where thinner, in proportion "
+     "(0 = half-way between the thinnest and the thickest deposit)"),
+    ("MaxFeedRatio", "max_feed_ratio", "App::PropertyFloat",
+     "The feed stays within Feed / this to Feed x this as the thickness varies (1 = constant)"),
+    ("Clearance", "clearance", "App::PropertyLength",
+     "Retract along the tool axis between paths, and the margin round the part between "
+     "components"),
+    ("DepositOutput", "deposit_output", "App::PropertyInteger",
+     "Digital output that switches deposition on and off (M62/M63 P)"),
+)
+
+
+def program_travel_shape(text):
+    """A compound of polylines through the moves of `text` made with the deposition output off,
+    one per run of such moves (from where the run starts)."""
+    position = {"X": 0.0, "Y": 0.0, "Z": 0.0}
+    on, started, run, wires = False, False, [], []
+
+    def close_run():
+        wire = _polyline(run)
+        if wire is not None:
+            wires.append(wire)
+        run.clear()
+
+    for line in text.splitlines():
+        words = line.split("(", 1)[0].split()
+        if not words:
+            continue
+        if words[0] == "M62":
+            on = True
+        elif words[0] in ("M63", "M65"):
+            on = False
+        elif words[0] in ("G0", "G1"):
+            start = FreeCAD.Vector(position["X"], position["Y"], position["Z"])
+            for word in words[1:]:
+                if word[0] in position:
+                    position[word[0]] = float(word[1:])
+            end = FreeCAD.Vector(position["X"], position["Y"], position["Z"])
+            if on:
+                close_run()
+            else:
+                if not run and started:
+                    run.append(start)
+                run.append(end)
+            started = True
+    close_run()
+    return Part.makeCompound(wires)
+
+
+class MachineProgramFeature(_EngineFeature):
+    """Proxy of a ``Part::FeaturePython`` holding the 5-axis G-code program that deposits a
+    ``Layers`` object's layers (``MultiAxisSlicer.gcode``): the plan the machine runs.
+
+    Inputs: Layers (the Layers object), the machine (AMin, AMax, CMin, CMax, Feed,
+    ReferenceThickness, MaxFeedRatio, Clearance, DepositOutput). Outputs: Shape (the moves made
+    with the deposition off, as polylines: retracts, approaches and the routes round the part
+    between components; the Toolpath object shows the deposits), LineCount, DepositMoves,
+    FeedLimitedMoves, Reorientations, ARange and CRange (the angles the program uses, [least,
+    greatest], degrees), DepositLength, DepositTime (minutes), RapidLength,
+    ReferenceThicknessUsed. The program's text stays in memory only (``machine_program()``);
+    ``export_gcode()`` and the Export G-code command write it to a file."""
+
+    TYPE = "MultiAxisSlicer::MachineProgram"
+    VIEW_PROVIDER = "ViewProviderMachineProgram"
+    PROPERTY_NAMES = ((r"\bA's limits\b", "AMin and AMax"), (r"\bC's limits\b", "CMin and CMax"),
+                      (r"\bfeed must\b", "Feed must"),
+                      (r"\breference thickness\b", "ReferenceThickness"),
+                      (r"\bmax feed ratio\b", "MaxFeedRatio"),
+                      (r"\bclearance must\b", "Clearance must"),
+                      (r"\bthe deposition output\b", "DepositOutput"))
+
+    @staticmethod
+    def ensure_properties(obj):
+        group = "Machine program"
+        _add_property(obj, "App::PropertyLink", "Layers", group,
+                      "Layers object whose paths the program deposits, in their build order")
+        for prop, name, type_id, doc in _MACHINE_PROPERTIES:
+            _add_property(obj, type_id, prop, "Machine", doc, mas.MACHINE_DEFAULTS[name])
+        result = "Result"
+        for type_id, prop, doc, default in (
+                ("App::PropertyInteger", "LineCount", "Lines of the program", 0),
+                ("App::PropertyInteger", "DepositMoves", "Moves made with the deposition on", 0),
+                ("App::PropertyInteger", "FeedLimitedMoves",
+                 "Of those, moves held at a bound of the feed range (MaxFeedRatio)", 0),
+                ("App::PropertyInteger", "Reorientations", "Moves that turn the table", 0),
+                ("App::PropertyFloatList", "ARange",
+                 "Least and greatest tilt the program uses (degrees)", None),
+                ("App::PropertyFloatList", "CRange",
+                 "Least and greatest turn the program uses (degrees)", None),
+                ("App::PropertyLength", "DepositLength", "Length of the deposit moves", 0.0),
+                ("App::PropertyFloat", "DepositTime",
+                 "Time of the deposit moves at their feeds (minutes)", 0.0),
+                ("App::PropertyLength", "RapidLength",
+                 "Length of the rapid moves of the nozzle tip, in the part's frame", 0.0),
+                ("App::PropertyLength", "ReferenceThicknessUsed",
+                 "The deposit thickness at which the nozzle moves at Feed", 0.0)):
+            _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
+
+    @staticmethod
+    def recompute(obj):
+        """Properties -> engine -> Shape and the result properties. Raises on bad input."""
+        program = machine_program(obj)
+        s = program.stats
+        obj.LineCount = s["lines"]
+        obj.DepositMoves = s["deposit_moves"]
+        obj.FeedLimitedMoves = s["feed_limited_moves"]
+        obj.Reorientations = s["reorientations"]
+        obj.ARange = list(s["a_range_deg"])
+        obj.CRange = list(s["c_range_deg"])
+        obj.DepositLength = s["deposit_length_mm"]
+        obj.DepositTime = s["deposit_time_min"]
+        obj.RapidLength = s["rapid_length_mm"]
+        obj.ReferenceThicknessUsed = s["reference_thickness_mm"]
+        FreeCAD.Console.PrintMessage(
+            "{}: {} lines, {} deposit moves ({} at a feed limit), A {:.6g} to {:.6g} deg, C {:.6g} "
+            "to {:.6g} deg, deposit time {:.4g} min\n".format(
+                obj.Label, s["lines"], s["deposit_moves"], s["feed_limited_moves"],
+                *s["a_range_deg"], *s["c_range_deg"], s["deposit_time_min"]))
+        obj.Shape = program_travel_shape(program.text)
+
+
+def is_machine_program(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == MachineProgramFeature.TYPE
+
+
+def machine_inputs(obj):
+    """(Layers object, gcode() machine parameters) of a MachineProgram object. Raises ValueError /
+    TypeError for a missing or wrong link or a parameter of the wrong type."""
+    layers = _check_link(obj, "Layers", is_layers, "Layers")
+    machine = {}
+    for prop, name, type_id, _doc in _MACHINE_PROPERTIES:
+        value = getattr(obj, prop)
+        if type_id in ("App::PropertyLength", "App::PropertyAngle"):
+            value = value.Value
+        machine[name] = value
+    return layers, _machine_params(machine)
+
+
+def machine_program(obj):
+    """The ``MultiAxisSlicer.GcodeProgram`` of a MachineProgram object, as its properties and its
+    Layers object give it. The proxy keeps the last one in memory (never saved); it is written
+    anew when a machine parameter or the slicing changed, or after a reopen. Raises like
+    ``MultiAxisSlicer.gcode``."""
+    layers, machine = machine_inputs(obj)
+    result = slice_result(layers)
+    proxy = obj.Proxy
+    key = (id(result), tuple(sorted(machine.items())))
+    cached = getattr(proxy, "_program", None)
+    if cached is not None and cached[0] == key and cached[1] is result:
+        return cached[2]
+    proxy._program = None
+    with _progress.reporting("Writing the G-code of '{}'".format(obj.Label)) as progress:
+        program = mas.gcode(result, progress=progress, **machine)
+    proxy._program = (key, result, program)
+    return program
+
+
+def export_gcode(obj, path):
+    """Writes the program of the MachineProgram object ``obj`` to ``path`` (whole or not at all)
+    and returns its ``GcodeProgram``. Raises ValueError when the object is not computed (its
+    message), else like ``machine_program()`` and ``GcodeProgram.write``."""
+    if not is_machine_program(obj):
+        raise TypeError("export_gcode() needs a MachineProgram object, got {}".format(
+            getattr(obj, "TypeId", type(obj).__name__)))
+    problem = failure(obj)
+    if problem is not None:
+        raise ValueError(problem)
+    program = machine_program(obj)
+    program.write(path)
+    return program
+
+
+def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
+    """Adds a ``MachineProgram`` object writing the G-code of the ``Layers`` object ``layers`` (a
+    ``Toolpath`` object stands for its Layers) to ``doc`` (default: the layers' document) and
+    returns it; recompute the document to compute it. ``machine``: ``MultiAxisSlicer.gcode``'s
+    machine parameters (defaults ``MultiAxisSlicer.MACHINE_DEFAULTS``), their names and types
+    checked before anything is added. Nothing is changed on the layers."""
+    if is_toolpath(layers):
+        layers = layers.Layers
+    if not is_layers(layers):
+        raise TypeError("make_machine_program() needs a Layers or Toolpath object, got {}".format(
+            getattr(layers, "TypeId", type(layers).__name__)))
+    values = _machine_params(machine)
+    for _prop, param, type_id, _doc in _MACHINE_PROPERTIES:
+        if type_id == "App::PropertyAngle" and not (-360.0 <= values[param] <= 360.0):
+            raise ValueError("{} must be between -360 and 360 degrees, got {}".format(
+                param, values[param]))
+    if doc is None:
+        doc = layers.Document
+    obj = doc.addObject("Part::FeaturePython", name)
+    MachineProgramFeature(obj)
+    obj.Layers = layers
+    for prop, param, _t, _d in _MACHINE_PROPERTIES:
+        setattr(obj, prop, values[param])
+    if FreeCAD.GuiUp:
+        _attach_view_provider(obj, MachineProgramFeature.VIEW_PROVIDER)
+    return obj
 
 
 def _attach_view_provider(obj, class_name):

@@ -31,6 +31,7 @@ _RESULTS = {
     "MultiAxisSlicer::Decomposition": "a Decomposition object",
     "MultiAxisSlicer::Layers": "a Layers object",
     "MultiAxisSlicer::Toolpath": "a Toolpath object",
+    "MultiAxisSlicer::MachineProgram": "a MachineProgram object (G-code)",
 }
 
 
@@ -355,7 +356,130 @@ class SliceCommand(_PartCommand):
             MultiAxisSlicerGui.show_error(failed)
 
 
+def _selected_one(check):
+    """The one selected object if check(object), else None."""
+    if FreeCAD.ActiveDocument is None:
+        return None
+    selection = FreeCADGui.Selection.getSelection()
+    if len(selection) == 1 and check(selection[0]):
+        return selection[0]
+    return None
+
+
+class MachineProgramCommand:
+    """The 5-axis G-code of a selected Layers (or Toolpath) object, as a parametric
+    MachineProgram object (the machine's limits, feed and clearance as properties), in one
+    transaction. A program the machine cannot run (a layer whose tool axis the table cannot turn
+    to the nozzle) leaves the object marked with the message, so that the limits can be fixed."""
+
+    NAME = "MultiAxisSlicer_MachineProgram"
+    TRANSACTION = "Machine program"
+
+    def GetResources(self):
+        return {
+            "Pixmap": MultiAxisSlicerGui.icon_path("MachineProgram.svg"),
+            "MenuText": self.TRANSACTION,
+            "ToolTip": ("Write the 5-axis G-code that deposits the selected Layers (or Toolpath) "
+                        "on a tilting rotary table (LinuxCNC, XYZAC): a parametric "
+                        "MachineProgram object; set AMin, AMax, Feed, Clearance, ..., then "
+                        "Export G-code"),
+        }
+
+    def IsActive(self):
+        import MultiAxisSlicer.features as features
+
+        try:
+            return _selected_one(lambda o: features.is_layers(o) or features.is_toolpath(o)) \
+                is not None
+        except Exception:  # IsActive runs on every GUI update: never let it raise
+            return False
+
+    def Activated(self):
+        import MultiAxisSlicer.features as features
+
+        source = _selected_one(lambda o: features.is_layers(o) or features.is_toolpath(o))
+        if source is None:
+            MultiAxisSlicerGui.show_error("Select one Layers or Toolpath object first.")
+            return
+        if not mas.engine_available():
+            MultiAxisSlicerGui.show_error(mas.engine_missing_message())
+            return
+        doc = source.Document
+        watch = _CancelWatch()
+        before = {o.Name for o in doc.Objects}
+        doc.openTransaction(self.TRANSACTION)
+        try:
+            obj = features.make_machine_program(source, doc=doc)
+            if not watch.cancelled():
+                _recompute_new(doc, before)
+        except Exception as error:  # creating the object failed: leave nothing behind
+            doc.abortTransaction()
+            MultiAxisSlicerGui.show_error(
+                "{} of '{}' failed: {}".format(self.TRANSACTION, source.Label, error))
+            return
+        if watch.cancelled():
+            _undo_cancelled(doc, self.TRANSACTION, source, {})
+            return
+        doc.commitTransaction()
+        message = features.failure(obj)
+        if message is not None:  # the object stays so that the machine can be fixed
+            MultiAxisSlicerGui.show_error(message)
+
+
+class ExportGcodeCommand:
+    """Writes the program of a selected MachineProgram object to a file the user names (.ngc).
+    Changes nothing in the document."""
+
+    NAME = "MultiAxisSlicer_ExportGcode"
+    MENU_TEXT = "Export G-code..."
+
+    def GetResources(self):
+        return {
+            "Pixmap": MultiAxisSlicerGui.icon_path("ExportGcode.svg"),
+            "MenuText": self.MENU_TEXT,
+            "ToolTip": "Write the selected MachineProgram's G-code to a file (.ngc)",
+        }
+
+    def IsActive(self):
+        import MultiAxisSlicer.features as features
+
+        try:
+            return _selected_one(features.is_machine_program) is not None
+        except Exception:  # IsActive runs on every GUI update: never let it raise
+            return False
+
+    def Activated(self):
+        import MultiAxisSlicer.features as features
+        from PySide import QtGui
+
+        obj = _selected_one(features.is_machine_program)
+        if obj is None:
+            MultiAxisSlicerGui.show_error("Select one MachineProgram object first.")
+            return
+        if "Touched" in obj.State:  # changed since: as it is now
+            obj.recompute(True)
+        problem = features.failure(obj)
+        if problem is not None:
+            MultiAxisSlicerGui.show_error("Export G-code: " + problem)
+            return
+        path, _filter = QtGui.QFileDialog.getSaveFileName(
+            FreeCADGui.getMainWindow(), "Export G-code", obj.Label + ".ngc",
+            "G-code (*.ngc *.nc *.gcode);;All files (*)")
+        if not path:
+            return
+        try:
+            program = features.export_gcode(obj, path)
+        except Exception as error:
+            MultiAxisSlicerGui.show_error("Export G-code to '{}' failed: {}".format(path, error))
+            return
+        message = "G-code written to {} ({} lines)".format(path, program.stats["lines"])
+        FreeCAD.Console.PrintMessage(message + "\n")
+        FreeCADGui.getMainWindow().statusBar().showMessage(message, 10000)
+
+
 FreeCADGui.addCommand(SectionsCommand.NAME, SectionsCommand())
 FreeCADGui.addCommand(CentroidalAxisCommand.NAME, CentroidalAxisCommand())
 FreeCADGui.addCommand(DecomposeCommand.NAME, DecomposeCommand())
 FreeCADGui.addCommand(SliceCommand.NAME, SliceCommand())
+FreeCADGui.addCommand(MachineProgramCommand.NAME, MachineProgramCommand())
+FreeCADGui.addCommand(ExportGcodeCommand.NAME, ExportGcodeCommand())

@@ -570,3 +570,27 @@ class ViewProviderToolpath(_EdgeColoured):
 
     def getIcon(self):
         return MultiAxisSlicerGui.icon_path("Toolpath.svg")
+
+
+# MachineProgram: the moves made with the deposition off, dashed, in a blue no component gets.
+PROGRAM_LINE_COLOR = (0.2, 0.3, 0.75)
+PROGRAM_LINE_WIDTH = 1.0
+
+
+class ViewProviderMachineProgram(_Stateless):
+    """Tree icon and line style of a ``MachineProgram`` object: its travel moves (retracts,
+    approaches, routes round the part), dashed."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+        vobj.LineColor = PROGRAM_LINE_COLOR
+        vobj.LineWidth = PROGRAM_LINE_WIDTH
+        vobj.PointColor = PROGRAM_LINE_COLOR
+        vobj.PointSize = 1.0
+        vobj.DrawStyle = "Dashed"
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        return MultiAxisSlicerGui.icon_path("MachineProgram.svg")

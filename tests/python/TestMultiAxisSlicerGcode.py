@@ -139,5 +139,144 @@ class TestGcodeApi(GcodeTest):
             self.result.gcode(progress=3)
 
 
+class TestTravelShape(support.EngineTestCase):
+    def test_moves_with_the_deposition_off_as_one_polyline_per_run(self):
+        import MultiAxisSlicer.features as features
+
+        text = "\n".join([
+            "(a comment G0 X99)", "G21 G90", "M65 P0",
+            "G0 X0 Y0 Z10 A0 C0", "G0 X1 Y0 Z2", "G1 X1 Y0 Z0 F600",  # run 1: 3 points
+            "M62 P0", "G1 X5 Y0 Z0", "G1 X5 Y5 Z0", "M63 P0",        # deposits
+            "G0 X5 Y5 Z2", "G0 X9 Y9 Z2 A-90 C180", "M65 P0", "M2"])  # run 2: from (5, 5, 0)
+        shape = features.program_travel_shape(text)
+        wires = shape.Wires
+        self.assertEqual(len(wires), 2)
+        self.assertEqual([tuple(v.Point) for v in wires[0].OrderedVertexes],
+                         [(0, 0, 10), (1, 0, 2), (1, 0, 0)])
+        self.assertEqual([tuple(v.Point) for v in wires[1].OrderedVertexes],
+                         [(5, 5, 0), (5, 5, 2), (9, 9, 2)])
+
+
+class TestMachineProgramObject(support.EngineTestCase):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("MasGcode")
+        self.part = self.doc.addObject("Part::Feature", "L")
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        self.decomposition = mas.make_decomposition(self.part)
+        self.layers, self.toolpath = mas.make_slice(self.decomposition)
+        self.doc.recompute()
+        self.folder = tempfile.mkdtemp(prefix="mas_gcode_doc_")
+
+    def tearDown(self):
+        import shutil
+
+        for name in list(FreeCAD.listDocuments()):
+            if name.startswith("MasGcode"):
+                FreeCAD.closeDocument(name)
+        shutil.rmtree(self.folder)
+
+    def test_the_program_of_the_layers_with_its_figures_and_export(self):
+        import MultiAxisSlicer.features as features
+
+        program_obj = mas.make_machine_program(self.toolpath, feed=750)  # a Toolpath stands in
+        self.assertIs(program_obj.Layers, self.layers)
+        self.doc.recompute()
+        self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+        self.assertEqual(program_obj.Proxy.Type, "MultiAxisSlicer::MachineProgram")
+        self.assertEqual(program_obj.Feed, 750.0)
+        self.assertEqual(program_obj.AMin.Value, -100.0)
+        expected = features.slice_result(self.layers).gcode(feed=750)
+        self.assertEqual(program_obj.LineCount, expected.stats["lines"])
+        self.assertEqual(program_obj.DepositMoves, expected.stats["deposit_moves"])
+        self.assertEqual(list(program_obj.ARange), [-90.0, 0.0])
+        self.assertAlmostEqual(program_obj.DepositLength.Value,
+                               self.toolpath.PathLength.Value, delta=1e-6)
+        self.assertAlmostEqual(program_obj.DepositTime,
+                               expected.stats["deposit_time_min"], places=9)
+        self.assertGreater(len(program_obj.Shape.Wires), self.layers.LayerCount)
+        path = os.path.join(self.folder, "l.ngc")
+        features.export_gcode(program_obj, path)
+        with open(path) as f:
+            self.assertEqual(f.read(), expected.text)
+        self.assertEqual(program_obj.Name, "MachineProgram")
+        # The layers are read, never changed.
+        self.assertNotIn("Touched", self.layers.State)
+
+    def test_a_machine_that_cannot_reach_marks_the_object_until_fixed(self):
+        import MultiAxisSlicer.features as features
+
+        program_obj = mas.make_machine_program(self.layers)
+        self.doc.recompute()
+        program_obj.AMin = -45
+        program_obj.AMax = 45
+        self.doc.recompute()
+        self.assertIn("Invalid", program_obj.State)
+        status = program_obj.getStatusString()
+        self.assertIn("component 1", status)
+        self.assertIn("beyond AMin and AMax -45 to 45", status)
+        with self.assertRaisesRegex(ValueError, "AMin and AMax"):
+            features.export_gcode(program_obj, os.path.join(self.folder, "x.ngc"))
+        self.assertEqual(os.listdir(self.folder), [])
+        program_obj.AMin = -100
+        program_obj.Feed = 0
+        self.doc.recompute()
+        self.assertIn("Invalid", program_obj.State)
+        self.assertIn("Feed must be > 0", program_obj.getStatusString())
+        program_obj.Feed = 600
+        self.doc.recompute()
+        self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+        self.assertEqual(list(program_obj.ARange), [-90.0, 0.0])
+
+    def test_save_reopen_export_and_undo(self):
+        import MultiAxisSlicer.features as features
+
+        self.doc.UndoMode = 1
+        names = [o.Name for o in self.doc.Objects]
+        self.doc.openTransaction("Machine program")
+        program_obj = mas.make_machine_program(self.layers, clearance=5, deposit_output=2)
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        before = features.machine_program(program_obj).text
+        lines = program_obj.LineCount
+        path = os.path.join(self.folder, "program.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+
+        doc = FreeCAD.openDocument(path)
+        program_obj = doc.getObject("MachineProgram")
+        self.assertIsInstance(program_obj.Proxy, features.MachineProgramFeature)
+        self.assertIs(program_obj.Layers, doc.getObject("Layers"))
+        self.assertEqual(program_obj.Clearance.Value, 5.0)
+        self.assertEqual(program_obj.DepositOutput, 2)
+        self.assertEqual(program_obj.LineCount, lines)
+        self.assertGreater(len(program_obj.Shape.Edges), 0)  # saved with the document
+        self.assertIsNone(getattr(program_obj.Proxy, "_program", None))  # the text is not
+        out = os.path.join(self.folder, "after.ngc")
+        features.export_gcode(program_obj, out)  # written anew, the slicing redone on demand
+        with open(out) as f:
+            self.assertEqual(f.read(), before)
+        doc.save()
+
+        doc.UndoMode = 1
+        doc.openTransaction("Machine program")
+        again = mas.make_machine_program(doc.getObject("Layers"), name="Second")
+        doc.recompute()
+        doc.commitTransaction()
+        self.assertTrue(again.isValid(), again.getStatusString())
+        doc.undo()
+        self.assertIsNone(doc.getObject("Second"))
+        self.assertEqual(sorted(o.Name for o in doc.Objects), sorted(names + ["MachineProgram"]))
+
+    def test_bad_arguments(self):
+        with self.assertRaisesRegex(TypeError, "needs a Layers or Toolpath object"):
+            mas.make_machine_program(self.part)
+        with self.assertRaisesRegex(TypeError, "unknown machine parameter"):
+            mas.make_machine_program(self.layers, speed=3)
+        with self.assertRaisesRegex(ValueError, "a_min must be between -360 and 360"):
+            mas.make_machine_program(self.layers, a_min=-400)
+        self.assertEqual([o.Name for o in self.doc.Objects if o.Name.startswith("Machine")], [])
+
+
 if __name__ == "__main__":
     unittest.main()

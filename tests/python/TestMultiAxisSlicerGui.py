@@ -27,6 +27,8 @@ COMMAND = "MultiAxisSlicer_Sections"
 AXIS_COMMAND = "MultiAxisSlicer_CentroidalAxis"
 DECOMPOSE_COMMAND = "MultiAxisSlicer_Decompose"
 SLICE_COMMAND = "MultiAxisSlicer_Slice"
+PROGRAM_COMMAND = "MultiAxisSlicer_MachineProgram"
+EXPORT_COMMAND = "MultiAxisSlicer_ExportGcode"
 TOOLBAR = "Multi-Axis Slicer"
 
 
@@ -1238,6 +1240,113 @@ class TestSliceCommand(unittest.TestCase):
                 FreeCAD.closeDocument(doc.Name)
         finally:
             shutil.rmtree(folder)
+
+
+class TestMachineProgramCommands(unittest.TestCase):
+    def setUp(self):
+        FreeCADGui.activateWorkbench(WORKBENCH)
+        self.doc = FreeCAD.newDocument("MasGuiProgram")
+        self.part = self.doc.addObject("Part::Feature", "L")
+        self.part.Shape = l_block()
+        self.doc.recompute()
+        self.decomposition = mas.make_decomposition(self.part)
+        self.layers, self.toolpath = mas.make_slice(self.decomposition)
+        self.doc.recompute()
+        self.folder = tempfile.mkdtemp(prefix="mas_gui_gcode_")
+        self.dialog = QtGui.QFileDialog.getSaveFileName
+        FreeCADGui.Selection.clearSelection()
+        process_events()
+
+    def tearDown(self):
+        QtGui.QFileDialog.getSaveFileName = self.dialog
+        FreeCADGui.Selection.clearSelection()
+        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                            "MultiAxisSlicerError"):
+            box.close()
+        FreeCAD.closeDocument(self.doc.Name)
+        shutil.rmtree(self.folder)
+        process_events()
+
+    def error_boxes(self):
+        return [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                                    "MultiAxisSlicerError")
+                if b.isVisible()]
+
+    def answer_save_dialog(self, path):
+        """The next save dialog answers `path` ("" for Cancel) and records its suggestion."""
+        asked = []
+
+        def answer(parent, caption, suggestion, filters):
+            asked.append(suggestion)
+            return path, filters.split(";;")[0]
+
+        QtGui.QFileDialog.getSaveFileName = answer
+        return asked
+
+    def test_toolbar_has_both_commands_with_icons(self):
+        toolbar = FreeCADGui.getMainWindow().findChild(QtGui.QToolBar, TOOLBAR)
+        actions = {a.text(): a for a in toolbar.actions()}
+        for text in ("Machine program", "Export G-code..."):
+            self.assertIn(text, actions)
+            self.assertFalse(actions[text].icon().isNull(), text)
+
+    def test_program_from_the_selected_toolpath_exported_and_undone(self):
+        import MultiAxisSlicer.features as features
+
+        self.doc.UndoMode = 1
+        names = [o.Name for o in self.doc.Objects]
+        self.assertFalse(FreeCADGui.Command.get(PROGRAM_COMMAND).isActive())
+        FreeCADGui.Selection.addSelection(self.toolpath)
+        self.assertTrue(FreeCADGui.Command.get(PROGRAM_COMMAND).isActive())
+        self.assertFalse(FreeCADGui.Command.get(EXPORT_COMMAND).isActive())
+        FreeCADGui.runCommand(PROGRAM_COMMAND)
+        process_events()
+        program_obj = self.doc.getObject("MachineProgram")
+        self.assertIsNotNone(program_obj, "the command made no MachineProgram object")
+        self.assertEqual(self.error_boxes(), [])
+        self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+        self.assertIs(program_obj.Layers, self.layers)
+        self.assertEqual(list(program_obj.ARange), [-90.0, 0.0])
+        self.assertTrue(program_obj.ViewObject.Proxy.getIcon().endswith("MachineProgram.svg"))
+        self.assertTrue(os.path.isfile(program_obj.ViewObject.Proxy.getIcon()))
+        self.assertEqual(program_obj.ViewObject.DrawStyle, "Dashed")
+        save_screenshot(self, self.doc, "machine_program_l_block.png", see_through=False)
+
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(program_obj)
+        self.assertTrue(FreeCADGui.Command.get(EXPORT_COMMAND).isActive())
+        path = os.path.join(self.folder, "l.ngc")
+        asked = self.answer_save_dialog(path)
+        FreeCADGui.runCommand(EXPORT_COMMAND)
+        process_events()
+        self.assertEqual(asked, ["MachineProgram.ngc"])
+        self.assertEqual(self.error_boxes(), [])
+        with open(path) as f:
+            self.assertEqual(f.read(), features.machine_program(program_obj).text)
+        self.answer_save_dialog("")  # Cancel writes nothing
+        FreeCADGui.runCommand(EXPORT_COMMAND)
+        process_events()
+        self.assertEqual(os.listdir(self.folder), ["l.ngc"])
+        self.assertNotIn("Export", " ".join(self.doc.UndoNames))  # exporting changes nothing
+
+        self.doc.undo()
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_a_machine_that_cannot_reach_shows_its_message_and_exports_nothing(self):
+        obj = mas.make_machine_program(self.layers, a_min=-45, a_max=45)
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        FreeCADGui.Selection.addSelection(obj)
+        path = os.path.join(self.folder, "l.ngc")
+        asked = self.answer_save_dialog(path)
+        FreeCADGui.runCommand(EXPORT_COMMAND)
+        process_events()
+        self.assertEqual(asked, [])  # refused before asking for a file
+        boxes = self.error_boxes()
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("beyond AMin and AMax -45 to 45", boxes[0].text())
+        self.assertEqual(os.listdir(self.folder), [])
 
 
 # Run by a second FreeCAD GUI, on a copy of the add-on without the compiled engine.

@@ -745,10 +745,10 @@ int run_slice(const std::vector<std::string>& args) {
                 << ", \"diameter_mm\": " << num(h.diameter_mm)
                 << ", \"length_mm\": " << num(h.length_mm) << "}";
         }
-        out << (r.filled_holes.empty() ? "" : "\n  ") << "],\n  \"gcode\": ";
+        out << (r.filled_holes.empty() ? "" : "\n  ") << "],";
         if (a.has("--gcode"))
-            out << "{\"file\": " << quoted(a.options.at("--gcode")) << ", \"lines\": " << gs.lines
-                << ", \"deposit_moves\": " << gs.deposit_moves
+            out << "\n  \"gcode\": {\"file\": " << quoted(a.options.at("--gcode"))
+                << ", \"lines\": " << gs.lines << ", \"deposit_moves\": " << gs.deposit_moves
                 << ", \"feed_limited_moves\": " << gs.feed_limited_moves
                 << ", \"reorientations\": " << gs.reorientations << ", \"a_range_deg\": ["
                 << num(gs.a_min_deg) << ", " << num(gs.a_max_deg) << "], \"c_range_deg\": ["
@@ -756,10 +756,8 @@ int run_slice(const std::vector<std::string>& args) {
                 << "], \"deposit_length_mm\": " << num(gs.deposit_length_mm)
                 << ", \"deposit_time_min\": " << num(gs.deposit_time_min)
                 << ", \"rapid_length_mm\": " << num(gs.rapid_length_mm)
-                << ", \"reference_thickness_mm\": " << num(gs.reference_thickness_mm) << "}";
-        else
-            out << "null";
-        out << ",\n  \"notes\": [";
+                << ", \"reference_thickness_mm\": " << num(gs.reference_thickness_mm) << "},";
+        out << "\n  \"notes\": [";
         for (std::size_t i = 0; i < r.notes.size(); ++i)
             out << (i ? ", " : "") << quoted(r.notes[i]);
         out << "],\n  \"build_order\": [";

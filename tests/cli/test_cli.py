@@ -629,6 +629,11 @@ class CliGcode(unittest.TestCase):
         self.assertEqual(doc["gcode"]["a_range_deg"], [-90, 0])
         self.assertAlmostEqual(doc["gcode"]["deposit_length_mm"], doc["stats"]["deposit_length_mm"],
                                places=6)
+        self.assertEqual(doc["gcode"]["file"], program)
+        # Without --gcode the JSON has no "gcode": it keeps the layout of the scripting API's.
+        r = run("slice", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("gcode", json.loads(r.stdout))
 
     def test_text_summary_and_machine_options(self):
         program = os.path.join(self.tmp.name, "l.ngc")

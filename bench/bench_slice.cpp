@@ -6,6 +6,8 @@
 // slicing), with the worst unsupported area of each. Run by hand: `build/bench/mas_bench_slice
 // [examples/bracket.step]`. Last, slicing with holes deposited solid to drill (fill_holes) against
 // slicing them open, on parts with horizontal holes: time, worst unsupported area, holes filled.
+// The time table also gives the post-processor's (the G-code of the same layers, Gcode.hpp) as a
+// ratio to the slicing's.
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -21,6 +23,7 @@
 #include "bench_util.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
+#include "mas/Gcode.hpp"
 #include "mas/Holes.hpp"
 #include "mas/SlicePart.hpp"
 
@@ -128,8 +131,9 @@ int main(int argc, char** argv) {
         params.layers.max_volume_difference, params.paths.bead_width_mm,
         params.paths.contour_count);
     std::printf("\n## Time (ms): axis and decomposition apart; layers+paths is the target\n");
-    std::printf("%-24s %6s %5s %7s %9s %9s %9s %8s %9s %8s\n", "part", "height", "comps", "layers",
-                "axis", "decompose", "layers", "+paths", "reporting", "reports");
+    std::printf("%-24s %6s %5s %7s %9s %9s %9s %8s %9s %8s %8s %9s\n", "part", "height", "comps",
+                "layers", "axis", "decompose", "layers", "+paths", "reporting", "reports", "G-code",
+                "G/slice");
     struct Row {
         std::string name;
         int ours = 0, planar = 0, uniform = 0;
@@ -160,9 +164,16 @@ int main(int argc, char** argv) {
         const mas::Progress counting([&](double, const std::string&) { ++reports; });
         const double reporting_ms =
             time_ms(3, [&] { r = mas::slice_part(p.shape, axis, d, params, counting); });
-        std::printf("%-24s %6.1f %5zu %7zu %9.1f %9.1f %9.1f %8.1f %8.3fx %8ld\n", p.name.c_str(),
-                    height, d.components.size(), r.layers.size(), axis_ms, dec_ms,
-                    total_ms - paths_ms, total_ms, reporting_ms / total_ms, reports / 3);
+        // The post-processor on the same layers, default machine.
+        std::size_t gcode_bytes = 0;
+        const double gcode_ms = time_ms(3, [&] {
+            gcode_bytes = mas::write_gcode(mas::gcode_layers(r), mas::MachineParams()).size();
+        });
+        std::printf("%-24s %6.1f %5zu %7zu %9.1f %9.1f %9.1f %8.1f %8.3fx %8ld %8.1f %8.3fx\n",
+                    p.name.c_str(), height, d.components.size(), r.layers.size(), axis_ms, dec_ms,
+                    total_ms - paths_ms, total_ms, reporting_ms / total_ms, reports / 3, gcode_ms,
+                    gcode_ms / total_ms);
+        if (gcode_bytes == 0) std::printf("  (no G-code written)\n");
 
         // Planar adaptive along Z: the whole part as one component, a straight +Z guide.
         mas::ComponentMesh whole;

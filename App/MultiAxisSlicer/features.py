@@ -1196,7 +1196,8 @@ class MachineProgramFeature(_EngineFeature):
                       (r"\breference thickness\b", "ReferenceThickness"),
                       (r"\bmax feed ratio\b", "MaxFeedRatio"),
                       (r"\bclearance must\b", "Clearance must"),
-                      (r"\bthe deposition output\b", "DepositOutput"))
+                      (r"\bthe deposition output\b", "DepositOutput"),
+                      (r"\bdeposit_output\b", "DepositOutput"))
 
     @staticmethod
     def ensure_properties(obj):
@@ -1292,6 +1293,13 @@ def export_gcode(obj, path):
         raise TypeError("export_gcode() needs a MachineProgram object, got {}".format(
             getattr(obj, "TypeId", type(obj).__name__)))
     problem = failure(obj)
+    if problem is None:
+        # What the document shows: not a program of layers changed since (their pending
+        # parameters would be sliced here).
+        changed = [o for o in obj.OutListRecursive if "Touched" in o.State]
+        if changed:
+            problem = "{}: not recomputed since '{}' changed: recompute the document".format(
+                obj.Label, changed[0].Label)
     if problem is not None:
         raise ValueError(problem)
     program = machine_program(obj)
@@ -1306,11 +1314,18 @@ def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
     machine parameters (defaults ``MultiAxisSlicer.MACHINE_DEFAULTS``), their names and types
     checked before anything is added. Nothing is changed on the layers."""
     if is_toolpath(layers):
+        if layers.Layers is None:
+            raise ValueError("make_machine_program(): the Toolpath '{}' has no Layers".format(
+                layers.Label))
         layers = layers.Layers
     if not is_layers(layers):
         raise TypeError("make_machine_program() needs a Layers or Toolpath object, got {}".format(
             getattr(layers, "TypeId", type(layers).__name__)))
     values = _machine_params(machine)
+    # Properties would silently clamp what gcode() refuses: a negative length, an angle past a
+    # turn.
+    mas._length(values["reference_thickness"], "reference_thickness", allow_zero=True)
+    mas._length(values["clearance"], "clearance")
     for _prop, param, type_id, _doc in _MACHINE_PROPERTIES:
         if type_id == "App::PropertyAngle" and not (-360.0 <= values[param] <= 360.0):
             raise ValueError("{} must be between -360 and 360 degrees, got {}".format(

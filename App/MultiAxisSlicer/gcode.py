@@ -52,17 +52,31 @@ class GcodeProgram:
         self.machine = dict(machine)
 
     def write(self, path):
-        """Writes the program to ``path`` (whole: through a temporary file beside it, renamed)."""
+        """Writes the program to ``path`` whole or not at all: through a temporary file beside
+        it, renamed over it. An existing file keeps its permissions (a new one gets the umask's);
+        through a symbolic link, the file it names is replaced. IsADirectoryError for a folder,
+        OSError as the system gives it otherwise."""
         import os
+        import stat
         import tempfile
         path = os.fspath(path)
-        folder = os.path.dirname(os.path.abspath(path))
-        fd, partial = tempfile.mkstemp(prefix=os.path.basename(path) + ".", suffix=".partial",
-                                       dir=folder)
+        if path.endswith(os.sep) or os.path.isdir(path):
+            raise IsADirectoryError("{} is a folder, not a file to write the program to".format(
+                path))
+        target = os.path.realpath(path)
+        try:
+            mode = stat.S_IMODE(os.stat(target).st_mode)
+        except FileNotFoundError:
+            umask = os.umask(0)
+            os.umask(umask)
+            mode = 0o666 & ~umask
+        fd, partial = tempfile.mkstemp(prefix=".mas-", suffix=".partial",
+                                       dir=os.path.dirname(target))
         try:
             with os.fdopen(fd, "w", newline="\n") as f:
+                os.fchmod(f.fileno(), mode)
                 f.write(self.text)
-            os.replace(partial, path)
+            os.replace(partial, target)
         except BaseException:
             try:
                 os.unlink(partial)
@@ -79,19 +93,42 @@ class GcodeProgram:
                 "deg>").format(s["lines"], s["deposit_length_mm"], *s["a_range_deg"])
 
 
+# A FreeCAD Quantity's unit type for each kind of parameter, and the unit its value is taken in.
+_UNITS = {"degrees": ("Angle", "deg"), "millimetres": ("Length", "mm"),
+          "millimetres per minute": ("Velocity", "mm/min")}
+
+
+def _measure(value, name, unit):
+    """A float from a number, or from a FreeCAD Quantity of the right kind converted to `unit`
+    ("degrees", "millimetres", "millimetres per minute"); TypeError naming the parameter else."""
+    kind = getattr(getattr(value, "Unit", None), "Type", None)
+    if kind is not None and kind != "" and unit in _UNITS:
+        want, symbol = _UNITS[unit]
+        if kind != want:
+            def article(word):
+                return ("an " if word[0] in "aeiou" else "a ") + word
+
+            raise TypeError("{} must be a number of {} or {} quantity, got {} quantity "
+                            "({})".format(name, unit, article(want.lower()),
+                                          article(kind.lower()), value))
+        return float(value.getValueAs(symbol))
+    return _number(value, name, unit)
+
+
 def _machine_params(values):
-    """Checks the machine parameters' names and types (TypeError naming the bad one); the engine
-    checks their ranges."""
+    """Checks the machine parameters' names and types (TypeError naming the bad one) and takes
+    FreeCAD Quantities in their units (a feed of 15 mm/s is 900 mm/min); the engine checks their
+    ranges."""
     unknown = sorted(set(values) - set(MACHINE_DEFAULTS))
     if unknown:
         raise TypeError("unknown machine parameter(s): {}; known: {}".format(
             ", ".join(unknown), ", ".join(MACHINE_DEFAULTS)))
     p = dict(MACHINE_DEFAULTS)
     for name in ("a_min", "a_max", "c_min", "c_max"):
-        p[name] = _number(values.get(name, p[name]), name, "degrees")
+        p[name] = _measure(values.get(name, p[name]), name, "degrees")
     for name in ("reference_thickness", "clearance"):
-        p[name] = _number(values.get(name, p[name]), name, "millimetres")
-    p["feed"] = _number(values.get("feed", p["feed"]), "feed", "millimetres per minute")
+        p[name] = _measure(values.get(name, p[name]), name, "millimetres")
+    p["feed"] = _measure(values.get("feed", p["feed"]), "feed", "millimetres per minute")
     p["max_feed_ratio"] = _number(values.get("max_feed_ratio", p["max_feed_ratio"]),
                                   "max_feed_ratio", "a ratio")
     output = values.get("deposit_output", p["deposit_output"])
@@ -105,7 +142,8 @@ def gcode(result, progress=None, **machine):
     """The 5-axis G-code program that deposits a ``SliceResult`` (from ``slice()``), layer by
     layer in its build order.
 
-    Machine parameters (defaults in ``MACHINE_DEFAULTS``; FreeCAD Quantities accepted):
+    Machine parameters (defaults in ``MACHINE_DEFAULTS``; FreeCAD Quantities accepted, in their
+    units: ``feed=Quantity("15 mm/s")`` is 900 mm/min):
       * ``a_min``, ``a_max`` (-100, 50), ``c_min``, ``c_max`` (-36000, 36000): the table's travel
         limits, degrees. A layer whose tool axis no angle within them turns up to the nozzle is an
         error naming the layer (EngineError ``unreachable_orientation``).

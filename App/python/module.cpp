@@ -1351,8 +1351,13 @@ mas::MachineParams machine_from_py(const bp::dict& d) {
         else if (key == "clearance")
             m.clearance_mm = x;
         else if (key == "deposit_output") {
-            if (x != std::floor(x) || !(std::abs(x) < 1e9))
-                invalid_argument("machine parameter deposit_output must be a whole number");
+            if (x != std::floor(x))
+                invalid_argument("machine parameter deposit_output must be a whole number, got " +
+                                 mas::format_number(x));
+            if (!(std::abs(x) < 1e9))  // validate() names the range
+                invalid_argument(
+                    "machine: the deposition output must be a digital output 0 to 63, got " +
+                    mas::format_number(x));
             m.deposit_output = int(x);
         } else
             invalid_argument("unknown machine parameter '" + key + "'");

@@ -427,8 +427,8 @@ class MachineProgramCommand:
 
 
 class ExportGcodeCommand:
-    """Writes the program of a selected MachineProgram object to a file the user names (.ngc).
-    Changes nothing in the document."""
+    """Writes the program of a selected MachineProgram object to a file the user names (.ngc),
+    after recomputing it if it or its layers changed since. Adds nothing to the document."""
 
     NAME = "MultiAxisSlicer_ExportGcode"
     MENU_TEXT = "Export G-code..."
@@ -456,14 +456,18 @@ class ExportGcodeCommand:
         if obj is None:
             MultiAxisSlicerGui.show_error("Select one MachineProgram object first.")
             return
-        if "Touched" in obj.State:  # changed since: as it is now
-            obj.recompute(True)
+        if any("Touched" in o.State for o in [obj] + obj.OutListRecursive):
+            obj.recompute(True)  # changed since (the program or its layers): as it is now
         problem = features.failure(obj)
         if problem is not None:
             MultiAxisSlicerGui.show_error("Export G-code: " + problem)
             return
+        import os
+
+        folder = os.path.dirname(obj.Document.FileName) or os.path.expanduser("~")
+        name = "".join(c if c.isalnum() or c in "-_." else "_" for c in obj.Label) + ".ngc"
         path, _filter = QtGui.QFileDialog.getSaveFileName(
-            FreeCADGui.getMainWindow(), "Export G-code", obj.Label + ".ngc",
+            FreeCADGui.getMainWindow(), "Export G-code", os.path.join(folder, name),
             "G-code (*.ngc *.nc *.gcode);;All files (*)")
         if not path:
             return

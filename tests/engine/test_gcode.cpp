@@ -385,6 +385,12 @@ TEST(Gcode, BadInputNamesTheProblem) {
               "-1");
     EXPECT_EQ(bad([](auto& m) { m.max_feed_ratio = 0.5; }),
               "invalid_argument: machine: max feed ratio must be >= 1, got 0.5");
+    EXPECT_EQ(bad([](auto& m) { m.feed_mm_min = 1e-300; }),
+              "invalid_argument: machine: the feed range, feed / max feed ratio to feed x max "
+              "feed ratio, must lie within 0.1 to 1e+06 mm/min, got 2.5e-301 to 4e-300");
+    EXPECT_EQ(bad([](auto& m) { m.max_feed_ratio = 1e4; }),
+              "invalid_argument: machine: the feed range, feed / max feed ratio to feed x max "
+              "feed ratio, must lie within 0.1 to 1e+06 mm/min, got 0.06 to 6e+06");
     EXPECT_EQ(bad([](auto& m) { m.clearance_mm = INFINITY; }),
               "invalid_argument: machine: clearance must be > 0 mm, got inf");
     EXPECT_EQ(bad([](auto& m) { m.deposit_output = 64; }),

@@ -64,13 +64,12 @@ class TestGcodeApi(GcodeTest):
                 for a, b in zip(points, points[1:]):
                     if (b - a).Length > 1e-9:
                         expected.append((b, layer.normal))
-        k = 0
-        for x, y, z, a, c, _f in moves:
-            point, normal = expected[k]
+        # Every layer is 2 mm thick: no move is cut in pieces for its feed, one move per point.
+        self.assertEqual(len(moves), len(expected))
+        for (x, y, z, a, c, _f), (point, normal) in zip(moves, expected):
             self.assertAlmostEqual(table_turns(normal, a, c)[2], 1.0, places=6)
-            if max(abs(x - point.x), abs(y - point.y), abs(z - point.z)) <= 0.5e-4 + 1e-9:
-                k += 1
-        self.assertEqual(k, len(expected))
+            self.assertLessEqual(max(abs(x - point.x), abs(y - point.y), abs(z - point.z)),
+                                 0.5e-4 + 1e-9)
         self.assertEqual(program.stats["a_range_deg"], (-90.0, 0.0))
         self.assertAlmostEqual(program.stats["deposit_length_mm"],
                                self.result.stats["deposit_length_mm"], places=6)
@@ -90,10 +89,18 @@ class TestGcodeApi(GcodeTest):
                 self.assertEqual(result.gcode(feed=750, clearance=4).text, f.read())
 
     def test_write_and_machine_parameters(self):
-        program = self.result.gcode(feed=FreeCAD.Units.Quantity("900 mm"), max_feed_ratio=1,
-                                    deposit_output=5, a_min=-120, a_max=120)
+        Q = FreeCAD.Units.Quantity
+        program = self.result.gcode(feed=Q("15 mm/s"), max_feed_ratio=1, deposit_output=5,
+                                    a_min=Q("-120 deg"), a_max=120, clearance=Q("0.5 cm"))
+        self.assertEqual(program.machine["feed"], 900.0)  # a quantity in its own unit
+        self.assertEqual(program.machine["clearance"], 5.0)
+        self.assertEqual(program.machine["a_min"], -120.0)
         self.assertEqual({m[5] for m in deposit_moves(program.text)}, {900.0})
         self.assertIn("M62 P5", program.text)
+        with self.assertRaisesRegex(TypeError, "feed must be .* a velocity quantity, got a length"):
+            self.result.gcode(feed=Q("900 mm"))
+        with self.assertRaisesRegex(TypeError, "a_max must be .* an angle quantity, got a length"):
+            self.result.gcode(a_max=Q("5 mm"))
         with support.scratch_folder("mas_gcode_") as folder:
             path = os.path.join(folder, "l.ngc")
             program.write(path)
@@ -103,6 +110,31 @@ class TestGcodeApi(GcodeTest):
             with self.assertRaises(OSError):
                 program.write(os.path.join(folder, "missing", "l.ngc"))
             self.assertEqual(os.listdir(folder), ["l.ngc"])
+            # Permissions: a new file's follow the umask, an existing file keeps its own.
+            umask = os.umask(0o022)
+            try:
+                os.remove(path)
+                program.write(path)
+                self.assertEqual(os.stat(path).st_mode & 0o777, 0o644)
+                os.chmod(path, 0o640)
+                program.write(path)
+                self.assertEqual(os.stat(path).st_mode & 0o777, 0o640)
+            finally:
+                os.umask(umask)
+            # Through a symbolic link the file it names is written; a folder is refused.
+            link = os.path.join(folder, "link.ngc")
+            os.symlink(path, link)
+            with open(path, "w") as f:
+                f.write("old")
+            program.write(link)
+            self.assertTrue(os.path.islink(link))
+            with open(path) as f:
+                self.assertEqual(f.read(), program.text)
+            with self.assertRaisesRegex(IsADirectoryError, "is a folder"):
+                program.write(folder)
+            with self.assertRaisesRegex(IsADirectoryError, "is a folder"):
+                program.write(os.path.join(folder, "l.ngc") + os.sep)
+            self.assertEqual(sorted(os.listdir(folder)), ["l.ngc", "link.ngc"])
 
     def test_progress_and_cancel(self):
         # Reports come at most every 10 ms (and at the end): few on a fast program.
@@ -127,6 +159,11 @@ class TestGcodeApi(GcodeTest):
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, a_min=10, a_max=0)
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, clearance=math.nan)
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, deposit_output=64)
+        e = self.assertRaisesEngineError("invalid_argument", self.result.gcode,
+                                         deposit_output=2**40)
+        self.assertIn("digital output 0 to 63, got 1.09951e+12", str(e))
+        e = self.assertRaisesEngineError("invalid_argument", self.result.gcode, feed=1e-300)
+        self.assertIn("feed range", str(e))
         with self.assertRaisesRegex(TypeError, "unknown machine parameter.*fed"):
             self.result.gcode(fed=10)
         with self.assertRaisesRegex(TypeError, "feed must be a number"):
@@ -224,6 +261,11 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertIn("Invalid", program_obj.State)
         self.assertIn("Feed must be > 0", program_obj.getStatusString())
         program_obj.Feed = 600
+        program_obj.DepositOutput = 2**40
+        self.doc.recompute()
+        self.assertIn("DepositOutput must be a digital output 0 to 63",
+                      program_obj.getStatusString())
+        program_obj.DepositOutput = 0
         self.doc.recompute()
         self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
         self.assertEqual(list(program_obj.ARange), [-90.0, 0.0])
@@ -268,9 +310,33 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertIsNone(doc.getObject("Second"))
         self.assertEqual(sorted(o.Name for o in doc.Objects), sorted(names + ["MachineProgram"]))
 
+    def test_a_program_whose_layers_changed_is_not_exported_until_recomputed(self):
+        import MultiAxisSlicer.features as features
+
+        program_obj = mas.make_machine_program(self.layers)
+        self.doc.recompute()
+        lines = program_obj.LineCount
+        self.layers.MaxLayer = 3.0
+        path = os.path.join(self.folder, "l.ngc")
+        with self.assertRaisesRegex(ValueError, "not recomputed since 'Layers' changed"):
+            features.export_gcode(program_obj, path)
+        self.assertEqual(os.listdir(self.folder), [])
+        self.doc.recompute()
+        self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+        self.assertLess(program_obj.LineCount, lines)  # fewer, thicker layers
+        program = features.export_gcode(program_obj, path)
+        self.assertEqual(program.stats["lines"], program_obj.LineCount)
+
     def test_bad_arguments(self):
         with self.assertRaisesRegex(TypeError, "needs a Layers or Toolpath object"):
             mas.make_machine_program(self.part)
+        with self.assertRaisesRegex(ValueError, "reference_thickness must be a non-negative"):
+            mas.make_machine_program(self.layers, reference_thickness=-1)
+        with self.assertRaisesRegex(ValueError, "clearance must be a positive"):
+            mas.make_machine_program(self.layers, clearance=0)
+        self.toolpath.Layers = None
+        with self.assertRaisesRegex(ValueError, "the Toolpath 'Toolpath' has no Layers"):
+            mas.make_machine_program(self.toolpath)
         with self.assertRaisesRegex(TypeError, "unknown machine parameter"):
             mas.make_machine_program(self.layers, speed=3)
         with self.assertRaisesRegex(ValueError, "a_min must be between -360 and 360"):

@@ -1319,7 +1319,8 @@ class TestMachineProgramCommands(unittest.TestCase):
         asked = self.answer_save_dialog(path)
         FreeCADGui.runCommand(EXPORT_COMMAND)
         process_events()
-        self.assertEqual(asked, ["MachineProgram.ngc"])
+        # An unsaved document suggests the home folder.
+        self.assertEqual(asked, [os.path.join(os.path.expanduser("~"), "MachineProgram.ngc")])
         self.assertEqual(self.error_boxes(), [])
         with open(path) as f:
             self.assertEqual(f.read(), features.machine_program(program_obj).text)
@@ -1332,6 +1333,22 @@ class TestMachineProgramCommands(unittest.TestCase):
         self.doc.undo()
         process_events()
         self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_export_recomputes_a_program_whose_layers_changed(self):
+        obj = mas.make_machine_program(self.layers)
+        self.doc.recompute()
+        lines = obj.LineCount
+        self.layers.MaxLayer = 3.0  # not recomputed yet
+        FreeCADGui.Selection.addSelection(obj)
+        path = os.path.join(self.folder, "l.ngc")
+        self.answer_save_dialog(path)
+        FreeCADGui.runCommand(EXPORT_COMMAND)
+        process_events()
+        self.assertEqual(self.error_boxes(), [])
+        self.assertNotIn("Touched", self.layers.State)
+        self.assertLess(obj.LineCount, lines)
+        with open(path) as f:
+            self.assertEqual(len(f.read().splitlines()), obj.LineCount)
 
     def test_a_machine_that_cannot_reach_shows_its_message_and_exports_nothing(self):
         obj = mas.make_machine_program(self.layers, a_min=-45, a_max=45)

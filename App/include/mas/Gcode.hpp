@@ -63,7 +63,8 @@ struct MachineParams {
     int deposit_output = 0;       // the digital output (M62/M63/M65 P) that switches deposition
 };
 
-// Throws mas::Error(InvalidArgument) naming the first parameter out of its range.
+// Throws mas::Error(InvalidArgument) naming the first parameter out of its range; the feed range
+// [feed / max_feed_ratio, feed x max_feed_ratio] must lie within [0.1, 1e6] mm/min.
 void validate(const MachineParams& params);
 
 // What the post-processor reads of one layer.

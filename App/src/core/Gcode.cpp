@@ -20,6 +20,8 @@ constexpr double kThicknessStep = 0.05;  // a piece of a deposit move changes t 
 constexpr double kArcStepDeg = 10.0;     // the longest step of a route around the sphere
 constexpr double kSamePoint = 1e-6;      // mm: a path starting where the last ended continues it
 constexpr double kLimitSlack = 1e-9;     // degrees: rounding past a limit still reaches it
+constexpr double kMinFeed = 0.1;         // mm/min: F words are written to a tenth
+constexpr double kMaxFeed = 1e6;         // mm/min: 16 m/s, past any deposition head
 
 std::string fixed(double value, int decimals) {
     char buffer[64];
@@ -162,6 +164,14 @@ void validate(const MachineParams& p) {
              format_number(p.reference_thickness_mm));
     if (!finite(p.max_feed_ratio) || !(p.max_feed_ratio >= 1.0))
         fail("machine: max feed ratio must be >= 1, got " + format_number(p.max_feed_ratio));
+    // F words carry a tenth of a mm/min: a slower feed would read F0.0, which controllers refuse.
+    const double f_lo = p.feed_mm_min / p.max_feed_ratio, f_hi = p.feed_mm_min * p.max_feed_ratio;
+    if (!(f_lo >= kMinFeed) || !(f_hi <= kMaxFeed))
+        fail(
+            "machine: the feed range, feed / max feed ratio to feed x max feed ratio, must lie "
+            "within " +
+            format_number(kMinFeed) + " to " + format_number(kMaxFeed) + " mm/min, got " +
+            format_number(f_lo) + " to " + format_number(f_hi));
     if (!finite(p.clearance_mm) || !(p.clearance_mm > 0.0))
         fail("machine: clearance must be > 0 mm, got " + format_number(p.clearance_mm));
     if (p.deposit_output < 0 || p.deposit_output > 63)

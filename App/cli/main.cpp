@@ -211,7 +211,9 @@ Args parse_args(const std::vector<std::string>& args, const std::set<std::string
             if (!a.file.empty() && i + 1 < args.size() && args[i + 1].rfind("-", 0) != 0)
                 a.json_path = args[++i];
         } else if (allowed.count(arg)) {
-            if (i + 1 >= args.size()) throw UsageError(arg + " needs a value");
+            // A value is never an option ("--gcode --json" names no file "--json").
+            if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)
+                throw UsageError(arg + " needs a value");
             a.options[arg] = args[++i];
         } else if (arg.rfind("--", 0) == 0) {
             throw UsageError("unknown option " + arg);
@@ -601,11 +603,17 @@ mas::MachineParams machine_params(const Args& a) {
     std::error_code same;
     if (std::filesystem::equivalent(path, a.file, same))
         throw UsageError("--gcode " + path + " would overwrite the input FILE");
-    if (a.json && !a.json_path.empty() && path == a.json_path)
+    namespace fs = std::filesystem;
+    if (a.json && !a.json_path.empty() &&
+        fs::weakly_canonical(path, same) == fs::weakly_canonical(a.json_path, same))
         throw UsageError("--gcode and --json name the same file " + path);
-    // Before the slicing: a folder that is not there fails now, not after minutes.
-    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder, same))
+    // Before the slicing: a folder that is not there, or a folder named, fails now, not after
+    // minutes.
+    if (fs::is_directory(path, same))
+        throw mas::Error(mas::ErrorCode::WriteFailed,
+                         path + ": cannot write the file: it is a folder");
+    const fs::path folder = fs::path(path).parent_path();
+    if (!folder.empty() && !fs::is_directory(folder, same))
         throw mas::Error(mas::ErrorCode::WriteFailed,
                          path + ": cannot write the file: no folder " + folder.string());
     return m;

@@ -1290,6 +1290,8 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
         const bp::object item(bp::handle<>(bp::borrowed(items[i])));
         const std::string what = "layers[" + std::to_string(i) + "]";
         mas::GcodeLayer& l = layers[std::size_t(i)];
+        if (PyBool_Check(required(item, "component", what).ptr()))
+            invalid_argument(what + "['component'] is not an integer but a bool");
         l.component = index_of(item, "component", what);
         l.tool_axis = vector3(required(item, "tool_axis", what), what + "['tool_axis']");
         l.max_thickness_mm = number_of(item, "max_thickness_mm", what);
@@ -1329,6 +1331,8 @@ mas::MachineParams machine_from_py(const bp::dict& d) {
         if (!key_text.check()) invalid_argument("machine parameter names must be strings");
         const std::string key = key_text();
         const bp::object value = d[keys[i]];
+        if (PyBool_Check(value.ptr()))
+            invalid_argument("machine parameter " + key + " must be a number, not a bool");
         const double x = PyFloat_AsDouble(value.ptr());
         if (x == -1.0 && PyErr_Occurred()) {
             PyErr_Clear();
@@ -1392,17 +1396,18 @@ bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
 }
 
 void bind_gcode() {
-    bp::def("write_gcode", &write_gcode,
-            (bp::arg("layers"), bp::arg("machine"), bp::arg("progress") = bp::object()),
-            "The 5-axis G-code program (LinuxCNC, tilting rotary table XYZAC, xyzac-trt-kins) "
-            "that deposits `layers` (slice_part()'s layer dicts, in build order). `machine`: a "
-            "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
-            "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
-            "deposit_output; missing ones take the engine's defaults. Returns {text, stats "
-            "{lines, deposit_moves, feed_limited_moves, reorientations, a_range_deg, c_range_deg, "
-            "deposit_length_mm, deposit_time_min, rapid_length_mm, reference_thickness_mm}}. "
-            "EngineError invalid_argument for bad parameters, unreachable_orientation for a "
-            "layer the table cannot turn to the nozzle. `progress` as slice_part()'s.");
+    bp::def(
+        "write_gcode", &write_gcode,
+        (bp::arg("layers"), bp::arg("machine") = bp::dict(), bp::arg("progress") = bp::object()),
+        "The 5-axis G-code program (LinuxCNC, tilting rotary table XYZAC, xyzac-trt-kins) "
+        "that deposits `layers` (slice_part()'s layer dicts, in build order). `machine`: a "
+        "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
+        "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
+        "deposit_output; missing ones take the engine's defaults. Returns {text, stats "
+        "{lines, deposit_moves, feed_limited_moves, reorientations, a_range_deg, c_range_deg, "
+        "deposit_length_mm, deposit_time_min, rapid_length_mm, reference_thickness_mm}}. "
+        "EngineError invalid_argument for bad parameters, unreachable_orientation for a "
+        "layer the table cannot turn to the nozzle. `progress` as slice_part()'s.");
 }
 
 }  // namespace

@@ -672,6 +672,16 @@ class CliGcode(unittest.TestCase):
         expect(self, ["slice", brep, "--gcode", program, "--deposit-output", "1.5"], 2,
                "whole number")
         expect(self, ["slice", brep, "--gcode", brep], 2, "would overwrite the input FILE")
+        expect(self, ["slice", brep, "--gcode", "--json"], 2, "--gcode needs a value")
+        self.assertFalse(os.path.exists("--json"))
+        expect(self, ["slice", brep, "--gcode", os.path.join(self.tmp.name, ".", "l.json"),
+                      "--json", os.path.join(self.tmp.name, "l.json")], 2,
+               "--gcode and --json name the same file")
+        expect(self, ["slice", brep, "--gcode", self.tmp.name], 1, "write_failed",
+               "it is a folder")
+        # C within reach of A but not of C's limits: the message names C.
+        expect(self, ["slice", brep, "--step", "2.5", "--gcode", program, "--c-limits", "0,10"],
+               1, "unreachable_orientation", "needs C at 270", "beyond C's limits 0 to 10")
         expect(self, ["slice", brep, "--gcode", os.path.join(self.tmp.name, "no", "l.ngc")], 1,
                "write_failed", "no folder")
 

@@ -216,6 +216,36 @@ TEST(TableAngles, ExactSolutionsAndTheNearestOfTwo) {
     EXPECT_NEAR(a.c_deg, 0.0, 1e-12);
 }
 
+TEST(TableAngles, LimitsHoldUpToRoundingAndPolesKeepC) {
+    // An axis exactly at C's lower limit, as atan2 rounds it (-127.00000000000001).
+    const double t = 30.0 * kDeg, c = -127.0 * kDeg;
+    const Vector3d n(std::sin(t) * std::sin(c), std::sin(t) * std::cos(c), std::cos(t));
+    mas::MachineParams m;
+    m.c_min_deg = -127.0;
+    m.c_max_deg = -107.0;
+    mas::TableAngles a;
+    ASSERT_TRUE(mas::table_angles(n, m, 0.0, -120.0, a));
+    EXPECT_EQ(a.c_deg, -127.0);
+    EXPECT_NEAR(a.a_deg, 30.0, 1e-12);
+    // Within 1e-7 rad of +Z (below an A word's 1e-4 degree) C stays where it was.
+    ASSERT_TRUE(mas::table_angles(Vector3d(1e-8, -1e-8, 1.0).normalized(), m, 0.0, -110.0, a));
+    EXPECT_EQ(a.a_deg, 0.0);
+    EXPECT_EQ(a.c_deg, -110.0);
+    // ... and of -Z, on a table that tilts half round: any C, so the one it had.
+    mas::MachineParams wide;
+    wide.a_min_deg = -180.0;
+    wide.a_max_deg = 180.0;
+    ASSERT_TRUE(mas::table_angles(Vector3d(1e-9, 0, -1).normalized(), wide, 0.0, 77.0, a));
+    EXPECT_EQ(std::abs(a.a_deg), 180.0);
+    EXPECT_EQ(a.c_deg, 77.0);
+    // A previous C outside the limits (a table turned by hand): a vertical axis brings it in.
+    mas::MachineParams tight;
+    tight.c_min_deg = -10.0;
+    tight.c_max_deg = 10.0;
+    ASSERT_TRUE(mas::table_angles(Vector3d::UnitZ(), tight, 0.0, 400.0, a));
+    EXPECT_EQ(a.c_deg, 10.0);
+}
+
 TEST(Gcode, DepositsEveryPathPointInOrderWithTheOutputOnAndTheTableTurnedToItsAxis) {
     // Two layers of a square tower (component 0), then a side arm deposited along +Y
     // (component 1).
@@ -291,14 +321,26 @@ TEST(Gcode, TravelsBetweenComponentsRoundASphereClearOfEverythingDeposited) {
     EXPECT_NEAR(out.p.y(), r.moves[last0].p.y(), kWord);
     EXPECT_GT(out.p.z(), 2.0 + m.clearance_mm);
     EXPECT_EQ(out.a, 0.0);
+    for (const auto& l : layers)
+        for (const auto& p : l.paths)
+            for (const Vector3d& q : p.points) material.push_back(q);
+    // The route's straight moves from the way out on, sampled, keep the clearance from every
+    // point deposited (the arm's too, to come), and the table turns on the sphere, neither on
+    // the way out nor on the way in.
     double top = -1e300;
     for (std::size_t k = last0 + 1; k + 2 < first1; ++k) {
         const Move& mv = r.moves[k];
         EXPECT_TRUE(mv.rapid) << "line " << mv.line;
-        for (const Vector3d& q : material)
-            EXPECT_GT((mv.p - q).norm(), m.clearance_mm) << "line " << mv.line;
+        for (int j = k == last0 + 1 ? 20 : 0; j <= 20; ++j) {
+            const Vector3d at = r.moves[k - 1].p + (mv.p - r.moves[k - 1].p) * (j / 20.0);
+            for (const Vector3d& q : material)
+                EXPECT_GT((at - q).norm(), m.clearance_mm) << "line " << mv.line;
+        }
         top = std::max(top, mv.p.z());
     }
+    EXPECT_EQ(r.moves[last0 + 1].a, 0.0);
+    EXPECT_EQ(r.moves[first1 - 3].a, -90.0);
+    EXPECT_EQ(r.moves[first1 - 2].a, -90.0);
     EXPECT_GT(top, out.p.z());
     const Move& approach = r.moves[first1 - 2];
     const Move& plunge = r.moves[first1 - 1];
@@ -312,6 +354,32 @@ TEST(Gcode, TravelsBetweenComponentsRoundASphereClearOfEverythingDeposited) {
         if (r.moves[k].depositing && !r.moves[k + 1].depositing) {
             EXPECT_LE((r.moves[k + 1].p - (r.moves[k].p + Vector3d(0, 0, 3))).norm(), 2 * kWord);
             break;
+        }
+}
+
+TEST(Gcode, ARouteRoundALargePartStaysOutsideItsSphereBetweenWaypoints) {
+    // Two beads 2 m apart: the sphere round them has a radius of about 1 m, where a chord of 10
+    // degrees sags 3.8 mm inside its ends, more than the thickness and clearance (3 mm).
+    mas::GcodeLayer a, b;
+    a.paths.push_back(path(mas::ToolPath::Kind::Infill, {{0, 0, 1}, {10, 0, 1}}, {1, 1}));
+    a.max_thickness_mm = 1.0;
+    b = a;
+    b.component = 1;
+    b.paths[0].points = {{2000, 0, 1}, {2010, 0, 1}};
+    const Read r = read_program(mas::write_gcode({a, b}, mas::MachineParams()));
+    const Vector3d centre(1005, 0, 1);
+    const double bound = 1005.0 + 1.0 + 2.0;  // the farthest point, its thickness, clearance
+    std::size_t last = 0, first = 0;
+    for (std::size_t k = 0; k < r.moves.size(); ++k)
+        if (r.moves[k].depositing && r.moves[k].p.x() < 100) last = k;
+    for (first = last + 1; !r.moves[first].depositing;) ++first;
+    // Out (last + 1) onto the sphere, round it, in from it (first - 3) to the approach (first -
+    // 2), down to the bead (first - 1): every point of every move on the sphere.
+    ASSERT_GT(first, last + 5);
+    for (std::size_t k = last + 2; k <= first - 3; ++k)
+        for (int j = 0; j <= 50; ++j) {
+            const Vector3d at = r.moves[k - 1].p + (r.moves[k].p - r.moves[k - 1].p) * (j / 50.0);
+            EXPECT_GE((at - centre).norm(), bound - 2 * kWord) << "line " << r.moves[k].line;
         }
 }
 
@@ -331,15 +399,18 @@ TEST(Gcode, FeedFollowsTheThicknessWithinItsRange) {
     std::vector<Move> first, second;
     for (const Move& mv : r.moves)
         if (mv.depositing) (mv.p.y() == 0.0 ? first : second).push_back(mv);
-    ASSERT_GT(first.size(), 1u);
+    // Pieces changing the thickness by a ratio of at most 1.05: ceil(ln 4 / ln 1.05) = 29.
+    ASSERT_EQ(first.size(), 29u);
     Vector3d from(0, 0, 1);
     double t_from = 0.5;
     for (const Move& mv : first) {
-        // Along the bead, thickness is linear in x: 0.5 + 1.5 x / 20.
+        // Along the bead, thickness is linear in x: 0.5 + 1.5 x / 20; x is read to kWord.
         const double t_to = 0.5 + 1.5 * mv.p.x() / 20.0;
-        EXPECT_LE(std::abs(t_to - t_from), 0.05 * std::min(t_from, t_to) + 1e-4) << mv.p.x();
+        EXPECT_LE(t_to / t_from, 1.05 + 1.5 / 20.0 * kWord / t_from) << mv.p.x();
         const double mid = 0.5 * (t_from + t_to);
-        EXPECT_NEAR(mv.f, 600.0 * 1.0 / mid, 0.05 + 1e-9) << mv.p.x();
+        // F is written to 0.1; the feed's slope in x times x's rounding.
+        EXPECT_NEAR(mv.f, 600.0 * 1.0 / mid, 0.05 + 600.0 / (mid * mid) * 1.5 / 20.0 * kWord)
+            << mv.p.x();
         from = mv.p;
         t_from = t_to;
     }
@@ -349,6 +420,21 @@ TEST(Gcode, FeedFollowsTheThicknessWithinItsRange) {
     EXPECT_EQ(second[0].f, 2400.0);
     EXPECT_EQ(stats.feed_limited_moves, 1);
     EXPECT_EQ(stats.deposit_moves, static_cast<int>(first.size() + second.size()));
+    // From 0.1 to 2 mm: held at the top feed until the thickness reaches 0.25 (x = 1.5789 mm),
+    // then ceil(ln 8 / ln 1.05) = 43 pieces.
+    mas::GcodeLayer tail;
+    tail.paths.push_back(path(mas::ToolPath::Kind::Infill, {{0, 0, 1}, {20, 0, 1}}, {0.1, 2.0}));
+    tail.max_thickness_mm = 2.0;
+    mas::GcodeStats tail_stats;
+    std::vector<Move> tail_moves;
+    for (const Move& mv : read_program(mas::write_gcode({tail}, m, &tail_stats)).moves)
+        if (mv.depositing) tail_moves.push_back(mv);
+    ASSERT_EQ(tail_moves.size(), 44u);
+    EXPECT_NEAR(tail_moves[0].p.x(), 20.0 * 0.15 / 1.9, kWord);
+    EXPECT_EQ(tail_moves[0].f, 2400.0);
+    EXPECT_EQ(tail_stats.feed_limited_moves, 1);
+    EXPECT_NEAR(tail_moves.back().p.x(), 20.0, kWord);
+    EXPECT_NEAR(tail_moves.back().f, 600.0 / (2.0 / std::pow(8.0, 0.5 / 43.0)), 0.05);
     // A derived reference is half-way between the thinnest and thickest deposit.
     m.reference_thickness_mm = 0.0;
     mas::GcodeStats derived;
@@ -363,8 +449,15 @@ TEST(Gcode, BadInputNamesTheProblem) {
     layers.push_back(under);
     EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams()); }),
               "unreachable_orientation: layer 2 (component 3): its tool axis (0 0 -1) needs the "
-              "table tilted 180 degrees one way or the other, beyond A's limits -100 to 50 (C "
-              "-36000 to 36000)");
+              "table tilted 180 degrees one way or the other, beyond A's limits -100 to 50");
+    // Within A's reach but not C's: the message names C and the angles it needs.
+    mas::MachineParams narrow;
+    narrow.c_min_deg = 0.0;
+    narrow.c_max_deg = 10.0;
+    layers.back().tool_axis = Vector3d::UnitX();  // A -90, C 270; or A 90 (beyond 50), C 90
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, narrow); }),
+              "unreachable_orientation: layer 2 (component 3): its tool axis (1 0 0) needs C at "
+              "270 degrees (plus a multiple of 360), beyond C's limits 0 to 10");
     layers.pop_back();
 
     auto bad = [&](auto set) {
@@ -409,10 +502,47 @@ TEST(Gcode, BadInputNamesTheProblem) {
     EXPECT_EQ(error_of([&] { mas::write_gcode(skewed, mas::MachineParams()); }),
               "invalid_argument: layer 0 (component 0): a path has 5 points and 4 thicknesses");
     skewed = {square_layer(0, 0, 0, 1)};
+    skewed[0].paths[0].thickness_mm[3] = -0.5;
+    EXPECT_EQ(error_of([&] { mas::write_gcode(skewed, mas::MachineParams()); }),
+              "invalid_argument: layer 0 (component 0): a path's thickness -0.5 mm is negative");
+    skewed = {square_layer(0, 0, 0, 1)};
     skewed[0].paths[0].points[2].x() = NAN;
     EXPECT_EQ(error_of([&] { mas::write_gcode(skewed, mas::MachineParams()); }),
               "non_finite_coordinate: layer 0 (component 0): a path point or its thickness is "
               "not finite");
+}
+
+TEST(Gcode, APathStartingWhereTheLastEndedGoesOnAndEmptyLayersAreSkipped) {
+    // Layer 0: two paths, the second starting where the first ends; then a layer with nothing to
+    // run (a single point, a zero-length path), then layer 2 of the same component.
+    mas::GcodeLayer l0;
+    l0.paths.push_back(path(mas::ToolPath::Kind::Contour, {{0, 0, 1}, {10, 0, 1}}, {1, 1}));
+    l0.paths.push_back(path(mas::ToolPath::Kind::Infill, {{10, 0, 1}, {10, 10, 1}}, {1, 1}));
+    l0.max_thickness_mm = 1.0;
+    mas::GcodeLayer empty;
+    empty.paths.push_back(path(mas::ToolPath::Kind::CentreLine, {{5, 5, 2}}, {1}));
+    empty.paths.push_back(path(mas::ToolPath::Kind::Infill, {{5, 5, 2}, {5, 5, 2}}, {1, 1}));
+    empty.max_thickness_mm = 1.0;
+    mas::GcodeLayer l2 = square_layer(0, 0, 0, 2);
+    const std::string text = mas::write_gcode({l0, empty, l2}, mas::MachineParams());
+    const Read r = read_program(text);
+    EXPECT_EQ(r.m62, 2);  // layer 0 in one run, layer 2 in another
+    EXPECT_EQ(r.m63, 2);
+    EXPECT_EQ(text.find("(layer 1,"), std::string::npos);
+    EXPECT_NE(text.find("(layer 2,"), std::string::npos);
+    std::vector<Move> deposits;
+    for (const Move& mv : r.moves)
+        if (mv.depositing) deposits.push_back(mv);
+    ASSERT_EQ(deposits.size(), 2u + 4u);
+    EXPECT_LE((deposits[1].p - Vector3d(10, 10, 1)).norm(), kWord);
+    // Layer 0 to layer 2: up by the clearance from (10, 10, 1), over to (0, 0, 2) + 2, down.
+    std::size_t k = 0;
+    while (!(r.moves[k].depositing && !r.moves[k + 1].depositing)) ++k;
+    EXPECT_LE((r.moves[k + 1].p - Vector3d(10, 10, 3)).norm(), kWord);
+    EXPECT_LE((r.moves[k + 2].p - Vector3d(0, 0, 4)).norm(), kWord);
+    EXPECT_LE((r.moves[k + 3].p - Vector3d(0, 0, 2)).norm(), kWord);
+    // The layer's name comes after the last one's deposition stopped.
+    EXPECT_LT(text.find("M63"), text.find("(layer 2,"));
 }
 
 TEST(Gcode, CancelsBetweenLayers) {

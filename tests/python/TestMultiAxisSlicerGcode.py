@@ -174,6 +174,14 @@ class TestGcodeApi(GcodeTest):
             mas.gcode(l_block())
         with self.assertRaisesRegex(TypeError, "progress"):
             self.result.gcode(progress=3)
+        # The engine's own layer: no bools for numbers; the machine defaults when not given.
+        engine = mas._engine
+        layers = self.result._data["layers"]
+        self.assertRaisesEngineError("invalid_argument", engine.write_gcode, layers,
+                                     {"deposit_output": True})
+        broken = [dict(layers[0], component=True)]
+        self.assertRaisesEngineError("invalid_argument", engine.write_gcode, broken)
+        self.assertEqual(engine.write_gcode(layers)["text"], mas.gcode(self.result).text)
 
 
 class TestTravelShape(support.EngineTestCase):

@@ -3,42 +3,52 @@
 // table turns the part under it: A tilts the table about X, C turns the part about the table's
 // normal (LinuxCNC's xyzac-trt-kins).
 //
-// How it reads the machine, and the choices made (each tested in tests/engine/test_gcode.cpp and,
-// through LinuxCNC's rs274 interpreter, in tests/cli/test_cli.py):
+// How it reads the machine, and the choices made (each tested in tests/engine/test_gcode.cpp,
+// against LinuxCNC's own kinematics module in tests/engine/test_linuxcnc_kins.cpp, and through
+// LinuxCNC's rs274 interpreter in tests/cli/test_cli.py):
 // - Coordinates. X Y Z are the part's own coordinates in mm: the nozzle tip's position in the
 //   table's frame, which is what a controller with tool-centre-point kinematics takes
 //   (xyzac-trt-kins moves the joints so that the tip follows them whatever A and C are). Set the
-//   work offset (G54) so that the part's origin is where the part sits on the table. A and C are in
-//   degrees.
+//   work offset (G54) so that the part's origin is where the part sits on the table, and have the
+//   nozzle's tool length offset in force (G43), which xyzac-trt-kins reads for its tool-centre
+//   point: the program leaves tool length compensation as it finds it. A and C are in degrees.
 // - Orientation. Each layer is deposited with its normal n, the tool axis, turned to machine +Z:
 //   towards the nozzle, which points down. xyzac-trt-kins maps a part vector v to Rx(A) Rz(C) v, so
 //   with the tilt theta = atan2(hypot(n.x, n.y), n.z) in [0, 180] degrees, n needs either
-//   A = theta, C = atan2(n.x, n.y), or A = -theta, C + 180. Of the solutions within the limits, the
-//   one nearest the previous (A, C) is taken (the sum of both moves), C moved by the multiple of
-//   360 that brings it nearest the previous C within its limits. A vertical n (theta under 1e-9
-//   rad) keeps the previous C. A layer no solution reaches is an error (unreachable_orientation)
-//   naming the layer, its tool axis, the tilt it needs and the limits.
+//   A = theta, C = atan2(n.x, n.y), or A = -theta, C + 180. Of the solutions within the limits (to
+//   1e-9 degrees, then held to them), the one nearest the previous (A, C) is taken (the sum of
+//   both moves), C moved by the multiple of 360 that brings it nearest the previous C within its
+//   limits. Within 1e-7 rad of +Z or -Z (finer than an A word's 1e-4 degrees) C is free: it keeps
+//   its previous value. A layer no solution reaches is an error (unreachable_orientation) naming
+//   the layer, its tool axis and what it needs: the tilt beyond A's limits, or the C beyond C's.
 // - Deposition. A deposit path runs at G1 with the deposition output on: M62 P<n> switches it
 //   with the start of the path's first move, M63 P<n> off with the start of the retract after it.
-//   M65 P<n> switches it off at once at the start and at the end of the program.
+//   M65 P<n> switches it off at once at the start and at the end of the program. A path starting
+//   where the last one ended (within 1 micron, the table as it is) goes on without a stop. A path
+//   of one point, or of points all in one place, is not run; a layer of such paths is skipped.
 // - Feed. A constant powder or wire rate builds a bead the thicker the slower the nozzle moves, so
 //   where the deposit under a path is t thick (a tilted layer's thickness varies across it) the
 //   feed is F = feed x reference / t, kept within [feed / max_feed_ratio, feed x max_feed_ratio]
-//   (moves held at a bound are counted). A segment across which t changes by more than a twentieth
-//   is cut into pieces that each change by at most that, each at the feed of its middle.
-//   max_feed_ratio = 1 keeps the feed constant.
+//   (moves held at a bound are counted). A move along which t changes is cut where t enters and
+//   leaves [reference / ratio, reference x ratio] and, between, into pieces whose ends differ by a
+//   ratio of at most 1.05 (at most ln(ratio^2) / ln 1.05 pieces: 57 at ratio 4), each at the feed
+//   of its middle. max_feed_ratio = 1 keeps the feed constant.
 // - Travel, within a layer and between layers of one component: G0 back along the tool axis by
 //   `clearance_mm`, G0 to `clearance_mm` along the next tool axis from the next path's start
 //   (turning the table on the way), G1 down to it at the feed. Both ends lie above the plane on top
-//   of the last layer deposited, so the whole move does.
+//   of the last layer deposited, so the whole move does (the component's own material lies under
+//   it; another component's is Eq. 10's, below).
 // - Travel between components, and to the first and from the last layer: out along the tool axis
-//   to a sphere holding everything the program deposits (every layer's outline, and its thickness
-//   under it) plus `clearance_mm`, along that sphere's meridians over its top (G0 steps of at most
-//   10 degrees, the table turning in proportion), and in along the next tool axis. The meridians
-//   keep the route's height between its two ends and the sphere's top; a tool axis tilted past
-//   90 degrees from low material can still take it below the build plate's level.
-// - Not checked: the nozzle's body against what is deposited (the paper's Eq. 10), and the X Y Z
-//   travel limits, which depend on where the table pivots.
+//   to a sphere round everything the program deposits (every layer's outline and path points, as
+//   deep under them as the layer reaches) plus `clearance_mm`, along that sphere's meridians over
+//   its top (G0 steps of at most 10 degrees, the table turning in proportion; the steps' ends lie
+//   on a sphere 1 / cos 5 degrees larger, so that no step cuts inside), and in along the next tool
+//   axis. The meridians keep the route's height between its two ends and the sphere's top; a tool
+//   axis tilted past 90 degrees from low material can still take it below the build plate's
+//   level. The first move goes to the sphere's top from wherever the machine is.
+// - Not checked: the nozzle's body against what is deposited (the paper's Eq. 10: nor are the
+//   legs out and in along the tool axes against other components), and the X Y Z travel limits,
+//   which depend on where the table pivots.
 #pragma once
 #include <Eigen/Core>
 #include <string>

@@ -15,8 +15,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegree = kPi / 180.0;
-constexpr double kVerticalTilt = 1e-9;   // rad: a tool axis this close to +Z keeps C
-constexpr double kThicknessStep = 0.05;  // a piece of a deposit move changes t by at most this
+// rad: a tool axis this close to +Z or -Z keeps C (finer than the 1e-4 degree of an A word).
+constexpr double kPoleTilt = 1e-7;
+constexpr double kThicknessStep = 0.05;  // pieces of a deposit move: t changes by this ratio - 1
 constexpr double kArcStepDeg = 10.0;     // the longest step of a route around the sphere
 constexpr double kSamePoint = 1e-6;      // mm: a path starting where the last ended continues it
 constexpr double kLimitSlack = 1e-9;     // degrees: rounding past a limit still reaches it
@@ -141,6 +142,35 @@ std::vector<Eigen::Vector3d> arc(const Eigen::Vector3d& from, const Eigen::Vecto
     return out;
 }
 
+// A deposit path the nozzle runs along: two points or more, not all in one place.
+bool runs(const ToolPath& path) {
+    for (std::size_t k = 1; k < path.points.size(); ++k)
+        if ((path.points[k] - path.points[k - 1]).norm() >= kSamePoint * 1e-3) return true;
+    return false;
+}
+
+// Where a deposit move whose thickness goes linearly from t0 to t1 is cut for its feed, as
+// fractions of its length, the last 1: where the thickness enters [t_lo, t_hi] (beyond it the feed
+// is at a bound), at most a ratio of 1 + kThicknessStep apart within it, and where it leaves.
+std::vector<double> feed_cuts(double t0, double t1, double t_lo, double t_hi) {
+    std::vector<double> out;
+    const double c0 = std::clamp(t0, t_lo, t_hi), c1 = std::clamp(t1, t_lo, t_hi);
+    if (c0 != c1) {  // t1 != t0, and part of the move lies within the range
+        auto at = [&](double t) { return (t - t0) / (t1 - t0); };
+        if (at(c0) > 1e-12) out.push_back(at(c0));
+        const int n = std::max(
+            1, static_cast<int>(
+                   std::ceil(std::abs(std::log(c1 / c0)) / std::log1p(kThicknessStep) - 1e-9)));
+        for (int k = 1; k <= n; ++k)
+            out.push_back(at(c0 * std::pow(c1 / c0, static_cast<double>(k) / n)));
+    }
+    if (out.empty() || out.back() < 1.0 - 1e-12)
+        out.push_back(1.0);
+    else
+        out.back() = 1.0;
+    return out;
+}
+
 std::string layer_name(std::size_t index, const GcodeLayer& layer) {
     return "layer " + std::to_string(index) + " (component " + std::to_string(layer.component) +
            ")";
@@ -197,31 +227,59 @@ std::vector<GcodeLayer> gcode_layers(const SlicedPart& part) {
     return out;
 }
 
+namespace {
+
+// The table's solutions for `n` within A's limits (C not yet fitted to its own): (A, C) pairs.
+// At a pole (n within kPoleTilt of +Z or -Z) C is free and stays at `previous_c`.
+std::vector<TableAngles> a_solutions(const Eigen::Vector3d& n, const MachineParams& p,
+                                     double previous_c) {
+    const double r = std::hypot(n.x(), n.y());
+    const double tilt_rad = std::atan2(r, n.z());
+    const bool up = tilt_rad < kPoleTilt, down = kPi - tilt_rad < kPoleTilt;
+    const double tilt = up ? 0.0 : down ? 180.0 : tilt_rad / kDegree;
+    const double c0 = up || down ? previous_c : std::atan2(n.x(), n.y()) / kDegree;
+    std::vector<TableAngles> out;
+    for (const double sign : {1.0, -1.0}) {
+        if (up && sign < 0.0) break;
+        const double a = sign * tilt;
+        if (a < p.a_min_deg - kLimitSlack || a > p.a_max_deg + kLimitSlack) continue;
+        out.push_back(
+            {std::clamp(a, p.a_min_deg, p.a_max_deg), sign > 0.0 || down ? c0 : c0 + 180.0});
+    }
+    return out;
+}
+
+// `c` + 360 k nearest `previous_c` within C's limits, else false.
+bool fit_c(double c, double previous_c, const MachineParams& p, double& out) {
+    double k = std::round((previous_c - c) / 360.0);
+    if (c + 360.0 * k > p.c_max_deg + kLimitSlack)
+        k = std::floor((p.c_max_deg + kLimitSlack - c) / 360.0);
+    if (c + 360.0 * k < p.c_min_deg - kLimitSlack)
+        k = std::ceil((p.c_min_deg - kLimitSlack - c) / 360.0);
+    const double cc = c + 360.0 * k;
+    if (cc > p.c_max_deg + kLimitSlack || cc < p.c_min_deg - kLimitSlack) return false;
+    out = std::clamp(cc, p.c_min_deg, p.c_max_deg);
+    return true;
+}
+
+}  // namespace
+
 bool table_angles(const Eigen::Vector3d& n, const MachineParams& p, double previous_a,
                   double previous_c, TableAngles& out) {
-    const double r = std::hypot(n.x(), n.y());
-    const bool vertical = std::atan2(r, n.z()) < kVerticalTilt;
-    const double tilt = vertical ? 0.0 : std::atan2(r, n.z()) / kDegree;
-    const double c0 = vertical ? previous_c : std::atan2(n.x(), n.y()) / kDegree;
+    const double tilt_rad = std::atan2(std::hypot(n.x(), n.y()), n.z());
+    const bool pole = tilt_rad < kPoleTilt || kPi - tilt_rad < kPoleTilt;
     bool found = false;
     double best = std::numeric_limits<double>::infinity();
-    for (const double sign : {1.0, -1.0}) {
-        if (vertical && sign < 0.0) break;
-        double a = sign * tilt;
-        if (a < p.a_min_deg - kLimitSlack || a > p.a_max_deg + kLimitSlack) continue;
-        a = std::clamp(a, p.a_min_deg, p.a_max_deg);
-        const double c = sign > 0.0 ? c0 : c0 + 180.0;
-        // C + 360 k nearest the previous C, else the nearest within the limits.
-        double k = std::round((previous_c - c) / 360.0);
-        if (c + 360.0 * k > p.c_max_deg) k = std::floor((p.c_max_deg - c) / 360.0);
-        if (c + 360.0 * k < p.c_min_deg) k = std::ceil((p.c_min_deg - c) / 360.0);
-        const double cc = c + 360.0 * k;
-        if (cc > p.c_max_deg || cc < p.c_min_deg) continue;
-        const double cost = std::abs(a - previous_a) + std::abs(cc - previous_c);
+    for (const TableAngles& s : a_solutions(n, p, previous_c)) {
+        double c = 0.0;
+        if (pole)  // C is free: it stays, within its limits
+            c = std::clamp(previous_c, p.c_min_deg, p.c_max_deg);
+        else if (!fit_c(s.c_deg, previous_c, p, c))
+            continue;
+        const double cost = std::abs(s.a_deg - previous_a) + std::abs(c - previous_c);
         if (cost < best) {
             best = cost;
-            out.a_deg = a;
-            out.c_deg = cc;
+            out = {s.a_deg, c};
             found = true;
         }
     }
@@ -233,6 +291,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     validate(params);
     // What the program deposits, and where.
     std::vector<std::size_t> used;
+    std::vector<double> deepest(layers.size(), 0.0);  // how far under its plane a layer reaches
     double t_min = std::numeric_limits<double>::infinity(), t_max = 0.0;
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
     Eigen::Vector3d hi = -lo;
@@ -246,9 +305,10 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             throw Error(ErrorCode::InvalidArgument, layer_name(i, layer) + ": its thickness " +
                                                         format_number(layer.max_thickness_mm) +
                                                         " mm is not >= 0");
+        deepest[i] = layer.max_thickness_mm;
         bool deposits = false;
         for (const ToolPath& path : layer.paths) {
-            if (!path.deposit() || path.points.empty()) continue;
+            if (!path.deposit()) continue;
             if (path.thickness_mm.size() != path.points.size())
                 throw Error(ErrorCode::InvalidArgument,
                             layer_name(i, layer) + ": a path has " +
@@ -257,14 +317,21 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             for (std::size_t k = 0; k < path.points.size(); ++k) {
                 const double t = path.thickness_mm[k];
                 if (!path.points[k].allFinite() || !std::isfinite(t))
-                    throw Error(ErrorCode::NonFiniteCoordinate,
-                                layer_name(i, layer) +
-                                    ": a path point or its thickness is not "
-                                    "finite");
+                    throw Error(
+                        ErrorCode::NonFiniteCoordinate,
+                        layer_name(i, layer) + ": a path point or its thickness is not finite");
+                if (t < 0.0)
+                    throw Error(ErrorCode::InvalidArgument,
+                                layer_name(i, layer) + ": a path's thickness " + format_number(t) +
+                                    " mm is negative");
+            }
+            if (!runs(path)) continue;
+            for (std::size_t k = 0; k < path.points.size(); ++k) {
                 lo = lo.cwiseMin(path.points[k]);
                 hi = hi.cwiseMax(path.points[k]);
-                t_min = std::min(t_min, t);
-                t_max = std::max(t_max, t);
+                t_min = std::min(t_min, path.thickness_mm[k]);
+                t_max = std::max(t_max, path.thickness_mm[k]);
+                deepest[i] = std::max(deepest[i], path.thickness_mm[k]);
             }
             deposits = true;
         }
@@ -272,10 +339,13 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             if (!q.allFinite())
                 throw Error(ErrorCode::NonFiniteCoordinate,
                             layer_name(i, layer) + ": an outline point is not finite");
+        }
+        if (!deposits) continue;
+        for (const Eigen::Vector3d& q : layer.outline) {
             lo = lo.cwiseMin(q);
             hi = hi.cwiseMax(q);
         }
-        if (deposits) used.push_back(i);
+        used.push_back(i);
     }
     if (used.empty()) throw Error(ErrorCode::EmptyInput, "G-code: no layer has a path to deposit");
 
@@ -284,25 +354,29 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                                  ? params.reference_thickness_mm
                                  : std::max(0.5 * (t_min + t_max), 1e-9);
     stats.reference_thickness_mm = reference;
+    const bool by_thickness = params.max_feed_ratio > 1.0;
     const double f_lo = params.feed_mm_min / params.max_feed_ratio;
     const double f_hi = params.feed_mm_min * params.max_feed_ratio;
     // Thicknesses beyond these give a feed at a bound.
     const double t_lo = reference / params.max_feed_ratio, t_hi = reference * params.max_feed_ratio;
 
+    // The sphere the routes between components keep outside: everything deposited (each layer's
+    // outline and path points, and as deep under them as it reaches) plus the clearance, grown so
+    // that the chords of its kArcStepDeg steps stay outside that.
     Sphere sphere;
     sphere.centre = 0.5 * (lo + hi);
+    double bound = 0.0;
     for (const std::size_t i : used) {
         const GcodeLayer& layer = layers[i];
         auto reach = [&](const Eigen::Vector3d& q) {
-            sphere.radius =
-                std::max(sphere.radius,
-                         (q - sphere.centre).norm() + layer.max_thickness_mm + params.clearance_mm);
+            bound = std::max(bound, (q - sphere.centre).norm() + deepest[i] + params.clearance_mm);
         };
         for (const Eigen::Vector3d& q : layer.outline) reach(q);
         for (const ToolPath& path : layer.paths)
             if (path.deposit())
                 for (const Eigen::Vector3d& q : path.points) reach(q);
     }
+    sphere.radius = bound / std::cos(0.5 * kArcStepDeg * kDegree);
     const Eigen::Vector3d top = Eigen::Vector3d::UnitZ();
 
     // The table's angles of every layer used, checked before a line is written.
@@ -315,14 +389,27 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             if (!table_angles(layer.tool_axis, params, previous.a_deg, previous.c_deg, angles[i])) {
                 const Eigen::Vector3d& n = layer.tool_axis;
                 const double tilt = std::atan2(std::hypot(n.x(), n.y()), n.z()) / kDegree;
-                throw Error(ErrorCode::UnreachableOrientation,
-                            layer_name(i, layer) + ": its tool axis (" + vector_text(n) +
-                                ") needs the table tilted " + format_number(tilt, 4) +
-                                " degrees one way or the other, beyond A's limits " +
-                                format_number(params.a_min_deg) + " to " +
-                                format_number(params.a_max_deg) + " (C " +
-                                format_number(params.c_min_deg) + " to " +
-                                format_number(params.c_max_deg) + ")");
+                const std::vector<TableAngles> within_a = a_solutions(n, params, previous.c_deg);
+                std::string why;
+                if (within_a.empty()) {
+                    why = "needs the table tilted " + format_number(tilt, 4) +
+                          " degrees one way or the other, beyond A's limits " +
+                          format_number(params.a_min_deg) + " to " +
+                          format_number(params.a_max_deg);
+                } else {
+                    why = "needs C at";
+                    for (std::size_t k = 0; k < within_a.size(); ++k) {
+                        double c = std::fmod(within_a[k].c_deg, 360.0);
+                        if (c < 0.0) c += 360.0;
+                        why += (k ? " or " : " ") + format_number(c, 6);
+                    }
+                    why += " degrees (plus a multiple of 360), beyond C's limits " +
+                           format_number(params.c_min_deg) + " to " +
+                           format_number(params.c_max_deg);
+                }
+                throw Error(
+                    ErrorCode::UnreachableOrientation,
+                    layer_name(i, layer) + ": its tool axis (" + vector_text(n) + ") " + why);
             }
             previous = angles[i];
         }
@@ -345,10 +432,11 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
               " deg, C " + format_number(params.c_min_deg) + " to " +
               format_number(params.c_max_deg) + " deg");
     g.comment("X Y Z: the part's coordinates in mm; set G54 to the part's origin on the table");
+    g.comment("the nozzle tip is the tool-centre point: its length offset must be in force");
     g.comment("deposition: digital output" + out_n + ", feed " + format_number(params.feed_mm_min) +
               " mm/min at " + format_number(reference, 4) + " mm thick, within " +
               format_number(f_lo) + " to " + format_number(f_hi) + " mm/min");
-    g.line("G21 G90 G94 G17 G40 G49 G54");
+    g.line("G21 G90 G94 G17 G40 G54");
     g.line("G64 P0.01");
     g.line("M65" + out_n);
 
@@ -385,12 +473,9 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         const GcodeLayer& layer = layers[i];
         const Eigen::Vector3d& n = layer.tool_axis;
         const TableAngles& a = angles[i];
-        g.comment("layer " + std::to_string(i) + ", component " + std::to_string(layer.component) +
-                  ": tool axis " + vector_text(n) + ", A " + format_number(a.a_deg, 8) + " C " +
-                  format_number(a.c_deg, 8));
         bool first_path = true;
         for (const ToolPath& path : layer.paths) {
-            if (!path.deposit() || path.points.empty()) continue;
+            if (!path.deposit() || !runs(path)) continue;
             const Eigen::Vector3d& s = path.points.front();
             const Eigen::Vector3d approach = s + n * params.clearance_mm;
             const bool new_component =
@@ -398,8 +483,15 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             const bool continues = !first && !new_component &&
                                    (g.position() - s).norm() <= kSamePoint &&
                                    g.angles().a_deg == a.a_deg && g.angles().c_deg == a.c_deg;
+            if (first_path) {
+                if (!continues) stop_deposit();  // the last layer's end before this one's name
+                g.comment("layer " + std::to_string(i) + ", component " +
+                          std::to_string(layer.component) + ": tool axis " + vector_text(n) +
+                          ", A " + format_number(a.a_deg, 8) + " C " + format_number(a.c_deg, 8));
+            }
             if (first) {
                 // From the sphere's top down to the first path.
+                g.comment("first to the top of a sphere clear of the part: start above the part");
                 const Eigen::Vector3d from = sphere.centre + sphere.radius * top;
                 g.rapid(from, a);
                 round_the_top(from, sphere.exit(s, n), a);
@@ -431,30 +523,26 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                 const Eigen::Vector3d& p0 = path.points[k - 1];
                 const Eigen::Vector3d& p1 = path.points[k];
                 const double length = (p1 - p0).norm();
-                if (length < 1e-9) continue;
+                if (length < kSamePoint * 1e-3) continue;
                 const double t0 = path.thickness_mm[k - 1], t1 = path.thickness_mm[k];
-                int pieces = 1;
-                if (params.max_feed_ratio > 1.0) {
-                    const double c0 = std::clamp(t0, t_lo, t_hi), c1 = std::clamp(t1, t_lo, t_hi);
-                    pieces = std::max(
-                        1, static_cast<int>(std::ceil(
-                               std::abs(c1 - c0) / (kThicknessStep * std::min(c0, c1)) - 1e-9)));
-                }
-                for (int j = 0; j < pieces; ++j) {
-                    const double s1 = static_cast<double>(j + 1) / pieces;
-                    const double mid = (j + 0.5) / pieces;
-                    const double t = t0 + mid * (t1 - t0);
+                const std::vector<double> ends =
+                    by_thickness ? feed_cuts(t0, t1, t_lo, t_hi) : std::vector<double>{1.0};
+                double from_s = 0.0;
+                for (const double to_s : ends) {
                     double f = params.feed_mm_min;
-                    if (params.max_feed_ratio > 1.0) {
+                    if (by_thickness) {
+                        const double t = t0 + 0.5 * (from_s + to_s) * (t1 - t0);
                         f = t > 0.0 ? params.feed_mm_min * reference / t
                                     : std::numeric_limits<double>::infinity();
-                        if (f < f_lo || f > f_hi) ++stats.feed_limited_moves;
+                        if (f < f_lo * (1.0 - 1e-12) || f > f_hi * (1.0 + 1e-12))
+                            ++stats.feed_limited_moves;
                         f = std::clamp(f, f_lo, f_hi);
                     }
-                    g.feed(p0 + s1 * (p1 - p0), f);
+                    g.feed(p0 + to_s * (p1 - p0), f);
                     ++stats.deposit_moves;
-                    stats.deposit_length_mm += length / pieces;
-                    stats.deposit_time_min += length / pieces / f;
+                    stats.deposit_length_mm += (to_s - from_s) * length;
+                    stats.deposit_time_min += (to_s - from_s) * length / f;
+                    from_s = to_s;
                 }
             }
         }

@@ -545,6 +545,23 @@ TEST(Gcode, APathStartingWhereTheLastEndedGoesOnAndEmptyLayersAreSkipped) {
     EXPECT_LT(text.find("M63"), text.find("(layer 2,"));
 }
 
+TEST(Gcode, PointsCloserThanTheWordsResolveMakeNoMove) {
+    // 3e-5 mm apart: both read (10.0000, 0.0000, 1.0000).
+    mas::GcodeLayer l;
+    l.paths.push_back(path(mas::ToolPath::Kind::Contour,
+                           {{0, 0, 1}, {10, 0, 1}, {10, 3e-5, 1}, {10, 10, 1}}, {1, 1, 1, 1}));
+    l.max_thickness_mm = 1.0;
+    mas::GcodeStats stats;
+    const Read r = read_program(mas::write_gcode({l}, mas::MachineParams(), &stats));
+    std::vector<Move> deposits;
+    for (const Move& mv : r.moves)
+        if (mv.depositing) deposits.push_back(mv);
+    ASSERT_EQ(deposits.size(), 2u);
+    EXPECT_EQ(stats.deposit_moves, 2);
+    EXPECT_NEAR(stats.deposit_length_mm, 20.0, 1e-12);  // the tiny step counted all the same
+    EXPECT_LE((deposits[1].p - Vector3d(10, 10, 1)).norm(), kWord);
+}
+
 TEST(Gcode, CancelsBetweenLayers) {
     std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2)};
     int calls = 0;

@@ -99,7 +99,7 @@ bool table_angles(const Eigen::Vector3d& tool_axis, const MachineParams& params,
 
 struct GcodeStats {
     int lines = 0;
-    int deposit_moves = 0;       // G1 moves with deposition on
+    int deposit_moves = 0;  // G1 moves with deposition on (none to where the nozzle is, to 1e-4)
     int feed_limited_moves = 0;  // of those, held at a bound of the feed range
     int reorientations = 0;      // moves that turn the table
     double a_min_deg = 0.0, a_max_deg = 0.0, c_min_deg = 0.0, c_max_deg = 0.0;  // used

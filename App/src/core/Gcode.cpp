@@ -60,9 +60,16 @@ public:
         if (started_) stats_.rapid_length_mm += (p - position_).norm();
         move("G0", p, angles, std::string());
     }
-    // G1 to `p` at `feed` mm/min, the table where it is.
-    void feed(const Eigen::Vector3d& p, double feed_mm_min) {
+    // G1 to `p` at `feed` mm/min, the table where it is; false, and no line, where `p` reads as
+    // the point the nozzle is at (points of a path closer than the words' 1e-4 mm).
+    bool feed(const Eigen::Vector3d& p, double feed_mm_min) {
+        if (started_ && fixed(p.x(), 4) == x_word_ && fixed(p.y(), 4) == y_word_ &&
+            fixed(p.z(), 4) == z_word_) {
+            position_ = p;
+            return false;
+        }
         move("G1", p, angles_, fixed(feed_mm_min, 1));
+        return true;
     }
 
     const Eigen::Vector3d& position() const { return position_; }
@@ -74,7 +81,10 @@ private:
     void move(const char* code, const Eigen::Vector3d& p, const TableAngles& angles,
               const std::string& feed) {
         std::string s = code;
-        s += " X" + fixed(p.x(), 4) + " Y" + fixed(p.y(), 4) + " Z" + fixed(p.z(), 4);
+        x_word_ = fixed(p.x(), 4);
+        y_word_ = fixed(p.y(), 4);
+        z_word_ = fixed(p.z(), 4);
+        s += " X" + x_word_ + " Y" + y_word_ + " Z" + z_word_;
         const std::string a = fixed(angles.a_deg, 4), c = fixed(angles.c_deg, 4);
         const bool turns = !started_ || a != a_word_ || c != c_word_;
         if (a != a_word_ || !started_) s += " A" + a;
@@ -104,7 +114,7 @@ private:
     std::ostringstream out_;
     Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
     TableAngles angles_;
-    std::string a_word_, c_word_, f_word_;
+    std::string x_word_, y_word_, z_word_, a_word_, c_word_, f_word_;
     bool started_ = false;
 };
 
@@ -538,8 +548,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                             ++stats.feed_limited_moves;
                         f = std::clamp(f, f_lo, f_hi);
                     }
-                    g.feed(p0 + to_s * (p1 - p0), f);
-                    ++stats.deposit_moves;
+                    if (g.feed(p0 + to_s * (p1 - p0), f)) ++stats.deposit_moves;
                     stats.deposit_length_mm += (to_s - from_s) * length;
                     stats.deposit_time_min += (to_s - from_s) * length / f;
                     from_s = to_s;

@@ -74,7 +74,6 @@ public:
 
     const Eigen::Vector3d& position() const { return position_; }
     const TableAngles& angles() const { return angles_; }
-    bool started() const { return started_; }
     std::string text() const { return out_.str(); }
 
 private:

@@ -450,6 +450,13 @@ TEST(Gcode, BadInputNamesTheProblem) {
     EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams()); }),
               "unreachable_orientation: layer 2 (component 3): its tool axis (0 0 -1) needs the "
               "table tilted 180 degrees one way or the other, beyond A's limits -100 to 50");
+    // A hair past A's limit reads as past it (arms 10 degrees below the horizontal, as the
+    // centroids give them).
+    layers.back().tool_axis = Vector3d(0.0858269, -0.981059, -0.173658).normalized();
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams()); }),
+              "unreachable_orientation: layer 2 (component 3): its tool axis (0.0858269 "
+              "-0.981059 -0.173658) needs the table tilted 100.0006 degrees one way or the "
+              "other, beyond A's limits -100 to 50");
     // Within A's reach but not C's: the message names C and the angles it needs.
     mas::MachineParams narrow;
     narrow.c_min_deg = 0.0;

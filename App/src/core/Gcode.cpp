@@ -401,7 +401,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                 const std::vector<TableAngles> within_a = a_solutions(n, params, previous.c_deg);
                 std::string why;
                 if (within_a.empty()) {
-                    why = "needs the table tilted " + format_number(tilt, 4) +
+                    why = "needs the table tilted " + format_number(tilt, 7) +
                           " degrees one way or the other, beyond A's limits " +
                           format_number(params.a_min_deg) + " to " +
                           format_number(params.a_max_deg);

@@ -435,6 +435,14 @@ TEST(Gcode, FeedFollowsTheThicknessWithinItsRange) {
     EXPECT_EQ(tail_stats.feed_limited_moves, 1);
     EXPECT_NEAR(tail_moves.back().p.x(), 20.0, kWord);
     EXPECT_NEAR(tail_moves.back().f, 600.0 / (2.0 / std::pow(8.0, 0.5 / 43.0)), 0.05);
+    // Thicknesses apart by rounding only: one move.
+    mas::GcodeLayer flat;
+    flat.paths.push_back(
+        path(mas::ToolPath::Kind::Infill, {{0, 0, 1}, {14, 0, 1}}, {0.6328125, 0.632812500000004}));
+    flat.max_thickness_mm = 0.7;
+    mas::GcodeStats flat_stats;
+    mas::write_gcode({flat}, m, &flat_stats);
+    EXPECT_EQ(flat_stats.deposit_moves, 1);
     // A derived reference is half-way between the thinnest and thickest deposit.
     m.reference_thickness_mm = 0.0;
     mas::GcodeStats derived;

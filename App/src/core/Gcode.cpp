@@ -164,7 +164,9 @@ bool runs(const ToolPath& path) {
 std::vector<double> feed_cuts(double t0, double t1, double t_lo, double t_hi) {
     std::vector<double> out;
     const double c0 = std::clamp(t0, t_lo, t_hi), c1 = std::clamp(t1, t_lo, t_hi);
-    if (c0 != c1) {  // t1 != t0, and part of the move lies within the range
+    // Part of the move lies within the range, its thickness changing by more than rounding
+    // (thicknesses 1e-15 apart cut a move at an arbitrary point, both pieces at one feed).
+    if (std::abs(c1 - c0) > 1e-9 * std::max(c0, c1)) {
         auto at = [&](double t) { return (t - t0) / (t1 - t0); };
         if (at(c0) > 1e-12) out.push_back(at(c0));
         const int n = std::max(

@@ -260,6 +260,9 @@ TEST(Gcode, DepositsEveryPathPointInOrderWithTheOutputOnAndTheTableTurnedToItsAx
     EXPECT_EQ(r.m62, 3);  // one per layer: each layer's loop is one path
     EXPECT_EQ(r.m63, 3);
     EXPECT_EQ(r.m65, 2);
+    // The nozzle's length offset stays in force: the kinematics' tool-centre point is its tip.
+    EXPECT_EQ(text.find("G49"), std::string::npos);
+    EXPECT_EQ(text.find("G43"), std::string::npos);
 
     // The deposit moves, in order, end exactly at the paths' points after their first.
     std::vector<Vector3d> expected;

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -58,17 +59,17 @@ public:
     // G0 to `p` with the table at `angles`.
     void rapid(const Eigen::Vector3d& p, const TableAngles& angles) {
         if (started_) stats_.rapid_length_mm += (p - position_).norm();
-        move("G0", p, angles, std::string());
+        move("G0", p, words(p), angles, std::string());
     }
     // G1 to `p` at `feed` mm/min, the table where it is; false, and no line, where `p` reads as
     // the point the nozzle is at (points of a path closer than the words' 1e-4 mm).
     bool feed(const Eigen::Vector3d& p, double feed_mm_min) {
-        if (started_ && fixed(p.x(), 4) == x_word_ && fixed(p.y(), 4) == y_word_ &&
-            fixed(p.z(), 4) == z_word_) {
+        std::array<std::string, 3> xyz = words(p);
+        if (started_ && xyz == xyz_words_) {
             position_ = p;
             return false;
         }
-        move("G1", p, angles_, fixed(feed_mm_min, 1));
+        move("G1", p, std::move(xyz), angles_, fixed(feed_mm_min, 1));
         return true;
     }
 
@@ -77,13 +78,16 @@ public:
     std::string text() const { return out_.str(); }
 
 private:
-    void move(const char* code, const Eigen::Vector3d& p, const TableAngles& angles,
-              const std::string& feed) {
+    static std::array<std::string, 3> words(const Eigen::Vector3d& p) {
+        return {fixed(p.x(), 4), fixed(p.y(), 4), fixed(p.z(), 4)};
+    }
+
+    // `xyz`: words(p), made once by the caller.
+    void move(const char* code, const Eigen::Vector3d& p, std::array<std::string, 3> xyz,
+              const TableAngles& angles, const std::string& feed) {
+        xyz_words_ = std::move(xyz);
         std::string s = code;
-        x_word_ = fixed(p.x(), 4);
-        y_word_ = fixed(p.y(), 4);
-        z_word_ = fixed(p.z(), 4);
-        s += " X" + x_word_ + " Y" + y_word_ + " Z" + z_word_;
+        s += " X" + xyz_words_[0] + " Y" + xyz_words_[1] + " Z" + xyz_words_[2];
         const std::string a = fixed(angles.a_deg, 4), c = fixed(angles.c_deg, 4);
         const bool turns = !started_ || a != a_word_ || c != c_word_;
         if (a != a_word_ || !started_) s += " A" + a;
@@ -113,7 +117,8 @@ private:
     std::ostringstream out_;
     Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
     TableAngles angles_;
-    std::string x_word_, y_word_, z_word_, a_word_, c_word_, f_word_;
+    std::array<std::string, 3> xyz_words_;  // of the last move
+    std::string a_word_, c_word_, f_word_;
     bool started_ = false;
 };
 

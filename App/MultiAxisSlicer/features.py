@@ -1274,14 +1274,13 @@ def machine_program(obj):
     layers, machine = machine_inputs(obj)
     result = slice_result(layers)
     proxy = obj.Proxy
-    key = (id(result), tuple(sorted(machine.items())))
-    cached = getattr(proxy, "_program", None)
-    if cached is not None and cached[0] == key and cached[1] is result:
-        return cached[2]
+    cached = getattr(proxy, "_program", None)  # (the result it was written from, the program)
+    if cached is not None and cached[0] is result and cached[1].machine == machine:
+        return cached[1]
     proxy._program = None
     with _progress.reporting("Writing the G-code of '{}'".format(obj.Label)) as progress:
         program = mas.gcode(result, progress=progress, **machine)
-    proxy._program = (key, result, program)
+    proxy._program = (result, program)
     return program
 
 

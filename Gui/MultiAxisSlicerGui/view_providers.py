@@ -29,22 +29,38 @@ class _Stateless:
         return None
 
 
-class ViewProviderSections(_Stateless):
-    """Tree icon and line style of a ``Sections`` object. The source stays as it is (visible, not
-    claimed as a child): the sections are read against the part."""
+class _LineStyled(_Stateless):
+    """Tree icon and line style of an object drawn as lines: a subclass sets LINE_COLOR,
+    LINE_WIDTH, ICON and, unless solid, DRAW_STYLE."""
+
+    LINE_COLOR = (0.0, 0.0, 0.0)
+    LINE_WIDTH = 1.0
+    ICON = ""
+    DRAW_STYLE = None
 
     def __init__(self, vobj):
         vobj.Proxy = self
-        vobj.LineColor = SECTION_LINE_COLOR
-        vobj.LineWidth = SECTION_LINE_WIDTH
-        vobj.PointColor = SECTION_LINE_COLOR
+        vobj.LineColor = self.LINE_COLOR
+        vobj.LineWidth = self.LINE_WIDTH
+        vobj.PointColor = self.LINE_COLOR
         vobj.PointSize = 1.0
+        if self.DRAW_STYLE is not None:
+            vobj.DrawStyle = self.DRAW_STYLE
 
     def attach(self, vobj):
         self.Object = vobj.Object
 
     def getIcon(self):
-        return MultiAxisSlicerGui.icon_path("Sections.svg")
+        return MultiAxisSlicerGui.icon_path(self.ICON)
+
+
+class ViewProviderSections(_LineStyled):
+    """Tree icon and line style of a ``Sections`` object. The source stays as it is (visible, not
+    claimed as a child): the sections are read against the part."""
+
+    LINE_COLOR = SECTION_LINE_COLOR
+    LINE_WIDTH = SECTION_LINE_WIDTH
+    ICON = "Sections.svg"
 
 
 
@@ -577,20 +593,11 @@ PROGRAM_LINE_COLOR = (0.2, 0.3, 0.75)
 PROGRAM_LINE_WIDTH = 1.0
 
 
-class ViewProviderMachineProgram(_Stateless):
+class ViewProviderMachineProgram(_LineStyled):
     """Tree icon and line style of a ``MachineProgram`` object: its travel moves (retracts,
     approaches, routes round the part), dashed."""
 
-    def __init__(self, vobj):
-        vobj.Proxy = self
-        vobj.LineColor = PROGRAM_LINE_COLOR
-        vobj.LineWidth = PROGRAM_LINE_WIDTH
-        vobj.PointColor = PROGRAM_LINE_COLOR
-        vobj.PointSize = 1.0
-        vobj.DrawStyle = "Dashed"
-
-    def attach(self, vobj):
-        self.Object = vobj.Object
-
-    def getIcon(self):
-        return MultiAxisSlicerGui.icon_path("MachineProgram.svg")
+    LINE_COLOR = PROGRAM_LINE_COLOR
+    LINE_WIDTH = PROGRAM_LINE_WIDTH
+    ICON = "MachineProgram.svg"
+    DRAW_STYLE = "Dashed"

@@ -13,15 +13,7 @@ MultiAxisSlicerGui.progress.install()  # the commands' recomputes show progress 
 
 def _selected_part():
     """The one selected object if it has a shape or a mesh, else None."""
-    if FreeCAD.ActiveDocument is None:
-        return None
-    selection = FreeCADGui.Selection.getSelection()
-    if len(selection) != 1:
-        return None
-    obj = selection[0]
-    if obj.isDerivedFrom("Mesh::Feature") or hasattr(obj, "Shape"):
-        return obj
-    return None
+    return _selected_one(lambda o: o.isDerivedFrom("Mesh::Feature") or hasattr(o, "Shape"))
 
 
 # This workbench's results, which are no part to work on: their type -> what they are, in words.
@@ -107,14 +99,34 @@ class _CancelWatch:
         return MultiAxisSlicerGui.progress.cancel_count() != self.count
 
 
+def _selected_one(check):
+    """The one selected object if check(object), else None."""
+    if FreeCAD.ActiveDocument is None:
+        return None
+    selection = FreeCADGui.Selection.getSelection()
+    if len(selection) == 1 and check(selection[0]):
+        return selection[0]
+    return None
+
+
+def _active(select):
+    """A command's IsActive: whether select() finds its input."""
+    try:
+        return select() is not None
+    except Exception:  # IsActive runs on every GUI update: never let it raise
+        return False
+
+
 class _PartCommand:
-    """A command making one parametric object over the selected solid or mesh, in one transaction
-    (undo removes it). A subclass sets NAME, TRANSACTION, ICON, TOOLTIP and defines make()."""
+    """A command making one parametric object over the selected input (a solid or mesh unless
+    select() says otherwise), in one transaction (undo removes it). A subclass sets NAME,
+    TRANSACTION, ICON, TOOLTIP and defines make()."""
 
     NAME = ""
     TRANSACTION = ""  # also the menu text
     ICON = ""
     TOOLTIP = ""
+    NO_SELECTION = "Select one solid or mesh first."
 
     def GetResources(self):
         return {
@@ -123,11 +135,12 @@ class _PartCommand:
             "ToolTip": self.TOOLTIP,
         }
 
+    def select(self):
+        """The selected input, None when the selection holds none."""
+        return _selected_part()
+
     def IsActive(self):
-        try:
-            return _selected_part() is not None
-        except Exception:  # IsActive runs on every GUI update: never let it raise
-            return False
+        return _active(self.select)
 
     def make(self, source, doc):
         raise NotImplementedError
@@ -137,9 +150,9 @@ class _PartCommand:
         return _part_problem(source)
 
     def Activated(self):
-        source = _selected_part()
+        source = self.select()
         if source is None:
-            MultiAxisSlicerGui.show_error("Select one solid or mesh first.")
+            MultiAxisSlicerGui.show_error(self.NO_SELECTION)
             return
         if not mas.engine_available():
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
@@ -356,17 +369,7 @@ class SliceCommand(_PartCommand):
             MultiAxisSlicerGui.show_error(failed)
 
 
-def _selected_one(check):
-    """The one selected object if check(object), else None."""
-    if FreeCAD.ActiveDocument is None:
-        return None
-    selection = FreeCADGui.Selection.getSelection()
-    if len(selection) == 1 and check(selection[0]):
-        return selection[0]
-    return None
-
-
-class MachineProgramCommand:
+class MachineProgramCommand(_PartCommand):
     """The 5-axis G-code of a selected Layers (or Toolpath) object, as a parametric
     MachineProgram object (the machine's limits, feed and clearance as properties), in one
     transaction. A program the machine cannot run (a layer whose tool axis the table cannot turn
@@ -374,56 +377,24 @@ class MachineProgramCommand:
 
     NAME = "MultiAxisSlicer_MachineProgram"
     TRANSACTION = "Machine program"
+    ICON = "MachineProgram.svg"
+    TOOLTIP = ("Write the 5-axis G-code that deposits the selected Layers (or Toolpath) on a "
+               "tilting rotary table (LinuxCNC, XYZAC): a parametric MachineProgram object; set "
+               "AMin, AMax, Feed, Clearance, ..., then Export G-code")
+    NO_SELECTION = "Select one Layers or Toolpath object first."
 
-    def GetResources(self):
-        return {
-            "Pixmap": MultiAxisSlicerGui.icon_path("MachineProgram.svg"),
-            "MenuText": self.TRANSACTION,
-            "ToolTip": ("Write the 5-axis G-code that deposits the selected Layers (or Toolpath) "
-                        "on a tilting rotary table (LinuxCNC, XYZAC): a parametric "
-                        "MachineProgram object; set AMin, AMax, Feed, Clearance, ..., then "
-                        "Export G-code"),
-        }
-
-    def IsActive(self):
+    def select(self):
         import MultiAxisSlicer.features as features
 
-        try:
-            return _selected_one(lambda o: features.is_layers(o) or features.is_toolpath(o)) \
-                is not None
-        except Exception:  # IsActive runs on every GUI update: never let it raise
-            return False
+        return _selected_one(lambda o: features.is_layers(o) or features.is_toolpath(o))
 
-    def Activated(self):
+    def input_problem(self, source):
+        return None  # any Layers or Toolpath: a failing one marks the new object with its message
+
+    def make(self, source, doc):
         import MultiAxisSlicer.features as features
 
-        source = _selected_one(lambda o: features.is_layers(o) or features.is_toolpath(o))
-        if source is None:
-            MultiAxisSlicerGui.show_error("Select one Layers or Toolpath object first.")
-            return
-        if not mas.engine_available():
-            MultiAxisSlicerGui.show_error(mas.engine_missing_message())
-            return
-        doc = source.Document
-        watch = _CancelWatch()
-        before = {o.Name for o in doc.Objects}
-        doc.openTransaction(self.TRANSACTION)
-        try:
-            obj = features.make_machine_program(source, doc=doc)
-            if not watch.cancelled():
-                _recompute_new(doc, before)
-        except Exception as error:  # creating the object failed: leave nothing behind
-            doc.abortTransaction()
-            MultiAxisSlicerGui.show_error(
-                "{} of '{}' failed: {}".format(self.TRANSACTION, source.Label, error))
-            return
-        if watch.cancelled():
-            _undo_cancelled(doc, self.TRANSACTION, source, {})
-            return
-        doc.commitTransaction()
-        message = features.failure(obj)
-        if message is not None:  # the object stays so that the machine can be fixed
-            MultiAxisSlicerGui.show_error(message)
+        return features.make_machine_program(source, doc=doc)
 
 
 class ExportGcodeCommand:
@@ -443,10 +414,7 @@ class ExportGcodeCommand:
     def IsActive(self):
         import MultiAxisSlicer.features as features
 
-        try:
-            return _selected_one(features.is_machine_program) is not None
-        except Exception:  # IsActive runs on every GUI update: never let it raise
-            return False
+        return _active(lambda: _selected_one(features.is_machine_program))
 
     def Activated(self):
         import MultiAxisSlicer.features as features

@@ -45,6 +45,19 @@ def t_block():
         Part.makeBox(80, 20, 20, V(-30, 0, 40))).removeSplitter()
 
 
+def sliced_l_block_document(name):
+    """A new document `name` holding the L block ("L"), its Decomposition and its Layers and
+    Toolpath objects, computed: (doc, part, decomposition, layers, toolpath)."""
+    doc = FreeCAD.newDocument(name)
+    part = doc.addObject("Part::Feature", "L")
+    part.Shape = l_block()
+    doc.recompute()
+    decomposition = mas.make_decomposition(part)
+    layers, toolpath = mas.make_slice(decomposition)
+    doc.recompute()
+    return doc, part, decomposition, layers, toolpath
+
+
 def fc_mesh(shape, deflection=0.1):
     return Mesh.Mesh(shape.tessellate(deflection))
 

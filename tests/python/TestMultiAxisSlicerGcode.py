@@ -204,13 +204,8 @@ class TestTravelShape(support.EngineTestCase):
 
 class TestMachineProgramObject(support.EngineTestCase):
     def setUp(self):
-        self.doc = FreeCAD.newDocument("MasGcode")
-        self.part = self.doc.addObject("Part::Feature", "L")
-        self.part.Shape = l_block()
-        self.doc.recompute()
-        self.decomposition = mas.make_decomposition(self.part)
-        self.layers, self.toolpath = mas.make_slice(self.decomposition)
-        self.doc.recompute()
+        (self.doc, self.part, self.decomposition, self.layers,
+         self.toolpath) = support.sliced_l_block_document("MasGcode")
         self.folder = tempfile.mkdtemp(prefix="mas_gcode_doc_")
 
     def tearDown(self):

@@ -21,6 +21,7 @@ from PySide import QtCore, QtGui
 import MultiAxisSlicer as mas
 import MultiAxisSlicerGui.progress as progress
 import MultiAxisSlicerGui.view_providers as view_providers
+import MultiAxisSlicerTestSupport
 
 WORKBENCH = "MultiAxisSlicerWorkbench"
 COMMAND = "MultiAxisSlicer_Sections"
@@ -1245,13 +1246,8 @@ class TestSliceCommand(unittest.TestCase):
 class TestMachineProgramCommands(unittest.TestCase):
     def setUp(self):
         FreeCADGui.activateWorkbench(WORKBENCH)
-        self.doc = FreeCAD.newDocument("MasGuiProgram")
-        self.part = self.doc.addObject("Part::Feature", "L")
-        self.part.Shape = l_block()
-        self.doc.recompute()
-        self.decomposition = mas.make_decomposition(self.part)
-        self.layers, self.toolpath = mas.make_slice(self.decomposition)
-        self.doc.recompute()
+        (self.doc, self.part, self.decomposition, self.layers,
+         self.toolpath) = MultiAxisSlicerTestSupport.sliced_l_block_document("MasGuiProgram")
         self.folder = tempfile.mkdtemp(prefix="mas_gui_gcode_")
         self.dialog = QtGui.QFileDialog.getSaveFileName
         FreeCADGui.Selection.clearSelection()

@@ -1057,6 +1057,15 @@ def is_toolpath(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == ToolpathFeature.TYPE
 
 
+def _check_angles(values, parameters):
+    """ValueError for a value of an angle property (`parameters`: (name, property type) pairs)
+    beyond a turn either way, which the property would clamp silently."""
+    for name, type_id in parameters:
+        if type_id == "App::PropertyAngle" and not (-360.0 <= values[name] <= 360.0):
+            raise ValueError("{} must be between -360 and 360 degrees, got {}".format(
+                name, values[name]))
+
+
 def _slice_property_values(params):
     """Checks make_slice()'s keyword arguments like ``MultiAxisSlicer.slice`` does and returns
     {property: value}. Raises TypeError / ValueError naming the bad one."""
@@ -1067,10 +1076,7 @@ def _slice_property_values(params):
     checked = mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))
     # Properties would silently clamp what slice() reports: a negative length, an angle past a turn.
     mas._length(checked["min_feature"], "min_feature", allow_zero=True)
-    for _p, _g, name, type_id, _d in _SLICE_PROPERTIES:
-        if type_id == "App::PropertyAngle" and not (-360.0 <= checked[name] <= 360.0):
-            raise ValueError("{} must be between -360 and 360 degrees, got {}".format(
-                name, checked[name]))
+    _check_angles(checked, [(name, type_id) for _p, _g, name, type_id, _d in _SLICE_PROPERTIES])
     return {prop: checked[name] for prop, _g, name, _t, _d in _SLICE_PROPERTIES}
 
 
@@ -1325,10 +1331,7 @@ def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
     # turn.
     mas._length(values["reference_thickness"], "reference_thickness", allow_zero=True)
     mas._length(values["clearance"], "clearance")
-    for _prop, param, type_id, _doc in _MACHINE_PROPERTIES:
-        if type_id == "App::PropertyAngle" and not (-360.0 <= values[param] <= 360.0):
-            raise ValueError("{} must be between -360 and 360 degrees, got {}".format(
-                param, values[param]))
+    _check_angles(values, [(param, type_id) for _p, param, type_id, _d in _MACHINE_PROPERTIES])
     if doc is None:
         doc = layers.Document
     obj = doc.addObject("Part::FeaturePython", name)

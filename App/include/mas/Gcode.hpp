@@ -86,7 +86,8 @@ struct GcodeLayer {
     double max_thickness_mm = 0.0;         // the deposit under its plane reaches no deeper
 };
 
-// The layers of a sliced part, in their build order.
+// The layers of a sliced part, in their sequence (SlicedPart::sequence; in their order when it
+// does not name every layer).
 std::vector<GcodeLayer> gcode_layers(const SlicedPart& part);
 
 // The table's angles (degrees) that turn `tool_axis` (unit length) to machine +Z, nearest to

@@ -10,6 +10,7 @@
 #include "mas/Decompose.hpp"
 #include "mas/Holes.hpp"
 #include "mas/Mesh.hpp"
+#include "mas/Nozzle.hpp"
 #include "mas/Paths.hpp"
 #include "mas/Progress.hpp"
 #include "mas/Shape.hpp"
@@ -22,6 +23,7 @@ struct SlicePartParams {
     LayerParams layers;
     PathParams paths;
     TessellationParams tessellation;  // for the components' meshes (slice_part only)
+    NozzleParams nozzle;              // the build sequence's (Nozzle.hpp)
     // slice_part only: round holes up to this diameter (mm) whose axis leans more than
     // layers.overhang_angle_deg off their component's build direction are deposited solid, to be
     // drilled afterwards (Holes.hpp). 0 fills none.
@@ -59,6 +61,8 @@ struct SliceStats {
     double deposit_length_mm = 0.0, travel_length_mm = 0.0;
     int centre_line_passes = 0;      // regions narrower than a bead, run as one centre line
     int unfilled_features = 0;       // too small even for that: listed per layer
+    int colliding_layers = 0;        // layers whose nozzle meets deposited material (Nozzle.hpp)
+    int component_switches = 0;      // in the sequence: consecutive layers of two components
     int filled_holes = 0;            // holes deposited solid, to be drilled (slice_part only)
     double filled_volume_mm3 = 0.0;  // the material that adds (exact, from the BREP)
 };
@@ -67,7 +71,11 @@ struct SlicedPart {
     std::vector<Layer> layers;  // component by component in build order, each bottom to top
     std::vector<LayerToolpaths> toolpaths;    // one per layer
     std::vector<ComponentLayers> components;  // indexed by component
-    std::vector<int> build_order;             // the components in the order they are deposited
+    std::vector<int> build_order;             // the components in the order they start
+    // The layers in the order they are deposited (Nozzle.hpp): build_order's components, a
+    // component left for another where going on would block the nozzle's way to that one's
+    // layers; and the layers whose nozzle still meets what is deposited.
+    BuildSequence sequence;
     // slice_part with fill_holes_up_to_mm: the holes deposited solid, to be drilled afterwards,
     // component by component; and a note for each hole that qualified and stayed open.
     std::vector<FilledHole> filled_holes;
@@ -87,11 +95,14 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 
 // Slices components given as meshes (a mesh part is one root component). `axis` is the part's
 // centroidal axis: component c follows the nodes of branch components[c].branch whose section's
-// material (AxisNode::material_point) lies inside its mesh. They are deposited in build_order();
-// each child's first layer is checked against everything built before it. `progress` (Progress.hpp)
-// follows the build order (a few per cent), the components' layers (each its share by volume,
-// reported after every layer and checked between candidate planes) and the paths (the last tenth,
-// layer by layer), and reaches 1 when done. Throws as slice_component, and InvalidArgument for a
+// material (AxisNode::material_point) lies inside its mesh. They are started in build_order();
+// each child's first layer is checked against everything built before it. Then the layers'
+// sequence against params.nozzle (plan_build_sequence): a component waits for its father and for
+// the components before it in build_order that reach its base (those its first layer may rest
+// on); the plate is the root's base. `progress` (Progress.hpp) follows the build order (a few per
+// cent), the components' layers (each its share by volume, reported after every layer and checked
+// between candidate planes), the paths (layer by layer) and the sequence (the last tenth), and
+// reaches 1 when done. Throws as slice_component, and InvalidArgument for a
 // component whose parent is not before it.
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,

@@ -228,7 +228,9 @@ void validate(const MachineParams& p) {
 std::vector<GcodeLayer> gcode_layers(const SlicedPart& part) {
     std::vector<GcodeLayer> out;
     out.reserve(part.layers.size());
-    for (std::size_t i = 0; i < part.layers.size(); ++i) {
+    const bool sequenced = part.sequence.layers.size() == part.layers.size();
+    for (std::size_t k = 0; k < part.layers.size(); ++k) {
+        const std::size_t i = sequenced ? std::size_t(part.sequence.layers[k]) : k;
         const Layer& layer = part.layers[i];
         GcodeLayer g;
         g.component = layer.component;

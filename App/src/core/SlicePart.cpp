@@ -52,35 +52,55 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
     return slice_components({root}, axis, params, progress);
 }
 
+namespace {
+
+// Which meshes reach which components' bases: a mesh reaches a component's base when it comes
+// within max_layer of the base plane (far more than the section's offset) and near the
+// component's box: its section just below the plane helps only within the overhang allowance
+// (sideways) of the first layer's footprint just above it (two offsets apart along the normal),
+// which lies in the component's box. (Without the second test, each post built on a plate of 900
+// made every other post's support stale: cubic work.)
+class BaseReach {
+public:
+    BaseReach(const std::vector<ComponentMesh>& components, const LayerParams& params)
+        : components_(components), params_(params) {
+        const double reach = std::max(params.max_layer_mm,
+                                      std::hypot(params.min_layer_mm * overhang_allowance(params),
+                                                 2.0 * base_offset(params)));
+        boxes_.resize(components.size());
+        reach_of_.resize(components.size());
+        for (std::size_t c = 0; c < components.size(); ++c) {
+            boxes_[c] = bounding_box(components[c].mesh);
+            reach_of_[c] = Eigen::AlignedBox3d(boxes_[c].min() - Eigen::Vector3d::Constant(reach),
+                                               boxes_[c].max() + Eigen::Vector3d::Constant(reach));
+        }
+    }
+    // Whether component `mesh`'s mesh reaches component `c`'s base.
+    bool operator()(std::size_t mesh, std::size_t c) const {
+        double lo, hi;  // heights above the base plane
+        range_along(boxes_[mesh].translated(-components_[c].base.origin),
+                    components_[c].base.normal.normalized(), lo, hi);
+        return lo <= params_.max_layer_mm && hi >= -params_.max_layer_mm &&
+               boxes_[mesh].intersects(reach_of_[c]);
+    }
+
+private:
+    const std::vector<ComponentMesh>& components_;
+    const LayerParams& params_;
+    std::vector<Eigen::AlignedBox3d> boxes_, reach_of_;
+};
+
+}  // namespace
+
 std::vector<int> build_order(const std::vector<ComponentMesh>& components,
                              const LayerParams& params, const Progress& progress) {
     const std::size_t n = components.size();
     std::vector<int> order;
     if (n == 0) return order;
     order.reserve(n);
-    // A component's support can only change when a mesh reaching its base is built: the boxes
-    // tell which, and only those are cut again. A mesh reaches it when it comes within max_layer
-    // of the base plane (far more than the section's offset) and near the component's box: its
-    // section just below the plane helps only within the overhang allowance (sideways) of the
-    // first layer's footprint just above it (two offsets apart along the normal), which lies in
-    // the component's box. (Without the second test, each post built on a plate of 900 made
-    // every other post's support stale: cubic work.)
-    const double reach = std::max(
-        params.max_layer_mm,
-        std::hypot(params.min_layer_mm * overhang_allowance(params), 2.0 * base_offset(params)));
-    std::vector<Eigen::AlignedBox3d> boxes(n), reach_of(n);
-    for (std::size_t c = 0; c < n; ++c) {
-        boxes[c] = bounding_box(components[c].mesh);
-        reach_of[c] = Eigen::AlignedBox3d(boxes[c].min() - Eigen::Vector3d::Constant(reach),
-                                          boxes[c].max() + Eigen::Vector3d::Constant(reach));
-    }
-    auto reaches_base = [&](std::size_t mesh, std::size_t c) {
-        double lo, hi;  // heights above the base plane
-        range_along(boxes[mesh].translated(-components[c].base.origin),
-                    components[c].base.normal.normalized(), lo, hi);
-        return lo <= params.max_layer_mm && hi >= -params.max_layer_mm &&
-               boxes[mesh].intersects(reach_of[c]);
-    };
+    // A component's support can only change when a mesh reaching its base is built: only those
+    // are cut again.
+    const BaseReach reaches_base(components, params);
     std::vector<char> done(n, 0), stale(n, 1);
     std::vector<double> score(n, 0.0), tolerance(n, 0.0);
     auto take = [&](std::size_t c) {
@@ -123,6 +143,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     const Progress progress = caller.span(0.0, 1.0, "slicing");
     validate(params.layers);
     validate(params.paths);
+    validate(params.nozzle);
     if (components.empty()) throw Error(ErrorCode::EmptyInput, "no component to slice");
     std::vector<double> volumes(components.size(), 0.0);
     for (std::size_t c = 0; c < components.size(); ++c) {
@@ -144,7 +165,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     out.components.resize(components.size());
     out.build_order =
         build_order(components, params.layers, progress.span(0.0, 0.05, "ordering the components"));
-    // Each component's share of the layers' 85 % is its share of the volume.
+    // Each component's share of the layers' 80 % is its share of the volume.
     double total_volume = 0.0;
     for (double v : volumes) total_volume += std::max(v, 0.0);
     double sliced_volume = 0.0;
@@ -181,10 +202,9 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         const std::string stage = "slicing component " + std::to_string(c) + " (" +
                                   std::to_string(built.size() + 1) + " of " +
                                   std::to_string(components.size()) + ")";
-        std::vector<Layer> layers =
-            slice_component(input, params.layers,
-                            progress.span(0.05 + 0.85 * sliced_volume,
-                                          0.05 + 0.85 * (sliced_volume + share), stage));
+        std::vector<Layer> layers = slice_component(
+            input, params.layers,
+            progress.span(0.05 + 0.8 * sliced_volume, 0.05 + 0.8 * (sliced_volume + share), stage));
         sliced_volume += share;
         record.layer_count = int(layers.size());
         for (Layer& l : layers) out.layers.push_back(std::move(l));
@@ -199,7 +219,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     Eigen::Vector3d head = Eigen::Vector3d::Zero();  // where the previous layer's paths ended
     bool has_head = false;
     out.toolpaths.reserve(out.layers.size());
-    const Progress paths_progress = progress.span(0.9, 1.0, "planning the bead paths");
+    const Progress paths_progress = progress.span(0.85, 0.9, "planning the bead paths");
     for (std::size_t i = 0; i < out.layers.size(); ++i) {
         paths_progress(double(i) / double(out.layers.size()));
         const Layer& l = out.layers[i];
@@ -229,6 +249,28 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         out.toolpaths.push_back(std::move(paths));
     }
     if (out.layers.empty()) s.min_thickness_mm = 0.0;
+
+    SequenceInput sequence;
+    sequence.layers = &out.layers;
+    sequence.toolpaths = &out.toolpaths;
+    sequence.start_order = out.build_order;
+    sequence.plate = components.front().base;
+    sequence.parent.resize(components.size());
+    sequence.waits_for.resize(components.size());
+    const BaseReach reaches_base(components, params.layers);
+    for (std::size_t k = 0; k < out.build_order.size(); ++k) {
+        const std::size_t c = std::size_t(out.build_order[k]);
+        sequence.parent[c] = components[c].parent;
+        for (std::size_t e = 0; e < k; ++e) {
+            const int earlier = out.build_order[e];
+            if (earlier != components[c].parent && reaches_base(std::size_t(earlier), c))
+                sequence.waits_for[c].push_back(earlier);
+        }
+    }
+    out.sequence = plan_build_sequence(sequence, params.nozzle,
+                                       progress.span(0.9, 1.0, "ordering the layers"));
+    s.colliding_layers = int(out.sequence.collisions.size());
+    s.component_switches = out.sequence.component_switches;
     progress(1.0);
     return out;
 }

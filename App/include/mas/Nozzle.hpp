@@ -1,0 +1,100 @@
+// The build sequence against the nozzle (paper Sec. 4.2.3, Eq. 10): the order the layers are
+// deposited in, so that the nozzle never meets what is already deposited, with the collisions no
+// order avoids reported layer by layer.
+//
+// How the paper is read, and the choices made (each tested in tests/engine/test_nozzle.cpp):
+// - The nozzle, along the tool axis n (the layer's normal) from the deposit point p: nothing for
+//   the first standoff_mm (the powder or wire stream and the beam or arc, which may pass close to
+//   anything), then the tip, a cone frustum tip_diameter_mm across at its face widening at
+//   cone_angle_deg (half-angle) until it is body_diameter_mm across, then the body, a cylinder of
+//   that diameter body_length_mm long. Eq. 10 writes B_dep ∩ B_tip ∩ B_body = ∅; it is read as the
+//   union: neither the tip nor the body may meet B_dep.
+// - What is deposited: every layer's prism, its regions on its plane swept back along its normal
+//   down to its lower plane (the paper's "sweeping the slicing layer"), and the build plate, the
+//   plane the part stands on (unbounded: the table is taken to reach past the part).
+// - A layer x collides with a layer y deposited before it when the nozzle, anywhere along x's
+//   deposit paths (every point of every segment), comes within margin_mm of y's prism. y's
+//   surface is sampled so that every point of it lies within margin_mm of a sample (its outline
+//   at its top, its bottom and levels between, its top and bottom faces on a grid), and a sample
+//   counts when it lies in the nozzle grown by margin_mm (heights standoff - margin to the body's
+//   end + margin, radius R(h) + margin (1 + tan cone_angle)). So every collision is found, and a
+//   reported one comes within near_miss_mm(params) = margin sqrt(1 + (1 + tan cone_angle)^2) of
+//   the nozzle. With the plate: the nozzle's lowest point comes within margin_mm of it.
+// - The order (Sec. 4.2.3: a child waits for its father; brothers switch when a collision would
+//   occur, "discontinued just before a collision happens"). A component starts once its father and
+//   every component it must wait for (`waits_for`: the earlier components its first layer rests
+//   on, SlicePart.hpp's build order) are complete. A layer y of one component and a layer x of
+//   another that neither must wait for give x before y when y's prism would lie in x's nozzle. The
+//   layers are then taken one by one: the same component's next layer while nothing it would
+//   block is still to come; otherwise, of the components that may go on, the first in
+//   `start_order` whose next layer blocks nothing to come. When none may go on (the constraints
+//   form a cycle), the next layer that blocks the fewest layers to come is taken (then the first
+//   in `start_order`): those layers collide.
+// - A layer whose nozzle meets its own component's earlier layers, an ancestor's or one it waits
+//   for collides whatever the order; so does one whose nozzle meets the plate. Each colliding
+//   layer is reported once, with one obstacle: the plate, else the lowest-numbered layer.
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+#include "mas/Progress.hpp"
+#include "mas/Section.hpp"
+#include "mas/Slicing.hpp"
+#include "mas/Toolpath.hpp"
+
+namespace mas {
+
+// A coaxial deposition nozzle (laser powder DED; the defaults are of that class). All in mm and
+// degrees.
+struct NozzleParams {
+    double standoff_mm = 10.0;       // deposit point to the tip's face, along the tool axis; >= 0
+    double tip_diameter_mm = 10.0;   // the tip's face; > 0, <= body_diameter_mm
+    double cone_angle_deg = 30.0;    // half-angle of the tip's cone; in (0, 90) unless no cone
+    double body_diameter_mm = 50.0;  // the body's cylinder
+    double body_length_mm = 200.0;   // > 0
+    double margin_mm = 2.0;          // clearance the nozzle keeps from deposited material; > 0
+    bool check_plate = true;         // the build plate is an obstacle too
+};
+
+// Throws mas::Error(InvalidArgument) naming the first parameter out of its range.
+void validate(const NozzleParams& params);
+
+// The tip's cone length along the axis (0 when tip and body are one diameter).
+double cone_length(const NozzleParams& params);
+// The farthest a reported collision can be from a true one (see above).
+double near_miss_mm(const NozzleParams& params);
+// Whether `point` lies within the nozzle grown as above, the nozzle's deposit point at `tip` with
+// unit tool axis `axis`.
+bool in_grown_nozzle(const NozzleParams& params, const Eigen::Vector3d& tip,
+                     const Eigen::Vector3d& axis, const Eigen::Vector3d& point);
+
+struct NozzleCollision {
+    int layer = -1;           // the layer being deposited
+    int obstacle_layer = -1;  // the deposited layer the nozzle meets; -1 for the build plate
+    Eigen::Vector3d nozzle_at = Eigen::Vector3d::Zero();  // the deposit point where it does
+    Eigen::Vector3d obstacle = Eigen::Vector3d::Zero();   // the obstacle's point it comes near
+};
+
+struct BuildSequence {
+    std::vector<int> layers;                  // every layer index once, in deposition order
+    std::vector<NozzleCollision> collisions;  // one per colliding layer, in sequence order
+    int component_switches = 0;               // consecutive layers of different components
+    int interrupted_components = 0;           // components left unfinished for another and resumed
+};
+
+struct SequenceInput {
+    const std::vector<Layer>* layers = nullptr;  // grouped by component, each bottom to top
+    const std::vector<LayerToolpaths>* toolpaths = nullptr;  // one per layer
+    std::vector<int> parent;                  // per component: its father, -1 for the root
+    std::vector<std::vector<int>> waits_for;  // per component: others to complete first
+    std::vector<int> start_order;             // every component once: the preferred order
+    Plane plate;                              // the build plate (normal up)
+};
+
+// Throws InvalidArgument for bad params or an inconsistent input (a component's layers not
+// together, a father or wait that cannot come first); `progress` is reported while the layers
+// are compared and may cancel.
+BuildSequence plan_build_sequence(const SequenceInput& input, const NozzleParams& params,
+                                  const Progress& progress = {});
+
+}  // namespace mas

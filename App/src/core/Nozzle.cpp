@@ -1,0 +1,483 @@
+// The build sequence against the nozzle (see Nozzle.hpp).
+#include "mas/Nozzle.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "mas/Error.hpp"
+#include "mas/Polygon2.hpp"
+
+namespace mas {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+constexpr double kPi = 3.14159265358979323846;
+
+double tan_cone(const NozzleParams& p) {
+    return cone_length(p) > 0.0 ? std::tan(p.cone_angle_deg * kPi / 180.0) : 0.0;
+}
+
+// The nozzle's radius `h` along its axis from the deposit point, h within its length.
+double radius_at(const NozzleParams& p, double h) {
+    const double tip = 0.5 * p.tip_diameter_mm, body = 0.5 * p.body_diameter_mm;
+    return std::min(body, tip + std::max(0.0, h - p.standoff_mm) * tan_cone(p));
+}
+
+double nozzle_top(const NozzleParams& p) {
+    return p.standoff_mm + cone_length(p) + p.body_length_mm;
+}
+
+// The grown nozzle's radius at height h above its deposit point; negative outside its heights.
+double grown_radius(const NozzleParams& p, double h) {
+    const double m = p.margin_mm, top = nozzle_top(p);
+    if (h < p.standoff_mm - m || h > top + m) return -1.0;
+    return radius_at(p, std::clamp(h, p.standoff_mm, top)) + m * (1.0 + tan_cone(p));
+}
+
+// Points every point of a layer's prism lies within `spacing` of (see Nozzle.hpp).
+std::vector<Vector3d> prism_samples(const Layer& layer, double spacing) {
+    std::vector<Vector3d> out;
+    const Vector3d n = layer.plane.normal;
+    const PlaneFrame top_frame(n), bottom_frame(layer.lower.normal);
+    const double cos_tilt = std::max(0.05, std::abs(n.dot(layer.lower.normal)));
+    const double along = spacing * cos_tilt;  // an edge's image on the lower plane is longer
+    const int levels = std::max(1, int(std::ceil(layer.max_thickness_mm / spacing)));
+    auto down = [&](const Vector3d& top, double fraction) {
+        return Vector3d(top - fraction * layer.thickness_at(top) * n);
+    };
+    // A face on the grid of rows `spacing` apart, each row's runs cut `spacing` apart.
+    auto grid = [&](const Region2& region, const PlaneFrame& frame, const Plane& plane) {
+        const Eigen::AlignedBox2d box = bounds(region);
+        if (box.isEmpty()) return;
+        const int rows = int(std::ceil(box.sizes().y() / spacing));
+        for (int j = 0; j <= rows; ++j) {
+            const double v = std::min(box.min().y() + j * spacing, box.max().y());
+            for (const auto& [a, b] : inside_intervals(region, 1, v)) {
+                const int pieces = std::max(1, int(std::ceil((b - a) / spacing)));
+                for (int i = 0; i <= pieces; ++i)
+                    out.push_back(frame.to_3d(Vector2d(a + (b - a) * i / pieces, v), plane));
+            }
+        }
+    };
+    for (const Region2& region : layer.regions) {
+        Region2 bottom;
+        auto walls = [&](const Polygon2& loop, Polygon2& bottom_loop) {
+            const std::size_t count = loop.points.size();
+            for (std::size_t k = 0; k < count; ++k) {
+                const Vector3d a = top_frame.to_3d(loop.points[k], layer.plane);
+                const Vector3d b = top_frame.to_3d(loop.points[(k + 1) % count], layer.plane);
+                bottom_loop.points.push_back(bottom_frame.to_2d(down(a, 1.0)));
+                const int pieces = std::max(1, int(std::ceil((b - a).norm() / along)));
+                for (int i = 0; i < pieces; ++i) {
+                    const Vector3d q = a + (b - a) * (double(i) / pieces);
+                    for (int l = 0; l <= levels; ++l) out.push_back(down(q, double(l) / levels));
+                }
+            }
+        };
+        walls(region.outer, bottom.outer);
+        for (const Polygon2& hole : region.holes) {
+            bottom.holes.emplace_back();
+            walls(hole, bottom.holes.back());
+        }
+        grid(region, top_frame, layer.plane);
+        grid(bottom, bottom_frame, layer.lower);
+    }
+    return out;
+}
+
+// A deposit move of the layer being checked, in its plane's frame and in 3-D.
+struct Segment {
+    Vector2d a, b;
+    Vector3d a3, b3;
+};
+
+// The deposit moves of one layer, binned on a grid for "any within r of q".
+class Sweep {
+public:
+    Sweep(const LayerToolpaths& paths, const Layer& layer, double reach)
+        : frame_(paths.tool_axis.normalized()) {
+        height_ = frame_.normal.dot(layer.plane.origin);
+        for (const ToolPath& path : paths.paths) {
+            if (!path.deposit() || path.points.empty()) continue;
+            const std::size_t count = path.points.size();
+            for (std::size_t k = 0; k + 1 < std::max<std::size_t>(count, 2); ++k) {
+                const Vector3d a3 = path.points[k], b3 = path.points[std::min(k + 1, count - 1)];
+                segments_.push_back({frame_.to_2d(a3), frame_.to_2d(b3), a3, b3});
+                box_.extend(segments_.back().a);
+                box_.extend(segments_.back().b);
+            }
+        }
+        if (segments_.empty()) return;
+        const double extent = std::max(box_.sizes().maxCoeff(), 1e-9);
+        cell_ = std::max({0.5 * reach, extent / 256.0, 1e-3});
+        columns_ = int(extent / cell_) + 1;
+        bins_.assign(std::size_t(columns_) * std::size_t(columns_), {});
+        for (std::size_t s = 0; s < segments_.size(); ++s) {
+            Eigen::AlignedBox2d b;
+            b.extend(segments_[s].a);
+            b.extend(segments_[s].b);
+            const auto [i0, j0] = cell_of(b.min());
+            const auto [i1, j1] = cell_of(b.max());
+            for (int i = i0; i <= i1; ++i)
+                for (int j = j0; j <= j1; ++j)
+                    bins_[std::size_t(i) * std::size_t(columns_) + std::size_t(j)].push_back(
+                        int(s));
+        }
+    }
+
+    bool empty() const { return segments_.empty(); }
+    const PlaneFrame& frame() const { return frame_; }
+    double height() const { return height_; }  // the plane's, along the tool axis
+    const Eigen::AlignedBox2d& box() const { return box_; }
+    const std::vector<Segment>& segments() const { return segments_; }
+
+    // A deposit point within `r` of `q` (2-D), in 3-D; nullopt when none is.
+    std::optional<Vector3d> near(const Vector2d& q, double r) const {
+        if (segments_.empty() || box_.exteriorDistance(q) > r) return std::nullopt;
+        const auto [i0, j0] = cell_of(q - Vector2d::Constant(r));
+        const auto [i1, j1] = cell_of(q + Vector2d::Constant(r));
+        for (int i = i0; i <= i1; ++i)
+            for (int j = j0; j <= j1; ++j)
+                for (int s : bins_[std::size_t(i) * std::size_t(columns_) + std::size_t(j)]) {
+                    const Segment& seg = segments_[std::size_t(s)];
+                    const Vector2d d = seg.b - seg.a;
+                    const double len2 = d.squaredNorm();
+                    const double t =
+                        len2 > 0.0 ? std::clamp((q - seg.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+                    if ((seg.a + t * d - q).squaredNorm() <= r * r)
+                        return Vector3d(seg.a3 + t * (seg.b3 - seg.a3));
+                }
+        return std::nullopt;
+    }
+
+private:
+    std::pair<int, int> cell_of(const Vector2d& p) const {
+        auto clampi = [&](double x) {
+            return std::clamp(int(std::floor(x / cell_)), 0, columns_ - 1);
+        };
+        return {clampi(p.x() - box_.min().x()), clampi(p.y() - box_.min().y())};
+    }
+
+    PlaneFrame frame_;
+    double height_ = 0.0;
+    std::vector<Segment> segments_;
+    Eigen::AlignedBox2d box_;
+    double cell_ = 1.0;
+    int columns_ = 1;
+    std::vector<std::vector<int>> bins_;
+};
+
+struct Conflict {
+    int x = -1, y = -1;  // y's prism (or the plate, -1) lies in x's nozzle
+    Vector3d at = Vector3d::Zero(), obstacle = Vector3d::Zero();
+};
+
+// What is cheap to know of every layer: a sphere round its prism and its prism's corners.
+struct LayerBounds {
+    Vector3d centre = Vector3d::Zero();
+    double radius = 0.0;
+    std::vector<Vector3d> corners;  // every outline point at its top and bottom
+};
+
+LayerBounds layer_bounds(const Layer& layer) {
+    LayerBounds b;
+    const Vector3d n = layer.plane.normal;
+    Eigen::AlignedBox3d box;
+    for (std::size_t r = 0; r < layer.regions.size(); ++r)
+        for (const auto& loop : layer.loops_3d(r))
+            for (const Vector3d& p : loop) {
+                b.corners.push_back(p);
+                b.corners.push_back(p - layer.thickness_at(p) * n);
+                box.extend(b.corners.end()[-2]);
+                box.extend(b.corners.back());
+            }
+    if (b.corners.empty()) return b;
+    b.centre = box.center();
+    for (const Vector3d& p : b.corners) b.radius = std::max(b.radius, (p - b.centre).norm());
+    return b;
+}
+
+}  // namespace
+
+void validate(const NozzleParams& p) {
+    auto fail = [](const std::string& what, double value) {
+        throw Error(ErrorCode::InvalidArgument, what + ", got " + format_number(value));
+    };
+    auto finite = [](double x) { return std::isfinite(x); };
+    if (!(p.standoff_mm >= 0.0) || !finite(p.standoff_mm))
+        fail("the nozzle's standoff must be >= 0 mm", p.standoff_mm);
+    if (!(p.tip_diameter_mm > 0.0) || !finite(p.tip_diameter_mm))
+        fail("the nozzle's tip diameter must be > 0 mm", p.tip_diameter_mm);
+    if (!(p.body_diameter_mm >= p.tip_diameter_mm) || !finite(p.body_diameter_mm))
+        fail("the nozzle's body diameter must be at least its tip diameter (" +
+                 format_number(p.tip_diameter_mm) + " mm)",
+             p.body_diameter_mm);
+    if (!(p.body_length_mm > 0.0) || !finite(p.body_length_mm))
+        fail("the nozzle's body length must be > 0 mm", p.body_length_mm);
+    if (p.body_diameter_mm > p.tip_diameter_mm &&
+        (!(p.cone_angle_deg > 0.0 && p.cone_angle_deg < 90.0)))
+        fail("the nozzle's cone angle (half-angle) must lie between 0 and 90 degrees",
+             p.cone_angle_deg);
+    if (!finite(p.cone_angle_deg))
+        fail("the nozzle's cone angle must be a number", p.cone_angle_deg);
+    if (!(p.margin_mm > 0.0) || !finite(p.margin_mm))
+        fail("the nozzle's margin must be > 0 mm", p.margin_mm);
+}
+
+double cone_length(const NozzleParams& p) {
+    const double widening = 0.5 * (p.body_diameter_mm - p.tip_diameter_mm);
+    return widening > 0.0 ? widening / std::tan(p.cone_angle_deg * kPi / 180.0) : 0.0;
+}
+
+double near_miss_mm(const NozzleParams& p) {
+    return p.margin_mm * std::hypot(1.0, 1.0 + tan_cone(p));
+}
+
+bool in_grown_nozzle(const NozzleParams& p, const Vector3d& tip, const Vector3d& axis,
+                     const Vector3d& point) {
+    const Vector3d d = point - tip;
+    const double h = axis.dot(d);
+    const double r = grown_radius(p, h);
+    return r >= 0.0 && (d - h * axis).squaredNorm() <= r * r;
+}
+
+BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& params,
+                                  const Progress& progress) {
+    validate(params);
+    if (!in.layers || !in.toolpaths || in.toolpaths->size() != in.layers->size())
+        throw Error(ErrorCode::InvalidArgument, "the build sequence needs every layer's paths");
+    const std::vector<Layer>& layers = *in.layers;
+    const std::size_t count = layers.size(), comps = in.parent.size();
+    auto bad = [](const std::string& what) { throw Error(ErrorCode::InvalidArgument, what); };
+    if (in.waits_for.size() != comps) bad("the build sequence needs every component's waits");
+    // Each component's layers, bottom to top, and whether they lie together.
+    std::vector<std::vector<int>> of(comps);
+    for (std::size_t i = 0; i < count; ++i) {
+        const int c = layers[i].component;
+        if (c < 0 || std::size_t(c) >= comps)
+            bad("layer " + std::to_string(i) + " names component " + std::to_string(c) +
+                ", which the part lacks");
+        if (!of[std::size_t(c)].empty() && of[std::size_t(c)].back() != int(i) - 1)
+            bad("component " + std::to_string(c) + "'s layers do not lie together");
+        of[std::size_t(c)].push_back(int(i));
+    }
+    // before[a][b]: a must be complete before b starts (fathers and waits, transitively).
+    std::vector<std::vector<int>> preds(comps);
+    for (std::size_t c = 0; c < comps; ++c) {
+        if (in.parent[c] >= 0) preds[c].push_back(in.parent[c]);
+        for (int w : in.waits_for[c]) preds[c].push_back(w);
+        for (int p : preds[c])
+            if (p < 0 || std::size_t(p) >= comps || std::size_t(p) == c)
+                bad("component " + std::to_string(c) + " waits for component " + std::to_string(p) +
+                    ", which cannot come before it");
+    }
+    std::vector<std::vector<char>> before(comps, std::vector<char>(comps, 0));
+    for (std::size_t c = 0; c < comps; ++c) {
+        std::vector<int> stack(preds[c].begin(), preds[c].end());
+        while (!stack.empty()) {
+            const int p = stack.back();
+            stack.pop_back();
+            if (before[std::size_t(p)][c]) continue;
+            before[std::size_t(p)][c] = 1;
+            for (int q : preds[std::size_t(p)]) stack.push_back(q);
+        }
+    }
+    for (std::size_t c = 0; c < comps; ++c)
+        if (before[c][c]) bad("component " + std::to_string(c) + " waits for itself");
+    std::vector<int> rank(comps, int(comps));
+    for (std::size_t k = 0; k < in.start_order.size(); ++k) {
+        const int c = in.start_order[k];
+        if (c < 0 || std::size_t(c) >= comps || rank[std::size_t(c)] != int(comps))
+            bad("the start order must name every component once");
+        rank[std::size_t(c)] = int(k);
+    }
+    if (in.start_order.size() != comps) bad("the start order must name every component once");
+
+    // The pairs: each layer x against every layer y that may lie in its nozzle.
+    const double m = params.margin_mm, top = nozzle_top(params);
+    const double reach = 0.5 * params.body_diameter_mm + m * (1.0 + tan_cone(params));
+    std::vector<LayerBounds> bounds(count);
+    for (std::size_t i = 0; i < count; ++i) bounds[i] = layer_bounds(layers[i]);
+    std::vector<std::unique_ptr<std::vector<Vector3d>>> samples(count);
+    const Vector3d up = in.plate.normal.normalized();
+    std::vector<std::optional<Conflict>> forced(count);  // the plate, or the first unavoidable
+    std::vector<Conflict> free_conflicts;                // x before y, of unrelated components
+    std::vector<std::vector<int>> blocks(count);         // x -> its free conflicts
+    std::vector<int> pending(count, 0);                  // y: free conflicts with x still to come
+    const Progress pairs = progress.span(0.0, 0.95, "checking the nozzle against the layers");
+    for (std::size_t x = 0; x < count; ++x) {
+        pairs(double(x) / double(std::max<std::size_t>(count, 1)));
+        const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
+        if (sweep.empty()) continue;
+        const Vector3d n = sweep.frame().normal;
+        const int cx = layers[x].component;
+        if (params.check_plate) {
+            // The nozzle's lowest point: on the rim of the tip's face, where the cone meets the
+            // body, or of the body's end.
+            const double side = std::sqrt(std::max(0.0, 1.0 - n.dot(up) * n.dot(up)));
+            Vector3d sideways = up - n.dot(up) * n;  // towards up, across the axis
+            sideways = sideways.norm() > 1e-12 ? sideways.normalized() : Vector3d::Zero();
+            double lowest = std::numeric_limits<double>::infinity();
+            Vector3d offset = Vector3d::Zero();
+            for (double h : {params.standoff_mm, params.standoff_mm + cone_length(params), top}) {
+                const double r = radius_at(params, h);
+                const double z = h * n.dot(up) - r * side;
+                if (z < lowest) {
+                    lowest = z;
+                    offset = h * n - r * sideways;
+                }
+            }
+            for (const Segment& s : sweep.segments()) {
+                for (const Vector3d& p : {s.a3, s.b3})
+                    if (!forced[x] && up.dot(p - in.plate.origin) + lowest < m) {
+                        const Vector3d low = p + offset;
+                        forced[x] =
+                            Conflict{int(x), -1, p, low - up.dot(low - in.plate.origin) * up};
+                    }
+                if (forced[x]) break;
+            }
+        }
+        for (std::size_t y = 0; y < count; ++y) {
+            if (y == x) continue;
+            const int cy = layers[y].component;
+            bool unavoidable;
+            if (cx == cy) {
+                if (y > x) continue;
+                unavoidable = true;
+            } else if (before[std::size_t(cy)][std::size_t(cx)]) {
+                unavoidable = true;
+            } else if (before[std::size_t(cx)][std::size_t(cy)]) {
+                continue;
+            } else {
+                unavoidable = false;
+            }
+            if (unavoidable && forced[x]) continue;  // one obstacle per layer is reported
+            const LayerBounds& b = bounds[y];
+            if (b.corners.empty()) continue;
+            const double centre_h = n.dot(b.centre) - sweep.height();
+            if (centre_h + b.radius < params.standoff_mm - m || centre_h - b.radius > top + m)
+                continue;
+            if (sweep.box().exteriorDistance(sweep.frame().to_2d(b.centre)) > b.radius + reach)
+                continue;
+            double highest = -std::numeric_limits<double>::infinity();
+            for (const Vector3d& p : b.corners) highest = std::max(highest, n.dot(p));
+            if (highest - sweep.height() < params.standoff_mm - m) continue;
+            if (!samples[y])
+                samples[y] = std::make_unique<std::vector<Vector3d>>(prism_samples(layers[y], m));
+            std::optional<Conflict> found;
+            for (const Vector3d& q : *samples[y]) {
+                const double r = grown_radius(params, n.dot(q) - sweep.height());
+                if (r < 0.0) continue;
+                if (auto at = sweep.near(sweep.frame().to_2d(q), r)) {
+                    found = Conflict{int(x), int(y), *at, q};
+                    break;
+                }
+            }
+            if (!found) continue;
+            if (unavoidable) {
+                forced[x] = found;
+            } else {
+                blocks[x].push_back(int(free_conflicts.size()));
+                free_conflicts.push_back(*found);
+                ++pending[y];
+            }
+        }
+    }
+
+    // The sequence.
+    BuildSequence out;
+    out.layers.reserve(count);
+    std::vector<std::size_t> next(comps, 0);  // per component: its layers taken
+    std::vector<int> waiting(comps, 0);       // per component: predecessors not complete
+    for (std::size_t c = 0; c < comps; ++c) waiting[c] = int(preds[c].size());
+    std::vector<char> left(comps, 0);  // left unfinished for another
+    std::vector<int> position(count, -1);
+    auto complete = [&](std::size_t c) { return next[c] >= of[c].size(); };
+    // Components with no layers are complete from the start.
+    std::vector<std::vector<int>> successors(comps);
+    for (std::size_t c = 0; c < comps; ++c)
+        for (int p : preds[c]) successors[std::size_t(p)].push_back(int(c));
+    std::vector<char> released(comps, 0);
+    std::vector<int> open;  // may go on: predecessors complete, layers left
+    std::function<void(std::size_t)> release = [&](std::size_t c) {
+        if (released[c]) return;
+        released[c] = 1;
+        if (!complete(c)) {
+            open.push_back(int(c));
+            return;
+        }
+        for (int s : successors[c])
+            if (--waiting[std::size_t(s)] == 0) release(std::size_t(s));
+    };
+    for (std::size_t c = 0; c < comps; ++c)
+        if (waiting[c] == 0) release(c);
+    int current = -1;
+    const Progress order = progress.span(0.95, 1.0, "ordering the layers");
+    while (out.layers.size() < count) {
+        order(double(out.layers.size()) / double(count));
+        if (open.empty()) bad("the components' waits form a cycle");
+        int pick = -1;
+        auto better = [&](int a, int b) {  // b is better than a, among ready ones
+            return a < 0 || rank[std::size_t(b)] < rank[std::size_t(a)];
+        };
+        if (current >= 0 && !complete(std::size_t(current)) &&
+            pending[std::size_t(of[std::size_t(current)][next[std::size_t(current)]])] == 0)
+            pick = current;
+        if (pick < 0)
+            for (int c : open)
+                if (pending[std::size_t(of[std::size_t(c)][next[std::size_t(c)]])] == 0 &&
+                    better(pick, c))
+                    pick = c;
+        if (pick < 0)  // a cycle: the layer that blocks the fewest still to come
+            for (int c : open) {
+                const int blocked = pending[std::size_t(of[std::size_t(c)][next[std::size_t(c)]])];
+                const int best =
+                    pick < 0 ? 0
+                             : pending[std::size_t(of[std::size_t(pick)][next[std::size_t(pick)]])];
+                if (pick < 0 || blocked < best || (blocked == best && better(pick, c))) pick = c;
+            }
+        const std::size_t c = std::size_t(pick);
+        if (current >= 0 && current != pick) {
+            ++out.component_switches;
+            if (!complete(std::size_t(current))) left[std::size_t(current)] = 1;
+        }
+        current = pick;
+        const int x = of[c][next[c]++];
+        position[std::size_t(x)] = int(out.layers.size());
+        out.layers.push_back(x);
+        for (int k : blocks[std::size_t(x)])
+            --pending[std::size_t(free_conflicts[std::size_t(k)].y)];
+        if (complete(c)) {
+            open.erase(std::find(open.begin(), open.end(), pick));
+            for (int s : successors[c])
+                if (--waiting[std::size_t(s)] == 0) release(std::size_t(s));
+        }
+    }
+    for (std::size_t c = 0; c < comps; ++c) out.interrupted_components += left[c];
+
+    // The collisions: per layer, the plate, else the obstacle of lowest index deposited before it.
+    std::vector<std::optional<Conflict>> worst = forced;
+    for (const Conflict& k : free_conflicts)
+        if (position[std::size_t(k.y)] < position[std::size_t(k.x)] &&
+            (!worst[std::size_t(k.x)] ||
+             (worst[std::size_t(k.x)]->y >= 0 && k.y < worst[std::size_t(k.x)]->y)))
+            worst[std::size_t(k.x)] = k;
+    for (int x : out.layers)
+        if (worst[std::size_t(x)]) {
+            const Conflict& k = *worst[std::size_t(x)];
+            out.collisions.push_back({k.x, k.y, k.at, k.obstacle});
+        }
+    order(1.0);
+    progress(1.0);
+    return out;
+}
+
+}  // namespace mas

@@ -1,0 +1,367 @@
+// The build sequence against the nozzle (Nozzle.hpp, the paper's Eq. 10): the nozzle's shape, the
+// collisions it finds, and the order it gives, on layers whose geometry makes every expectation
+// exact; and on sliced parts, checked against the nozzle's own (not grown) shape.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mas/Error.hpp"
+#include "mas/Gcode.hpp"
+#include "mas/Nozzle.hpp"
+#include "mas/Polygon2.hpp"
+#include "mas/SlicePart.hpp"
+#include "test_parts.hpp"
+
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+const double kTan30 = std::tan(3.14159265358979323846 / 6.0);
+
+// A layer of component `c`: the rectangle with corners `a`, `b` (3-D, on a plane of normal `n`
+// through them), deposited down to the plane `thickness` below; one deposit path of `path`'s
+// points on it.
+struct Built {
+    std::vector<mas::Layer> layers;
+    std::vector<mas::LayerToolpaths> paths;
+};
+
+void add_layer(Built& built, int c, const Vector3d& n, const std::vector<Vector3d>& corners,
+               double thickness, const std::vector<Vector3d>& path) {
+    mas::Layer l;
+    l.component = c;
+    l.plane = {corners.front(), n};
+    l.lower = {corners.front() - thickness * n, n};
+    const mas::PlaneFrame frame(n);
+    mas::Polygon2 outer;
+    for (const Vector3d& p : corners) outer.points.push_back(frame.to_2d(p));
+    if (mas::signed_area(outer) < 0) std::reverse(outer.points.begin(), outer.points.end());
+    l.regions.push_back({outer, {}});
+    l.min_thickness_mm = l.max_thickness_mm = thickness;
+    built.layers.push_back(l);
+    mas::LayerToolpaths t;
+    t.tool_axis = n;
+    mas::ToolPath p;
+    p.kind = mas::ToolPath::Kind::Contour;
+    p.points = path;
+    p.thickness_mm.assign(path.size(), thickness);
+    t.paths.push_back(p);
+    built.paths.push_back(t);
+}
+
+// A horizontal square layer [x0, x1] x [y0, y1], its top at z, 1 mm thick, deposited at its centre.
+void add_square(Built& built, int c, double x0, double y0, double x1, double y1, double z) {
+    add_layer(built, c, Vector3d::UnitZ(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}},
+              1.0, {{0.5 * (x0 + x1), 0.5 * (y0 + y1), z}});
+}
+
+mas::SequenceInput input(const Built& built, std::vector<int> parent,
+                         std::vector<int> start_order) {
+    mas::SequenceInput in;
+    in.layers = &built.layers;
+    in.toolpaths = &built.paths;
+    in.waits_for.assign(parent.size(), {});
+    in.parent = std::move(parent);
+    in.start_order = std::move(start_order);
+    in.plate = {Vector3d::Zero(), Vector3d::UnitZ()};
+    return in;
+}
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const mas::Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Nozzle, ShapeAndGrowth) {
+    const mas::NozzleParams p;  // standoff 10, tip 10, 30 degrees, body 50 x 200, margin 2
+    EXPECT_NEAR(mas::cone_length(p), 20.0 / kTan30, 1e-12);
+    EXPECT_NEAR(mas::near_miss_mm(p), 2.0 * std::hypot(1.0, 1.0 + kTan30), 1e-12);
+    const Vector3d tip(1, 2, 3), axis = Vector3d(1, 2, 2).normalized();
+    // A unit vector across the axis.
+    const Vector3d across = axis.cross(Vector3d::UnitX()).normalized();
+    auto at = [&](double h, double r) { return Vector3d(tip + h * axis + r * across); };
+    const double grow = 2.0 * (1.0 + kTan30), cone_end = 10.0 + 20.0 / kTan30;
+    const double top = cone_end + 200.0;
+    const double e = 1e-9;
+    // Heights: from the standoff less the margin to the body's end plus the margin.
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(8.0 + e, 0)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(8.0 - e, 0)));
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(top + 2.0 - e, 0)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(top + 2.0 + e, 0)));
+    // Radii: the tip's face below it, the cone widening, the body.
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(9.0, 5.0 + grow - e)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(9.0, 5.0 + grow + e)));
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(20.0, 5.0 + 10 * kTan30 + grow - e)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(20.0, 5.0 + 10 * kTan30 + grow + e)));
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(cone_end + 50, 25.0 + grow - e)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(cone_end + 50, 25.0 + grow + e)));
+    // Nothing below the standoff: the deposit point's own neighbourhood is free.
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, tip));
+    // A nozzle of one diameter has no cone and grows by the margin alone.
+    mas::NozzleParams straight = p;
+    straight.body_diameter_mm = straight.tip_diameter_mm;
+    straight.cone_angle_deg = 0.0;
+    mas::validate(straight);
+    EXPECT_EQ(mas::cone_length(straight), 0.0);
+    EXPECT_NEAR(mas::near_miss_mm(straight), 2.0 * std::sqrt(2.0), 1e-12);
+    EXPECT_TRUE(mas::in_grown_nozzle(straight, tip, axis, at(100.0, 7.0 - e)));
+    EXPECT_FALSE(mas::in_grown_nozzle(straight, tip, axis, at(100.0, 7.0 + e)));
+}
+
+TEST(Nozzle, BadParametersAreNamed) {
+    auto message = [](auto change) {
+        mas::NozzleParams p;
+        change(p);
+        return error_of([&] { mas::validate(p); });
+    };
+    EXPECT_EQ(message([](auto& p) { p.standoff_mm = -1; }),
+              "the nozzle's standoff must be >= 0 mm, got -1");
+    EXPECT_EQ(message([](auto& p) { p.tip_diameter_mm = 0; }),
+              "the nozzle's tip diameter must be > 0 mm, got 0");
+    EXPECT_EQ(message([](auto& p) { p.body_diameter_mm = 8; }),
+              "the nozzle's body diameter must be at least its tip diameter (10 mm), got 8");
+    EXPECT_EQ(message([](auto& p) { p.body_length_mm = 0; }),
+              "the nozzle's body length must be > 0 mm, got 0");
+    EXPECT_EQ(message([](auto& p) { p.cone_angle_deg = 90; }),
+              "the nozzle's cone angle (half-angle) must lie between 0 and 90 degrees, got 90");
+    EXPECT_EQ(message([](auto& p) { p.margin_mm = std::nan(""); }),
+              "the nozzle's margin must be > 0 mm, got nan");
+    EXPECT_EQ(message([](auto& p) { p.standoff_mm = INFINITY; }),
+              "the nozzle's standoff must be >= 0 mm, got inf");
+}
+
+// Two posts on a plate, 10 mm apart: built one after the other, the second post's first layer
+// would have the nozzle's cone meet the first post's top. The sequence builds the first post up
+// to the layer below the one that would, then the second, then the rest of the first.
+TEST(Nozzle, BrothersAreBuiltTogetherJustShortOfACollision) {
+    Built b;
+    add_square(b, 0, -10, -10, 50, 20, 1.0);  // the plate: component 0
+    for (int k = 0; k < 40; ++k) add_square(b, 1, 0, 0, 10, 10, 2.0 + k);
+    for (int k = 0; k < 40; ++k) add_square(b, 2, 20, 0, 30, 10, 2.0 + k);
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), {});
+    // Post 2's first deposit point (25, 5, 2) is 15 mm across from post 1. The grown cone is
+    // 15 mm wide at 21.856 mm above it (the samples on post 1's edge, 2 mm apart, at 15.033 mm:
+    // 21.913): post 1's layer with its top at z = 24 is the first to block it.
+    std::vector<int> expected = {0};
+    for (int k = 0; k < 22; ++k) expected.push_back(1 + k);
+    for (int k = 0; k < 40; ++k) expected.push_back(41 + k);
+    for (int k = 22; k < 40; ++k) expected.push_back(1 + k);
+    EXPECT_EQ(s.layers, expected);
+    EXPECT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.component_switches, 3);
+    EXPECT_EQ(s.interrupted_components, 1);
+}
+
+TEST(Nozzle, AComponentGoesFirstWhenTheEarlierWouldBlockIt) {
+    // Component 1 is first in the start order, but its layer lies 29 mm above component 2's
+    // deposit point, 7 mm across: in component 2's nozzle. Component 2 goes first.
+    Built b;
+    add_square(b, 0, -10, -10, 50, 20, 1.0);
+    add_square(b, 1, 0, 0, 10, 10, 31.0);
+    add_square(b, 2, 12, 0, 22, 10, 2.0);
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), {});
+    EXPECT_EQ(s.layers, (std::vector<int>{0, 2, 1}));
+    EXPECT_TRUE(s.collisions.empty());
+}
+
+TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
+    {
+        // One component whose second layer's nozzle meets its first, 29 mm above and 7 across.
+        Built b;
+        add_square(b, 0, 12, 0, 22, 10, 31.0);
+        add_square(b, 0, 0, 0, 10, 10, 2.0);
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
+        ASSERT_EQ(s.collisions.size(), 1u);
+        EXPECT_EQ(s.collisions[0].layer, 1);
+        EXPECT_EQ(s.collisions[0].obstacle_layer, 0);
+        EXPECT_EQ(s.collisions[0].nozzle_at, Vector3d(5, 5, 2));
+        const Vector3d q = s.collisions[0].obstacle;
+        EXPECT_TRUE(q.x() >= 12 && q.x() <= 22 && q.y() >= 0 && q.y() <= 10 && q.z() >= 30 &&
+                    q.z() <= 31)
+            << q.transpose();
+        EXPECT_TRUE(mas::in_grown_nozzle({}, Vector3d(5, 5, 2), Vector3d::UnitZ(), q));
+    }
+    {
+        // Two layers facing each other 20 mm apart, each in the other's nozzle: a cycle. The
+        // first in the start order goes first, and the second collides with it.
+        Built b;
+        add_layer(b, 0, Vector3d::UnitX(), {{0, 0, 1}, {0, 10, 1}, {0, 10, 11}, {0, 0, 11}}, 1.0,
+                  {{0, 5, 6}});
+        add_layer(b, 1, -Vector3d::UnitX(), {{20, 0, 1}, {20, 10, 1}, {20, 10, 11}, {20, 0, 11}},
+                  1.0, {{20, 5, 6}});
+        mas::NozzleParams no_plate;
+        no_plate.check_plate = false;
+        // Two roots: neither waits for the other.
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, -1}, {0, 1}), no_plate);
+        EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
+        ASSERT_EQ(s.collisions.size(), 1u);
+        EXPECT_EQ(s.collisions[0].layer, 1);
+        EXPECT_EQ(s.collisions[0].obstacle_layer, 0);
+        EXPECT_EQ(s.collisions[0].nozzle_at, Vector3d(20, 5, 6));
+    }
+    {
+        // A layer deposited sideways (+X) 6 mm above the plate: the body's rim reaches 19 mm
+        // under the plate, first where the cone meets the body.
+        Built b;
+        add_layer(b, 0, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
+                  {{5, 5, 6}});
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        ASSERT_EQ(s.collisions.size(), 1u);
+        EXPECT_EQ(s.collisions[0].layer, 0);
+        EXPECT_EQ(s.collisions[0].obstacle_layer, -1);
+        EXPECT_EQ(s.collisions[0].nozzle_at, Vector3d(5, 5, 6));
+        EXPECT_NEAR((s.collisions[0].obstacle - Vector3d(5 + 10 + 20 / kTan30, 5, 0)).norm(), 0,
+                    1e-12);
+        mas::NozzleParams no_plate;
+        no_plate.check_plate = false;
+        EXPECT_TRUE(mas::plan_build_sequence(input(b, {-1}, {0}), no_plate).collisions.empty());
+        // Raised so that the rim stays the margin above the plate, it does not collide.
+        Built high;
+        add_layer(high, 0, Vector3d::UnitX(), {{5, 0, 22}, {5, 10, 22}, {5, 10, 32}, {5, 0, 32}},
+                  1.0, {{5, 5, 27 + 1e-9}});
+        EXPECT_TRUE(mas::plan_build_sequence(input(high, {-1}, {0}), {}).collisions.empty());
+        Built low = high;
+        low.paths[0].paths[0].points[0].z() = 27 - 1e-9;
+        EXPECT_EQ(mas::plan_build_sequence(input(low, {-1}, {0}), {}).collisions.size(), 1u);
+    }
+}
+
+TEST(Nozzle, WaitsAndBadInput) {
+    Built b;
+    add_square(b, 0, -10, -10, 50, 20, 1.0);
+    add_square(b, 1, 0, 0, 10, 10, 2.0);
+    add_square(b, 2, 40, 0, 50, 10, 2.0);
+    mas::SequenceInput in = input(b, {-1, 0, 0}, {0, 1, 2});
+    in.waits_for[1] = {2};
+    EXPECT_EQ(mas::plan_build_sequence(in, {}).layers, (std::vector<int>{0, 2, 1}));
+    in.waits_for[2] = {1};
+    EXPECT_EQ(error_of([&] { mas::plan_build_sequence(in, {}); }), "component 1 waits for itself");
+    mas::SequenceInput lost = input(b, {-1, 0, 0}, {0, 1});
+    EXPECT_EQ(error_of([&] { mas::plan_build_sequence(lost, {}); }),
+              "the start order must name every component once");
+    Built apart = b;
+    apart.layers[1].component = 2;
+    apart.layers[2].component = 1;
+    add_square(apart, 2, 0, 0, 10, 10, 3.0);
+    EXPECT_EQ(error_of([&] {
+                  mas::plan_build_sequence(input(apart, {-1, 0, 0}, {0, 1, 2}), {});
+              }),
+              "component 2's layers do not lie together");
+    Built stranger = b;
+    stranger.layers[2].component = 3;
+    EXPECT_EQ(error_of([&] {
+                  mas::plan_build_sequence(input(stranger, {-1, 0, 0}, {0, 1, 2}), {});
+              }),
+              "layer 2 names component 3, which the part lacks");
+    mas::NozzleParams bad;
+    bad.margin_mm = 0;
+    EXPECT_EQ(error_of([&] {
+                  mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), bad);
+              }),
+              "the nozzle's margin must be > 0 mm, got 0");
+    // Cancelling.
+    const mas::Progress cancel([](double, const std::string&) {
+        throw mas::Error(mas::ErrorCode::Cancelled, "cancelled");
+    });
+    EXPECT_EQ(error_of([&] {
+                  mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), {}, cancel);
+              }),
+              "cancelled");
+}
+
+// The nozzle's own shape (not grown) against an axis-aligned box, with a vertical axis at `p`:
+// they meet when some height within both has the box's footprint within the nozzle's radius.
+bool vertical_nozzle_meets_box(const mas::NozzleParams& n, const Vector3d& p,
+                               const Eigen::AlignedBox3d& box) {
+    const double top = n.standoff_mm + mas::cone_length(n) + n.body_length_mm;
+    const double lo = std::max(n.standoff_mm, box.min().z() - p.z());
+    const double hi = std::min(top, box.max().z() - p.z());
+    if (lo > hi) return false;
+    const double r =
+        std::min(0.5 * n.body_diameter_mm, 0.5 * n.tip_diameter_mm + (hi - n.standoff_mm) * kTan30);
+    const Eigen::AlignedBox2d foot(box.min().head<2>(), box.max().head<2>());
+    return foot.exteriorDistance(Vector2d(p.head<2>())) <= r;
+}
+
+// Two 10 x 10 posts 60 tall, 10 mm apart on a plate, sliced: the sequence builds them together,
+// and no deposit point has the nozzle meet a layer deposited before it, while the components'
+// own order (one post, then the other) would.
+TEST(Nozzle, SlicedPostsAreInterleavedWithoutCollisions) {
+    using mas::test::box_mesh;
+    std::vector<mas::ComponentMesh> comps(3);
+    comps[0].mesh = box_mesh(-10, -10, 0, 60, 30, 5);
+    comps[0].base = {Vector3d::Zero(), Vector3d::UnitZ()};
+    comps[1].mesh = box_mesh(0, 0, 5, 10, 10, 60);
+    comps[2].mesh = box_mesh(20, 0, 5, 10, 10, 60);
+    for (int c : {1, 2}) {
+        comps[std::size_t(c)].parent = 0;
+        comps[std::size_t(c)].base = {Vector3d(0, 0, 5), Vector3d::UnitZ()};
+    }
+    mas::CentroidalAxis axis;
+    mas::SlicePartParams params;
+    params.layers.min_layer_mm = 0.5;
+    params.layers.max_layer_mm = 2.0;
+    params.paths.bead_width_mm = 2.0;
+    const mas::SlicedPart part = mas::slice_components(comps, axis, params);
+    const std::vector<int>& order = part.sequence.layers;
+    ASSERT_EQ(order.size(), part.layers.size());
+    EXPECT_TRUE(part.sequence.collisions.empty());
+    EXPECT_EQ(part.stats.colliding_layers, 0);
+    EXPECT_GE(part.sequence.interrupted_components, 1);
+    auto prism = [&](int i) {
+        const mas::Layer& l = part.layers[std::size_t(i)];
+        Eigen::AlignedBox3d box;
+        for (const auto& loop : l.loops_3d(0))
+            for (const Vector3d& q : loop) {
+                box.extend(q);
+                box.extend(Vector3d(q - l.thickness_at(q) * l.plane.normal));
+            }
+        return box;
+    };
+    // Whether depositing `x` after the layers `before` has the nozzle meet one of them, at any
+    // deposit point (moves are checked at 0.1 mm steps: the posts' edges are 10 mm from any
+    // point that could meet them, the test's margin).
+    auto meets = [&](int x, const std::vector<int>& before) {
+        for (const mas::ToolPath& path : part.toolpaths[std::size_t(x)].paths) {
+            if (!path.deposit()) continue;
+            for (std::size_t k = 0; k + 1 < path.points.size(); ++k) {
+                const Vector3d a = path.points[k], d = path.points[k + 1] - a;
+                const int steps = std::max(1, int(std::ceil(d.norm() / 0.1)));
+                for (int i = 0; i <= steps; ++i)
+                    for (int y : before)
+                        if (vertical_nozzle_meets_box(params.nozzle, a + d * (double(i) / steps),
+                                                      prism(y)))
+                            return true;
+            }
+        }
+        return false;
+    };
+    std::vector<int> done;
+    for (int x : order) {
+        EXPECT_FALSE(meets(x, done)) << "layer " << x;
+        done.push_back(x);
+    }
+    // Component by component, the second post's first layer would meet the first post.
+    const mas::ComponentLayers& first = part.components[std::size_t(part.build_order[1])];
+    const mas::ComponentLayers& second = part.components[std::size_t(part.build_order[2])];
+    std::vector<int> whole_first;
+    for (int k = 0; k < first.layer_count; ++k) whole_first.push_back(first.first_layer + k);
+    EXPECT_TRUE(meets(second.first_layer, whole_first));
+    // The program deposits the layers in the sequence's order.
+    const std::vector<mas::GcodeLayer> g = mas::gcode_layers(part);
+    ASSERT_EQ(g.size(), order.size());
+    for (std::size_t k = 0; k < g.size(); ++k)
+        EXPECT_EQ(g[k].component, part.layers[std::size_t(order[k])].component);
+}
+
+}  // namespace

@@ -40,6 +40,7 @@ __all__ = [
     "AxisNode",
     "Cancelled",
     "CentroidalAxis",
+    "Collision",
     "Component",
     "Decomposition",
     "EngineError",
@@ -637,6 +638,6 @@ def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
 from .progress import Cancelled  # noqa: E402
 from .axis import AxisBranch, AxisLink, AxisNode, CentroidalAxis, centroidal_axis  # noqa: E402
 from .decompose import Component, Decomposition, decompose  # noqa: E402
-from .slicing import (SLICE_DEFAULTS, FilledHole, Layer, SliceResult, ToolPath,  # noqa: E402
-                      slice)  # noqa: A001
+from .slicing import (SLICE_DEFAULTS, Collision, FilledHole, Layer, SliceResult,  # noqa: E402
+                      ToolPath, slice)  # noqa: A001
 from .gcode import MACHINE_DEFAULTS, GcodeProgram, gcode  # noqa: E402

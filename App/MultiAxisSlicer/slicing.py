@@ -43,6 +43,13 @@ SLICE_DEFAULTS = {
     "min_feature": 0.0,
     "measure_coverage": False,
     "fill_holes": 0.0,
+    "nozzle_standoff": 10.0,
+    "nozzle_tip_diameter": 10.0,
+    "nozzle_cone_angle": 30.0,
+    "nozzle_body_diameter": 50.0,
+    "nozzle_body_length": 200.0,
+    "nozzle_margin": 2.0,
+    "check_plate": True,
 }
 
 _AXIS_KEYS = ("step", "distance_threshold", "eps", "break_angle", "base_z")
@@ -209,18 +216,48 @@ class FilledHole:
             self.component, self.diameter, tuple(round(c, 6) for c in self._data["centre"]))
 
 
+class Collision:
+    """A layer whose deposition has the nozzle meet what is already deposited (the paper's Eq. 10,
+    which no build order avoided): ``layer`` (its index), ``obstacle_layer`` (the deposited
+    layer it meets, -1 for the build plate), ``nozzle_at`` (the deposit point where it does) and
+    ``obstacle`` (the obstacle's point it comes within the margin of) as FreeCAD.Vector."""
+
+    __slots__ = ("_data",)
+
+    def __init__(self, data):
+        self._data = data
+
+    layer = property(lambda self: self._data["layer"])
+    obstacle_layer = property(lambda self: self._data["obstacle_layer"])
+    nozzle_at = property(lambda self: _as_vector(self._data["nozzle_at"]))
+    obstacle = property(lambda self: _as_vector(self._data["obstacle"]))
+
+    def to_dict(self):
+        d = self._data
+        return {"layer": d["layer"], "obstacle_layer": d["obstacle_layer"],
+                "nozzle_at": _as_list(d["nozzle_at"]), "obstacle": _as_list(d["obstacle"])}
+
+    def __repr__(self):
+        return "<MultiAxisSlicer.Collision layer {} meets {}>".format(
+            self.layer, "the plate" if self.obstacle_layer < 0 else
+            "layer {}".format(self.obstacle_layer))
+
+
 class SliceResult:
     """The layers of every sub-component and the paths in every layer.
 
     Attributes: ``layers`` (list of ``Layer``: component by component in build order, each bottom
-    to top), ``build_order`` (the component indices in the order they are deposited: the root,
-    then each time the component whose first layer what is built leaves least unsupported),
+    to top), ``build_order`` (the component indices in the order they start: the root, then each
+    time the component whose first layer what is built leaves least unsupported), ``sequence``
+    (the layer indices in the order they are deposited: a component is left for another where
+    going on would put its layers in the nozzle's way to the other's), ``collisions``
+    (``Collision`` list: the layers whose nozzle still meets what is deposited),
     ``components`` (per sub-component, by index: first_layer, layer_count, guide_nodes,
     volume_mm3), ``stats`` (dict: layer_count, min_thickness_mm, max_thickness_mm,
     part_volume_mm3, deposited_volume_mm3, material_volume_mm3, max_volume_difference,
     layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
-    deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features, filled_holes,
-    filled_volume_mm3), ``filled_holes`` (``FilledHole`` list: the holes deposited solid, to
+    deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features, colliding_layers,
+    component_switches, filled_holes, filled_volume_mm3), ``filled_holes`` (``FilledHole`` list: the holes deposited solid, to
     drill), ``notes`` (one string per hole that qualified for filling and stayed open, saying
     why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
     ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
@@ -231,6 +268,8 @@ class SliceResult:
         self.layers = [Layer(d) for d in data["layers"]]
         self.components = [dict(c) for c in data["components"]]
         self.build_order = list(data["build_order"])
+        self.sequence = list(data["sequence"])
+        self.collisions = [Collision(c) for c in data["collisions"]]
         self.stats = dict(data["stats"])
         self.filled_holes = [FilledHole(h) for h in data["filled_holes"]]
         self.notes = list(data["notes"])
@@ -268,8 +307,8 @@ class SliceResult:
 
     def to_dict(self):
         """JSON-ready plain data in the layout of ``multiaxis-slicer slice FILE --json`` (without
-        its "file"): kind, params, stats, filled_holes, notes, build_order, components, layers
-        (each with its paths and report)."""
+        its "file"): kind, params, stats, filled_holes, notes, build_order, sequence, collisions,
+        components, layers (each with its paths and report)."""
         layers = []
         for i, layer in enumerate(self.layers):
             d = layer.to_dict()
@@ -280,6 +319,8 @@ class SliceResult:
         return {"kind": self.kind, "params": dict(self.params), "stats": dict(self.stats),
                 "filled_holes": [h.to_dict() for h in self.filled_holes],
                 "notes": list(self.notes), "build_order": list(self.build_order),
+                "sequence": list(self.sequence),
+                "collisions": [c.to_dict() for c in self.collisions],
                 "components": [dict(c) for c in self.components], "layers": layers}
 
     def __repr__(self):
@@ -294,9 +335,12 @@ def _slice_params(values):
     """Checks the slicing parameters (ValueError / TypeError naming the bad one) and returns them
     in the engine's names and units."""
     p = {}
-    for name in ("min_layer", "max_layer", "min_feature", "bead_width", "fill_holes"):
+    for name in ("min_layer", "max_layer", "min_feature", "bead_width", "fill_holes",
+                 "nozzle_standoff", "nozzle_tip_diameter", "nozzle_body_diameter",
+                 "nozzle_body_length", "nozzle_margin"):
         p[name] = _number(values[name], name, "millimetres")
-    for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step"):
+    for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step",
+                 "nozzle_cone_angle"):
         p[name] = _number(values[name], name, "degrees")
     p["max_volume_difference"] = _number(values["max_volume_difference"],
                                          "max_volume_difference", "a fraction")
@@ -306,7 +350,7 @@ def _slice_params(values):
         if isinstance(v, bool) or not isinstance(v, numbers.Integral):
             raise TypeError("{} must be an integer, got {!r}".format(name, v))
         p[name] = int(v)
-    for name in ("strict", "measure_coverage"):
+    for name in ("strict", "measure_coverage", "check_plate"):
         if not isinstance(values[name], (bool, numbers.Integral)):
             raise TypeError("{} must be True or False, got {!r}".format(name, values[name]))
         p[name] = bool(values[name])
@@ -326,7 +370,32 @@ def _slice_params(values):
     if not (p["max_volume_difference"] > 0.0):
         raise ValueError("max_volume_difference must be a positive fraction, got {}".format(
             p["max_volume_difference"]))
+    _check_nozzle(p)
     return p
+
+
+def _check_nozzle(p):
+    """ValueError naming the first nozzle parameter out of its range (the engine's own rules,
+    checked here before any decomposing)."""
+    def check(ok, name, rule):
+        if not ok:
+            raise ValueError("{} {}, got {}".format(name, rule, p[name]))
+    finite = math.isfinite
+    check(p["nozzle_standoff"] >= 0.0 and finite(p["nozzle_standoff"]), "nozzle_standoff",
+          "must be 0 or more millimetres")
+    check(p["nozzle_tip_diameter"] > 0.0 and finite(p["nozzle_tip_diameter"]),
+          "nozzle_tip_diameter", "must be a positive number of millimetres")
+    check(p["nozzle_body_diameter"] >= p["nozzle_tip_diameter"] and
+          finite(p["nozzle_body_diameter"]), "nozzle_body_diameter",
+          "must be at least nozzle_tip_diameter ({} mm)".format(p["nozzle_tip_diameter"]))
+    check(p["nozzle_body_length"] > 0.0 and finite(p["nozzle_body_length"]),
+          "nozzle_body_length", "must be a positive number of millimetres")
+    check(finite(p["nozzle_cone_angle"]) and
+          (p["nozzle_body_diameter"] == p["nozzle_tip_diameter"] or
+           0.0 < p["nozzle_cone_angle"] < 90.0), "nozzle_cone_angle",
+          "(the cone's half-angle) must lie between 0 and 90 degrees")
+    check(p["nozzle_margin"] > 0.0 and finite(p["nozzle_margin"]), "nozzle_margin",
+          "must be a positive number of millimetres")
 
 
 def slice(shape, axis=None, components=None, deflection=None, progress=None,  # noqa: A001
@@ -363,6 +432,11 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         off their sub-component's build direction, which a drill reaches from outside the part,
         are deposited solid, to be drilled afterwards: their ceilings would overhang (0: none; a
         solid's only). The result's ``filled_holes`` lists them, ``notes`` those left open.
+      * The nozzle the build sequence keeps clear of what is deposited (the paper's Eq. 10): a
+        cone tip ``nozzle_tip_diameter`` across (10) at ``nozzle_standoff`` above the deposit
+        point (10), widening at ``nozzle_cone_angle`` (half-angle, 30) to a body
+        ``nozzle_body_diameter`` across (50) and ``nozzle_body_length`` long (200), kept
+        ``nozzle_margin`` away (2); ``check_plate``: the build plate is an obstacle too (True).
 
     ``progress``: None or ``progress(fraction, stage)``, called now and then with the fraction of
     the whole done (decomposing, when done here, is the first fifth); an exception it raises

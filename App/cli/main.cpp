@@ -48,6 +48,7 @@ const char* kUsage =
     "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
     "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
     "                                   [--measure-coverage] [--fill-holes MM] [--progress]\n"
+    "                                   [nozzle options] [--no-plate-check]\n"
     "                                   [--gcode OUT.ngc [machine options]] [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
     "\n"
@@ -71,6 +72,12 @@ const char* kUsage =
     "           round holes up to MM across solid where their axis leans past the overhang\n"
     "           angle off the build direction (their ceilings would overhang), listing them to\n"
     "           drill afterwards (default 0: none).\n"
+    "           The layers are sequenced so that the nozzle keeps clear of what is deposited\n"
+    "           (Eq. 10), brothers built together where one would block the other; layers no\n"
+    "           order clears are listed. Nozzle options (mm, degrees): --nozzle-standoff (10)\n"
+    "           --nozzle-tip-diameter (10) --nozzle-cone-angle (half-angle, 30)\n"
+    "           --nozzle-body-diameter (50) --nozzle-body-length (200) --nozzle-margin (2);\n"
+    "           --no-plate-check: the build plate is no obstacle.\n"
     "           --gcode OUT.ngc also writes the 5-axis program (LinuxCNC, tilting rotary table\n"
     "           XYZAC, xyzac-trt-kins; X Y Z in the part's coordinates): machine options\n"
     "           --a-limits MIN,MAX (degrees, default -100,50), --c-limits MIN,MAX (-36000,36000),\n"
@@ -564,12 +571,26 @@ int run_decompose(const std::vector<std::string>& args) {
     return 0;
 }
 
-const std::set<std::string> kSliceOptions = {
-    "--min-layer",   "--max-layer",      "--max-volume-difference",
-    "--eps-angle",   "--overhang-angle", "--volume-samples",
-    "--bead-width",  "--overlap",        "--contours",
-    "--infill",      "--raster-angle",   "--raster-angle-step",
-    "--min-feature", "--fill-holes"};
+const std::set<std::string> kSliceOptions = {"--min-layer",
+                                             "--max-layer",
+                                             "--max-volume-difference",
+                                             "--eps-angle",
+                                             "--overhang-angle",
+                                             "--volume-samples",
+                                             "--bead-width",
+                                             "--overlap",
+                                             "--contours",
+                                             "--infill",
+                                             "--raster-angle",
+                                             "--raster-angle-step",
+                                             "--min-feature",
+                                             "--fill-holes",
+                                             "--nozzle-standoff",
+                                             "--nozzle-tip-diameter",
+                                             "--nozzle-cone-angle",
+                                             "--nozzle-body-diameter",
+                                             "--nozzle-body-length",
+                                             "--nozzle-margin"};
 
 const std::set<std::string> kMachineOptions = {
     "--a-limits",       "--c-limits",  "--feed",          "--reference-thickness",
@@ -643,6 +664,13 @@ mas::SlicePartParams slice_params(const Args& a) {
         throw mas::Error(
             mas::ErrorCode::InvalidArgument,
             "--fill-holes must be a diameter >= 0 mm, got " + a.options.at("--fill-holes"));
+    mas::NozzleParams& n = p.nozzle;
+    n.standoff_mm = a.number("--nozzle-standoff", n.standoff_mm);
+    n.tip_diameter_mm = a.number("--nozzle-tip-diameter", n.tip_diameter_mm);
+    n.cone_angle_deg = a.number("--nozzle-cone-angle", n.cone_angle_deg);
+    n.body_diameter_mm = a.number("--nozzle-body-diameter", n.body_diameter_mm);
+    n.body_length_mm = a.number("--nozzle-body-length", n.body_length_mm);
+    n.margin_mm = a.number("--nozzle-margin", n.margin_mm);
     return p;
 }
 
@@ -670,10 +698,12 @@ int run_slice(const std::vector<std::string>& args) {
     allowed.insert(kMachineOptions.begin(), kMachineOptions.end());
     allowed.insert("--gcode");
     std::vector<std::string> rest;
-    bool strict = false, coverage = false, report = false;
+    bool strict = false, coverage = false, report = false, no_plate = false;
     for (const auto& arg : args) {
         if (arg == "--strict")
             strict = true;
+        else if (arg == "--no-plate-check")
+            no_plate = true;
         else if (arg == "--measure-coverage")
             coverage = true;
         else if (arg == "--progress")
@@ -686,8 +716,10 @@ int run_slice(const std::vector<std::string>& args) {
     mas::SlicePartParams sp = slice_params(a);
     sp.layers.strict = strict;
     sp.paths.measure_coverage = coverage;
+    sp.nozzle.check_plate = !no_plate;
     mas::validate(sp.layers);
     mas::validate(sp.paths);
+    mas::validate(sp.nozzle);
     const mas::MachineParams machine = machine_params(a);
     const Part part = load_part(a);
     const mas::CentroidalAxis axis = axis_of(part, ap);
@@ -728,7 +760,14 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"raster_angle_step\": " << num(t.raster_angle_step_deg)
             << ", \"min_feature\": " << num(t.min_feature_mm)
             << ", \"measure_coverage\": " << (t.measure_coverage ? "true" : "false")
-            << ", \"fill_holes\": " << num(sp.fill_holes_up_to_mm) << "}"
+            << ", \"fill_holes\": " << num(sp.fill_holes_up_to_mm)
+            << ", \"nozzle_standoff\": " << num(sp.nozzle.standoff_mm)
+            << ", \"nozzle_tip_diameter\": " << num(sp.nozzle.tip_diameter_mm)
+            << ", \"nozzle_cone_angle\": " << num(sp.nozzle.cone_angle_deg)
+            << ", \"nozzle_body_diameter\": " << num(sp.nozzle.body_diameter_mm)
+            << ", \"nozzle_body_length\": " << num(sp.nozzle.body_length_mm)
+            << ", \"nozzle_margin\": " << num(sp.nozzle.margin_mm)
+            << ", \"check_plate\": " << (sp.nozzle.check_plate ? "true" : "false") << "}"
             << ",\n  \"stats\": {\"layer_count\": " << st.layer_count
             << ", \"min_thickness_mm\": " << num(st.min_thickness_mm)
             << ", \"max_thickness_mm\": " << num(st.max_thickness_mm)
@@ -743,6 +782,8 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"travel_length_mm\": " << num(st.travel_length_mm)
             << ", \"centre_line_passes\": " << st.centre_line_passes
             << ", \"unfilled_features\": " << st.unfilled_features
+            << ", \"colliding_layers\": " << st.colliding_layers
+            << ", \"component_switches\": " << st.component_switches
             << ", \"filled_holes\": " << st.filled_holes
             << ", \"filled_volume_mm3\": " << num(st.filled_volume_mm3)
             << "},\n  \"filled_holes\": [";
@@ -771,6 +812,18 @@ int run_slice(const std::vector<std::string>& args) {
         out << "],\n  \"build_order\": [";
         for (std::size_t i = 0; i < r.build_order.size(); ++i)
             out << (i ? ", " : "") << r.build_order[i];
+        out << "],\n  \"sequence\": [";
+        for (std::size_t i = 0; i < r.sequence.layers.size(); ++i)
+            out << (i ? ", " : "") << r.sequence.layers[i];
+        out << "],\n  \"collisions\": [";
+        for (std::size_t i = 0; i < r.sequence.collisions.size(); ++i) {
+            const mas::NozzleCollision& c = r.sequence.collisions[i];
+            out << (i ? "," : "") << "\n    {\"layer\": " << c.layer
+                << ", \"obstacle_layer\": " << c.obstacle_layer
+                << ", \"nozzle_at\": " << vec(c.nozzle_at) << ", \"obstacle\": " << vec(c.obstacle)
+                << "}";
+        }
+        if (!r.sequence.collisions.empty()) out << "\n  ";
         out << "],\n  \"components\": [";
         for (std::size_t i = 0; i < r.components.size(); ++i) {
             const auto& c = r.components[i];
@@ -864,6 +917,18 @@ int run_slice(const std::vector<std::string>& args) {
                 << "\n";
         out << "# build order:";
         for (const int c : r.build_order) out << " " << c;
+        out << "\n# sequence: " << r.sequence.layers.size() << " layers, " << st.component_switches
+            << " switches between components, " << r.sequence.interrupted_components
+            << " components interrupted; " << st.colliding_layers
+            << " layers where the nozzle meets what is deposited";
+        for (const mas::NozzleCollision& c : r.sequence.collisions)
+            out << "\n#   layer " << c.layer << " (component "
+                << r.layers[std::size_t(c.layer)].component << ") meets "
+                << (c.obstacle_layer < 0 ? std::string("the build plate")
+                                         : "layer " + std::to_string(c.obstacle_layer))
+                << " near " << num(c.obstacle.x()) << "," << num(c.obstacle.y()) << ","
+                << num(c.obstacle.z()) << ", depositing at " << num(c.nozzle_at.x()) << ","
+                << num(c.nozzle_at.y()) << "," << num(c.nozzle_at.z());
         out << "\n# layer component origin normal min_thickness max_thickness area_mm2 "
                "volume_difference unsupported_mm2 paths\n";
         for (std::size_t i = 0; i < r.layers.size(); ++i) {

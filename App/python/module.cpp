@@ -1024,11 +1024,26 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             p.tessellation.deflection_mm = number();
         else if (key == "fill_holes")
             p.fill_holes_up_to_mm = number();
+        else if (key == "nozzle_standoff")
+            p.nozzle.standoff_mm = number();
+        else if (key == "nozzle_tip_diameter")
+            p.nozzle.tip_diameter_mm = number();
+        else if (key == "nozzle_cone_angle")
+            p.nozzle.cone_angle_deg = number();
+        else if (key == "nozzle_body_diameter")
+            p.nozzle.body_diameter_mm = number();
+        else if (key == "nozzle_body_length")
+            p.nozzle.body_length_mm = number();
+        else if (key == "nozzle_margin")
+            p.nozzle.margin_mm = number();
+        else if (key == "check_plate")
+            p.nozzle.check_plate = truth();
         else
             invalid_argument("unknown slicing parameter '" + key + "'");
     }
     mas::validate(p.layers);
     mas::validate(p.paths);
+    mas::validate(p.nozzle);
     return p;
 }
 
@@ -1136,6 +1151,8 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
     stats["travel_length_mm"] = s.travel_length_mm;
     stats["centre_line_passes"] = s.centre_line_passes;
     stats["unfilled_features"] = s.unfilled_features;
+    stats["colliding_layers"] = s.colliding_layers;
+    stats["component_switches"] = s.component_switches;
     stats["filled_holes"] = s.filled_holes;
     stats["filled_volume_mm3"] = s.filled_volume_mm3;
     bp::list holes;
@@ -1150,12 +1167,25 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
     }
     bp::list notes;
     for (const std::string& n : r.notes) notes.append(n);
+    bp::list sequence;
+    for (const int i : r.sequence.layers) sequence.append(i);
+    bp::list collisions;
+    for (const mas::NozzleCollision& c : r.sequence.collisions) {
+        bp::dict d;
+        d["layer"] = c.layer;
+        d["obstacle_layer"] = c.obstacle_layer;
+        d["nozzle_at"] = to_py(c.nozzle_at);
+        d["obstacle"] = to_py(c.obstacle);
+        collisions.append(d);
+    }
     bp::dict out;
     out["filled_holes"] = holes;
     out["notes"] = notes;
     out["layers"] = layers;
     out["components"] = components;
     out["build_order"] = order;
+    out["sequence"] = sequence;
+    out["collisions"] = collisions;
     out["stats"] = stats;
     return out;
 }
@@ -1228,7 +1258,9 @@ void bind_slice() {
         "centre_line_regions, unfilled [{region, area_mm2, centroid}], deposit_length_mm, "
         "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "
         "layer_count, guide_nodes, volume_mm3}] indexed by component, build_order (the "
-        "components in deposition order, the order of the layers), stats {...}, filled_holes "
+        "components in the order they start, the order of the layers), sequence (the layer "
+        "indices in deposition order), collisions [{layer, obstacle_layer (-1: the plate), "
+        "nozzle_at, obstacle}], stats {...}, filled_holes "
         "[{component, centre, axis, diameter_mm, length_mm}], notes [str]. "
         "EngineError "
         "invalid_argument for bad parameters or a part no layer fits. `progress`: None or "

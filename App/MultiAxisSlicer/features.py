@@ -711,6 +711,20 @@ _SLICE_PROPERTIES = (
     ("MeasureCoverage", "Paths", "measure_coverage", "App::PropertyBool",
      "Also measure the area the beads leave uncovered (slower; see the Toolpath's "
      "UncoveredArea)"),
+    ("NozzleStandoff", "Nozzle", "nozzle_standoff", "App::PropertyLength",
+     "From the deposit point to the nozzle tip's face, along the tool axis"),
+    ("NozzleTipDiameter", "Nozzle", "nozzle_tip_diameter", "App::PropertyLength",
+     "Diameter of the nozzle tip's face"),
+    ("NozzleConeAngle", "Nozzle", "nozzle_cone_angle", "App::PropertyAngle",
+     "Half-angle of the tip's cone, widening from the tip to the body"),
+    ("NozzleBodyDiameter", "Nozzle", "nozzle_body_diameter", "App::PropertyLength",
+     "Diameter of the nozzle's cylindrical body"),
+    ("NozzleBodyLength", "Nozzle", "nozzle_body_length", "App::PropertyLength",
+     "Length of the nozzle's body"),
+    ("NozzleMargin", "Nozzle", "nozzle_margin", "App::PropertyLength",
+     "Clearance the nozzle keeps from what is deposited"),
+    ("CheckPlate", "Nozzle", "check_plate", "App::PropertyBool",
+     "The build plate (the plane the part stands on) is an obstacle to the nozzle too"),
 )
 
 INFILL_PATTERNS = ["raster", "contour", "none"]
@@ -840,7 +854,9 @@ class LayersFeature(_EngineFeature):
     Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced, each
     along its own build direction), the layer parameters (MinLayer, MaxLayer, MaxVolumeDifference,
     EpsAngle, OverhangAngle, VolumeSamples, Strict, FillHoles), the path parameters (BeadWidth,
-    Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature, MeasureCoverage) and
+    Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature, MeasureCoverage), the
+    nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
+    NozzleBodyLength, NozzleMargin, CheckPlate) and
     Deflection (mm chordal deflection for tessellating the components, 0 = automatic). Outputs:
     Shape (a compound of one sub-compound per layer, component by component in build order and
     bottom to top, each holding one closed wire per loop of its outline, then a face per region
@@ -848,7 +864,11 @@ class LayersFeature(_EngineFeature):
     component and the faces red), LayerCount, MinThickness, MaxThickness, DepositedVolume,
     MaterialVolume, PartVolume, MaxVolumeDifferenceFound, LayersOverVolumeDifference,
     WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts (tree order), BuildOrder (the
-    components in deposition order), the holes deposited solid to drill afterwards
+    components in the order they start), Sequence (the layers in deposition order, checked against
+    the nozzle: NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
+    NozzleBodyLength, NozzleMargin, CheckPlate), ComponentSwitches, the layers whose nozzle meets
+    what is deposited (CollidingLayers and, per collision, CollisionLayers, CollisionObstacles,
+    CollisionPoints), the holes deposited solid to drill afterwards
     (FilledHoleCount, FilledVolume and, per hole, FilledHoleComponents, FilledHoleCentres,
     FilledHoleAxes, FilledHoleDiameters, FilledHoleLengths) and, per layer, LayerComponents,
     LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses, LayerMaxThicknesses,
@@ -898,7 +918,21 @@ class LayersFeature(_EngineFeature):
                 ("App::PropertyIntegerList", "ComponentLayerCounts",
                  "Number of layers of each component (tree order)", None),
                 ("App::PropertyIntegerList", "BuildOrder",
-                 "The components in the order they are deposited (the layers' order)", None),
+                 "The components in the order they start (the layers' order)", None),
+                ("App::PropertyIntegerList", "Sequence",
+                 "The layers in the order they are deposited: a component is left for another "
+                 "where going on would put it in the nozzle's way", None),
+                ("App::PropertyInteger", "ComponentSwitches",
+                 "Consecutive layers of two components in the Sequence", 0),
+                ("App::PropertyInteger", "CollidingLayers",
+                 "Layers whose nozzle meets what is deposited before them, whatever the order",
+                 0),
+                ("App::PropertyIntegerList", "CollisionLayers",
+                 "Each colliding layer", None),
+                ("App::PropertyIntegerList", "CollisionObstacles",
+                 "The deposited layer each one's nozzle meets (-1: the build plate)", None),
+                ("App::PropertyVectorList", "CollisionPoints",
+                 "Where each one's nozzle meets it", None),
                 ("App::PropertyInteger", "FilledHoleCount",
                  "Holes deposited solid, to be drilled afterwards (FillHoles)", 0),
                 ("App::PropertyVolume", "FilledVolume",
@@ -944,6 +978,13 @@ class LayersFeature(_EngineFeature):
         obj.LayerUnsupportedAreas = [layer.unsupported_area for layer in layers]
         obj.ComponentLayerCounts = [c["layer_count"] for c in result.components]
         obj.BuildOrder = result.build_order
+        obj.Sequence = result.sequence
+        obj.ComponentSwitches = stats["component_switches"]
+        collisions = result.collisions
+        obj.CollidingLayers = len(collisions)
+        obj.CollisionLayers = [c.layer for c in collisions]
+        obj.CollisionObstacles = [c.obstacle_layer for c in collisions]
+        obj.CollisionPoints = [c.obstacle for c in collisions]
         obj.LayerCount = len(layers)
         obj.MinThickness = stats["min_thickness_mm"]
         obj.MaxThickness = stats["max_thickness_mm"]
@@ -969,8 +1010,18 @@ class LayersFeature(_EngineFeature):
                 "{})\n".format(obj.Label, h.diameter, h.length, *h.centre, *h.axis, h.component))
         for note in result.notes:
             FreeCAD.Console.PrintWarning("{}: {}\n".format(obj.Label, note))
+        if collisions:
+            shown = collisions[:10]
+            FreeCAD.Console.PrintWarning(
+                "{}: the nozzle meets what is deposited on {} layer(s), whatever the order: "
+                "{}{}\n".format(
+                    obj.Label, len(collisions), "; ".join(
+                        "layer {} meets {} at ({:.4g}, {:.4g}, {:.4g})".format(
+                            c.layer, "the build plate" if c.obstacle_layer < 0 else
+                            "layer {}".format(c.obstacle_layer), *c.obstacle) for c in shown),
+                    "; ..." if len(collisions) > len(shown) else ""))
         FreeCAD.Console.PrintMessage(
-            "{}: {} layers in {} component(s), deposited in the order {}; worst unsupported area "
+            "{}: {} layers in {} component(s), started in the order {}; worst unsupported area "
             "{:.3g} mm^2{}\n".format(
                 obj.Label, len(layers), len(result.components),
                 ", ".join(str(c) for c in result.build_order),

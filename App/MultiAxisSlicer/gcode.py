@@ -167,4 +167,8 @@ def gcode(result, progress=None, **machine):
     p = _machine_params(machine)
     _progress.check(progress)
     eng = _require_engine()
-    return GcodeProgram(eng.write_gcode(result._data["layers"], p, progress), p)
+    layers = result._data["layers"]
+    # In the order they are deposited (the result's sequence, checked against the nozzle), each
+    # named by its index in the result.
+    return GcodeProgram(eng.write_gcode([dict(layers[i], index=i) for i in result.sequence], p,
+                                        progress), p)

@@ -1325,6 +1325,8 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
         if (PyBool_Check(required(item, "component", what).ptr()))
             invalid_argument(what + "['component'] is not an integer but a bool");
         l.component = index_of(item, "component", what);
+        if (bp::extract<bp::dict>(item).check() && bp::dict(item).has_key("index"))
+            l.index = index_of(item, "index", what);
         l.tool_axis = vector3(required(item, "tool_axis", what), what + "['tool_axis']");
         l.max_thickness_mm = number_of(item, "max_thickness_mm", what);
         const std::vector<bp::object> regions = items_of(item, "regions", what);
@@ -1432,7 +1434,8 @@ void bind_gcode() {
         "write_gcode", &write_gcode,
         (bp::arg("layers"), bp::arg("machine") = bp::dict(), bp::arg("progress") = bp::object()),
         "The 5-axis G-code program (LinuxCNC, tilting rotary table XYZAC, xyzac-trt-kins) "
-        "that deposits `layers` (slice_part()'s layer dicts, in build order). `machine`: a "
+        "that deposits `layers` (slice_part()'s layer dicts, in the order they are deposited: "
+        "its sequence). `machine`: a "
         "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
         "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
         "deposit_output; missing ones take the engine's defaults. Returns {text, stats "

@@ -474,7 +474,8 @@ class CliSections(unittest.TestCase):
                            "splitting at branch 1 of 2",
                            "decomposing", "tessellating the components",
                            "ordering the components", "slicing component 0 (1 of 2)",
-                           "slicing component 1 (2 of 2)", "planning the bead paths"])):
+                           "slicing component 1 (2 of 2)", "planning the bead paths",
+                           "checking the nozzle against the layers", "ordering the layers"])):
             plain = run(command, brep, "--json")
             r = run(command, brep, "--json", "--progress")
             self.assertEqual(r.returncode, 0, r.stderr)

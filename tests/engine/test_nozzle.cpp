@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -360,8 +361,16 @@ TEST(Nozzle, SlicedPostsAreInterleavedWithoutCollisions) {
     // The program deposits the layers in the sequence's order.
     const std::vector<mas::GcodeLayer> g = mas::gcode_layers(part);
     ASSERT_EQ(g.size(), order.size());
-    for (std::size_t k = 0; k < g.size(); ++k)
+    for (std::size_t k = 0; k < g.size(); ++k) {
+        EXPECT_EQ(g[k].index, order[k]);
         EXPECT_EQ(g[k].component, part.layers[std::size_t(order[k])].component);
+    }
+    // Its comments name each layer by the part's number, in the sequence's order.
+    std::istringstream program(mas::write_gcode(g, {}));
+    std::vector<int> named;
+    for (std::string line; std::getline(program, line);)
+        if (line.rfind("(layer ", 0) == 0) named.push_back(std::stoi(line.substr(7)));
+    EXPECT_EQ(named, order);
 }
 
 }  // namespace

@@ -162,8 +162,11 @@ class TestSliceApi(SliceTest):
         self.assertEqual(json.loads(json.dumps(data, allow_nan=False)), data)
         self.assertEqual(set(data),
                          {"kind", "params", "stats", "filled_holes", "notes", "build_order",
-                          "components", "layers"})
+                          "sequence", "collisions", "components", "layers"})
         self.assertEqual(data["build_order"], [0, 1])  # the column, then the arm on it
+        # Nothing to interleave: the column, then the arm, which clears the plate and column.
+        self.assertEqual(data["sequence"], list(range(55)))
+        self.assertEqual(data["collisions"], [])
         self.assertEqual(data["params"], dict(mas.SLICE_DEFAULTS))
         self.assertEqual(len(data["layers"]), 55)
         layer = data["layers"][30]
@@ -375,6 +378,88 @@ class TestFillHoles(SliceTest):
             mas.slice(box, fill_holes="8 mm")
         with self.assertRaisesRegex(ValueError, "mesh.*fill_holes needs a solid"):
             mas.slice(fc_mesh(box), fill_holes=8.0)
+
+
+def close_posts():
+    """Two 10 x 10 posts 60 tall, 10 mm apart, on a 60 x 30 x 5 plate: built one after the other,
+    the second post's first layers would have the nozzle's cone meet the first post."""
+    plate = Part.makeBox(60, 30, 5, V(-10, -10, 0))
+    posts = Part.makeBox(10, 10, 60, V(0, 0, 5)).fuse(Part.makeBox(10, 10, 60, V(20, 0, 5)))
+    return plate.fuse(posts).removeSplitter()
+
+
+class TestSliceSequence(SliceTest):
+    def test_close_posts_are_built_together(self):
+        result = mas.slice(close_posts())
+        self.assertEqual(sorted(result.sequence), list(range(len(result.layers))))
+        self.assertEqual(result.collisions, [])
+        self.assertEqual(result.stats["colliding_layers"], 0)
+        posts = [c for c in result.build_order[1:]]
+        self.assertEqual(len(posts), 2)
+        components = [result.layers[i].component for i in result.sequence]
+        # The plate, then the first post until it would block the second, the second until it
+        # would block the first, and so on: the posts go up together, in turns.
+        self.assertEqual(components[0], 0)
+        runs = [components[0]]
+        for c in components[1:]:
+            if c != runs[-1]:
+                runs.append(c)
+        self.assertGreaterEqual(len(runs), 4)
+        self.assertEqual(runs, [0] + [posts[k % 2] for k in range(len(runs) - 1)])
+        self.assertEqual(result.stats["component_switches"], len(runs) - 1)
+        # Each component's layers in their own order.
+        for c in range(len(result.components)):
+            mine = [i for i in result.sequence if result.layers[i].component == c]
+            self.assertEqual(mine, sorted(mine))
+        # The first post is left at least 10 mm (the standoff) below the second's first layer
+        # plus the height where its cone reaches across 10 mm: not before 20 mm.
+        first_run = [i for i in result.sequence[:components.index(posts[1])]
+                     if result.layers[i].component == posts[0]]
+        top = result.layers[first_run[-1]].origin.z
+        self.assertGreater(top, 20.0)
+        self.assertLess(top, 60.0)
+        # The program deposits them in that order, naming the layers by their index.
+        program = result.gcode()
+        named = [int(line.split()[1].rstrip(",")) for line in program.text.splitlines()
+                 if line.startswith("(layer ")]
+        self.assertEqual(named, result.sequence)
+
+    def test_a_wide_nozzle_sideways_near_the_plate_is_reported(self):
+        # The L's arm is deposited sideways at z 40 to 60: a 100 mm body reaches 50 mm below
+        # the tool axis, under the plate for every arm layer (deposit points below z = 52).
+        result = mas.slice(l_block(), nozzle_body_diameter=100.0)
+        arm = [i for i, layer in enumerate(result.layers) if layer.component == 1]
+        self.assertEqual([c.layer for c in result.collisions], arm)
+        self.assertEqual(result.stats["colliding_layers"], len(arm))
+        for c in result.collisions:
+            self.assertEqual(c.obstacle_layer, -1)
+            self.assertAlmostEqual(c.obstacle.z, 0.0, places=9)
+            self.assertLess(c.nozzle_at.z, 52.0)
+            self.assertIsInstance(c.nozzle_at, FreeCAD.Vector)
+        self.assertIn("meets the plate", repr(result.collisions[0]))
+        self.assertEqual(result.to_dict()["collisions"][0]["obstacle_layer"], -1)
+        # Without the plate as an obstacle, or with the default 50 mm body, nothing collides.
+        self.assertEqual(mas.slice(l_block(), nozzle_body_diameter=100.0,
+                                   check_plate=False).collisions, [])
+        self.assertEqual(mas.slice(l_block()).collisions, [])
+
+    def test_bad_nozzle_parameters_are_named(self):
+        box = box_20_10_21()
+        for error, text, kwargs in (
+                (ValueError, "nozzle_margin must be a positive", dict(nozzle_margin=0.0)),
+                (ValueError, "nozzle_standoff must be 0 or more", dict(nozzle_standoff=-1.0)),
+                (ValueError, r"nozzle_body_diameter must be at least nozzle_tip_diameter "
+                             r"\(10.0 mm\), got 8.0", dict(nozzle_body_diameter=8.0)),
+                (ValueError, "nozzle_cone_angle", dict(nozzle_cone_angle=90.0)),
+                (ValueError, "nozzle_body_length", dict(nozzle_body_length=math.inf)),
+                (ValueError, "nozzle_tip_diameter", dict(nozzle_tip_diameter=math.nan)),
+                (TypeError, "nozzle_margin", dict(nozzle_margin="2 mm")),
+                (TypeError, "check_plate", dict(check_plate="yes"))):
+            with self.assertRaisesRegex(error, text, msg=str(kwargs)):
+                mas.slice(box, **kwargs)
+        # One diameter: no cone, whatever its angle.
+        result = mas.slice(box, nozzle_body_diameter=10.0, nozzle_cone_angle=0.0)
+        self.assertEqual(result.collisions, [])
 
 
 class TestSliceBadInput(SliceTest):
@@ -773,6 +858,44 @@ class TestLayersObject(SliceObjectTest):
         layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
         self.assertIs(toolpath.Layers, layers)
         self.assertEqual(layers.LayerCount, 11)
+
+    def test_the_sequence_and_its_collisions_are_properties_and_are_saved(self):
+        part = self.doc.addObject("Part::Feature", "L")
+        part.Shape = l_block()
+        self.doc.recompute()
+        decomposition, layers, toolpath = self.make(part, nozzle_body_diameter=100.0)
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.getGroupOfProperty("NozzleBodyDiameter"), "Nozzle")
+        self.assertEqual(layers.NozzleBodyDiameter.Value, 100.0)
+        self.assertEqual(layers.NozzleConeAngle.Value, 30.0)
+        self.assertTrue(layers.CheckPlate)
+        arm = [i for i, c in enumerate(layers.LayerComponents) if c == 1]
+        self.assertEqual(list(layers.Sequence), list(range(layers.LayerCount)))
+        self.assertEqual(layers.ComponentSwitches, 1)
+        self.assertEqual(layers.CollidingLayers, len(arm))
+        self.assertEqual(list(layers.CollisionLayers), arm)
+        self.assertEqual(list(layers.CollisionObstacles), [-1] * len(arm))
+        self.assertEqual(len(layers.CollisionPoints), len(arm))
+        self.assertTrue(all(abs(p.z) < 1e-9 for p in layers.CollisionPoints))
+        self.assertIn("ReadOnly", layers.getEditorMode("CollidingLayers"))
+        path = os.path.join(self.folder, "MasSliceCollisions.FCStd")  # closed by tearDown
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        layers = self.doc.getObject("Layers")
+        self.assertEqual(layers.NozzleBodyDiameter.Value, 100.0)
+        self.assertEqual(layers.CollidingLayers, len(arm))
+        self.assertEqual(list(layers.Sequence), list(range(layers.LayerCount)))
+        layers.CheckPlate = False
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.CollidingLayers, 0)
+        self.assertEqual(list(layers.CollisionLayers), [])
+        layers.NozzleMargin = 0.0
+        self.doc.recompute()
+        self.assertIn("Invalid", layers.State)
+        self.assertEqual(layers.getStatusString(),
+                         "NozzleMargin must be a positive number of millimetres, got 0.0")
 
     def test_bad_parameters_mark_the_object_with_the_message(self):
         decomposition, layers, toolpath = self.make()

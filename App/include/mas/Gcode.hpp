@@ -79,6 +79,7 @@ void validate(const MachineParams& params);
 
 // What the post-processor reads of one layer.
 struct GcodeLayer {
+    int index = -1;  // the part's layer number, named in comments and errors (-1: its place here)
     int component = 0;
     Eigen::Vector3d tool_axis = Eigen::Vector3d::UnitZ();  // unit length
     std::vector<ToolPath> paths;                           // travel moves are not followed

@@ -187,9 +187,12 @@ std::vector<double> feed_cuts(double t0, double t1, double t_lo, double t_hi) {
     return out;
 }
 
-std::string layer_name(std::size_t index, const GcodeLayer& layer) {
-    return "layer " + std::to_string(index) + " (component " + std::to_string(layer.component) +
-           ")";
+std::string layer_number(std::size_t place, const GcodeLayer& layer) {
+    return "layer " + std::to_string(layer.index >= 0 ? std::size_t(layer.index) : place);
+}
+
+std::string layer_name(std::size_t place, const GcodeLayer& layer) {
+    return layer_number(place, layer) + " (component " + std::to_string(layer.component) + ")";
 }
 
 }  // namespace
@@ -233,6 +236,7 @@ std::vector<GcodeLayer> gcode_layers(const SlicedPart& part) {
         const std::size_t i = sequenced ? std::size_t(part.sequence.layers[k]) : k;
         const Layer& layer = part.layers[i];
         GcodeLayer g;
+        g.index = int(i);
         g.component = layer.component;
         g.tool_axis = i < part.toolpaths.size() ? part.toolpaths[i].tool_axis : layer.plane.normal;
         if (i < part.toolpaths.size()) g.paths = part.toolpaths[i].paths;
@@ -503,7 +507,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                                    g.angles().a_deg == a.a_deg && g.angles().c_deg == a.c_deg;
             if (first_path) {
                 if (!continues) stop_deposit();  // the last layer's end before this one's name
-                g.comment("layer " + std::to_string(i) + ", component " +
+                g.comment(layer_number(i, layer) + ", component " +
                           std::to_string(layer.component) + ": tool axis " + vector_text(n) +
                           ", A " + format_number(a.a_deg, 8) + " C " + format_number(a.c_deg, 8));
             }

@@ -283,7 +283,8 @@ class SliceResult:
 
     def paths(self, layer_index):
         """The paths of layer ``layer_index`` in deposition order (``ToolPath``): a travel move
-        before every deposit path, the first one from where the previous layer ended."""
+        before every deposit path, the first one from where the layer before it in ``sequence``
+        ended."""
         d = self._data["layers"][layer_index]
         return [ToolPath(p, d["tool_axis"]) for p in d["paths"]]
 

@@ -358,6 +358,26 @@ TEST(Nozzle, SlicedPostsAreInterleavedWithoutCollisions) {
     std::vector<int> whole_first;
     for (int k = 0; k < first.layer_count; ++k) whole_first.push_back(first.first_layer + k);
     EXPECT_TRUE(meets(second.first_layer, whole_first));
+    // Each layer's first move is a travel from where the layer before it in the sequence ended,
+    // and the travel figures add up.
+    double travel = 0.0;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const mas::LayerToolpaths& t = part.toolpaths[std::size_t(order[k])];
+        double length = 0.0;
+        for (const mas::ToolPath& path : t.paths)
+            if (!path.deposit()) length += (path.points.back() - path.points.front()).norm();
+        EXPECT_NEAR(t.travel_length_mm, length, 1e-9);
+        travel += length;
+        if (k == 0) {
+            EXPECT_TRUE(t.paths.front().deposit());
+            continue;
+        }
+        const mas::LayerToolpaths& before = part.toolpaths[std::size_t(order[k - 1])];
+        ASSERT_FALSE(t.paths.front().deposit()) << "layer " << order[k];
+        EXPECT_EQ(t.paths.front().points.front(), before.paths.back().points.back());
+        EXPECT_EQ(t.paths.front().points.back(), t.paths[1].points.front());
+    }
+    EXPECT_NEAR(part.stats.travel_length_mm, travel, 1e-9 * travel);
     // The program deposits the layers in the sequence's order.
     const std::vector<mas::GcodeLayer> g = mas::gcode_layers(part);
     ASSERT_EQ(g.size(), order.size());

@@ -69,7 +69,8 @@ struct SliceStats {
 
 struct SlicedPart {
     std::vector<Layer> layers;  // component by component in build order, each bottom to top
-    std::vector<LayerToolpaths> toolpaths;    // one per layer
+    // One per layer, its first travel from where the layer before it in `sequence` ends.
+    std::vector<LayerToolpaths> toolpaths;
     std::vector<ComponentLayers> components;  // indexed by component
     std::vector<int> build_order;             // the components in the order they start
     // The layers in the order they are deposited (Nozzle.hpp): build_order's components, a

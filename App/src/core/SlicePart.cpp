@@ -269,6 +269,31 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     }
     out.sequence = plan_build_sequence(sequence, params.nozzle,
                                        progress.span(0.9, 1.0, "ordering the layers"));
+    // The paths were planned in the layers' order: each layer's first travel starts where the
+    // layer before it in the sequence ends instead (the layer's own paths stay as planned).
+    has_head = false;
+    s.travel_length_mm = 0.0;
+    for (const int i : out.sequence.layers) {
+        LayerToolpaths& t = out.toolpaths[std::size_t(i)];
+        if (!t.paths.empty() && !t.paths.front().deposit()) {
+            const ToolPath& lead = t.paths.front();
+            t.travel_length_mm -= (lead.points.back() - lead.points.front()).norm();
+            t.paths.erase(t.paths.begin());
+        }
+        if (t.paths.empty()) continue;
+        const Eigen::Vector3d start = t.paths.front().points.front();
+        if (has_head && (head - start).norm() > 0.0) {
+            ToolPath travel;
+            travel.points = {head, start};
+            travel.thickness_mm = {0.0, 0.0};
+            t.travel_length_mm += (start - head).norm();
+            t.paths.insert(t.paths.begin(), std::move(travel));
+        }
+        t.travel_length_mm = std::max(t.travel_length_mm, 0.0);
+        s.travel_length_mm += t.travel_length_mm;
+        head = t.paths.back().points.back();
+        has_head = true;
+    }
     s.colliding_layers = int(out.sequence.collisions.size());
     s.component_switches = out.sequence.component_switches;
     progress(1.0);

@@ -868,7 +868,7 @@ class LayersFeature(_EngineFeature):
     the nozzle: NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
     NozzleBodyLength, NozzleMargin, CheckPlate), ComponentSwitches, the layers whose nozzle meets
     what is deposited (CollidingLayers and, per collision, CollisionLayers, CollisionObstacles,
-    CollisionPoints), the holes deposited solid to drill afterwards
+    CollisionPoints, CollisionNozzlePoints), the holes deposited solid to drill afterwards
     (FilledHoleCount, FilledVolume and, per hole, FilledHoleComponents, FilledHoleCentres,
     FilledHoleAxes, FilledHoleDiameters, FilledHoleLengths) and, per layer, LayerComponents,
     LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses, LayerMaxThicknesses,
@@ -933,6 +933,8 @@ class LayersFeature(_EngineFeature):
                  "The deposited layer each one's nozzle meets (-1: the build plate)", None),
                 ("App::PropertyVectorList", "CollisionPoints",
                  "Where each one's nozzle meets it", None),
+                ("App::PropertyVectorList", "CollisionNozzlePoints",
+                 "The deposit point each one's nozzle stands over then", None),
                 ("App::PropertyInteger", "FilledHoleCount",
                  "Holes deposited solid, to be drilled afterwards (FillHoles)", 0),
                 ("App::PropertyVolume", "FilledVolume",
@@ -985,6 +987,7 @@ class LayersFeature(_EngineFeature):
         obj.CollisionLayers = [c.layer for c in collisions]
         obj.CollisionObstacles = [c.obstacle_layer for c in collisions]
         obj.CollisionPoints = [c.obstacle for c in collisions]
+        obj.CollisionNozzlePoints = [c.nozzle_at for c in collisions]
         obj.LayerCount = len(layers)
         obj.MinThickness = stats["min_thickness_mm"]
         obj.MaxThickness = stats["max_thickness_mm"]

@@ -419,6 +419,10 @@ def layer_edge_colours(shape, components, unsupported_colour):
 DRILL_COLOUR = (0.0, 0.0, 0.0)  # black: no component's colour
 DRILL_LINE_WIDTH = 3.0
 DRILL_CIRCLE_SEGMENTS = 32
+COLLISION_COLOUR = (1.0, 0.0, 1.0)  # magenta: no component's colour, nor red or black
+COLLISION_LINE_WIDTH = 3.0
+COLLISION_POINT_SIZE = 9.0
+_COLLISION_PROPERTIES = ("CollisionPoints", "CollisionNozzlePoints")
 _DRILL_PROPERTIES = ("FilledHoleCentres", "FilledHoleAxes", "FilledHoleDiameters",
                      "FilledHoleLengths")
 
@@ -459,7 +463,9 @@ class ViewProviderLayers(_EdgeColoured):
     then. The decomposition stays as it is. The Shape's faces mark where a layer is unsupported:
     ShapeColor (red by default) fills and outlines them. The holes deposited solid to drill
     afterwards (FillHoles) are drawn as their axes and end circles in DrillColor, from the
-    object's FilledHole* properties, in every display mode."""
+    object's FilledHole* properties, in every display mode; the layers whose nozzle meets what is
+    deposited as a line in CollisionColor from the deposit point to the obstacle's point, and
+    that point, from its Collision*Points properties."""
 
     COLOUR_PROPERTIES = _EdgeColoured.COLOUR_PROPERTIES + ("ShapeColor",)
 
@@ -490,6 +496,52 @@ class ViewProviderLayers(_EdgeColoured):
             self.drills.addChild(node)
         vobj.RootNode.addChild(self.drills)
         self.update_drills(vobj)
+        if "CollisionColor" not in vobj.PropertiesList:
+            vobj.addProperty("App::PropertyColor", "CollisionColor", "Object Style",
+                             "Colour of the collisions: from where the nozzle stands to what it "
+                             "meets")
+            vobj.CollisionColor = COLLISION_COLOUR
+        self.collisions = coin.SoSeparator()
+        light = coin.SoLightModel()
+        light.model = coin.SoLightModel.BASE_COLOR
+        self.collision_colour = coin.SoBaseColor()
+        style = coin.SoDrawStyle()
+        style.lineWidth = COLLISION_LINE_WIDTH
+        style.pointSize = COLLISION_POINT_SIZE
+        self.collision_points = coin.SoCoordinate3()
+        self.collision_lines = coin.SoLineSet()  # nozzle point to obstacle, one per collision
+        self.collision_marks = coin.SoPointSet()  # the obstacles' points
+        for node in (light, self.collision_colour, style, self.collision_points,
+                     self.collision_lines, self.collision_marks):
+            self.collisions.addChild(node)
+        vobj.RootNode.addChild(self.collisions)
+        self.update_collisions(vobj)
+
+    def update_collisions(self, vobj):
+        """The collision markers from the object's Collision*Points and CollisionColor: a line
+        from each colliding layer's deposit point to the obstacle's point, and that point."""
+        if getattr(self, "collisions", None) is None:
+            return
+        obj = vobj.Object
+        colour = tuple(vobj.CollisionColor)[:3] if "CollisionColor" in vobj.PropertiesList \
+            else COLLISION_COLOUR
+        self.collision_colour.rgb.setValue(*colour)
+        pairs = []
+        if obj is not None and all(p in obj.PropertiesList for p in _COLLISION_PROPERTIES):
+            pairs = list(zip(obj.CollisionNozzlePoints, obj.CollisionPoints))
+        self.collision_lines.numVertices.setNum(0)
+        self.collision_points.point.setNum(0)
+        self.collision_marks.startIndex = 0
+        self.collision_marks.numPoints = 0
+        if pairs:
+            # The obstacles' points first (the point set), then each line's two ends.
+            points = [(b.x, b.y, b.z) for _, b in pairs]
+            for a, b in pairs:
+                points += [(a.x, a.y, a.z), (b.x, b.y, b.z)]
+            self.collision_points.point.setValues(0, len(points), points)
+            self.collision_marks.numPoints = len(pairs)
+            self.collision_lines.startIndex = len(pairs)
+            self.collision_lines.numVertices.setValues(0, len(pairs), [2] * len(pairs))
 
     def update_drills(self, vobj):
         """The drill markers from the object's FilledHole* properties and DrillColor."""
@@ -514,11 +566,15 @@ class ViewProviderLayers(_EdgeColoured):
         super().updateData(obj, prop)
         if prop in _DRILL_PROPERTIES and obj.ViewObject is not None:
             self.update_drills(obj.ViewObject)
+        if prop in _COLLISION_PROPERTIES and obj.ViewObject is not None:
+            self.update_collisions(obj.ViewObject)
 
     def onChanged(self, vobj, prop):
         super().onChanged(vobj, prop)
         if prop == "DrillColor":
             self.update_drills(vobj)
+        if prop == "CollisionColor":
+            self.update_collisions(vobj)
 
     @staticmethod
     def colour_edges(vobj):

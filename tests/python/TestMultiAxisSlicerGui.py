@@ -1040,6 +1040,46 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual(proxy.drill_points.point.getNum(), 0)
         self.assertGreater(len(layers.Shape.Faces), 0)
 
+    def test_collisions_are_drawn_from_the_nozzle_to_what_it_meets(self):
+        """A 100 mm nozzle body deposits the L's arm sideways 40 to 60 mm above the plate: every
+        arm layer's nozzle meets the plate, drawn as a line in CollisionColor from its deposit
+        point to the plate and a point there. With CheckPlate off, nothing is drawn."""
+        layers, toolpath = self.run_command(self.part)
+        proxy = layers.ViewObject.Proxy
+        self.assertEqual(proxy.collision_lines.numVertices.getNum(), 0)
+        self.assertTrue(same_colour(layers.ViewObject.CollisionColor,
+                                    view_providers.COLLISION_COLOUR))
+        layers.NozzleBodyDiameter = 100.0
+        self.doc.recompute()
+        process_events()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        count = layers.CollidingLayers
+        self.assertEqual(count, layers.ComponentLayerCounts[1])  # every arm layer
+        self.assertEqual([proxy.collision_lines.numVertices[i] for i in range(count)],
+                         [2] * count)
+        self.assertEqual(proxy.collision_marks.numPoints.getValue(), count)
+        self.assertEqual(proxy.collision_lines.startIndex.getValue(), count)
+        points = [FreeCAD.Vector(*proxy.collision_points.point[i].getValue())
+                  for i in range(proxy.collision_points.point.getNum())]
+        self.assertEqual(len(points), 3 * count)
+        for k in range(count):
+            obstacle, start, end = points[k], points[count + 2 * k], points[count + 2 * k + 1]
+            self.assertLess((obstacle - layers.CollisionPoints[k]).Length, 1e-5)
+            self.assertLess((start - layers.CollisionNozzlePoints[k]).Length, 1e-5)
+            self.assertLess((end - obstacle).Length, 1e-9)
+            self.assertAlmostEqual(obstacle.z, 0.0, places=5)  # on the plate
+        toolpath.ViewObject.Visibility = False
+        save_screenshot(self, self.doc, "slice_collisions.png", see_through=False)
+        layers.ViewObject.CollisionColor = (0.0, 0.0, 1.0)
+        process_events()
+        self.assertTrue(same_colour(proxy.collision_colour.rgb[0].getValue(), (0.0, 0.0, 1.0)))
+        layers.CheckPlate = False
+        self.doc.recompute()
+        process_events()
+        self.assertEqual(layers.CollidingLayers, 0)
+        self.assertEqual(proxy.collision_lines.numVertices.getNum(), 0)
+        self.assertEqual(proxy.collision_points.point.getNum(), 0)
+
     def test_command_on_a_solid_decomposes_it_first(self):
         layers, toolpath = self.run_command(self.part)
         self.assertIsNotNone(layers)

@@ -93,6 +93,12 @@ def main():
                        h.axis.y, h.axis.z, h.component))
         for note in sliced.notes:
             f.write("# note: %s\n" % note)
+        f.write("# deposition sequence (layers, checked against the nozzle): %s\n"
+                % " ".join(str(i) for i in sliced.sequence))
+        for c in sliced.collisions:
+            f.write("# collision: layer %d's nozzle meets %s near (%.3f, %.3f, %.3f)\n"
+                    % (c.layer, "the build plate" if c.obstacle_layer < 0 else
+                       "layer %d" % c.obstacle_layer, c.obstacle.x, c.obstacle.y, c.obstacle.z))
         f.write("# layer component origin_x origin_y origin_z normal_x normal_y normal_z "
                 "min_thickness max_thickness area_mm2 volume_difference unsupported_mm2 "
                 "deposit_mm travel_mm\n")
@@ -143,6 +149,9 @@ def main():
                                                 stats["max_thickness_mm"],
                                                 stats["deposit_length_mm"],
                                                 stats["worst_unsupported_area_mm2"]))
+    print("main job: layers deposited in a sequence with %d switches between components; "
+          "%d layer(s) where the nozzle meets what is deposited"
+          % (stats["component_switches"], stats["colliding_layers"]))
     print("main job: %d hole(s) deposited solid, to drill afterwards: %s"
           % (len(sliced.filled_holes), ", ".join(
               "%g mm across at (%g, %g, %g)" % (h.diameter, h.centre.x, h.centre.y, h.centre.z)

@@ -925,7 +925,8 @@ class LayersFeature(_EngineFeature):
                 ("App::PropertyInteger", "ComponentSwitches",
                  "Consecutive layers of two components in the Sequence", 0),
                 ("App::PropertyInteger", "CollidingLayers",
-                 "Layers whose nozzle meets what is deposited before them, whatever the order",
+                 "Layers whose nozzle meets what is deposited before them in the Sequence "
+                 "(no order found clears them)",
                  0),
                 ("App::PropertyIntegerList", "CollisionLayers",
                  "Each colliding layer", None),
@@ -1016,8 +1017,8 @@ class LayersFeature(_EngineFeature):
         if collisions:
             shown = collisions[:10]
             FreeCAD.Console.PrintWarning(
-                "{}: the nozzle meets what is deposited on {} layer(s), whatever the order: "
-                "{}{}\n".format(
+                "{}: the nozzle meets what is deposited on {} layer(s), which no order found "
+                "clears: {}{}\n".format(
                     obj.Label, len(collisions), "; ".join(
                         "layer {} meets {} at ({:.4g}, {:.4g}, {:.4g})".format(
                             c.layer, "the build plate" if c.obstacle_layer < 0 else

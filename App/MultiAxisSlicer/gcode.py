@@ -140,7 +140,7 @@ def _machine_params(values):
 
 def gcode(result, progress=None, **machine):
     """The 5-axis G-code program that deposits a ``SliceResult`` (from ``slice()``), layer by
-    layer in its build order.
+    layer in its deposition sequence (``result.sequence``).
 
     Machine parameters (defaults in ``MACHINE_DEFAULTS``; FreeCAD Quantities accepted, in their
     units: ``feed=Quantity("15 mm/s")`` is 900 mm/min):

@@ -397,6 +397,9 @@ def _check_nozzle(p):
           "(the cone's half-angle) must lie between 0 and 90 degrees")
     check(p["nozzle_margin"] > 0.0 and finite(p["nozzle_margin"]), "nozzle_margin",
           "must be a positive number of millimetres")
+    # The check grows the nozzle by twice the margin: a tip closer would meet its own layer.
+    check(p["nozzle_standoff"] >= 2.0 * p["nozzle_margin"], "nozzle_margin",
+          "must be at most half nozzle_standoff ({} mm)".format(p["nozzle_standoff"]))
 
 
 def slice(shape, axis=None, components=None, deflection=None, progress=None,  # noqa: A001
@@ -437,7 +440,7 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         cone tip ``nozzle_tip_diameter`` across (10) at ``nozzle_standoff`` above the deposit
         point (10), widening at ``nozzle_cone_angle`` (half-angle, 30) to a body
         ``nozzle_body_diameter`` across (50) and ``nozzle_body_length`` long (200), kept
-        ``nozzle_margin`` away (2); ``check_plate``: the build plate is an obstacle too (True).
+        ``nozzle_margin`` away (2, at most half the standoff); ``check_plate``: the build plate is an obstacle too (True).
 
     ``progress``: None or ``progress(fraction, stage)``, called now and then with the fraction of
     the whole done (decomposing, when done here, is the first fifth); an exception it raises

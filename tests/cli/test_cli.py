@@ -475,6 +475,7 @@ class CliSections(unittest.TestCase):
                            "decomposing", "tessellating the components",
                            "ordering the components", "slicing component 0 (1 of 2)",
                            "slicing component 1 (2 of 2)", "planning the bead paths",
+                           "finding what each component rests on",
                            "checking the nozzle against the layers", "ordering the layers"])):
             plain = run(command, brep, "--json")
             r = run(command, brep, "--json", "--progress")

@@ -85,19 +85,21 @@ std::string error_of(const std::function<void()>& f) {
 TEST(Nozzle, ShapeAndGrowth) {
     const mas::NozzleParams p;  // standoff 10, tip 10, 30 degrees, body 50 x 200, margin 2
     EXPECT_NEAR(mas::cone_length(p), 20.0 / kTan30, 1e-12);
-    EXPECT_NEAR(mas::near_miss_mm(p), 2.0 * std::hypot(1.0, 1.0 + kTan30), 1e-12);
+    const double cos30 = std::sqrt(3.0) / 2.0;
+    EXPECT_NEAR(mas::near_miss_mm(p), 4.0 * std::hypot(1.0, 1.0 / cos30), 1e-12);
     const Vector3d tip(1, 2, 3), axis = Vector3d(1, 2, 2).normalized();
     // A unit vector across the axis.
     const Vector3d across = axis.cross(Vector3d::UnitX()).normalized();
     auto at = [&](double h, double r) { return Vector3d(tip + h * axis + r * across); };
-    const double grow = 2.0 * (1.0 + kTan30), cone_end = 10.0 + 20.0 / kTan30;
+    // Grown by twice the margin: 4 mm up and down, 4 / cos 30 degrees across.
+    const double grow = 4.0 / cos30, cone_end = 10.0 + 20.0 / kTan30;
     const double top = cone_end + 200.0;
     const double e = 1e-9;
-    // Heights: from the standoff less the margin to the body's end plus the margin.
-    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(8.0 + e, 0)));
-    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(8.0 - e, 0)));
-    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(top + 2.0 - e, 0)));
-    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(top + 2.0 + e, 0)));
+    // Heights: from the standoff less 4 to the body's end plus 4.
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(6.0 + e, 0)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(6.0 - e, 0)));
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(top + 4.0 - e, 0)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(top + 4.0 + e, 0)));
     // Radii: the tip's face below it, the cone widening, the body.
     EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(9.0, 5.0 + grow - e)));
     EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(9.0, 5.0 + grow + e)));
@@ -107,15 +109,15 @@ TEST(Nozzle, ShapeAndGrowth) {
     EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(cone_end + 50, 25.0 + grow + e)));
     // Nothing below the standoff: the deposit point's own neighbourhood is free.
     EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, tip));
-    // A nozzle of one diameter has no cone and grows by the margin alone.
+    // A nozzle of one diameter has no cone and grows by twice the margin all round.
     mas::NozzleParams straight = p;
     straight.body_diameter_mm = straight.tip_diameter_mm;
     straight.cone_angle_deg = 0.0;
     mas::validate(straight);
     EXPECT_EQ(mas::cone_length(straight), 0.0);
-    EXPECT_NEAR(mas::near_miss_mm(straight), 2.0 * std::sqrt(2.0), 1e-12);
-    EXPECT_TRUE(mas::in_grown_nozzle(straight, tip, axis, at(100.0, 7.0 - e)));
-    EXPECT_FALSE(mas::in_grown_nozzle(straight, tip, axis, at(100.0, 7.0 + e)));
+    EXPECT_NEAR(mas::near_miss_mm(straight), 4.0 * std::sqrt(2.0), 1e-12);
+    EXPECT_TRUE(mas::in_grown_nozzle(straight, tip, axis, at(100.0, 9.0 - e)));
+    EXPECT_FALSE(mas::in_grown_nozzle(straight, tip, axis, at(100.0, 9.0 + e)));
 }
 
 TEST(Nozzle, BadParametersAreNamed) {
@@ -138,6 +140,9 @@ TEST(Nozzle, BadParametersAreNamed) {
               "the nozzle's margin must be > 0 mm, got nan");
     EXPECT_EQ(message([](auto& p) { p.standoff_mm = INFINITY; }),
               "the nozzle's standoff must be >= 0 mm, got inf");
+    EXPECT_EQ(message([](auto& p) { p.standoff_mm = 3.9; }),
+              "the nozzle's margin must be at most half its standoff (3.9 mm), got 2");
+    EXPECT_EQ(message([](auto& p) { p.standoff_mm = 4.0; }), "");
 }
 
 // Two posts on a plate, 10 mm apart: built one after the other, the second post's first layer
@@ -149,13 +154,15 @@ TEST(Nozzle, BrothersAreBuiltTogetherJustShortOfACollision) {
     for (int k = 0; k < 40; ++k) add_square(b, 1, 0, 0, 10, 10, 2.0 + k);
     for (int k = 0; k < 40; ++k) add_square(b, 2, 20, 0, 30, 10, 2.0 + k);
     const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), {});
-    // Post 2's first deposit point (25, 5, 2) is 15 mm across from post 1. The grown cone is
-    // 15 mm wide at 21.856 mm above it (the samples on post 1's edge, 2 mm apart, at 15.033 mm:
-    // 21.913): post 1's layer with its top at z = 24 is the first to block it.
+    // Post 2's first deposit point (25, 5, 2) is 15 mm across from post 1. The grown cone
+    // (5 + (h - 10) tan 30 + 4 / cos 30) is 15 mm wide 19.320 mm above it (the samples on post 1's
+    // edge, 2 mm apart, at 15.033 mm: 19.377): post 1's layer with its top at z = 22 is the
+    // first to block it. Post 2 then goes up to z = 41 (it would block post 1's next layer, at
+    // 22, from z = 41.38 on) and post 1 finishes.
     std::vector<int> expected = {0};
-    for (int k = 0; k < 22; ++k) expected.push_back(1 + k);
+    for (int k = 0; k < 20; ++k) expected.push_back(1 + k);
     for (int k = 0; k < 40; ++k) expected.push_back(41 + k);
-    for (int k = 22; k < 40; ++k) expected.push_back(1 + k);
+    for (int k = 20; k < 40; ++k) expected.push_back(1 + k);
     EXPECT_EQ(s.layers, expected);
     EXPECT_TRUE(s.collisions.empty());
     EXPECT_EQ(s.component_switches, 3);
@@ -235,6 +242,28 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
         low.paths[0].paths[0].points[0].z() = 27 - 1e-9;
         EXPECT_EQ(mas::plan_build_sequence(input(low, {-1}, {0}), {}).collisions.size(), 1u);
     }
+}
+
+TEST(Nozzle, EverythingWithinTheMarginIsFound) {
+    // A nozzle of one diameter (radius 5) depositing at the origin along +Z, and a wall whose
+    // face lies d mm from its side, 20 to 60 mm up: found within the margin (2 mm), and past the
+    // near miss (4 sqrt 2 mm) not.
+    mas::NozzleParams straight;
+    straight.body_diameter_mm = straight.tip_diameter_mm = 10.0;
+    auto collides = [&](double d) {
+        Built b;
+        add_layer(b, 0, -Vector3d::UnitX(),
+                  {{5 + d, -10, 20}, {5 + d, 10, 20}, {5 + d, 10, 60}, {5 + d, -10, 60}}, 1.0,
+                  {{5 + d, 0, 40}});
+        add_square(b, 0, -5, -5, 5, 5, 0.0);
+        b.paths[1].paths[0].points = {{0, 0, 0}};
+        mas::NozzleParams no_plate = straight;
+        no_plate.check_plate = false;
+        return mas::plan_build_sequence(input(b, {-1}, {0}), no_plate).collisions.size();
+    };
+    for (double d : {-0.5, 0.0, 0.01, 1.0, 1.99, 2.0}) EXPECT_EQ(collides(d), 1u) << d;
+    EXPECT_EQ(collides(4.0 * std::sqrt(2.0) + 1e-9), 0u);
+    EXPECT_EQ(collides(10.0), 0u);
 }
 
 TEST(Nozzle, WaitsAndBadInput) {
@@ -391,6 +420,27 @@ TEST(Nozzle, SlicedPostsAreInterleavedWithoutCollisions) {
     for (std::string line; std::getline(program, line);)
         if (line.rfind("(layer ", 0) == 0) named.push_back(std::stoi(line.substr(7)));
     EXPECT_EQ(named, order);
+}
+
+// Posts 1.5 mm apart come within reach of each other's base, but neither rests on the other:
+// neither waits for the other, and they go up together without a collision (waiting for the
+// first post, the second's first layer would have the nozzle's tip meet it all the way up).
+TEST(Nozzle, NeighboursAPostDoesNotRestOnAreNotWaitedFor) {
+    using mas::test::box_mesh;
+    std::vector<mas::ComponentMesh> comps(3);
+    comps[0].mesh = box_mesh(-10, -10, 0, 60, 30, 5);
+    comps[0].base = {Vector3d::Zero(), Vector3d::UnitZ()};
+    comps[1].mesh = box_mesh(0, 0, 5, 10, 10, 40);
+    comps[2].mesh = box_mesh(11.5, 0, 5, 10, 10, 40);
+    for (int c : {1, 2}) {
+        comps[std::size_t(c)].parent = 0;
+        comps[std::size_t(c)].base = {Vector3d(0, 0, 5), Vector3d::UnitZ()};
+    }
+    mas::SlicePartParams params;
+    params.paths.bead_width_mm = 2.0;
+    const mas::SlicedPart part = mas::slice_components(comps, mas::CentroidalAxis(), params);
+    EXPECT_TRUE(part.sequence.collisions.empty());
+    EXPECT_GE(part.sequence.component_switches, 3);
 }
 
 }  // namespace

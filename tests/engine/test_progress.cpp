@@ -151,11 +151,14 @@ TEST(Progress, SlicingReportsEveryStageInOrderUpToOne) {
     // Every layer reports once as it is laid, besides the checks between candidate planes.
     EXPECT_GE(r.size(), sliced.layers.size());
     // The stages, in this order.
-    const std::vector<std::string> stages = {
-        "tessellating the components",  "ordering the components",
-        "slicing component 0 (1 of 3)", "slicing component",
-        "planning the bead paths",      "checking the nozzle against the layers",
-        "ordering the layers"};
+    const std::vector<std::string> stages = {"tessellating the components",
+                                             "ordering the components",
+                                             "slicing component 0 (1 of 3)",
+                                             "slicing component",
+                                             "planning the bead paths",
+                                             "finding what each component rests on",
+                                             "checking the nozzle against the layers",
+                                             "ordering the layers"};
     std::size_t at = 0;
     for (const std::string& stage : stages) {
         while (at < r.size() && r[at].second.rfind(stage, 0) != 0) ++at;

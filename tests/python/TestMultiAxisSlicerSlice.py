@@ -194,6 +194,12 @@ class TestSliceApi(SliceTest):
         self.assertEqual([layer.component for layer in result.layers], expected)
         first = result.layers[result.components[branch[0]]["first_layer"]]
         self.assertEqual(first.component, branch[0])
+        # It waits for the pipe above in the deposition sequence too: every layer of the
+        # component built before it is deposited before the branch's first.
+        start = result.sequence.index(result.components[branch[0]]["first_layer"])
+        self.assertEqual(sorted(result.layers[i].component for i in result.sequence[:start]),
+                         sorted(c for c in order[:-1]
+                                for _ in range(result.components[c]["layer_count"])))
         # Supported up to the two cuts' deflection along its outline (2 pi (10 + 8) mm long).
         self.assertLessEqual(first.unsupported_area, 2 * 3.141592653589793 * 18 * 0.02)
 
@@ -411,13 +417,17 @@ class TestSliceSequence(SliceTest):
         for c in range(len(result.components)):
             mine = [i for i in result.sequence if result.layers[i].component == c]
             self.assertEqual(mine, sorted(mine))
-        # The first post is left at least 10 mm (the standoff) below the second's first layer
-        # plus the height where its cone reaches across 10 mm: not before 20 mm.
+        # The first post is left just before its next layer would come into the nozzle grown
+        # by twice the margin at the second post's first layer: its outer contour runs 0.5 mm
+        # inside the post, 10.5 mm from the first, which the grown cone (5 + (h - 10) tan 30 +
+        # 4 / cos 30 mm across) reaches 11.526 mm above it.
         first_run = [i for i in result.sequence[:components.index(posts[1])]
                      if result.layers[i].component == posts[0]]
-        top = result.layers[first_run[-1]].origin.z
-        self.assertGreater(top, 20.0)
-        self.assertLess(top, 60.0)
+        base = result.layers[result.components[posts[1]]["first_layer"]].origin.z
+        reach = 10.0 + (10.5 - 5.0 - 4.0 / math.cos(math.radians(30))) / math.tan(
+            math.radians(30))
+        self.assertLess(result.layers[first_run[-1]].origin.z - base, reach)
+        self.assertGreaterEqual(result.layers[first_run[-1] + 1].origin.z - base, reach)
         # The program deposits them in that order, naming the layers by their index.
         program = result.gcode()
         named = [int(line.split()[1].rstrip(",")) for line in program.text.splitlines()
@@ -447,6 +457,8 @@ class TestSliceSequence(SliceTest):
         box = box_20_10_21()
         for error, text, kwargs in (
                 (ValueError, "nozzle_margin must be a positive", dict(nozzle_margin=0.0)),
+                (ValueError, r"nozzle_margin must be at most half nozzle_standoff \(5.0 mm\), "
+                             r"got 2.6", dict(nozzle_standoff=5.0, nozzle_margin=2.6)),
                 (ValueError, "nozzle_standoff must be 0 or more", dict(nozzle_standoff=-1.0)),
                 (ValueError, r"nozzle_body_diameter must be at least nozzle_tip_diameter "
                              r"\(10.0 mm\), got 8.0", dict(nozzle_body_diameter=8.0)),

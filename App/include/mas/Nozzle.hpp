@@ -16,10 +16,12 @@
 //   deposit paths (every point of every segment), comes within margin_mm of y's prism. y's
 //   surface is sampled so that every point of it lies within margin_mm of a sample (its outline
 //   at its top, its bottom and levels between, its top and bottom faces on a grid), and a sample
-//   counts when it lies in the nozzle grown by margin_mm (heights standoff - margin to the body's
-//   end + margin, radius R(h) + margin (1 + tan cone_angle)). So every collision is found, and a
-//   reported one comes within near_miss_mm(params) = margin sqrt(1 + (1 + tan cone_angle)^2) of
-//   the nozzle. With the plate: the nozzle's lowest point comes within margin_mm of it.
+//   counts when it lies in the nozzle grown by g = 2 margin_mm (heights standoff - g to the
+//   body's end + g, radius R(h) + g / cos(cone_angle), which holds every point within g of the
+//   nozzle). So every collision is found, and a reported one comes within near_miss_mm(params) =
+//   g sqrt(1 + 1 / cos^2(cone_angle)) of the nozzle (6.1 mm at the defaults). The standoff must
+//   be at least g, or the tip would meet the layer it deposits on. The plate is exact: the
+//   nozzle's lowest point comes within margin_mm of it.
 // - The order (Sec. 4.2.3: a child waits for its father; brothers switch when a collision would
 //   occur, "discontinued just before a collision happens"). A component starts once its father and
 //   every component it must wait for (`waits_for`: the earlier components its first layer rests
@@ -29,7 +31,7 @@
 //   block is still to come; otherwise, of the components that may go on, the first in
 //   `start_order` whose next layer blocks nothing to come. When none may go on (the constraints
 //   form a cycle), the next layer that blocks the fewest layers to come is taken (then the first
-//   in `start_order`): those layers collide.
+//   in `start_order`): those layers collide. (A heuristic: another order might leave fewer.)
 // - A layer whose nozzle meets its own component's earlier layers, an ancestor's or one it waits
 //   for collides whatever the order; so does one whose nozzle meets the plate. Each colliding
 //   layer is reported once, with one obstacle: the plate, else the lowest-numbered layer.
@@ -52,7 +54,7 @@ struct NozzleParams {
     double cone_angle_deg = 30.0;    // half-angle of the tip's cone; in (0, 90) unless no cone
     double body_diameter_mm = 50.0;  // the body's cylinder
     double body_length_mm = 200.0;   // > 0
-    double margin_mm = 2.0;          // clearance the nozzle keeps from deposited material; > 0
+    double margin_mm = 2.0;          // clearance kept from deposited material; > 0, <= standoff / 2
     bool check_plate = true;         // the build plate is an obstacle too
 };
 

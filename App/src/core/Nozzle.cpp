@@ -21,26 +21,37 @@ using Eigen::Vector3d;
 
 constexpr double kPi = 3.14159265358979323846;
 
-double tan_cone(const NozzleParams& p) {
-    return cone_length(p) > 0.0 ? std::tan(p.cone_angle_deg * kPi / 180.0) : 0.0;
-}
+// The nozzle's shape in numbers, worked out once.
+struct Shape {
+    double standoff, tip, body;  // heights from the deposit point; radii
+    double tan = 0.0;            // of the cone's half-angle (0: no cone)
+    double cone_end, top;        // heights where the cone meets the body, and the body ends
+    double grow;                 // 2 x margin: the samples' spacing plus the margin kept
+    double grow_radially;        // grow / cos(cone angle): see grown()
 
-// The nozzle's radius `h` along its axis from the deposit point, h within its length.
-double radius_at(const NozzleParams& p, double h) {
-    const double tip = 0.5 * p.tip_diameter_mm, body = 0.5 * p.body_diameter_mm;
-    return std::min(body, tip + std::max(0.0, h - p.standoff_mm) * tan_cone(p));
-}
-
-double nozzle_top(const NozzleParams& p) {
-    return p.standoff_mm + cone_length(p) + p.body_length_mm;
-}
-
-// The grown nozzle's radius at height h above its deposit point; negative outside its heights.
-double grown_radius(const NozzleParams& p, double h) {
-    const double m = p.margin_mm, top = nozzle_top(p);
-    if (h < p.standoff_mm - m || h > top + m) return -1.0;
-    return radius_at(p, std::clamp(h, p.standoff_mm, top)) + m * (1.0 + tan_cone(p));
-}
+    explicit Shape(const NozzleParams& p)
+        : standoff(p.standoff_mm),
+          tip(0.5 * p.tip_diameter_mm),
+          body(0.5 * p.body_diameter_mm),
+          grow(2.0 * p.margin_mm) {
+        const double cone = cone_length(p);
+        if (cone > 0.0) tan = std::tan(p.cone_angle_deg * kPi / 180.0);
+        cone_end = standoff + cone;
+        top = cone_end + p.body_length_mm;
+        grow_radially = grow * std::sqrt(1.0 + tan * tan);
+    }
+    // The radius at height h along the axis, h within the nozzle.
+    double radius(double h) const {
+        return std::min(body, tip + std::max(0.0, h - standoff) * tan);
+    }
+    // The radius of the nozzle grown by `grow` at height h: every point within `grow` of the
+    // nozzle lies within it. (Off the cone's side by d, a point is d / cos further out and no
+    // lower than d below; past the ends, d up or down and d out.) Negative outside its heights.
+    double grown(double h) const {
+        if (h < standoff - grow || h > top + grow) return -1.0;
+        return radius(std::clamp(h, standoff, top)) + grow_radially;
+    }
+};
 
 // Points every point of a layer's prism lies within `spacing` of (see Nozzle.hpp).
 std::vector<Vector3d> prism_samples(const Layer& layer, double spacing) {
@@ -49,7 +60,12 @@ std::vector<Vector3d> prism_samples(const Layer& layer, double spacing) {
     const PlaneFrame top_frame(n), bottom_frame(layer.lower.normal);
     const double cos_tilt = std::max(0.05, std::abs(n.dot(layer.lower.normal)));
     const double along = spacing * cos_tilt;  // an edge's image on the lower plane is longer
-    const int levels = std::max(1, int(std::ceil(layer.max_thickness_mm / spacing)));
+    // The thickness is affine over the plane: greatest at a corner of the region.
+    double deepest = layer.max_thickness_mm;
+    for (const Region2& region : layer.regions)
+        for (const Eigen::Vector2d& q : region.outer.points)
+            deepest = std::max(deepest, layer.thickness_at(top_frame.to_3d(q, layer.plane)));
+    const int levels = std::max(1, int(std::ceil(deepest / spacing)));
     auto down = [&](const Vector3d& top, double fraction) {
         return Vector3d(top - fraction * layer.thickness_at(top) * n);
     };
@@ -230,6 +246,12 @@ void validate(const NozzleParams& p) {
         fail("the nozzle's cone angle must be a number", p.cone_angle_deg);
     if (!(p.margin_mm > 0.0) || !finite(p.margin_mm))
         fail("the nozzle's margin must be > 0 mm", p.margin_mm);
+    // The check grows the nozzle by twice the margin (see Nozzle.hpp): a tip closer than that
+    // would meet the layer it deposits on.
+    if (!(p.standoff_mm >= 2.0 * p.margin_mm))
+        fail("the nozzle's margin must be at most half its standoff (" +
+                 format_number(p.standoff_mm) + " mm)",
+             p.margin_mm);
 }
 
 double cone_length(const NozzleParams& p) {
@@ -238,14 +260,15 @@ double cone_length(const NozzleParams& p) {
 }
 
 double near_miss_mm(const NozzleParams& p) {
-    return p.margin_mm * std::hypot(1.0, 1.0 + tan_cone(p));
+    const Shape shape(p);
+    return std::hypot(shape.grow, shape.grow_radially);
 }
 
 bool in_grown_nozzle(const NozzleParams& p, const Vector3d& tip, const Vector3d& axis,
                      const Vector3d& point) {
     const Vector3d d = point - tip;
     const double h = axis.dot(d);
-    const double r = grown_radius(p, h);
+    const double r = Shape(p).grown(h);
     return r >= 0.0 && (d - h * axis).squaredNorm() <= r * r;
 }
 
@@ -302,16 +325,63 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     if (in.start_order.size() != comps) bad("the start order must name every component once");
 
     // The pairs: each layer x against every layer y that may lie in its nozzle.
-    const double m = params.margin_mm, top = nozzle_top(params);
-    const double reach = 0.5 * params.body_diameter_mm + m * (1.0 + tan_cone(params));
+    const Shape shape(params);
+    const double m = params.margin_mm;
+    const double reach = shape.body + shape.grow_radially;  // of the grown nozzle, sideways
     std::vector<LayerBounds> bounds(count);
     for (std::size_t i = 0; i < count; ++i) bounds[i] = layer_bounds(layers[i]);
+    // Each layer's samples, made when first needed and kept while they fit a budget (a large
+    // part's would not all fit in memory): past it, all are dropped and made again as needed.
+    constexpr std::size_t kSampleBudget = 4000000;
     std::vector<std::unique_ptr<std::vector<Vector3d>>> samples(count);
+    std::size_t sampled = 0;
+    auto samples_of = [&](std::size_t y) -> const std::vector<Vector3d>& {
+        if (!samples[y]) {
+            if (sampled > kSampleBudget) {
+                for (auto& kept : samples) kept.reset();
+                sampled = 0;
+            }
+            samples[y] = std::make_unique<std::vector<Vector3d>>(prism_samples(layers[y], m));
+            sampled += samples[y]->size();
+        }
+        return *samples[y];
+    };
+    // Whether layer y's prism lies in x's grown nozzle (`sweep` is x's): where, if it does.
+    auto meets = [&](const Sweep& sweep, std::size_t x, std::size_t y) -> std::optional<Conflict> {
+        const Vector3d n = sweep.frame().normal;
+        const LayerBounds& b = bounds[y];
+        if (b.corners.empty()) return std::nullopt;
+        const double centre_h = n.dot(b.centre) - sweep.height();
+        if (centre_h + b.radius < shape.standoff - shape.grow ||
+            centre_h - b.radius > shape.top + shape.grow)
+            return std::nullopt;
+        if (sweep.box().exteriorDistance(sweep.frame().to_2d(b.centre)) > b.radius + reach)
+            return std::nullopt;
+        // The prism lies within its corners' hull: below the tip, or off to the side, it misses.
+        double highest = -std::numeric_limits<double>::infinity();
+        Eigen::AlignedBox2d across;
+        for (const Vector3d& p : b.corners) {
+            highest = std::max(highest, n.dot(p));
+            across.extend(sweep.frame().to_2d(p));
+        }
+        if (highest - sweep.height() < shape.standoff - shape.grow) return std::nullopt;
+        const Eigen::Array2d gap = (across.min() - sweep.box().max())
+                                       .array()
+                                       .max((sweep.box().min() - across.max()).array())
+                                       .max(0.0);
+        if (gap.matrix().norm() > reach) return std::nullopt;
+        for (const Vector3d& q : samples_of(y)) {
+            const double r = shape.grown(n.dot(q) - sweep.height());
+            if (r < 0.0) continue;
+            if (auto at = sweep.near(sweep.frame().to_2d(q), r))
+                return Conflict{int(x), int(y), *at, q};
+        }
+        return std::nullopt;
+    };
     const Vector3d up = in.plate.normal.normalized();
     std::vector<std::optional<Conflict>> forced(count);  // the plate, or the first unavoidable
-    std::vector<Conflict> free_conflicts;                // x before y, of unrelated components
-    std::vector<std::vector<int>> blocks(count);         // x -> its free conflicts
-    std::vector<int> pending(count, 0);                  // y: free conflicts with x still to come
+    std::vector<std::vector<int>> blocks(count);         // x -> the layers y to come after it
+    std::vector<int> pending(count, 0);                  // y: layers x to come before it, left
     const Progress pairs = progress.span(0.0, 0.95, "checking the nozzle against the layers");
     for (std::size_t x = 0; x < count; ++x) {
         pairs(double(x) / double(std::max<std::size_t>(count, 1)));
@@ -321,14 +391,14 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         const int cx = layers[x].component;
         if (params.check_plate) {
             // The nozzle's lowest point: on the rim of the tip's face, where the cone meets the
-            // body, or of the body's end.
+            // body, or of the body's end (the plate is exact: the margin is kept, not grown).
             const double side = std::sqrt(std::max(0.0, 1.0 - n.dot(up) * n.dot(up)));
             Vector3d sideways = up - n.dot(up) * n;  // towards up, across the axis
             sideways = sideways.norm() > 1e-12 ? sideways.normalized() : Vector3d::Zero();
             double lowest = std::numeric_limits<double>::infinity();
             Vector3d offset = Vector3d::Zero();
-            for (double h : {params.standoff_mm, params.standoff_mm + cone_length(params), top}) {
-                const double r = radius_at(params, h);
+            for (double h : {shape.standoff, shape.cone_end, shape.top}) {
+                const double r = shape.radius(h);
                 const double z = h * n.dot(up) - r * side;
                 if (z < lowest) {
                     lowest = z;
@@ -360,33 +430,12 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
                 unavoidable = false;
             }
             if (unavoidable && forced[x]) continue;  // one obstacle per layer is reported
-            const LayerBounds& b = bounds[y];
-            if (b.corners.empty()) continue;
-            const double centre_h = n.dot(b.centre) - sweep.height();
-            if (centre_h + b.radius < params.standoff_mm - m || centre_h - b.radius > top + m)
-                continue;
-            if (sweep.box().exteriorDistance(sweep.frame().to_2d(b.centre)) > b.radius + reach)
-                continue;
-            double highest = -std::numeric_limits<double>::infinity();
-            for (const Vector3d& p : b.corners) highest = std::max(highest, n.dot(p));
-            if (highest - sweep.height() < params.standoff_mm - m) continue;
-            if (!samples[y])
-                samples[y] = std::make_unique<std::vector<Vector3d>>(prism_samples(layers[y], m));
-            std::optional<Conflict> found;
-            for (const Vector3d& q : *samples[y]) {
-                const double r = grown_radius(params, n.dot(q) - sweep.height());
-                if (r < 0.0) continue;
-                if (auto at = sweep.near(sweep.frame().to_2d(q), r)) {
-                    found = Conflict{int(x), int(y), *at, q};
-                    break;
-                }
-            }
+            const std::optional<Conflict> found = meets(sweep, x, y);
             if (!found) continue;
             if (unavoidable) {
                 forced[x] = found;
             } else {
-                blocks[x].push_back(int(free_conflicts.size()));
-                free_conflicts.push_back(*found);
+                blocks[x].push_back(int(y));
                 ++pending[y];
             }
         }
@@ -453,8 +502,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         const int x = of[c][next[c]++];
         position[std::size_t(x)] = int(out.layers.size());
         out.layers.push_back(x);
-        for (int k : blocks[std::size_t(x)])
-            --pending[std::size_t(free_conflicts[std::size_t(k)].y)];
+        for (int y : blocks[std::size_t(x)]) --pending[std::size_t(y)];
         if (complete(c)) {
             open.erase(std::find(open.begin(), open.end(), pick));
             for (int s : successors[c])
@@ -463,13 +511,18 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     }
     for (std::size_t c = 0; c < comps; ++c) out.interrupted_components += left[c];
 
-    // The collisions: per layer, the plate, else the obstacle of lowest index deposited before it.
+    // The collisions: per layer, the plate, else the obstacle of lowest index deposited before it
+    // (the one met whatever the order, or one it was put after all the same).
     std::vector<std::optional<Conflict>> worst = forced;
-    for (const Conflict& k : free_conflicts)
-        if (position[std::size_t(k.y)] < position[std::size_t(k.x)] &&
-            (!worst[std::size_t(k.x)] ||
-             (worst[std::size_t(k.x)]->y >= 0 && k.y < worst[std::size_t(k.x)]->y)))
-            worst[std::size_t(k.x)] = k;
+    std::vector<int> late(count, -1);  // per x: the lowest such y, where to find the points
+    for (std::size_t x = 0; x < count; ++x)
+        for (int y : blocks[x])
+            if (position[std::size_t(y)] < position[x] && (late[x] < 0 || y < late[x])) late[x] = y;
+    for (std::size_t x = 0; x < count; ++x) {
+        if (late[x] < 0 || (worst[x] && (worst[x]->y < 0 || worst[x]->y < late[x]))) continue;
+        const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
+        worst[x] = meets(sweep, x, std::size_t(late[x]));
+    }
     for (int x : out.layers)
         if (worst[std::size_t(x)]) {
             const Conflict& k = *worst[std::size_t(x)];

@@ -257,18 +257,39 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     sequence.plate = components.front().base;
     sequence.parent.resize(components.size());
     sequence.waits_for.resize(components.size());
+    // A component waits for its father, and for the earlier components its first layer rests on:
+    // those whose mesh reaching its base leaves less of it unsupported than its father alone
+    // (a tee's branch and the pipe above the junction); not for a neighbour that merely comes
+    // near (two posts side by side, which may then go up together).
     const BaseReach reaches_base(components, params.layers);
+    const Progress waits = progress.span(0.9, 0.92, "finding what each component rests on");
     for (std::size_t k = 0; k < out.build_order.size(); ++k) {
+        waits(double(k) / double(out.build_order.size()));
         const std::size_t c = std::size_t(out.build_order[k]);
-        sequence.parent[c] = components[c].parent;
+        const int father = components[c].parent;
+        sequence.parent[c] = father;
+        if (father < 0) continue;
+        const std::vector<const TriangleMesh*> below = {&components[std::size_t(father)].mesh};
+        std::optional<BaseSupport> alone;
+        double tolerance = 0.0;
         for (std::size_t e = 0; e < k; ++e) {
             const int earlier = out.build_order[e];
-            if (earlier != components[c].parent && reaches_base(std::size_t(earlier), c))
+            if (earlier == father || !reaches_base(std::size_t(earlier), c)) continue;
+            if (!alone) {
+                alone = base_support(components[c].mesh, components[c].base, below, params.layers);
+                tolerance = negligible_unsupported_mm2(alone->footprint_area_mm2);
+            }
+            if (alone->unsupported_area_mm2 <= tolerance) break;  // the father carries it all
+            std::vector<const TriangleMesh*> with = below;
+            with.push_back(&components[std::size_t(earlier)].mesh);
+            const BaseSupport b =
+                base_support(components[c].mesh, components[c].base, with, params.layers);
+            if (b.unsupported_area_mm2 < alone->unsupported_area_mm2 - tolerance)
                 sequence.waits_for[c].push_back(earlier);
         }
     }
     out.sequence = plan_build_sequence(sequence, params.nozzle,
-                                       progress.span(0.9, 1.0, "ordering the layers"));
+                                       progress.span(0.92, 1.0, "ordering the layers"));
     // The paths were planned in the layers' order: each layer's first travel starts where the
     // layer before it in the sequence ends instead (the layer's own paths stay as planned).
     has_head = false;

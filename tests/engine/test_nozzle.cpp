@@ -200,6 +200,22 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
         EXPECT_TRUE(mas::in_grown_nozzle({}, Vector3d(5, 5, 2), Vector3d::UnitZ(), q));
     }
     {
+        // Of two layers in the way, the one coming deeper into the nozzle is reported: a square
+        // 7 mm across, grazed by the cone's side, and a smaller one right above on the axis.
+        Built b;
+        add_square(b, 0, 12, 0, 22, 10, 31.0);
+        add_square(b, 0, 3, 3, 7, 7, 41.0);
+        add_square(b, 0, 0, 0, 10, 10, 2.0);
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        ASSERT_EQ(s.collisions.size(), 1u);
+        EXPECT_EQ(s.collisions[0].layer, 2);
+        EXPECT_EQ(s.collisions[0].obstacle_layer, 1);  // not the lower-numbered graze
+        // Its deepest sample: on the axis (the face grid's middle), over the deposit point.
+        EXPECT_EQ(s.collisions[0].nozzle_at, Vector3d(5, 5, 2));
+        const Vector3d q = s.collisions[0].obstacle;
+        EXPECT_NEAR(std::hypot(q.x() - 5, q.y() - 5), 0.0, 1e-9) << q.transpose();
+    }
+    {
         // Two layers facing each other 20 mm apart, each in the other's nozzle: a cycle. The
         // first in the start order goes first, and the second collides with it.
         Built b;

@@ -34,7 +34,8 @@
 //   in `start_order`): those layers collide. (A heuristic: another order might leave fewer.)
 // - A layer whose nozzle meets its own component's earlier layers, an ancestor's or one it waits
 //   for collides whatever the order; so does one whose nozzle meets the plate. Each colliding
-//   layer is reported once, with one obstacle: the plate, else the lowest-numbered layer.
+//   layer is reported once, with one obstacle: the plate, else the layer that comes deepest into
+//   its grown nozzle (the most any of its samples lies inside the radius), at that sample.
 #pragma once
 #include <Eigen/Core>
 #include <vector>

@@ -155,9 +155,16 @@ public:
     const Eigen::AlignedBox2d& box() const { return box_; }
     const std::vector<Segment>& segments() const { return segments_; }
 
-    // A deposit point within `r` of `q` (2-D), in 3-D; nullopt when none is.
-    std::optional<Vector3d> near(const Vector2d& q, double r) const {
+    // A deposit point within `r` of `q` (2-D), in 3-D, and its distance: the first found, or
+    // with `nearest` the nearest; nullopt when none is.
+    struct Hit {
+        Vector3d at;
+        double distance;
+    };
+    std::optional<Hit> near(const Vector2d& q, double r, bool nearest = false) const {
         if (segments_.empty() || box_.exteriorDistance(q) > r) return std::nullopt;
+        std::optional<Hit> best;
+        double limit = r * r;
         const auto [i0, j0] = cell_of(q - Vector2d::Constant(r));
         const auto [i1, j1] = cell_of(q + Vector2d::Constant(r));
         for (int i = i0; i <= i1; ++i)
@@ -168,10 +175,13 @@ public:
                     const double len2 = d.squaredNorm();
                     const double t =
                         len2 > 0.0 ? std::clamp((q - seg.a).dot(d) / len2, 0.0, 1.0) : 0.0;
-                    if ((seg.a + t * d - q).squaredNorm() <= r * r)
-                        return Vector3d(seg.a3 + t * (seg.b3 - seg.a3));
+                    const double d2 = (seg.a + t * d - q).squaredNorm();
+                    if (d2 > limit) continue;
+                    best = Hit{Vector3d(seg.a3 + t * (seg.b3 - seg.a3)), std::sqrt(d2)};
+                    if (!nearest) return best;
+                    limit = d2;
                 }
-        return std::nullopt;
+        return best;
     }
 
 private:
@@ -373,15 +383,34 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         for (const Vector3d& q : samples_of(y)) {
             const double r = shape.grown(n.dot(q) - sweep.height());
             if (r < 0.0) continue;
-            if (auto at = sweep.near(sweep.frame().to_2d(q), r))
-                return Conflict{int(x), int(y), *at, q};
+            if (const auto hit = sweep.near(sweep.frame().to_2d(q), r))
+                return Conflict{int(x), int(y), hit->at, q};
         }
         return std::nullopt;
     };
+    // How deep layer y's prism comes into x's grown nozzle: the most any sample lies inside its
+    // radius, with that sample and the deposit point nearest it (y is known to be in it).
+    auto deepest = [&](const Sweep& sweep, std::size_t x, std::size_t y) {
+        const Vector3d n = sweep.frame().normal;
+        double depth = -std::numeric_limits<double>::infinity();
+        Conflict where{int(x), int(y), Vector3d::Zero(), Vector3d::Zero()};
+        for (const Vector3d& q : samples_of(y)) {
+            const double r = shape.grown(n.dot(q) - sweep.height());
+            if (r < 0.0) continue;
+            if (const auto hit = sweep.near(sweep.frame().to_2d(q), r, true))
+                if (r - hit->distance > depth) {
+                    depth = r - hit->distance;
+                    where.at = hit->at;
+                    where.obstacle = q;
+                }
+        }
+        return std::make_pair(depth, where);
+    };
     const Vector3d up = in.plate.normal.normalized();
-    std::vector<std::optional<Conflict>> forced(count);  // the plate, or the first unavoidable
-    std::vector<std::vector<int>> blocks(count);         // x -> the layers y to come after it
-    std::vector<int> pending(count, 0);                  // y: layers x to come before it, left
+    std::vector<std::optional<Conflict>> plate(count);    // where x's nozzle meets the plate
+    std::vector<std::vector<int>> unavoidable_of(count);  // x -> the layers y met whatever
+    std::vector<std::vector<int>> blocks(count);          // x -> the layers y to come after it
+    std::vector<int> pending(count, 0);                   // y: layers x to come before it, left
     const Progress pairs = progress.span(0.0, 0.95, "checking the nozzle against the layers");
     for (std::size_t x = 0; x < count; ++x) {
         pairs(double(x) / double(std::max<std::size_t>(count, 1)));
@@ -407,12 +436,12 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             }
             for (const Segment& s : sweep.segments()) {
                 for (const Vector3d& p : {s.a3, s.b3})
-                    if (!forced[x] && up.dot(p - in.plate.origin) + lowest < m) {
+                    if (!plate[x] && up.dot(p - in.plate.origin) + lowest < m) {
                         const Vector3d low = p + offset;
-                        forced[x] =
+                        plate[x] =
                             Conflict{int(x), -1, p, low - up.dot(low - in.plate.origin) * up};
                     }
-                if (forced[x]) break;
+                if (plate[x]) break;
             }
         }
         for (std::size_t y = 0; y < count; ++y) {
@@ -429,11 +458,12 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             } else {
                 unavoidable = false;
             }
-            if (unavoidable && forced[x]) continue;  // one obstacle per layer is reported
-            const std::optional<Conflict> found = meets(sweep, x, y);
-            if (!found) continue;
+            // The plate is reported before any layer: whichever layers it meets whatever the
+            // order need not be known.
+            if (unavoidable && plate[x]) continue;
+            if (!meets(sweep, x, y)) continue;
             if (unavoidable) {
-                forced[x] = found;
+                unavoidable_of[x].push_back(int(y));
             } else {
                 blocks[x].push_back(int(y));
                 ++pending[y];
@@ -511,17 +541,25 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     }
     for (std::size_t c = 0; c < comps; ++c) out.interrupted_components += left[c];
 
-    // The collisions: per layer, the plate, else the obstacle of lowest index deposited before it
-    // (the one met whatever the order, or one it was put after all the same).
-    std::vector<std::optional<Conflict>> worst = forced;
-    std::vector<int> late(count, -1);  // per x: the lowest such y, where to find the points
-    for (std::size_t x = 0; x < count; ++x)
-        for (int y : blocks[x])
-            if (position[std::size_t(y)] < position[x] && (late[x] < 0 || y < late[x])) late[x] = y;
+    // The collisions: per layer, the plate, else of the layers it meets (whatever the order, or
+    // put before it all the same) the one that comes deepest into its nozzle.
+    std::vector<std::optional<Conflict>> worst = plate;
     for (std::size_t x = 0; x < count; ++x) {
-        if (late[x] < 0 || (worst[x] && (worst[x]->y < 0 || worst[x]->y < late[x]))) continue;
+        if (worst[x]) continue;
+        std::vector<int> met = unavoidable_of[x];
+        for (int y : blocks[x])
+            if (position[std::size_t(y)] < position[x]) met.push_back(y);
+        if (met.empty()) continue;
+        std::sort(met.begin(), met.end());
         const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
-        worst[x] = meets(sweep, x, std::size_t(late[x]));
+        double depth = -std::numeric_limits<double>::infinity();
+        for (int y : met) {
+            const auto [d, where] = deepest(sweep, x, std::size_t(y));
+            if (d > depth) {
+                depth = d;
+                worst[x] = where;
+            }
+        }
     }
     for (int x : out.layers)
         if (worst[std::size_t(x)]) {

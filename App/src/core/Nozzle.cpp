@@ -129,6 +129,8 @@ public:
                 segments_.push_back({frame_.to_2d(a3), frame_.to_2d(b3), a3, b3});
                 box_.extend(segments_.back().a);
                 box_.extend(segments_.back().b);
+                box3_.extend(a3);
+                box3_.extend(b3);
             }
         }
         if (segments_.empty()) return;
@@ -153,6 +155,7 @@ public:
     const PlaneFrame& frame() const { return frame_; }
     double height() const { return height_; }  // the plane's, along the tool axis
     const Eigen::AlignedBox2d& box() const { return box_; }
+    const Eigen::AlignedBox3d& box3() const { return box3_; }  // of the deposit points
     const std::vector<Segment>& segments() const { return segments_; }
 
     // A deposit point within `r` of `q` (2-D), in 3-D, and its distance: the first found, or
@@ -196,6 +199,7 @@ private:
     double height_ = 0.0;
     std::vector<Segment> segments_;
     Eigen::AlignedBox2d box_;
+    Eigen::AlignedBox3d box3_;
     double cell_ = 1.0;
     int columns_ = 1;
     std::vector<std::vector<int>> bins_;
@@ -208,6 +212,7 @@ struct Conflict {
 
 // What is cheap to know of every layer: a sphere round its prism and its prism's corners.
 struct LayerBounds {
+    Eigen::AlignedBox3d box;
     Vector3d centre = Vector3d::Zero();
     double radius = 0.0;
     std::vector<Vector3d> corners;  // every outline point at its top and bottom
@@ -226,6 +231,7 @@ LayerBounds layer_bounds(const Layer& layer) {
                 box.extend(b.corners.back());
             }
     if (b.corners.empty()) return b;
+    b.box = box;
     b.centre = box.center();
     for (const Vector3d& p : b.corners) b.radius = std::max(b.radius, (p - b.centre).norm());
     return b;
@@ -339,7 +345,28 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     const double m = params.margin_mm;
     const double reach = shape.body + shape.grow_radially;  // of the grown nozzle, sideways
     std::vector<LayerBounds> bounds(count);
-    for (std::size_t i = 0; i < count; ++i) bounds[i] = layer_bounds(layers[i]);
+    std::vector<Eigen::AlignedBox3d> component_box(comps);  // of its layers' prisms
+    for (std::size_t i = 0; i < count; ++i) {
+        bounds[i] = layer_bounds(layers[i]);
+        if (!bounds[i].corners.empty())
+            component_box[std::size_t(layers[i].component)].extend(bounds[i].box);
+    }
+    // The box holding x's grown nozzle anywhere along its deposit paths: the grown nozzle lies in
+    // the hull of its rims (its radius never shrinks along it).
+    auto sweep_box = [&](const Sweep& sweep) {
+        const Vector3d n = sweep.frame().normal;
+        const Vector3d across = (Vector3d::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();
+        Eigen::AlignedBox3d nozzle;
+        for (const auto& [h, r] :
+             {std::pair{shape.standoff - shape.grow, shape.tip + shape.grow_radially},
+              std::pair{shape.cone_end, shape.body + shape.grow_radially},
+              std::pair{shape.top + shape.grow, shape.body + shape.grow_radially}}) {
+            nozzle.extend(Vector3d(h * n - r * across));
+            nozzle.extend(Vector3d(h * n + r * across));
+        }
+        return Eigen::AlignedBox3d(sweep.box3().min() + nozzle.min(),
+                                   sweep.box3().max() + nozzle.max());
+    };
     // Each layer's samples, made when first needed and kept while they fit a budget (a large
     // part's would not all fit in memory): past it, all are dropped and made again as needed.
     constexpr std::size_t kSampleBudget = 4000000;
@@ -444,9 +471,15 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
                 if (plate[x]) break;
             }
         }
+        const Eigen::AlignedBox3d reachable = sweep_box(sweep);
         for (std::size_t y = 0; y < count; ++y) {
             if (y == x) continue;
             const int cy = layers[y].component;
+            if (!component_box[std::size_t(cy)].intersects(reachable)) {
+                y = std::size_t(of[std::size_t(cy)].back());  // none of its layers: the next
+                continue;
+            }
+            if (bounds[y].corners.empty() || !bounds[y].box.intersects(reachable)) continue;
             bool unavoidable;
             if (cx == cy) {
                 if (y > x) continue;

@@ -105,8 +105,14 @@ TEST(Nozzle, ShapeAndGrowth) {
     EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(9.0, 5.0 + grow + e)));
     EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(20.0, 5.0 + 10 * kTan30 + grow - e)));
     EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(20.0, 5.0 + 10 * kTan30 + grow + e)));
-    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(cone_end + 50, 25.0 + grow - e)));
-    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(cone_end + 50, 25.0 + grow + e)));
+    // The body's, and the cone's near it, grow by 4 alone: the nozzle is no wider than its body.
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(cone_end + 50, 29.0 - e)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(cone_end + 50, 29.0 + e)));
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(cone_end - 1, 29.0 - e)));
+    EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, at(cone_end - 1, 29.0 + e)));
+    EXPECT_TRUE(mas::in_grown_nozzle(p, tip, axis, at(cone_end - 10, 25 - 10 * kTan30 + grow - e)));
+    EXPECT_FALSE(
+        mas::in_grown_nozzle(p, tip, axis, at(cone_end - 10, 25 - 10 * kTan30 + grow + e)));
     // Nothing below the standoff: the deposit point's own neighbourhood is free.
     EXPECT_FALSE(mas::in_grown_nozzle(p, tip, axis, tip));
     // A nozzle of one diameter has no cone and grows by twice the margin all round.
@@ -214,6 +220,19 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
         EXPECT_EQ(s.collisions[0].nozzle_at, Vector3d(5, 5, 2));
         const Vector3d q = s.collisions[0].obstacle;
         EXPECT_NEAR(std::hypot(q.x() - 5, q.y() - 5), 0.0, 1e-9) << q.transpose();
+    }
+    {
+        // A near miss under the tip's face (3.5 mm below it, in the grown band) and a square
+        // cutting 1 mm into the body: the one inside the nozzle is reported.
+        Built b;
+        add_square(b, 0, 3, 3, 7, 7, 8.5);
+        add_square(b, 0, 29, 0, 39, 10, 60.0);
+        add_square(b, 0, 0, 0, 10, 10, 2.0);
+        b.paths[2].paths[0].points = {{5, 5, 2}};
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        ASSERT_EQ(s.collisions.size(), 1u);
+        EXPECT_EQ(s.collisions[0].obstacle_layer, 1);
+        EXPECT_NEAR(s.collisions[0].obstacle.x(), 29.0, 1e-9);
     }
     {
         // Two layers facing each other 20 mm apart, each in the other's nozzle: a cycle. The

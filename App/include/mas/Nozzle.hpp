@@ -17,11 +17,12 @@
 //   surface is sampled so that every point of it lies within margin_mm of a sample (its outline
 //   at its top, its bottom and levels between, its top and bottom faces on a grid), and a sample
 //   counts when it lies in the nozzle grown by g = 2 margin_mm (heights standoff - g to the
-//   body's end + g, radius R(h) + g / cos(cone_angle), which holds every point within g of the
-//   nozzle). So every collision is found, and a reported one comes within near_miss_mm(params) =
-//   g sqrt(1 + 1 / cos^2(cone_angle)) of the nozzle (6.1 mm at the defaults). The standoff must
-//   be at least g, or the tip would meet the layer it deposits on. The plate is exact: the
-//   nozzle's lowest point comes within margin_mm of it.
+//   body's end + g, radius R(h) + g / cos(cone_angle) but no more than the body's + g, which
+//   holds every point within g of the nozzle). So every collision is found, and a reported one
+//   comes within near_miss_mm(params) = g sqrt(1 + 1 / cos^2(cone_angle)) of the nozzle (6.1 mm at
+//   the defaults). The standoff must be at least g, or the grown tip would reach into the layer it
+//   deposits on.
+//   The plate is exact: the nozzle's lowest point comes within margin_mm of it.
 // - The order (Sec. 4.2.3: a child waits for its father; brothers switch when a collision would
 //   occur, "discontinued just before a collision happens"). A component starts once its father and
 //   every component it must wait for (`waits_for`: the earlier components its first layer rests
@@ -35,7 +36,8 @@
 // - A layer whose nozzle meets its own component's earlier layers, an ancestor's or one it waits
 //   for collides whatever the order; so does one whose nozzle meets the plate. Each colliding
 //   layer is reported once, with one obstacle: the plate, else the layer that comes deepest into
-//   its grown nozzle (the most any of its samples lies inside the radius), at that sample.
+//   the nozzle itself (the least signed distance from the nozzle's surface, negative inside, of
+//   any of its samples over the deposit point nearest it), at that sample and point.
 #pragma once
 #include <Eigen/Core>
 #include <vector>

@@ -47,9 +47,26 @@ struct Shape {
     // The radius of the nozzle grown by `grow` at height h: every point within `grow` of the
     // nozzle lies within it. (Off the cone's side by d, a point is d / cos further out and no
     // lower than d below; past the ends, d up or down and d out.) Negative outside its heights.
+    // (Never past body + grow: the whole nozzle lies within the body's radius.)
     double grown(double h) const {
         if (h < standoff - grow || h > top + grow) return -1.0;
-        return radius(std::clamp(h, standoff, top)) + grow_radially;
+        return std::min(radius(std::clamp(h, standoff, top)) + grow_radially, body + grow);
+    }
+    // The signed distance of a point `rho` off the axis at height h from the nozzle's surface:
+    // negative inside (how deep), positive outside.
+    double clearance(double rho, double h) const {
+        auto to_edge = [&](double r0, double h0, double r1, double h1) {
+            const Eigen::Vector2d a(r0, h0), d(r1 - r0, h1 - h0), p(rho, h);
+            const double t =
+                std::clamp((p - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+            return (a + t * d - p).norm();
+        };
+        // Its outline seen across the axis: the tip's face, the cone, the body's side, its end.
+        const double edge =
+            std::min({to_edge(0.0, standoff, tip, standoff), to_edge(tip, standoff, body, cone_end),
+                      to_edge(body, cone_end, body, top), to_edge(body, top, 0.0, top)});
+        const bool inside = h >= standoff && h <= top && rho <= radius(h);
+        return inside ? -edge : edge;
     }
 };
 
@@ -262,8 +279,8 @@ void validate(const NozzleParams& p) {
         fail("the nozzle's cone angle must be a number", p.cone_angle_deg);
     if (!(p.margin_mm > 0.0) || !finite(p.margin_mm))
         fail("the nozzle's margin must be > 0 mm", p.margin_mm);
-    // The check grows the nozzle by twice the margin (see Nozzle.hpp): a tip closer than that
-    // would meet the layer it deposits on.
+    // The check grows the nozzle by twice the margin (see Nozzle.hpp): with a smaller standoff
+    // the grown tip would reach below the deposit point, into the layer it is deposited on.
     if (!(p.standoff_mm >= 2.0 * p.margin_mm))
         fail("the nozzle's margin must be at most half its standoff (" +
                  format_number(p.standoff_mm) + " mm)",
@@ -343,7 +360,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     // The pairs: each layer x against every layer y that may lie in its nozzle.
     const Shape shape(params);
     const double m = params.margin_mm;
-    const double reach = shape.body + shape.grow_radially;  // of the grown nozzle, sideways
+    const double reach = shape.grown(shape.top);  // of the grown nozzle, sideways
     std::vector<LayerBounds> bounds(count);
     std::vector<Eigen::AlignedBox3d> component_box(comps);  // of its layers' prisms
     for (std::size_t i = 0; i < count; ++i) {
@@ -358,9 +375,8 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         const Vector3d across = (Vector3d::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();
         Eigen::AlignedBox3d nozzle;
         for (const auto& [h, r] :
-             {std::pair{shape.standoff - shape.grow, shape.tip + shape.grow_radially},
-              std::pair{shape.cone_end, shape.body + shape.grow_radially},
-              std::pair{shape.top + shape.grow, shape.body + shape.grow_radially}}) {
+             {std::pair{shape.standoff - shape.grow, shape.grown(shape.standoff)},
+              std::pair{shape.cone_end, reach}, std::pair{shape.top + shape.grow, reach}}) {
             nozzle.extend(Vector3d(h * n - r * across));
             nozzle.extend(Vector3d(h * n + r * across));
         }
@@ -415,23 +431,54 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         }
         return std::nullopt;
     };
-    // How deep layer y's prism comes into x's grown nozzle: the most any sample lies inside its
-    // radius, with that sample and the deposit point nearest it (y is known to be in it).
-    auto deepest = [&](const Sweep& sweep, std::size_t x, std::size_t y) {
+    // Of the layers `met` (each known to be in x's grown nozzle), the one coming deepest into the
+    // nozzle itself: the least clearance (Shape::clearance) of any of its samples from the nozzle
+    // over its nearest deposit point, with that sample and point. Layers are visited from the
+    // deepest they could come (their corners' heights and distance off the paths bound it), and
+    // passed over, like samples, once they cannot beat the deepest found.
+    auto deepest = [&](const Sweep& sweep, std::size_t x, const std::vector<int>& met) {
         const Vector3d n = sweep.frame().normal;
-        double depth = -std::numeric_limits<double>::infinity();
-        Conflict where{int(x), int(y), Vector3d::Zero(), Vector3d::Zero()};
-        for (const Vector3d& q : samples_of(y)) {
-            const double r = shape.grown(n.dot(q) - sweep.height());
-            if (r < 0.0) continue;
-            if (const auto hit = sweep.near(sweep.frame().to_2d(q), r, true))
-                if (r - hit->distance > depth) {
-                    depth = r - hit->distance;
-                    where.at = hit->at;
-                    where.obstacle = q;
-                }
+        std::vector<std::pair<double, int>> bound;  // the least clearance a layer can have
+        for (int y : met) {
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            Eigen::AlignedBox2d across;
+            for (const Vector3d& p : bounds[std::size_t(y)].corners) {
+                lo = std::min(lo, n.dot(p) - sweep.height());
+                hi = std::max(hi, n.dot(p) - sweep.height());
+                across.extend(sweep.frame().to_2d(p));
+            }
+            const Eigen::Array2d gap = (across.min() - sweep.box().max())
+                                           .array()
+                                           .max((sweep.box().min() - across.max()).array())
+                                           .max(0.0);
+            const double depth =
+                std::min({shape.body - gap.matrix().norm(), hi - shape.standoff, shape.top - lo});
+            bound.emplace_back(-depth, y);
         }
-        return std::make_pair(depth, where);
+        std::sort(bound.begin(), bound.end());
+        double best = std::numeric_limits<double>::infinity();
+        Conflict where{int(x), -1, Vector3d::Zero(), Vector3d::Zero()};
+        for (const auto& [least, y] : bound) {
+            if (least >= best) break;
+            for (const Vector3d& q : samples_of(std::size_t(y))) {
+                const double h = n.dot(q) - sweep.height();
+                const double r = shape.grown(h);
+                if (r < 0.0) continue;
+                const double could =
+                    h < shape.standoff || h > shape.top
+                        ? std::max(shape.standoff - h, h - shape.top)
+                        : -std::min({shape.radius(h), h - shape.standoff, shape.top - h});
+                if (could >= best) continue;
+                const auto hit = sweep.near(sweep.frame().to_2d(q), r, true);
+                if (!hit) continue;
+                const double c = shape.clearance(hit->distance, h);
+                if (c < best) {
+                    best = c;
+                    where = Conflict{int(x), y, hit->at, q};
+                }
+            }
+        }
+        return where;
     };
     const Vector3d up = in.plate.normal.normalized();
     std::vector<std::optional<Conflict>> plate(count);    // where x's nozzle meets the plate
@@ -585,14 +632,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         if (met.empty()) continue;
         std::sort(met.begin(), met.end());
         const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
-        double depth = -std::numeric_limits<double>::infinity();
-        for (int y : met) {
-            const auto [d, where] = deepest(sweep, x, std::size_t(y));
-            if (d > depth) {
-                depth = d;
-                worst[x] = where;
-            }
-        }
+        worst[x] = deepest(sweep, x, met);
     }
     for (int x : out.layers)
         if (worst[std::size_t(x)]) {

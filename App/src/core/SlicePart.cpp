@@ -269,24 +269,33 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         const int father = components[c].parent;
         sequence.parent[c] = father;
         if (father < 0) continue;
-        const std::vector<const TriangleMesh*> below = {&components[std::size_t(father)].mesh};
-        std::optional<BaseSupport> alone;
-        double tolerance = 0.0;
+        std::vector<int> near;
         for (std::size_t e = 0; e < k; ++e) {
             const int earlier = out.build_order[e];
-            if (earlier == father || !reaches_base(std::size_t(earlier), c)) continue;
-            if (!alone) {
-                alone = base_support(components[c].mesh, components[c].base, below, params.layers);
-                tolerance = negligible_unsupported_mm2(alone->footprint_area_mm2);
-            }
-            if (alone->unsupported_area_mm2 <= tolerance) break;  // the father carries it all
-            std::vector<const TriangleMesh*> with = below;
-            with.push_back(&components[std::size_t(earlier)].mesh);
-            const BaseSupport b =
-                base_support(components[c].mesh, components[c].base, with, params.layers);
-            if (b.unsupported_area_mm2 < alone->unsupported_area_mm2 - tolerance)
-                sequence.waits_for[c].push_back(earlier);
+            if (earlier != father && reaches_base(std::size_t(earlier), c)) near.push_back(earlier);
         }
+        if (near.empty()) continue;
+        const ComponentMesh& comp = components[c];
+        std::vector<const TriangleMesh*> below = {&components[std::size_t(father)].mesh};
+        const BaseSupport alone = base_support(comp.mesh, comp.base, below, params.layers);
+        const double tolerance = negligible_unsupported_mm2(alone.footprint_area_mm2);
+        if (alone.unsupported_area_mm2 <= tolerance) continue;  // the father carries it all
+        for (int e : near) below.push_back(&components[std::size_t(e)].mesh);
+        const BaseSupport together = base_support(comp.mesh, comp.base, below, params.layers);
+        if (together.unsupported_area_mm2 >= alone.unsupported_area_mm2 - tolerance) continue;
+        // They carry it: each that carries any of it (many thin posts under a slab may each
+        // carry less than the noise the together test allows for) is waited for.
+        below.resize(1);
+        std::vector<int>& waits_for = sequence.waits_for[c];
+        for (int e : near) {
+            below.push_back(&components[std::size_t(e)].mesh);
+            const BaseSupport b = base_support(comp.mesh, comp.base, below, params.layers);
+            below.pop_back();
+            if (b.unsupported_area_mm2 <
+                alone.unsupported_area_mm2 - 1e-9 * alone.footprint_area_mm2)
+                waits_for.push_back(e);
+        }
+        if (waits_for.empty()) waits_for = near;
     }
     out.sequence = plan_build_sequence(sequence, params.nozzle,
                                        progress.span(0.92, 1.0, "ordering the layers"));

@@ -455,6 +455,38 @@ def drill_polylines(centres, axes, diameters, lengths, segments=DRILL_CIRCLE_SEG
     return out
 
 
+def _overlay(vobj, colour_property, default, doc, line_width, point_size=None):
+    """Lines drawn over an object's Shape in one colour, whatever the lights and the display mode:
+    (separator, SoBaseColor, SoCoordinate3, SoLineSet), added to its root node. The colour is
+    the view property `colour_property`, added with `default` if the object lacks it (new, or
+    from a document saved before it)."""
+    from pivy import coin
+
+    if colour_property not in vobj.PropertiesList:
+        vobj.addProperty("App::PropertyColor", colour_property, "Object Style", doc)
+        setattr(vobj, colour_property, default)
+    separator = coin.SoSeparator()
+    light = coin.SoLightModel()  # the colour as it is, whatever the lights
+    light.model = coin.SoLightModel.BASE_COLOR
+    colour = coin.SoBaseColor()
+    style = coin.SoDrawStyle()
+    style.lineWidth = line_width
+    if point_size is not None:
+        style.pointSize = point_size
+    points = coin.SoCoordinate3()
+    lines = coin.SoLineSet()
+    for node in (light, colour, style, points, lines):
+        separator.addChild(node)
+    vobj.RootNode.addChild(separator)
+    return separator, colour, points, lines
+
+
+def _overlay_colour(vobj, colour_property, default):
+    """The colour of an overlay (above): its view property, or `default` while it is missing."""
+    return (tuple(getattr(vobj, colour_property))[:3]
+            if colour_property in vobj.PropertiesList else default)
+
+
 class ViewProviderLayers(_EdgeColoured):
     """Tree icon and colours of a ``Layers`` object: every layer's outline in its component's
     colour (``component_colour``, as the Component objects), per edge through LineColorArray. The
@@ -480,41 +512,18 @@ class ViewProviderLayers(_EdgeColoured):
         from pivy import coin
 
         super().attach(vobj)
-        if "DrillColor" not in vobj.PropertiesList:  # new, or a document from before it
-            vobj.addProperty("App::PropertyColor", "DrillColor", "Object Style",
-                             "Colour of the holes deposited solid, to drill afterwards")
-            vobj.DrillColor = DRILL_COLOUR
-        self.drills = coin.SoSeparator()
-        light = coin.SoLightModel()  # the colour as it is, whatever the lights
-        light.model = coin.SoLightModel.BASE_COLOR
-        self.drill_colour = coin.SoBaseColor()
-        style = coin.SoDrawStyle()
-        style.lineWidth = DRILL_LINE_WIDTH
-        self.drill_points = coin.SoCoordinate3()
-        self.drill_lines = coin.SoLineSet()
-        for node in (light, self.drill_colour, style, self.drill_points, self.drill_lines):
-            self.drills.addChild(node)
-        vobj.RootNode.addChild(self.drills)
+        (self.drills, self.drill_colour, self.drill_points,
+         self.drill_lines) = _overlay(vobj, "DrillColor", DRILL_COLOUR,
+                                      "Colour of the holes deposited solid, to drill afterwards",
+                                      DRILL_LINE_WIDTH)
         self.update_drills(vobj)
-        if "CollisionColor" not in vobj.PropertiesList:
-            vobj.addProperty("App::PropertyColor", "CollisionColor", "Object Style",
-                             "Colour of the collisions: from where the nozzle stands to what it "
-                             "meets")
-            vobj.CollisionColor = COLLISION_COLOUR
-        self.collisions = coin.SoSeparator()
-        light = coin.SoLightModel()
-        light.model = coin.SoLightModel.BASE_COLOR
-        self.collision_colour = coin.SoBaseColor()
-        style = coin.SoDrawStyle()
-        style.lineWidth = COLLISION_LINE_WIDTH
-        style.pointSize = COLLISION_POINT_SIZE
-        self.collision_points = coin.SoCoordinate3()
-        self.collision_lines = coin.SoLineSet()  # nozzle point to obstacle, one per collision
+        (self.collisions, self.collision_colour, self.collision_points,
+         self.collision_lines) = _overlay(vobj, "CollisionColor", COLLISION_COLOUR,
+                                          "Colour of the collisions: from where the nozzle stands "
+                                          "to what it meets", COLLISION_LINE_WIDTH,
+                                          COLLISION_POINT_SIZE)
         self.collision_marks = coin.SoPointSet()  # the obstacles' points
-        for node in (light, self.collision_colour, style, self.collision_points,
-                     self.collision_lines, self.collision_marks):
-            self.collisions.addChild(node)
-        vobj.RootNode.addChild(self.collisions)
+        self.collisions.addChild(self.collision_marks)
         self.update_collisions(vobj)
 
     def update_collisions(self, vobj):
@@ -523,9 +532,8 @@ class ViewProviderLayers(_EdgeColoured):
         if getattr(self, "collisions", None) is None:
             return
         obj = vobj.Object
-        colour = tuple(vobj.CollisionColor)[:3] if "CollisionColor" in vobj.PropertiesList \
-            else COLLISION_COLOUR
-        self.collision_colour.rgb.setValue(*colour)
+        self.collision_colour.rgb.setValue(*_overlay_colour(vobj, "CollisionColor",
+                                                            COLLISION_COLOUR))
         pairs = []
         if obj is not None and all(p in obj.PropertiesList for p in _COLLISION_PROPERTIES):
             pairs = list(zip(obj.CollisionNozzlePoints, obj.CollisionPoints))
@@ -548,9 +556,7 @@ class ViewProviderLayers(_EdgeColoured):
         if getattr(self, "drills", None) is None:
             return
         obj = vobj.Object
-        colour = tuple(vobj.DrillColor)[:3] if "DrillColor" in vobj.PropertiesList \
-            else DRILL_COLOUR
-        self.drill_colour.rgb.setValue(*colour)
+        self.drill_colour.rgb.setValue(*_overlay_colour(vobj, "DrillColor", DRILL_COLOUR))
         lines = []
         if obj is not None and all(p in obj.PropertiesList for p in _DRILL_PROPERTIES):
             lines = drill_polylines(obj.FilledHoleCentres, obj.FilledHoleAxes,

@@ -918,10 +918,14 @@ int run_slice(const std::vector<std::string>& args) {
                 << "\n";
         out << "# build order:";
         for (const int c : r.build_order) out << " " << c;
-        out << "\n# sequence: " << r.sequence.layers.size() << " layers, " << st.component_switches
-            << " switches between components, " << r.sequence.interrupted_components
-            << " components interrupted; " << st.colliding_layers
-            << " layers where the nozzle meets what is deposited";
+        auto count = [](long n, const char* one, const char* many) {
+            return std::to_string(n) + " " + (n == 1 ? one : many);
+        };
+        out << "\n# sequence: " << count(long(r.sequence.layers.size()), "layer", "layers") << ", "
+            << count(st.component_switches, "switch", "switches") << " between components, "
+            << count(r.sequence.interrupted_components, "component", "components")
+            << " interrupted; " << count(st.colliding_layers, "layer", "layers")
+            << " where the nozzle meets what is deposited";
         for (const mas::NozzleCollision& c : r.sequence.collisions)
             out << "\n#   layer " << c.layer << " (component "
                 << r.layers[std::size_t(c.layer)].component << ") meets "

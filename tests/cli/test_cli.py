@@ -465,6 +465,40 @@ class CliSections(unittest.TestCase):
         self.assertEqual([float(row[4]) for row in rows], [3.0] * 7)
         self.assertIn("# build order: 0\n", r.stdout)
 
+    def test_slice_nozzle_options_and_collisions(self):
+        """The L's arm is deposited sideways 40 to 60 mm up: a 100 mm nozzle body reaches under
+        the plate at every arm layer, which the text and the JSON list; without the plate check,
+        or with the default 50 mm body, nothing collides. Bad nozzle values are refused."""
+        brep = os.path.join(DATA, "l_block.brep")
+        r = run("slice", brep, "--nozzle-body-diameter", "100", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        data = json.loads(r.stdout)
+        arm = [i for i, layer in enumerate(data["layers"]) if layer["component"] == 1]
+        self.assertEqual([c["layer"] for c in data["collisions"]], arm)
+        self.assertEqual({c["obstacle_layer"] for c in data["collisions"]}, {-1})
+        self.assertEqual(data["stats"]["colliding_layers"], len(arm))
+        self.assertEqual(data["params"]["nozzle_body_diameter"], 100)
+        self.assertEqual(data["sequence"], list(range(len(data["layers"]))))
+        text = run("slice", brep, "--nozzle-body-diameter", "100")
+        self.assertIn("; {} layers where the nozzle meets what is deposited".format(len(arm)),
+                      text.stdout)
+        self.assertIn("#   layer {} (component 1) meets the build plate near ".format(arm[0]),
+                      text.stdout)
+        for extra in (["--no-plate-check"], []):
+            r = run("slice", brep, "--json", *extra,
+                    *(["--nozzle-body-diameter", "100"] if extra else []))
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(json.loads(r.stdout)["collisions"], [])
+        for args, message in (
+                (["--nozzle-margin", "0"], "the nozzle's margin must be > 0 mm, got 0"),
+                (["--nozzle-margin", "6"],
+                 "the nozzle's margin must be at most half its standoff (10 mm), got 6"),
+                (["--nozzle-body-diameter", "8"],
+                 "the nozzle's body diameter must be at least its tip diameter (10 mm), got 8")):
+            r = run("slice", brep, *args)
+            self.assertEqual(r.returncode, 1, args)
+            self.assertIn(message, r.stderr)
+
     def test_progress_goes_to_standard_error_stage_by_stage_up_to_100(self):
         brep = os.path.join(DATA, "l_block.brep")
         for command, stages in (

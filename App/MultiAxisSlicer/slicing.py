@@ -219,8 +219,10 @@ class FilledHole:
 class Collision:
     """A layer whose deposition has the nozzle meet what is already deposited (the paper's Eq. 10,
     which no build order avoided): ``layer`` (its index), ``obstacle_layer`` (the deposited
-    layer it meets, -1 for the build plate), ``nozzle_at`` (the deposit point where it does) and
-    ``obstacle`` (the obstacle's point it comes within the margin of) as FreeCAD.Vector."""
+    layer that comes deepest into the nozzle, -1 for the build plate), ``obstacle`` (that
+    layer's point deepest in the nozzle, or nearest it when none is inside; on the plate, below
+    the nozzle's lowest point) and ``nozzle_at`` (the deposit point the nozzle stands over then)
+    as FreeCAD.Vector."""
 
     __slots__ = ("_data",)
 
@@ -257,9 +259,9 @@ class SliceResult:
     part_volume_mm3, deposited_volume_mm3, material_volume_mm3, max_volume_difference,
     layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
     deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features, colliding_layers,
-    component_switches, filled_holes, filled_volume_mm3), ``filled_holes`` (``FilledHole`` list: the holes deposited solid, to
-    drill), ``notes`` (one string per hole that qualified for filling and stayed open, saying
-    why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
+    component_switches, filled_holes, filled_volume_mm3), ``filled_holes`` (``FilledHole`` list:
+    the holes deposited solid, to drill), ``notes`` (one string per hole that qualified for
+    filling and stayed open, saying why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
     ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
     """
 
@@ -440,7 +442,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         cone tip ``nozzle_tip_diameter`` across (10) at ``nozzle_standoff`` above the deposit
         point (10), widening at ``nozzle_cone_angle`` (half-angle, 30) to a body
         ``nozzle_body_diameter`` across (50) and ``nozzle_body_length`` long (200), kept
-        ``nozzle_margin`` away (2, at most half the standoff); ``check_plate``: the build plate is an obstacle too (True).
+        ``nozzle_margin`` away (2, at most half the standoff); ``check_plate``: the build plate
+        is an obstacle too (True).
 
     ``progress``: None or ``progress(fraction, stage)``, called now and then with the fraction of
     the whole done (decomposing, when done here, is the first fifth); an exception it raises

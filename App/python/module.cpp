@@ -1435,7 +1435,8 @@ void bind_gcode() {
         (bp::arg("layers"), bp::arg("machine") = bp::dict(), bp::arg("progress") = bp::object()),
         "The 5-axis G-code program (LinuxCNC, tilting rotary table XYZAC, xyzac-trt-kins) "
         "that deposits `layers` (slice_part()'s layer dicts, in the order they are deposited: "
-        "its sequence). `machine`: a "
+        "its sequence; an 'index' in one is its number in the part, which comments and errors "
+        "name, else its place in `layers`). `machine`: a "
         "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
         "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
         "deposit_output; missing ones take the engine's defaults. Returns {text, stats "

@@ -399,6 +399,30 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         }
         return *samples[y];
     };
+    // Where layer y's prism lies seen from x's paths (`sweep` is x's): its corners' lowest and
+    // highest heights above x's plane along the tool axis, and how far across the axis its
+    // corners' box lies from the paths' (the prism lies within its corners' hull).
+    struct Extent {
+        double lo, hi, gap;
+    };
+    auto extent = [&](const Sweep& sweep, std::size_t y) {
+        const Vector3d n = sweep.frame().normal;
+        Extent e{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                 0.0};
+        Eigen::AlignedBox2d across;
+        for (const Vector3d& p : bounds[y].corners) {
+            e.lo = std::min(e.lo, n.dot(p) - sweep.height());
+            e.hi = std::max(e.hi, n.dot(p) - sweep.height());
+            across.extend(sweep.frame().to_2d(p));
+        }
+        e.gap = (across.min() - sweep.box().max())
+                    .array()
+                    .max((sweep.box().min() - across.max()).array())
+                    .max(0.0)
+                    .matrix()
+                    .norm();
+        return e;
+    };
     // Whether layer y's prism lies in x's grown nozzle (`sweep` is x's): where, if it does.
     auto meets = [&](const Sweep& sweep, std::size_t x, std::size_t y) -> std::optional<Conflict> {
         const Vector3d n = sweep.frame().normal;
@@ -410,19 +434,9 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             return std::nullopt;
         if (sweep.box().exteriorDistance(sweep.frame().to_2d(b.centre)) > b.radius + reach)
             return std::nullopt;
-        // The prism lies within its corners' hull: below the tip, or off to the side, it misses.
-        double highest = -std::numeric_limits<double>::infinity();
-        Eigen::AlignedBox2d across;
-        for (const Vector3d& p : b.corners) {
-            highest = std::max(highest, n.dot(p));
-            across.extend(sweep.frame().to_2d(p));
-        }
-        if (highest - sweep.height() < shape.standoff - shape.grow) return std::nullopt;
-        const Eigen::Array2d gap = (across.min() - sweep.box().max())
-                                       .array()
-                                       .max((sweep.box().min() - across.max()).array())
-                                       .max(0.0);
-        if (gap.matrix().norm() > reach) return std::nullopt;
+        // Below the tip, or off to the side, it misses.
+        const Extent e = extent(sweep, y);
+        if (e.hi < shape.standoff - shape.grow || e.gap > reach) return std::nullopt;
         for (const Vector3d& q : samples_of(y)) {
             const double r = shape.grown(n.dot(q) - sweep.height());
             if (r < 0.0) continue;
@@ -440,20 +454,9 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         const Vector3d n = sweep.frame().normal;
         std::vector<std::pair<double, int>> bound;  // the least clearance a layer can have
         for (int y : met) {
-            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-            Eigen::AlignedBox2d across;
-            for (const Vector3d& p : bounds[std::size_t(y)].corners) {
-                lo = std::min(lo, n.dot(p) - sweep.height());
-                hi = std::max(hi, n.dot(p) - sweep.height());
-                across.extend(sweep.frame().to_2d(p));
-            }
-            const Eigen::Array2d gap = (across.min() - sweep.box().max())
-                                           .array()
-                                           .max((sweep.box().min() - across.max()).array())
-                                           .max(0.0);
-            const double depth =
-                std::min({shape.body - gap.matrix().norm(), hi - shape.standoff, shape.top - lo});
-            bound.emplace_back(-depth, y);
+            const Extent e = extent(sweep, std::size_t(y));
+            bound.emplace_back(
+                -std::min({shape.body - e.gap, e.hi - shape.standoff, shape.top - e.lo}), y);
         }
         std::sort(bound.begin(), bound.end());
         double best = std::numeric_limits<double>::infinity();
@@ -583,26 +586,24 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     while (out.layers.size() < count) {
         order(double(out.layers.size()) / double(count));
         if (open.empty()) bad("the components' waits form a cycle");
+        // How many layers still to come component c's next layer would block.
+        auto blocking = [&](int c) {
+            return pending[std::size_t(of[std::size_t(c)][next[std::size_t(c)]])];
+        };
         int pick = -1;
         auto better = [&](int a, int b) {  // b is better than a, among ready ones
             return a < 0 || rank[std::size_t(b)] < rank[std::size_t(a)];
         };
-        if (current >= 0 && !complete(std::size_t(current)) &&
-            pending[std::size_t(of[std::size_t(current)][next[std::size_t(current)]])] == 0)
+        if (current >= 0 && !complete(std::size_t(current)) && blocking(current) == 0)
             pick = current;
         if (pick < 0)
             for (int c : open)
-                if (pending[std::size_t(of[std::size_t(c)][next[std::size_t(c)]])] == 0 &&
-                    better(pick, c))
-                    pick = c;
+                if (blocking(c) == 0 && better(pick, c)) pick = c;
         if (pick < 0)  // a cycle: the layer that blocks the fewest still to come
-            for (int c : open) {
-                const int blocked = pending[std::size_t(of[std::size_t(c)][next[std::size_t(c)]])];
-                const int best =
-                    pick < 0 ? 0
-                             : pending[std::size_t(of[std::size_t(pick)][next[std::size_t(pick)]])];
-                if (pick < 0 || blocked < best || (blocked == best && better(pick, c))) pick = c;
-            }
+            for (int c : open)
+                if (pick < 0 || blocking(c) < blocking(pick) ||
+                    (blocking(c) == blocking(pick) && better(pick, c)))
+                    pick = c;
         const std::size_t c = std::size_t(pick);
         if (current >= 0 && current != pick) {
             ++out.component_switches;

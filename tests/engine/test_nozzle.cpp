@@ -358,20 +358,27 @@ bool vertical_nozzle_meets_box(const mas::NozzleParams& n, const Vector3d& p,
     return foot.exteriorDistance(Vector2d(p.head<2>())) <= r;
 }
 
-// Two 10 x 10 posts 60 tall, 10 mm apart on a plate, sliced: the sequence builds them together,
-// and no deposit point has the nozzle meet a layer deposited before it, while the components'
-// own order (one post, then the other) would.
-TEST(Nozzle, SlicedPostsAreInterleavedWithoutCollisions) {
+// A 60 x 30 x 5 plate with two 10 x 10 posts `height` tall on it, `gap` apart along X, as the
+// plate and its two children.
+std::vector<mas::ComponentMesh> posts_on_a_plate(double gap, double height) {
     using mas::test::box_mesh;
     std::vector<mas::ComponentMesh> comps(3);
     comps[0].mesh = box_mesh(-10, -10, 0, 60, 30, 5);
     comps[0].base = {Vector3d::Zero(), Vector3d::UnitZ()};
-    comps[1].mesh = box_mesh(0, 0, 5, 10, 10, 60);
-    comps[2].mesh = box_mesh(20, 0, 5, 10, 10, 60);
+    comps[1].mesh = box_mesh(0, 0, 5, 10, 10, height);
+    comps[2].mesh = box_mesh(10 + gap, 0, 5, 10, 10, height);
     for (int c : {1, 2}) {
         comps[std::size_t(c)].parent = 0;
         comps[std::size_t(c)].base = {Vector3d(0, 0, 5), Vector3d::UnitZ()};
     }
+    return comps;
+}
+
+// Two 10 x 10 posts 60 tall, 10 mm apart on a plate, sliced: the sequence builds them together,
+// and no deposit point has the nozzle meet a layer deposited before it, while the components'
+// own order (one post, then the other) would.
+TEST(Nozzle, SlicedPostsAreInterleavedWithoutCollisions) {
+    const std::vector<mas::ComponentMesh> comps = posts_on_a_plate(10.0, 60.0);
     mas::CentroidalAxis axis;
     mas::SlicePartParams params;
     params.layers.min_layer_mm = 0.5;
@@ -461,16 +468,7 @@ TEST(Nozzle, SlicedPostsAreInterleavedWithoutCollisions) {
 // neither waits for the other, and they go up together without a collision (waiting for the
 // first post, the second's first layer would have the nozzle's tip meet it all the way up).
 TEST(Nozzle, NeighboursAPostDoesNotRestOnAreNotWaitedFor) {
-    using mas::test::box_mesh;
-    std::vector<mas::ComponentMesh> comps(3);
-    comps[0].mesh = box_mesh(-10, -10, 0, 60, 30, 5);
-    comps[0].base = {Vector3d::Zero(), Vector3d::UnitZ()};
-    comps[1].mesh = box_mesh(0, 0, 5, 10, 10, 40);
-    comps[2].mesh = box_mesh(11.5, 0, 5, 10, 10, 40);
-    for (int c : {1, 2}) {
-        comps[std::size_t(c)].parent = 0;
-        comps[std::size_t(c)].base = {Vector3d(0, 0, 5), Vector3d::UnitZ()};
-    }
+    const std::vector<mas::ComponentMesh> comps = posts_on_a_plate(1.5, 40.0);
     mas::SlicePartParams params;
     params.paths.bead_width_mm = 2.0;
     const mas::SlicedPart part = mas::slice_components(comps, mas::CentroidalAxis(), params);

@@ -23,6 +23,9 @@ struct ToolPath {
 // "travel", "contour", "infill", "centre_line".
 const char* to_string(ToolPath::Kind kind);
 
+// A travel move from `from` to `to` (nothing deposited under it).
+ToolPath travel_move(const Eigen::Vector3d& from, const Eigen::Vector3d& to);
+
 struct LayerToolpaths {
     Eigen::Vector3d tool_axis = Eigen::Vector3d::UnitZ();  // every point's: the layer's normal
     std::vector<ToolPath> paths;            // in order: a travel move before every deposit path

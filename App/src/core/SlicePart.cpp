@@ -313,11 +313,8 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         if (t.paths.empty()) continue;
         const Eigen::Vector3d start = t.paths.front().points.front();
         if (has_head && (head - start).norm() > 0.0) {
-            ToolPath travel;
-            travel.points = {head, start};
-            travel.thickness_mm = {0.0, 0.0};
             t.travel_length_mm += (start - head).norm();
-            t.paths.insert(t.paths.begin(), std::move(travel));
+            t.paths.insert(t.paths.begin(), travel_move(head, start));
         }
         t.travel_length_mm = std::max(t.travel_length_mm, 0.0);
         s.travel_length_mm += t.travel_length_mm;

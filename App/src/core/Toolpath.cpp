@@ -17,6 +17,13 @@ const char* to_string(ToolPath::Kind kind) {
     return "travel";
 }
 
+ToolPath travel_move(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    ToolPath travel;
+    travel.points = {from, to};
+    travel.thickness_mm = {0.0, 0.0};
+    return travel;
+}
+
 LayerToolpaths plan_toolpaths(const Layer& layer, int layer_index, const PathParams& params,
                               const std::optional<Eigen::Vector3d>& from,
                               const Progress& progress) {
@@ -60,11 +67,8 @@ LayerToolpaths plan_toolpaths(const Layer& layer, int layer_index, const PathPar
         for (const Eigen::Vector2d& q : p.points) lift(q, path);
         if (p.closed && p.points.size() > 1) lift(p.points.front(), path);
         if (has_head && (head - path.points.front()).norm() > 0.0) {
-            ToolPath travel;
-            travel.points = {head, path.points.front()};
-            travel.thickness_mm = {0.0, 0.0};
-            out.travel_length_mm += (travel.points[1] - travel.points[0]).norm();
-            out.paths.push_back(std::move(travel));
+            out.travel_length_mm += (path.points.front() - head).norm();
+            out.paths.push_back(travel_move(head, path.points.front()));
         }
         head = path.points.back();
         has_head = true;

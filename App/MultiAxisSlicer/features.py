@@ -1264,7 +1264,7 @@ class MachineProgramFeature(_EngineFeature):
     def ensure_properties(obj):
         group = "Machine program"
         _add_property(obj, "App::PropertyLink", "Layers", group,
-                      "Layers object whose paths the program deposits, in their build order")
+                      "Layers object whose paths the program deposits, in its Sequence")
         for prop, name, type_id, doc in _MACHINE_PROPERTIES:
             _add_property(obj, type_id, prop, "Machine", doc, mas.MACHINE_DEFAULTS[name])
         result = "Result"

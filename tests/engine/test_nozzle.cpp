@@ -73,6 +73,14 @@ mas::SequenceInput input(const Built& built, std::vector<int> parent,
     return in;
 }
 
+// The nozzle as the paper's: coaxial, never leaned; with the plate or without.
+mas::NozzleParams coaxial(bool plate = true) {
+    mas::NozzleParams p;
+    p.max_lean_deg = 0.0;
+    p.check_plate = plate;
+    return p;
+}
+
 std::string error_of(const std::function<void()>& f) {
     try {
         f();
@@ -149,6 +157,13 @@ TEST(Nozzle, BadParametersAreNamed) {
     EXPECT_EQ(message([](auto& p) { p.standoff_mm = 3.9; }),
               "the nozzle's margin must be at most half its standoff (3.9 mm), got 2");
     EXPECT_EQ(message([](auto& p) { p.standoff_mm = 4.0; }), "");
+    EXPECT_EQ(message([](auto& p) { p.max_lean_deg = -5; }),
+              "the nozzle's greatest lean must lie within [0, 90) degrees, got -5");
+    EXPECT_EQ(message([](auto& p) { p.max_lean_deg = 90; }),
+              "the nozzle's greatest lean must lie within [0, 90) degrees, got 90");
+    EXPECT_EQ(message([](auto& p) { p.max_lean_deg = std::nan(""); }),
+              "the nozzle's greatest lean must lie within [0, 90) degrees, got nan");
+    EXPECT_EQ(message([](auto& p) { p.max_lean_deg = 0; }), "");
 }
 
 // Two posts on a plate, 10 mm apart: built one after the other, the second post's first layer
@@ -193,7 +208,7 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
         Built b;
         add_square(b, 0, 12, 0, 22, 10, 31.0);
         add_square(b, 0, 0, 0, 10, 10, 2.0);
-        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), coaxial());
         EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
         ASSERT_EQ(s.collisions.size(), 1u);
         EXPECT_EQ(s.collisions[0].layer, 1);
@@ -212,7 +227,7 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
         add_square(b, 0, 12, 0, 22, 10, 31.0);
         add_square(b, 0, 3, 3, 7, 7, 41.0);
         add_square(b, 0, 0, 0, 10, 10, 2.0);
-        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), coaxial());
         ASSERT_EQ(s.collisions.size(), 1u);
         EXPECT_EQ(s.collisions[0].layer, 2);
         EXPECT_EQ(s.collisions[0].obstacle_layer, 1);  // not the lower-numbered graze
@@ -229,7 +244,7 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
         add_square(b, 0, 29, 0, 39, 10, 60.0);
         add_square(b, 0, 0, 0, 10, 10, 2.0);
         b.paths[2].paths[0].points = {{5, 5, 2}};
-        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), coaxial());
         ASSERT_EQ(s.collisions.size(), 1u);
         EXPECT_EQ(s.collisions[0].obstacle_layer, 1);
         EXPECT_NEAR(s.collisions[0].obstacle.x(), 29.0, 1e-9);
@@ -242,8 +257,7 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
                   {{0, 5, 6}});
         add_layer(b, 1, -Vector3d::UnitX(), {{20, 0, 1}, {20, 10, 1}, {20, 10, 11}, {20, 0, 11}},
                   1.0, {{20, 5, 6}});
-        mas::NozzleParams no_plate;
-        no_plate.check_plate = false;
+        const mas::NozzleParams no_plate = coaxial(false);
         // Two roots: neither waits for the other.
         const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, -1}, {0, 1}), no_plate);
         EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
@@ -258,24 +272,23 @@ TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
         Built b;
         add_layer(b, 0, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
                   {{5, 5, 6}});
-        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), {});
+        const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), coaxial());
         ASSERT_EQ(s.collisions.size(), 1u);
         EXPECT_EQ(s.collisions[0].layer, 0);
         EXPECT_EQ(s.collisions[0].obstacle_layer, -1);
         EXPECT_EQ(s.collisions[0].nozzle_at, Vector3d(5, 5, 6));
         EXPECT_NEAR((s.collisions[0].obstacle - Vector3d(5 + 10 + 20 / kTan30, 5, 0)).norm(), 0,
                     1e-12);
-        mas::NozzleParams no_plate;
-        no_plate.check_plate = false;
+        const mas::NozzleParams no_plate = coaxial(false);
         EXPECT_TRUE(mas::plan_build_sequence(input(b, {-1}, {0}), no_plate).collisions.empty());
         // Raised so that the rim stays the margin above the plate, it does not collide.
         Built high;
         add_layer(high, 0, Vector3d::UnitX(), {{5, 0, 22}, {5, 10, 22}, {5, 10, 32}, {5, 0, 32}},
                   1.0, {{5, 5, 27 + 1e-9}});
-        EXPECT_TRUE(mas::plan_build_sequence(input(high, {-1}, {0}), {}).collisions.empty());
+        EXPECT_TRUE(mas::plan_build_sequence(input(high, {-1}, {0}), coaxial()).collisions.empty());
         Built low = high;
         low.paths[0].paths[0].points[0].z() = 27 - 1e-9;
-        EXPECT_EQ(mas::plan_build_sequence(input(low, {-1}, {0}), {}).collisions.size(), 1u);
+        EXPECT_EQ(mas::plan_build_sequence(input(low, {-1}, {0}), coaxial()).collisions.size(), 1u);
     }
 }
 
@@ -294,6 +307,7 @@ TEST(Nozzle, EverythingWithinTheMarginIsFound) {
         b.paths[1].paths[0].points = {{0, 0, 0}};
         mas::NozzleParams no_plate = straight;
         no_plate.check_plate = false;
+        no_plate.max_lean_deg = 0.0;
         return mas::plan_build_sequence(input(b, {-1}, {0}), no_plate).collisions.size();
     };
     for (double d : {-0.5, 0.0, 0.01, 1.0, 1.99, 2.0}) EXPECT_EQ(collides(d), 1u) << d;
@@ -474,6 +488,263 @@ TEST(Nozzle, NeighboursAPostDoesNotRestOnAreNotWaitedFor) {
     const mas::SlicedPart part = mas::slice_components(comps, mas::CentroidalAxis(), params);
     EXPECT_TRUE(part.sequence.collisions.empty());
     EXPECT_GE(part.sequence.component_switches, 3);
+}
+
+// The nozzle's own shape, independently of Nozzle.cpp: the signed distance of `q` from the nozzle
+// standing at `p` along unit `axis` (negative inside), from its outline across the axis (the tip's
+// face, the cone, the body's side and end).
+double clearance(const mas::NozzleParams& n, const Vector3d& p, const Vector3d& axis,
+                 const Vector3d& q) {
+    const double h = axis.dot(q - p), rho = (q - p - h * axis).norm();
+    const double s = n.standoff_mm, tip = 0.5 * n.tip_diameter_mm, body = 0.5 * n.body_diameter_mm;
+    const double cone_end = s + mas::cone_length(n), top = cone_end + n.body_length_mm;
+    const std::vector<Vector2d> outline = {
+        {0, s}, {tip, s}, {body, cone_end}, {body, top}, {0, top}};
+    double d = INFINITY;
+    for (std::size_t k = 0; k + 1 < outline.size(); ++k) {
+        const Vector2d a = outline[k], e = outline[k + 1] - a, x(rho, h);
+        const double t = std::clamp((x - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+        d = std::min(d, (a + t * e - x).norm());
+    }
+    const double radius = h <= cone_end ? tip + (h - s) * (body - tip) / (cone_end - s) : body;
+    return h >= s && h <= top && rho <= radius ? -d : d;
+}
+
+// The height above the plane (through the origin, normal `up`) of the nozzle's lowest point, the
+// nozzle standing at `p` along unit `axis`: its rims (the tip's face, where the cone meets the
+// body, the body's end) walked round in steps of 0.01 degrees.
+double lowest_above(const mas::NozzleParams& n, const Vector3d& p, const Vector3d& axis,
+                    const Vector3d& up) {
+    const Vector3d u = axis.unitOrthogonal(), v = axis.cross(u);
+    const double cone_end = n.standoff_mm + mas::cone_length(n);
+    double lowest = INFINITY;
+    for (const auto& [h, r] : {std::pair{n.standoff_mm, 0.5 * n.tip_diameter_mm},
+                               std::pair{cone_end, 0.5 * n.body_diameter_mm},
+                               std::pair{cone_end + n.body_length_mm, 0.5 * n.body_diameter_mm}})
+        for (int k = 0; k < 36000; ++k) {
+            const double a = k * 3.14159265358979323846 / 18000.0;
+            lowest =
+                std::min(lowest, up.dot(p + h * axis + r * (std::cos(a) * u + std::sin(a) * v)));
+        }
+    return lowest;
+}
+
+// Leaned by `degrees` from unit `n` towards `towards` (across n).
+Vector3d leaned(const Vector3d& n, const Vector3d& towards, double degrees) {
+    const double t = degrees * 3.14159265358979323846 / 180.0;
+    const Vector3d d = (towards - n.dot(towards) * n).normalized();
+    return std::cos(t) * n + std::sin(t) * d;
+}
+
+// A layer deposited sideways (+X) 6 mm above the plate: the coaxial nozzle's body reaches 19 mm
+// under it. The nozzle leans up, by the least of 5, 10, ... degrees that keeps its lowest point
+// the margin above the plate: 25 (at 20 its rim is 2.2 mm under the plate; at 25, 2.2 above).
+TEST(Nozzle, ASidewaysLayerNearThePlateLeansUpJustEnough) {
+    auto sideways = [](double z) {
+        Built b;
+        add_layer(b, 0, Vector3d::UnitX(),
+                  {{5, 0, z - 5}, {5, 10, z - 5}, {5, 10, z + 5}, {5, 0, z + 5}}, 1.0, {{5, 5, z}});
+        return b;
+    };
+    const mas::NozzleParams p;  // leans up to 30 degrees
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ();
+    // The expectation, from the nozzle's rims walked round: the least lean clearing the plate.
+    double expected = 0.0;
+    for (double theta = 5.0; theta <= 30.0 && expected == 0.0; theta += 5.0)
+        if (lowest_above(p, Vector3d(5, 5, 6), leaned(n, up, theta), up) >= p.margin_mm)
+            expected = theta;
+    ASSERT_EQ(expected, 25.0);
+    EXPECT_LT(lowest_above(p, Vector3d(5, 5, 6), leaned(n, up, 20.0), up), -2.0);
+    const Built b = sideways(6.0);
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), p);
+    EXPECT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.leaned_layers, 1);
+    ASSERT_EQ(s.tool_axes.size(), 1u);
+    EXPECT_NEAR((s.tool_axes[0] - leaned(n, up, 25.0)).norm(), 0.0, 1e-12);
+    // Allowed at most 22 degrees (tried: 5, 10, 15, 20, 22), or coaxial, it collides as before.
+    for (double most : {22.0, 0.0}) {
+        mas::NozzleParams q = p;
+        q.max_lean_deg = most;
+        const mas::BuildSequence t = mas::plan_build_sequence(input(b, {-1}, {0}), q);
+        ASSERT_EQ(t.collisions.size(), 1u) << most;
+        EXPECT_EQ(t.collisions[0].obstacle_layer, -1);
+        EXPECT_EQ(t.leaned_layers, 0);
+        EXPECT_EQ(t.tool_axes[0], n);
+    }
+    // At 27 degrees it takes 25 all the same; at 1 mm above the plate even 30 does not clear.
+    mas::NozzleParams q = p;
+    q.max_lean_deg = 27.0;
+    EXPECT_NEAR(
+        (mas::plan_build_sequence(input(b, {-1}, {0}), q).tool_axes[0] - leaned(n, up, 25.0))
+            .norm(),
+        0.0, 1e-12);
+    EXPECT_LT(lowest_above(p, Vector3d(5, 5, 1), leaned(n, up, 30.0), up), p.margin_mm);
+    const mas::BuildSequence low = mas::plan_build_sequence(input(sideways(1.0), {-1}, {0}), p);
+    EXPECT_EQ(low.collisions.size(), 1u);
+    EXPECT_EQ(low.tool_axes[0], n);
+    // Leans that would bring the nozzle near the layer's own plane are not tried. With a 60 degree
+    // cone, past 30 degrees its lower side sinks towards the plane: at 45 it would clear the
+    // plate at 6 mm, but its rim would pass 2.5 mm under the layer's plane, into what the layer
+    // deposits; allowed 45, it tries up to 25 and none clears.
+    mas::NozzleParams wide = p;
+    wide.cone_angle_deg = 60.0;
+    wide.max_lean_deg = 45.0;
+    const Vector3d at(5, 5, 6), lean45 = leaned(n, up, 45.0);
+    EXPECT_GE(lowest_above(wide, at, lean45, up), wide.margin_mm);
+    EXPECT_NEAR(lowest_above(wide, at, lean45, n) - 5.0,
+                (10 + 20 / std::sqrt(3.0) - 25) / std::sqrt(2.0), 1e-6);
+    const mas::BuildSequence w = mas::plan_build_sequence(input(b, {-1}, {0}), wide);
+    EXPECT_EQ(w.collisions.size(), 1u);
+    EXPECT_EQ(w.tool_axes[0], n);
+    // So with a standoff of 4 mm: past 20.4 degrees the tip's face comes within the margin of the
+    // plane (4 cos - 5 sin < 2); 25 would clear the plate at 10 mm (20 would not), but is not
+    // tried.
+    mas::NozzleParams short_standoff = p;
+    short_standoff.standoff_mm = 4.0;
+    const Vector3d high(5, 5, 10);
+    EXPECT_GE(lowest_above(short_standoff, high, leaned(n, up, 25.0), up), p.margin_mm);
+    EXPECT_LT(lowest_above(short_standoff, high, leaned(n, up, 20.0), up), p.margin_mm);
+    EXPECT_LT(lowest_above(short_standoff, high, leaned(n, up, 25.0), n) - 5.0, p.margin_mm);
+    const mas::BuildSequence h =
+        mas::plan_build_sequence(input(sideways(10.0), {-1}, {0}), short_standoff);
+    EXPECT_EQ(h.collisions.size(), 1u);
+    EXPECT_EQ(h.tool_axes[0], n);
+}
+
+// A lean is refused where the leaned nozzle would meet a layer deposited before: a slab 40 mm up
+// over the sideways layer's nozzle, clear of the coaxial body (its top 31 mm up) but in the way
+// of any nozzle leaned up. The layer keeps its normal and its collision with the plate.
+TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
+    Built b;
+    add_square(b, 0, 40, -20, 120, 30, 41.0);
+    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
+              {{5, 5, 6}});
+    const mas::NozzleParams p;
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, -1}, {0, 1}), p);
+    EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
+    ASSERT_EQ(s.collisions.size(), 1u);
+    EXPECT_EQ(s.collisions[0].layer, 1);
+    EXPECT_EQ(s.collisions[0].obstacle_layer, -1);
+    EXPECT_EQ(s.tool_axes[1], Vector3d::UnitX());
+    EXPECT_EQ(s.leaned_layers, 0);
+    // The slab is what refuses it: the lean that cleared the plate meets it (the body's top
+    // side passes 40 mm up 40 mm out), while the coaxial nozzle keeps clear of it.
+    const Vector3d at(5, 5, 6), lean25 = leaned(Vector3d::UnitX(), Vector3d::UnitZ(), 25.0);
+    EXPECT_LT(clearance(p, at, lean25, Vector3d(60, 5, 40.5)), 0.0);
+    for (double x = 40; x <= 120; x += 1)
+        for (double y = -20; y <= 30; y += 1)
+            EXPECT_GT(clearance(p, at, Vector3d::UnitX(), Vector3d(x, y, 40)), p.margin_mm);
+    // Without the slab it leans.
+    b.layers.erase(b.layers.begin());
+    b.paths.erase(b.paths.begin());
+    b.layers[0].component = 0;
+    EXPECT_EQ(mas::plan_build_sequence(input(b, {-1}, {0}), p).leaned_layers, 1);
+}
+
+// A layer whose nozzle meets one of its own component's layers above it, 7 mm across: the nozzle
+// leans away from it, just enough. The leaned nozzle keeps the margin from that layer's prism
+// (checked with the nozzle's own shape at 0.1 mm over its surface); 5 degrees less would come
+// within the near miss of it, the most a refused lean may come.
+TEST(Nozzle, ANozzleLeansAwayFromTheLayerItMeets) {
+    Built b;
+    add_square(b, 0, 12, 0, 22, 10, 31.0);
+    add_square(b, 0, 0, 0, 10, 10, 2.0);
+    const mas::NozzleParams p;
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1}, {0}), p);
+    ASSERT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.leaned_layers, 1);
+    EXPECT_EQ(s.tool_axes[0], Vector3d::UnitZ());
+    const Vector3d axis = s.tool_axes[1], at(5, 5, 2);
+    const double lean = std::acos(axis.z()) * 180.0 / 3.14159265358979323846;
+    EXPECT_NEAR(std::remainder(lean, 5.0), 0.0, 1e-9) << lean;
+    EXPECT_GT(lean, 1.0);
+    EXPECT_LT(axis.x(), -0.9 * std::sin(lean * 3.14159265358979323846 / 180.0));  // away: -X
+    auto least = [&](const Vector3d& a) {
+        double c = INFINITY;
+        for (double x = 12; x <= 22 + 1e-9; x += 0.1)
+            for (double y = 0; y <= 10 + 1e-9; y += 0.1)
+                for (double z : {30.0, 31.0})
+                    c = std::min(c, clearance(p, at, a, Vector3d(x, y, z)));
+        for (double z = 30; z <= 31 + 1e-9; z += 0.1)
+            for (double t = 0; t <= 10 + 1e-9; t += 0.1)
+                for (const Vector3d& q : {Vector3d(12, t, z), Vector3d(22, t, z),
+                                          Vector3d(12 + t, 0, z), Vector3d(12 + t, 10, z)})
+                    c = std::min(c, clearance(p, at, a, q));
+        return c;
+    };
+    EXPECT_GE(least(axis), p.margin_mm);
+    const Vector3d across = Vector3d(axis.x(), axis.y(), 0).normalized();
+    const double slack = p.margin_mm * (1.0 + kTan30);
+    EXPECT_LT(least(leaned(Vector3d::UnitZ(), across, lean - 5.0)), mas::near_miss_mm(p) + slack);
+}
+
+// A sideways arm 20 mm thick, 8 mm over the plate, on a column, sliced: every arm layer leans
+// up by the least of 5, 10, ... degrees that keeps the nozzle's lowest point the margin above the
+// plate at every deposit point; every nozzle keeps the margin above its own layer's plane; the
+// machine program turns the table to the leaned axes.
+TEST(Nozzle, ASlicedLowArmLeansClearOfThePlate) {
+    using mas::test::box_mesh;
+    std::vector<mas::ComponentMesh> comps(2);
+    comps[0].mesh = box_mesh(0, 0, 0, 20, 20, 40);
+    comps[0].base = {Vector3d::Zero(), Vector3d::UnitZ()};
+    comps[1].mesh = box_mesh(20, 0, 8, 50, 20, 20);
+    comps[1].base = {Vector3d(20, 0, 0), Vector3d::UnitX()};
+    comps[1].parent = 0;
+    mas::SlicePartParams params;
+    params.paths.bead_width_mm = 2.0;
+    const mas::SlicedPart part = mas::slice_components(comps, mas::CentroidalAxis(), params);
+    const mas::NozzleParams& p = params.nozzle;
+    const Vector3d up = Vector3d::UnitZ();
+    EXPECT_TRUE(part.sequence.collisions.empty());
+    int arm_layers = 0;
+    for (std::size_t i = 0; i < part.layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        const mas::Layer& l = part.layers[i];
+        const Vector3d axis = part.toolpaths[i].tool_axis;
+        EXPECT_EQ(axis, part.sequence.tool_axes[i]);
+        if (l.component == 0) {
+            EXPECT_EQ(axis, l.plane.normal);
+            continue;
+        }
+        ++arm_layers;
+        // The lowest deposit point decides the lean.
+        double low = INFINITY;
+        Vector3d lowest_point;
+        for (const mas::ToolPath& path : part.toolpaths[i].paths)
+            if (path.deposit())
+                for (const Vector3d& q : path.points)
+                    if (q.z() < low) low = q.z(), lowest_point = q;
+        double expected = 0.0;
+        for (double theta = 5.0; theta <= 30.0 && expected == 0.0; theta += 5.0)
+            if (lowest_above(p, lowest_point, leaned(l.plane.normal, up, theta), up) >= p.margin_mm)
+                expected = theta;
+        ASSERT_GT(expected, 0.0);
+        EXPECT_NEAR((axis - leaned(l.plane.normal, up, expected)).norm(), 0.0, 1e-12) << expected;
+        for (const mas::ToolPath& path : part.toolpaths[i].paths)
+            if (path.deposit())
+                for (const Vector3d& q : path.points) {
+                    EXPECT_GE(lowest_above(p, q, axis, up) + 1e-9, p.margin_mm);
+                    // The nozzle keeps the margin above the layer's own plane.
+                    EXPECT_GE(lowest_above(p, q, axis, l.plane.normal) -
+                                  l.plane.normal.dot(l.plane.origin) + 1e-9,
+                              p.margin_mm);
+                    break;  // one point per path: the rims are walked round 108000 times each
+                }
+    }
+    EXPECT_EQ(part.stats.leaned_layers, arm_layers);
+    EXPECT_GT(arm_layers, 10);
+    // Coaxial, every arm layer meets the plate.
+    mas::SlicePartParams paper = params;
+    paper.nozzle.max_lean_deg = 0.0;
+    const mas::SlicedPart coaxial_part = mas::slice_components(comps, mas::CentroidalAxis(), paper);
+    EXPECT_EQ(int(coaxial_part.sequence.collisions.size()), arm_layers);
+    // The program turns the table to each layer's leaned axis.
+    const std::vector<mas::GcodeLayer> g = mas::gcode_layers(part);
+    for (const mas::GcodeLayer& layer : g)
+        EXPECT_EQ(layer.tool_axis, part.toolpaths[std::size_t(layer.index)].tool_axis);
+    mas::GcodeStats stats;
+    mas::write_gcode(g, {}, &stats);
+    EXPECT_GT(stats.deposit_moves, 0);
 }
 
 }  // namespace

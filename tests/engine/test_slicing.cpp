@@ -185,6 +185,7 @@ void expect_invariants(const Sliced& s, const mas::SlicePartParams& params, cons
     }
     EXPECT_EQ(next_layer, r.layers.size());
     double over_bound = 0.0;  // sum of VolDiff x volume: bounds |deposited - material|
+    int leaned = 0;           // layers whose tool axis is not their normal
     double grid_slack = 0.0;  // what the Booleans' snapping may add to that bound
     for (std::size_t i = 0; i < r.layers.size(); ++i) {
         SCOPED_TRACE("layer " + std::to_string(i));
@@ -225,7 +226,20 @@ void expect_invariants(const Sliced& s, const mas::SlicePartParams& params, cons
         // Paths: inside the region grown by one bead radius, covering all but 1 % of it, apart
         // from the corners no round bead reaches.
         const mas::LayerToolpaths& tp = r.toolpaths[i];
-        EXPECT_TRUE(tp.tool_axis.isApprox(l.plane.normal));
+        // The tool axis: the layer's normal, or the nozzle leaned from it by one of the leans
+        // tried (5, 10, ... degrees up to the greatest), where the coaxial nozzle collided.
+        ASSERT_EQ(r.sequence.tool_axes.size(), r.layers.size());
+        EXPECT_EQ(tp.tool_axis, r.sequence.tool_axes[i]);
+        EXPECT_NEAR(tp.tool_axis.norm(), 1.0, 1e-12);
+        const double lean =
+            std::acos(std::clamp(tp.tool_axis.dot(l.plane.normal), -1.0, 1.0)) * 180.0 / kPi;
+        if (lean > 1e-6) {
+            ++leaned;
+            EXPECT_LE(lean, params.nozzle.max_lean_deg + 1e-6);
+            EXPECT_NEAR(std::remainder(lean, 5.0), 0.0, 1e-6)
+                << lean << " (greatest " << params.nozzle.max_lean_deg << ")";
+            for (const mas::NozzleCollision& c : r.sequence.collisions) EXPECT_NE(c.layer, int(i));
+        }
         EXPECT_LE(tp.uncovered_area_mm2,
                   0.01 * l.area_mm2 + corner_residue(l.regions, params.paths.bead_width_mm));
         const mas::PlaneFrame frame(l.plane.normal);
@@ -255,6 +269,8 @@ void expect_invariants(const Sliced& s, const mas::SlicePartParams& params, cons
     EXPECT_LE(std::abs(st.deposited_volume_mm3 - st.material_volume_mm3), over_bound + grid_slack);
     EXPECT_NEAR(st.material_volume_mm3, st.part_volume_mm3, 0.005 * st.part_volume_mm3);
     EXPECT_EQ(st.layer_count, int(r.layers.size()));
+    EXPECT_EQ(st.leaned_layers, leaned);
+    EXPECT_EQ(r.sequence.leaned_layers, leaned);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 //   work offset (G54) so that the part's origin is where the part sits on the table, and have the
 //   nozzle's tool length offset in force (G43), which xyzac-trt-kins reads for its tool-centre
 //   point: the program leaves tool length compensation as it finds it. A and C are in degrees.
-// - Orientation. Each layer is deposited with its normal n, the tool axis, turned to machine +Z:
+// - Orientation. Each layer is deposited with its tool axis n (Nozzle.hpp), turned to machine +Z:
 //   towards the nozzle, which points down. xyzac-trt-kins maps a part vector v to Rx(A) Rz(C) v, so
 //   with the tilt theta = atan2(hypot(n.x, n.y), n.z) in [0, 180] degrees, n needs either
 //   A = theta, C = atan2(n.x, n.y), or A = -theta, C + 180. Of the solutions within the limits (to

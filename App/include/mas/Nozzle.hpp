@@ -38,6 +38,25 @@
 //   layer is reported once, with one obstacle: the plate, else the layer that comes deepest into
 //   the nozzle itself (the least signed distance from the nozzle's surface, negative inside, of
 //   any of its samples over the deposit point nearest it), at that sample and point.
+// - Leaning the nozzle (not in the paper; a 5-axis CAM's "tilt the tool to avoid a collision").
+//   A sideways arm near the plate has a coaxial nozzle's body reach under the plate, whatever the
+//   order. The layer stays as it is, and its paths; only the tool axis a leans from the layer's
+//   normal n by an angle theta, one axis for the whole layer, where that clears what the coaxial
+//   nozzle met. Tried for each colliding layer once the order is set: theta = 5, 10, ... degrees
+//   up to max_lean_deg (and max_lean_deg itself), each towards the plate's normal and away from
+//   the reported obstacle (across n, from the obstacle towards the deposit point); the first
+//   that clears is taken: the least lean, towards the plate's normal before away from the
+//   obstacle. A lean clears when along every deposit path the nozzle keeps margin_mm from the
+//   plate (exact) and from every layer deposited before it: those lying wholly under the layer's
+//   plane cannot come near, since only leans keeping the whole nozzle margin_mm above that plane
+//   are tried (standoff cos theta - tip sin theta >= margin, and theta + cone_angle < 90
+//   degrees, so that the cone's lower side still rises); the others are tested as above, with the
+//   deposit moves cut into pieces whose heights along a differ by at most margin_mm and each
+//   piece given the grown radius at its lowest point (so no lean is taken that comes within the
+//   margin; a lean is refused only when it comes within near_miss_mm + margin_mm (1 + tan
+//   cone_angle) of the nozzle). A lean changes no other layer's check: a later layer's nozzle
+//   meets this one's prism, whatever its axis. Where no lean clears, the layer keeps its normal
+//   and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the paper's.
 #pragma once
 #include <Eigen/Core>
 #include <vector>
@@ -59,6 +78,7 @@ struct NozzleParams {
     double body_length_mm = 200.0;   // > 0
     double margin_mm = 2.0;          // clearance kept from deposited material; > 0, <= standoff / 2
     bool check_plate = true;         // the build plate is an obstacle too
+    double max_lean_deg = 30.0;      // the most the tool axis leans from the normal; [0, 90)
 };
 
 // Throws mas::Error(InvalidArgument) naming the first parameter out of its range.
@@ -85,6 +105,9 @@ struct BuildSequence {
     std::vector<NozzleCollision> collisions;  // one per colliding layer, in sequence order
     int component_switches = 0;               // consecutive layers of different components
     int interrupted_components = 0;           // components left unfinished for another and resumed
+    // Per layer (by index): its tool axis, the layer's normal or the nozzle leaned from it.
+    std::vector<Eigen::Vector3d> tool_axes;
+    int leaned_layers = 0;  // layers whose tool axis leans from their normal
 };
 
 struct SequenceInput {

@@ -63,13 +63,15 @@ struct SliceStats {
     int unfilled_features = 0;       // too small even for that: listed per layer
     int colliding_layers = 0;        // layers whose nozzle meets deposited material (Nozzle.hpp)
     int component_switches = 0;      // in the sequence: consecutive layers of two components
+    int leaned_layers = 0;           // layers deposited with the nozzle leaned (Nozzle.hpp)
     int filled_holes = 0;            // holes deposited solid, to be drilled (slice_part only)
     double filled_volume_mm3 = 0.0;  // the material that adds (exact, from the BREP)
 };
 
 struct SlicedPart {
     std::vector<Layer> layers;  // component by component in build order, each bottom to top
-    // One per layer, its first travel from where the layer before it in `sequence` ends.
+    // One per layer, its first travel from where the layer before it in `sequence` ends, its
+    // tool axis the sequence's (the layer's normal, or the nozzle leaned from it).
     std::vector<LayerToolpaths> toolpaths;
     std::vector<ComponentLayers> components;  // indexed by component
     std::vector<int> build_order;             // the components in the order they start

@@ -1,6 +1,7 @@
 // Deposition paths of one layer in 3-D: the 2-D bead paths of Paths.hpp laid on the layer's plane,
-// each point with the tool axis (the layer's normal) and the deposit thickness under it, joined by
-// travel moves. The input of the build sequence and the post-processor.
+// each point with the tool axis (the layer's normal, unless the nozzle leans: Nozzle.hpp) and the
+// deposit thickness under it, joined by travel moves. The input of the build sequence and the
+// post-processor.
 #pragma once
 #include <Eigen/Core>
 #include <optional>
@@ -27,7 +28,8 @@ const char* to_string(ToolPath::Kind kind);
 ToolPath travel_move(const Eigen::Vector3d& from, const Eigen::Vector3d& to);
 
 struct LayerToolpaths {
-    Eigen::Vector3d tool_axis = Eigen::Vector3d::UnitZ();  // every point's: the layer's normal
+    // Every point's: the layer's normal (the build sequence may lean it, Nozzle.hpp).
+    Eigen::Vector3d tool_axis = Eigen::Vector3d::UnitZ();
     std::vector<ToolPath> paths;            // in order: a travel move before every deposit path
     std::vector<int> centre_line_regions;   // regions narrower than a bead: one centre-line pass
     std::vector<UnfilledFeature> unfilled;  // too small even for that (2-D, layer frame)

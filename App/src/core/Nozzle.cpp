@@ -126,29 +126,49 @@ std::vector<Vector3d> prism_samples(const Layer& layer, double spacing) {
     return out;
 }
 
-// A deposit move of the layer being checked, in its plane's frame and in 3-D.
+// A deposit move of the layer being checked, in the tool axis' frame and in 3-D, with its ends'
+// heights along the axis.
 struct Segment {
     Vector2d a, b;
     Vector3d a3, b3;
+    double ha = 0.0, hb = 0.0;
 };
 
-// The deposit moves of one layer, binned on a grid for "any within r of q".
+// The deposit moves of one layer, binned on a grid for "any within r of q". The tool axis is the
+// paths' (the layer's normal: every deposit point at the plane's height along it), or `axis`
+// leaned from it, when the moves are cut into pieces whose ends' heights differ by at most `step`.
 class Sweep {
 public:
     Sweep(const LayerToolpaths& paths, const Layer& layer, double reach)
-        : frame_(paths.tool_axis.normalized()) {
+        : Sweep(paths, layer, reach, paths.tool_axis.normalized(),
+                std::numeric_limits<double>::infinity()) {}
+    Sweep(const LayerToolpaths& paths, const Layer& layer, double reach, const Vector3d& axis,
+          double step)
+        : frame_(axis) {
         height_ = frame_.normal.dot(layer.plane.origin);
+        auto add = [&](const Vector3d& a3, const Vector3d& b3) {
+            const double ha = frame_.normal.dot(a3), hb = frame_.normal.dot(b3);
+            const int pieces = std::isfinite(step) && std::abs(hb - ha) > step
+                                   ? int(std::ceil(std::abs(hb - ha) / step))
+                                   : 1;
+            for (int i = 0; i < pieces; ++i) {
+                const Vector3d p = a3 + (b3 - a3) * (double(i) / pieces);
+                const Vector3d q = i + 1 == pieces ? b3 : a3 + (b3 - a3) * (double(i + 1) / pieces);
+                segments_.push_back({frame_.to_2d(p), frame_.to_2d(q), p, q, frame_.normal.dot(p),
+                                     frame_.normal.dot(q)});
+                lo_ = std::min({lo_, segments_.back().ha, segments_.back().hb});
+                hi_ = std::max({hi_, segments_.back().ha, segments_.back().hb});
+            }
+            box_.extend(frame_.to_2d(a3));
+            box_.extend(frame_.to_2d(b3));
+            box3_.extend(a3);
+            box3_.extend(b3);
+        };
         for (const ToolPath& path : paths.paths) {
             if (!path.deposit() || path.points.empty()) continue;
             const std::size_t count = path.points.size();
-            for (std::size_t k = 0; k + 1 < std::max<std::size_t>(count, 2); ++k) {
-                const Vector3d a3 = path.points[k], b3 = path.points[std::min(k + 1, count - 1)];
-                segments_.push_back({frame_.to_2d(a3), frame_.to_2d(b3), a3, b3});
-                box_.extend(segments_.back().a);
-                box_.extend(segments_.back().b);
-                box3_.extend(a3);
-                box3_.extend(b3);
-            }
+            for (std::size_t k = 0; k + 1 < std::max<std::size_t>(count, 2); ++k)
+                add(path.points[k], path.points[std::min(k + 1, count - 1)]);
         }
         if (segments_.empty()) return;
         const double extent = std::max(box_.sizes().maxCoeff(), 1e-9);
@@ -171,6 +191,8 @@ public:
     bool empty() const { return segments_.empty(); }
     const PlaneFrame& frame() const { return frame_; }
     double height() const { return height_; }  // the plane's, along the tool axis
+    double lowest() const { return lo_; }      // the deposit points' least height along it
+    double highest() const { return hi_; }     // and greatest
     const Eigen::AlignedBox2d& box() const { return box_; }
     const Eigen::AlignedBox3d& box3() const { return box3_; }  // of the deposit points
     const std::vector<Segment>& segments() const { return segments_; }
@@ -204,6 +226,33 @@ public:
         return best;
     }
 
+    // Whether the nozzle grown as `shape` says, with its deposit point anywhere along the moves,
+    // may hold the point at `q` (2-D) and height `h` along the axis: each piece taken at its
+    // lowest point, where its grown radius is greatest (the radius never shrinks up the nozzle),
+    // so that none that does is missed.
+    bool may_hold(const Vector2d& q, double h, const Shape& shape) const {
+        const double low = shape.standoff - shape.grow, high = shape.top + shape.grow;
+        if (segments_.empty() || h - lo_ < low || h - hi_ > high) return false;
+        const double r = shape.grown(std::min(h - lo_, high));
+        if (box_.exteriorDistance(q) > r) return false;
+        const auto [i0, j0] = cell_of(q - Vector2d::Constant(r));
+        const auto [i1, j1] = cell_of(q + Vector2d::Constant(r));
+        for (int i = i0; i <= i1; ++i)
+            for (int j = j0; j <= j1; ++j)
+                for (int s : bins_[std::size_t(i) * std::size_t(columns_) + std::size_t(j)]) {
+                    const Segment& seg = segments_[std::size_t(s)];
+                    const double above = h - std::min(seg.ha, seg.hb);
+                    if (above < low || h - std::max(seg.ha, seg.hb) > high) continue;
+                    const double reach = shape.grown(std::min(above, high));
+                    const Vector2d d = seg.b - seg.a;
+                    const double len2 = d.squaredNorm();
+                    const double t =
+                        len2 > 0.0 ? std::clamp((q - seg.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+                    if ((seg.a + t * d - q).squaredNorm() <= reach * reach) return true;
+                }
+        return false;
+    }
+
 private:
     std::pair<int, int> cell_of(const Vector2d& p) const {
         auto clampi = [&](double x) {
@@ -214,6 +263,8 @@ private:
 
     PlaneFrame frame_;
     double height_ = 0.0;
+    double lo_ = std::numeric_limits<double>::infinity();
+    double hi_ = -std::numeric_limits<double>::infinity();
     std::vector<Segment> segments_;
     Eigen::AlignedBox2d box_;
     Eigen::AlignedBox3d box3_;
@@ -285,6 +336,8 @@ void validate(const NozzleParams& p) {
         fail("the nozzle's margin must be at most half its standoff (" +
                  format_number(p.standoff_mm) + " mm)",
              p.margin_mm);
+    if (!(p.max_lean_deg >= 0.0 && p.max_lean_deg < 90.0))
+        fail("the nozzle's greatest lean must lie within [0, 90) degrees", p.max_lean_deg);
 }
 
 double cone_length(const NozzleParams& p) {
@@ -484,43 +537,43 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         return where;
     };
     const Vector3d up = in.plate.normal.normalized();
+    // Where the nozzle meets the plate along x's moves (`sweep` is x's, with its tool axis).
+    auto plate_meets = [&](const Sweep& sweep, std::size_t x) -> std::optional<Conflict> {
+        // The nozzle's lowest point: on the rim of the tip's face, where the cone meets the body,
+        // or of the body's end (the plate is exact: the margin is kept, not grown).
+        const Vector3d n = sweep.frame().normal;
+        const double side = std::sqrt(std::max(0.0, 1.0 - n.dot(up) * n.dot(up)));
+        Vector3d sideways = up - n.dot(up) * n;  // towards up, across the axis
+        sideways = sideways.norm() > 1e-12 ? sideways.normalized() : Vector3d::Zero();
+        double lowest = std::numeric_limits<double>::infinity();
+        Vector3d offset = Vector3d::Zero();
+        for (double h : {shape.standoff, shape.cone_end, shape.top}) {
+            const double r = shape.radius(h);
+            const double z = h * n.dot(up) - r * side;
+            if (z < lowest) {
+                lowest = z;
+                offset = h * n - r * sideways;
+            }
+        }
+        for (const Segment& s : sweep.segments())
+            for (const Vector3d& p : {s.a3, s.b3})
+                if (up.dot(p - in.plate.origin) + lowest < m) {
+                    const Vector3d low = p + offset;
+                    return Conflict{int(x), -1, p, low - up.dot(low - in.plate.origin) * up};
+                }
+        return std::nullopt;
+    };
     std::vector<std::optional<Conflict>> plate(count);    // where x's nozzle meets the plate
     std::vector<std::vector<int>> unavoidable_of(count);  // x -> the layers y met whatever
     std::vector<std::vector<int>> blocks(count);          // x -> the layers y to come after it
     std::vector<int> pending(count, 0);                   // y: layers x to come before it, left
-    const Progress pairs = progress.span(0.0, 0.95, "checking the nozzle against the layers");
+    const Progress pairs = progress.span(0.0, 0.9, "checking the nozzle against the layers");
     for (std::size_t x = 0; x < count; ++x) {
         pairs(double(x) / double(std::max<std::size_t>(count, 1)));
         const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
         if (sweep.empty()) continue;
-        const Vector3d n = sweep.frame().normal;
         const int cx = layers[x].component;
-        if (params.check_plate) {
-            // The nozzle's lowest point: on the rim of the tip's face, where the cone meets the
-            // body, or of the body's end (the plate is exact: the margin is kept, not grown).
-            const double side = std::sqrt(std::max(0.0, 1.0 - n.dot(up) * n.dot(up)));
-            Vector3d sideways = up - n.dot(up) * n;  // towards up, across the axis
-            sideways = sideways.norm() > 1e-12 ? sideways.normalized() : Vector3d::Zero();
-            double lowest = std::numeric_limits<double>::infinity();
-            Vector3d offset = Vector3d::Zero();
-            for (double h : {shape.standoff, shape.cone_end, shape.top}) {
-                const double r = shape.radius(h);
-                const double z = h * n.dot(up) - r * side;
-                if (z < lowest) {
-                    lowest = z;
-                    offset = h * n - r * sideways;
-                }
-            }
-            for (const Segment& s : sweep.segments()) {
-                for (const Vector3d& p : {s.a3, s.b3})
-                    if (!plate[x] && up.dot(p - in.plate.origin) + lowest < m) {
-                        const Vector3d low = p + offset;
-                        plate[x] =
-                            Conflict{int(x), -1, p, low - up.dot(low - in.plate.origin) * up};
-                    }
-                if (plate[x]) break;
-            }
-        }
+        if (params.check_plate) plate[x] = plate_meets(sweep, x);
         const Eigen::AlignedBox3d reachable = sweep_box(sweep);
         for (std::size_t y = 0; y < count; ++y) {
             if (y == x) continue;
@@ -582,7 +635,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     for (std::size_t c = 0; c < comps; ++c)
         if (waiting[c] == 0) release(c);
     int current = -1;
-    const Progress order = progress.span(0.95, 1.0, "ordering the layers");
+    const Progress order = progress.span(0.9, 0.95, "ordering the layers");
     while (out.layers.size() < count) {
         order(double(out.layers.size()) / double(count));
         if (open.empty()) bad("the components' waits form a cycle");
@@ -635,12 +688,82 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
         worst[x] = deepest(sweep, x, met);
     }
+
+    // Leaning the nozzle where it collides (see Nozzle.hpp): whether the nozzle along x's moves
+    // with tool axis `axis` keeps clear of the plate and of every layer deposited before x.
+    auto clears = [&](std::size_t x, const Vector3d& axis) {
+        const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
+        if (params.check_plate && plate_meets(sweep, x)) return false;
+        const Plane& top = layers[x].plane;
+        const Eigen::AlignedBox3d reachable = sweep_box(sweep);
+        for (std::size_t y = 0; y < count; ++y) {
+            if (position[y] >= position[x] || bounds[y].corners.empty() ||
+                !bounds[y].box.intersects(reachable))
+                continue;
+            const LayerBounds& b = bounds[y];
+            if (std::all_of(b.corners.begin(), b.corners.end(), [&](const Vector3d& c) {
+                    return top.normal.dot(c - top.origin) <= 0.0;
+                }))
+                continue;  // wholly under x's plane, which the nozzle keeps the margin above
+            const double centre = axis.dot(b.centre);
+            if (centre + b.radius - sweep.lowest() < shape.standoff - shape.grow ||
+                centre - b.radius - sweep.highest() > shape.top + shape.grow)
+                continue;
+            for (const Vector3d& q : samples_of(y))
+                if (sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) return false;
+        }
+        return true;
+    };
+    // The leans tried: 5, 10, ... degrees and the greatest, each keeping the whole nozzle the
+    // margin above the layer's plane.
+    std::vector<double> leans;
+    const double cone_deg = shape.tan > 0.0 ? params.cone_angle_deg : 0.0;
+    for (double step = 5.0;; step += 5.0) {
+        const double theta = std::min(step, params.max_lean_deg);
+        if (theta <= 0.0) break;
+        const double t = theta * kPi / 180.0;
+        if (params.standoff_mm * std::cos(t) - shape.tip * std::sin(t) < m ||
+            theta + cone_deg >= 90.0)
+            break;
+        leans.push_back(theta);
+        if (theta >= params.max_lean_deg) break;
+    }
+    out.tool_axes.resize(count);
+    for (std::size_t x = 0; x < count; ++x) out.tool_axes[x] = (*in.toolpaths)[x].tool_axis;
+    order(1.0);
+    const Progress leaning = progress.span(0.95, 1.0, "leaning the nozzle where it collides");
+    for (std::size_t x = 0; x < count && !leans.empty(); ++x) {
+        if (!worst[x]) continue;
+        leaning(double(x) / double(count));
+        const Vector3d n = out.tool_axes[x].normalized();
+        std::vector<Vector3d> towards;  // across n
+        for (const Vector3d& v : {Vector3d(up), Vector3d(worst[x]->at - worst[x]->obstacle)}) {
+            const Vector3d across = v - n.dot(v) * n;
+            if (across.norm() < 1e-9) continue;
+            const Vector3d d = across.normalized();
+            if (towards.empty() || towards.front().dot(d) < 1.0 - 1e-9) towards.push_back(d);
+        }
+        bool leaned = false;
+        for (double theta : leans) {
+            const double t = theta * kPi / 180.0;
+            for (const Vector3d& d : towards) {
+                const Vector3d axis = (std::cos(t) * n + std::sin(t) * d).normalized();
+                if (!clears(x, axis)) continue;
+                out.tool_axes[x] = axis;
+                worst[x].reset();
+                ++out.leaned_layers;
+                leaned = true;
+                break;
+            }
+            if (leaned) break;
+        }
+    }
+
     for (int x : out.layers)
         if (worst[std::size_t(x)]) {
             const Conflict& k = *worst[std::size_t(x)];
             out.collisions.push_back({k.x, k.y, k.at, k.obstacle});
         }
-    order(1.0);
     progress(1.0);
     return out;
 }

@@ -305,6 +305,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     s.travel_length_mm = 0.0;
     for (const int i : out.sequence.layers) {
         LayerToolpaths& t = out.toolpaths[std::size_t(i)];
+        t.tool_axis = out.sequence.tool_axes[std::size_t(i)];
         if (!t.paths.empty() && !t.paths.front().deposit()) {
             const ToolPath& lead = t.paths.front();
             t.travel_length_mm -= (lead.points.back() - lead.points.front()).norm();
@@ -323,6 +324,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     }
     s.colliding_layers = int(out.sequence.collisions.size());
     s.component_switches = out.sequence.component_switches;
+    s.leaned_layers = out.sequence.leaned_layers;
     progress(1.0);
     return out;
 }

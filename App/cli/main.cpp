@@ -77,8 +77,9 @@ const char* kUsage =
     "           order found leaves in the way are listed. Nozzle options (mm, degrees):\n"
     "           --nozzle-standoff (10) --nozzle-tip-diameter (10) --nozzle-cone-angle\n"
     "           (half-angle, 30) --nozzle-body-diameter (50) --nozzle-body-length (200)\n"
-    "           --nozzle-margin (2, at most half the standoff);\n"
-    "           --no-plate-check: the build plate is no obstacle.\n"
+    "           --nozzle-margin (2, at most half the standoff), --nozzle-max-lean (30: where\n"
+    "           a layer's nozzle still collides, the tool axis may lean this far from its\n"
+    "           normal to clear; 0: never); --no-plate-check: the build plate is no obstacle.\n"
     "           --gcode OUT.ngc also writes the 5-axis program (LinuxCNC, tilting rotary table\n"
     "           XYZAC, xyzac-trt-kins; X Y Z in the part's coordinates): machine options\n"
     "           --a-limits MIN,MAX (degrees, default -100,50), --c-limits MIN,MAX (-36000,36000),\n"
@@ -591,7 +592,8 @@ const std::set<std::string> kSliceOptions = {"--min-layer",
                                              "--nozzle-cone-angle",
                                              "--nozzle-body-diameter",
                                              "--nozzle-body-length",
-                                             "--nozzle-margin"};
+                                             "--nozzle-margin",
+                                             "--nozzle-max-lean"};
 
 const std::set<std::string> kMachineOptions = {
     "--a-limits",       "--c-limits",  "--feed",          "--reference-thickness",
@@ -672,6 +674,7 @@ mas::SlicePartParams slice_params(const Args& a) {
     n.body_diameter_mm = a.number("--nozzle-body-diameter", n.body_diameter_mm);
     n.body_length_mm = a.number("--nozzle-body-length", n.body_length_mm);
     n.margin_mm = a.number("--nozzle-margin", n.margin_mm);
+    n.max_lean_deg = a.number("--nozzle-max-lean", n.max_lean_deg);
     return p;
 }
 
@@ -768,6 +771,7 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"nozzle_body_diameter\": " << num(sp.nozzle.body_diameter_mm)
             << ", \"nozzle_body_length\": " << num(sp.nozzle.body_length_mm)
             << ", \"nozzle_margin\": " << num(sp.nozzle.margin_mm)
+            << ", \"nozzle_max_lean\": " << num(sp.nozzle.max_lean_deg)
             << ", \"check_plate\": " << (sp.nozzle.check_plate ? "true" : "false") << "}"
             << ",\n  \"stats\": {\"layer_count\": " << st.layer_count
             << ", \"min_thickness_mm\": " << num(st.min_thickness_mm)
@@ -785,6 +789,7 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"unfilled_features\": " << st.unfilled_features
             << ", \"colliding_layers\": " << st.colliding_layers
             << ", \"component_switches\": " << st.component_switches
+            << ", \"leaned_layers\": " << st.leaned_layers
             << ", \"filled_holes\": " << st.filled_holes
             << ", \"filled_volume_mm3\": " << num(st.filled_volume_mm3)
             << "},\n  \"filled_holes\": [";
@@ -924,8 +929,20 @@ int run_slice(const std::vector<std::string>& args) {
         out << "\n# sequence: " << count(long(r.sequence.layers.size()), "layer", "layers") << ", "
             << count(st.component_switches, "switch", "switches") << " between components, "
             << count(r.sequence.interrupted_components, "component", "components")
-            << " interrupted; " << count(st.colliding_layers, "layer", "layers")
+            << " interrupted; " << count(st.leaned_layers, "layer", "layers")
+            << " with the nozzle leaned to clear; " << count(st.colliding_layers, "layer", "layers")
             << " where the nozzle meets what is deposited";
+        for (const int i : r.sequence.layers) {
+            const mas::Layer& l = r.layers[std::size_t(i)];
+            const Eigen::Vector3d& axis = r.sequence.tool_axes[std::size_t(i)];
+            if (axis == l.plane.normal) continue;
+            out << "\n#   layer " << i << " (component " << l.component << ") leans "
+                << num(std::round(std::acos(std::clamp(axis.dot(l.plane.normal), -1.0, 1.0)) *
+                                  180.0 / 3.14159265358979323846 * 1e6) /
+                       1e6)
+                << " degrees: tool axis " << num(axis.x()) << "," << num(axis.y()) << ","
+                << num(axis.z());
+        }
         for (const mas::NozzleCollision& c : r.sequence.collisions)
             out << "\n#   layer " << c.layer << " (component "
                 << r.layers[std::size_t(c.layer)].component << ") meets "

@@ -466,29 +466,83 @@ class CliSections(unittest.TestCase):
         self.assertIn("# build order: 0\n", r.stdout)
 
     def test_slice_nozzle_options_and_collisions(self):
-        """The L's arm is deposited sideways 40 to 60 mm up: a 100 mm nozzle body reaches under
-        the plate at every arm layer, which the text and the JSON list; without the plate check,
-        or with the default 50 mm body, nothing collides. Bad nozzle values are refused."""
+        """The L's arm is deposited sideways 40 to 60 mm up: a coaxial nozzle with a 100 mm body
+        reaches under the plate at every arm layer, which the text and the JSON list; without the
+        plate check, or with the default 50 mm body, nothing collides. Bad nozzle values are
+        refused."""
         brep = os.path.join(DATA, "l_block.brep")
-        r = run("slice", brep, "--nozzle-body-diameter", "100", "--json")
+        coaxial = ["--nozzle-body-diameter", "100", "--nozzle-max-lean", "0"]
+        r = run("slice", brep, *coaxial, "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         data = json.loads(r.stdout)
         arm = [i for i, layer in enumerate(data["layers"]) if layer["component"] == 1]
         self.assertEqual([c["layer"] for c in data["collisions"]], arm)
         self.assertEqual({c["obstacle_layer"] for c in data["collisions"]}, {-1})
         self.assertEqual(data["stats"]["colliding_layers"], len(arm))
+        self.assertEqual(data["stats"]["leaned_layers"], 0)
         self.assertEqual(data["params"]["nozzle_body_diameter"], 100)
+        self.assertEqual(data["params"]["nozzle_max_lean"], 0)
         self.assertEqual(data["sequence"], list(range(len(data["layers"]))))
-        text = run("slice", brep, "--nozzle-body-diameter", "100")
-        self.assertIn("; {} layers where the nozzle meets what is deposited".format(len(arm)),
-                      text.stdout)
+        text = run("slice", brep, *coaxial)
+        self.assertIn("; 0 layers with the nozzle leaned to clear; {} layers where the nozzle "
+                      "meets what is deposited".format(len(arm)), text.stdout)
         self.assertIn("#   layer {} (component 1) meets the build plate near ".format(arm[0]),
                       text.stdout)
-        for extra in (["--no-plate-check"], []):
-            r = run("slice", brep, "--json", *extra,
-                    *(["--nozzle-body-diameter", "100"] if extra else []))
+        for extra in (["--no-plate-check", *coaxial], ["--nozzle-max-lean", "0"]):
+            r = run("slice", brep, "--json", *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
             self.assertEqual(json.loads(r.stdout)["collisions"], [])
+
+    def test_slice_leans_the_nozzle_clear_of_the_plate(self):
+        """Allowed to lean (30 degrees by default), the 100 mm body clears the plate at every
+        arm layer: the arm is deposited along +X from x = 20, its lowest deposit points about
+        41 mm up, and the body's rim where the cone meets it (50 mm out, 45 / tan 30 + 10 mm
+        along the axis) stays the 2 mm margin above the plate leaned 10 degrees up, not 5. The
+        paths and the program follow the leaned axis."""
+        brep = os.path.join(DATA, "l_block.brep")
+        r = run("slice", brep, "--nozzle-body-diameter", "100", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        data = json.loads(r.stdout)
+        arm = [i for i, layer in enumerate(data["layers"]) if layer["component"] == 1]
+        self.assertEqual(data["collisions"], [])
+        self.assertEqual(data["stats"]["leaned_layers"], len(arm))
+        self.assertEqual(data["params"]["nozzle_max_lean"], 30)
+        cone_end = 10 + 45 / math.tan(math.radians(30))
+        for i, layer in enumerate(data["layers"]):
+            axis = layer["tool_axis"]
+            if i not in arm:
+                self.assertEqual(axis, layer["normal"])
+                continue
+            self.assertEqual(layer["normal"], [1, 0, 0])
+            lowest = min(p[2] for path in layer["paths"]
+                         if path["kind"] != "travel" for p in path["points"])
+            # The rim's lowest point, leaned t degrees up: z + cone_end sin t - 50 cos t.
+            def clear(t):
+                t = math.radians(t)
+                return lowest + cone_end * math.sin(t) - 50 * math.cos(t) >= 2
+            self.assertFalse(clear(5), lowest)
+            self.assertTrue(clear(10), lowest)
+            for got, want in zip(axis, (math.cos(math.radians(10)), 0,
+                                        math.sin(math.radians(10)))):
+                self.assertAlmostEqual(got, want, places=12)
+        text = run("slice", brep, "--nozzle-body-diameter", "100").stdout
+        self.assertIn("; {} layers with the nozzle leaned to clear; 0 layers where the nozzle "
+                      "meets what is deposited".format(len(arm)), text)
+        self.assertIn("#   layer {} (component 1) leans 10 degrees: tool axis ".format(arm[0]),
+                      text)
+        # The program tilts the table 80 degrees for the arm (A -80 or 80 beyond its 50).
+        ngc = os.path.join(self.tmp.name, "l.ngc")
+        r = run("slice", brep, "--nozzle-body-diameter", "100", "--gcode", ngc)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(ngc) as f:
+            a_words = {round(float(w[1:]), 4) for line in f if not line.startswith("(")
+                       for w in line.split() if w.startswith("A")}
+        self.assertIn(-80.0, a_words)
+        self.assertNotIn(-90.0, a_words)
+        r = run("slice", brep, "--nozzle-max-lean", "90")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("the nozzle's greatest lean must lie within [0, 90) degrees, got 90",
+                      r.stderr)
         for args, message in (
                 (["--nozzle-margin", "0"], "the nozzle's margin must be > 0 mm, got 0"),
                 (["--nozzle-margin", "6"],

@@ -4,6 +4,7 @@
 #   MAS_EXAMPLE  the part (default examples/bracket.step)
 #   MAS_OUT      the output folder (default out/)
 import json
+import math
 import os
 import sys
 import time
@@ -95,6 +96,11 @@ def main():
             f.write("# note: %s\n" % note)
         f.write("# deposition sequence (layers, checked against the nozzle): %s\n"
                 % " ".join(str(i) for i in sliced.sequence))
+        for i in sliced.leaned_layers():
+            a = sliced.tool_axis(i)
+            f.write("# leaned: layer %d deposited with the nozzle %.4g degrees off its normal, "
+                    "along (%g, %g, %g)\n" % (i, math.degrees(a.getAngle(sliced.layers[i].normal)),
+                                              a.x, a.y, a.z))
         for c in sliced.collisions:
             f.write("# collision: layer %d's nozzle meets %s near (%.3f, %.3f, %.3f)\n"
                     % (c.layer, "the build plate" if c.obstacle_layer < 0 else
@@ -150,8 +156,9 @@ def main():
                                                 stats["deposit_length_mm"],
                                                 stats["worst_unsupported_area_mm2"]))
     print("main job: layers deposited in a sequence with %d switches between components; "
-          "%d layer(s) where the nozzle meets what is deposited"
-          % (stats["component_switches"], stats["colliding_layers"]))
+          "%d layer(s) with the nozzle leaned to clear; %d layer(s) where the nozzle meets what is "
+          "deposited" % (stats["component_switches"], stats["leaned_layers"],
+                         stats["colliding_layers"]))
     print("main job: %d hole(s) deposited solid, to drill afterwards: %s"
           % (len(sliced.filled_holes), ", ".join(
               "%g mm across at (%g, %g, %g)" % (h.diameter, h.centre.x, h.centre.y, h.centre.z)

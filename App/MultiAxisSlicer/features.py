@@ -725,6 +725,9 @@ _SLICE_PROPERTIES = (
      "Clearance the nozzle keeps from what is deposited"),
     ("CheckPlate", "Nozzle", "check_plate", "App::PropertyBool",
      "The build plate (the plane the part stands on) is an obstacle to the nozzle too"),
+    ("NozzleMaxLean", "Nozzle", "nozzle_max_lean", "App::PropertyAngle",
+     "Where a layer's nozzle would still meet the plate or what is deposited, its tool axis may "
+     "lean this far from the layer's normal to clear (0 = always along the normal)"),
 )
 
 INFILL_PATTERNS = ["raster", "contour", "none"]
@@ -856,7 +859,7 @@ class LayersFeature(_EngineFeature):
     EpsAngle, OverhangAngle, VolumeSamples, Strict, FillHoles), the path parameters (BeadWidth,
     Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature, MeasureCoverage), the
     nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
-    NozzleBodyLength, NozzleMargin, CheckPlate) and
+    NozzleBodyLength, NozzleMargin, CheckPlate, NozzleMaxLean) and
     Deflection (mm chordal deflection for tessellating the components, 0 = automatic). Outputs:
     Shape (a compound of one sub-compound per layer, component by component in build order and
     bottom to top, each holding one closed wire per loop of its outline, then a face per region
@@ -866,12 +869,13 @@ class LayersFeature(_EngineFeature):
     WorstUnsupportedArea, WorstUnsupportedLayer, ComponentLayerCounts (tree order), BuildOrder (the
     components in the order they start), Sequence (the layers in deposition order, checked against
     the nozzle: NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
-    NozzleBodyLength, NozzleMargin, CheckPlate), ComponentSwitches, the layers whose nozzle meets
-    what is deposited (CollidingLayers and, per collision, CollisionLayers, CollisionObstacles,
-    CollisionPoints, CollisionNozzlePoints), the holes deposited solid to drill afterwards
+    NozzleBodyLength, NozzleMargin, CheckPlate), ComponentSwitches, the layers deposited with the
+    nozzle leaned from their normal to clear (LeanedLayers; their axes in LayerToolAxes), the
+    layers whose nozzle still meets what is deposited (CollidingLayers and, per collision,
+    CollisionLayers, CollisionObstacles, CollisionPoints, CollisionNozzlePoints), the holes deposited solid to drill afterwards
     (FilledHoleCount, FilledVolume and, per hole, FilledHoleComponents, FilledHoleCentres,
     FilledHoleAxes, FilledHoleDiameters, FilledHoleLengths) and, per layer, LayerComponents,
-    LayerOrigins, LayerNormals (the tool axis), LayerMinThicknesses, LayerMaxThicknesses,
+    LayerOrigins, LayerNormals, LayerToolAxes, LayerMinThicknesses, LayerMaxThicknesses,
     LayerVolumeDifferences, LayerUnsupportedAreas.
 
     The paths are planned in the same computation; the ``Toolpath`` object linked to this one
@@ -924,9 +928,12 @@ class LayersFeature(_EngineFeature):
                  "where going on would put it in the nozzle's way", None),
                 ("App::PropertyInteger", "ComponentSwitches",
                  "Consecutive layers of two components in the Sequence", 0),
+                ("App::PropertyInteger", "LeanedLayers",
+                 "Layers deposited with the nozzle leaned from their normal, where along it the "
+                 "nozzle would meet the plate or what is deposited (NozzleMaxLean)", 0),
                 ("App::PropertyInteger", "CollidingLayers",
                  "Layers whose nozzle meets what is deposited before them in the Sequence "
-                 "(no order found clears them)",
+                 "(no order or lean found clears them)",
                  0),
                 ("App::PropertyIntegerList", "CollisionLayers",
                  "Each colliding layer", None),
@@ -955,7 +962,9 @@ class LayersFeature(_EngineFeature):
                 ("App::PropertyVectorList", "LayerOrigins",
                  "A point on each layer's plane (its top)", None),
                 ("App::PropertyVectorList", "LayerNormals",
-                 "Each layer's normal: its tool axis (unit)", None),
+                 "Each layer's normal (unit)", None),
+                ("App::PropertyVectorList", "LayerToolAxes",
+                 "Each layer's tool axis: its normal, or the nozzle leaned from it (unit)", None),
                 ("App::PropertyFloatList", "LayerMinThicknesses",
                  "Each layer's least thickness (mm)", None),
                 ("App::PropertyFloatList", "LayerMaxThicknesses",
@@ -975,6 +984,7 @@ class LayersFeature(_EngineFeature):
         layers = result.layers
         obj.LayerOrigins = [FreeCAD.Vector(layer.origin) for layer in layers]
         obj.LayerNormals = [FreeCAD.Vector(layer.normal) for layer in layers]
+        obj.LayerToolAxes = [result.tool_axis(i) for i in range(len(layers))]
         obj.LayerMinThicknesses = [layer.min_thickness for layer in layers]
         obj.LayerMaxThicknesses = [layer.max_thickness for layer in layers]
         obj.LayerVolumeDifferences = [layer.volume_difference for layer in layers]
@@ -983,6 +993,7 @@ class LayersFeature(_EngineFeature):
         obj.BuildOrder = result.build_order
         obj.Sequence = result.sequence
         obj.ComponentSwitches = stats["component_switches"]
+        obj.LeanedLayers = stats["leaned_layers"]
         collisions = result.collisions
         obj.CollidingLayers = len(collisions)
         obj.CollisionLayers = [c.layer for c in collisions]
@@ -1017,8 +1028,8 @@ class LayersFeature(_EngineFeature):
         if collisions:
             shown = collisions[:10]
             FreeCAD.Console.PrintWarning(
-                "{}: the nozzle meets what is deposited on {} layer(s), which no order found "
-                "clears: {}{}\n".format(
+                "{}: the nozzle meets what is deposited on {} layer(s), which no order or lean "
+                "found clears: {}{}\n".format(
                     obj.Label, len(collisions), "; ".join(
                         "layer {} meets {} at ({:.4g}, {:.4g}, {:.4g})".format(
                             c.layer, "the build plate" if c.obstacle_layer < 0 else
@@ -1144,8 +1155,9 @@ def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
     ``params``: the slicing parameters of ``MultiAxisSlicer.slice`` (min_layer, max_layer,
     max_volume_difference, eps_angle, overhang_angle, volume_samples, strict, fill_holes,
     bead_width, overlap, contour_count, infill, raster_angle, raster_angle_step, min_feature,
-    measure_coverage; mm and degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before
-    anything is added.
+    measure_coverage, the nozzle's nozzle_standoff, nozzle_tip_diameter, nozzle_cone_angle,
+    nozzle_body_diameter, nozzle_body_length, nozzle_margin, check_plate, nozzle_max_lean; mm and
+    degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before anything is added.
     ``deflection``: mm for tessellating the components (0 = automatic). ``show_travel``: the
     Toolpath also shows the travel moves. Nothing is changed on the decomposition or its source.
 

@@ -50,6 +50,7 @@ SLICE_DEFAULTS = {
     "nozzle_body_length": 200.0,
     "nozzle_margin": 2.0,
     "check_plate": True,
+    "nozzle_max_lean": 30.0,
 }
 
 _AXIS_KEYS = ("step", "distance_threshold", "eps", "break_angle", "base_z")
@@ -59,8 +60,9 @@ class ToolPath:
     """One polyline of a layer: ``kind`` ("travel", "contour", "infill" or "centre_line"),
     ``deposit`` (False for travel), ``region`` (index into the layer's regions, -1 for travel),
     ``points`` (FreeCAD.Vector on the layer's plane; a closed loop repeats its first point),
-    ``thickness`` (deposit thickness under each point, mm) and ``tool_axis`` (the layer's normal,
-    the same for every point)."""
+    ``thickness`` (deposit thickness under each point, mm) and ``tool_axis`` (the same for every
+    point: the layer's normal, or the nozzle leaned from it where coaxial it would collide; see
+    ``SliceResult.tool_axis``)."""
 
     __slots__ = ("kind", "region", "_points", "thickness", "_axis")
 
@@ -111,7 +113,8 @@ class Layer:
     """One "3-D" layer: what is deposited between its lower plane and its plane.
 
     Attributes: ``component`` (index of its sub-component), ``origin`` and ``normal`` (its plane,
-    the layer's top; the normal is the tool axis), ``lower_origin`` and ``lower_normal`` (the plane
+    the layer's top; the tool axis unless the nozzle leans, ``SliceResult.tool_axis``),
+    ``lower_origin`` and ``lower_normal`` (the plane
     it is deposited on), ``regions`` (list of dicts with ``outer`` and ``holes``: loops as lists of
     FreeCAD.Vector on the plane), ``area`` (mm²), ``min_thickness`` and ``max_thickness`` (mm, over
     its region), ``volume`` (mm³ deposited), ``material_volume`` (mm³ of the part between the
@@ -253,13 +256,13 @@ class SliceResult:
     time the component whose first layer what is built leaves least unsupported), ``sequence``
     (the layer indices in the order they are deposited: a component is left for another where
     going on would put its layers in the nozzle's way to the other's), ``collisions``
-    (``Collision`` list: the layers whose nozzle still meets what is deposited),
+    (``Collision`` list: the layers whose nozzle still meets what is deposited, even leaned),
     ``components`` (per sub-component, by index: first_layer, layer_count, guide_nodes,
     volume_mm3), ``stats`` (dict: layer_count, min_thickness_mm, max_thickness_mm,
     part_volume_mm3, deposited_volume_mm3, material_volume_mm3, max_volume_difference,
     layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
     deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features, colliding_layers,
-    component_switches, filled_holes, filled_volume_mm3), ``filled_holes`` (``FilledHole`` list:
+    component_switches, leaned_layers, filled_holes, filled_volume_mm3), ``filled_holes`` (``FilledHole`` list:
     the holes deposited solid, to drill), ``notes`` (one string per hole that qualified for
     filling and stayed open, saying why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
     ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
@@ -289,6 +292,18 @@ class SliceResult:
         ended."""
         d = self._data["layers"][layer_index]
         return [ToolPath(p, d["tool_axis"]) for p in d["paths"]]
+
+    def tool_axis(self, layer_index):
+        """The tool axis layer ``layer_index`` is deposited along: its normal, or, where the
+        coaxial nozzle would meet the plate or what is deposited before it, the nozzle leaned
+        from it by the least of 5, 10, ... degrees up to ``nozzle_max_lean`` that clears (the
+        layer and its paths stay as they are)."""
+        return _as_vector(self._data["layers"][layer_index]["tool_axis"])
+
+    def leaned_layers(self):
+        """The indices of the layers whose tool axis leans from their normal."""
+        return [i for i, d in enumerate(self._data["layers"])
+                if _as_list(d["tool_axis"]) != _as_list(d["normal"])]
 
     def layer_report(self, layer_index):
         """Per-layer path facts: centre_line_regions (regions narrower than a bead, run as one
@@ -343,7 +358,7 @@ def _slice_params(values):
                  "nozzle_body_length", "nozzle_margin"):
         p[name] = _number(values[name], name, "millimetres")
     for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step",
-                 "nozzle_cone_angle"):
+                 "nozzle_cone_angle", "nozzle_max_lean"):
         p[name] = _number(values[name], name, "degrees")
     p["max_volume_difference"] = _number(values["max_volume_difference"],
                                          "max_volume_difference", "a fraction")
@@ -402,6 +417,8 @@ def _check_nozzle(p):
     # The check grows the nozzle by twice the margin: a tip closer would meet its own layer.
     check(p["nozzle_standoff"] >= 2.0 * p["nozzle_margin"], "nozzle_margin",
           "must be at most half nozzle_standoff ({} mm)".format(p["nozzle_standoff"]))
+    check(0.0 <= p["nozzle_max_lean"] < 90.0, "nozzle_max_lean",
+          "must lie within [0, 90) degrees")
 
 
 def slice(shape, axis=None, components=None, deflection=None, progress=None,  # noqa: A001
@@ -443,7 +460,10 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         point (10), widening at ``nozzle_cone_angle`` (half-angle, 30) to a body
         ``nozzle_body_diameter`` across (50) and ``nozzle_body_length`` long (200), kept
         ``nozzle_margin`` away (2, at most half the standoff); ``check_plate``: the build plate
-        is an obstacle too (True).
+        is an obstacle too (True). ``nozzle_max_lean`` (30): where a layer's coaxial nozzle
+        would still meet the plate or what is deposited, its tool axis may lean this far from
+        the layer's normal, by the least of 5, 10, ... degrees that clears, towards the plate's
+        normal or away from the obstacle (0: always coaxial, as the paper).
 
     ``progress``: None or ``progress(fraction, stage)``, called now and then with the fraction of
     the whole done (decomposing, when done here, is the first fifth); an exception it raises

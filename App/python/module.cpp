@@ -1038,6 +1038,8 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             p.nozzle.margin_mm = number();
         else if (key == "check_plate")
             p.nozzle.check_plate = truth();
+        else if (key == "nozzle_max_lean")
+            p.nozzle.max_lean_deg = number();
         else
             invalid_argument("unknown slicing parameter '" + key + "'");
     }
@@ -1153,6 +1155,7 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
     stats["unfilled_features"] = s.unfilled_features;
     stats["colliding_layers"] = s.colliding_layers;
     stats["component_switches"] = s.component_switches;
+    stats["leaned_layers"] = s.leaned_layers;
     stats["filled_holes"] = s.filled_holes;
     stats["filled_volume_mm3"] = s.filled_volume_mm3;
     bp::list holes;

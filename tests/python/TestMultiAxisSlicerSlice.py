@@ -435,9 +435,9 @@ class TestSliceSequence(SliceTest):
         self.assertEqual(named, result.sequence)
 
     def test_a_wide_nozzle_sideways_near_the_plate_is_reported(self):
-        # The L's arm is deposited sideways at z 40 to 60: a 100 mm body reaches 50 mm below
-        # the tool axis, under the plate for every arm layer (deposit points below z = 52).
-        result = mas.slice(l_block(), nozzle_body_diameter=100.0)
+        # The L's arm is deposited sideways at z 40 to 60: a coaxial 100 mm body reaches 50 mm
+        # below the tool axis, under the plate for every arm layer (deposit points below z = 52).
+        result = mas.slice(l_block(), nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
         arm = [i for i, layer in enumerate(result.layers) if layer.component == 1]
         self.assertEqual([c.layer for c in result.collisions], arm)
         self.assertEqual(result.stats["colliding_layers"], len(arm))
@@ -449,9 +449,49 @@ class TestSliceSequence(SliceTest):
         self.assertIn("meets the plate", repr(result.collisions[0]))
         self.assertEqual(result.to_dict()["collisions"][0]["obstacle_layer"], -1)
         # Without the plate as an obstacle, or with the default 50 mm body, nothing collides.
-        self.assertEqual(mas.slice(l_block(), nozzle_body_diameter=100.0,
+        self.assertEqual(result.leaned_layers(), [])
+        self.assertEqual(mas.slice(l_block(), nozzle_body_diameter=100.0, nozzle_max_lean=0.0,
                                    check_plate=False).collisions, [])
-        self.assertEqual(mas.slice(l_block()).collisions, [])
+        self.assertEqual(mas.slice(l_block(), nozzle_max_lean=0.0).collisions, [])
+
+    def test_the_nozzle_leans_clear_of_the_plate(self):
+        # Allowed to lean (30 degrees by default), the 100 mm body clears the plate at every arm
+        # layer: leaned t degrees up from +X, the rim where the cone meets the body (50 mm out,
+        # 10 + 45 / tan 30 along the axis) is z + that sin t - 50 cos t high. The lowest deposit
+        # point of each arm layer (about 41 mm up) needs 10 degrees, not 5.
+        result = mas.slice(l_block(), nozzle_body_diameter=100.0)
+        arm = [i for i, layer in enumerate(result.layers) if layer.component == 1]
+        self.assertEqual(result.collisions, [])
+        self.assertEqual(result.leaned_layers(), arm)
+        self.assertEqual(result.stats["leaned_layers"], len(arm))
+        self.assertEqual(result.stats["colliding_layers"], 0)
+        cone_end = 10.0 + 45.0 / math.tan(math.radians(30.0))
+        for i, layer in enumerate(result.layers):
+            axis = result.tool_axis(i)
+            self.assertIsInstance(axis, FreeCAD.Vector)
+            for path in result.paths(i):
+                self.assertEqual(path.tool_axis, axis)
+            if i not in arm:
+                self.assertEqual(axis, layer.normal)
+                continue
+            low = min(p.z for path in result.paths(i) if path.deposit for p in path.points)
+            rim = [low + cone_end * math.sin(math.radians(t)) - 50.0 * math.cos(math.radians(t))
+                   for t in (5.0, 10.0)]
+            self.assertLess(rim[0], 2.0)
+            self.assertGreaterEqual(rim[1], 2.0)
+            self.assertAlmostEqual((axis - FreeCAD.Vector(math.cos(math.radians(10.0)), 0.0,
+                                                          math.sin(math.radians(10.0)))).Length,
+                                   0.0, places=12)
+            self.assertEqual(result.to_dict()["layers"][i]["tool_axis"], list(axis))
+        # The program turns the table 80 degrees for the arm, not 90.
+        program = result.gcode()
+        a_words = {round(float(w[1:]), 4) for line in program.text.splitlines()
+                   if not line.startswith("(") for w in line.split() if w.startswith("A")}
+        self.assertIn(-80.0, a_words)
+        self.assertNotIn(-90.0, a_words)
+        # Allowed 7 degrees (tried: 5 and 7), the arm collides as coaxial.
+        self.assertEqual([c.layer for c in mas.slice(l_block(), nozzle_body_diameter=100.0,
+                                                     nozzle_max_lean=7.0).collisions], arm)
 
     def test_bad_nozzle_parameters_are_named(self):
         box = box_20_10_21()
@@ -466,7 +506,12 @@ class TestSliceSequence(SliceTest):
                 (ValueError, "nozzle_body_length", dict(nozzle_body_length=math.inf)),
                 (ValueError, "nozzle_tip_diameter", dict(nozzle_tip_diameter=math.nan)),
                 (TypeError, "nozzle_margin", dict(nozzle_margin="2 mm")),
-                (TypeError, "check_plate", dict(check_plate="yes"))):
+                (TypeError, "check_plate", dict(check_plate="yes")),
+                (ValueError, r"nozzle_max_lean must lie within \[0, 90\) degrees, got 90.0",
+                 dict(nozzle_max_lean=90.0)),
+                (ValueError, "nozzle_max_lean", dict(nozzle_max_lean=-1.0)),
+                (ValueError, "nozzle_max_lean", dict(nozzle_max_lean=math.nan)),
+                (TypeError, "nozzle_max_lean", dict(nozzle_max_lean="30 deg"))):
             with self.assertRaisesRegex(error, text, msg=str(kwargs)):
                 mas.slice(box, **kwargs)
         # One diameter: no cone, whatever its angle.
@@ -875,15 +920,20 @@ class TestLayersObject(SliceObjectTest):
         part = self.doc.addObject("Part::Feature", "L")
         part.Shape = l_block()
         self.doc.recompute()
-        decomposition, layers, toolpath = self.make(part, nozzle_body_diameter=100.0)
+        decomposition, layers, toolpath = self.make(part, nozzle_body_diameter=100.0,
+                                                    nozzle_max_lean=0.0)
         self.assertTrue(layers.isValid(), layers.getStatusString())
         self.assertEqual(layers.getGroupOfProperty("NozzleBodyDiameter"), "Nozzle")
         self.assertEqual(layers.NozzleBodyDiameter.Value, 100.0)
         self.assertEqual(layers.NozzleConeAngle.Value, 30.0)
+        self.assertEqual(layers.getGroupOfProperty("NozzleMaxLean"), "Nozzle")
+        self.assertEqual(layers.NozzleMaxLean.Value, 0.0)
         self.assertTrue(layers.CheckPlate)
         arm = [i for i, c in enumerate(layers.LayerComponents) if c == 1]
         self.assertEqual(list(layers.Sequence), list(range(layers.LayerCount)))
         self.assertEqual(layers.ComponentSwitches, 1)
+        self.assertEqual(layers.LeanedLayers, 0)
+        self.assertEqual(list(layers.LayerToolAxes), list(layers.LayerNormals))
         self.assertEqual(layers.CollidingLayers, len(arm))
         self.assertEqual(list(layers.CollisionLayers), arm)
         self.assertEqual(list(layers.CollisionObstacles), [-1] * len(arm))
@@ -898,6 +948,19 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(layers.NozzleBodyDiameter.Value, 100.0)
         self.assertEqual(layers.CollidingLayers, len(arm))
         self.assertEqual(list(layers.Sequence), list(range(layers.LayerCount)))
+        # Allowed to lean, the arm's layers lean 10 degrees up and clear the plate.
+        layers.NozzleMaxLean = 30.0
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.CollidingLayers, 0)
+        self.assertEqual(layers.LeanedLayers, len(arm))
+        for i, (axis, normal) in enumerate(zip(layers.LayerToolAxes, layers.LayerNormals)):
+            if i in arm:
+                self.assertAlmostEqual(axis.getAngle(normal), math.radians(10.0), places=9)
+                self.assertGreater(axis.z, 0.17)
+            else:
+                self.assertEqual(axis, normal)
+        layers.NozzleMaxLean = 0.0
         layers.CheckPlate = False
         self.doc.recompute()
         self.assertTrue(layers.isValid(), layers.getStatusString())

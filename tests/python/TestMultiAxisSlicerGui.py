@@ -1041,15 +1041,17 @@ class TestSliceCommand(unittest.TestCase):
         self.assertGreater(len(layers.Shape.Faces), 0)
 
     def test_collisions_are_drawn_from_the_nozzle_to_what_it_meets(self):
-        """A 100 mm nozzle body deposits the L's arm sideways 40 to 60 mm above the plate: every
-        arm layer's nozzle meets the plate, drawn as a line in CollisionColor from its deposit
-        point to the plate and a point there. With CheckPlate off, nothing is drawn."""
+        """A coaxial nozzle with a 100 mm body deposits the L's arm sideways 40 to 60 mm above the
+        plate: every arm layer's nozzle meets the plate, drawn as a line in CollisionColor from
+        its deposit point to the plate and a point there. Leaned (NozzleMaxLean) or with
+        CheckPlate off, none collides and nothing is drawn."""
         layers, toolpath = self.run_command(self.part)
         proxy = layers.ViewObject.Proxy
         self.assertEqual(proxy.collision_lines.numVertices.getNum(), 0)
         self.assertTrue(same_colour(layers.ViewObject.CollisionColor,
                                     view_providers.COLLISION_COLOUR))
         layers.NozzleBodyDiameter = 100.0
+        layers.NozzleMaxLean = 0.0
         self.doc.recompute()
         process_events()
         self.assertTrue(layers.isValid(), layers.getStatusString())
@@ -1073,12 +1075,14 @@ class TestSliceCommand(unittest.TestCase):
         layers.ViewObject.CollisionColor = (0.0, 0.0, 1.0)
         process_events()
         self.assertTrue(same_colour(proxy.collision_colour.rgb[0].getValue(), (0.0, 0.0, 1.0)))
-        layers.CheckPlate = False
-        self.doc.recompute()
-        process_events()
-        self.assertEqual(layers.CollidingLayers, 0)
-        self.assertEqual(proxy.collision_lines.numVertices.getNum(), 0)
-        self.assertEqual(proxy.collision_points.point.getNum(), 0)
+        for prop, value in (("NozzleMaxLean", 30.0), ("CheckPlate", False)):
+            setattr(layers, prop, value)
+            self.doc.recompute()
+            process_events()
+            self.assertEqual(layers.CollidingLayers, 0, prop)
+            self.assertEqual(proxy.collision_lines.numVertices.getNum(), 0, prop)
+            self.assertEqual(proxy.collision_points.point.getNum(), 0, prop)
+        self.assertEqual(layers.LeanedLayers, 0)  # nothing to clear without the plate
 
     def test_command_on_a_solid_decomposes_it_first(self):
         layers, toolpath = self.run_command(self.part)

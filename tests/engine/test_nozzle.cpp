@@ -641,6 +641,83 @@ TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
     EXPECT_EQ(mas::plan_build_sequence(input(b, {-1}, {0}), p).leaned_layers, 1);
 }
 
+// The deposit moves are checked all along, leaned too: a sideways layer whose path runs from 6 to
+// 60 mm up leans 25 degrees to clear the plate at its foot, but there its tip's rim would pass a
+// slab standing 6 to 7 mm off the layer's plane (deposited before it, its father), which no lean
+// up to 30 degrees clears. The lean is refused and the layer keeps its collision with the plate.
+TEST(Nozzle, ALeanIsCheckedAlongTheWholePathAgainstLayersOffItsPlane) {
+    Built b;
+    add_layer(b, 0, Vector3d::UnitX(), {{12, -10, 0.5}, {12, 20, 0.5}, {12, 20, 16}, {12, -10, 16}},
+              1.0, {{12, 5, 8}});
+    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 61}, {5, 0, 61}}, 1.0,
+              {{5, 5, 6}, {5, 5, 60}});
+    const mas::NozzleParams p;
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ();
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0}, {0, 1}), p);
+    ASSERT_EQ(s.layers, (std::vector<int>{0, 1}));
+    EXPECT_EQ(s.tool_axes[1], n);
+    bool layer_1_collides = false;
+    for (const mas::NozzleCollision& c : s.collisions)
+        if (c.layer == 1) {
+            layer_1_collides = true;
+            EXPECT_EQ(c.obstacle_layer, -1);
+            EXPECT_EQ(c.nozzle_at, Vector3d(5, 5, 6));
+        }
+    EXPECT_TRUE(layer_1_collides);
+    // At 25 and 30 degrees the nozzle at the path's foot comes into the slab (x 11 to 12, up to
+    // z = 16), which stands off the plane x = 5; half-way up the path it is clear of it.
+    auto least = [&](const Vector3d& at, double theta) {
+        double c = INFINITY;
+        for (double y = -10; y <= 20 + 1e-9; y += 0.25)
+            for (double z = 0.5; z <= 16 + 1e-9; z += 0.25)
+                for (double x : {11.0, 12.0})
+                    c = std::min(c, clearance(p, at, leaned(n, up, theta), Vector3d(x, y, z)));
+        return c;
+    };
+    for (double theta : {25.0, 30.0}) {
+        EXPECT_LT(least(Vector3d(5, 5, 6), theta), 0.0) << theta;
+        EXPECT_GT(least(Vector3d(5, 5, 33), theta), p.margin_mm) << theta;
+        EXPECT_GE(lowest_above(p, Vector3d(5, 5, 6), leaned(n, up, theta), up), p.margin_mm);
+    }
+    // Without the slab the layer leans 25 degrees.
+    Built alone;
+    alone.layers = {b.layers[1]};
+    alone.paths = {b.paths[1]};
+    alone.layers[0].component = 0;
+    const mas::BuildSequence a = mas::plan_build_sequence(input(alone, {-1}, {0}), p);
+    EXPECT_TRUE(a.collisions.empty());
+    EXPECT_NEAR((a.tool_axes[0] - leaned(n, up, 25.0)).norm(), 0.0, 1e-12);
+}
+
+// A lean away from the obstacle may not turn the nozzle further from the plate's normal than the
+// layer's normal is, past the horizontal: a sideways layer 100 mm up under its father's slab (its
+// body meets the slab 18 mm above) would clear it leaned 15 degrees down, but the machine that
+// reaches +X might not reach 105 degrees from +Z. It keeps its normal and its collision.
+TEST(Nozzle, ALeanAwayNeverTurnsTheNozzleFurtherUnderTheHorizontal) {
+    Built b;
+    add_square(b, 0, 0, -20, 60, 30, 119.0);
+    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 95}, {5, 10, 95}, {5, 10, 105}, {5, 0, 105}}, 1.0,
+              {{5, 5, 100}});
+    const mas::NozzleParams p;
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), at(5, 5, 100);
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0}, {0, 1}), p);
+    ASSERT_EQ(s.collisions.size(), 1u);
+    EXPECT_EQ(s.collisions[0].layer, 1);
+    EXPECT_EQ(s.collisions[0].obstacle_layer, 0);
+    EXPECT_EQ(s.tool_axes[1], n);
+    EXPECT_EQ(s.leaned_layers, 0);
+    // Leaned 15 degrees down the nozzle would keep clear of the slab; coaxial it does not.
+    auto least = [&](const Vector3d& axis) {
+        double c = INFINITY;
+        for (double x = 0; x <= 60 + 1e-9; x += 0.5)
+            for (double y = -20; y <= 30 + 1e-9; y += 0.5)
+                c = std::min(c, clearance(p, at, axis, Vector3d(x, y, 118)));
+        return c;
+    };
+    EXPECT_LT(least(n), p.margin_mm);
+    EXPECT_GT(least(leaned(n, -up, 15.0)), p.margin_mm);
+}
+
 // A layer whose nozzle meets one of its own component's layers above it, 7 mm across: the nozzle
 // leans away from it, just enough. The leaned nozzle keeps the margin from that layer's prism
 // (checked with the nozzle's own shape at 0.1 mm over its surface); 5 degrees less would come

@@ -38,25 +38,27 @@
 //   layer is reported once, with one obstacle: the plate, else the layer that comes deepest into
 //   the nozzle itself (the least signed distance from the nozzle's surface, negative inside, of
 //   any of its samples over the deposit point nearest it), at that sample and point.
-// - Leaning the nozzle (not in the paper; a 5-axis CAM's "tilt the tool to avoid a collision").
-//   A sideways arm near the plate has a coaxial nozzle's body reach under the plate, whatever the
+// - Leaning the nozzle (not in the paper; a 5-axis CAM's "tilt the tool to avoid a collision"). A
+//   sideways arm near the plate has a coaxial nozzle's body reach under the plate, whatever the
 //   order. The layer stays as it is, and its paths; only the tool axis a leans from the layer's
 //   normal n by an angle theta, one axis for the whole layer, where that clears what the coaxial
-//   nozzle met. Tried for each colliding layer once the order is set: theta = 5, 10, ... degrees
-//   up to max_lean_deg (and max_lean_deg itself), each towards the plate's normal and away from
-//   the reported obstacle (across n, from the obstacle towards the deposit point); the first
-//   that clears is taken: the least lean, towards the plate's normal before away from the
-//   obstacle. A lean clears when along every deposit path the nozzle keeps margin_mm from the
-//   plate (exact) and from every layer deposited before it: those lying wholly under the layer's
-//   plane cannot come near, since only leans keeping the whole nozzle margin_mm above that plane
-//   are tried (standoff cos theta - tip sin theta >= margin, and theta + cone_angle < 90
-//   degrees, so that the cone's lower side still rises); the others are tested as above, with the
-//   deposit moves cut into pieces whose heights along a differ by at most margin_mm and each
-//   piece given the grown radius at its lowest point (so no lean is taken that comes within the
-//   margin; a lean is refused only when it comes within near_miss_mm + margin_mm (1 + tan
-//   cone_angle) of the nozzle). A lean changes no other layer's check: a later layer's nozzle
-//   meets this one's prism, whatever its axis. Where no lean clears, the layer keeps its normal
-//   and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the paper's.
+//   nozzle met. Tried for each colliding layer once the order is set: theta = 5, 10, ... degrees up
+//   to max_lean_deg (and max_lean_deg itself), each towards the plate's normal and away from the
+//   reported obstacle (across n, from the obstacle towards the deposit point); the first that
+//   clears is taken: the least lean, towards the plate's normal before away from the obstacle; a
+//   lean turning the axis further from the plate's normal than the layer's normal is, past the
+//   horizontal, is not taken (a machine reaching the normal might not reach it). A lean clears when
+//   along every deposit path the nozzle keeps margin_mm from the plate (exact) and from every layer
+//   deposited before it: those lying wholly under the layer's plane cannot come near, since only
+//   leans keeping the whole nozzle margin_mm above that plane are tried (standoff cos theta - tip
+//   sin theta >= margin, and theta + cone_angle < 90 degrees, so that the cone's lower side still
+//   rises); the others are tested as above, with the deposit moves cut into pieces whose heights
+//   along a differ by at most margin_mm and each piece given the grown radius at its lowest point
+//   (so no lean is taken that comes within the margin; a lean is refused only when it comes within
+//   near_miss_mm + margin_mm (1 + tan cone_angle) of the nozzle). A lean changes no other layer's
+//   check: a later layer's nozzle meets this one's prism, whatever its axis. Where no lean clears,
+//   the layer keeps its normal and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the
+//   paper's.
 #pragma once
 #include <Eigen/Core>
 #include <vector>

@@ -8,8 +8,8 @@
 //   first) and its upper plane U (the slice Sec. 4.2.2 chooses). It deposits its REGION: the
 //   component's section just above L, swept along U's normal n up to U (the lower region, as the
 //   issue defines it; what rests on the layer below is exactly what that layer's top offers).
-//   The layer records U as its plane: the tool axis is n, and its regions are the lower region
-//   projected along n onto U, in PlaneFrame(n) coordinates.
+//   The layer records U as its plane: the tool axis is n (unless the nozzle leans, Nozzle.hpp),
+//   and its regions are the lower region projected along n onto U, in PlaneFrame(n) coordinates.
 // - Thickness at a point x of the lower region is its distance to U along n, (U.origin - x).n;
 //   the layer's min/max thickness are taken over the region's outline points (the thickness is
 //   linear, so the extremes lie on the outline). Eq. 9's bounds apply to both, so consecutive
@@ -134,7 +134,7 @@ struct ComponentSlicingInput {
 
 struct Layer {
     int component = -1;
-    Plane plane;       // upper plane U: the layer's top; normal = tool axis, unit
+    Plane plane;       // upper plane U: the layer's top; normal = tool axis (unless leaned), unit
     Plane lower;       // the plane it is deposited on (the layer below's top, or the base plane)
     Regions2 regions;  // the deposited region on `plane`, PlaneFrame(plane.normal) coordinates
     double area_mm2 = 0.0;          // of `regions`

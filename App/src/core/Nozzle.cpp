@@ -421,8 +421,10 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         if (!bounds[i].corners.empty())
             component_box[std::size_t(layers[i].component)].extend(bounds[i].box);
     }
-    // The box holding x's grown nozzle anywhere along its deposit paths: the grown nozzle lies in
-    // the hull of its rims (its radius never shrinks along it).
+    // The box holding x's nozzle anywhere along its deposit paths, and everything within the
+    // margin of it: the hull of the grown nozzle's rims at its lowest height, where the cone meets
+    // the body and at its top holds the nozzle grown by the margin (both are convex, and at each
+    // of those heights the rims are the wider).
     auto sweep_box = [&](const Sweep& sweep) {
         const Vector3d n = sweep.frame().normal;
         const Vector3d across = (Vector3d::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();
@@ -743,12 +745,18 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             const Vector3d d = across.normalized();
             if (towards.empty() || towards.front().dot(d) < 1.0 - 1e-9) towards.push_back(d);
         }
+        // No lean turns the nozzle further from the plate's normal than the layer's normal is,
+        // past the horizontal: the machine may not reach it where it reached the normal.
+        const double steepest = std::max(std::acos(std::clamp(n.dot(up), -1.0, 1.0)), kPi / 2.0);
         bool leaned = false;
         for (double theta : leans) {
             const double t = theta * kPi / 180.0;
             for (const Vector3d& d : towards) {
                 const Vector3d axis = (std::cos(t) * n + std::sin(t) * d).normalized();
-                if (!clears(x, axis)) continue;
+                if (axis == n ||
+                    std::acos(std::clamp(axis.dot(up), -1.0, 1.0)) > steepest + 1e-12 ||
+                    !clears(x, axis))
+                    continue;
                 out.tool_axes[x] = axis;
                 worst[x].reset();
                 ++out.leaned_layers;

@@ -892,13 +892,17 @@ class LayersFeature(_EngineFeature):
     def ensure_properties(obj):
         _add_property(obj, "App::PropertyLink", "Decomposition", "Layers",
                       "Decomposition object whose part is sliced, component by component")
+        # A document saved before the nozzle could lean was computed with it coaxial: it keeps
+        # that (NozzleMaxLean 0, each tool axis its layer's normal) until the user changes it.
+        computed_coaxial = "LayerCount" in obj.PropertiesList
         for prop, group, name, type_id, doc in _SLICE_PROPERTIES:
             if type_id == "App::PropertyEnumeration":
                 if _add_property(obj, type_id, prop, group, doc):
                     setattr(obj, prop, INFILL_PATTERNS)
                     setattr(obj, prop, mas.SLICE_DEFAULTS[name])
-            else:
-                _add_property(obj, type_id, prop, group, doc, mas.SLICE_DEFAULTS[name])
+            elif (_add_property(obj, type_id, prop, group, doc, mas.SLICE_DEFAULTS[name]) and
+                  prop == "NozzleMaxLean" and computed_coaxial):
+                obj.NozzleMaxLean = 0.0
         _add_property(obj, "App::PropertyLength", "Deflection", "Layers",
                       "Chordal deflection for tessellating the components (0 = automatic)", 0.0)
         result = "Result"
@@ -974,7 +978,9 @@ class LayersFeature(_EngineFeature):
                 ("App::PropertyFloatList", "LayerUnsupportedAreas",
                  "Each layer's area outside the one below grown by the overhang allowance (mm^2; "
                  "the red faces)", None)):
-            _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
+            if (_add_property(obj, type_id, prop, result, doc, default, _OUTPUT) and
+                    prop == "LayerToolAxes" and computed_coaxial):
+                obj.LayerToolAxes = list(obj.LayerNormals)
 
     @staticmethod
     def recompute(obj):

@@ -972,6 +972,37 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(layers.getStatusString(),
                          "NozzleMargin must be a positive number of millimetres, got 0.0")
 
+    def test_a_document_saved_before_the_nozzle_could_lean_keeps_it_coaxial(self):
+        # The L with a 100 mm body, computed coaxially and saved without the lean's properties,
+        # as documents were: reopened, NozzleMaxLean is 0 and the tool axes are the normals, so
+        # what it shows (25 arm layers meeting the plate) stays what it computes.
+        part = self.doc.addObject("Part::Feature", "L")
+        part.Shape = l_block()
+        self.doc.recompute()
+        decomposition, layers, toolpath = self.make(part, nozzle_body_diameter=100.0,
+                                                    nozzle_max_lean=0.0)
+        arm = [i for i, c in enumerate(layers.LayerComponents) if c == 1]
+        self.assertEqual(layers.CollidingLayers, len(arm))
+        for prop in ("NozzleMaxLean", "LeanedLayers", "LayerToolAxes"):
+            layers.removeProperty(prop)
+        path = os.path.join(self.folder, "MasSliceBeforeLean.FCStd")  # closed by tearDown
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        layers = self.doc.getObject("Layers")
+        self.assertEqual(layers.NozzleMaxLean.Value, 0.0)
+        self.assertEqual(layers.LeanedLayers, 0)
+        self.assertEqual(list(layers.LayerToolAxes), list(layers.LayerNormals))
+        self.assertEqual(len(layers.LayerToolAxes), layers.LayerCount)
+        layers.touch()
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertEqual(layers.CollidingLayers, len(arm))
+        self.assertEqual(layers.LeanedLayers, 0)
+        # A new object leans by default.
+        self.assertEqual(mas.make_slice(layers.Decomposition, name="Again")[0].NozzleMaxLean.Value,
+                         30.0)
+
     def test_bad_parameters_mark_the_object_with_the_message(self):
         decomposition, layers, toolpath = self.make()
         layers.MinLayer = 3.0  # more than MaxLayer

@@ -136,9 +136,9 @@ int main(int argc, char** argv) {
         params.layers.max_volume_difference, params.paths.bead_width_mm,
         params.paths.contour_count);
     std::printf("\n## Time (ms): axis and decomposition apart; layers+paths is the target\n");
-    std::printf("%-24s %6s %5s %7s %9s %9s %9s %8s %9s %8s %8s %9s %8s %9s %8s\n", "part", "height",
-                "comps", "layers", "axis", "decompose", "layers", "+paths", "reporting", "reports",
-                "sequence", "seq/slice", "switches", "collided", "G-code", "G/slice");
+    std::printf("%-24s %6s %5s %7s %9s %9s %9s %8s %9s %8s %8s %9s %8s %9s %8s %8s\n", "part",
+                "height", "comps", "layers", "axis", "decompose", "layers", "+paths", "reporting",
+                "reports", "sequence", "seq/slice", "switches", "collided", "G-code", "G/slice");
     struct Row {
         std::string name;
         int ours = 0, planar = 0, uniform = 0;
@@ -173,7 +173,6 @@ int main(int argc, char** argv) {
         // its own work), as a ratio to the run without.
         long reports = 0;
         using Clock = std::chrono::steady_clock;
-        std::vector<double> sequence_runs;
         Clock::time_point sequence_start;
         bool in_sequence = false;
         const mas::Progress counting([&](double, const std::string& stage) {
@@ -183,16 +182,25 @@ int main(int argc, char** argv) {
                 sequence_start = Clock::now();
             }
         });
-        const double reporting_ms = time_ms(3, [&] {
-            in_sequence = false;
-            r = mas::slice_part(p.shape, axis, d, params, counting);
-            sequence_runs.push_back(in_sequence ? std::chrono::duration<double, std::milli>(
-                                                      Clock::now() - sequence_start)
-                                                      .count()
-                                                : 0.0);
-        });
-        std::sort(sequence_runs.begin(), sequence_runs.end());
-        const double sequence_ms = sequence_runs[sequence_runs.size() / 2];
+        // Three runs with it: the whole slicing's time, and the build sequence's (from its first
+        // report to the end of the slicing), each the median.
+        auto counted = [&](const mas::SlicePartParams& with, mas::SlicedPart& into,
+                           double& sequence) {
+            std::vector<double> runs;
+            const double ms = time_ms(3, [&] {
+                in_sequence = false;
+                into = mas::slice_part(p.shape, axis, d, with, counting);
+                runs.push_back(in_sequence ? std::chrono::duration<double, std::milli>(
+                                                 Clock::now() - sequence_start)
+                                                 .count()
+                                           : 0.0);
+            });
+            std::sort(runs.begin(), runs.end());
+            sequence = runs[runs.size() / 2];
+            return ms;
+        };
+        double sequence_ms = 0.0;
+        const double reporting_ms = counted(params, r, sequence_ms);
         // The post-processor on the same layers, default machine.
         std::size_t gcode_bytes = 0;
         const double gcode_ms = time_ms(3, [&] {
@@ -206,23 +214,14 @@ int main(int argc, char** argv) {
             sequence_ms / total_ms, r.stats.component_switches, r.stats.colliding_layers, gcode_ms,
             gcode_ms / total_ms);
         if (gcode_bytes == 0) std::printf("  (no G-code written)\n");
-        // The nozzle kept coaxial (the paper's): the whole slicing's time and collisions.
+        // The nozzle kept coaxial (the paper's): the build sequence's time and collisions.
         mas::SlicePartParams coaxial_params = params;
         coaxial_params.nozzle.max_lean_deg = 0.0;
         mas::SlicedPart coaxial;
-        std::vector<double> coaxial_runs;
-        time_ms(3, [&] {
-            in_sequence = false;
-            coaxial = mas::slice_part(p.shape, axis, d, coaxial_params, counting);
-            coaxial_runs.push_back(in_sequence ? std::chrono::duration<double, std::milli>(
-                                                     Clock::now() - sequence_start)
-                                                     .count()
-                                               : 0.0);
-        });
-        std::sort(coaxial_runs.begin(), coaxial_runs.end());
+        double coaxial_ms = 0.0;
+        counted(coaxial_params, coaxial, coaxial_ms);
         leans.push_back({p.name, coaxial.stats.colliding_layers, r.stats.colliding_layers,
-                         r.stats.leaned_layers, coaxial_runs[coaxial_runs.size() / 2],
-                         sequence_ms});
+                         r.stats.leaned_layers, coaxial_ms, sequence_ms});
 
         // Planar adaptive along Z: the whole part as one component, a straight +Z guide.
         mas::ComponentMesh whole;

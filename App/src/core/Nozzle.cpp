@@ -207,22 +207,13 @@ public:
         if (segments_.empty() || box_.exteriorDistance(q) > r) return std::nullopt;
         std::optional<Hit> best;
         double limit = r * r;
-        const auto [i0, j0] = cell_of(q - Vector2d::Constant(r));
-        const auto [i1, j1] = cell_of(q + Vector2d::Constant(r));
-        for (int i = i0; i <= i1; ++i)
-            for (int j = j0; j <= j1; ++j)
-                for (int s : bins_[std::size_t(i) * std::size_t(columns_) + std::size_t(j)]) {
-                    const Segment& seg = segments_[std::size_t(s)];
-                    const Vector2d d = seg.b - seg.a;
-                    const double len2 = d.squaredNorm();
-                    const double t =
-                        len2 > 0.0 ? std::clamp((q - seg.a).dot(d) / len2, 0.0, 1.0) : 0.0;
-                    const double d2 = (seg.a + t * d - q).squaredNorm();
-                    if (d2 > limit) continue;
-                    best = Hit{Vector3d(seg.a3 + t * (seg.b3 - seg.a3)), std::sqrt(d2)};
-                    if (!nearest) return best;
-                    limit = d2;
-                }
+        visit(q, r, [&](const Segment& seg) {
+            const auto [t, d2] = closest(seg, q);
+            if (d2 > limit) return false;
+            best = Hit{Vector3d(seg.a3 + t * (seg.b3 - seg.a3)), std::sqrt(d2)};
+            limit = d2;
+            return !nearest;
+        });
         return best;
     }
 
@@ -235,25 +226,35 @@ public:
         if (segments_.empty() || h - lo_ < low || h - hi_ > high) return false;
         const double r = shape.grown(std::min(h - lo_, high));
         if (box_.exteriorDistance(q) > r) return false;
+        bool held = false;
+        visit(q, r, [&](const Segment& seg) {
+            const double above = h - std::min(seg.ha, seg.hb);
+            if (above < low || h - std::max(seg.ha, seg.hb) > high) return false;
+            const double reach = shape.grown(std::min(above, high));
+            held = closest(seg, q).second <= reach * reach;
+            return held;
+        });
+        return held;
+    }
+
+private:
+    // Calls `f` with each move binned within r of q (some farther) until it returns true.
+    template <class F>
+    void visit(const Vector2d& q, double r, F&& f) const {
         const auto [i0, j0] = cell_of(q - Vector2d::Constant(r));
         const auto [i1, j1] = cell_of(q + Vector2d::Constant(r));
         for (int i = i0; i <= i1; ++i)
             for (int j = j0; j <= j1; ++j)
-                for (int s : bins_[std::size_t(i) * std::size_t(columns_) + std::size_t(j)]) {
-                    const Segment& seg = segments_[std::size_t(s)];
-                    const double above = h - std::min(seg.ha, seg.hb);
-                    if (above < low || h - std::max(seg.ha, seg.hb) > high) continue;
-                    const double reach = shape.grown(std::min(above, high));
-                    const Vector2d d = seg.b - seg.a;
-                    const double len2 = d.squaredNorm();
-                    const double t =
-                        len2 > 0.0 ? std::clamp((q - seg.a).dot(d) / len2, 0.0, 1.0) : 0.0;
-                    if ((seg.a + t * d - q).squaredNorm() <= reach * reach) return true;
-                }
-        return false;
+                for (int s : bins_[std::size_t(i) * std::size_t(columns_) + std::size_t(j)])
+                    if (f(segments_[std::size_t(s)])) return;
     }
-
-private:
+    // The parameter along `seg` of its point nearest q (2-D), and that point's squared distance.
+    static std::pair<double, double> closest(const Segment& seg, const Vector2d& q) {
+        const Vector2d d = seg.b - seg.a;
+        const double len2 = d.squaredNorm();
+        const double t = len2 > 0.0 ? std::clamp((q - seg.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+        return {t, (seg.a + t * d - q).squaredNorm()};
+    }
     std::pair<int, int> cell_of(const Vector2d& p) const {
         auto clampi = [&](double x) {
             return std::clamp(int(std::floor(x / cell_)), 0, columns_ - 1);

@@ -645,6 +645,13 @@ class SliceObjectTest(SliceTest):
         self.doc.recompute()
         return decomposition, layers, toolpath
 
+    def make_coaxial_wide_l(self):
+        """The L sliced with a coaxial nozzle 100 mm across: every arm layer meets the plate."""
+        part = self.doc.addObject("Part::Feature", "L")
+        part.Shape = l_block()
+        self.doc.recompute()
+        return self.make(part, nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
+
     def check_box_objects(self, layers, toolpath):
         self.assertTrue(layers.isValid(), layers.getStatusString())
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
@@ -917,11 +924,7 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(layers.LayerCount, 11)
 
     def test_the_sequence_and_its_collisions_are_properties_and_are_saved(self):
-        part = self.doc.addObject("Part::Feature", "L")
-        part.Shape = l_block()
-        self.doc.recompute()
-        decomposition, layers, toolpath = self.make(part, nozzle_body_diameter=100.0,
-                                                    nozzle_max_lean=0.0)
+        decomposition, layers, toolpath = self.make_coaxial_wide_l()
         self.assertTrue(layers.isValid(), layers.getStatusString())
         self.assertEqual(layers.getGroupOfProperty("NozzleBodyDiameter"), "Nozzle")
         self.assertEqual(layers.NozzleBodyDiameter.Value, 100.0)
@@ -976,11 +979,7 @@ class TestLayersObject(SliceObjectTest):
         # The L with a 100 mm body, computed coaxially and saved without the lean's properties,
         # as documents were: reopened, NozzleMaxLean is 0 and the tool axes are the normals, so
         # what it shows (25 arm layers meeting the plate) stays what it computes.
-        part = self.doc.addObject("Part::Feature", "L")
-        part.Shape = l_block()
-        self.doc.recompute()
-        decomposition, layers, toolpath = self.make(part, nozzle_body_diameter=100.0,
-                                                    nozzle_max_lean=0.0)
+        decomposition, layers, toolpath = self.make_coaxial_wide_l()
         arm = [i for i, c in enumerate(layers.LayerComponents) if c == 1]
         self.assertEqual(layers.CollidingLayers, len(arm))
         for prop in ("NozzleMaxLean", "LeanedLayers", "LayerToolAxes"):

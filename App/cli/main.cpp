@@ -172,6 +172,18 @@ std::string vec(const Eigen::Vector3d& v) {
     return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]";
 }
 
+// The G-code's routes that meet what is deposited, as JSON objects.
+std::string travel_collisions_json(const mas::GcodeStats& gs) {
+    std::string out;
+    for (std::size_t i = 0; i < gs.travel_collisions.size(); ++i) {
+        const mas::TravelCollision& c = gs.travel_collisions[i];
+        out += std::string(i ? ", " : "") + "{\"layer\": " + std::to_string(c.layer) +
+               ", \"obstacle_layer\": " + std::to_string(c.obstacle_layer) +
+               ", \"nozzle_at\": " + vec(c.nozzle_at) + ", \"obstacle\": " + vec(c.obstacle) + "}";
+    }
+    return out;
+}
+
 std::string quoted(const std::string& text) {
     std::string out = "\"";
     for (char c : text) {
@@ -741,7 +753,10 @@ int run_slice(const std::vector<std::string>& args) {
     }
     mas::GcodeStats gs;
     if (a.has("--gcode")) {
-        const std::string program = mas::write_gcode(mas::gcode_layers(r), machine, &gs);
+        // The travel is checked against the nozzle and plate the sequence was.
+        const mas::TravelNozzle nozzle{sp.nozzle, r.plate};
+        const std::string program =
+            mas::write_gcode(mas::gcode_layers(r), machine, &gs, {}, &nozzle);
         write_file(a.options.at("--gcode"), [&](std::ostream& file) { file << program; });
     }
     const mas::SliceStats& st = r.stats;
@@ -811,7 +826,10 @@ int run_slice(const std::vector<std::string>& args) {
                 << "], \"deposit_length_mm\": " << num(gs.deposit_length_mm)
                 << ", \"deposit_time_min\": " << num(gs.deposit_time_min)
                 << ", \"rapid_length_mm\": " << num(gs.rapid_length_mm)
-                << ", \"reference_thickness_mm\": " << num(gs.reference_thickness_mm) << "},";
+                << ", \"reference_thickness_mm\": " << num(gs.reference_thickness_mm)
+                << ", \"checked_routes\": " << gs.checked_routes
+                << ", \"rerouted_travels\": " << gs.rerouted_travels << ", \"travel_collisions\": ["
+                << travel_collisions_json(gs) << "]},";
         out << "\n  \"notes\": [";
         for (std::size_t i = 0; i < r.notes.size(); ++i)
             out << (i ? ", " : "") << quoted(r.notes[i]);
@@ -911,7 +929,19 @@ int run_slice(const std::vector<std::string>& args) {
                 << gs.deposit_moves << " deposit moves (" << gs.feed_limited_moves
                 << " at a feed limit), A " << num(gs.a_min_deg) << " to " << num(gs.a_max_deg)
                 << " deg, C " << num(gs.c_min_deg) << " to " << num(gs.c_max_deg)
-                << " deg, deposit time " << num(gs.deposit_time_min) << " min\n";
+                << " deg, deposit time " << num(gs.deposit_time_min)
+                << " min\n# travel: " << gs.checked_routes << " routes checked against the nozzle, "
+                << gs.rerouted_travels << " taken round the part, " << gs.travel_collisions.size()
+                << " meeting what is deposited\n";
+        for (const mas::TravelCollision& c : gs.travel_collisions)
+            out << "#   on the way "
+                << (c.layer < 0 ? std::string("off the part")
+                                : "to layer " + std::to_string(c.layer))
+                << " the nozzle meets "
+                << (c.obstacle_layer < 0 ? std::string("the build plate")
+                                         : "layer " + std::to_string(c.obstacle_layer))
+                << " near " << num(c.obstacle.x()) << "," << num(c.obstacle.y()) << ","
+                << num(c.obstacle.z()) << "\n";
         if (!r.filled_holes.empty())
             out << "# deposited solid, to drill afterwards: " << st.filled_holes
                 << (st.filled_holes == 1 ? " hole, " : " holes, ") << num(st.filled_volume_mm3)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -12,6 +13,7 @@
 
 #include "mas/Error.hpp"
 #include "mas/Gcode.hpp"
+#include "mas/Polygon2.hpp"
 #include "mas/SlicePart.hpp"
 #include "test_parts.hpp"
 
@@ -632,6 +634,223 @@ TEST(Gcode, ASlicedLBlockDepositsEveryPathOfEveryLayer) {
     EXPECT_NEAR(stats.deposit_length_mm, length, 1e-6 * length);
     EXPECT_NEAR(stats.deposit_length_mm, sliced.stats.deposit_length_mm,
                 1e-9 * sliced.stats.deposit_length_mm);
+}
+
+// Gives `l` its prism: the polygons `loops` (each an outer boundary, on the plane of normal `n`
+// through their points) swept down `thickness` along n.
+void set_prism(mas::GcodeLayer& l, const Vector3d& n,
+               const std::vector<std::vector<Vector3d>>& loops, double thickness) {
+    const mas::PlaneFrame frame(n);
+    l.prism.plane = {loops.front().front(), n};
+    l.prism.lower = {loops.front().front() - thickness * n, n};
+    l.prism.regions.clear();
+    l.outline.clear();
+    for (const auto& loop : loops) {
+        mas::Polygon2 outer;
+        for (const Vector3d& q : loop) outer.points.push_back(frame.to_2d(q));
+        if (mas::signed_area(outer) < 0) std::reverse(outer.points.begin(), outer.points.end());
+        l.prism.regions.push_back({outer, {}});
+        l.outline.insert(l.outline.end(), loop.begin(), loop.end());
+    }
+    l.prism.max_thickness_mm = l.max_thickness_mm = thickness;
+}
+
+// The rectangle [x0, x1] x [y0, y1] at height z, counter-clockwise from above.
+std::vector<Vector3d> rectangle(double x0, double y0, double x1, double y1, double z) {
+    return {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}};
+}
+
+// The tool axis the table at (a, c) turns up to the nozzle (+Z): its inverse applied to +Z.
+Vector3d axis_at(double a_deg, double c_deg) {
+    return (Eigen::AngleAxisd(a_deg * kDeg, Vector3d::UnitX()) *
+            Eigen::AngleAxisd(c_deg * kDeg, Vector3d::UnitZ()))
+               .toRotationMatrix()
+               .transpose() *
+           Vector3d::UnitZ();
+}
+
+// The least clearance (mas::test::nozzle_clearance) of `surface` from the nozzle along the
+// program's moves [first, last], each from the move before it, X Y Z A C in proportion, sampled
+// every 0.1 mm and 0.05 degrees.
+double least_clearance(const mas::NozzleParams& p, const Read& r, std::size_t first,
+                       std::size_t last, const std::vector<Vector3d>& surface) {
+    double least = INFINITY;
+    for (std::size_t k = std::max<std::size_t>(first, 1); k <= last; ++k) {
+        const Move &a = r.moves[k - 1], &b = r.moves[k];
+        const int steps =
+            std::max({1, int(std::ceil((b.p - a.p).norm() / 0.1)),
+                      int(std::ceil((std::abs(b.a - a.a) + std::abs(b.c - a.c)) / 0.05))});
+        for (int i = 0; i <= steps; ++i) {
+            const double s = double(i) / steps;
+            const Vector3d tip = a.p + s * (b.p - a.p);
+            const Vector3d axis = axis_at(a.a + s * (b.a - a.a), a.c + s * (b.c - a.c));
+            for (const Vector3d& q : surface)
+                least = std::min(least, mas::test::nozzle_clearance(p, tip, axis, q));
+        }
+    }
+    return least;
+}
+
+// Points of the box [x0, x1] x [y0, y1] x [z0, z1]'s surface, every `step` mm or closer.
+std::vector<Vector3d> box_surface(double x0, double y0, double z0, double x1, double y1, double z1,
+                                  double step) {
+    std::vector<Vector3d> out;
+    auto count = [&](double length) { return std::max(1, int(std::ceil(length / step))); };
+    const int nx = count(x1 - x0), ny = count(y1 - y0), nz = count(z1 - z0);
+    for (int i = 0; i <= nx; ++i)
+        for (int j = 0; j <= ny; ++j)
+            for (int k = 0; k <= nz; ++k)
+                if (i == 0 || i == nx || j == 0 || j == ny || k == 0 || k == nz)
+                    out.emplace_back(x0 + (x1 - x0) * i / nx, y0 + (y1 - y0) * j / ny,
+                                     z0 + (z1 - z0) * k / nz);
+    return out;
+}
+
+// A wall 30 mm tall (component 0) between the two paths of a later layer of component 1: the
+// way between them over the wall at the clearance would drive the nozzle through it; the program
+// goes round the part instead, which keeps the margin (the nozzle's own shape, checked here).
+TEST(Gcode, AWayWithinAComponentThatMeetsADepositedLayerGoesRoundThePart) {
+    mas::GcodeLayer wall;
+    wall.index = 0;
+    wall.component = 0;
+    wall.paths.push_back(
+        path(mas::ToolPath::Kind::Contour, {{0, -18, 30}, {0, 18, 30}}, {30.0, 30.0}));
+    set_prism(wall, Vector3d::UnitZ(), {rectangle(-2, -20, 2, 20, 30)}, 30.0);
+    mas::GcodeLayer pads;
+    pads.index = 1;
+    pads.component = 1;
+    pads.paths.push_back(path(mas::ToolPath::Kind::Contour, {{-35, -5, 2}, {-35, 5, 2}}, {2, 2}));
+    pads.paths.push_back(path(mas::ToolPath::Kind::Contour, {{35, 5, 2}, {35, -5, 2}}, {2, 2}));
+    set_prism(pads, Vector3d::UnitZ(), {rectangle(-37, -6, -33, 6, 2), rectangle(33, -6, 37, 6, 2)},
+              2.0);
+    const std::vector<mas::GcodeLayer> layers = {wall, pads};
+    const mas::TravelNozzle nozzle{mas::NozzleParams(), {Vector3d::Zero(), Vector3d::UnitZ()}};
+    const mas::MachineParams m;
+    mas::GcodeStats stats;
+    const std::string text = mas::write_gcode(layers, m, &stats, {}, &nozzle);
+    EXPECT_EQ(stats.checked_routes, 4);  // to the wall, to the pads, between them, off the part
+    EXPECT_EQ(stats.rerouted_travels, 1);
+    EXPECT_TRUE(stats.travel_collisions.empty());
+    EXPECT_NE(text.find("(the way within the component meets layer 0: round the part instead)"),
+              std::string::npos);
+    const std::vector<Vector3d> surface = box_surface(-2, -20, 0, 2, 20, 30, 0.5);
+    // The moves from the first pad's end to the second's start.
+    auto between_pads = [](const Read& r) {
+        std::size_t end = 0, start = 0;
+        for (std::size_t k = 0; k < r.moves.size(); ++k) {
+            if (r.moves[k].depositing && r.moves[k].p.x() < -30) end = k;
+            if (r.moves[k].depositing && r.moves[k].p.x() > 30 && start == 0) start = k;
+        }
+        return std::pair{end + 1, start - 1};
+    };
+    const Read r = read_program(text);
+    const auto [first, last] = between_pads(r);
+    ASSERT_LT(first, last);
+    double top = -INFINITY;
+    for (std::size_t k = first; k <= last; ++k) top = std::max(top, r.moves[k].p.z());
+    EXPECT_GT(top, 60.0);  // over the sphere round the part
+    // Within the margin's sampling: the wall's surface every 0.5 mm is within 0.36 mm of all of it.
+    EXPECT_GE(least_clearance(nozzle.params, r, first, last, surface),
+              nozzle.params.margin_mm - 0.36);
+    // Unchecked, the way goes straight over at the clearance, through the wall.
+    const Read direct = read_program(mas::write_gcode(layers, m));
+    const auto [d0, d1] = between_pads(direct);
+    EXPECT_EQ(d1 - d0, 2u);  // up, across, down
+    EXPECT_LT(least_clearance(nozzle.params, direct, d0, d1, surface), 0.0);
+}
+
+// A sideways layer 10 mm over the plate: the nozzle's body lies 15 mm under it, whichever way it
+// goes. Every route is kept and reported: into the layer, between its paths (round the part it
+// meets the plate too), and off the part.
+TEST(Gcode, ARouteMeetingSomethingEvenRoundThePartIsReported) {
+    mas::GcodeLayer side;
+    side.index = 7;
+    side.tool_axis = Vector3d::UnitX();
+    side.paths.push_back(path(mas::ToolPath::Kind::Infill, {{0, -10, 10}, {0, -4, 10}}, {1, 1}));
+    side.paths.push_back(path(mas::ToolPath::Kind::Infill, {{0, 4, 10}, {0, 10, 10}}, {1, 1}));
+    set_prism(side, Vector3d::UnitX(), {{{0, -10, 8}, {0, 10, 8}, {0, 10, 12}, {0, -10, 12}}}, 1.0);
+    const mas::TravelNozzle nozzle{mas::NozzleParams(), {Vector3d::Zero(), Vector3d::UnitZ()}};
+    mas::GcodeStats stats;
+    const std::string text = mas::write_gcode({side}, mas::MachineParams(), &stats, {}, &nozzle);
+    EXPECT_EQ(stats.checked_routes, 3);
+    EXPECT_EQ(stats.rerouted_travels, 0);
+    ASSERT_EQ(stats.travel_collisions.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const mas::TravelCollision& c = stats.travel_collisions[k];
+        EXPECT_EQ(c.layer, k < 2 ? 7 : -1);
+        EXPECT_EQ(c.obstacle_layer, -1);
+        EXPECT_NEAR(c.obstacle.z(), 0.0, 1e-9);
+        // The body's lowest point, 25 mm under the tip, is what comes within the margin.
+        EXPECT_LT(c.nozzle_at.z() - 25.0, 2.0);
+    }
+    auto count = [&](const std::string& what) {
+        std::size_t n = 0;
+        for (std::size_t at = text.find(what); at != std::string::npos;
+             at = text.find(what, at + 1))
+            ++n;
+        return n;
+    };
+    EXPECT_EQ(count("(warning: on the way to layer 7 the nozzle meets the build plate near "), 2u);
+    EXPECT_EQ(count("(warning: on the way off the part the nozzle meets the build plate near "),
+              1u);
+    // Unchecked, the same program without the warnings.
+    std::string unchecked = mas::write_gcode({side}, mas::MachineParams());
+    std::string stripped;
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("(warning:", 0) != 0) stripped += line + "\n";
+    EXPECT_EQ(stripped, unchecked);
+}
+
+// Off the part the table turns level on the way to the sphere's top: the sliced L-block's last
+// layer, at the end of its arm reaching +X, would leave the nozzle lying along +X at the top,
+// its cone within the margin of the arm's end; level, it keeps clear, and the check meets
+// nothing on the whole program.
+TEST(Gcode, OffThePartTheTableTurnsLevel) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = 0.05;
+    const mas::Shape part = mas::test::l_block();
+    const mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp));
+    mas::SlicePartParams p;
+    p.tessellation = tp;
+    const mas::SlicedPart sliced = mas::slice_part(part, axis, mas::decompose(part, axis), p);
+    const mas::TravelNozzle nozzle{p.nozzle, sliced.plate};
+    mas::GcodeStats stats;
+    const Read r = read_program(
+        mas::write_gcode(mas::gcode_layers(sliced), mas::MachineParams(), &stats, {}, &nozzle));
+    EXPECT_TRUE(stats.travel_collisions.empty());
+    EXPECT_EQ(stats.rerouted_travels, 0);
+    std::size_t last = 0;
+    for (std::size_t k = 0; k < r.moves.size(); ++k)
+        if (r.moves[k].depositing) last = k;
+    ASSERT_NEAR(r.moves[last].a, -90.0, kWord);  // the arm's end, deposited along +X
+    EXPECT_EQ(r.moves.back().a, 0.0);
+    for (std::size_t k = last + 2; k < r.moves.size(); ++k)
+        EXPECT_LE(std::abs(r.moves[k].a), std::abs(r.moves[k - 1].a)) << "line " << r.moves[k].line;
+    // The arm [20, 70] x [0, 20] x [40, 60]: the route off it keeps the margin.
+    EXPECT_GE(least_clearance(p.nozzle, r, last + 1, r.moves.size() - 1,
+                              box_surface(20, 0, 40, 70, 20, 60, 0.5)),
+              p.nozzle.margin_mm - 0.36);
+}
+
+// Where nothing is met, the check changes nothing in the program.
+TEST(Gcode, WhereNothingIsMetTheCheckedProgramIsTheSame) {
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2),
+                                           square_layer(1, 100, 0, 1)};
+    set_prism(layers[0], Vector3d::UnitZ(), {rectangle(0, 0, 10, 10, 1)}, 1.0);
+    set_prism(layers[1], Vector3d::UnitZ(), {rectangle(0, 0, 10, 10, 2)}, 1.0);
+    set_prism(layers[2], Vector3d::UnitZ(), {rectangle(100, 0, 110, 10, 1)}, 1.0);
+    const mas::TravelNozzle nozzle{mas::NozzleParams(), {Vector3d::Zero(), Vector3d::UnitZ()}};
+    mas::GcodeStats stats;
+    EXPECT_EQ(mas::write_gcode(layers, mas::MachineParams(), &stats, {}, &nozzle),
+              mas::write_gcode(layers, mas::MachineParams()));
+    EXPECT_EQ(stats.checked_routes, 4);
+    EXPECT_EQ(stats.rerouted_travels, 0);
+    EXPECT_TRUE(stats.travel_collisions.empty());
+    mas::TravelNozzle bad = nozzle;
+    bad.params.body_length_mm = 0.0;
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams(), nullptr, {}, &bad); }),
+              "invalid_argument: the nozzle's body length must be > 0 mm, got 0");
 }
 
 }  // namespace

@@ -3,9 +3,11 @@
 // exact; and on sliced parts, checked against the nozzle's own (not grown) shape.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -490,26 +492,6 @@ TEST(Nozzle, NeighboursAPostDoesNotRestOnAreNotWaitedFor) {
     EXPECT_GE(part.sequence.component_switches, 3);
 }
 
-// The nozzle's own shape, independently of Nozzle.cpp: the signed distance of `q` from the nozzle
-// standing at `p` along unit `axis` (negative inside), from its outline across the axis (the tip's
-// face, the cone, the body's side and end).
-double clearance(const mas::NozzleParams& n, const Vector3d& p, const Vector3d& axis,
-                 const Vector3d& q) {
-    const double h = axis.dot(q - p), rho = (q - p - h * axis).norm();
-    const double s = n.standoff_mm, tip = 0.5 * n.tip_diameter_mm, body = 0.5 * n.body_diameter_mm;
-    const double cone_end = s + mas::cone_length(n), top = cone_end + n.body_length_mm;
-    const std::vector<Vector2d> outline = {
-        {0, s}, {tip, s}, {body, cone_end}, {body, top}, {0, top}};
-    double d = INFINITY;
-    for (std::size_t k = 0; k + 1 < outline.size(); ++k) {
-        const Vector2d a = outline[k], e = outline[k + 1] - a, x(rho, h);
-        const double t = std::clamp((x - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-        d = std::min(d, (a + t * e - x).norm());
-    }
-    const double radius = h <= cone_end ? tip + (h - s) * (body - tip) / (cone_end - s) : body;
-    return h >= s && h <= top && rho <= radius ? -d : d;
-}
-
 // The height above the plane (through the origin, normal `up`) of the nozzle's lowest point, the
 // nozzle standing at `p` along unit `axis`: its rims (the tip's face, where the cone meets the
 // body, the body's end) walked round in steps of 0.01 degrees.
@@ -630,10 +612,11 @@ TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
     // The slab is what refuses it: the lean that cleared the plate meets it (the body's top
     // side passes 40 mm up 40 mm out), while the coaxial nozzle keeps clear of it.
     const Vector3d at(5, 5, 6), lean25 = leaned(Vector3d::UnitX(), Vector3d::UnitZ(), 25.0);
-    EXPECT_LT(clearance(p, at, lean25, Vector3d(60, 5, 40.5)), 0.0);
+    EXPECT_LT(mas::test::nozzle_clearance(p, at, lean25, Vector3d(60, 5, 40.5)), 0.0);
     for (double x = 40; x <= 120; x += 1)
         for (double y = -20; y <= 30; y += 1)
-            EXPECT_GT(clearance(p, at, Vector3d::UnitX(), Vector3d(x, y, 40)), p.margin_mm);
+            EXPECT_GT(mas::test::nozzle_clearance(p, at, Vector3d::UnitX(), Vector3d(x, y, 40)),
+                      p.margin_mm);
     // Without the slab it leans.
     b.layers.erase(b.layers.begin());
     b.paths.erase(b.paths.begin());
@@ -671,7 +654,8 @@ TEST(Nozzle, ALeanIsCheckedAlongTheWholePathAgainstLayersOffItsPlane) {
         for (double y = -10; y <= 20 + 1e-9; y += 0.25)
             for (double z = 0.5; z <= 16 + 1e-9; z += 0.25)
                 for (double x : {11.0, 12.0})
-                    c = std::min(c, clearance(p, at, leaned(n, up, theta), Vector3d(x, y, z)));
+                    c = std::min(c, mas::test::nozzle_clearance(p, at, leaned(n, up, theta),
+                                                                Vector3d(x, y, z)));
         return c;
     };
     for (double theta : {25.0, 30.0}) {
@@ -711,7 +695,7 @@ TEST(Nozzle, ALeanAwayNeverTurnsTheNozzleFurtherUnderTheHorizontal) {
         double c = INFINITY;
         for (double x = 0; x <= 60 + 1e-9; x += 0.5)
             for (double y = -20; y <= 30 + 1e-9; y += 0.5)
-                c = std::min(c, clearance(p, at, axis, Vector3d(x, y, 118)));
+                c = std::min(c, mas::test::nozzle_clearance(p, at, axis, Vector3d(x, y, 118)));
         return c;
     };
     EXPECT_LT(least(n), p.margin_mm);
@@ -741,12 +725,12 @@ TEST(Nozzle, ANozzleLeansAwayFromTheLayerItMeets) {
         for (double x = 12; x <= 22 + 1e-9; x += 0.1)
             for (double y = 0; y <= 10 + 1e-9; y += 0.1)
                 for (double z : {30.0, 31.0})
-                    c = std::min(c, clearance(p, at, a, Vector3d(x, y, z)));
+                    c = std::min(c, mas::test::nozzle_clearance(p, at, a, Vector3d(x, y, z)));
         for (double z = 30; z <= 31 + 1e-9; z += 0.1)
             for (double t = 0; t <= 10 + 1e-9; t += 0.1)
                 for (const Vector3d& q : {Vector3d(12, t, z), Vector3d(22, t, z),
                                           Vector3d(12 + t, 0, z), Vector3d(12 + t, 10, z)})
-                    c = std::min(c, clearance(p, at, a, q));
+                    c = std::min(c, mas::test::nozzle_clearance(p, at, a, q));
         return c;
     };
     EXPECT_GE(least(axis), p.margin_mm);
@@ -822,6 +806,140 @@ TEST(Nozzle, ASlicedLowArmLeansClearOfThePlate) {
     mas::GcodeStats stats;
     mas::write_gcode(g, {}, &stats);
     EXPECT_GT(stats.deposit_moves, 0);
+}
+
+// A block [-10, 10] x [-10, 10] x [0, 10] as one layer, deposited at its top's centre.
+Built block() {
+    Built b;
+    add_layer(b, 0, Vector3d::UnitZ(), {{-10, -10, 10}, {10, -10, 10}, {10, 10, 10}, {-10, 10, 10}},
+              10.0, {{0, 0, 10}});
+    return b;
+}
+
+// A move across the block with the nozzle upright, its tip's face `gap` over the block's top, is
+// met within the margin and passed where the nozzle keeps twice the margin and the step (4.1 mm)
+// from every point of the block; only once the block is deposited. The plate is exact.
+TEST(TravelCheck, AMoveIsJudgedByTheNozzlesClearance) {
+    const Built b = block();
+    const mas::NozzleParams p = coaxial();
+    mas::TravelCheck check(b.layers, p, {Vector3d::Zero(), Vector3d::UnitZ()});
+    auto across = [&](double gap) {
+        return check.meets({{Vector3d(-30, 0, gap), Vector3d(30, 0, gap), Vector3d::UnitZ(), 0.0}});
+    };
+    EXPECT_FALSE(across(1.0));  // nothing deposited yet, and the plate 11 mm under the tip's face
+    check.deposited(0);
+    const auto hit = across(1.9);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->obstacle_layer, 0);
+    EXPECT_NEAR(hit->obstacle.z(), 10.0, 1e-9);  // on the block's top, under the tip's face
+    EXPECT_LE(hit->obstacle.head<2>().cwiseAbs().maxCoeff(), 10.0 + 1e-9);
+    EXPECT_NEAR(hit->nozzle_at.y(), 0.0, 1e-12);
+    EXPECT_NEAR(hit->nozzle_at.z(), 1.9, 1e-12);
+    EXPECT_LT(mas::test::nozzle_clearance(p, hit->nozzle_at, Vector3d::UnitZ(), hit->obstacle),
+              4.1 + 1e-9);
+    EXPECT_FALSE(across(4.15));
+    EXPECT_FALSE(across(30.0));
+    // Lying on its side (+X), 100 mm off the block, the body's lowest point is 25 mm under the
+    // tip: at 26.9 mm up it comes 1.9 mm from the plate, at 27.1 mm 2.1.
+    auto sideways = [&](double z) {
+        return check.meets({{Vector3d(100, -20, z), Vector3d(100, 20, z), Vector3d::UnitX(), 0.0}});
+    };
+    const auto plate = sideways(26.9);
+    ASSERT_TRUE(plate);
+    EXPECT_EQ(plate->obstacle_layer, -1);
+    EXPECT_NEAR(plate->obstacle.z(), 0.0, 1e-9);
+    EXPECT_FALSE(sideways(27.1));
+    mas::NozzleParams no_plate = p;
+    no_plate.check_plate = false;
+    mas::TravelCheck unchecked(b.layers, no_plate, {Vector3d::Zero(), Vector3d::UnitZ()});
+    EXPECT_FALSE(
+        unchecked.meets({{Vector3d(100, -20, 10), Vector3d(100, 20, 10), Vector3d::UnitX(), 0.0}}));
+}
+
+// Random moves round the block, some with the table still, some turning the tool axis by up to
+// max_turn_rad() about a random direction: every move passed keeps the margin from the block by
+// the nozzle's own shape (the block's surface sampled every 0.5 mm, the moves every 0.1 mm: within
+// 0.41 mm), and a move met comes within twice the margin and the step of it (a turning move, two
+// margins more: the nozzle along its first axis is judged, which the turning one lies within a
+// margin of).
+TEST(TravelCheck, EveryMovePassedKeepsTheMargin) {
+    const Built b = block();
+    mas::NozzleParams p = coaxial(false);
+    mas::TravelCheck check(b.layers, p, {Vector3d::Zero(), Vector3d::UnitZ()});
+    check.deposited(0);
+    std::vector<Vector3d> surface;
+    for (double u = -10; u <= 10 + 1e-9; u += 0.5)
+        for (double v = -10; v <= 10 + 1e-9; v += 0.5) {
+            surface.emplace_back(u, v, 10);
+            surface.emplace_back(u, v, 0);
+            if (v <= 0.0 + 1e-9) {
+                const double z = v + 10;
+                surface.emplace_back(u, -10, z);
+                surface.emplace_back(u, 10, z);
+                surface.emplace_back(-10, u, z);
+                surface.emplace_back(10, u, z);
+            }
+        }
+    std::mt19937 rng(20261202);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    const double tol = 0.41, m = p.margin_mm;
+    int met = 0, passed = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        Vector3d axis(0.6 * uniform(rng), 0.6 * uniform(rng), 1.0);
+        axis.normalize();
+        const Vector3d from(25 * uniform(rng), 25 * uniform(rng), 10 + 8 * uniform(rng));
+        const Vector3d to = from + Vector3d(8 * uniform(rng), 8 * uniform(rng), 3 * uniform(rng));
+        const double turn = trial % 2 ? check.max_turn_rad() : 0.0;
+        const double allowance = turn * (p.standoff_mm + mas::cone_length(p) + p.body_length_mm);
+        const Vector3d about =
+            axis.cross(Vector3d(uniform(rng), uniform(rng), uniform(rng))).normalized();
+        double least = INFINITY;
+        const int steps = int(std::ceil((to - from).norm() / 0.1));
+        for (int i = 0; i <= steps; ++i) {
+            const double s = double(i) / steps;
+            const Vector3d a = Eigen::AngleAxisd(s * turn, about) * axis;
+            for (const Vector3d& q : surface)
+                least =
+                    std::min(least, mas::test::nozzle_clearance(p, from + s * (to - from), a, q));
+        }
+        const auto hit = check.meets({{from, to, axis, turn}});
+        if (hit) {
+            ++met;
+            EXPECT_LT(least, 2.05 * m + 2.0 * allowance + tol) << trial;
+        } else {
+            ++passed;
+            EXPECT_GE(least, m - tol) << trial;
+        }
+    }
+    EXPECT_GT(met, 5);
+    EXPECT_GT(passed, 5);
+}
+
+TEST(TravelCheck, BadMovesAreNamed) {
+    const Built b = block();
+    mas::TravelCheck check(b.layers, coaxial(), {Vector3d::Zero(), Vector3d::UnitZ()});
+    const double turn = check.max_turn_rad();
+    // The nozzle is 244.64 mm long (10 + 34.64 + 200): a turn moves its end 2 mm per 0.00817 rad.
+    EXPECT_NEAR(turn, 2.0 / (10.0 + 20.0 / kTan30 + 200.0), 1e-12);
+    EXPECT_EQ(error_of([&] {
+                  check.meets({{Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitZ(), 2 * turn}});
+              }),
+              "travel move 0 turns its tool axis by " + mas::format_number(2 * turn) +
+                  " rad, more than the " + mas::format_number(turn) + " rad a move may turn");
+    EXPECT_EQ(error_of([&] {
+                  check.meets({{Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitZ(), 0.0},
+                               {Vector3d::Zero(), Vector3d(NAN, 0, 0), Vector3d::UnitZ(), 0.0}});
+              }),
+              "travel move 1 needs finite ends and a unit axis");
+    EXPECT_EQ(error_of([&] {
+                  check.meets({{Vector3d::Zero(), Vector3d::UnitX(), Vector3d(0, 0, 2), 0.0}});
+              }),
+              "travel move 0 needs finite ends and a unit axis");
+    EXPECT_EQ(error_of([&] { check.deposited(1); }), "the travel check has no layer 1 (it has 1)");
+    mas::NozzleParams bad = coaxial();
+    bad.margin_mm = -1;
+    EXPECT_EQ(error_of([&] { mas::TravelCheck(b.layers, bad, {}); }),
+              "the nozzle's margin must be > 0 mm, got -1");
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Shell.hxx>
+#include <algorithm>
 #include <cmath>
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
@@ -165,6 +166,23 @@ Shape box_shell(double x0, double y0, double z0, double dx, double dy, double dz
 
 Shape open_box_shell(double x0, double y0, double z0, double dx, double dy, double dz) {
     return from_occt(shell_of_box(x0, y0, z0, dx, dy, dz, z0 + dz));
+}
+
+double nozzle_clearance(const NozzleParams& n, const Eigen::Vector3d& p,
+                        const Eigen::Vector3d& axis, const Eigen::Vector3d& q) {
+    const double h = axis.dot(q - p), rho = (q - p - h * axis).norm();
+    const double s = n.standoff_mm, tip = 0.5 * n.tip_diameter_mm, body = 0.5 * n.body_diameter_mm;
+    const double cone_end = s + cone_length(n), top = cone_end + n.body_length_mm;
+    const std::vector<Eigen::Vector2d> outline = {
+        {0, s}, {tip, s}, {body, cone_end}, {body, top}, {0, top}};
+    double d = INFINITY;
+    for (std::size_t k = 0; k + 1 < outline.size(); ++k) {
+        const Eigen::Vector2d a = outline[k], e = outline[k + 1] - a, x(rho, h);
+        const double t = std::clamp((x - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+        d = std::min(d, (a + t * e - x).norm());
+    }
+    const double radius = h <= cone_end ? tip + (h - s) * (body - tip) / (cone_end - s) : body;
+    return h >= s && h <= top && rho <= radius ? -d : d;
 }
 
 }  // namespace mas::test

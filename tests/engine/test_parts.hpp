@@ -6,6 +6,7 @@
 #include <TopoDS_Shape.hxx>
 
 #include "mas/Mesh.hpp"
+#include "mas/Nozzle.hpp"
 #include "mas/Shape.hpp"
 
 namespace mas::test {
@@ -43,6 +44,12 @@ Shape sphere(double radius);
 // with its top face (z = z0 + dz) left out: an open shell.
 Shape box_shell(double x0, double y0, double z0, double dx, double dy, double dz);
 Shape open_box_shell(double x0, double y0, double z0, double dx, double dy, double dz);
+
+// The nozzle's own shape, independently of Nozzle.cpp: the signed distance of `q` from the nozzle
+// standing at `p` along unit `axis` (negative inside), from its outline across the axis (the tip's
+// face, the cone, the body's side and end).
+double nozzle_clearance(const NozzleParams& n, const Eigen::Vector3d& p,
+                        const Eigen::Vector3d& axis, const Eigen::Vector3d& q);
 
 // Between the engine's Shape and OCCT, through BREP text as FreeCAD hands shapes over.
 Shape from_occt(const TopoDS_Shape& shape);

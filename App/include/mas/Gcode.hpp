@@ -46,9 +46,16 @@
 //   axis. The meridians keep the route's height between its two ends and the sphere's top; a tool
 //   axis tilted past 90 degrees from low material can still take it below the build plate's
 //   level. The first move goes to the sphere's top from wherever the machine is.
-// - Not checked: the nozzle's body against what is deposited (the paper's Eq. 10: nor are the
-//   legs out and in along the tool axes against other components), and the X Y Z travel limits,
-//   which depend on where the table pivots.
+// - The travel against the nozzle (given a TravelNozzle: the slicing's nozzle and build plate, and
+//   each layer's prism). Every route above but the first move to the sphere's top (from wherever
+//   the machine is) is checked, the plunge at the feed included, against the plate and the layers
+//   deposited before it (Nozzle.hpp's TravelCheck; the table turning as it does, A and C in
+//   proportion along each move). Where the way from one path to the next within a component
+//   would meet something, it goes round the sphere instead, when that way keeps clear (a comment
+//   says so). A route that meets something all the same is kept (the shorter one), preceded by a
+//   comment naming what it meets, and reported (GcodeStats::travel_collisions). The deposit moves
+//   are the build sequence's to check (plan_build_sequence).
+// - Not checked: the X Y Z travel limits, which depend on where the table pivots.
 #pragma once
 #include <Eigen/Core>
 #include <string>
@@ -85,10 +92,27 @@ struct GcodeLayer {
     std::vector<ToolPath> paths;                           // travel moves are not followed
     std::vector<Eigen::Vector3d> outline;  // every point of its regions' loops, on its plane
     double max_thickness_mm = 0.0;         // the deposit under its plane reaches no deeper
+    // What it deposits, for the travel check: its regions on its plane down to its lower plane
+    // (plane, lower and regions are read; no regions: nothing).
+    Layer prism;
+};
+
+// The nozzle and build plate the travel is checked against (the slicing's).
+struct TravelNozzle {
+    NozzleParams params;
+    Plane plate;
+};
+
+// A route between paths (or off the part) along which the nozzle meets what is deposited.
+struct TravelCollision {
+    int layer = -1;           // the layer it leads to (as named in the program); -1: off the part
+    int obstacle_layer = -1;  // the deposited layer it meets (as named), -1 for the build plate
+    Eigen::Vector3d nozzle_at = Eigen::Vector3d::Zero();  // the tip's point on the route
+    Eigen::Vector3d obstacle = Eigen::Vector3d::Zero();   // the obstacle's point near the nozzle
 };
 
 // The layers of a sliced part, in their sequence (SlicedPart::sequence; in their order when it
-// does not name every layer).
+// does not name every layer), each with its prism.
 std::vector<GcodeLayer> gcode_layers(const SlicedPart& part);
 
 // The table's angles (degrees) that turn `tool_axis` (unit length) to machine +Z, nearest to
@@ -109,12 +133,19 @@ struct GcodeStats {
     double deposit_time_min = 0.0;  // the deposit moves at their feeds
     double rapid_length_mm = 0.0;   // of the tool tip, in the part's frame
     double reference_thickness_mm = 0.0;
+    // With a TravelNozzle: the routes checked, those taken round the part because the way within
+    // the component would meet something, and those meeting something all the same.
+    int checked_routes = 0;
+    int rerouted_travels = 0;
+    std::vector<TravelCollision> travel_collisions;
 };
 
-// The program. Throws InvalidArgument for bad params or a layer without a unit tool axis,
-// EmptyInput when no layer deposits anything, Error(UnreachableOrientation) as above. `progress`
-// is reported per layer and may cancel.
+// The program. Throws InvalidArgument for bad params (the nozzle's too) or a layer without a unit
+// tool axis, EmptyInput when no layer deposits anything, Error(UnreachableOrientation) as above.
+// `progress` is reported per layer and may cancel. `nozzle`: the travel is checked against it
+// (null: not checked).
 std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachineParams& params,
-                        GcodeStats* stats = nullptr, const Progress& progress = {});
+                        GcodeStats* stats = nullptr, const Progress& progress = {},
+                        const TravelNozzle* nozzle = nullptr);
 
 }  // namespace mas

@@ -59,8 +59,26 @@
 //   check: a later layer's nozzle meets this one's prism, whatever its axis. Where no lean clears,
 //   the layer keeps its normal and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the
 //   paper's.
+// - Travel (not in the paper, which checks the deposit moves only): the post-processor's moves off
+//   the paths (Gcode.hpp: retracts, moves between paths and layers, the routes round the part) are
+//   checked against the same nozzle by TravelCheck: along every move the nozzle keeps margin_mm
+//   from the plate (exact, as above) and from every layer deposited before it, the layer under way
+//   excepted (its paths lie on its plane, which the nozzle keeps the margin above: the tip stays on
+//   or above the plane along the tool axis). The moves along which the table keeps still are
+//   binned as the leans' are (cut into pieces whose heights along the axis are at most margin_mm
+//   apart, each given the grown radius at its lowest point); a move along which the table turns is
+//   cut into pieces along which the tool axis turns by at most max_turn_rad() = margin_mm / (the
+//   nozzle's length), so that every point of the nozzle stays within an allowance a = length x
+//   turn <= margin_mm of the nozzle along the piece's first axis, which is tested grown by a more
+//   (the plate: kept a more). A sample in the grown nozzle counts only when the nozzle along the
+//   first axis, its tip taken every 0.05 margin_mm along the move, comes within 2.05 margin_mm + a
+//   of it. So no move is passed that comes within the margin, and one is reported only when it
+//   comes within 2.05 margin_mm + 2a of a deposited layer's surface (4.1 mm at the defaults with
+//   the table still, at most 8.1 turning).
 #pragma once
 #include <Eigen/Core>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "mas/Progress.hpp"
@@ -119,6 +137,44 @@ struct SequenceInput {
     std::vector<std::vector<int>> waits_for;  // per component: others to complete first
     std::vector<int> start_order;             // every component once: the preferred order
     Plane plate;                              // the build plate (normal up)
+};
+
+// One move of the nozzle off the deposit paths: its tip straight from `from` to `to`, its tool axis
+// (unit) `axis` at `from` and turning by at most `turn_rad` from it on the way.
+struct NozzleMove {
+    Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+    double turn_rad = 0.0;
+};
+
+// What a move meets: a deposited layer (-1: the build plate), its point near the nozzle, and the
+// tip's point on the move nearest it.
+struct TravelHit {
+    int obstacle_layer = -1;
+    Eigen::Vector3d nozzle_at = Eigen::Vector3d::Zero(), obstacle = Eigen::Vector3d::Zero();
+};
+
+// The travel moves against the nozzle (see "Travel" above), as layers are deposited one by one.
+class TravelCheck {
+public:
+    // `layers`: every layer's prism (kept by reference: it must outlive the check), none deposited
+    // yet. Throws InvalidArgument for bad params.
+    TravelCheck(const std::vector<Layer>& layers, const NozzleParams& params, const Plane& plate);
+    ~TravelCheck();
+    TravelCheck(const TravelCheck&) = delete;
+    TravelCheck& operator=(const TravelCheck&) = delete;
+
+    // Layer `k` is deposited: the moves after this are checked against it too.
+    void deposited(std::size_t k);
+    // The first thing the nozzle meets along `moves`, in their order; nullopt when it keeps clear.
+    // Throws InvalidArgument for a move turning by more than max_turn_rad().
+    std::optional<TravelHit> meets(const std::vector<NozzleMove>& moves) const;
+    // The most a move's tool axis may turn (radians).
+    double max_turn_rad() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
 };
 
 // Throws InvalidArgument for bad params or an inconsistent input (a component's layers not

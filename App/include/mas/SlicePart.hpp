@@ -79,6 +79,7 @@ struct SlicedPart {
     // component left for another where going on would block the nozzle's way to that one's
     // layers; and the layers whose nozzle still meets what is deposited.
     BuildSequence sequence;
+    Plane plate;  // the build plate the sequence was checked against (the root's base)
     // slice_part with fill_holes_up_to_mm: the holes deposited solid, to be drilled afterwards,
     // component by component; and a note for each hole that qualified and stayed open.
     std::vector<FilledHole> filled_holes;

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 #include "mas/Error.hpp"
@@ -187,6 +189,46 @@ std::vector<double> feed_cuts(double t0, double t1, double t_lo, double t_hi) {
     return out;
 }
 
+// A point the nozzle's tip goes to, with the table's angles there.
+struct Waypoint {
+    Eigen::Vector3d p;
+    TableAngles a;
+};
+
+// The tool axis the table at `a` turns to machine +Z: Rx(A) Rz(C) maps it there.
+Eigen::Vector3d axis_of(const TableAngles& a) {
+    const double sa = std::sin(a.a_deg * kDegree);
+    return {sa * std::sin(a.c_deg * kDegree), sa * std::cos(a.c_deg * kDegree),
+            std::cos(a.a_deg * kDegree)};
+}
+
+// The move from `p` (table at `a`) to `q` (at `b`), A, C and the tip in proportion, as moves for
+// the travel check, appended to `out`: one when the table keeps still, else pieces along which
+// the axis turns by at most `max_turn` (rad). Along a piece it turns by no more than its change of
+// A plus its change of C times the greatest |sin A| on the way (the axis' speeds).
+void turning_moves(const Eigen::Vector3d& p, const TableAngles& a, const Eigen::Vector3d& q,
+                   const TableAngles& b, double max_turn, std::vector<NozzleMove>& out) {
+    const double da = b.a_deg - a.a_deg, dc = b.c_deg - a.c_deg;
+    if (da == 0.0 && dc == 0.0) {
+        out.push_back({p, q, axis_of(a), 0.0});
+        return;
+    }
+    const double lo = std::min(a.a_deg, b.a_deg), hi = std::max(a.a_deg, b.a_deg);
+    const bool through_pole = (lo <= 90.0 && hi >= 90.0) || (lo <= -90.0 && hi >= -90.0);
+    const double sin_max =
+        through_pole ? 1.0
+                     : std::max(std::abs(std::sin(lo * kDegree)), std::abs(std::sin(hi * kDegree)));
+    const double turn = (std::abs(da) + std::abs(dc) * sin_max) * kDegree;
+    const int pieces = std::max(1, static_cast<int>(std::ceil(turn / max_turn - 1e-9)));
+    for (int k = 0; k < pieces; ++k) {
+        const double s0 = static_cast<double>(k) / pieces;
+        const double s1 = static_cast<double>(k + 1) / pieces;
+        const TableAngles at{a.a_deg + s0 * da, a.c_deg + s0 * dc};
+        out.push_back({p + s0 * (q - p), k + 1 == pieces ? q : Eigen::Vector3d(p + s1 * (q - p)),
+                       axis_of(at), std::min(turn / pieces, max_turn)});
+    }
+}
+
 std::string layer_number(std::size_t place, const GcodeLayer& layer) {
     return "layer " + std::to_string(layer.index >= 0 ? std::size_t(layer.index) : place);
 }
@@ -244,6 +286,11 @@ std::vector<GcodeLayer> gcode_layers(const SlicedPart& part) {
             for (const auto& loop : layer.loops_3d(r))
                 g.outline.insert(g.outline.end(), loop.begin(), loop.end());
         g.max_thickness_mm = layer.max_thickness_mm;
+        g.prism.component = layer.component;
+        g.prism.plane = layer.plane;
+        g.prism.lower = layer.lower;
+        g.prism.regions = layer.regions;
+        g.prism.max_thickness_mm = layer.max_thickness_mm;
         out.push_back(std::move(g));
     }
     return out;
@@ -309,8 +356,10 @@ bool table_angles(const Eigen::Vector3d& n, const MachineParams& p, double previ
 }
 
 std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachineParams& params,
-                        GcodeStats* stats_out, const Progress& progress) {
+                        GcodeStats* stats_out, const Progress& progress,
+                        const TravelNozzle* nozzle) {
     validate(params);
+    if (nozzle) validate(nozzle->params);
     // What the program deposits, and where.
     std::vector<std::size_t> used;
     std::vector<double> deepest(layers.size(), 0.0);  // how far under its plane a layer reaches
@@ -463,21 +512,80 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     g.line("M65" + out_n);
 
     // Around the sphere over its top from `from` (on it) to `to` (on it), the table turning from
-    // the angles at `from` to `to_angles` in proportion to the way.
-    auto round_the_top = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to,
-                             const TableAngles& to_angles) {
-        const TableAngles start = g.angles();
+    // `start` to `to_angles` in proportion to the way: the waypoints after `from`.
+    auto round_the_top = [&](const Eigen::Vector3d& from, const TableAngles& start,
+                             const Eigen::Vector3d& to, const TableAngles& to_angles,
+                             std::vector<Waypoint>& way) {
         const Eigen::Vector3d u0 = (from - sphere.centre) / sphere.radius;
         const Eigen::Vector3d u1 = (to - sphere.centre) / sphere.radius;
-        std::vector<Eigen::Vector3d> way = arc(u0, top);
+        std::vector<Eigen::Vector3d> arcs = arc(u0, top);
         const std::vector<Eigen::Vector3d> down = arc(top, u1);
-        way.insert(way.end(), down.begin(), down.end());
-        for (std::size_t k = 0; k < way.size(); ++k) {
-            const double s = static_cast<double>(k + 1) / static_cast<double>(way.size());
+        arcs.insert(arcs.end(), down.begin(), down.end());
+        for (std::size_t k = 0; k < arcs.size(); ++k) {
+            const double s = static_cast<double>(k + 1) / static_cast<double>(arcs.size());
             const TableAngles at{start.a_deg + s * (to_angles.a_deg - start.a_deg),
                                  start.c_deg + s * (to_angles.c_deg - start.c_deg)};
-            g.rapid(k + 1 == way.size() ? to : sphere.centre + sphere.radius * way[k], at);
+            way.push_back({k + 1 == arcs.size()
+                               ? to
+                               : Eigen::Vector3d(sphere.centre + sphere.radius * arcs[k]),
+                           at});
         }
+    };
+    // From `from` (the table at `from_angles`, the last tool axis `back`) to the clearance over `s`
+    // (the table at `to_angles`, tool axis `n`): out along `back` to the sphere, round its top and
+    // in along n.
+    auto round_the_part = [&](const Eigen::Vector3d& from, const TableAngles& from_angles,
+                              const Eigen::Vector3d& back, const Eigen::Vector3d& s,
+                              const Eigen::Vector3d& n, const TableAngles& to_angles) {
+        std::vector<Waypoint> way;
+        const Eigen::Vector3d out = sphere.exit(from, back);
+        way.push_back({out, from_angles});
+        round_the_top(out, from_angles, sphere.exit(s, n), to_angles, way);
+        way.push_back({Eigen::Vector3d(s + n * params.clearance_mm), to_angles});
+        return way;
+    };
+
+    // The travel check: each layer's prism, deposited as the program goes.
+    std::vector<Layer> prisms;
+    std::unique_ptr<TravelCheck> check;
+    if (nozzle) {
+        prisms.reserve(layers.size());
+        for (const GcodeLayer& layer : layers) prisms.push_back(layer.prism);
+        check = std::make_unique<TravelCheck>(prisms, nozzle->params, nozzle->plate);
+    }
+    // What the nozzle meets from where it is along `way` (G0) and then, when `plunge`, down to it
+    // at the feed.
+    auto meets = [&](const std::vector<Waypoint>& way,
+                     const std::optional<Eigen::Vector3d>& plunge) -> std::optional<TravelHit> {
+        std::vector<NozzleMove> moves;
+        Eigen::Vector3d p = g.position();
+        TableAngles a = g.angles();
+        auto add = [&](const Eigen::Vector3d& q, const TableAngles& b) {
+            turning_moves(p, a, q, b, check->max_turn_rad(), moves);
+            p = q;
+            a = b;
+        };
+        for (const Waypoint& w : way) add(w.p, w.a);
+        if (plunge) add(*plunge, a);
+        return check->meets(moves);
+    };
+    auto name_of = [&](int i) {
+        return i < 0 ? -1 : layers[std::size_t(i)].index >= 0 ? layers[std::size_t(i)].index : i;
+    };
+    // Reports what the route into layer `i` (-1: off the part) meets.
+    auto report = [&](int i, const TravelHit& hit) {
+        const int obstacle = name_of(hit.obstacle_layer);
+        stats.travel_collisions.push_back({name_of(i), obstacle, hit.nozzle_at, hit.obstacle});
+        g.comment(
+            "warning: on the way " +
+            (i < 0 ? std::string("off the part")
+                   : "to " + layer_number(std::size_t(i), layers[std::size_t(i)])) +
+            " the nozzle meets " +
+            (obstacle < 0 ? std::string("the build plate") : "layer " + std::to_string(obstacle)) +
+            " near " + vector_text(hit.obstacle));
+    };
+    auto rapid_along = [&](const std::vector<Waypoint>& way) {
+        for (const Waypoint& w : way) g.rapid(w.p, w.a);
     };
 
     bool depositing = false;
@@ -492,6 +600,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     for (std::size_t u = 0; u < used.size(); ++u) {
         const std::size_t i = used[u];
         progress(static_cast<double>(u) / static_cast<double>(used.size()));
+        if (check && u > 0) check->deposited(used[u - 1]);
         const GcodeLayer& layer = layers[i];
         const Eigen::Vector3d& n = layer.tool_axis;
         const TableAngles& a = angles[i];
@@ -511,30 +620,49 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                           std::to_string(layer.component) + ": tool axis " + vector_text(n) +
                           ", A " + format_number(a.a_deg, 8) + " C " + format_number(a.c_deg, 8));
             }
-            if (first) {
-                // From the sphere's top down to the first path.
-                g.comment("first to the top of a sphere clear of the part: start above the part");
-                const Eigen::Vector3d from = sphere.centre + sphere.radius * top;
-                g.rapid(from, a);
-                round_the_top(from, sphere.exit(s, n), a);
-                g.rapid(approach, a);
+            if (!continues) {
+                stop_deposit();
+                std::vector<Waypoint> way;
+                if (first) {
+                    // From the sphere's top down to the first path.
+                    g.comment(
+                        "first to the top of a sphere clear of the part: start above the part");
+                    const Eigen::Vector3d from = sphere.centre + sphere.radius * top;
+                    g.rapid(from, a);
+                    round_the_top(from, a, sphere.exit(s, n), a, way);
+                    way.push_back({approach, a});
+                } else if (new_component) {
+                    // Out along the tool axis the last layer was deposited with, round the sphere.
+                    way = round_the_part(g.position(), g.angles(), layers[used[u - 1]].tool_axis, s,
+                                         n, a);
+                } else {
+                    const Eigen::Vector3d& back = first_path ? layers[used[u - 1]].tool_axis : n;
+                    way = {{g.position() + back * params.clearance_mm, g.angles()}, {approach, a}};
+                }
+                if (check) {
+                    ++stats.checked_routes;
+                    std::optional<TravelHit> hit = meets(way, s);
+                    if (hit && !first && !new_component) {
+                        const Eigen::Vector3d& back =
+                            first_path ? layers[used[u - 1]].tool_axis : n;
+                        std::vector<Waypoint> round =
+                            round_the_part(g.position(), g.angles(), back, s, n, a);
+                        if (!meets(round, s)) {
+                            const int obstacle = name_of(hit->obstacle_layer);
+                            g.comment("the way within the component meets " +
+                                      (obstacle < 0 ? std::string("the build plate")
+                                                    : "layer " + std::to_string(obstacle)) +
+                                      ": round the part instead");
+                            way = std::move(round);
+                            hit.reset();
+                            ++stats.rerouted_travels;
+                        }
+                    }
+                    if (hit) report(int(i), *hit);
+                }
+                rapid_along(way);
                 g.feed(s, params.feed_mm_min);
                 first = false;
-            } else if (new_component) {
-                // Out along the tool axis the last layer was deposited with, round the sphere.
-                stop_deposit();
-                const Eigen::Vector3d out =
-                    sphere.exit(g.position(), layers[used[u - 1]].tool_axis);
-                g.rapid(out, g.angles());
-                round_the_top(out, sphere.exit(s, n), a);
-                g.rapid(approach, a);
-                g.feed(s, params.feed_mm_min);
-            } else if (!continues) {
-                stop_deposit();
-                const Eigen::Vector3d& back = first_path ? layers[used[u - 1]].tool_axis : n;
-                g.rapid(g.position() + back * params.clearance_mm, g.angles());
-                g.rapid(approach, a);
-                g.feed(s, params.feed_mm_min);
             }
             first_path = false;
             if (!depositing) {
@@ -569,11 +697,21 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         }
         previous_component = layer.component;
     }
-    // Out to the sphere and up to its top.
+    // Out to the sphere and up to its top, the table turning level (A 0, or the nearest A within
+    // its limits) on the way: at the top the nozzle stands along the sphere's radius, clear of it,
+    // where a tilted one would reach down its side.
     stop_deposit();
+    std::vector<Waypoint> way;
     const Eigen::Vector3d out = sphere.exit(g.position(), layers[used.back()].tool_axis);
-    g.rapid(out, g.angles());
-    round_the_top(out, sphere.centre + sphere.radius * top, g.angles());
+    way.push_back({out, g.angles()});
+    const TableAngles level{std::clamp(0.0, params.a_min_deg, params.a_max_deg), g.angles().c_deg};
+    round_the_top(out, g.angles(), sphere.centre + sphere.radius * top, level, way);
+    if (check) {
+        check->deposited(used.back());
+        ++stats.checked_routes;
+        if (const auto hit = meets(way, std::nullopt)) report(-1, *hit);
+    }
+    rapid_along(way);
     g.line("M65" + out_n);
     g.line("M2");
     progress(1.0);

@@ -20,6 +20,10 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 
 constexpr double kPi = 3.14159265358979323846;
+// Samples kept of the layers' prisms at once (a large part's would not all fit in memory).
+constexpr std::size_t kSampleBudget = 4000000;
+// The travel check's step along a move where it measures a near sample's clearance, in margins.
+constexpr double kTravelStep = 0.05;
 
 // The nozzle's shape in numbers, worked out once.
 struct Shape {
@@ -29,11 +33,12 @@ struct Shape {
     double grow;                 // 2 x margin: the samples' spacing plus the margin kept
     double grow_radially;        // grow / cos(cone angle): see grown()
 
-    explicit Shape(const NozzleParams& p)
+    explicit Shape(const NozzleParams& p) : Shape(p, 2.0 * p.margin_mm) {}
+    Shape(const NozzleParams& p, double growth)
         : standoff(p.standoff_mm),
           tip(0.5 * p.tip_diameter_mm),
           body(0.5 * p.body_diameter_mm),
-          grow(2.0 * p.margin_mm) {
+          grow(growth) {
         const double cone = cone_length(p);
         if (cone > 0.0) tan = std::tan(p.cone_angle_deg * kPi / 180.0);
         cone_end = standoff + cone;
@@ -144,8 +149,13 @@ public:
                 std::numeric_limits<double>::infinity()) {}
     Sweep(const LayerToolpaths& paths, const Layer& layer, double reach, const Vector3d& axis,
           double step)
-        : frame_(axis) {
+        : Sweep(deposit_moves(paths), reach, axis, step) {
         height_ = frame_.normal.dot(layer.plane.origin);
+    }
+    // Any moves (pairs of ends), with tool axis `axis`, cut by `step` as above.
+    Sweep(const std::vector<std::pair<Vector3d, Vector3d>>& moves, double reach,
+          const Vector3d& axis, double step)
+        : frame_(axis) {
         auto add = [&](const Vector3d& a3, const Vector3d& b3) {
             const double ha = frame_.normal.dot(a3), hb = frame_.normal.dot(b3);
             const int pieces = std::isfinite(step) && std::abs(hb - ha) > step
@@ -164,12 +174,7 @@ public:
             box3_.extend(a3);
             box3_.extend(b3);
         };
-        for (const ToolPath& path : paths.paths) {
-            if (!path.deposit() || path.points.empty()) continue;
-            const std::size_t count = path.points.size();
-            for (std::size_t k = 0; k + 1 < std::max<std::size_t>(count, 2); ++k)
-                add(path.points[k], path.points[std::min(k + 1, count - 1)]);
-        }
+        for (const auto& [a3, b3] : moves) add(a3, b3);
         if (segments_.empty()) return;
         const double extent = std::max(box_.sizes().maxCoeff(), 1e-9);
         cell_ = std::max({0.5 * reach, extent / 256.0, 1e-3});
@@ -238,6 +243,17 @@ public:
     }
 
 private:
+    // The deposit moves of `paths` (a path of one point, a move to itself).
+    static std::vector<std::pair<Vector3d, Vector3d>> deposit_moves(const LayerToolpaths& paths) {
+        std::vector<std::pair<Vector3d, Vector3d>> out;
+        for (const ToolPath& path : paths.paths) {
+            if (!path.deposit() || path.points.empty()) continue;
+            const std::size_t count = path.points.size();
+            for (std::size_t k = 0; k + 1 < std::max<std::size_t>(count, 2); ++k)
+                out.emplace_back(path.points[k], path.points[std::min(k + 1, count - 1)]);
+        }
+        return out;
+    }
     // Calls `f` with each move binned within r of q (some farther) until it returns true.
     template <class F>
     void visit(const Vector2d& q, double r, F&& f) const {
@@ -304,6 +320,55 @@ LayerBounds layer_bounds(const Layer& layer) {
     b.centre = box.center();
     for (const Vector3d& p : b.corners) b.radius = std::max(b.radius, (p - b.centre).norm());
     return b;
+}
+
+// The box holding the nozzle anywhere along the sweep's moves, and everything within `shape.grow`
+// of it: the hull of the grown nozzle's rims at its lowest height, where the cone meets the body
+// and at its top holds the nozzle grown (both are convex, and at each of those heights the rims
+// are the wider).
+Eigen::AlignedBox3d reach_box(const Sweep& sweep, const Shape& shape) {
+    const Vector3d n = sweep.frame().normal;
+    const Vector3d across = (Vector3d::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();
+    const double reach = shape.grown(shape.top);
+    Eigen::AlignedBox3d nozzle;
+    for (const auto& [h, r] :
+         {std::pair{shape.standoff - shape.grow, shape.grown(shape.standoff)},
+          std::pair{shape.cone_end, reach}, std::pair{shape.top + shape.grow, reach}}) {
+        nozzle.extend(Vector3d(h * n - r * across));
+        nozzle.extend(Vector3d(h * n + r * across));
+    }
+    return Eigen::AlignedBox3d(sweep.box3().min() + nozzle.min(),
+                               sweep.box3().max() + nozzle.max());
+}
+
+// Where the nozzle, along the sweep's moves with its tool axis, comes within `keep` of the plate
+// (exact): the move's end where it does, and the plate's point under the nozzle's lowest point.
+std::optional<std::pair<Vector3d, Vector3d>> plate_hit(const Sweep& sweep, const Shape& shape,
+                                                       const Plane& plate, double keep) {
+    // The nozzle's lowest point: on the rim of the tip's face, where the cone meets the body, or
+    // of the body's end.
+    const Vector3d up = plate.normal.normalized();
+    const Vector3d n = sweep.frame().normal;
+    const double side = std::sqrt(std::max(0.0, 1.0 - n.dot(up) * n.dot(up)));
+    Vector3d sideways = up - n.dot(up) * n;  // towards up, across the axis
+    sideways = sideways.norm() > 1e-12 ? sideways.normalized() : Vector3d::Zero();
+    double lowest = std::numeric_limits<double>::infinity();
+    Vector3d offset = Vector3d::Zero();
+    for (double h : {shape.standoff, shape.cone_end, shape.top}) {
+        const double r = shape.radius(h);
+        const double z = h * n.dot(up) - r * side;
+        if (z < lowest) {
+            lowest = z;
+            offset = h * n - r * sideways;
+        }
+    }
+    for (const Segment& s : sweep.segments())
+        for (const Vector3d& p : {s.a3, s.b3})
+            if (up.dot(p - plate.origin) + lowest < keep) {
+                const Vector3d low = p + offset;
+                return std::pair{p, Vector3d(low - up.dot(low - plate.origin) * up)};
+            }
+    return std::nullopt;
 }
 
 }  // namespace
@@ -422,26 +487,9 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         if (!bounds[i].corners.empty())
             component_box[std::size_t(layers[i].component)].extend(bounds[i].box);
     }
-    // The box holding x's nozzle anywhere along its deposit paths, and everything within the
-    // margin of it: the hull of the grown nozzle's rims at its lowest height, where the cone meets
-    // the body and at its top holds the nozzle grown by the margin (both are convex, and at each
-    // of those heights the rims are the wider).
-    auto sweep_box = [&](const Sweep& sweep) {
-        const Vector3d n = sweep.frame().normal;
-        const Vector3d across = (Vector3d::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();
-        Eigen::AlignedBox3d nozzle;
-        for (const auto& [h, r] :
-             {std::pair{shape.standoff - shape.grow, shape.grown(shape.standoff)},
-              std::pair{shape.cone_end, reach}, std::pair{shape.top + shape.grow, reach}}) {
-            nozzle.extend(Vector3d(h * n - r * across));
-            nozzle.extend(Vector3d(h * n + r * across));
-        }
-        return Eigen::AlignedBox3d(sweep.box3().min() + nozzle.min(),
-                                   sweep.box3().max() + nozzle.max());
-    };
+    auto sweep_box = [&](const Sweep& sweep) { return reach_box(sweep, shape); };
     // Each layer's samples, made when first needed and kept while they fit a budget (a large
     // part's would not all fit in memory): past it, all are dropped and made again as needed.
-    constexpr std::size_t kSampleBudget = 4000000;
     std::vector<std::unique_ptr<std::vector<Vector3d>>> samples(count);
     std::size_t sampled = 0;
     auto samples_of = [&](std::size_t y) -> const std::vector<Vector3d>& {
@@ -542,28 +590,8 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     const Vector3d up = in.plate.normal.normalized();
     // Where the nozzle meets the plate along x's moves (`sweep` is x's, with its tool axis).
     auto plate_meets = [&](const Sweep& sweep, std::size_t x) -> std::optional<Conflict> {
-        // The nozzle's lowest point: on the rim of the tip's face, where the cone meets the body,
-        // or of the body's end (the plate is exact: the margin is kept, not grown).
-        const Vector3d n = sweep.frame().normal;
-        const double side = std::sqrt(std::max(0.0, 1.0 - n.dot(up) * n.dot(up)));
-        Vector3d sideways = up - n.dot(up) * n;  // towards up, across the axis
-        sideways = sideways.norm() > 1e-12 ? sideways.normalized() : Vector3d::Zero();
-        double lowest = std::numeric_limits<double>::infinity();
-        Vector3d offset = Vector3d::Zero();
-        for (double h : {shape.standoff, shape.cone_end, shape.top}) {
-            const double r = shape.radius(h);
-            const double z = h * n.dot(up) - r * side;
-            if (z < lowest) {
-                lowest = z;
-                offset = h * n - r * sideways;
-            }
-        }
-        for (const Segment& s : sweep.segments())
-            for (const Vector3d& p : {s.a3, s.b3})
-                if (up.dot(p - in.plate.origin) + lowest < m) {
-                    const Vector3d low = p + offset;
-                    return Conflict{int(x), -1, p, low - up.dot(low - in.plate.origin) * up};
-                }
+        if (const auto hit = plate_hit(sweep, shape, in.plate, m))
+            return Conflict{int(x), -1, hit->first, hit->second};
         return std::nullopt;
     };
     std::vector<std::optional<Conflict>> plate(count);    // where x's nozzle meets the plate
@@ -775,6 +803,158 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         }
     progress(1.0);
     return out;
+}
+
+// The travel check (see Nozzle.hpp, "Travel").
+struct TravelCheck::Impl {
+    const std::vector<Layer>& layers;
+    NozzleParams params;
+    Plane plate;
+    Shape shape;  // grown by 2 margins, as the deposit moves' check
+    std::vector<LayerBounds> bounds;
+    std::vector<int> done;  // the layers deposited, in order
+    std::vector<char> is_done;
+    // Each deposited layer's samples, made when first needed and kept within a budget, as
+    // plan_build_sequence's.
+    mutable std::vector<std::unique_ptr<std::vector<Vector3d>>> samples;
+    mutable std::size_t sampled = 0;
+
+    Impl(const std::vector<Layer>& l, const NozzleParams& p, const Plane& pl)
+        : layers(l), params(p), plate(pl), shape(p), is_done(l.size(), 0), samples(l.size()) {
+        bounds.reserve(layers.size());
+        for (const Layer& layer : layers) bounds.push_back(layer_bounds(layer));
+    }
+
+    double max_turn() const { return params.margin_mm / shape.top; }
+
+    const std::vector<Vector3d>& samples_of(std::size_t y) const {
+        if (!samples[y]) {
+            if (sampled > kSampleBudget) {
+                for (auto& kept : samples) kept.reset();
+                sampled = 0;
+            }
+            samples[y] =
+                std::make_unique<std::vector<Vector3d>>(prism_samples(layers[y], params.margin_mm));
+            sampled += samples[y]->size();
+        }
+        return *samples[y];
+    }
+
+    // The least clearance (Shape::clearance) of `q` from the nozzle along `moves` (one tool axis,
+    // the table still), the tip taken every kTravelStep margins along each: within that of the
+    // least over the whole move.
+    double least_clearance(const std::vector<std::pair<Vector3d, Vector3d>>& moves,
+                           const Vector3d& axis, const Vector3d& q, Vector3d& at) const {
+        double best = std::numeric_limits<double>::infinity();
+        const double step = kTravelStep * params.margin_mm;
+        for (const auto& [a, b] : moves) {
+            const int pieces = std::max(1, int(std::ceil((b - a).norm() / step)));
+            for (int i = 0; i <= pieces; ++i) {
+                const Vector3d tip = a + (b - a) * (double(i) / pieces);
+                const Vector3d d = q - tip;
+                const double h = axis.dot(d);
+                const double c = shape.clearance((d - h * axis).norm(), h);
+                if (c < best) {
+                    best = c;
+                    at = tip;
+                }
+            }
+        }
+        return best;
+    }
+
+    // What the nozzle along the sweep's `moves` (its tool axis, that of their first point where
+    // it turns by up to `allowance` / the nozzle's length) meets: the plate within the margin and
+    // the allowance, or a sample of a deposited layer in the nozzle grown by 2 margins and the
+    // allowance, which counts only when the nozzle along the first axis comes within 2 margins,
+    // the step and the allowance of it.
+    std::optional<TravelHit> check(const std::vector<std::pair<Vector3d, Vector3d>>& moves,
+                                   const Sweep& sweep, double allowance) const {
+        const double m = params.margin_mm;
+        const Shape grown(params, 2.0 * m + allowance);
+        if (sweep.empty()) return std::nullopt;
+        if (params.check_plate)
+            if (const auto hit = plate_hit(sweep, grown, plate, m + allowance))
+                return TravelHit{-1, hit->first, hit->second};
+        const Eigen::AlignedBox3d box = reach_box(sweep, grown);
+        const Vector3d a = sweep.frame().normal;
+        const double low = grown.standoff - grown.grow, high = grown.top + grown.grow;
+        for (const int yi : done) {
+            const std::size_t y = std::size_t(yi);
+            const LayerBounds& b = bounds[y];
+            if (b.corners.empty() || !b.box.intersects(box)) continue;
+            const double centre = a.dot(b.centre);
+            if (centre + b.radius - sweep.lowest() < low ||
+                centre - b.radius - sweep.highest() > high)
+                continue;
+            // The prism lies within its corners' hull: wholly under the grown tip, it is missed.
+            if (std::all_of(b.corners.begin(), b.corners.end(),
+                            [&](const Vector3d& c) { return a.dot(c) - sweep.lowest() < low; }))
+                continue;
+            for (const Vector3d& q : samples_of(y)) {
+                const Vector2d q2 = sweep.frame().to_2d(q);
+                if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
+                Vector3d at;
+                if (least_clearance(moves, a, q, at) < (2.0 + kTravelStep) * m + allowance)
+                    return TravelHit{yi, at, q};
+            }
+        }
+        return std::nullopt;
+    }
+};
+
+TravelCheck::TravelCheck(const std::vector<Layer>& layers, const NozzleParams& params,
+                         const Plane& plate) {
+    validate(params);
+    impl_ = std::make_unique<Impl>(layers, params, plate);
+}
+
+TravelCheck::~TravelCheck() = default;
+
+void TravelCheck::deposited(std::size_t k) {
+    if (k >= impl_->layers.size())
+        throw Error(ErrorCode::InvalidArgument, "the travel check has no layer " +
+                                                    std::to_string(k) + " (it has " +
+                                                    std::to_string(impl_->layers.size()) + ")");
+    if (impl_->is_done[k]) return;
+    impl_->is_done[k] = 1;
+    impl_->done.push_back(int(k));
+}
+
+double TravelCheck::max_turn_rad() const { return impl_->max_turn(); }
+
+std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves) const {
+    const Impl& c = *impl_;
+    const double m = c.params.margin_mm;
+    const double reach = c.shape.grown(c.shape.top);
+    for (std::size_t k = 0; k < moves.size(); ++k) {
+        const NozzleMove& move = moves[k];
+        if (!move.from.allFinite() || !move.to.allFinite() || !move.axis.allFinite() ||
+            std::abs(move.axis.norm() - 1.0) > 1e-6)
+            throw Error(ErrorCode::InvalidArgument,
+                        "travel move " + std::to_string(k) + " needs finite ends and a unit axis");
+        if (!(move.turn_rad >= 0.0 && move.turn_rad <= c.max_turn() * (1.0 + 1e-9)))
+            throw Error(ErrorCode::InvalidArgument,
+                        "travel move " + std::to_string(k) + " turns its tool axis by " +
+                            format_number(move.turn_rad) + " rad, more than the " +
+                            format_number(c.max_turn()) + " rad a move may turn");
+    }
+    // Runs of moves along which the table keeps still, one axis each, and each turning move alone.
+    for (std::size_t k = 0; k < moves.size();) {
+        std::size_t end = k + 1;
+        if (moves[k].turn_rad == 0.0)
+            while (end < moves.size() && moves[end].turn_rad == 0.0 &&
+                   moves[end].axis == moves[k].axis)
+                ++end;
+        std::vector<std::pair<Vector3d, Vector3d>> run;
+        for (std::size_t j = k; j < end; ++j) run.emplace_back(moves[j].from, moves[j].to);
+        // Every point of the nozzle stays within top x turn of the nozzle along the first axis.
+        const double allowance = c.shape.top * moves[k].turn_rad;
+        const Sweep sweep(run, reach + allowance, moves[k].axis, m);
+        if (auto hit = c.check(run, sweep, allowance)) return hit;
+        k = end;
+    }
+    return std::nullopt;
 }
 
 }  // namespace mas

@@ -255,6 +255,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     sequence.toolpaths = &out.toolpaths;
     sequence.start_order = out.build_order;
     sequence.plate = components.front().base;
+    out.plate = sequence.plate;
     sequence.parent.resize(components.size());
     sequence.waits_for.resize(components.size());
     // A component waits for its father, and for the earlier components its first layer rests on:

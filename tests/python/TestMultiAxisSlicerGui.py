@@ -11,6 +11,7 @@ import shutil
 import subprocess
 import tempfile
 import textwrap
+import time
 import unittest
 
 import FreeCAD
@@ -35,6 +36,17 @@ TOOLBAR = "Multi-Axis Slicer"
 
 def process_events():
     QtGui.QApplication.processEvents()
+
+
+def wait_for_components(decomposition, count, seconds=5.0):
+    """Processes events until the decomposition has `count` component objects, or the time is up:
+    they are synchronised after the recompute ends, by a timer that waits 50 ms while it runs."""
+    import MultiAxisSlicer.features as features
+
+    deadline = time.monotonic() + seconds
+    while len(features.components_of(decomposition)) != count and time.monotonic() < deadline:
+        process_events()
+        time.sleep(0.01)
 
 
 def save_screenshot(test, doc, name, see_through=True):
@@ -649,8 +661,7 @@ class TestDecomposeCommand(unittest.TestCase):
             Part.makeBox(10, 20, 20, FreeCAD.Vector(50, 0, 60))).removeSplitter()
         obj.Step = 2.5
         self.doc.recompute()
-        process_events()
-        process_events()
+        wait_for_components(obj, 3)
         self.assertEqual(obj.ComponentCount, 3)
         components = self.check_colours(obj)
         self.assertEqual([c.Label for c in components],
@@ -1136,7 +1147,6 @@ class TestSliceCommand(unittest.TestCase):
         # are processed; the Layers after it in the same recompute process events as they report
         # (every report here): the synchronisation waits for the recompute's end instead of
         # failing in it, which left a component broken for good.
-        import time
 
         import MultiAxisSlicer.features as features
 
@@ -1155,10 +1165,7 @@ class TestSliceCommand(unittest.TestCase):
         finally:
             progress.INTERVAL = saved
         self.assertEqual(decomposition.ComponentCount, 1)
-        deadline = time.monotonic() + 5.0
-        while len(features.components_of(decomposition)) != 1 and time.monotonic() < deadline:
-            process_events()
-            time.sleep(0.01)
+        wait_for_components(decomposition, 1)
         self.assertEqual(len(features.components_of(decomposition)), 1)
         self.assertEqual([(o.Name, o.getStatusString()) for o in self.doc.Objects
                           if not o.isValid()], [])

@@ -10,7 +10,9 @@
 // Nozzle.hpp: from its first report to the end of the slicing, in the run that reports) and the
 // post-processor's (the G-code of the same layers, Gcode.hpp), each as a ratio to the slicing's;
 // then the nozzle leaned where it collides (Nozzle.hpp) against kept coaxial (max_lean_deg 0): the
-// build sequence's time, which the leaning adds to.
+// build sequence's time, which the leaning adds to; then the G-code with its travel checked against
+// the nozzle (Gcode.hpp, Nozzle.hpp's TravelCheck) against written unchecked: routes checked, taken
+// round the part, still meeting something, and the post-processor's time.
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -152,6 +154,12 @@ int main(int argc, char** argv) {
         double coaxial_ms, leaned_ms;
     };
     std::vector<Lean> leans;
+    struct Travel {
+        std::string name;
+        int routes, rerouted, collisions;
+        double unchecked_ms, checked_ms;
+    };
+    std::vector<Travel> travels;
     for (const Part& p : all) {
         mas::TessellationParams tp;
         mas::TriangleMesh mesh = mas::tessellate(p.shape, tp);
@@ -214,6 +222,14 @@ int main(int argc, char** argv) {
             sequence_ms / total_ms, r.stats.component_switches, r.stats.colliding_layers, gcode_ms,
             gcode_ms / total_ms);
         if (gcode_bytes == 0) std::printf("  (no G-code written)\n");
+        // The same with the travel checked against the slicing's nozzle and plate.
+        const mas::TravelNozzle nozzle{params.nozzle, r.plate};
+        mas::GcodeStats travel;
+        const double checked_ms = time_ms(3, [&] {
+            mas::write_gcode(mas::gcode_layers(r), mas::MachineParams(), &travel, {}, &nozzle);
+        });
+        travels.push_back({p.name, travel.checked_routes, travel.rerouted_travels,
+                           int(travel.travel_collisions.size()), gcode_ms, checked_ms});
         // The nozzle kept coaxial (the paper's): the build sequence's time and collisions.
         mas::SlicePartParams coaxial_params = params;
         coaxial_params.nozzle.max_lean_deg = 0.0;
@@ -251,6 +267,16 @@ int main(int argc, char** argv) {
     for (const Lean& l : leans)
         std::printf("%-24s %9d %9d %7d %10.1f %10.1f %7.3fx\n", l.name.c_str(), l.coaxial_collided,
                     l.collided, l.leaned, l.coaxial_ms, l.leaned_ms, l.leaned_ms / l.coaxial_ms);
+    std::printf(
+        "\n## The G-code's travel checked against the nozzle against unchecked: routes checked, "
+        "taken round the part, still meeting something; the post-processor's time (ms, median of "
+        "3)\n");
+    std::printf("%-24s %7s %9s %9s %10s %10s %8s\n", "part", "routes", "rerouted", "meeting",
+                "unchecked", "checked", "ratio");
+    for (const Travel& t : travels)
+        std::printf("%-24s %7d %9d %9d %10.1f %10.1f %7.2fx\n", t.name.c_str(), t.routes,
+                    t.rerouted, t.collisions, t.unchecked_ms, t.checked_ms,
+                    t.checked_ms / t.unchecked_ms);
     std::printf("\n## Layer count at the same maximum volumetric difference (%.2f)\n",
                 params.layers.max_volume_difference);
     std::printf("%-24s %8s %8s %8s %10s %10s %14s %14s\n", "part", "ours", "planarZ", "uniform",

@@ -168,6 +168,9 @@ def main():
           "%.1f min; wrote %s" % (1e3 * gcode_seconds, g["lines"], g["deposit_moves"],
                                   *g["a_range_deg"], g["deposit_time_min"],
                                   os.path.join(out, "bracket.ngc")))
+    print("main job: travel checked against the nozzle: %d routes, %d taken round the part, %d "
+          "meeting what is deposited" % (g["checked_routes"], g["rerouted_travels"],
+                                         len(g["travel_collisions"])))
     print("main job: done")
 
 

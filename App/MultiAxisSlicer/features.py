@@ -1265,7 +1265,10 @@ class MachineProgramFeature(_EngineFeature):
     between components; the Toolpath object shows the deposits), LineCount, DepositMoves,
     FeedLimitedMoves, Reorientations, ARange and CRange (the angles the program uses, [least,
     greatest], degrees), DepositLength, DepositTime (minutes), RapidLength,
-    ReferenceThicknessUsed. The program's text stays in memory only (``machine_program()``);
+    ReferenceThicknessUsed, and the travel checked against the Layers' nozzle: CheckedRoutes,
+    ReroutedTravels (ways within a component taken round the part), TravelCollisions (routes
+    meeting what is deposited all the same, each warned of on the console and by a comment in the
+    program). The program's text stays in memory only (``machine_program()``);
     ``export_gcode()`` and the Export G-code command write it to a file."""
 
     TYPE = "MultiAxisSlicer::MachineProgram"
@@ -1302,7 +1305,15 @@ class MachineProgramFeature(_EngineFeature):
                 ("App::PropertyLength", "RapidLength",
                  "Length of the rapid moves of the nozzle tip, in the part's frame", 0.0),
                 ("App::PropertyLength", "ReferenceThicknessUsed",
-                 "The deposit thickness at which the nozzle moves at Feed", 0.0)):
+                 "The deposit thickness at which the nozzle moves at Feed", 0.0),
+                ("App::PropertyInteger", "CheckedRoutes",
+                 "Routes between paths checked against the Layers' nozzle and build plate", 0),
+                ("App::PropertyInteger", "ReroutedTravels",
+                 "Ways within a component taken round the part instead, because they would "
+                 "meet what is deposited", 0),
+                ("App::PropertyInteger", "TravelCollisions",
+                 "Routes whose nozzle meets what is deposited all the same (marked by warning "
+                 "comments in the program)", 0)):
             _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
 
     @staticmethod
@@ -1320,11 +1331,31 @@ class MachineProgramFeature(_EngineFeature):
         obj.DepositTime = s["deposit_time_min"]
         obj.RapidLength = s["rapid_length_mm"]
         obj.ReferenceThicknessUsed = s["reference_thickness_mm"]
+        obj.CheckedRoutes = s["checked_routes"]
+        obj.ReroutedTravels = s["rerouted_travels"]
+        obj.TravelCollisions = len(s["travel_collisions"])
         FreeCAD.Console.PrintMessage(
             "{}: {} lines, {} deposit moves ({} at a feed limit), A {:.6g} to {:.6g} deg, C {:.6g} "
-            "to {:.6g} deg, deposit time {:.4g} min\n".format(
+            "to {:.6g} deg, deposit time {:.4g} min; {} routes checked against the nozzle, {} "
+            "taken round the part\n".format(
                 obj.Label, s["lines"], s["deposit_moves"], s["feed_limited_moves"],
-                *s["a_range_deg"], *s["c_range_deg"], s["deposit_time_min"]))
+                *s["a_range_deg"], *s["c_range_deg"], s["deposit_time_min"],
+                s["checked_routes"], s["rerouted_travels"]))
+        collisions = s["travel_collisions"]
+        if collisions:
+            def name(i, what):
+                return what if i < 0 else "layer {}".format(i)
+
+            lines = ["  on the way {} the nozzle meets {} near ({:.4g}, {:.4g}, {:.4g})".format(
+                "off the part" if c["layer"] < 0 else "to layer {}".format(c["layer"]),
+                name(c["obstacle_layer"], "the build plate"), *c["obstacle"])
+                for c in collisions[:10]]
+            if len(collisions) > 10:
+                lines.append("  and {} more (warning comments in the program)".format(
+                    len(collisions) - 10))
+            FreeCAD.Console.PrintWarning(
+                "{}: {} route(s) between paths meet what is deposited even round the part:\n"
+                "{}\n".format(obj.Label, len(collisions), "\n".join(lines)))
         obj.Shape = program_travel_shape(program.text)
 
 

@@ -42,7 +42,11 @@ class GcodeProgram:
     """A G-code program: ``text`` (str), ``stats`` (dict: lines, deposit_moves,
     feed_limited_moves, reorientations, a_range_deg and c_range_deg (the angles used, as (min,
     max)), deposit_length_mm, deposit_time_min (the deposit moves at their feeds),
-    rapid_length_mm, reference_thickness_mm) and ``machine`` (the machine parameters used)."""
+    rapid_length_mm, reference_thickness_mm; and the travel checked against the slicing's nozzle:
+    checked_routes, rerouted_travels (ways within a component taken round the part because they
+    would meet something), travel_collisions (routes meeting something all the same: dicts of
+    layer (the layer the route leads to, -1 off the part), obstacle_layer (-1: the build plate),
+    nozzle_at and obstacle as (x, y, z))) and ``machine`` (the machine parameters used)."""
 
     def __init__(self, data, machine):
         self.text = data["text"]
@@ -155,6 +159,11 @@ def gcode(result, progress=None, **machine):
         margin round the part between components, mm (2).
       * ``deposit_output``: the digital output that switches deposition (M62/M63 P, 0).
 
+    The travel between paths is checked against the nozzle the result was sliced with and its
+    build plate (see Gcode.hpp and Nozzle.hpp): a way within a component that would meet what is
+    deposited goes round the part instead, and a route that meets something all the same is kept,
+    marked by a warning comment and listed in ``stats["travel_collisions"]``.
+
     ``progress``: as ``slice()``'s, reported layer by layer. Returns a ``GcodeProgram``. Raises
     TypeError for an unknown parameter or one of the wrong type, EngineError ``invalid_argument``
     for one out of its range (a feed of 0, A's limits the wrong way round, an output beyond 63),
@@ -168,7 +177,14 @@ def gcode(result, progress=None, **machine):
     _progress.check(progress)
     eng = _require_engine()
     layers = result._data["layers"]
+    # The travel is checked against the nozzle and plate the result was sliced with (a result
+    # from before the plate was kept has none: its travel is not checked).
+    nozzle = plate = None
+    if "plate_origin" in result._data:
+        nozzle = {k: v for k, v in result.params.items()
+                  if k.startswith("nozzle_") or k == "check_plate"}
+        plate = (result._data["plate_origin"], result._data["plate_normal"])
     # In the order they are deposited (the result's sequence, checked against the nozzle), each
     # named by its index in the result.
     return GcodeProgram(eng.write_gcode([dict(layers[i], index=i) for i in result.sequence], p,
-                                        progress), p)
+                                        progress, nozzle, plate), p)

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -1182,6 +1183,8 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
         collisions.append(d);
     }
     bp::dict out;
+    out["plate_origin"] = to_py(r.plate.origin);
+    out["plate_normal"] = to_py(r.plate.normal);
     out["filled_holes"] = holes;
     out["notes"] = notes;
     out["layers"] = layers;
@@ -1342,6 +1345,34 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
                      points_from(holes[h], rw + "['holes'][" + std::to_string(h) + "]"))
                     l.outline.push_back(q);
         }
+        // The prism, for the travel check: the layer's planes and its regions on the top one.
+        if (bp::extract<bp::dict>(item).check() && bp::dict(item).has_key("lower_normal")) {
+            l.prism.plane = {vector3(required(item, "origin", what), what + "['origin']"),
+                             vector3(required(item, "normal", what), what + "['normal']")};
+            l.prism.lower = {
+                vector3(required(item, "lower_origin", what), what + "['lower_origin']"),
+                vector3(required(item, "lower_normal", what), what + "['lower_normal']")};
+            for (const mas::Plane& plane : {l.prism.plane, l.prism.lower})
+                if (!plane.origin.allFinite() || !(std::abs(plane.normal.norm() - 1.0) <= 1e-6))
+                    invalid_argument(what + ": its planes need finite origins and unit normals");
+            const mas::PlaneFrame frame(l.prism.plane.normal);
+            auto loop2 = [&](const bp::object& loop, const std::string& lw) {
+                mas::Polygon2 out;
+                for (const auto& q : points_from(loop, lw)) out.points.push_back(frame.to_2d(q));
+                return out;
+            };
+            for (std::size_t r = 0; r < regions.size(); ++r) {
+                const std::string rw = what + "['regions'][" + std::to_string(r) + "]";
+                mas::Region2 region;
+                region.outer = loop2(required(regions[r], "outer", rw), rw + "['outer']");
+                const std::vector<bp::object> holes = items_of(regions[r], "holes", rw);
+                for (std::size_t h = 0; h < holes.size(); ++h)
+                    region.holes.push_back(
+                        loop2(holes[h], rw + "['holes'][" + std::to_string(h) + "]"));
+                l.prism.regions.push_back(std::move(region));
+            }
+            l.prism.max_thickness_mm = l.max_thickness_mm;
+        }
         const std::vector<bp::object> paths = items_of(item, "paths", what);
         for (std::size_t k = 0; k < paths.size(); ++k) {
             const std::string pw = what + "['paths'][" + std::to_string(k) + "]";
@@ -1407,14 +1438,31 @@ mas::MachineParams machine_from_py(const bp::dict& d) {
 }
 
 bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
-                     const bp::object& progress) {
+                     const bp::object& progress, const bp::object& nozzle_py,
+                     const bp::object& plate_py) {
     const mas::MachineParams machine = machine_from_py(machine_py);
     mas::validate(machine);
+    std::optional<mas::TravelNozzle> nozzle;
+    if (!nozzle_py.is_none()) {
+        const bp::extract<bp::dict> d(nozzle_py);
+        if (!d.check())
+            invalid_argument("nozzle must be a dict of the slicing's nozzle parameters");
+        const bp::extract<bp::tuple> plate(plate_py);
+        if (!plate.check() || bp::len(plate()) != 2)
+            invalid_argument("the travel check needs the plate as (origin, normal)");
+        nozzle = mas::TravelNozzle{
+            slice_params_from_py(d()).nozzle,
+            {vector3(plate()[0], "the plate's origin"), vector3(plate()[1], "the plate's normal")}};
+        if (!nozzle->plate.origin.allFinite() ||
+            !(std::abs(nozzle->plate.normal.norm() - 1.0) <= 1e-6))
+            invalid_argument("the plate needs a finite origin and a unit normal");
+    }
     const std::vector<mas::GcodeLayer> layers = gcode_layers_from_py(layers_py);
     std::string text;
     mas::GcodeStats s;
-    run_reporting(progress,
-                  [&](const mas::Progress& p) { text = mas::write_gcode(layers, machine, &s, p); });
+    run_reporting(progress, [&](const mas::Progress& p) {
+        text = mas::write_gcode(layers, machine, &s, p, nozzle ? &*nozzle : nullptr);
+    });
     bp::dict stats;
     stats["lines"] = s.lines;
     stats["deposit_moves"] = s.deposit_moves;
@@ -1426,6 +1474,18 @@ bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
     stats["deposit_time_min"] = s.deposit_time_min;
     stats["rapid_length_mm"] = s.rapid_length_mm;
     stats["reference_thickness_mm"] = s.reference_thickness_mm;
+    stats["checked_routes"] = s.checked_routes;
+    stats["rerouted_travels"] = s.rerouted_travels;
+    bp::list collisions;
+    for (const mas::TravelCollision& c : s.travel_collisions) {
+        bp::dict d;
+        d["layer"] = c.layer;
+        d["obstacle_layer"] = c.obstacle_layer;
+        d["nozzle_at"] = to_py(c.nozzle_at);
+        d["obstacle"] = to_py(c.obstacle);
+        collisions.append(d);
+    }
+    stats["travel_collisions"] = collisions;
     bp::dict out;
     out["text"] = text;
     out["stats"] = stats;
@@ -1433,20 +1493,24 @@ bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
 }
 
 void bind_gcode() {
-    bp::def(
-        "write_gcode", &write_gcode,
-        (bp::arg("layers"), bp::arg("machine") = bp::dict(), bp::arg("progress") = bp::object()),
-        "The 5-axis G-code program (LinuxCNC, tilting rotary table XYZAC, xyzac-trt-kins) "
-        "that deposits `layers` (slice_part()'s layer dicts, in the order they are deposited: "
-        "its sequence; an 'index' in one is its number in the part, which comments and errors "
-        "name, else its place in `layers`). `machine`: a "
-        "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
-        "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
-        "deposit_output; missing ones take the engine's defaults. Returns {text, stats "
-        "{lines, deposit_moves, feed_limited_moves, reorientations, a_range_deg, c_range_deg, "
-        "deposit_length_mm, deposit_time_min, rapid_length_mm, reference_thickness_mm}}. "
-        "EngineError invalid_argument for bad parameters, unreachable_orientation for a "
-        "layer the table cannot turn to the nozzle. `progress` as slice_part()'s.");
+    bp::def("write_gcode", &write_gcode,
+            (bp::arg("layers"), bp::arg("machine") = bp::dict(), bp::arg("progress") = bp::object(),
+             bp::arg("nozzle") = bp::object(), bp::arg("plate") = bp::object()),
+            "The 5-axis G-code program (LinuxCNC, tilting rotary table XYZAC, xyzac-trt-kins) "
+            "that deposits `layers` (slice_part()'s layer dicts, in the order they are deposited: "
+            "its sequence; an 'index' in one is its number in the part, which comments and errors "
+            "name, else its place in `layers`). `machine`: a "
+            "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
+            "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
+            "deposit_output; missing ones take the engine's defaults. Returns {text, stats "
+            "{lines, deposit_moves, feed_limited_moves, reorientations, a_range_deg, c_range_deg, "
+            "deposit_length_mm, deposit_time_min, rapid_length_mm, reference_thickness_mm, "
+            "checked_routes, rerouted_travels, travel_collisions [{layer, obstacle_layer, "
+            "nozzle_at, obstacle}]}}. `nozzle` (a dict of slice_part()'s nozzle_* parameters and "
+            "check_plate) and `plate` ((origin, normal)): the travel is checked against them and "
+            "the layers' prisms (their origin, normal, lower_origin, lower_normal and regions). "
+            "EngineError invalid_argument for bad parameters, unreachable_orientation for a "
+            "layer the table cannot turn to the nozzle. `progress` as slice_part()'s.");
 }
 
 }  // namespace

@@ -738,12 +738,44 @@ class CliGcode(unittest.TestCase):
             text = f.read()
         self.assertIn("M62 P3", text)
         self.assertNotIn("P0\n", text.split("G64", 1)[1])
+        # Every route into a path and the one off the part, checked against the nozzle.
+        self.assertIn("# travel: {} routes checked against the nozzle, 0 taken round the part, 0 "
+                      "meeting what is deposited".format(text.count("M62 P3") + 1), r.stdout)
         canon = self.interpret(program)
         feeds = {c for c in canon if c.startswith("SET_FEED_RATE(") and c != "SET_FEED_RATE(0.0000)"}
         self.assertEqual(feeds, {"SET_FEED_RATE(900.0000)"})
         # With A free to +90, the arm needs no half turn of C.
         self.assertTrue(any(c.startswith("STRAIGHT_FEED") and c.endswith(", 90.0000, 0.0000, 90.0000)")
                             for c in canon))
+
+    def test_travel_meeting_what_is_deposited_is_reported(self):
+        # A nozzle 150 mm across widening at 80 degrees: routes near the arm reach down to the
+        # plate or back to the column whichever way they go. Each is kept, warned of in the
+        # program, listed in the summary and in the JSON.
+        brep = os.path.join(DATA, "l_block.brep")
+        program = os.path.join(self.tmp.name, "wide.ngc")
+        nozzle = ["--nozzle-body-diameter", "150", "--nozzle-cone-angle", "80"]
+        r = run("slice", brep, "--step", "2.5", "--gcode", program, *nozzle)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(program) as f:
+            text = f.read()
+        warnings = [line for line in text.splitlines() if line.startswith("(warning: on the way")]
+        self.assertGreater(len(warnings), 0)
+        listed = [line for line in r.stdout.splitlines() if line.startswith("#   on the way")]
+        self.assertEqual(len(listed), len(warnings))
+        self.assertIn(", {} meeting what is deposited".format(len(warnings)), r.stdout)
+        r = run("slice", brep, "--step", "2.5", "--gcode", program, *nozzle, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        g = json.loads(r.stdout)["gcode"]
+        self.assertEqual(len(g["travel_collisions"]), len(warnings))
+        layers = len(json.loads(r.stdout)["layers"])
+        for c in g["travel_collisions"]:
+            self.assertTrue(-1 <= c["layer"] < layers and -1 <= c["obstacle_layer"] < layers, c)
+            if c["obstacle_layer"] < 0:
+                self.assertAlmostEqual(c["obstacle"][2], 0.0, places=9)  # on the plate, z = 0
+        self.assertGreater(g["checked_routes"], len(warnings))
+        # The program still runs through LinuxCNC's interpreter.
+        self.interpret(program)
 
     def test_bad_machine_input(self):
         brep = os.path.join(DATA, "l_block.brep")

@@ -184,6 +184,83 @@ class TestGcodeApi(GcodeTest):
         self.assertEqual(engine.write_gcode(layers)["text"], mas.gcode(self.result).text)
 
 
+
+def rectangle(x0, y0, x1, y1, z):
+    return [(x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z)]
+
+
+def layer_dict(component, origin_z, thickness, regions, paths):
+    """A layer as slice_part() gives it, horizontal: its top at origin_z, `thickness` deep."""
+    return {"component": component, "tool_axis": (0, 0, 1), "max_thickness_mm": thickness,
+            "origin": (0, 0, origin_z), "normal": (0, 0, 1),
+            "lower_origin": (0, 0, origin_z - thickness), "lower_normal": (0, 0, 1),
+            "regions": [{"outer": r, "holes": []} for r in regions],
+            "paths": [{"kind": "contour", "points": p, "thickness_mm": [thickness] * len(p)}
+                      for p in paths]}
+
+
+class TestTravelCheck(GcodeTest):
+    # A wall 30 mm tall, then a layer of another component with a pad each side of it.
+    WALL = layer_dict(0, 30.0, 30.0, [rectangle(-2, -20, 2, 20, 30)], [[(0, -18, 30), (0, 18, 30)]])
+    PADS = layer_dict(1, 2.0, 2.0, [rectangle(-37, -6, -33, 6, 2), rectangle(33, -6, 37, 6, 2)],
+                      [[(-35, -5, 2), (-35, 5, 2)], [(35, 5, 2), (35, -5, 2)]])
+    PLATE = ((0, 0, 0), (0, 0, 1))
+
+    def test_a_way_over_a_deposited_wall_goes_round_the_part(self):
+        engine = mas._engine
+        checked = engine.write_gcode([self.WALL, self.PADS], {}, None, {}, self.PLATE)
+        s = checked["stats"]
+        self.assertEqual((s["checked_routes"], s["rerouted_travels"], s["travel_collisions"]),
+                         (4, 1, []))
+        self.assertIn("(the way within the component meets layer 0: round the part instead)",
+                      checked["text"])
+        # Between the pads the nozzle rises over the sphere round the part.
+        text = checked["text"]
+        between = text[text.index("X-35.0000 Y5.0000"):text.index("X35.0000 Y5.0000 Z2.0000")]
+        tops = [float(w[1:]) for w in between.split() if w.startswith("Z")]
+        self.assertGreater(max(tops), 60.0)
+        unchecked = engine.write_gcode([self.WALL, self.PADS])
+        self.assertEqual((unchecked["stats"]["checked_routes"],
+                          unchecked["stats"]["rerouted_travels"]), (0, 0))
+        self.assertNotIn("round the part instead", unchecked["text"])
+        # A nozzle 80 mm across, widening at 80 degrees, reaches the wall from over the pads,
+        # whichever way it goes: reported.
+        wide = engine.write_gcode([self.WALL, self.PADS], {}, None,
+                                  {"nozzle_body_diameter": 80.0, "nozzle_cone_angle": 80.0},
+                                  self.PLATE)["stats"]
+        self.assertGreater(len(wide["travel_collisions"]), 0)
+        for c in wide["travel_collisions"]:
+            self.assertEqual(c["obstacle_layer"], 0)
+            self.assertEqual(len(c["nozzle_at"]), 3)
+
+    def test_gcode_checks_against_the_results_nozzle_and_plate(self):
+        program = mas.gcode(self.result)
+        s = program.stats
+        self.assertEqual(s["checked_routes"], program.text.count("M62 P0") + 1)
+        self.assertEqual((s["rerouted_travels"], s["travel_collisions"]), (0, []))
+        # A result without its plate (from before the plate was kept) is written unchecked.
+        data = dict(self.result._data)
+        del data["plate_origin"], data["plate_normal"]
+        old = mas.SliceResult(data, self.result.params, self.result.axis, None, "solid")
+        self.assertEqual(mas.gcode(old).stats["checked_routes"], 0)
+        self.assertEqual(mas.gcode(old).text, program.text)
+
+    def test_bad_nozzle_or_plate(self):
+        engine = mas._engine
+        layers = [self.WALL, self.PADS]
+        self.assertRaisesEngineError("invalid_argument", engine.write_gcode, layers, {}, None,
+                                     {"nozzle_margin": -1.0}, self.PLATE)
+        self.assertRaisesEngineError("invalid_argument", engine.write_gcode, layers, {}, None,
+                                     {"nozzle_width": 1.0}, self.PLATE)
+        self.assertRaisesEngineError("invalid_argument", engine.write_gcode, layers, {}, None,
+                                     {}, None)
+        self.assertRaisesEngineError("invalid_argument", engine.write_gcode, layers, {}, None,
+                                     {}, ((0, 0, 0), (0, 0, 2)))
+        broken = [dict(self.WALL, lower_normal=(0, 0, float("nan"))), self.PADS]
+        self.assertRaisesEngineError("invalid_argument", engine.write_gcode, broken, {}, None,
+                                     {}, self.PLATE)
+
+
 class TestTravelShape(support.EngineTestCase):
     def test_moves_with_the_deposition_off_as_one_polyline_per_run(self):
         import MultiAxisSlicer.features as features
@@ -235,6 +312,11 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertAlmostEqual(program_obj.DepositTime,
                                expected.stats["deposit_time_min"], places=9)
         self.assertGreater(len(program_obj.Shape.Wires), self.layers.LayerCount)
+        # The travel, checked against the Layers' nozzle: every route, none meeting anything.
+        self.assertEqual(program_obj.CheckedRoutes, expected.stats["checked_routes"])
+        self.assertEqual(program_obj.CheckedRoutes, expected.text.count("M62 P0") + 1)
+        self.assertEqual(program_obj.ReroutedTravels, 0)
+        self.assertEqual(program_obj.TravelCollisions, 0)
         path = os.path.join(self.folder, "l.ngc")
         features.export_gcode(program_obj, path)
         with open(path) as f:

@@ -894,7 +894,7 @@ struct TravelCheck::Impl {
             for (const Vector3d& q : samples_of(y)) {
                 const Vector2d q2 = sweep.frame().to_2d(q);
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
-                Vector3d at;
+                Vector3d at = Vector3d::Zero();
                 if (least_clearance(moves, a, q, at) < (2.0 + kTravelStep) * m + allowance)
                     return TravelHit{yi, at, q};
             }

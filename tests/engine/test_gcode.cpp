@@ -345,6 +345,19 @@ TEST(Gcode, TravelsBetweenComponentsRoundASphereClearOfEverythingDeposited) {
     }
     EXPECT_EQ(r.moves[last0 + 1].a, 0.0);
     EXPECT_EQ(r.moves[first1 - 3].a, -90.0);
+    // Level at the sphere's top, the nozzle standing along its radius: C turns only there, and A
+    // only on the way down (the tower's own A is level already).
+    std::size_t highest = last0 + 1;
+    for (std::size_t k = last0 + 1; k + 2 < first1; ++k) {
+        if (r.moves[k].p.z() > r.moves[highest].p.z()) highest = k;
+        if (r.moves[k].c != r.moves[k - 1].c) {
+            EXPECT_EQ(r.moves[k].a, 0.0) << "line " << r.moves[k].line;
+            EXPECT_EQ(r.moves[k - 1].a, 0.0) << "line " << r.moves[k].line;
+        }
+    }
+    EXPECT_EQ(r.moves[highest].a, 0.0);
+    for (std::size_t k = highest + 1; k + 2 < first1; ++k)
+        EXPECT_LE(r.moves[k].a, r.moves[k - 1].a) << "line " << r.moves[k].line;
     EXPECT_EQ(r.moves[first1 - 2].a, -90.0);
     EXPECT_GT(top, out.p.z());
     const Move& approach = r.moves[first1 - 2];

@@ -511,25 +511,36 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     g.line("G64 P0.01");
     g.line("M65" + out_n);
 
-    // Around the sphere over its top from `from` (on it) to `to` (on it), the table turning from
-    // `start` to `to_angles` in proportion to the way: the waypoints after `from`.
+    // Around the sphere over its top from `from` (on it) to `to` (on it): the waypoints after
+    // `from`. On the way up the table turns level from `start` (A to 0, or the nearest A within
+    // its limits, in proportion to the way), at the top C turns to its end, on the way down A turns
+    // to `to_angles`: at the top the nozzle stands along the sphere's radius, out of it, where one
+    // lying on its side would reach down the sphere's side towards the part.
+    const double level_a = std::clamp(0.0, params.a_min_deg, params.a_max_deg);
+    const Eigen::Vector3d summit = sphere.centre + sphere.radius * top;
     auto round_the_top = [&](const Eigen::Vector3d& from, const TableAngles& start,
                              const Eigen::Vector3d& to, const TableAngles& to_angles,
                              std::vector<Waypoint>& way) {
-        const Eigen::Vector3d u0 = (from - sphere.centre) / sphere.radius;
-        const Eigen::Vector3d u1 = (to - sphere.centre) / sphere.radius;
-        std::vector<Eigen::Vector3d> arcs = arc(u0, top);
-        const std::vector<Eigen::Vector3d> down = arc(top, u1);
-        arcs.insert(arcs.end(), down.begin(), down.end());
-        for (std::size_t k = 0; k < arcs.size(); ++k) {
-            const double s = static_cast<double>(k + 1) / static_cast<double>(arcs.size());
-            const TableAngles at{start.a_deg + s * (to_angles.a_deg - start.a_deg),
-                                 start.c_deg + s * (to_angles.c_deg - start.c_deg)};
-            way.push_back({k + 1 == arcs.size()
-                               ? to
-                               : Eigen::Vector3d(sphere.centre + sphere.radius * arcs[k]),
-                           at});
+        const std::vector<Eigen::Vector3d> up = arc((from - sphere.centre) / sphere.radius, top);
+        const std::vector<Eigen::Vector3d> down = arc(top, (to - sphere.centre) / sphere.radius);
+        for (std::size_t k = 0; k < up.size(); ++k) {
+            const double s = static_cast<double>(k + 1) / static_cast<double>(up.size());
+            way.push_back({k + 1 == up.size()
+                               ? summit
+                               : Eigen::Vector3d(sphere.centre + sphere.radius * up[k]),
+                           {start.a_deg + s * (level_a - start.a_deg), start.c_deg}});
         }
+        if (up.empty() && start.a_deg != level_a) way.push_back({from, {level_a, start.c_deg}});
+        if (start.c_deg != to_angles.c_deg)
+            way.push_back({way.empty() ? from : way.back().p, {level_a, to_angles.c_deg}});
+        for (std::size_t k = 0; k < down.size(); ++k) {
+            const double s = static_cast<double>(k + 1) / static_cast<double>(down.size());
+            way.push_back({k + 1 == down.size()
+                               ? to
+                               : Eigen::Vector3d(sphere.centre + sphere.radius * down[k]),
+                           {level_a + s * (to_angles.a_deg - level_a), to_angles.c_deg}});
+        }
+        if (down.empty() && to_angles.a_deg != level_a) way.push_back({to, to_angles});
     };
     // From `from` (the table at `from_angles`, the last tool axis `back`) to the clearance over `s`
     // (the table at `to_angles`, tool axis `n`): out along `back` to the sphere, round its top and
@@ -627,9 +638,8 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                     // From the sphere's top down to the first path.
                     g.comment(
                         "first to the top of a sphere clear of the part: start above the part");
-                    const Eigen::Vector3d from = sphere.centre + sphere.radius * top;
-                    g.rapid(from, a);
-                    round_the_top(from, a, sphere.exit(s, n), a, way);
+                    g.rapid(summit, {level_a, a.c_deg});
+                    round_the_top(summit, g.angles(), sphere.exit(s, n), a, way);
                     way.push_back({approach, a});
                 } else if (new_component) {
                     // Out along the tool axis the last layer was deposited with, round the sphere.
@@ -697,15 +707,12 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         }
         previous_component = layer.component;
     }
-    // Out to the sphere and up to its top, the table turning level (A 0, or the nearest A within
-    // its limits) on the way: at the top the nozzle stands along the sphere's radius, clear of it,
-    // where a tilted one would reach down its side.
+    // Out to the sphere and up to its top, the table turning level on the way.
     stop_deposit();
     std::vector<Waypoint> way;
     const Eigen::Vector3d out = sphere.exit(g.position(), layers[used.back()].tool_axis);
     way.push_back({out, g.angles()});
-    const TableAngles level{std::clamp(0.0, params.a_min_deg, params.a_max_deg), g.angles().c_deg};
-    round_the_top(out, g.angles(), sphere.centre + sphere.radius * top, level, way);
+    round_the_top(out, g.angles(), summit, {level_a, g.angles().c_deg}, way);
     if (check) {
         check->deposited(used.back());
         ++stats.checked_routes;

@@ -856,6 +856,38 @@ TEST(TravelCheck, AMoveIsJudgedByTheNozzlesClearance) {
         unchecked.meets({{Vector3d(100, -20, 10), Vector3d(100, 20, 10), Vector3d::UnitX(), 0.0}}));
 }
 
+// The nozzle leaning 30 degrees over the block, its tip's rim lowest at (1, 1), between the points
+// of the block's top where its samples lie (every 2 mm): at 1.9 mm it is met, though the nearest
+// sample lies 2.15 mm from the nozzle (only a sample as far as twice the margin can stand for the
+// surface it stands over); at 4.2 mm (beyond twice the margin and the step of everything) passed.
+TEST(TravelCheck, TheSurfaceBetweenSamplesCounts) {
+    const Built b = block();
+    const mas::NozzleParams p = coaxial(false);
+    mas::TravelCheck check(b.layers, p, {Vector3d::Zero(), Vector3d::UnitZ()});
+    check.deposited(0);
+    const double t = 3.14159265358979323846 / 6.0;
+    const Vector3d axis(0.0, -std::sin(t), std::cos(t));
+    // The tip's face: its centre 10 mm up the axis, its rim 5 mm round it; the lowest rim point
+    // lies across the axis straight down, 5 sin 30 mm under the centre.
+    const Vector3d down = (-Vector3d::UnitZ() + axis.z() * axis).normalized();
+    const Vector3d lowest_from_tip = 10.0 * axis + 5.0 * down;
+    auto over = [&](double gap) {
+        const Vector3d tip = Vector3d(1, 1, 10 + gap) - lowest_from_tip;
+        double nearest_sample = INFINITY;  // of the grid the block's top is sampled on
+        for (int i = -5; i <= 5; ++i)
+            for (int j = -5; j <= 5; ++j)
+                nearest_sample =
+                    std::min(nearest_sample,
+                             mas::test::nozzle_clearance(p, tip, axis, Vector3d(2 * i, 2 * j, 10)));
+        return std::pair{check.meets({{tip, tip, axis, 0.0}}), nearest_sample};
+    };
+    const auto [met, nearest] = over(1.9);
+    EXPECT_GT(nearest, p.margin_mm + 0.1);
+    ASSERT_TRUE(met);
+    EXPECT_EQ(met->obstacle_layer, 0);
+    EXPECT_FALSE(over(4.2).first);
+}
+
 // Random moves round the block, some with the table still, some turning the tool axis by up to
 // max_turn_rad() about a random direction: every move passed keeps the margin from the block by
 // the nozzle's own shape (the block's surface sampled every 0.5 mm, the moves every 0.1 mm: within
@@ -890,7 +922,9 @@ TEST(TravelCheck, EveryMovePassedKeepsTheMargin) {
         const Vector3d from(25 * uniform(rng), 25 * uniform(rng), 10 + 8 * uniform(rng));
         const Vector3d to = from + Vector3d(8 * uniform(rng), 8 * uniform(rng), 3 * uniform(rng));
         const double turn = trial % 2 ? check.max_turn_rad() : 0.0;
-        const double allowance = turn * (p.standoff_mm + mas::cone_length(p) + p.body_length_mm);
+        const double allowance =
+            turn * std::hypot(p.standoff_mm + mas::cone_length(p) + p.body_length_mm,
+                              0.5 * p.body_diameter_mm);
         const Vector3d about =
             axis.cross(Vector3d(uniform(rng), uniform(rng), uniform(rng))).normalized();
         double least = INFINITY;
@@ -919,13 +953,14 @@ TEST(TravelCheck, BadMovesAreNamed) {
     const Built b = block();
     mas::TravelCheck check(b.layers, coaxial(), {Vector3d::Zero(), Vector3d::UnitZ()});
     const double turn = check.max_turn_rad();
-    // The nozzle is 244.64 mm long (10 + 34.64 + 200): a turn moves its end 2 mm per 0.00817 rad.
-    EXPECT_NEAR(turn, 2.0 / (10.0 + 20.0 / kTan30 + 200.0), 1e-12);
+    // The body's end's rim lies 245.9 mm from the deposit point (244.64 = 10 + 34.64 + 200 along
+    // the axis, 25 across): a turn moves it 2 mm per 0.00813 rad.
+    EXPECT_NEAR(turn, 2.0 / std::hypot(10.0 + 20.0 / kTan30 + 200.0, 25.0), 1e-12);
     EXPECT_EQ(error_of([&] {
                   check.meets({{Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitZ(), 2 * turn}});
               }),
               "travel move 0 turns its tool axis by " + mas::format_number(2 * turn) +
-                  " rad, more than the " + mas::format_number(turn) + " rad a move may turn");
+                  " rad, where a move may turn it by 0 to " + mas::format_number(turn) + " rad");
     EXPECT_EQ(error_of([&] {
                   check.meets({{Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitZ(), 0.0},
                                {Vector3d::Zero(), Vector3d(NAN, 0, 0), Vector3d::UnitZ(), 0.0}});

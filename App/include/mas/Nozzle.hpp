@@ -67,9 +67,10 @@
 //   or above the plane along the tool axis). The moves along which the table keeps still are
 //   binned as the leans' are (cut into pieces whose heights along the axis are at most margin_mm
 //   apart, each given the grown radius at its lowest point); a move along which the table turns is
-//   cut into pieces along which the tool axis turns by at most max_turn_rad() = margin_mm / (the
-//   nozzle's length), so that every point of the nozzle stays within an allowance a = length x
-//   turn <= margin_mm of the nozzle along the piece's first axis, which is tested grown by a more
+//   cut into pieces along which the tool axis turns by at most max_turn_rad() = margin_mm / L (L:
+//   the distance from the deposit point to the rim of the body's end, the nozzle's farthest
+//   point), so that every point of the nozzle stays within an allowance a = L x turn <= margin_mm
+//   of the nozzle along the piece's first axis, which is tested grown by a more
 //   (the plate: kept a more). A sample in the grown nozzle counts only when the nozzle along the
 //   first axis, its tip taken every 0.05 margin_mm along the move, comes within 2.05 margin_mm + a
 //   of it. So no move is passed that comes within the margin, and one is reported only when it

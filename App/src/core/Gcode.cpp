@@ -214,10 +214,10 @@ void turning_moves(const Eigen::Vector3d& p, const TableAngles& a, const Eigen::
         return;
     }
     const double lo = std::min(a.a_deg, b.a_deg), hi = std::max(a.a_deg, b.a_deg);
-    const bool through_pole = (lo <= 90.0 && hi >= 90.0) || (lo <= -90.0 && hi >= -90.0);
+    const bool past_90 = (lo <= 90.0 && hi >= 90.0) || (lo <= -90.0 && hi >= -90.0);
     const double sin_max =
-        through_pole ? 1.0
-                     : std::max(std::abs(std::sin(lo * kDegree)), std::abs(std::sin(hi * kDegree)));
+        past_90 ? 1.0
+                : std::max(std::abs(std::sin(lo * kDegree)), std::abs(std::sin(hi * kDegree)));
     const double turn = (std::abs(da) + std::abs(dc) * sin_max) * kDegree;
     const int pieces = std::max(1, static_cast<int>(std::ceil(turn / max_turn - 1e-9)));
     for (int k = 0; k < pieces; ++k) {

@@ -825,7 +825,10 @@ struct TravelCheck::Impl {
         for (const Layer& layer : layers) bounds.push_back(layer_bounds(layer));
     }
 
-    double max_turn() const { return params.margin_mm / shape.top; }
+    // The farthest any point of the nozzle lies from its deposit point: the body's end's rim. A
+    // turn of the tool axis by t moves no point of it further than t times this.
+    double length() const { return std::hypot(shape.top, shape.body); }
+    double max_turn() const { return params.margin_mm / length(); }
 
     const std::vector<Vector3d>& samples_of(std::size_t y) const {
         if (!samples[y]) {
@@ -864,7 +867,7 @@ struct TravelCheck::Impl {
     }
 
     // What the nozzle along the sweep's `moves` (its tool axis, that of their first point where
-    // it turns by up to `allowance` / the nozzle's length) meets: the plate within the margin and
+    // it turns by up to `allowance` / length()) meets: the plate within the margin and
     // the allowance, or a sample of a deposited layer in the nozzle grown by 2 margins and the
     // allowance, which counts only when the nozzle along the first axis comes within 2 margins,
     // the step and the allowance of it.
@@ -934,10 +937,11 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
             throw Error(ErrorCode::InvalidArgument,
                         "travel move " + std::to_string(k) + " needs finite ends and a unit axis");
         if (!(move.turn_rad >= 0.0 && move.turn_rad <= c.max_turn() * (1.0 + 1e-9)))
-            throw Error(ErrorCode::InvalidArgument,
-                        "travel move " + std::to_string(k) + " turns its tool axis by " +
-                            format_number(move.turn_rad) + " rad, more than the " +
-                            format_number(c.max_turn()) + " rad a move may turn");
+            throw Error(ErrorCode::InvalidArgument, "travel move " + std::to_string(k) +
+                                                        " turns its tool axis by " +
+                                                        format_number(move.turn_rad) +
+                                                        " rad, where a move may turn it by 0 to " +
+                                                        format_number(c.max_turn()) + " rad");
     }
     // Runs of moves along which the table keeps still, one axis each, and each turning move alone.
     for (std::size_t k = 0; k < moves.size();) {
@@ -948,8 +952,9 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
                 ++end;
         std::vector<std::pair<Vector3d, Vector3d>> run;
         for (std::size_t j = k; j < end; ++j) run.emplace_back(moves[j].from, moves[j].to);
-        // Every point of the nozzle stays within top x turn of the nozzle along the first axis.
-        const double allowance = c.shape.top * moves[k].turn_rad;
+        // Every point of the nozzle stays within length() x turn of the nozzle along the first
+        // axis.
+        const double allowance = c.length() * moves[k].turn_rad;
         const Sweep sweep(run, reach + allowance, moves[k].axis, m);
         if (auto hit = c.check(run, sweep, allowance)) return hit;
         k = end;

@@ -366,6 +366,8 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.doc.commitTransaction()
         before = features.machine_program(program_obj).text
         lines = program_obj.LineCount
+        routes = program_obj.CheckedRoutes
+        self.assertGreater(routes, 0)
         path = os.path.join(self.folder, "program.FCStd")
         self.doc.saveAs(path)
         FreeCAD.closeDocument(self.doc.Name)
@@ -377,6 +379,8 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertEqual(program_obj.Clearance.Value, 5.0)
         self.assertEqual(program_obj.DepositOutput, 2)
         self.assertEqual(program_obj.LineCount, lines)
+        self.assertEqual(program_obj.CheckedRoutes, routes)
+        self.assertEqual(program_obj.TravelCollisions, 0)
         self.assertGreater(len(program_obj.Shape.Edges), 0)  # saved with the document
         self.assertIsNone(getattr(program_obj.Proxy, "_program", None))  # the text is not
         out = os.path.join(self.folder, "after.ngc")
@@ -394,6 +398,28 @@ class TestMachineProgramObject(support.EngineTestCase):
         doc.undo()
         self.assertIsNone(doc.getObject("Second"))
         self.assertEqual(sorted(o.Name for o in doc.Objects), sorted(names + ["MachineProgram"]))
+
+    def test_a_program_saved_before_the_travel_check_reopens_and_recomputes_it(self):
+        program_obj = mas.make_machine_program(self.layers)
+        self.doc.recompute()
+        routes = program_obj.CheckedRoutes
+        for name in ("CheckedRoutes", "ReroutedTravels", "TravelCollisions"):
+            program_obj.removeProperty(name)
+        path = os.path.join(self.folder, "old_program.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        doc = FreeCAD.openDocument(path)
+        try:
+            program_obj = doc.getObject("MachineProgram")
+            # Computed without the check: none checked, until it is computed again.
+            self.assertEqual((program_obj.CheckedRoutes, program_obj.ReroutedTravels,
+                              program_obj.TravelCollisions), (0, 0, 0))
+            program_obj.touch()
+            doc.recompute()
+            self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+            self.assertEqual(program_obj.CheckedRoutes, routes)
+        finally:
+            FreeCAD.closeDocument(doc.Name)
 
     def test_a_program_whose_layers_changed_is_not_exported_until_recomputed(self):
         import MultiAxisSlicer.features as features

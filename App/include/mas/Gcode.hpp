@@ -37,7 +37,7 @@
 //   `clearance_mm`, G0 to `clearance_mm` along the next tool axis from the next path's start
 //   (turning the table on the way), G1 down to it at the feed. Both ends lie above the plane on top
 //   of the last layer deposited, so the whole move does (the component's own material lies under
-//   it; another component's is Eq. 10's, below).
+//   it; another component's, and the nozzle's body, are the travel check's, below).
 // - Travel between components, and to the first and from the last layer: out along the tool axis
 //   to a sphere round everything the program deposits (every layer's outline and path points, as
 //   deep under them as the layer reaches) plus `clearance_mm`, along that sphere's meridians over

@@ -70,8 +70,8 @@
 //   cut into pieces along which the tool axis turns by at most max_turn_rad() = margin_mm / L (L:
 //   the distance from the deposit point to the rim of the body's end, the nozzle's farthest
 //   point), so that every point of the nozzle stays within an allowance a = L x turn <= margin_mm
-//   of the nozzle along the piece's first axis, which is tested grown by a more
-//   (the plate: kept a more). A sample in the grown nozzle counts only when the nozzle along the
+//   of the nozzle along the piece's first axis, which is tested grown by a more (from the plate it
+//   keeps a more). A sample in the grown nozzle counts only when the nozzle along the
 //   first axis, its tip taken every 0.05 margin_mm along the move, comes within 2.05 margin_mm + a
 //   of it. So no move is passed that comes within the margin, and one is reported only when it
 //   comes within 2.05 margin_mm + 2a of a deposited layer's surface (4.1 mm at the defaults with

@@ -1354,7 +1354,8 @@ class MachineProgramFeature(_EngineFeature):
                 lines.append("  and {} more (warning comments in the program)".format(
                     len(collisions) - 10))
             FreeCAD.Console.PrintWarning(
-                "{}: {} route(s) between paths meet what is deposited even round the part:\n"
+                "{}: {} route(s) between paths meet what is deposited (a way within a component "
+                "even round the part):\n"
                 "{}\n".format(obj.Label, len(collisions), "\n".join(lines)))
         obj.Shape = program_travel_shape(program.text)
 

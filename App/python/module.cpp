@@ -1319,7 +1319,8 @@ mas::ToolPath::Kind path_kind(const std::string& name, const std::string& what) 
 
 // The layers as slice_part() returns them: component, tool_axis, max_thickness_mm, regions
 // [{outer, holes}], paths [{kind, points, thickness_mm}].
-std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
+// With `prisms`, each needs its prism too (origin, normal, lower_origin, lower_normal).
+std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value, bool prisms) {
     bp::handle<> seq = fast_sequence(value, "layers");
     const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
     PyObject** items = PySequence_Fast_ITEMS(seq.get());
@@ -1346,7 +1347,7 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
                     l.outline.push_back(q);
         }
         // The prism, for the travel check: the layer's planes and its regions on the top one.
-        if (bp::extract<bp::dict>(item).check() && bp::dict(item).has_key("lower_normal")) {
+        if (prisms) {
             l.prism.plane = {vector3(required(item, "origin", what), what + "['origin']"),
                              vector3(required(item, "normal", what), what + "['normal']")};
             l.prism.lower = {
@@ -1355,6 +1356,10 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
             for (const mas::Plane& plane : {l.prism.plane, l.prism.lower})
                 if (!plane.origin.allFinite() || !(std::abs(plane.normal.norm() - 1.0) <= 1e-6))
                     invalid_argument(what + ": its planes need finite origins and unit normals");
+            if (!(l.prism.plane.normal.dot(l.prism.lower.normal) > 1e-6))
+                invalid_argument(what +
+                                 ": its lower plane must face the way its top does (normal . "
+                                 "lower_normal > 0)");
             const mas::PlaneFrame frame(l.prism.plane.normal);
             auto loop2 = [&](const bp::object& loop, const std::string& lw) {
                 mas::Polygon2 out;
@@ -1372,6 +1377,16 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value) {
                 l.prism.regions.push_back(std::move(region));
             }
             l.prism.max_thickness_mm = l.max_thickness_mm;
+            // Its lower plane under its top wherever it reaches.
+            for (std::size_t r = 0; r < l.prism.regions.size(); ++r)
+                for (const auto& loop : l.prism.loops_3d(r))
+                    for (const Eigen::Vector3d& q : loop) {
+                        const double t = l.prism.thickness_at(q);
+                        if (!(t >= -1e-6 && std::isfinite(t)))
+                            invalid_argument(what + ": its lower plane lies " +
+                                             mas::format_number(-t) +
+                                             " mm above its top at a corner of its region");
+                    }
         }
         const std::vector<bp::object> paths = items_of(item, "paths", what);
         for (std::size_t k = 0; k < paths.size(); ++k) {
@@ -1443,21 +1458,28 @@ bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
     const mas::MachineParams machine = machine_from_py(machine_py);
     mas::validate(machine);
     std::optional<mas::TravelNozzle> nozzle;
+    if (nozzle_py.is_none() && !plate_py.is_none())
+        invalid_argument("plate is for the travel check: give the nozzle too");
     if (!nozzle_py.is_none()) {
         const bp::extract<bp::dict> d(nozzle_py);
         if (!d.check())
             invalid_argument("nozzle must be a dict of the slicing's nozzle parameters");
-        const bp::extract<bp::tuple> plate(plate_py);
-        if (!plate.check() || bp::len(plate()) != 2)
-            invalid_argument("the travel check needs the plate as (origin, normal)");
+        if (plate_py.is_none())
+            invalid_argument("the travel check needs the plate: (origin, normal)");
+        bp::handle<> plate = fast_sequence(plate_py, "plate");
+        if (PySequence_Fast_GET_SIZE(plate.get()) != 2)
+            invalid_argument("plate must be (origin, normal), got " +
+                             std::to_string(PySequence_Fast_GET_SIZE(plate.get())) + " items");
+        PyObject** ends = PySequence_Fast_ITEMS(plate.get());
         nozzle = mas::TravelNozzle{
             slice_params_from_py(d()).nozzle,
-            {vector3(plate()[0], "the plate's origin"), vector3(plate()[1], "the plate's normal")}};
+            {vector3(bp::object(bp::handle<>(bp::borrowed(ends[0]))), "the plate's origin"),
+             vector3(bp::object(bp::handle<>(bp::borrowed(ends[1]))), "the plate's normal")}};
         if (!nozzle->plate.origin.allFinite() ||
             !(std::abs(nozzle->plate.normal.norm() - 1.0) <= 1e-6))
             invalid_argument("the plate needs a finite origin and a unit normal");
     }
-    const std::vector<mas::GcodeLayer> layers = gcode_layers_from_py(layers_py);
+    const std::vector<mas::GcodeLayer> layers = gcode_layers_from_py(layers_py, nozzle.has_value());
     std::string text;
     mas::GcodeStats s;
     run_reporting(progress, [&](const mas::Progress& p) {

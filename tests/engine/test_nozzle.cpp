@@ -888,6 +888,41 @@ TEST(TravelCheck, TheSurfaceBetweenSamplesCounts) {
     EXPECT_FALSE(over(4.2).first);
 }
 
+// A margin of half the standoff: leaving the block's top along the tool axis, the nozzle's face
+// stands 2 margins over it, within what the grown nozzle counts, though it keeps the margin. Such a
+// move is not checked against the layer it leaves (along_layer); the move across is. A layer
+// counted as deposited for one check (also) is checked, but by moves along it.
+TEST(TravelCheck, TheLayerAMoveLeavesAlongItsAxisIsNotCheckedAgainst) {
+    const Built b = block();
+    mas::NozzleParams p = coaxial(false);
+    p.margin_mm = 5.0;
+    mas::TravelCheck check(b.layers, p, {Vector3d::Zero(), Vector3d::UnitZ()});
+    const Vector3d up = Vector3d::UnitZ();
+    const mas::NozzleMove out{Vector3d(0, 0, 10), Vector3d(0, 0, 15), up, 0.0, 0};
+    mas::NozzleMove unmarked = out;
+    unmarked.along_layer = -1;
+    EXPECT_FALSE(check.meets({unmarked}));  // not deposited
+    EXPECT_TRUE(check.meets({unmarked}, 0));
+    EXPECT_FALSE(check.meets({out}, 0));
+    check.deposited(0);
+    EXPECT_TRUE(check.meets({unmarked}));
+    EXPECT_FALSE(check.meets({out}));
+    // A move across its top, after one along it, is checked.
+    const mas::NozzleMove across{Vector3d(0, 0, 10), Vector3d(5, 0, 10), up, 0.0, -1};
+    EXPECT_TRUE(check.meets({out, across}));
+    EXPECT_EQ(error_of([&] {
+                  check.meets({{Vector3d::Zero(), Vector3d::UnitX(), up, 0.0, 3}});
+              }),
+              "travel move 0 names layer 3, which the travel check lacks (it has 1)");
+    EXPECT_EQ(error_of([&] { check.meets({out}, 2); }),
+              "the travel check's extra layer names layer 2, which the travel check lacks (it has "
+              "1)");
+    EXPECT_EQ(error_of([&] {
+                  check.meets({{Vector3d::Zero(), Vector3d::UnitX(), up, 1e-4, 0}});
+              }),
+              "travel move 0 turns its tool axis: it cannot go along a layer's");
+}
+
 // Random moves round the block, some with the table still, some turning the tool axis by up to
 // max_turn_rad() about a random direction: every move passed keeps the margin from the block by
 // the nozzle's own shape (the block's surface sampled every 0.5 mm, the moves every 0.1 mm: within

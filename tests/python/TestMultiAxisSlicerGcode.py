@@ -259,6 +259,29 @@ class TestTravelCheck(GcodeTest):
         broken = [dict(self.WALL, lower_normal=(0, 0, float("nan"))), self.PADS]
         self.assertRaisesEngineError("invalid_argument", engine.write_gcode, broken, {}, None,
                                      {}, self.PLATE)
+        # A layer without its planes cannot be checked; one whose lower plane lies over its top
+        # or across it is no prism.
+        bare = dict(self.WALL)
+        del bare["lower_normal"]
+        e = self.assertRaisesEngineError("invalid_argument", engine.write_gcode, [bare, self.PADS],
+                                         {}, None, {}, self.PLATE)
+        self.assertIn("lower_normal", str(e))
+        self.assertEqual(engine.write_gcode([bare, self.PADS])["stats"]["checked_routes"], 0)
+        over = dict(self.WALL, lower_origin=(0, 0, 31))
+        e = self.assertRaisesEngineError("invalid_argument", engine.write_gcode, [over, self.PADS],
+                                         {}, None, {}, self.PLATE)
+        self.assertIn("above its top", str(e))
+        across = dict(self.WALL, lower_normal=(1, 0, 0))
+        e = self.assertRaisesEngineError("invalid_argument", engine.write_gcode,
+                                         [across, self.PADS], {}, None, {}, self.PLATE)
+        self.assertIn("must face the way its top does", str(e))
+        # The plate alone means nothing; as a list it is taken.
+        e = self.assertRaisesEngineError("invalid_argument", engine.write_gcode, layers, {}, None,
+                                         None, self.PLATE)
+        self.assertIn("give the nozzle too", str(e))
+        self.assertEqual(
+            engine.write_gcode(layers, {}, None, {}, [[0, 0, 0], [0, 0, 1]])["text"],
+            engine.write_gcode(layers, {}, None, {}, self.PLATE)["text"])
 
 
 class TestTravelShape(support.EngineTestCase):

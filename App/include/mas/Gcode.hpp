@@ -58,8 +58,14 @@
 //   proportion along each move). Where the way from one path to the next within a component
 //   would meet something, it goes round the sphere instead, when that way keeps clear (a comment
 //   says so). A route that meets something all the same is kept (the shorter one), preceded by a
-//   comment naming what it meets, and reported (GcodeStats::travel_collisions). The deposit moves
-//   are the build sequence's to check (plan_build_sequence).
+//   comment naming what it meets, and reported (GcodeStats::travel_collisions). A route along
+//   which the table turns and which meets something is checked again in pieces turning 20 times
+//   less (an allowance of at most margin / 20, Nozzle.hpp): a route is taken round the part or
+//   reported only where the nozzle comes within 2.15 margins of a deposited layer's surface (4.3
+//   mm at the defaults), or within 1.05 margins of the plate. The moves out of a layer and back
+//   to it along its tool axis are not checked against that layer (NozzleMove::along_layer); round
+//   the part between two paths of one layer, that layer counts, all of it, on the rest of the way.
+//   The deposit moves are the build sequence's to check (plan_build_sequence).
 // - Not checked: the X Y Z travel limits, which depend on where the table pivots.
 #pragma once
 #include <Eigen/Core>

@@ -64,7 +64,10 @@
 //   checked against the same nozzle by TravelCheck: along every move the nozzle keeps margin_mm
 //   from the plate (exact, as above) and from every layer deposited before it, the layer under way
 //   excepted (its paths lie on its plane, which the nozzle keeps the margin above: the tip stays on
-//   or above the plane along the tool axis). The moves along which the table keeps still are
+//   or above the plane along the tool axis), and so is the layer a move leaves or comes back to
+//   along its tool axis from a deposit point on it (NozzleMove::along_layer; standoff >= 2 margins
+//   and the leans' rule keep the nozzle the margin above its plane there, which a check with the
+//   grown nozzle might not tell). The moves along which the table keeps still are
 //   binned as the leans' are (cut into pieces whose heights along the axis are at most margin_mm
 //   apart, each given the grown radius at its lowest point); a move along which the table turns is
 //   cut into pieces along which the tool axis turns by at most max_turn_rad() = margin_mm / L (L:
@@ -141,11 +144,15 @@ struct SequenceInput {
 };
 
 // One move of the nozzle off the deposit paths: its tip straight from `from` to `to`, its tool axis
-// (unit) `axis` at `from` and turning by at most `turn_rad` from it on the way.
+// (unit) `axis` at `from` and turning by at most `turn_rad` from it on the way. `along_layer`: a
+// layer the move leaves or comes back to along its tool axis, between a deposit point on it and
+// over it (the table still): it is not checked against that layer, which lies under its plane,
+// the nozzle the margin above it (see "Travel").
 struct NozzleMove {
     Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
     Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
     double turn_rad = 0.0;
+    int along_layer = -1;
 };
 
 // What a move meets: a deposited layer (-1: the build plate), its point near the nozzle, and the
@@ -167,9 +174,11 @@ public:
 
     // Layer `k` is deposited: the moves after this are checked against it too.
     void deposited(std::size_t k);
-    // The first thing the nozzle meets along `moves`, in their order; nullopt when it keeps clear.
-    // Throws InvalidArgument for a move turning by more than max_turn_rad().
-    std::optional<TravelHit> meets(const std::vector<NozzleMove>& moves) const;
+    // Something the nozzle meets along `moves` (of the first run of them that meets something);
+    // nullopt when it keeps clear. `also`: a layer counted as deposited for these moves alone (-1:
+    // none). Throws InvalidArgument for a move turning by more than max_turn_rad(), or a layer
+    // named that the check lacks.
+    std::optional<TravelHit> meets(const std::vector<NozzleMove>& moves, int also = -1) const;
     // The most a move's tool axis may turn (radians).
     double max_turn_rad() const;
 

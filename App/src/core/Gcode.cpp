@@ -189,11 +189,18 @@ std::vector<double> feed_cuts(double t0, double t1, double t_lo, double t_hi) {
     return out;
 }
 
-// A point the nozzle's tip goes to, with the table's angles there.
+// A point the nozzle's tip goes to, with the table's angles there; `along`: the layer (its place
+// in the program's layers) whose tool axis the move to it follows from or to a deposit point on
+// it, the table still (NozzleMove::along_layer), -1 for none.
 struct Waypoint {
     Eigen::Vector3d p;
     TableAngles a;
+    int along = -1;
 };
+
+// A route whose table turns and meets something is checked again with pieces turning this many
+// times less: its allowance (Nozzle.hpp, "Travel") at most margin / kFinerTurn.
+constexpr double kFinerTurn = 20.0;
 
 // The tool axis the table at `a` turns to machine +Z: Rx(A) Rz(C) maps it there.
 Eigen::Vector3d axis_of(const TableAngles& a) {
@@ -207,10 +214,10 @@ Eigen::Vector3d axis_of(const TableAngles& a) {
 // the axis turns by at most `max_turn` (rad). Along a piece it turns by no more than its change of
 // A plus its change of C times the greatest |sin A| on the way (the axis' speeds).
 void turning_moves(const Eigen::Vector3d& p, const TableAngles& a, const Eigen::Vector3d& q,
-                   const TableAngles& b, double max_turn, std::vector<NozzleMove>& out) {
+                   const TableAngles& b, double max_turn, int along, std::vector<NozzleMove>& out) {
     const double da = b.a_deg - a.a_deg, dc = b.c_deg - a.c_deg;
     if (da == 0.0 && dc == 0.0) {
-        out.push_back({p, q, axis_of(a), 0.0});
+        out.push_back({p, q, axis_of(a), 0.0, along});
         return;
     }
     const double lo = std::min(a.a_deg, b.a_deg), hi = std::max(a.a_deg, b.a_deg);
@@ -225,7 +232,7 @@ void turning_moves(const Eigen::Vector3d& p, const TableAngles& a, const Eigen::
         const double s1 = static_cast<double>(k + 1) / pieces;
         const TableAngles at{a.a_deg + s0 * da, a.c_deg + s0 * dc};
         out.push_back({p + s0 * (q - p), k + 1 == pieces ? q : Eigen::Vector3d(p + s1 * (q - p)),
-                       axis_of(at), std::min(turn / pieces, max_turn)});
+                       axis_of(at), std::min(turn / pieces, max_turn), -1});
     }
 }
 
@@ -545,14 +552,15 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     // From `from` (the table at `from_angles`, the last tool axis `back`) to the clearance over `s`
     // (the table at `to_angles`, tool axis `n`): out along `back` to the sphere, round its top and
     // in along n.
+    // `left`, `next`: the layers (places) the route leaves and goes to.
     auto round_the_part = [&](const Eigen::Vector3d& from, const TableAngles& from_angles,
-                              const Eigen::Vector3d& back, const Eigen::Vector3d& s,
-                              const Eigen::Vector3d& n, const TableAngles& to_angles) {
+                              const Eigen::Vector3d& back, int left, const Eigen::Vector3d& s,
+                              const Eigen::Vector3d& n, const TableAngles& to_angles, int next) {
         std::vector<Waypoint> way;
         const Eigen::Vector3d out = sphere.exit(from, back);
-        way.push_back({out, from_angles});
+        way.push_back({out, from_angles, left});
         round_the_top(out, from_angles, sphere.exit(s, n), to_angles, way);
-        way.push_back({Eigen::Vector3d(s + n * params.clearance_mm), to_angles});
+        way.push_back({Eigen::Vector3d(s + n * params.clearance_mm), to_angles, next});
         return way;
     };
 
@@ -565,20 +573,28 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         check = std::make_unique<TravelCheck>(prisms, nozzle->params, nozzle->plate);
     }
     // What the nozzle meets from where it is along `way` (G0) and then, when `plunge`, down to it
-    // at the feed.
-    auto meets = [&](const std::vector<Waypoint>& way,
-                     const std::optional<Eigen::Vector3d>& plunge) -> std::optional<TravelHit> {
-        std::vector<NozzleMove> moves;
-        Eigen::Vector3d p = g.position();
-        TableAngles a = g.angles();
-        auto add = [&](const Eigen::Vector3d& q, const TableAngles& b) {
-            turning_moves(p, a, q, b, check->max_turn_rad(), moves);
-            p = q;
-            a = b;
+    // at the feed along layer `next`'s tool axis; `also`: a layer counted as deposited for it
+    // (TravelCheck::meets). Where the table turns, a route met is checked again in finer pieces.
+    auto meets = [&](const std::vector<Waypoint>& way, const std::optional<Eigen::Vector3d>& plunge,
+                     int next, int also) -> std::optional<TravelHit> {
+        bool turns = false;
+        auto moves_of = [&](double max_turn) {
+            std::vector<NozzleMove> moves;
+            Eigen::Vector3d p = g.position();
+            TableAngles a = g.angles();
+            auto add = [&](const Eigen::Vector3d& q, const TableAngles& b, int along) {
+                turns = turns || b.a_deg != a.a_deg || b.c_deg != a.c_deg;
+                turning_moves(p, a, q, b, max_turn, along, moves);
+                p = q;
+                a = b;
+            };
+            for (const Waypoint& w : way) add(w.p, w.a, w.along);
+            if (plunge) add(*plunge, a, next);
+            return moves;
         };
-        for (const Waypoint& w : way) add(w.p, w.a);
-        if (plunge) add(*plunge, a);
-        return check->meets(moves);
+        std::optional<TravelHit> hit = check->meets(moves_of(check->max_turn_rad()), also);
+        if (hit && turns) hit = check->meets(moves_of(check->max_turn_rad() / kFinerTurn), also);
+        return hit;
     };
     auto name_of = [&](int i) {
         return i < 0 ? -1 : layers[std::size_t(i)].index >= 0 ? layers[std::size_t(i)].index : i;
@@ -633,6 +649,8 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             }
             if (!continues) {
                 stop_deposit();
+                // The layer the tip is on: the one before, or this one between its paths.
+                const std::size_t left = first_path && !first ? used[u - 1] : i;
                 std::vector<Waypoint> way;
                 if (first) {
                     // From the sphere's top down to the first path.
@@ -640,24 +658,27 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                         "first to the top of a sphere clear of the part: start above the part");
                     g.rapid(summit, {level_a, a.c_deg});
                     round_the_top(summit, g.angles(), sphere.exit(s, n), a, way);
-                    way.push_back({approach, a});
+                    way.push_back({approach, a, int(i)});
                 } else if (new_component) {
                     // Out along the tool axis the last layer was deposited with, round the sphere.
-                    way = round_the_part(g.position(), g.angles(), layers[used[u - 1]].tool_axis, s,
-                                         n, a);
+                    way = round_the_part(g.position(), g.angles(), layers[used[u - 1]].tool_axis,
+                                         int(used[u - 1]), s, n, a, int(i));
                 } else {
                     const Eigen::Vector3d& back = first_path ? layers[used[u - 1]].tool_axis : n;
-                    way = {{g.position() + back * params.clearance_mm, g.angles()}, {approach, a}};
+                    way = {{g.position() + back * params.clearance_mm, g.angles(), int(left)},
+                           {approach, a}};
                 }
                 if (check) {
                     ++stats.checked_routes;
-                    std::optional<TravelHit> hit = meets(way, s);
+                    std::optional<TravelHit> hit = meets(way, s, int(i), -1);
                     if (hit && !first && !new_component) {
                         const Eigen::Vector3d& back =
                             first_path ? layers[used[u - 1]].tool_axis : n;
-                        std::vector<Waypoint> round =
-                            round_the_part(g.position(), g.angles(), back, s, n, a);
-                        if (!meets(round, s)) {
+                        // Round the sphere the tip leaves the layer's plane: the layer under way
+                        // counts, all of it, but where the tip leaves it or comes back to it.
+                        std::vector<Waypoint> round = round_the_part(g.position(), g.angles(), back,
+                                                                     int(left), s, n, a, int(i));
+                        if (!meets(round, s, int(i), first_path ? -1 : int(i))) {
                             const int obstacle = name_of(hit->obstacle_layer);
                             g.comment("the way within the component meets " +
                                       (obstacle < 0 ? std::string("the build plate")
@@ -711,12 +732,12 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     stop_deposit();
     std::vector<Waypoint> way;
     const Eigen::Vector3d out = sphere.exit(g.position(), layers[used.back()].tool_axis);
-    way.push_back({out, g.angles()});
+    way.push_back({out, g.angles(), int(used.back())});
     round_the_top(out, g.angles(), summit, {level_a, g.angles().c_deg}, way);
     if (check) {
         check->deposited(used.back());
         ++stats.checked_routes;
-        if (const auto hit = meets(way, std::nullopt)) report(-1, *hit);
+        if (const auto hit = meets(way, std::nullopt, -1, -1)) report(-1, *hit);
     }
     rapid_along(way);
     g.line("M65" + out_n);

@@ -845,15 +845,34 @@ struct TravelCheck::Impl {
 
     // The least clearance (Shape::clearance) of `q` from the nozzle along `moves` (one tool axis,
     // the table still), the tip taken every kTravelStep margins along each: within that of the
-    // least over the whole move.
+    // least over the whole move. Where it is under `below`: only the stretches of the moves whose
+    // tip lies within the body's radius and `below` of q across the axis are walked.
     double least_clearance(const std::vector<std::pair<Vector3d, Vector3d>>& moves,
-                           const Vector3d& axis, const Vector3d& q, Vector3d& at) const {
+                           const Vector3d& axis, const Vector3d& q, double below,
+                           Vector3d& at) const {
         double best = std::numeric_limits<double>::infinity();
         const double step = kTravelStep * params.margin_mm;
+        const double r = shape.body + below;
+        auto across = [&](const Vector3d& v) { return Vector3d(v - axis.dot(v) * axis); };
         for (const auto& [a, b] : moves) {
-            const int pieces = std::max(1, int(std::ceil((b - a).norm() / step)));
+            // |across(a + t (b - a) - q)|^2 <= r^2: t within [t0, t1].
+            const Vector3d p = across(a - q), d = across(b - a);
+            const double dd = d.squaredNorm(), pd = p.dot(d), pp = p.squaredNorm() - r * r;
+            double t0 = 0.0, t1 = 1.0;
+            if (dd > 1e-18) {
+                const double disc = pd * pd - dd * pp;
+                if (disc < 0.0) continue;
+                const double root = std::sqrt(disc);
+                t0 = std::max(0.0, (-pd - root) / dd);
+                t1 = std::min(1.0, (-pd + root) / dd);
+                if (t0 > t1) continue;
+            } else if (pp > 0.0) {
+                continue;
+            }
+            const Vector3d from = a + t0 * (b - a), to = a + t1 * (b - a);
+            const int pieces = std::max(1, int(std::ceil((to - from).norm() / step)));
             for (int i = 0; i <= pieces; ++i) {
-                const Vector3d tip = a + (b - a) * (double(i) / pieces);
+                const Vector3d tip = from + (to - from) * (double(i) / pieces);
                 const Vector3d d = q - tip;
                 const double h = axis.dot(d);
                 const double c = shape.clearance((d - h * axis).norm(), h);
@@ -872,7 +891,7 @@ struct TravelCheck::Impl {
     // allowance, which counts only when the nozzle along the first axis comes within 2 margins,
     // the step and the allowance of it.
     std::optional<TravelHit> check(const std::vector<std::pair<Vector3d, Vector3d>>& moves,
-                                   const Sweep& sweep, double allowance) const {
+                                   const Sweep& sweep, double allowance, int skip, int also) const {
         const double m = params.margin_mm;
         const Shape grown(params, 2.0 * m + allowance);
         if (sweep.empty()) return std::nullopt;
@@ -882,27 +901,37 @@ struct TravelCheck::Impl {
         const Eigen::AlignedBox3d box = reach_box(sweep, grown);
         const Vector3d a = sweep.frame().normal;
         const double low = grown.standoff - grown.grow, high = grown.top + grown.grow;
-        for (const int yi : done) {
+        auto layers_to_check = [&](auto&& visit) {
+            for (const int yi : done)
+                if (yi != skip && visit(yi)) return true;
+            return also >= 0 && also != skip && !is_done[std::size_t(also)] && visit(also);
+        };
+        std::optional<TravelHit> found;
+        layers_to_check([&](int yi) {
             const std::size_t y = std::size_t(yi);
             const LayerBounds& b = bounds[y];
-            if (b.corners.empty() || !b.box.intersects(box)) continue;
+            if (b.corners.empty() || !b.box.intersects(box)) return false;
             const double centre = a.dot(b.centre);
             if (centre + b.radius - sweep.lowest() < low ||
                 centre - b.radius - sweep.highest() > high)
-                continue;
+                return false;
             // The prism lies within its corners' hull: wholly under the grown tip, it is missed.
             if (std::all_of(b.corners.begin(), b.corners.end(),
                             [&](const Vector3d& c) { return a.dot(c) - sweep.lowest() < low; }))
-                continue;
+                return false;
+            const double counts = (2.0 + kTravelStep) * m + allowance;
             for (const Vector3d& q : samples_of(y)) {
                 const Vector2d q2 = sweep.frame().to_2d(q);
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
                 Vector3d at = Vector3d::Zero();
-                if (least_clearance(moves, a, q, at) < (2.0 + kTravelStep) * m + allowance)
-                    return TravelHit{yi, at, q};
+                if (least_clearance(moves, a, q, counts, at) < counts) {
+                    found = TravelHit{yi, at, q};
+                    return true;
+                }
             }
-        }
-        return std::nullopt;
+            return false;
+        });
+        return found;
     }
 };
 
@@ -926,8 +955,15 @@ void TravelCheck::deposited(std::size_t k) {
 
 double TravelCheck::max_turn_rad() const { return impl_->max_turn(); }
 
-std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves) const {
+std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves, int also) const {
     const Impl& c = *impl_;
+    auto named = [&](int layer, const std::string& what) {
+        if (layer < -1 || layer >= int(c.layers.size()))
+            throw Error(ErrorCode::InvalidArgument, what + " names layer " + std::to_string(layer) +
+                                                        ", which the travel check lacks (it has " +
+                                                        std::to_string(c.layers.size()) + ")");
+    };
+    named(also, "the travel check's extra layer");
     const double m = c.params.margin_mm;
     const double reach = c.shape.grown(c.shape.top);
     for (std::size_t k = 0; k < moves.size(); ++k) {
@@ -936,6 +972,11 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
             std::abs(move.axis.norm() - 1.0) > 1e-6)
             throw Error(ErrorCode::InvalidArgument,
                         "travel move " + std::to_string(k) + " needs finite ends and a unit axis");
+        named(move.along_layer, "travel move " + std::to_string(k));
+        if (move.along_layer >= 0 && move.turn_rad != 0.0)
+            throw Error(ErrorCode::InvalidArgument,
+                        "travel move " + std::to_string(k) +
+                            " turns its tool axis: it cannot go along a layer's");
         if (!(move.turn_rad >= 0.0 && move.turn_rad <= c.max_turn() * (1.0 + 1e-9)))
             throw Error(ErrorCode::InvalidArgument, "travel move " + std::to_string(k) +
                                                         " turns its tool axis by " +
@@ -943,12 +984,14 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
                                                         " rad, where a move may turn it by 0 to " +
                                                         format_number(c.max_turn()) + " rad");
     }
-    // Runs of moves along which the table keeps still, one axis each, and each turning move alone.
+    // Runs of moves along which the table keeps still, one axis and along_layer each, and each
+    // turning move alone.
     for (std::size_t k = 0; k < moves.size();) {
         std::size_t end = k + 1;
         if (moves[k].turn_rad == 0.0)
             while (end < moves.size() && moves[end].turn_rad == 0.0 &&
-                   moves[end].axis == moves[k].axis)
+                   moves[end].axis == moves[k].axis &&
+                   moves[end].along_layer == moves[k].along_layer)
                 ++end;
         std::vector<std::pair<Vector3d, Vector3d>> run;
         for (std::size_t j = k; j < end; ++j) run.emplace_back(moves[j].from, moves[j].to);
@@ -956,7 +999,7 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
         // axis.
         const double allowance = c.length() * moves[k].turn_rad;
         const Sweep sweep(run, reach + allowance, moves[k].axis, m);
-        if (auto hit = c.check(run, sweep, allowance)) return hit;
+        if (auto hit = c.check(run, sweep, allowance, moves[k].along_layer, also)) return hit;
         k = end;
     }
     return std::nullopt;

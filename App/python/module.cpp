@@ -1066,6 +1066,18 @@ bp::dict region_to_py(const std::vector<std::vector<Eigen::Vector3d>>& loops) {
     return region;
 }
 
+// A nozzle's collision (NozzleCollision, TravelCollision): {layer, obstacle_layer, nozzle_at,
+// obstacle}.
+template <class Collision>
+bp::dict collision_to_py(const Collision& c) {
+    bp::dict d;
+    d["layer"] = c.layer;
+    d["obstacle_layer"] = c.obstacle_layer;
+    d["nozzle_at"] = to_py(c.nozzle_at);
+    d["obstacle"] = to_py(c.obstacle);
+    return d;
+}
+
 bp::dict sliced_to_py(const mas::SlicedPart& r) {
     bp::list layers;
     for (std::size_t i = 0; i < r.layers.size(); ++i) {
@@ -1174,14 +1186,8 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
     bp::list sequence;
     for (const int i : r.sequence.layers) sequence.append(i);
     bp::list collisions;
-    for (const mas::NozzleCollision& c : r.sequence.collisions) {
-        bp::dict d;
-        d["layer"] = c.layer;
-        d["obstacle_layer"] = c.obstacle_layer;
-        d["nozzle_at"] = to_py(c.nozzle_at);
-        d["obstacle"] = to_py(c.obstacle);
-        collisions.append(d);
-    }
+    for (const mas::NozzleCollision& c : r.sequence.collisions)
+        collisions.append(collision_to_py(c));
     bp::dict out;
     out["plate_origin"] = to_py(r.plate.origin);
     out["plate_normal"] = to_py(r.plate.normal);
@@ -1499,14 +1505,7 @@ bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
     stats["checked_routes"] = s.checked_routes;
     stats["rerouted_travels"] = s.rerouted_travels;
     bp::list collisions;
-    for (const mas::TravelCollision& c : s.travel_collisions) {
-        bp::dict d;
-        d["layer"] = c.layer;
-        d["obstacle_layer"] = c.obstacle_layer;
-        d["nozzle_at"] = to_py(c.nozzle_at);
-        d["obstacle"] = to_py(c.obstacle);
-        collisions.append(d);
-    }
+    for (const mas::TravelCollision& c : s.travel_collisions) collisions.append(collision_to_py(c));
     stats["travel_collisions"] = collisions;
     bp::dict out;
     out["text"] = text;

@@ -20,8 +20,6 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 
 constexpr double kPi = 3.14159265358979323846;
-// Samples kept of the layers' prisms at once (a large part's would not all fit in memory).
-constexpr std::size_t kSampleBudget = 4000000;
 // The travel check's step along a move where it measures a near sample's clearance, in margins.
 constexpr double kTravelStep = 0.05;
 
@@ -296,6 +294,35 @@ struct Conflict {
 };
 
 // What is cheap to know of every layer: a sphere round its prism and its prism's corners.
+// Each layer's samples (prism_samples, every `spacing`), made when first needed and kept while
+// they fit a budget (a large part's would not all fit in memory): past it, all are dropped and
+// made again as needed.
+class PrismSamples {
+public:
+    PrismSamples(const std::vector<Layer>& layers, double spacing)
+        : layers_(layers), spacing_(spacing), samples_(layers.size()) {}
+
+    const std::vector<Vector3d>& of(std::size_t y) {
+        if (!samples_[y]) {
+            if (kept_ > kBudget) {
+                for (auto& kept : samples_) kept.reset();
+                kept_ = 0;
+            }
+            samples_[y] =
+                std::make_unique<std::vector<Vector3d>>(prism_samples(layers_[y], spacing_));
+            kept_ += samples_[y]->size();
+        }
+        return *samples_[y];
+    }
+
+private:
+    static constexpr std::size_t kBudget = 4000000;  // samples kept at once
+    const std::vector<Layer>& layers_;
+    double spacing_;
+    std::vector<std::unique_ptr<std::vector<Vector3d>>> samples_;
+    std::size_t kept_ = 0;
+};
+
 struct LayerBounds {
     Eigen::AlignedBox3d box;
     Vector3d centre = Vector3d::Zero();
@@ -488,21 +515,8 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             component_box[std::size_t(layers[i].component)].extend(bounds[i].box);
     }
     auto sweep_box = [&](const Sweep& sweep) { return reach_box(sweep, shape); };
-    // Each layer's samples, made when first needed and kept while they fit a budget (a large
-    // part's would not all fit in memory): past it, all are dropped and made again as needed.
-    std::vector<std::unique_ptr<std::vector<Vector3d>>> samples(count);
-    std::size_t sampled = 0;
-    auto samples_of = [&](std::size_t y) -> const std::vector<Vector3d>& {
-        if (!samples[y]) {
-            if (sampled > kSampleBudget) {
-                for (auto& kept : samples) kept.reset();
-                sampled = 0;
-            }
-            samples[y] = std::make_unique<std::vector<Vector3d>>(prism_samples(layers[y], m));
-            sampled += samples[y]->size();
-        }
-        return *samples[y];
-    };
+    PrismSamples samples(layers, m);
+    auto samples_of = [&](std::size_t y) -> const std::vector<Vector3d>& { return samples.of(y); };
     // Where layer y's prism lies seen from x's paths (`sweep` is x's): its corners' lowest and
     // highest heights above x's plane along the tool axis, and how far across the axis its
     // corners' box lies from the paths' (the prism lies within its corners' hull).
@@ -814,13 +828,10 @@ struct TravelCheck::Impl {
     std::vector<LayerBounds> bounds;
     std::vector<int> done;  // the layers deposited, in order
     std::vector<char> is_done;
-    // Each deposited layer's samples, made when first needed and kept within a budget, as
-    // plan_build_sequence's.
-    mutable std::vector<std::unique_ptr<std::vector<Vector3d>>> samples;
-    mutable std::size_t sampled = 0;
+    mutable PrismSamples samples;  // of the deposited layers, as plan_build_sequence's
 
     Impl(const std::vector<Layer>& l, const NozzleParams& p, const Plane& pl)
-        : layers(l), params(p), plate(pl), shape(p), is_done(l.size(), 0), samples(l.size()) {
+        : layers(l), params(p), plate(pl), shape(p), is_done(l.size(), 0), samples(l, p.margin_mm) {
         bounds.reserve(layers.size());
         for (const Layer& layer : layers) bounds.push_back(layer_bounds(layer));
     }
@@ -829,19 +840,6 @@ struct TravelCheck::Impl {
     // turn of the tool axis by t moves no point of it further than t times this.
     double length() const { return std::hypot(shape.top, shape.body); }
     double max_turn() const { return params.margin_mm / length(); }
-
-    const std::vector<Vector3d>& samples_of(std::size_t y) const {
-        if (!samples[y]) {
-            if (sampled > kSampleBudget) {
-                for (auto& kept : samples) kept.reset();
-                sampled = 0;
-            }
-            samples[y] =
-                std::make_unique<std::vector<Vector3d>>(prism_samples(layers[y], params.margin_mm));
-            sampled += samples[y]->size();
-        }
-        return *samples[y];
-    }
 
     // The least clearance (Shape::clearance) of `q` from the nozzle along `moves` (one tool axis,
     // the table still), the tip taken every kTravelStep margins along each: within that of the
@@ -920,7 +918,7 @@ struct TravelCheck::Impl {
                             [&](const Vector3d& c) { return a.dot(c) - sweep.lowest() < low; }))
                 return false;
             const double counts = (2.0 + kTravelStep) * m + allowance;
-            for (const Vector3d& q : samples_of(y)) {
+            for (const Vector3d& q : samples.of(y)) {
                 const Vector2d q2 = sweep.frame().to_2d(q);
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
                 Vector3d at = Vector3d::Zero();

@@ -236,8 +236,13 @@ void turning_moves(const Eigen::Vector3d& p, const TableAngles& a, const Eigen::
     }
 }
 
+// The number a layer is named by: its index in the part, else its place in the program's layers.
+int layer_index(std::size_t place, const GcodeLayer& layer) {
+    return layer.index >= 0 ? layer.index : int(place);
+}
+
 std::string layer_number(std::size_t place, const GcodeLayer& layer) {
-    return "layer " + std::to_string(layer.index >= 0 ? std::size_t(layer.index) : place);
+    return "layer " + std::to_string(layer_index(place, layer));
 }
 
 std::string layer_name(std::size_t place, const GcodeLayer& layer) {
@@ -596,20 +601,23 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         if (hit && turns) hit = check->meets(moves_of(check->max_turn_rad() / kFinerTurn), also);
         return hit;
     };
+    // A layer (its place, -1 for none) as named; what a hit meets, in words.
     auto name_of = [&](int i) {
-        return i < 0 ? -1 : layers[std::size_t(i)].index >= 0 ? layers[std::size_t(i)].index : i;
+        return i < 0 ? -1 : layer_index(std::size_t(i), layers[std::size_t(i)]);
+    };
+    auto obstacle_of = [&](const TravelHit& hit) {
+        const int y = hit.obstacle_layer;
+        return y < 0 ? std::string("the build plate")
+                     : layer_number(std::size_t(y), layers[std::size_t(y)]);
     };
     // Reports what the route into layer `i` (-1: off the part) meets.
     auto report = [&](int i, const TravelHit& hit) {
-        const int obstacle = name_of(hit.obstacle_layer);
-        stats.travel_collisions.push_back({name_of(i), obstacle, hit.nozzle_at, hit.obstacle});
-        g.comment(
-            "warning: on the way " +
-            (i < 0 ? std::string("off the part")
-                   : "to " + layer_number(std::size_t(i), layers[std::size_t(i)])) +
-            " the nozzle meets " +
-            (obstacle < 0 ? std::string("the build plate") : "layer " + std::to_string(obstacle)) +
-            " near " + vector_text(hit.obstacle));
+        stats.travel_collisions.push_back(
+            {name_of(i), name_of(hit.obstacle_layer), hit.nozzle_at, hit.obstacle});
+        g.comment("warning: on the way " +
+                  (i < 0 ? std::string("off the part")
+                         : "to " + layer_number(std::size_t(i), layers[std::size_t(i)])) +
+                  " the nozzle meets " + obstacle_of(hit) + " near " + vector_text(hit.obstacle));
     };
     auto rapid_along = [&](const std::vector<Waypoint>& way) {
         for (const Waypoint& w : way) g.rapid(w.p, w.a);
@@ -679,10 +687,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                         std::vector<Waypoint> round = round_the_part(g.position(), g.angles(), back,
                                                                      int(left), s, n, a, int(i));
                         if (!meets(round, s, int(i), first_path ? -1 : int(i))) {
-                            const int obstacle = name_of(hit->obstacle_layer);
-                            g.comment("the way within the component meets " +
-                                      (obstacle < 0 ? std::string("the build plate")
-                                                    : "layer " + std::to_string(obstacle)) +
+                            g.comment("the way within the component meets " + obstacle_of(*hit) +
                                       ": round the part instead");
                             way = std::move(round);
                             hit.reset();

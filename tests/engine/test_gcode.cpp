@@ -13,7 +13,6 @@
 
 #include "mas/Error.hpp"
 #include "mas/Gcode.hpp"
-#include "mas/Polygon2.hpp"
 #include "mas/SlicePart.hpp"
 #include "test_parts.hpp"
 
@@ -653,19 +652,10 @@ TEST(Gcode, ASlicedLBlockDepositsEveryPathOfEveryLayer) {
 // through their points) swept down `thickness` along n.
 void set_prism(mas::GcodeLayer& l, const Vector3d& n,
                const std::vector<std::vector<Vector3d>>& loops, double thickness) {
-    const mas::PlaneFrame frame(n);
-    l.prism.plane = {loops.front().front(), n};
-    l.prism.lower = {loops.front().front() - thickness * n, n};
-    l.prism.regions.clear();
+    l.prism = mas::test::flat_layer(l.component, n, loops, thickness);
     l.outline.clear();
-    for (const auto& loop : loops) {
-        mas::Polygon2 outer;
-        for (const Vector3d& q : loop) outer.points.push_back(frame.to_2d(q));
-        if (mas::signed_area(outer) < 0) std::reverse(outer.points.begin(), outer.points.end());
-        l.prism.regions.push_back({outer, {}});
-        l.outline.insert(l.outline.end(), loop.begin(), loop.end());
-    }
-    l.prism.max_thickness_mm = l.max_thickness_mm = thickness;
+    for (const auto& loop : loops) l.outline.insert(l.outline.end(), loop.begin(), loop.end());
+    l.max_thickness_mm = thickness;
 }
 
 // The rectangle [x0, x1] x [y0, y1] at height z, counter-clockwise from above.

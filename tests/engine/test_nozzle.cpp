@@ -16,7 +16,6 @@
 #include "mas/Error.hpp"
 #include "mas/Gcode.hpp"
 #include "mas/Nozzle.hpp"
-#include "mas/Polygon2.hpp"
 #include "mas/SlicePart.hpp"
 #include "test_parts.hpp"
 
@@ -36,17 +35,7 @@ struct Built {
 
 void add_layer(Built& built, int c, const Vector3d& n, const std::vector<Vector3d>& corners,
                double thickness, const std::vector<Vector3d>& path) {
-    mas::Layer l;
-    l.component = c;
-    l.plane = {corners.front(), n};
-    l.lower = {corners.front() - thickness * n, n};
-    const mas::PlaneFrame frame(n);
-    mas::Polygon2 outer;
-    for (const Vector3d& p : corners) outer.points.push_back(frame.to_2d(p));
-    if (mas::signed_area(outer) < 0) std::reverse(outer.points.begin(), outer.points.end());
-    l.regions.push_back({outer, {}});
-    l.min_thickness_mm = l.max_thickness_mm = thickness;
-    built.layers.push_back(l);
+    built.layers.push_back(mas::test::flat_layer(c, n, {corners}, thickness));
     mas::LayerToolpaths t;
     t.tool_axis = n;
     mas::ToolPath p;

@@ -21,6 +21,8 @@
 #include <gp_Pln.hxx>
 #include <sstream>
 
+#include "mas/Polygon2.hpp"
+
 namespace mas::test {
 
 Shape from_occt(const TopoDS_Shape& s) {
@@ -166,6 +168,23 @@ Shape box_shell(double x0, double y0, double z0, double dx, double dy, double dz
 
 Shape open_box_shell(double x0, double y0, double z0, double dx, double dy, double dz) {
     return from_occt(shell_of_box(x0, y0, z0, dx, dy, dz, z0 + dz));
+}
+
+Layer flat_layer(int component, const Eigen::Vector3d& n,
+                 const std::vector<std::vector<Eigen::Vector3d>>& loops, double thickness) {
+    Layer l;
+    l.component = component;
+    l.plane = {loops.front().front(), n};
+    l.lower = {loops.front().front() - thickness * n, n};
+    const PlaneFrame frame(n);
+    for (const auto& loop : loops) {
+        Polygon2 outer;
+        for (const Eigen::Vector3d& q : loop) outer.points.push_back(frame.to_2d(q));
+        if (signed_area(outer) < 0) std::reverse(outer.points.begin(), outer.points.end());
+        l.regions.push_back({outer, {}});
+    }
+    l.min_thickness_mm = l.max_thickness_mm = thickness;
+    return l;
 }
 
 double nozzle_clearance(const NozzleParams& n, const Eigen::Vector3d& p,

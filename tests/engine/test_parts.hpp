@@ -45,6 +45,11 @@ Shape sphere(double radius);
 Shape box_shell(double x0, double y0, double z0, double dx, double dy, double dz);
 Shape open_box_shell(double x0, double y0, double z0, double dx, double dy, double dz);
 
+// A layer of `component` whose regions are the polygons `loops` (each an outer boundary, on the
+// plane of normal `n` through the first one's first point), deposited `thickness` deep along n.
+Layer flat_layer(int component, const Eigen::Vector3d& n,
+                 const std::vector<std::vector<Eigen::Vector3d>>& loops, double thickness);
+
 // The nozzle's own shape, independently of Nozzle.cpp: the signed distance of `q` from the nozzle
 // standing at `p` along unit `axis` (negative inside), from its outline across the axis (the tip's
 // face, the cone, the body's side and end).

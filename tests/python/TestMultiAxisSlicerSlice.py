@@ -652,6 +652,15 @@ class SliceObjectTest(SliceTest):
         self.doc.recompute()
         return self.make(part, nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
 
+    def reopened(self, file_name):
+        """Saves the document as `file_name` in the test's folder, closes it and opens it again
+        (tearDown closes it); returns its Layers object."""
+        path = os.path.join(self.folder, file_name)
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        return self.doc.getObject("Layers")
+
     def check_box_objects(self, layers, toolpath):
         self.assertTrue(layers.isValid(), layers.getStatusString())
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
@@ -943,11 +952,7 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(len(layers.CollisionPoints), len(arm))
         self.assertTrue(all(abs(p.z) < 1e-9 for p in layers.CollisionPoints))
         self.assertIn("ReadOnly", layers.getEditorMode("CollidingLayers"))
-        path = os.path.join(self.folder, "MasSliceCollisions.FCStd")  # closed by tearDown
-        self.doc.saveAs(path)
-        FreeCAD.closeDocument(self.doc.Name)
-        self.doc = FreeCAD.openDocument(path)
-        layers = self.doc.getObject("Layers")
+        layers = self.reopened("MasSliceCollisions.FCStd")
         self.assertEqual(layers.NozzleBodyDiameter.Value, 100.0)
         self.assertEqual(layers.CollidingLayers, len(arm))
         self.assertEqual(list(layers.Sequence), list(range(layers.LayerCount)))
@@ -984,11 +989,7 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual(layers.CollidingLayers, len(arm))
         for prop in ("NozzleMaxLean", "LeanedLayers", "LayerToolAxes"):
             layers.removeProperty(prop)
-        path = os.path.join(self.folder, "MasSliceBeforeLean.FCStd")  # closed by tearDown
-        self.doc.saveAs(path)
-        FreeCAD.closeDocument(self.doc.Name)
-        self.doc = FreeCAD.openDocument(path)
-        layers = self.doc.getObject("Layers")
+        layers = self.reopened("MasSliceBeforeLean.FCStd")
         self.assertEqual(layers.NozzleMaxLean.Value, 0.0)
         self.assertEqual(layers.LeanedLayers, 0)
         self.assertEqual(list(layers.LayerToolAxes), list(layers.LayerNormals))

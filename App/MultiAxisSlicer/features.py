@@ -81,6 +81,45 @@ def failure(obj):
     return "{}: not recomputed".format(obj.Label)
 
 
+def parameters(obj):
+    """The inputs of one of this workbench's objects that a user sets, as [(group, [property,
+    ...])] in the order its documentation gives them, the links to other objects left out: what
+    the GUI's parameter panel edits. [] for any other object."""
+    return [(group, list(props)) for group, props in
+            getattr(getattr(obj, "Proxy", None), "PARAMETERS", ())]
+
+
+def _grouped(pairs):
+    """PARAMETERS from (property, group) pairs: each group where it first appears."""
+    groups = {}
+    for prop, group in pairs:
+        groups.setdefault(group, []).append(prop)
+    return tuple((group, tuple(props)) for group, props in groups.items())
+
+
+def remembered_results(objects):
+    """What the proxies of `objects` keep in memory of their last computation (a slicing, a
+    program), to be put back by restore_results() when their properties go back to the values it
+    was computed from (an edit cancelled, its transaction aborted): they then need no computing
+    again."""
+    return [(o, {k: v for k, v in vars(o.Proxy).items() if k in ("_result", "_program")})
+            for o in objects if getattr(o, "Proxy", None) is not None]
+
+
+def restore_results(remembered):
+    """Puts back what remembered_results() took (objects deleted since are skipped)."""
+    for obj, kept in remembered:
+        try:
+            proxy = obj.Proxy
+        except Exception:  # deleted
+            continue
+        for key in ("_result", "_program"):
+            if key in kept:
+                setattr(proxy, key, kept[key])
+            elif hasattr(proxy, key):
+                delattr(proxy, key)
+
+
 class _EngineFeature:
     """What every proxy here shares: recompute errors reported by their message, nothing to save
     beyond the properties, a view provider when the GUI opens a document made without it.
@@ -93,6 +132,9 @@ class _EngineFeature:
     # (regular expression, property): how the engine and the scripting API name a parameter in a
     # message, and the property that sets it here. A message on the object names the property.
     PROPERTY_NAMES = ()
+    # ((group, (property, ...)), ...): the inputs a user sets, in the order the object's
+    # documentation gives them; the links to other objects are not among them (parameters()).
+    PARAMETERS = ()
 
     def __init__(self, obj):
         self.Type = self.TYPE
@@ -172,6 +214,7 @@ class SectionsFeature(_EngineFeature):
     TYPE = "MultiAxisSlicer::Sections"
     VIEW_PROVIDER = "ViewProviderSections"
     PROPERTY_NAMES = _names(("step", "Step"), ("deflection", "Deflection"), ("normal", "Normal"))
+    PARAMETERS = (("Sections", ("Normal", "Step", "Deflection")),)
 
     @staticmethod
     def ensure_properties(obj):
@@ -269,6 +312,8 @@ class CentroidalAxisFeature(_EngineFeature):
     TYPE = "MultiAxisSlicer::CentroidalAxis"
     VIEW_PROVIDER = "ViewProviderCentroidalAxis"
     PROPERTY_NAMES = _AXIS_NAMES
+    PARAMETERS = (("Centroidal axis",
+                   ("Step", "DistanceThreshold", "Epsilon", "BreakAngle", "Deflection")),)
 
     @staticmethod
     def ensure_properties(obj):
@@ -404,6 +449,9 @@ class DecompositionFeature(_EngineFeature):
         ("face_angle", "FaceAngle"), ("concave_angle", "ConcaveAngle"),
         ("min_component_height", "MinComponentHeight"),
         ("section_plane_fallback", "SectionPlaneFallback"))
+    PARAMETERS = (("Decomposition",
+                   ("Step", "Deflection", "FaceAngle", "ConcaveAngle", "SectionPlaneFallback",
+                    "MinComponentHeight")),)
 
     @staticmethod
     def ensure_properties(obj):
@@ -887,6 +935,8 @@ class LayersFeature(_EngineFeature):
         *[(param, prop) for prop, _, param, _, _ in _SLICE_PROPERTIES if "_" in param],
         ("fill_holes_up_to", "FillHoles"), ("deflection", "Deflection")) + (
         (r"\boverlap\b(?= must| [0-9])", "Overlap"), (r"\binfill\b(?= must)", "Infill"))
+    PARAMETERS = _grouped([(prop, group) for prop, group, _, _, _ in _SLICE_PROPERTIES] +
+                          [("Deflection", "Layers")])
 
     @staticmethod
     def ensure_properties(obj):
@@ -1280,6 +1330,7 @@ class MachineProgramFeature(_EngineFeature):
                       (r"\bclearance must\b", "Clearance must"),
                       (r"\bthe deposition output\b", "DepositOutput"),
                       (r"\bdeposit_output\b", "DepositOutput"))
+    PARAMETERS = _grouped((prop, "Machine") for prop, _, _, _ in _MACHINE_PROPERTIES)
 
     @staticmethod
     def ensure_properties(obj):

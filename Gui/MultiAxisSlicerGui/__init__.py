@@ -15,6 +15,14 @@ ICON_DIR = os.path.join(
 )
 
 
+UI_DIR = os.path.join(os.path.dirname(ICON_DIR), "ui")
+
+
+def ui_path(name):
+    """Full path of a Qt Designer form in Resources/ui, e.g. ui_path("ParameterPanel.ui")."""
+    return os.path.join(UI_DIR, name)
+
+
 def icon_path(name):
     """Full path of an icon in Resources/icons, e.g. icon_path("Sections.svg")."""
     return os.path.join(ICON_DIR, name)

@@ -29,6 +29,40 @@ class _Stateless:
         return None
 
 
+class _Editable:
+    """Double-click (or "Edit parameters..." in the context menu) opens the object's parameter
+    panel (parameter_panel.py) in the task view; the other edit modes (Transform, colours) stay
+    FreeCAD's."""
+
+    def doubleClicked(self, vobj):
+        import FreeCADGui
+
+        FreeCADGui.getDocument(vobj.Object.Document.Name).setEdit(vobj.Object.Name, 0)
+        return True
+
+    def setupContextMenu(self, vobj, menu):
+        import FreeCADGui
+
+        action = menu.addAction("Edit parameters...")
+        name, doc = vobj.Object.Name, vobj.Object.Document.Name
+        action.triggered.connect(lambda: FreeCADGui.getDocument(doc).setEdit(name, 0))
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None  # FreeCAD's own
+        from MultiAxisSlicerGui import parameter_panel
+
+        return parameter_panel.open_panel(vobj.Object)
+
+    def unsetEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        from MultiAxisSlicerGui import parameter_panel
+
+        parameter_panel.close_panel()
+        return True
+
+
 class _LineStyled(_Stateless):
     """Tree icon and line style of an object drawn as lines: a subclass sets LINE_COLOR,
     LINE_WIDTH, ICON and, unless solid, DRAW_STYLE."""
@@ -54,7 +88,7 @@ class _LineStyled(_Stateless):
         return MultiAxisSlicerGui.icon_path(self.ICON)
 
 
-class ViewProviderSections(_LineStyled):
+class ViewProviderSections(_Editable, _LineStyled):
     """Tree icon and line style of a ``Sections`` object. The source stays as it is (visible, not
     claimed as a child): the sections are read against the part."""
 
@@ -79,7 +113,7 @@ def _same_colours(a, b):
         abs(x - y) <= 1.0 / 512 for ca, cb in zip(a, b) for x, y in zip(ca[:3], cb[:3]))
 
 
-class ViewProviderCentroidalAxis(_Stateless):
+class ViewProviderCentroidalAxis(_Editable, _Stateless):
     """Tree icon and style of a ``CentroidalAxis`` object: nodes as points (PointColor,
     PointSize), links as lines (LineColor, LineWidth), C1 break links in BreakLineColor.
 
@@ -177,7 +211,7 @@ def component_colour(index):
     return COMPONENT_COLOURS[index % len(COMPONENT_COLOURS)]
 
 
-class ViewProviderDecomposition(_Stateless):
+class ViewProviderDecomposition(_Editable, _Stateless):
     """Tree icon and colours of a ``Decomposition`` object. Its Component objects are its children
     in the tree (Component001, ... in tree order) and are what the 3D view shows; the object's own
     compound is hidden by default and, when shown, coloured per component with DiffuseColor (one
@@ -487,7 +521,7 @@ def _overlay_colour(vobj, colour_property, default):
             if colour_property in vobj.PropertiesList else default)
 
 
-class ViewProviderLayers(_EdgeColoured):
+class ViewProviderLayers(_Editable, _EdgeColoured):
     """Tree icon and colours of a ``Layers`` object: every layer's outline in its component's
     colour (``component_colour``, as the Component objects), per edge through LineColorArray. The
     object's Shape holds one sub-compound per layer and LayerComponents names each one's
@@ -619,7 +653,7 @@ TOOLPATH_COLOUR_ORDER = ("ContourColor", "InfillColor", "CentreLineColor", "Trav
 TOOLPATH_LINE_WIDTH = 1.0
 
 
-class ViewProviderToolpath(_EdgeColoured):
+class ViewProviderToolpath(_Editable, _EdgeColoured):
     """Tree icon and colours of a ``Toolpath`` object: contours, infill, centre lines and travel
     moves each in their own colour (view properties ContourColor, InfillColor, CentreLineColor,
     TravelColor), per edge through LineColorArray. The object's Shape holds one sub-compound per
@@ -655,7 +689,7 @@ PROGRAM_LINE_COLOR = (0.2, 0.3, 0.75)
 PROGRAM_LINE_WIDTH = 1.0
 
 
-class ViewProviderMachineProgram(_LineStyled):
+class ViewProviderMachineProgram(_Editable, _LineStyled):
     """Tree icon and line style of a ``MachineProgram`` object: its travel moves (retracts,
     approaches, routes round the part), dashed."""
 

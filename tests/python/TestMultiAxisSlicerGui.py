@@ -1413,6 +1413,228 @@ class TestMachineProgramCommands(unittest.TestCase):
         self.assertEqual(os.listdir(self.folder), [])
 
 
+def task_buttons():
+    """The task view's OK, Apply and Cancel buttons of the dialog shown now: {name: button}."""
+    names = {QtGui.QDialogButtonBox.Ok: "ok", QtGui.QDialogButtonBox.Apply: "apply",
+             QtGui.QDialogButtonBox.Cancel: "cancel"}
+    for box in FreeCADGui.getMainWindow().findChildren(QtGui.QDialogButtonBox):
+        buttons = {names[b]: box.button(b) for b in names if box.button(b) is not None}
+        if len(buttons) == 3 and all(b.isVisible() for b in buttons.values()):
+            return buttons
+    return {}
+
+
+class TestParameterPanel(unittest.TestCase):
+    """Double-clicking one of the workbench's objects edits its parameters in a task panel."""
+
+    def setUp(self):
+        import MultiAxisSlicer.features as features
+        import MultiAxisSlicerGui.parameter_panel as parameter_panel
+
+        self.features = features
+        self.panels = parameter_panel
+        FreeCADGui.activateWorkbench(WORKBENCH)
+        (self.doc, self.part, self.decomposition, self.layers,
+         self.toolpath) = MultiAxisSlicerTestSupport.sliced_l_block_document("MasGuiPanel")
+        self.gui_doc = FreeCADGui.getDocument(self.doc.Name)
+        process_events()
+
+    def tearDown(self):
+        if FreeCADGui.Control.activeDialog():
+            self.press("cancel")
+        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                            "MultiAxisSlicerError"):
+            box.close()
+        FreeCAD.closeDocument(self.doc.Name)
+        process_events()
+
+    def open(self, obj):
+        """Double-clicks `obj` (its view provider's handler, as the tree calls it)."""
+        self.assertTrue(obj.ViewObject.Proxy.doubleClicked(obj.ViewObject))
+        process_events()
+        panel = self.panels.active_panel()
+        self.assertIsNotNone(panel, "no panel for " + obj.Label)
+        self.assertTrue(FreeCADGui.Control.activeDialog())
+        return panel
+
+    def press(self, name):
+        buttons = task_buttons()
+        self.assertIn(name, buttons, "no {} button in the task view".format(name))
+        buttons[name].click()
+        process_events()
+
+    def set_field(self, panel, prop, value):
+        widget = panel.field(prop).widget
+        if isinstance(widget, QtGui.QAbstractSpinBox) and not isinstance(
+                widget, (QtGui.QSpinBox, QtGui.QDoubleSpinBox)):
+            widget.setProperty("rawValue", value)  # a Gui::QuantitySpinBox
+        else:
+            widget.setValue(value)
+
+    def test_double_click_shows_the_layers_parameters_in_their_groups(self):
+        panel = self.open(self.layers)
+        titles = [b.title() for b in panel.form.groups.findChildren(QtGui.QGroupBox)]
+        self.assertEqual(titles, ["Layers", "Paths", "Nozzle"])
+        want = [p for _, props in self.features.parameters(self.layers) for p in props]
+        self.assertEqual([f.prop for f in panel.fields], want)
+        self.assertIn("NozzleMaxLean", want)
+        self.assertNotIn("Decomposition", want)  # the link is the property editor's
+        self.assertNotIn("LayerCount", want)  # a result
+        for field in panel.fields:  # each shows the property's value
+            self.assertFalse(field.changed(self.layers), field.prop)
+        self.assertEqual(panel.field("MaxLayer").widget.property("unit"), "mm")
+        self.assertEqual(panel.field("NozzleConeAngle").widget.property("unit"), "°")
+        self.assertEqual(panel.field("Infill").read(), self.layers.Infill)
+        self.assertTrue(panel.field("CheckPlate").read())
+        self.assertIn("{} layers in 2 component(s)".format(self.layers.LayerCount),
+                      panel.form.result.text())
+        self.assertEqual(self.gui_doc.getInEdit().Object, self.layers)
+
+    def test_apply_recomputes_the_layers_and_their_paths_and_ok_is_one_undo_step(self):
+        before = (self.layers.MaxLayer.Value, self.layers.LayerCount, self.toolpath.PathCount)
+        program = mas.make_machine_program(self.layers)
+        self.doc.recompute()
+        lines = program.LineCount
+        undo_steps = self.doc.UndoCount
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", before[0] / 2)
+        self.set_field(panel, "MinLayer", self.layers.MinLayer.Value / 2)
+        self.press("apply")
+        self.assertEqual(self.layers.MaxLayer.Value, before[0] / 2)
+        self.assertGreater(self.layers.LayerCount, before[1])
+        for obj in (self.layers, self.toolpath, program):  # what depends on it follows
+            self.assertIsNone(self.features.failure(obj), obj.Label)
+        self.assertGreater(self.toolpath.PathCount, before[2])
+        self.assertGreater(program.LineCount, lines)
+        self.assertIn("{} layers".format(self.layers.LayerCount), panel.form.result.text())
+        self.assertIs(self.panels.active_panel(), panel)  # Apply keeps it open
+        self.press("ok")
+        self.assertIsNone(self.panels.active_panel())
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+        self.assertIsNone(self.gui_doc.getInEdit())
+        self.assertEqual(self.doc.UndoCount, undo_steps + 1)
+        self.assertEqual(self.doc.UndoNames[0], "Edit 'Layers'")
+        self.doc.undo()
+        self.assertEqual(self.layers.MaxLayer.Value, before[0])
+        self.assertEqual(self.layers.LayerCount, before[1])
+        self.assertEqual(self.toolpath.PathCount, before[2])
+        self.assertEqual(program.LineCount, lines)
+
+    def test_cancel_puts_everything_back_without_computing_again(self):
+        before = {p: getattr(self.layers, p) for p in ("BeadWidth", "LayerCount", "LayerOrigins",
+                                                       "Shape")}
+        paths = self.toolpath.PathCount
+        result = self.features.slice_result(self.layers)
+        undo_steps = self.doc.UndoCount
+        panel = self.open(self.toolpath)  # the paths' parameters are the Layers object's
+        self.assertIs(panel.obj, self.layers)
+        self.assertIn("Toolpath", panel.form.intro.text())
+        self.set_field(panel, "BeadWidth", before["BeadWidth"].Value * 2)
+        self.press("apply")
+        self.assertLess(self.toolpath.PathCount, paths)
+        self.assertIsNot(self.features.slice_result(self.layers), result)
+        self.press("cancel")
+        self.assertIsNone(self.panels.active_panel())
+        self.assertEqual(self.layers.BeadWidth, before["BeadWidth"])
+        self.assertEqual(self.layers.LayerCount, before["LayerCount"])
+        self.assertEqual(self.layers.LayerOrigins, before["LayerOrigins"])
+        self.assertEqual(len(self.layers.Shape.Edges), len(before["Shape"].Edges))
+        box = lambda b: (b.XMin, b.YMin, b.ZMin, b.XMax, b.YMax, b.ZMax)
+        self.assertEqual(box(self.layers.Shape.BoundBox), box(before["Shape"].BoundBox))
+        self.assertEqual(self.toolpath.PathCount, paths)
+        for obj in (self.layers, self.toolpath):
+            self.assertIsNone(self.features.failure(obj), obj.Label)
+        # The slicing from before the edit is what the objects hold again, not a new one.
+        self.assertIs(self.features.slice_result(self.layers), result)
+        self.assertEqual(self.doc.UndoCount, undo_steps)
+
+    def test_a_refused_value_is_named_in_the_panel_and_ok_keeps_it_open(self):
+        panel = self.open(self.layers)
+        self.set_field(panel, "MinLayer", self.layers.MaxLayer.Value + 1)
+        self.press("ok")
+        self.assertIs(self.panels.active_panel(), panel)
+        text = panel.form.result.text()
+        self.assertIn("MinLayer", text)
+        self.assertIn("MaxLayer", text)
+        self.assertIn("color", panel.form.result.styleSheet())
+        self.press("cancel")
+        self.assertIsNone(self.features.failure(self.layers))
+        self.assertIsNone(self.features.failure(self.toolpath))
+
+    def test_a_tilt_the_machine_cannot_reach_is_named_in_the_program_panel(self):
+        program = mas.make_machine_program(self.layers)
+        self.doc.recompute()
+        panel = self.open(program)
+        self.assertEqual([f.prop for f in panel.fields],
+                         ["AMin", "AMax", "CMin", "CMax", "Feed", "ReferenceThickness",
+                          "MaxFeedRatio", "Clearance", "DepositOutput"])
+        self.assertIn("{} lines".format(program.LineCount), panel.form.result.text())
+        self.set_field(panel, "AMin", -45)
+        self.set_field(panel, "AMax", 45)
+        self.press("apply")
+        self.assertIn("beyond AMin and AMax -45 to 45", panel.form.result.text())
+        self.press("cancel")
+        self.assertIsNone(self.features.failure(program))
+        self.assertEqual(program.AMin.Value, mas.MACHINE_DEFAULTS["a_min"])
+
+    def test_the_axis_sections_and_decomposition_show_their_own_parameters(self):
+        axis = mas.make_centroidal_axis(self.part)
+        sections = mas.make_sections(self.part)
+        self.doc.recompute()
+        for obj, props, figure in (
+                (axis, ["Step", "DistanceThreshold", "Epsilon", "BreakAngle", "Deflection"],
+                 "nodes"),
+                (sections, ["Normal", "Step", "Deflection"], "sections"),
+                (self.decomposition, ["Step", "Deflection", "FaceAngle", "ConcaveAngle",
+                                      "SectionPlaneFallback", "MinComponentHeight"],
+                 "2 sub-component(s)")):
+            panel = self.open(obj)
+            self.assertEqual([f.prop for f in panel.fields], props)
+            self.assertIn(figure, panel.form.result.text())
+            self.press("cancel")
+        panel = self.open(sections)
+        panel.field("Normal").boxes[0].setValue(1.0)
+        panel.field("Normal").boxes[2].setValue(0.0)
+        count = sections.SectionCount
+        self.press("ok")
+        self.assertEqual(sections.Normal, FreeCAD.Vector(1, 0, 0))
+        self.assertNotEqual(sections.SectionCount, count)  # the L is 70 long in X, 60 in Z
+
+    def test_an_edit_ended_otherwise_is_undone(self):
+        max_layer = self.layers.MaxLayer.Value
+        undo_steps = self.doc.UndoCount
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        self.gui_doc.resetEdit()  # as a script, or the document closing, ends it
+        process_events()
+        self.assertIsNone(self.panels.active_panel())
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer)
+        self.assertFalse(self.doc.HasPendingTransaction)
+        self.assertEqual(self.doc.UndoCount, undo_steps)
+        self.open(self.layers)  # the document closes with the panel open: no error
+        FreeCAD.closeDocument(self.doc.Name)
+        process_events()
+        self.assertIsNone(self.panels.active_panel())
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+        self.doc = FreeCAD.newDocument("MasGuiPanel")  # for tearDown
+
+    def test_context_menu_edits_the_parameters(self):
+        menu = QtGui.QMenu()
+        self.layers.ViewObject.Proxy.setupContextMenu(self.layers.ViewObject, menu)
+        actions = [a for a in menu.actions() if a.text() == "Edit parameters..."]
+        self.assertEqual(len(actions), 1)
+        actions[0].trigger()
+        process_events()
+        self.assertIs(self.panels.active_panel().obj, self.layers)
+        # A second panel while one is open is refused with a message, not stacked.
+        program = mas.make_machine_program(self.layers)
+        self.doc.recompute()
+        self.assertFalse(self.panels.open_panel(program))
+        self.assertIs(self.panels.active_panel().obj, self.layers)
+
+
 # Run by a second FreeCAD GUI, on a copy of the add-on without the compiled engine.
 NO_ENGINE_TEST = """
 import unittest

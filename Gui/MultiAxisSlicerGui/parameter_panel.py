@@ -1,0 +1,319 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The parameter panel: a task panel that edits the inputs of one of this workbench's objects
+(Sections, CentroidalAxis, Decomposition, Layers, MachineProgram) in one form, grouped as the
+property editor groups them, lengths and angles in the user's units.
+
+Double-clicking the object (or "Edit parameters..." in its context menu) opens it. Apply writes
+the changed values and recomputes the object and everything that depends on it (a Layers
+object's Toolpath and MachineProgram), then shows the result's figures, or the engine's message
+naming the bad parameter, so that a process engineer can try values in turn. OK does the same
+and closes, unless the object then fails (the message stays in the panel). Cancel puts
+everything back as it was when the panel opened: the edit is one transaction, which Cancel
+aborts, and the slicing or program computed before it is kept in memory, so nothing is computed
+again. After OK the whole edit is one undo step. Long recomputes show the progress dialog, with
+its Cancel, as every recompute here does.
+
+The fields come from the object (``MultiAxisSlicer.features.parameters``): each feature lists its
+inputs, so a new parameter appears here without a change to this module."""
+
+import re
+
+import FreeCAD
+import FreeCADGui
+
+import MultiAxisSlicerGui
+
+# Quantity properties: edited in a Gui::QuantitySpinBox in this unit (shown in the user's units).
+_QUANTITY_UNITS = {
+    "App::PropertyLength": "mm",
+    "App::PropertyDistance": "mm",
+    "App::PropertyAngle": "deg",
+}
+# The least value a field takes: a PropertyLength refuses a negative value anyway.
+_QUANTITY_MINIMUM = {"App::PropertyLength": 0.0}
+# Fields range over +-this (1 km, 10^6 degrees or counts): a spin box is as wide as its range's
+# longest number, and wider ones pushed the panel past FreeCAD's task view.
+_RANGE = 1e6
+_FIELD_WIDTH = 70  # pixels, the least a field shrinks to
+
+_open_panel = None  # the panel shown now, if any (for the tests and for unsetEdit)
+
+
+def active_panel():
+    """The ParameterPanel shown in the task view now, or None."""
+    return _open_panel
+
+
+def _label(prop, group=""):
+    """A field's label: "NozzleTipDiameter" in the group "Nozzle" -> "Tip diameter", "MinLayer"
+    -> "Min layer" (short: the task view is narrow)."""
+    words = re.findall(r"[A-Z][a-z0-9]*|[a-z0-9]+", prop)
+    if len(words) > 1 and words[0] == group:
+        words = [words[1].capitalize()] + words[2:]
+    return " ".join([words[0]] + [w.lower() for w in words[1:]]) if words else prop
+
+
+def _summary(obj):
+    """The figures of a computed `obj`, in a line or two of words."""
+    kind = obj.Proxy.Type
+    if kind == "MultiAxisSlicer::Sections":
+        return "{} sections, {:.6g} mm² in all.".format(obj.SectionCount, obj.TotalArea.Value)
+    if kind == "MultiAxisSlicer::CentroidalAxis":
+        return "{} nodes in {} branch(es), {} C1 break(s); step {:.4g} mm.".format(
+            obj.NodeCount, obj.BranchCount, obj.BreakCount, obj.UsedStep.Value)
+    if kind == "MultiAxisSlicer::Decomposition":
+        return "{} sub-component(s); step {:.4g} mm.".format(obj.ComponentCount,
+                                                             obj.UsedStep.Value)
+    if kind == "MultiAxisSlicer::Layers":
+        lines = ["{} layers in {} component(s), {:.4g} to {:.4g} mm thick.".format(
+            obj.LayerCount, len(obj.ComponentLayerCounts), obj.MinThickness.Value,
+            obj.MaxThickness.Value)]
+        if obj.WorstUnsupportedLayer >= 0:
+            lines.append("Worst unsupported area {:.4g} mm² (layer {}).".format(
+                obj.WorstUnsupportedArea.Value, obj.WorstUnsupportedLayer))
+        else:
+            lines.append("Every layer rests on the one below.")
+        lines.append("{} layer(s) with the nozzle leaned; {} whose nozzle meets what is "
+                     "deposited.".format(obj.LeanedLayers, obj.CollidingLayers))
+        return "\n".join(lines)
+    if kind == "MultiAxisSlicer::MachineProgram":
+        return ("{} lines, {} deposit moves, {:.4g} min depositing; A {:.4g} to {:.4g}°.\n"
+                "Travel: {} routes checked, {} taken round the part, {} meeting what is "
+                "deposited.".format(obj.LineCount, obj.DepositMoves, obj.DepositTime,
+                                    *(list(obj.ARange) or [0.0, 0.0]), obj.CheckedRoutes,
+                                    obj.ReroutedTravels, obj.TravelCollisions))
+    return "Computed."
+
+
+class _Field:
+    """One property's editor: widget, read() -> value, write(value), same(a, b)."""
+
+    def __init__(self, obj, prop):
+        from PySide import QtGui
+
+        self.prop = prop
+        type_id = obj.getTypeIdOfProperty(prop)
+        self.type_id = type_id
+        value = getattr(obj, prop)
+        if type_id in _QUANTITY_UNITS:
+            self.widget = FreeCADGui.UiLoader().createWidget("Gui::QuantitySpinBox")
+            self.widget.setProperty("unit", _QUANTITY_UNITS[type_id])
+            self.widget.setProperty("minimum", _QUANTITY_MINIMUM.get(type_id, -_RANGE))
+            self.widget.setProperty("maximum", _RANGE)
+            self.widget.setProperty("rawValue", value.Value)
+            self.read = lambda: float(self.widget.property("rawValue"))
+        elif type_id == "App::PropertyFloat":
+            self.widget = QtGui.QDoubleSpinBox()
+            self.widget.setDecimals(4)
+            self.widget.setRange(-_RANGE, _RANGE)
+            self.widget.setValue(value)
+            self.read = self.widget.value
+        elif type_id == "App::PropertyInteger":
+            self.widget = QtGui.QSpinBox()
+            self.widget.setRange(-int(_RANGE), int(_RANGE))
+            self.widget.setValue(value)
+            self.read = self.widget.value
+        elif type_id == "App::PropertyBool":
+            self.widget = QtGui.QCheckBox()
+            self.widget.setChecked(bool(value))
+            self.read = self.widget.isChecked
+        elif type_id == "App::PropertyEnumeration":
+            self.widget = QtGui.QComboBox()
+            self.widget.addItems(obj.getEnumerationsOfProperty(prop))
+            self.widget.setCurrentIndex(self.widget.findText(value))
+            self.read = self.widget.currentText
+        elif type_id == "App::PropertyVector":
+            self.widget = QtGui.QWidget()
+            row = QtGui.QHBoxLayout(self.widget)
+            row.setContentsMargins(0, 0, 0, 0)
+            self.boxes = []
+            for coordinate in (value.x, value.y, value.z):
+                box = QtGui.QDoubleSpinBox()
+                box.setDecimals(4)
+                box.setRange(-_RANGE, _RANGE)
+                box.setValue(coordinate)
+                row.addWidget(box)
+                self.boxes.append(box)
+            self.read = lambda: FreeCAD.Vector(*(b.value() for b in self.boxes))
+        else:
+            raise TypeError("no editor for {} ({})".format(prop, type_id))
+        if type_id == "App::PropertyVector":
+            for box in self.boxes:
+                box.setMinimumWidth(_FIELD_WIDTH // 2)
+        else:
+            self.widget.setMinimumWidth(_FIELD_WIDTH)
+        self.widget.setObjectName(prop)
+        self.widget.setToolTip(obj.getDocumentationOfProperty(prop))
+
+    def current(self, obj):
+        """The property's value, as read() gives a field's."""
+        value = getattr(obj, self.prop)
+        return value.Value if self.type_id in _QUANTITY_UNITS else value
+
+    def changed(self, obj):
+        """Whether the field differs from the object's property."""
+        value, current = self.read(), self.current(obj)
+        if isinstance(current, float):
+            return abs(value - current) > 1e-9 * max(1.0, abs(current))
+        if isinstance(current, FreeCAD.Vector):
+            return (value - current).Length > 1e-9
+        return value != current
+
+
+class ParameterPanel:
+    """The task panel (see the module's documentation) editing the object `edited`; `shown` is
+    the object whose double-click opened it (a Toolpath opens its Layers object's panel)."""
+
+    def __init__(self, edited, shown=None):
+        import MultiAxisSlicer.features as features
+
+        self.obj = edited
+        self.shown = shown if shown is not None else edited
+        self.doc = edited.Document
+        self.form = FreeCADGui.PySideUic.loadUi(MultiAxisSlicerGui.ui_path("ParameterPanel.ui"))
+        self.form.setWindowTitle("{} parameters".format(edited.Label))
+        self.form.setWindowIcon(self.shown.ViewObject.Icon)
+        intro = "Parameters of '{}'.".format(edited.Label)
+        if self.shown is not edited:
+            intro += " Its paths ('{}') are planned with its layers.".format(self.shown.Label)
+        self.form.intro.setText(intro + " Apply recomputes it and what depends on it.")
+        self.fields = []
+        from PySide import QtGui
+
+        for group, props in features.parameters(edited):
+            box = QtGui.QGroupBox(group)
+            layout = QtGui.QFormLayout(box)
+            layout.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)  # narrow: field under label
+            for prop in props:
+                field = _Field(edited, prop)
+                layout.addRow(_label(prop, group), field.widget)
+                self.fields.append(field)
+            self.form.groups.layout().addWidget(box)
+        self.show_result()
+        # Everything the edit changes is one transaction: OK commits it (one undo step), Cancel
+        # aborts it; the results computed before it are put back with the properties.
+        self.remembered = features.remembered_results([edited] + edited.InListRecursive)
+        self.doc.openTransaction("Edit '{}'".format(edited.Label))
+
+    def field(self, prop):
+        """The editor of `prop` (for scripts and tests)."""
+        return next(f for f in self.fields if f.prop == prop)
+
+    def show_result(self, message=None):
+        """The result's figures, or `message` / the object's failure in red."""
+        import MultiAxisSlicer.features as features
+
+        problem = message or features.failure(self.obj)
+        if problem is None:
+            text, style = _summary(self.obj), ""
+        else:
+            text, style = problem, "color: #c00000"
+        self.form.result.setText(text)
+        self.form.result.setStyleSheet(style)
+
+    def apply(self):
+        """Writes the changed fields and recomputes the object and what depends on it. Returns
+        whether it is computed (None: a value was refused, shown in the panel)."""
+        import MultiAxisSlicer.features as features
+
+        changed = [f for f in self.fields if f.changed(self.obj)]
+        for field in changed:
+            try:
+                setattr(self.obj, field.prop, field.read())
+            except Exception as error:  # a property's own constraint
+                self.show_result("{}: {}".format(field.prop, error))
+                return False
+        if changed or features.failure(self.obj) is not None:
+            self.doc.recompute([self.obj] + self.obj.InListRecursive)
+        self.show_result()
+        return features.failure(self.obj) is None
+
+    # The task dialog's interface (FreeCADGui.Control).
+    def getStandardButtons(self):
+        from PySide import QtGui
+
+        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Apply |
+                   QtGui.QDialogButtonBox.Cancel)
+
+    def clicked(self, button):
+        from PySide import QtGui
+
+        if button == QtGui.QDialogButtonBox.Apply:
+            self.apply()
+
+    def accept(self):
+        if not self.apply():
+            return False  # the message stays in the panel: fix the value, or Cancel
+        self.doc.commitTransaction()
+        self._close()
+        return True
+
+    def reject(self):
+        self.undo_edit()
+        self._close()
+        return True
+
+    def undo_edit(self):
+        """Cancel's work: aborts the edit's transaction and puts the results back."""
+        import MultiAxisSlicer.features as features
+
+        global _open_panel
+        _open_panel = None
+        self.doc.abortTransaction()
+        features.restore_results(self.remembered)
+        # Properties are back; what the abort left touched, and what depends on it, is made
+        # valid again from the results put back, without computing them anew.
+        objects = [self.obj] + self.obj.InListRecursive
+        if any("Touched" in o.State or "Invalid" in o.State for o in objects):
+            self.doc.recompute(objects)
+
+    def _close(self):
+        global _open_panel
+        _open_panel = None
+        gui_doc = FreeCADGui.getDocument(self.doc.Name)
+        if gui_doc is not None and gui_doc.getInEdit() is not None:
+            gui_doc.resetEdit()  # unsetEdit closes the dialog
+        else:
+            FreeCADGui.Control.closeDialog()
+
+
+def edited_object(obj):
+    """The object whose parameters `obj`'s panel edits: itself, or a Toolpath's Layers object."""
+    import MultiAxisSlicer.features as features
+
+    if features.is_toolpath(obj):
+        return obj.Layers
+    return obj
+
+
+def open_panel(obj):
+    """Shows the parameter panel of `obj` (see edited_object) in the task view. Returns False,
+    saying why, when it cannot: another task is open, or there is nothing to edit."""
+    global _open_panel
+    import MultiAxisSlicer.features as features
+
+    if FreeCADGui.Control.activeDialog():
+        MultiAxisSlicerGui.show_error("Close the open task first, then edit '{}'.".format(
+            obj.Label))
+        return False
+    edited = edited_object(obj)
+    if edited is None or not features.parameters(edited):
+        MultiAxisSlicerGui.show_error("'{}' has no parameters to edit{}.".format(
+            obj.Label, ": its Layers link is not set" if edited is None else ""))
+        return False
+    _open_panel = ParameterPanel(edited, obj)
+    FreeCADGui.Control.showDialog(_open_panel)
+    return True
+
+
+def close_panel():
+    """The edit ends (the view provider's unsetEdit): closes the task view's dialog. When neither
+    OK nor Cancel ended it (the document closes, a script resets the edit), the edit is undone as
+    by Cancel: an open transaction left behind would take in whatever is done next."""
+    panel = _open_panel
+    if panel is not None:
+        try:
+            panel.undo_edit()
+        except Exception as error:  # the document is going away
+            FreeCAD.Console.PrintLog("Multi-Axis Slicer: edit left: {}\n".format(error))
+    FreeCADGui.Control.closeDialog()

@@ -31,8 +31,9 @@ _QUANTITY_UNITS = {
 }
 # The least value a field takes: a PropertyLength refuses a negative value anyway.
 _QUANTITY_MINIMUM = {"App::PropertyLength": 0.0}
-# Fields range over +-this (1 km, 10^6 degrees or counts): a spin box is as wide as its range's
-# longest number, and wider ones pushed the panel past FreeCAD's task view.
+# Fields range over +-this (1 km, 10^6 degrees or counts), or the property's value if it is
+# farther out (which the field must not clip): a spin box is as wide as its range's longest
+# number, and wider ones pushed the panel past FreeCAD's task view.
 _RANGE = 1e6
 _FIELD_WIDTH = 70  # pixels, the least a field shrinks to
 
@@ -95,22 +96,24 @@ class _Field:
         type_id = obj.getTypeIdOfProperty(prop)
         self.type_id = type_id
         value = getattr(obj, prop)
+        number = getattr(value, "Value", value)
+        limit = max(_RANGE, abs(number)) if isinstance(number, (int, float)) else _RANGE
         if type_id in _QUANTITY_UNITS:
             self.widget = FreeCADGui.UiLoader().createWidget("Gui::QuantitySpinBox")
             self.widget.setProperty("unit", _QUANTITY_UNITS[type_id])
-            self.widget.setProperty("minimum", _QUANTITY_MINIMUM.get(type_id, -_RANGE))
-            self.widget.setProperty("maximum", _RANGE)
+            self.widget.setProperty("minimum", _QUANTITY_MINIMUM.get(type_id, -limit))
+            self.widget.setProperty("maximum", limit)
             self.widget.setProperty("rawValue", value.Value)
             self.read = lambda: float(self.widget.property("rawValue"))
         elif type_id == "App::PropertyFloat":
             self.widget = QtGui.QDoubleSpinBox()
             self.widget.setDecimals(4)
-            self.widget.setRange(-_RANGE, _RANGE)
+            self.widget.setRange(-limit, limit)
             self.widget.setValue(value)
             self.read = self.widget.value
         elif type_id == "App::PropertyInteger":
             self.widget = QtGui.QSpinBox()
-            self.widget.setRange(-int(_RANGE), int(_RANGE))
+            self.widget.setRange(-min(int(limit), 2 ** 31 - 1), min(int(limit), 2 ** 31 - 1))
             self.widget.setValue(value)
             self.read = self.widget.value
         elif type_id == "App::PropertyBool":
@@ -130,7 +133,7 @@ class _Field:
             for coordinate in (value.x, value.y, value.z):
                 box = QtGui.QDoubleSpinBox()
                 box.setDecimals(4)
-                box.setRange(-_RANGE, _RANGE)
+                box.setRange(-max(_RANGE, abs(coordinate)), max(_RANGE, abs(coordinate)))
                 box.setValue(coordinate)
                 row.addWidget(box)
                 self.boxes.append(box)
@@ -144,20 +147,13 @@ class _Field:
             self.widget.setMinimumWidth(_FIELD_WIDTH)
         self.widget.setObjectName(prop)
         self.widget.setToolTip(obj.getDocumentationOfProperty(prop))
+        self.written = self.read()  # what the field showed when made, or last wrote
 
-    def current(self, obj):
-        """The property's value, as read() gives a field's."""
-        value = getattr(obj, self.prop)
-        return value.Value if self.type_id in _QUANTITY_UNITS else value
-
-    def changed(self, obj):
-        """Whether the field differs from the object's property."""
-        value, current = self.read(), self.current(obj)
-        if isinstance(current, float):
-            return abs(value - current) > 1e-9 * max(1.0, abs(current))
-        if isinstance(current, FreeCAD.Vector):
-            return (value - current).Length > 1e-9
-        return value != current
+    def changed(self):
+        """Whether the user changed the field since it was made or last written. Compared with
+        the field itself, not the property: a value finer than the field's decimals (0.123456
+        shown as 0.1235) is never written back rounded."""
+        return self.read() != self.written
 
 
 class ParameterPanel:
@@ -213,16 +209,17 @@ class ParameterPanel:
 
     def apply(self):
         """Writes the changed fields and recomputes the object and what depends on it. Returns
-        whether it is computed (None: a value was refused, shown in the panel)."""
+        whether it is computed (False too when a property refused a value: shown in the panel)."""
         import MultiAxisSlicer.features as features
 
-        changed = [f for f in self.fields if f.changed(self.obj)]
+        changed = [f for f in self.fields if f.changed()]
         for field in changed:
             try:
                 setattr(self.obj, field.prop, field.read())
             except Exception as error:  # a property's own constraint
                 self.show_result("{}: {}".format(field.prop, error))
                 return False
+            field.written = field.read()
         if changed or features.failure(self.obj) is not None:
             self.doc.recompute([self.obj] + self.obj.InListRecursive)
         self.show_result()

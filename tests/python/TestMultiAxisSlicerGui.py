@@ -1481,7 +1481,13 @@ class TestParameterPanel(unittest.TestCase):
         self.assertNotIn("Decomposition", want)  # the link is the property editor's
         self.assertNotIn("LayerCount", want)  # a result
         for field in panel.fields:  # each shows the property's value
-            self.assertFalse(field.changed(self.layers), field.prop)
+            value = getattr(self.layers, field.prop)
+            if isinstance(value, str):
+                self.assertEqual(field.read(), value)
+            else:
+                self.assertAlmostEqual(field.read(), getattr(value, "Value", value), 4,
+                                       msg=field.prop)
+            self.assertFalse(field.changed(), field.prop)
         self.assertEqual(panel.field("MaxLayer").widget.property("unit"), "mm")
         self.assertEqual(panel.field("NozzleConeAngle").widget.property("unit"), "°")
         self.assertEqual(panel.field("Infill").read(), self.layers.Infill)
@@ -1519,6 +1525,25 @@ class TestParameterPanel(unittest.TestCase):
         self.assertEqual(self.layers.LayerCount, before[1])
         self.assertEqual(self.toolpath.PathCount, before[2])
         self.assertEqual(program.LineCount, lines)
+
+    def test_only_the_fields_the_user_changed_are_written(self):
+        # Values finer than the fields show, and one beyond their usual range.
+        self.layers.MaxVolumeDifference = 0.123456
+        self.layers.Deflection = 0.01234
+        program = mas.make_machine_program(self.layers, c_min=-1e9, c_max=1e9)
+        self.doc.recompute()
+        panel = self.open(self.layers)
+        self.set_field(panel, "BeadWidth", self.layers.BeadWidth.Value * 1.5)
+        self.press("ok")
+        self.assertIsNone(self.features.failure(self.layers))
+        self.assertEqual(self.layers.MaxVolumeDifference, 0.123456)
+        self.assertEqual(self.layers.Deflection.Value, 0.01234)
+        panel = self.open(program)
+        self.assertEqual(panel.field("CMin").read(), -1e9)  # shown as it is, not clipped
+        self.set_field(panel, "Feed", program.Feed * 2)
+        self.press("ok")
+        self.assertIsNone(self.features.failure(program))
+        self.assertEqual((program.CMin, program.CMax), (-1e9, 1e9))
 
     def test_cancel_puts_everything_back_without_computing_again(self):
         before = {p: getattr(self.layers, p) for p in ("BeadWidth", "LayerCount", "LayerOrigins",

@@ -1625,6 +1625,26 @@ class TestParameterPanel(unittest.TestCase):
         self.assertEqual(sections.Normal, FreeCAD.Vector(1, 0, 0))
         self.assertNotEqual(sections.SectionCount, count)  # the L is 70 long in X, 60 in Z
 
+    def test_a_decomposition_edit_brings_its_components_and_cancel_takes_them_back(self):
+        names = [c.Name for c in self.features.components_of(self.decomposition)]
+        self.assertEqual(len(names), 2)
+        panel = self.open(self.decomposition)
+        self.set_field(panel, "MinComponentHeight", 100.0)  # more than the arm reaches
+        self.press("apply")
+        wait_for_components(self.decomposition, 1)
+        self.assertEqual(self.decomposition.ComponentCount, 1)
+        self.assertEqual(len(self.features.components_of(self.decomposition)), 1)
+        self.assertEqual(len(self.layers.ComponentLayerCounts), 1)  # sliced as it is now
+        self.assertIn("1 sub-component(s)", panel.form.result.text())
+        self.press("cancel")
+        wait_for_components(self.decomposition, 2)
+        self.assertEqual([c.Name for c in self.features.components_of(self.decomposition)],
+                         names)
+        self.assertEqual(len(self.layers.ComponentLayerCounts), 2)
+        for obj in [self.decomposition, self.layers, self.toolpath] + [
+                self.doc.getObject(n) for n in names]:
+            self.assertIsNone(self.features.failure(obj), obj.Label)
+
     def test_an_edit_ended_otherwise_is_undone(self):
         max_layer = self.layers.MaxLayer.Value
         undo_steps = self.doc.UndoCount

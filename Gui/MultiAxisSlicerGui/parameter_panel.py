@@ -36,6 +36,10 @@ _QUANTITY_MINIMUM = {"App::PropertyLength": 0.0}
 # number, and wider ones pushed the panel past FreeCAD's task view.
 _RANGE = 1e6
 _FIELD_WIDTH = 70  # pixels, the least a field shrinks to
+# The property types a field edits; any other stays the property editor's.
+_EDITABLE_TYPES = set(_QUANTITY_UNITS) | {
+    "App::PropertyFloat", "App::PropertyInteger", "App::PropertyBool",
+    "App::PropertyEnumeration", "App::PropertyVector"}
 
 _open_panel = None  # the panel shown now, if any (for the tests and for unsetEdit)
 
@@ -176,12 +180,19 @@ class ParameterPanel:
         self.fields = []
         from PySide import QtGui
 
+        expressions = dict(edited.ExpressionEngine)
         for group, props in features.parameters(edited):
             box = QtGui.QGroupBox(group)
             layout = QtGui.QFormLayout(box)
             layout.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)  # narrow: field under label
             for prop in props:
+                if edited.getTypeIdOfProperty(prop) not in _EDITABLE_TYPES:
+                    continue
                 field = _Field(edited, prop)
+                if prop in expressions:  # the expression sets it at every recompute
+                    field.widget.setEnabled(False)
+                    field.widget.setToolTip("Set by the expression {} (the property editor "
+                                            "edits it)".format(expressions[prop]))
                 layout.addRow(_label(prop, group), field.widget)
                 self.fields.append(field)
             self.form.groups.layout().addWidget(box)
@@ -189,6 +200,8 @@ class ParameterPanel:
         # Everything the edit changes is one transaction: OK commits it (one undo step), Cancel
         # aborts it; the results computed before it are put back with the properties.
         self.remembered = features.remembered_results([edited] + edited.InListRecursive)
+        self.computed = {o.Name for o in [edited] + edited.InListRecursive
+                         if features.failure(o) is None}
         self.doc.openTransaction("Edit '{}'".format(edited.Label))
 
     def field(self, prop):
@@ -221,7 +234,15 @@ class ParameterPanel:
                 return False
             field.written = field.read()
         if changed or features.failure(self.obj) is not None:
-            self.doc.recompute([self.obj] + self.obj.InListRecursive)
+            self.doc.recompute([self.obj])
+            # A decomposition's Component objects follow its count now, within the edit (the
+            # view provider's timer would make them an undo step of their own after OK), before
+            # what depends on them is recomputed (a component left over would fail meanwhile).
+            for o in [self.obj] + self.obj.InListRecursive:
+                if (features.is_decomposition(o) and o.isValid() and
+                        len(features.components_of(o)) != o.ComponentCount):
+                    features.sync_components(o)
+            self.doc.recompute(self.obj.InListRecursive)
         self.show_result()
         return features.failure(self.obj) is None
 
@@ -242,6 +263,7 @@ class ParameterPanel:
         if not self.apply():
             return False  # the message stays in the panel: fix the value, or Cancel
         self.doc.commitTransaction()
+        FreeCAD.closeActiveTransaction()
         self._close()
         return True
 
@@ -257,21 +279,25 @@ class ParameterPanel:
         global _open_panel
         _open_panel = None
         self.doc.abortTransaction()
+        # With nothing recorded the document had no transaction to abort, and the application's
+        # stayed open: the recompute below would go into it, and become an undo step.
+        FreeCAD.closeActiveTransaction(True)
         features.restore_results(self.remembered)
-        # Properties are back; what the abort left touched, and what depends on it, is made
-        # valid again from the results put back, without computing them anew.
-        objects = [self.obj] + self.obj.InListRecursive
-        if any("Touched" in o.State or "Invalid" in o.State for o in objects):
+        # Properties are back. The objects that were computed when the panel opened are made so
+        # again, when the abort left one touched, from the results put back, without computing
+        # them anew (all of them: one recomputed touches those made from it); those that were
+        # not stay as they were.
+        objects = [o for o in [self.obj] + self.obj.InListRecursive if o.Name in self.computed]
+        if any("Touched" in o.State or not o.isValid() for o in objects):
             self.doc.recompute(objects)
 
     def _close(self):
         global _open_panel
-        _open_panel = None
+        _open_panel = None  # so that unsetEdit does not undo it
         gui_doc = FreeCADGui.getDocument(self.doc.Name)
-        if gui_doc is not None and gui_doc.getInEdit() is not None:
-            gui_doc.resetEdit()  # unsetEdit closes the dialog
-        else:
-            FreeCADGui.Control.closeDialog()
+        if gui_doc is not None:
+            gui_doc.resetEdit()  # whichever view is active (getInEdit() sees the 3D view only)
+        FreeCADGui.Control.closeDialog()
 
 
 def edited_object(obj):
@@ -283,15 +309,33 @@ def edited_object(obj):
     return obj
 
 
+def edit(obj):
+    """Double-click and "Edit parameters...": opens the parameter panel of `obj` in edit mode.
+    With a panel or another task open, says so and leaves it as it is (FreeCAD's setEdit would
+    end the open edit first, which undoes an edit applied and not yet confirmed)."""
+    panel = _open_panel
+    if panel is not None and panel.obj is edited_object(obj):
+        return True  # its panel is open already
+    if panel is not None or FreeCADGui.Control.activeDialog():
+        MultiAxisSlicerGui.show_error(
+            "Finish the task open in the task view (OK or Cancel), then edit '{}'.".format(
+                obj.Label))
+        return True
+    FreeCADGui.getDocument(obj.Document.Name).setEdit(obj.Name, 0)
+    return True
+
+
 def open_panel(obj):
-    """Shows the parameter panel of `obj` (see edited_object) in the task view. Returns False,
-    saying why, when it cannot: another task is open, or there is nothing to edit."""
+    """Shows the parameter panel of `obj` (see edited_object) in the task view (the view
+    provider's setEdit). Returns False, saying why, when it cannot: another task is open, or there
+    is nothing to edit."""
     global _open_panel
     import MultiAxisSlicer.features as features
 
     if FreeCADGui.Control.activeDialog():
-        MultiAxisSlicerGui.show_error("Close the open task first, then edit '{}'.".format(
-            obj.Label))
+        MultiAxisSlicerGui.show_error(
+            "Finish the task open in the task view (OK or Cancel), then edit '{}'.".format(
+                obj.Label))
         return False
     edited = edited_object(obj)
     if edited is None or not features.parameters(edited):
@@ -304,13 +348,15 @@ def open_panel(obj):
 
 
 def close_panel():
-    """The edit ends (the view provider's unsetEdit): closes the task view's dialog. When neither
-    OK nor Cancel ended it (the document closes, a script resets the edit), the edit is undone as
-    by Cancel: an open transaction left behind would take in whatever is done next."""
+    """The edit ends (the view provider's unsetEdit). When neither OK nor Cancel ended it (the
+    document closes, a script resets the edit or edits another object), the edit is undone as by
+    Cancel, and the panel closed: an open transaction left behind would take in whatever is done
+    next. After OK or Cancel there is nothing left to do."""
     panel = _open_panel
-    if panel is not None:
-        try:
-            panel.undo_edit()
-        except Exception as error:  # the document is going away
-            FreeCAD.Console.PrintLog("Multi-Axis Slicer: edit left: {}\n".format(error))
+    if panel is None:
+        return
+    try:
+        panel.undo_edit()
+    except Exception as error:  # the document is going away
+        FreeCAD.Console.PrintLog("Multi-Axis Slicer: edit left: {}\n".format(error))
     FreeCADGui.Control.closeDialog()

@@ -35,17 +35,24 @@ class _Editable:
     FreeCAD's."""
 
     def doubleClicked(self, vobj):
-        import FreeCADGui
+        from MultiAxisSlicerGui import parameter_panel
 
-        FreeCADGui.getDocument(vobj.Object.Document.Name).setEdit(vobj.Object.Name, 0)
-        return True
+        return parameter_panel.edit(vobj.Object)
 
     def setupContextMenu(self, vobj, menu):
-        import FreeCADGui
+        import FreeCAD
 
         action = menu.addAction("Edit parameters...")
         name, doc = vobj.Object.Name, vobj.Object.Document.Name
-        action.triggered.connect(lambda: FreeCADGui.getDocument(doc).setEdit(name, 0))
+
+        def edit():
+            from MultiAxisSlicerGui import parameter_panel
+
+            obj = FreeCAD.getDocument(doc).getObject(name)
+            if obj is not None:
+                parameter_panel.edit(obj)
+
+        action.triggered.connect(edit)
 
     def setEdit(self, vobj, mode=0):
         if mode != 0:

@@ -1665,6 +1665,63 @@ class TestParameterPanel(unittest.TestCase):
         self.assertFalse(FreeCADGui.Control.activeDialog())
         self.doc = FreeCAD.newDocument("MasGuiPanel")  # for tearDown
 
+    def test_a_double_click_elsewhere_keeps_the_edit_open(self):
+        max_layer = self.layers.MaxLayer.Value
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        # FreeCAD's setEdit would end the open edit first, undoing what was applied.
+        self.assertTrue(self.toolpath.ViewObject.Proxy.doubleClicked(self.toolpath.ViewObject))
+        self.assertTrue(self.decomposition.ViewObject.Proxy.doubleClicked(
+            self.decomposition.ViewObject))
+        process_events()
+        self.assertIs(self.panels.active_panel(), panel)
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(
+            QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()]
+        # The Toolpath's panel is this one: no message; the decomposition's is another.
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("Finish the task open in the task view", boxes[0].text())
+        self.assertIn("'Decomposition'", boxes[0].text())
+        self.press("ok")
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+
+    def test_cancel_leaves_an_object_changed_before_as_it_was(self):
+        # Changed in the property editor, not recomputed: Cancel neither computes nor records it.
+        self.layers.MaxLayer = self.layers.MaxLayer.Value / 2
+        count, undo_steps = self.layers.LayerCount, self.doc.UndoCount
+        self.open(self.layers)
+        self.press("cancel")
+        self.assertEqual(self.layers.LayerCount, count)
+        self.assertIn("Touched", self.layers.State)
+        self.assertEqual(self.doc.UndoCount, undo_steps)
+        self.assertFalse(self.doc.HasPendingTransaction)
+
+    def test_ok_on_a_decomposition_is_one_undo_step_with_its_components(self):
+        names = [c.Name for c in self.features.components_of(self.decomposition)]
+        undo_steps = self.doc.UndoCount
+        panel = self.open(self.decomposition)
+        self.set_field(panel, "MinComponentHeight", 100.0)
+        self.press("ok")
+        wait_for_components(self.decomposition, 1, seconds=1.0)  # no timer adds a step
+        self.assertEqual(len(self.features.components_of(self.decomposition)), 1)
+        self.assertEqual(self.doc.UndoCount, undo_steps + 1)
+        self.assertEqual(self.doc.UndoNames[0], "Edit 'Decomposition'")
+        self.doc.undo()
+        process_events()
+        self.assertEqual(self.decomposition.ComponentCount, 2)
+        self.assertEqual([c.Name for c in self.features.components_of(self.decomposition)],
+                         names)
+
+    def test_a_parameter_set_by_an_expression_is_not_edited_here(self):
+        self.layers.setExpression("MaxLayer", "MinLayer * 4")
+        self.doc.recompute()
+        panel = self.open(self.layers)
+        field = panel.field("MaxLayer")
+        self.assertFalse(field.widget.isEnabled())
+        self.assertIn("MinLayer * 4", field.widget.toolTip())
+        self.assertTrue(panel.field("MinLayer").widget.isEnabled())
+
     def test_context_menu_edits_the_parameters(self):
         menu = QtGui.QMenu()
         self.layers.ViewObject.Proxy.setupContextMenu(self.layers.ViewObject, menu)

@@ -10,8 +10,10 @@ naming the bad parameter, so that a process engineer can try values in turn. OK 
 and closes, unless the object then fails (the message stays in the panel). Cancel puts
 everything back as it was when the panel opened: the edit is one transaction, which Cancel
 aborts, and the slicing or program computed before it is kept in memory, so nothing is computed
-again. After OK the whole edit is one undo step. Long recomputes show the progress dialog, with
-its Cancel, as every recompute here does.
+again. After OK the whole edit is one undo step. Undo while the panel is open takes back what
+was applied (results too) and closes it; another object's edit beginning keeps what was applied,
+as one undo step. Long recomputes show the progress dialog, with its Cancel, as every recompute
+here does.
 
 The fields come from the object (``MultiAxisSlicer.features.parameters``): each feature lists its
 inputs, so a new parameter appears here without a change to this module."""
@@ -29,10 +31,8 @@ _QUANTITY_UNITS = {
     "App::PropertyDistance": "mm",
     "App::PropertyAngle": "deg",
 }
-# The least value a field takes: a PropertyLength refuses a negative value anyway.
-_QUANTITY_MINIMUM = {"App::PropertyLength": 0.0}
-# Fields range over +-this (1 km, 10^6 degrees or counts), or the property's value if it is
-# farther out (which the field must not clip): a spin box is as wide as its range's longest
+# Fields range over +-this (1 km, 10^6 counts; angles over a turn), or the property's value if
+# it is farther out (which the field must not clip): a spin box is as wide as its range's longest
 # number, and wider ones pushed the panel past FreeCAD's task view.
 _RANGE = 1e6
 _FIELD_WIDTH = 70  # pixels, the least a field shrinks to
@@ -91,7 +91,8 @@ def _summary(obj):
 
 
 class _Field:
-    """One property's editor: widget, read() -> value, write(value), same(a, b)."""
+    """One property's editor: widget, load(obj) shows the property's value, read() the value to
+    write, changed() whether the user changed it."""
 
     def __init__(self, obj, prop):
         from PySide import QtGui
@@ -99,65 +100,95 @@ class _Field:
         self.prop = prop
         type_id = obj.getTypeIdOfProperty(prop)
         self.type_id = type_id
-        value = getattr(obj, prop)
-        number = getattr(value, "Value", value)
-        limit = max(_RANGE, abs(number)) if isinstance(number, (int, float)) else _RANGE
         if type_id in _QUANTITY_UNITS:
             self.widget = FreeCADGui.UiLoader().createWidget("Gui::QuantitySpinBox")
             self.widget.setProperty("unit", _QUANTITY_UNITS[type_id])
-            self.widget.setProperty("minimum", _QUANTITY_MINIMUM.get(type_id, -limit))
-            self.widget.setProperty("maximum", limit)
-            self.widget.setProperty("rawValue", value.Value)
-            self.read = lambda: float(self.widget.property("rawValue"))
+            self.shown = lambda: float(self.widget.property("rawValue"))
         elif type_id == "App::PropertyFloat":
             self.widget = QtGui.QDoubleSpinBox()
             self.widget.setDecimals(4)
-            self.widget.setRange(-limit, limit)
-            self.widget.setValue(value)
-            self.read = self.widget.value
+            self.shown = self.widget.value
         elif type_id == "App::PropertyInteger":
             self.widget = QtGui.QSpinBox()
-            self.widget.setRange(-min(int(limit), 2 ** 31 - 1), min(int(limit), 2 ** 31 - 1))
-            self.widget.setValue(value)
-            self.read = self.widget.value
+            self.shown = self.widget.value
         elif type_id == "App::PropertyBool":
             self.widget = QtGui.QCheckBox()
-            self.widget.setChecked(bool(value))
-            self.read = self.widget.isChecked
+            self.shown = self.widget.isChecked
         elif type_id == "App::PropertyEnumeration":
             self.widget = QtGui.QComboBox()
             self.widget.addItems(obj.getEnumerationsOfProperty(prop))
-            self.widget.setCurrentIndex(self.widget.findText(value))
-            self.read = self.widget.currentText
+            self.shown = self.widget.currentText
         elif type_id == "App::PropertyVector":
             self.widget = QtGui.QWidget()
             row = QtGui.QHBoxLayout(self.widget)
             row.setContentsMargins(0, 0, 0, 0)
             self.boxes = []
-            for coordinate in (value.x, value.y, value.z):
+            for _ in range(3):
                 box = QtGui.QDoubleSpinBox()
                 box.setDecimals(4)
-                box.setRange(-max(_RANGE, abs(coordinate)), max(_RANGE, abs(coordinate)))
-                box.setValue(coordinate)
+                box.setMinimumWidth(_FIELD_WIDTH // 2)
                 row.addWidget(box)
                 self.boxes.append(box)
-            self.read = lambda: FreeCAD.Vector(*(b.value() for b in self.boxes))
+            self.shown = lambda: tuple(b.value() for b in self.boxes)
         else:
             raise TypeError("no editor for {} ({})".format(prop, type_id))
-        if type_id == "App::PropertyVector":
-            for box in self.boxes:
-                box.setMinimumWidth(_FIELD_WIDTH // 2)
-        else:
+        if type_id != "App::PropertyVector":
             self.widget.setMinimumWidth(_FIELD_WIDTH)
         self.widget.setObjectName(prop)
         self.widget.setToolTip(obj.getDocumentationOfProperty(prop))
-        self.written = self.read()  # what the field showed when made, or last wrote
+        self.load(obj)
+
+    def load(self, obj):
+        """Shows the property's value now: when the panel opens, and after each Apply (a property
+        may hold other than what was written, as an angle kept within a turn, or an expression
+        may have set it)."""
+        value = getattr(obj, self.prop)
+        self.value = value  # what the property held (a vector's unchanged coordinates stay it)
+        number = getattr(value, "Value", value)
+        if isinstance(number, bool) or not isinstance(number, (int, float)):
+            limit = _RANGE
+        else:
+            limit = max(_RANGE, abs(number))
+        if self.type_id in _QUANTITY_UNITS:
+            low, high = -limit, limit
+            if self.type_id == "App::PropertyLength":
+                low = 0.0  # the property refuses a negative value
+            elif self.type_id == "App::PropertyAngle":
+                # The property keeps its value within a turn (400° would be written as 360°
+                # without a word).
+                low, high = -360.0, 360.0
+            self.widget.setProperty("minimum", low)
+            self.widget.setProperty("maximum", high)
+            self.widget.setProperty("rawValue", number)
+        elif self.type_id == "App::PropertyFloat":
+            self.widget.setRange(-limit, limit)
+            self.widget.setValue(value)
+        elif self.type_id == "App::PropertyInteger":
+            self.widget.setRange(-min(int(limit), 2 ** 31 - 1), min(int(limit), 2 ** 31 - 1))
+            self.widget.setValue(value)
+        elif self.type_id == "App::PropertyBool":
+            self.widget.setChecked(bool(value))
+        elif self.type_id == "App::PropertyEnumeration":
+            self.widget.setCurrentIndex(self.widget.findText(value))
+        else:
+            for box, coordinate in zip(self.boxes, (value.x, value.y, value.z)):
+                box.setRange(-max(_RANGE, abs(coordinate)), max(_RANGE, abs(coordinate)))
+                box.setValue(coordinate)
+        self.written = self.shown()  # what the field showed when loaded, or last wrote
+
+    def read(self):
+        """The value to write: what the field shows; of a vector, the coordinates the user left
+        as they were keep the property's own (not rounded to the field's decimals)."""
+        if self.type_id != "App::PropertyVector":
+            return self.shown()
+        return FreeCAD.Vector(*(old if new == was else new for new, was, old in zip(
+            self.shown(), self.written, (self.value.x, self.value.y, self.value.z))))
 
     def changed(self):
-        """Whether the user changed the field since it was made or last written. Compared with
-        the field itself, not the property: a value finer than the field's decimals (0.123456
-        shown as 0.1235) is never written back rounded."""
-        return self.read() != self.written
+        """Whether the user changed the field since it was loaded. Compared with what the field
+        showed, not with the property: a value finer than the field's decimals (0.123456 shown
+        as 0.1235) is never written back rounded."""
+        return self.shown() != self.written
 
 
 class ParameterPanel:
@@ -203,6 +234,12 @@ class ParameterPanel:
         self.computed = {o.Name for o in [edited] + edited.InListRecursive
                          if features.failure(o) is None}
         self.doc.openTransaction("Edit '{}'".format(edited.Label))
+        # The application's transaction (name, id): Undo or Redo, or another object's edit
+        # beginning (which commits it, as FreeCAD does), can end it before OK or Cancel.
+        self.transaction = FreeCAD.getActiveTransaction()
+        self.applied = False  # whether Apply wrote a value (recorded in the transaction)
+        self.watch = _UndoWatch(self)
+        FreeCAD.addDocumentObserver(self.watch)
 
     def field(self, prop):
         """The editor of `prop` (for scripts and tests)."""
@@ -232,7 +269,7 @@ class ParameterPanel:
             except Exception as error:  # a property's own constraint
                 self.show_result("{}: {}".format(field.prop, error))
                 return False
-            field.written = field.read()
+            self.applied = True
         if changed or features.failure(self.obj) is not None:
             self.doc.recompute([self.obj])
             # A decomposition's Component objects follow its count now, within the edit (the
@@ -243,6 +280,8 @@ class ParameterPanel:
                         len(features.components_of(o)) != o.ComponentCount):
                     features.sync_components(o)
             self.doc.recompute(self.obj.InListRecursive)
+        for field in self.fields:  # as the properties hold them now (expressions, limits)
+            field.load(self.obj)
         self.show_result()
         return features.failure(self.obj) is None
 
@@ -262,8 +301,9 @@ class ParameterPanel:
     def accept(self):
         if not self.apply():
             return False  # the message stays in the panel: fix the value, or Cancel
-        self.doc.commitTransaction()
-        FreeCAD.closeActiveTransaction()
+        if self.ours():
+            self.doc.commitTransaction()
+            FreeCAD.closeActiveTransaction()
         self._close()
         return True
 
@@ -272,32 +312,96 @@ class ParameterPanel:
         self._close()
         return True
 
-    def undo_edit(self):
-        """Cancel's work: aborts the edit's transaction and puts the results back."""
-        import MultiAxisSlicer.features as features
+    def ours(self):
+        """Whether the edit's transaction is still the application's active one (never close
+        another's: aborting it would take back an edit the user began since)."""
+        return self.transaction is not None and FreeCAD.getActiveTransaction() == self.transaction
 
-        global _open_panel
-        _open_panel = None
+    def undo_edit(self):
+        """Cancel's work: aborts the edit's transaction and puts the results back. When
+        something else ended the transaction first, what it recorded is no longer this panel's
+        to undo (see ended)."""
+        self._finish()
+        if not self.ours():
+            if self.applied:
+                FreeCAD.Console.PrintMessage(
+                    "Multi-Axis Slicer: the edit of '{}' had ended already; what was applied "
+                    "stays (Undo takes it back).\n".format(self.obj.Label))
+            return
         self.doc.abortTransaction()
         # With nothing recorded the document had no transaction to abort, and the application's
-        # stayed open: the recompute below would go into it, and become an undo step.
+        # stayed open: the recompute below would go into it, and become an undo step. (The
+        # abort is FreeCAD's, application-wide: it takes back what was changed in another
+        # document meanwhile too.)
         FreeCAD.closeActiveTransaction(True)
+        self._put_back()
+
+    def _put_back(self):
+        """The properties are back as they were at open: so are the results."""
+        import MultiAxisSlicer.features as features
+
         features.restore_results(self.remembered)
-        # Properties are back. The objects that were computed when the panel opened are made so
-        # again, when the abort left one touched, from the results put back, without computing
-        # them anew (all of them: one recomputed touches those made from it); those that were
-        # not stay as they were.
+        # The objects that were computed when the panel opened are made so again, when the abort
+        # left one touched, from the results put back, without computing them anew (all of
+        # them: one recomputed touches those made from it); those that were not stay as they
+        # were.
         objects = [o for o in [self.obj] + self.obj.InListRecursive if o.Name in self.computed]
         if any("Touched" in o.State or not o.isValid() for o in objects):
             self.doc.recompute(objects)
 
-    def _close(self):
+    def ended(self, undone):
+        """Undo or Redo in the document ended the edit (the undo watch): an Undo that took back
+        what was applied puts the results back too; the panel closes either way, its fields no
+        longer what the properties hold."""
+        if _open_panel is not self:
+            return
+        self._finish()
+        if self.ours():  # nothing was recorded: Undo or Redo went to the steps before
+            FreeCAD.closeActiveTransaction(True)
+        if undone and self.applied:
+            self._put_back()
+        FreeCAD.Console.PrintMessage("Multi-Axis Slicer: {} ended the edit of '{}'{}.\n".format(
+            "Undo" if undone else "Redo", self.obj.Label,
+            " and took back what was applied" if undone and self.applied else ""))
+        self._close()
+
+    def _finish(self):
+        """The panel is no longer the open one."""
         global _open_panel
-        _open_panel = None  # so that unsetEdit does not undo it
+        if _open_panel is self:
+            _open_panel = None  # so that unsetEdit does not undo it
+        if self.watch is not None:
+            FreeCAD.removeDocumentObserver(self.watch)
+            self.watch = None
+
+    def _close(self):
+        self._finish()
         gui_doc = FreeCADGui.getDocument(self.doc.Name)
         if gui_doc is not None:
             gui_doc.resetEdit()  # whichever view is active (getInEdit() sees the 3D view only)
         FreeCADGui.Control.closeDialog()
+
+
+class _UndoWatch:
+    """A document observer: Undo or Redo in the edited document while the panel is open ends
+    the edit (FreeCAD commits the open transaction first; an Undo then takes it back). The panel
+    closes once the undo is done."""
+
+    def __init__(self, panel):
+        self.panel = panel
+
+    def slotUndoDocument(self, doc):
+        self._ended(doc, True)
+
+    def slotRedoDocument(self, doc):
+        self._ended(doc, False)
+
+    def _ended(self, doc, undone):
+        from PySide import QtCore
+
+        panel = self.panel
+        if doc.Name == panel.doc.Name and _open_panel is panel:
+            QtCore.QTimer.singleShot(0, lambda: panel.ended(undone))
 
 
 def edited_object(obj):
@@ -314,6 +418,13 @@ def edit(obj):
     With a panel or another task open, says so and leaves it as it is (FreeCAD's setEdit would
     end the open edit first, which undoes an edit applied and not yet confirmed)."""
     panel = _open_panel
+    if panel is not None and not FreeCADGui.Control.activeDialog():
+        # A script closed the task dialog without OK or Cancel: the edit ends as by Cancel.
+        close_panel()
+        gui_doc = FreeCADGui.getDocument(panel.doc.Name)
+        if gui_doc is not None:
+            gui_doc.resetEdit()
+        panel = None
     if panel is not None and panel.obj is edited_object(obj):
         return True  # its panel is open already
     if panel is not None or FreeCADGui.Control.activeDialog():
@@ -349,9 +460,11 @@ def open_panel(obj):
 
 def close_panel():
     """The edit ends (the view provider's unsetEdit). When neither OK nor Cancel ended it (the
-    document closes, a script resets the edit or edits another object), the edit is undone as by
-    Cancel, and the panel closed: an open transaction left behind would take in whatever is done
-    next. After OK or Cancel there is nothing left to do."""
+    document closes, a script resets the edit), the edit is undone as by Cancel, and the panel
+    closed: an open transaction left behind would take in whatever is done next. When another
+    object's edit began first, FreeCAD has committed the edit's transaction: what was applied
+    stays, one undo step, and the other edit's transaction is left to it. After OK or Cancel
+    there is nothing left to do."""
     panel = _open_panel
     if panel is None:
         return

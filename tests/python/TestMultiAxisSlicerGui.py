@@ -1686,6 +1686,94 @@ class TestParameterPanel(unittest.TestCase):
         self.press("ok")
         self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
 
+    def test_undo_with_the_panel_open_takes_back_what_was_applied_and_closes_it(self):
+        before = (self.layers.MaxLayer.Value, self.layers.LayerCount, self.toolpath.PathCount)
+        result = self.features.slice_result(self.layers)
+        undo_steps = self.doc.UndoCount
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", before[0] / 2)
+        self.press("apply")
+        self.assertGreater(self.layers.LayerCount, before[1])
+        FreeCADGui.runCommand("Std_Undo")  # Ctrl+Z, the panel open
+        process_events()
+        # The fields would no longer show what the properties hold, and nothing would record
+        # what Apply or OK did next: the panel is closed.
+        self.assertIsNone(self.panels.active_panel())
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+        self.assertIsNone(self.gui_doc.getInEdit())
+        self.assertIsNone(FreeCAD.getActiveTransaction())
+        self.assertEqual((self.layers.MaxLayer.Value, self.layers.LayerCount,
+                          self.toolpath.PathCount), before)
+        self.assertIs(self.features.slice_result(self.layers), result)  # not computed again
+        for obj in (self.layers, self.toolpath):
+            self.assertEqual(obj.State, ["Up-to-date"], obj.Label)
+        self.assertEqual(self.doc.UndoCount, undo_steps)
+        self.assertEqual(self.doc.RedoNames[0], "Edit 'Layers'")
+
+    def test_another_edit_beginning_keeps_what_was_applied_and_its_own_transaction(self):
+        max_layer = self.layers.MaxLayer.Value
+        undo_steps = self.doc.UndoCount
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        # As a double-click on the part in the tree does: FreeCAD opens the part's edit
+        # transaction (which commits the panel's), then ends the panel's edit.
+        FreeCAD.setActiveTransaction("Edit L")
+        self.layers.ViewObject.Proxy.unsetEdit(self.layers.ViewObject, 0)
+        process_events()
+        self.assertIsNone(self.panels.active_panel())
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+        self.assertEqual(FreeCAD.getActiveTransaction()[0], "Edit L")  # not aborted
+        self.part.Label = "Moved L"
+        FreeCAD.closeActiveTransaction()
+        self.gui_doc.resetEdit()
+        self.assertEqual(list(self.doc.UndoNames[:2]), ["Edit L", "Edit 'Layers'"])
+        self.assertEqual(self.doc.UndoCount, undo_steps + 2)
+        self.doc.undo()
+        self.doc.undo()
+        self.assertEqual((self.part.Label, self.layers.MaxLayer.Value), ("L", max_layer))
+
+    def test_a_dialog_closed_by_a_script_is_cancelled_at_the_next_edit(self):
+        max_layer = self.layers.MaxLayer.Value
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        FreeCADGui.Control.closeDialog()  # neither OK nor Cancel
+        process_events()
+        panel = self.open(self.decomposition)  # no task is open: no "finish it first"
+        self.assertIs(panel.obj, self.decomposition)
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer)
+        self.assertIsNone(self.features.failure(self.layers))
+        self.press("cancel")
+        self.assertFalse(self.doc.HasPendingTransaction)
+
+    def test_fields_show_what_the_properties_hold_after_apply(self):
+        self.layers.setExpression("MaxLayer", "MinLayer * 4")
+        self.doc.recompute()
+        panel = self.open(self.layers)
+        self.set_field(panel, "MinLayer", self.layers.MinLayer.Value / 2)
+        self.press("apply")
+        self.assertEqual(panel.field("MaxLayer").read(), self.layers.MaxLayer.Value)
+        self.assertFalse([f.prop for f in panel.fields if f.changed()])  # none written again
+        # An angle property keeps its value within a turn: the field does too, rather than
+        # showing 400 degrees for the 360 the property would hold.
+        field = panel.field("RasterAngle")
+        self.assertEqual((field.widget.property("minimum"), field.widget.property("maximum")),
+                         (-360.0, 360.0))
+        self.set_field(panel, "RasterAngle", 400.0)
+        self.press("apply")
+        self.assertEqual(field.read(), self.layers.RasterAngle.Value)
+
+    def test_a_vector_keeps_the_coordinates_left_alone_as_they_were(self):
+        sections = mas.make_sections(self.part)
+        sections.Normal = FreeCAD.Vector(0.123456, 0.0, 1.0)
+        self.doc.recompute()
+        panel = self.open(sections)
+        panel.field("Normal").boxes[1].setValue(0.5)
+        self.press("ok")
+        self.assertEqual(tuple(sections.Normal), (0.123456, 0.5, 1.0))
+
     def test_cancel_leaves_an_object_changed_before_as_it_was(self):
         # Changed in the property editor, not recomputed: Cancel neither computes nor records it.
         self.layers.MaxLayer = self.layers.MaxLayer.Value / 2

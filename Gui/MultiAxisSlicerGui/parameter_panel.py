@@ -58,6 +58,13 @@ def _label(prop, group=""):
     return " ".join([words[0]] + [w.lower() for w in words[1:]]) if words else prop
 
 
+def _expressions_of(expressions, prop):
+    """The expressions (an object's ExpressionEngine) that set `prop` or a part of it: "MaxLayer"
+    for the whole, ".Normal.x" for a vector's coordinate."""
+    return [("{} = {}".format(path.lstrip("."), text) if path.lstrip(".") != prop else text)
+            for path, text in expressions if path.lstrip(".").split(".")[0] == prop]
+
+
 def _summary(obj):
     """The figures of a computed `obj`, in a line or two of words."""
     kind = obj.Proxy.Type
@@ -211,7 +218,7 @@ class ParameterPanel:
         self.fields = []
         from PySide import QtGui
 
-        expressions = dict(edited.ExpressionEngine)
+        expressions = edited.ExpressionEngine
         for group, props in features.parameters(edited):
             box = QtGui.QGroupBox(group)
             layout = QtGui.QFormLayout(box)
@@ -220,10 +227,11 @@ class ParameterPanel:
                 if edited.getTypeIdOfProperty(prop) not in _EDITABLE_TYPES:
                     continue
                 field = _Field(edited, prop)
-                if prop in expressions:  # the expression sets it at every recompute
+                bound = _expressions_of(expressions, prop)
+                if bound:  # the expression sets it (or a coordinate of it) at every recompute
                     field.widget.setEnabled(False)
                     field.widget.setToolTip("Set by the expression {} (the property editor "
-                                            "edits it)".format(expressions[prop]))
+                                            "edits it)".format(", ".join(bound)))
                 layout.addRow(_label(prop, group), field.widget)
                 self.fields.append(field)
             self.form.groups.layout().addWidget(box)

@@ -1809,6 +1809,14 @@ class TestParameterPanel(unittest.TestCase):
         self.assertFalse(field.widget.isEnabled())
         self.assertIn("MinLayer * 4", field.widget.toolTip())
         self.assertTrue(panel.field("MinLayer").widget.isEnabled())
+        self.press("cancel")
+        sections = mas.make_sections(self.part)
+        sections.setExpression("Normal.x", "0.5")  # one coordinate
+        self.doc.recompute()
+        panel = self.open(sections)
+        self.assertFalse(panel.field("Normal").widget.isEnabled())
+        self.assertIn("Normal.x = 0.5", panel.field("Normal").widget.toolTip())
+        self.assertTrue(panel.field("Step").widget.isEnabled())
 
     def test_context_menu_edits_the_parameters(self):
         menu = QtGui.QMenu()

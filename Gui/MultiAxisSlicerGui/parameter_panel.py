@@ -35,7 +35,17 @@ _QUANTITY_UNITS = {
 # it is farther out (which the field must not clip): a spin box is as wide as its range's longest
 # number, and wider ones pushed the panel past FreeCAD's task view.
 _RANGE = 1e6
-_FIELD_WIDTH = 70  # pixels, the least a field shrinks to
+# The least a field shrinks to: room for a value as wide as these (its text, not its range's)
+# and the spin box's arrows and frame; a row whose label leaves less goes under its label.
+_FIELD_SAMPLES = {
+    "App::PropertyLength": "-0000.00 mm",
+    "App::PropertyDistance": "-0000.00 mm",
+    "App::PropertyAngle": "-000.00 °",
+    "App::PropertyFloat": "-000.0000",
+    "App::PropertyInteger": "-000000",
+    "App::PropertyVector": "-000.0000",  # each coordinate's box
+}
+_SPIN_BOX_EXTRA = 32  # pixels: arrows, frame and margins
 # The property types a field edits; any other stays the property editor's.
 _EDITABLE_TYPES = set(_QUANTITY_UNITS) | {
     "App::PropertyFloat", "App::PropertyInteger", "App::PropertyBool",
@@ -97,6 +107,11 @@ def _summary(obj):
     return "Computed."
 
 
+def _text_width(box, sample):
+    """The width a spin box needs to show `sample` whole."""
+    return box.fontMetrics().horizontalAdvance(sample) + _SPIN_BOX_EXTRA
+
+
 class _Field:
     """One property's editor: widget, load(obj) shows the property's value, read() the value to
     write, changed() whether the user changed it."""
@@ -127,20 +142,21 @@ class _Field:
             self.shown = self.widget.currentText
         elif type_id == "App::PropertyVector":
             self.widget = QtGui.QWidget()
-            row = QtGui.QHBoxLayout(self.widget)
-            row.setContentsMargins(0, 0, 0, 0)
+            column = QtGui.QVBoxLayout(self.widget)  # three in a row would not fit narrow
+            column.setContentsMargins(0, 0, 0, 0)
             self.boxes = []
-            for _ in range(3):
+            for axis in "xyz":
                 box = QtGui.QDoubleSpinBox()
                 box.setDecimals(4)
-                box.setMinimumWidth(_FIELD_WIDTH // 2)
-                row.addWidget(box)
+                box.setPrefix(axis + "  ")
+                box.setMinimumWidth(_text_width(box, axis + "  " + _FIELD_SAMPLES[type_id]))
+                column.addWidget(box)
                 self.boxes.append(box)
             self.shown = lambda: tuple(b.value() for b in self.boxes)
         else:
             raise TypeError("no editor for {} ({})".format(prop, type_id))
-        if type_id != "App::PropertyVector":
-            self.widget.setMinimumWidth(_FIELD_WIDTH)
+        if type_id in _FIELD_SAMPLES and type_id != "App::PropertyVector":
+            self.widget.setMinimumWidth(_text_width(self.widget, _FIELD_SAMPLES[type_id]))
         self.widget.setObjectName(prop)
         self.widget.setToolTip(obj.getDocumentationOfProperty(prop))
         self.load(obj)
@@ -235,6 +251,7 @@ class ParameterPanel:
                 layout.addRow(_label(prop, group), field.widget)
                 self.fields.append(field)
             self.form.groups.layout().addWidget(box)
+        self.form.apply.clicked.connect(self.apply)
         self.show_result()
         # Everything the edit changes is one transaction: OK commits it (one undo step), Cancel
         # aborts it; the results computed before it are put back with the properties.
@@ -293,18 +310,13 @@ class ParameterPanel:
         self.show_result()
         return features.failure(self.obj) is None
 
-    # The task dialog's interface (FreeCADGui.Control).
+    # The task dialog's interface (FreeCADGui.Control). Apply is the panel's own button, with the
+    # result it shows: with it among OK and Cancel, FreeCAD's button row is wider than a narrow
+    # combo view, which then hides the fields' right-hand side.
     def getStandardButtons(self):
         from PySide import QtGui
 
-        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Apply |
-                   QtGui.QDialogButtonBox.Cancel)
-
-    def clicked(self, button):
-        from PySide import QtGui
-
-        if button == QtGui.QDialogButtonBox.Apply:
-            self.apply()
+        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
 
     def accept(self):
         if not self.apply():

@@ -1414,12 +1414,17 @@ class TestMachineProgramCommands(unittest.TestCase):
 
 
 def task_buttons():
-    """The task view's OK, Apply and Cancel buttons of the dialog shown now: {name: button}."""
-    names = {QtGui.QDialogButtonBox.Ok: "ok", QtGui.QDialogButtonBox.Apply: "apply",
-             QtGui.QDialogButtonBox.Cancel: "cancel"}
+    """The task view's OK and Cancel buttons of the dialog shown now, and the parameter panel's
+    own Apply: {name: button}."""
+    import MultiAxisSlicerGui.parameter_panel as parameter_panel
+
+    names = {QtGui.QDialogButtonBox.Ok: "ok", QtGui.QDialogButtonBox.Cancel: "cancel"}
     for box in FreeCADGui.getMainWindow().findChildren(QtGui.QDialogButtonBox):
         buttons = {names[b]: box.button(b) for b in names if box.button(b) is not None}
-        if len(buttons) == 3 and all(b.isVisible() for b in buttons.values()):
+        if len(buttons) == 2 and all(b.isVisible() for b in buttons.values()):
+            panel = parameter_panel.active_panel()
+            if panel is not None and panel.form.apply.isVisible():
+                buttons["apply"] = panel.form.apply
             return buttons
     return {}
 
@@ -1685,6 +1690,31 @@ class TestParameterPanel(unittest.TestCase):
         self.assertIn("'Decomposition'", boxes[0].text())
         self.press("ok")
         self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+
+    def test_every_field_shows_whole_in_a_narrow_combo_view(self):
+        main = FreeCADGui.getMainWindow()
+        dock = next(d for d in main.findChildren(QtGui.QDockWidget)
+                    if d.objectName() == "Combo View")
+        main.resizeDocks([dock], [250], QtCore.Qt.Horizontal)
+        process_events()
+        sections = mas.make_sections(self.part)  # a vector field too
+        self.doc.recompute()
+        for obj in (self.layers, sections):
+            panel = self.open(obj)
+            process_events()
+            widgets = [panel.form.apply] + list(task_buttons().values())
+            for field in panel.fields:
+                widgets += field.boxes if hasattr(field, "boxes") else [field.widget]
+                for text in field.widget.findChildren(QtGui.QLineEdit):  # its value fits
+                    self.assertLessEqual(text.fontMetrics().horizontalAdvance(text.text()),
+                                         text.width(), field.prop)
+            view = next(a for a in main.findChildren(QtGui.QScrollArea)
+                        if a.isVisible() and a.isAncestorOf(panel.form)).viewport()
+            edge = view.mapToGlobal(QtCore.QPoint(view.width(), 0)).x()
+            for widget in widgets:  # not cut off by the task view's right-hand edge
+                self.assertLessEqual(widget.mapToGlobal(QtCore.QPoint(widget.width(), 0)).x(),
+                                     edge, widget.objectName() or widget.text())
+            self.press("cancel")
 
     def test_undo_with_the_panel_open_takes_back_what_was_applied_and_closes_it(self):
         before = (self.layers.MaxLayer.Value, self.layers.LayerCount, self.toolpath.PathCount)

@@ -354,6 +354,20 @@ class ParameterPanel:
         # abort is FreeCAD's, application-wide: it takes back what was changed in another
         # document meanwhile too.)
         FreeCAD.closeActiveTransaction(True)
+        if self.ours():
+            # FreeCAD takes no abort while it undoes (an Undo that removes the edited object
+            # ends the edit): the transaction is closed once the Undo is done, and what the Undo
+            # put back stays as it is.
+            from PySide import QtCore
+
+            transaction = self.transaction
+
+            def drop():  # not a bound method: its panel would not be kept alive for it
+                if FreeCAD.getActiveTransaction() == transaction:
+                    FreeCAD.closeActiveTransaction(True)
+
+            QtCore.QTimer.singleShot(0, drop)
+            return
         self._put_back()
 
     def _put_back(self):

@@ -1740,6 +1740,26 @@ class TestParameterPanel(unittest.TestCase):
         self.assertEqual(self.doc.UndoCount, undo_steps)
         self.assertEqual(self.doc.RedoNames[0], "Edit 'Layers'")
 
+    def test_an_undo_that_removes_the_edited_object_leaves_no_transaction_open(self):
+        self.doc.openTransaction("Make program")
+        program = mas.make_machine_program(self.layers)
+        self.doc.commitTransaction()
+        self.doc.recompute()
+        name = program.Name
+        self.open(program)
+        FreeCADGui.runCommand("Std_Undo")  # takes the program away, its panel open
+        process_events()
+        self.assertIsNone(self.doc.getObject(name))
+        self.assertIsNone(self.panels.active_panel())
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+        # Closed once the Undo is done (a timer): nothing done later goes into it.
+        deadline = time.monotonic() + 5.0
+        while FreeCAD.getActiveTransaction() is not None and time.monotonic() < deadline:
+            process_events()
+            time.sleep(0.01)
+        self.assertIsNone(FreeCAD.getActiveTransaction())
+        self.assertEqual(list(self.doc.RedoNames), ["Make program"])
+
     def test_another_edit_beginning_keeps_what_was_applied_and_its_own_transaction(self):
         max_layer = self.layers.MaxLayer.Value
         undo_steps = self.doc.UndoCount

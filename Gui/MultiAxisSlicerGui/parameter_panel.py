@@ -355,16 +355,17 @@ class ParameterPanel:
         # document meanwhile too.)
         FreeCAD.closeActiveTransaction(True)
         if self.ours():
-            # FreeCAD takes no abort while it undoes (an Undo that removes the edited object
-            # ends the edit): the transaction is closed once the Undo is done, and what the Undo
-            # put back stays as it is.
+            # FreeCAD takes no abort while it removes the edited object (an Undo of its
+            # creation, a script's removeObject end the edit): the transaction is closed once
+            # that is done, committed: what it holds (a removal, what was applied) stays, one
+            # undo step; after an Undo it holds nothing.
             from PySide import QtCore
 
             transaction = self.transaction
 
             def drop():  # not a bound method: its panel would not be kept alive for it
                 if FreeCAD.getActiveTransaction() == transaction:
-                    FreeCAD.closeActiveTransaction(True)
+                    FreeCAD.closeActiveTransaction()
 
             QtCore.QTimer.singleShot(0, drop)
             return
@@ -497,8 +498,10 @@ def close_panel():
     document closes, a script resets the edit), the edit is undone as by Cancel, and the panel
     closed: an open transaction left behind would take in whatever is done next. When another
     object's edit began first, FreeCAD has committed the edit's transaction: what was applied
-    stays, one undo step, and the other edit's transaction is left to it. After OK or Cancel
-    there is nothing left to do."""
+    stays, one undo step, and the other edit's transaction is left to it. When the edited object
+    is being removed (a script, an Undo of its creation), FreeCAD takes no abort: the removal
+    and what was applied stay, one undo step (undo_edit). After OK or Cancel there is nothing
+    left to do."""
     panel = _open_panel
     if panel is None:
         return

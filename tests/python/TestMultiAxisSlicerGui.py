@@ -1413,6 +1413,17 @@ class TestMachineProgramCommands(unittest.TestCase):
         self.assertEqual(os.listdir(self.folder), [])
 
 
+def wait_for_no_transaction(seconds=5.0):
+    """Processes events until no transaction is open, or the time is up (a parameter panel
+    closes its transaction by a timer once FreeCAD is done removing the edited object); returns
+    the one still open, if any."""
+    deadline = time.monotonic() + seconds
+    while FreeCAD.getActiveTransaction() is not None and time.monotonic() < deadline:
+        process_events()
+        time.sleep(0.01)
+    return FreeCAD.getActiveTransaction()
+
+
 def task_buttons():
     """The task view's OK and Cancel buttons of the dialog shown now, and the parameter panel's
     own Apply: {name: button}."""
@@ -1752,13 +1763,24 @@ class TestParameterPanel(unittest.TestCase):
         self.assertIsNone(self.doc.getObject(name))
         self.assertIsNone(self.panels.active_panel())
         self.assertFalse(FreeCADGui.Control.activeDialog())
-        # Closed once the Undo is done (a timer): nothing done later goes into it.
-        deadline = time.monotonic() + 5.0
-        while FreeCAD.getActiveTransaction() is not None and time.monotonic() < deadline:
-            process_events()
-            time.sleep(0.01)
-        self.assertIsNone(FreeCAD.getActiveTransaction())
+        self.assertIsNone(wait_for_no_transaction())  # nothing done later goes into it
         self.assertEqual(list(self.doc.RedoNames), ["Make program"])
+
+    def test_a_script_removing_the_edited_object_keeps_the_removal(self):
+        max_layer = self.layers.MaxLayer.Value
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        self.doc.removeObject(self.toolpath.Name)
+        self.doc.removeObject(self.layers.Name)  # ends the edit
+        process_events()
+        self.assertIsNone(self.panels.active_panel())
+        self.assertIsNone(wait_for_no_transaction())
+        self.assertEqual((self.doc.getObject("Layers"), self.doc.getObject("Toolpath")),
+                         (None, None))  # not brought back by an abort
+        self.assertEqual(self.doc.UndoNames[0], "Edit 'Layers'")
+        self.doc.undo()
+        self.assertEqual(self.doc.getObject("Layers").MaxLayer.Value, max_layer)
 
     def test_another_edit_beginning_keeps_what_was_applied_and_its_own_transaction(self):
         max_layer = self.layers.MaxLayer.Value

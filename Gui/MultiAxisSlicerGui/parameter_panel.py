@@ -11,9 +11,10 @@ and closes, unless the object then fails (the message stays in the panel). Cance
 everything back as it was when the panel opened: the edit is one transaction, which Cancel
 aborts, and the slicing or program computed before it is kept in memory, so nothing is computed
 again. After OK the whole edit is one undo step. Undo while the panel is open takes back what
-was applied (results too) and closes it; another object's edit beginning keeps what was applied,
-as one undo step. Long recomputes show the progress dialog, with its Cancel, as every recompute
-here does.
+was applied (results too) and closes it. An edit or a command that opens its own undo step
+meanwhile (a part's Transform, a toolbar command) keeps what was applied, one undo step of its
+own; an edit that ends this one without (a sketch's) undoes it, as Cancel does. Long recomputes
+show the progress dialog, with its Cancel, as every recompute here does.
 
 The fields come from the object (``MultiAxisSlicer.features.parameters``): each feature lists its
 inputs, so a new parameter appears here without a change to this module."""
@@ -253,18 +254,25 @@ class ParameterPanel:
             self.form.groups.layout().addWidget(box)
         self.form.apply.clicked.connect(self.apply)
         self.show_result()
-        # Everything the edit changes is one transaction: OK commits it (one undo step), Cancel
-        # aborts it; the results computed before it are put back with the properties.
-        self.remembered = features.remembered_results([edited] + edited.InListRecursive)
-        self.computed = {o.Name for o in [edited] + edited.InListRecursive
-                         if features.failure(o) is None}
-        self.doc.openTransaction("Edit '{}'".format(edited.Label))
-        # The application's transaction (name, id): Undo or Redo, or another object's edit
-        # beginning (which commits it, as FreeCAD does), can end it before OK or Cancel.
-        self.transaction = FreeCAD.getActiveTransaction()
-        self.applied = False  # whether Apply wrote a value (recorded in the transaction)
+        self._begin()
         self.watch = _UndoWatch(self)
         FreeCAD.addDocumentObserver(self.watch)
+
+    def _begin(self):
+        """Opens the edit's transaction. Everything the edit changes is one transaction: OK
+        commits it (one undo step), Cancel aborts it; the results computed before it are put
+        back with the properties."""
+        import MultiAxisSlicer.features as features
+
+        objects = [self.obj] + self.obj.InListRecursive
+        self.remembered = features.remembered_results(objects)
+        self.computed = {o.Name for o in objects if features.failure(o) is None}
+        self.opened = {f.prop: getattr(self.obj, f.prop) for f in self.fields}
+        self.doc.openTransaction("Edit '{}'".format(self.obj.Label))
+        # The application's transaction (name, id): Undo or Redo, another object's edit or a
+        # command beginning (which commits it, as FreeCAD does) can end it before OK or Cancel.
+        self.transaction = FreeCAD.getActiveTransaction()
+        self.applied = False  # whether Apply wrote a value (recorded in the transaction)
 
     def field(self, prop):
         """The editor of `prop` (for scripts and tests)."""
@@ -287,6 +295,14 @@ class ParameterPanel:
         whether it is computed (False too when a property refused a value: shown in the panel)."""
         import MultiAxisSlicer.features as features
 
+        if not self.ours():
+            # A command run with the panel open committed the edit's transaction: what was
+            # applied before stays, its own undo step; from here the edit is a new one.
+            FreeCAD.Console.PrintMessage(
+                "Multi-Axis Slicer: what was applied to '{}' before was committed by another "
+                "command (Undo takes it back); Cancel now takes back what is applied from "
+                "here.\n".format(self.obj.Label))
+            self._begin()
         changed = [f for f in self.fields if f.changed()]
         for field in changed:
             try:
@@ -393,11 +409,16 @@ class ParameterPanel:
         self._finish()
         if self.ours():  # nothing was recorded: Undo or Redo went to the steps before
             FreeCAD.closeActiveTransaction(True)
-        if undone and self.applied:
+        try:  # the Undo took back what was applied (not a later step, then undone)
+            taken = undone and self.applied and all(
+                getattr(self.obj, prop) == value for prop, value in self.opened.items())
+        except Exception:  # the object is gone
+            taken = False
+        if taken:
             self._put_back()
         FreeCAD.Console.PrintMessage("Multi-Axis Slicer: {} ended the edit of '{}'{}.\n".format(
             "Undo" if undone else "Redo", self.obj.Label,
-            " and took back what was applied" if undone and self.applied else ""))
+            " and took back what was applied" if taken else ""))
         self._close()
 
     def _finish(self):
@@ -411,6 +432,8 @@ class ParameterPanel:
 
     def _close(self):
         self._finish()
+        if self.form is None and FreeCADGui.Control.activeDialog():
+            return  # a script closed this panel's dialog: the one shown now is another's
         gui_doc = FreeCADGui.getDocument(self.doc.Name)
         if gui_doc is not None:
             gui_doc.resetEdit()  # whichever view is active (getInEdit() sees the 3D view only)
@@ -453,11 +476,12 @@ def edit(obj):
     With a panel or another task open, says so and leaves it as it is (FreeCAD's setEdit would
     end the open edit first, which undoes an edit applied and not yet confirmed)."""
     panel = _open_panel
-    if panel is not None and not FreeCADGui.Control.activeDialog():
-        # A script closed the task dialog without OK or Cancel: the edit ends as by Cancel.
+    if panel is not None and (panel.form is None or not FreeCADGui.Control.activeDialog()):
+        # A script closed the task dialog without OK or Cancel (FreeCAD sets the form of a
+        # dialog it deleted to None): the edit ends as by Cancel.
         close_panel()
         gui_doc = FreeCADGui.getDocument(panel.doc.Name)
-        if gui_doc is not None:
+        if gui_doc is not None and not FreeCADGui.Control.activeDialog():
             gui_doc.resetEdit()
         panel = None
     if panel is not None and panel.obj is edited_object(obj):
@@ -495,9 +519,10 @@ def open_panel(obj):
 
 def close_panel():
     """The edit ends (the view provider's unsetEdit). When neither OK nor Cancel ended it (the
-    document closes, a script resets the edit), the edit is undone as by Cancel, and the panel
-    closed: an open transaction left behind would take in whatever is done next. When another
-    object's edit began first, FreeCAD has committed the edit's transaction: what was applied
+    document closes, a script resets the edit, another object's edit begins in it, as a
+    sketch's), the edit is undone as by Cancel, and the panel closed: an open transaction left
+    behind would take in whatever is done next. When another object's edit opened its own
+    transaction first (a part's Transform), FreeCAD has committed the edit's: what was applied
     stays, one undo step, and the other edit's transaction is left to it. When the edited object
     is being removed (a script, an Undo of its creation), FreeCAD takes no abort: the removal
     and what was applied stay, one undo step (undo_edit). After OK or Cancel there is nothing
@@ -509,4 +534,5 @@ def close_panel():
         panel.undo_edit()
     except Exception as error:  # the document is going away
         FreeCAD.Console.PrintLog("Multi-Axis Slicer: edit left: {}\n".format(error))
-    FreeCADGui.Control.closeDialog()
+    if panel.form is not None:  # else a script closed it, and the dialog shown is another's
+        FreeCADGui.Control.closeDialog()

@@ -1806,6 +1806,79 @@ class TestParameterPanel(unittest.TestCase):
         self.doc.undo()
         self.assertEqual((self.part.Label, self.layers.MaxLayer.Value), ("L", max_layer))
 
+    def test_a_command_run_with_the_panel_open_keeps_what_was_applied_before_it(self):
+        import PartGui  # noqa: F401 (Part_Box)
+
+        max_layer = self.layers.MaxLayer.Value
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        applied = self.features.slice_result(self.layers)
+        FreeCADGui.runCommand("Part_Box")  # its undo step commits the panel's edit
+        process_events()
+        self.assertIs(self.panels.active_panel(), panel)
+        self.set_field(panel, "MaxLayer", max_layer / 4)
+        self.press("apply")  # recorded: a new edit
+        self.press("cancel")
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+        self.assertIs(self.features.slice_result(self.layers), applied)
+        self.assertIsNone(FreeCAD.getActiveTransaction())
+        self.assertEqual(self.doc.UndoNames[1], "Edit 'Layers'")  # under the box's
+        self.doc.undo()
+        self.doc.undo()
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer)
+        self.assertIsNone(self.doc.getObject("Box"))
+
+    def test_undo_of_a_later_step_keeps_what_was_applied_and_its_results(self):
+        import PartGui  # noqa: F401 (Part_Box)
+
+        max_layer = self.layers.MaxLayer.Value
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        applied = self.features.slice_result(self.layers)
+        FreeCADGui.runCommand("Part_Box")
+        process_events()
+        FreeCADGui.runCommand("Std_Undo")  # takes the box back, not the edit
+        process_events()
+        self.assertIsNone(self.panels.active_panel())
+        self.assertIsNone(self.doc.getObject("Box"))
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+        self.assertIs(self.features.slice_result(self.layers), applied)  # not the old one
+
+    def test_a_panel_closed_by_a_script_leaves_the_next_task_alone(self):
+        self.doc.openTransaction("Rename")
+        self.part.Label = "Renamed"
+        self.doc.commitTransaction()
+        self.open(self.layers)
+        FreeCADGui.Control.closeDialog()  # neither OK nor Cancel
+        process_events()
+
+        class OtherTask:  # another add-on's
+            def __init__(self):
+                self.form = QtGui.QLabel("another task")
+                self.rejected = False
+
+            def reject(self):
+                self.rejected = True
+                FreeCADGui.Control.closeDialog()
+                return True
+
+        other = OtherTask()
+        FreeCADGui.Control.showDialog(other)
+        process_events()
+        FreeCADGui.runCommand("Std_Undo")  # would end the closed panel's edit
+        process_events()
+        self.assertTrue(FreeCADGui.Control.activeDialog())  # the other task stays
+        self.assertEqual(self.part.Label, "L")
+        self.assertTrue(self.decomposition.ViewObject.Proxy.doubleClicked(
+            self.decomposition.ViewObject))  # says to finish the other task first
+        process_events()
+        self.assertTrue(FreeCADGui.Control.activeDialog())
+        self.assertIsNone(self.panels.active_panel())
+        self.press("cancel")
+        self.assertTrue(other.rejected)
+
     def test_a_dialog_closed_by_a_script_is_cancelled_at_the_next_edit(self):
         max_layer = self.layers.MaxLayer.Value
         panel = self.open(self.layers)

@@ -1806,6 +1806,39 @@ class TestParameterPanel(unittest.TestCase):
         self.doc.undo()
         self.assertEqual((self.part.Label, self.layers.MaxLayer.Value), ("L", max_layer))
 
+    def test_a_part_edit_keeps_what_was_applied_and_a_sketch_edit_undoes_it(self):
+        max_layer = self.layers.MaxLayer.Value
+        sketch = self.doc.addObject("Sketcher::SketchObject", "Sketch")
+        self.doc.recompute()
+
+        def end_other_edit():
+            self.gui_doc.resetEdit()
+            process_events()
+            if FreeCADGui.Control.activeDialog():
+                FreeCADGui.Control.closeDialog()
+            process_events()
+
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 2)
+        self.press("apply")
+        # The part's placement edit opens its own undo step first: the panel's is committed.
+        self.assertTrue(self.part.ViewObject.doubleClicked())
+        process_events()
+        self.assertIsNone(self.panels.active_panel())
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+        self.assertEqual(self.doc.UndoNames[0], "Edit 'Layers'")
+        end_other_edit()
+        panel = self.open(self.layers)
+        self.set_field(panel, "MaxLayer", max_layer / 4)
+        self.press("apply")
+        # A sketch's edit joins the panel's transaction, and ends the panel's edit in it: undone.
+        self.assertTrue(sketch.ViewObject.doubleClicked())
+        process_events()
+        self.assertIsNone(self.panels.active_panel())
+        self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
+        end_other_edit()
+        self.assertIsNone(FreeCAD.getActiveTransaction())
+
     def test_a_command_run_with_the_panel_open_keeps_what_was_applied_before_it(self):
         import PartGui  # noqa: F401 (Part_Box)
 

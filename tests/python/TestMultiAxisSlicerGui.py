@@ -1479,6 +1479,13 @@ class TestParameterPanel(unittest.TestCase):
         buttons[name].click()
         process_events()
 
+    def applied(self, obj, prop, value):
+        """Opens the panel of `obj`, sets the field of `prop` to `value` and presses Apply."""
+        panel = self.open(obj)
+        self.set_field(panel, prop, value)
+        self.press("apply")
+        return panel
+
     def set_field(self, panel, prop, value):
         widget = panel.field(prop).widget
         if isinstance(widget, QtGui.QAbstractSpinBox) and not isinstance(
@@ -1664,9 +1671,7 @@ class TestParameterPanel(unittest.TestCase):
     def test_an_edit_ended_otherwise_is_undone(self):
         max_layer = self.layers.MaxLayer.Value
         undo_steps = self.doc.UndoCount
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        panel = self.applied(self.layers, "MaxLayer", max_layer / 2)
         self.gui_doc.resetEdit()  # as a script, or the document closing, ends it
         process_events()
         self.assertIsNone(self.panels.active_panel())
@@ -1683,9 +1688,7 @@ class TestParameterPanel(unittest.TestCase):
 
     def test_a_double_click_elsewhere_keeps_the_edit_open(self):
         max_layer = self.layers.MaxLayer.Value
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        panel = self.applied(self.layers, "MaxLayer", max_layer / 2)
         # FreeCAD's setEdit would end the open edit first, undoing what was applied.
         self.assertTrue(self.toolpath.ViewObject.Proxy.doubleClicked(self.toolpath.ViewObject))
         self.assertTrue(self.decomposition.ViewObject.Proxy.doubleClicked(
@@ -1731,9 +1734,7 @@ class TestParameterPanel(unittest.TestCase):
         before = (self.layers.MaxLayer.Value, self.layers.LayerCount, self.toolpath.PathCount)
         result = self.features.slice_result(self.layers)
         undo_steps = self.doc.UndoCount
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", before[0] / 2)
-        self.press("apply")
+        panel = self.applied(self.layers, "MaxLayer", before[0] / 2)
         self.assertGreater(self.layers.LayerCount, before[1])
         FreeCADGui.runCommand("Std_Undo")  # Ctrl+Z, the panel open
         process_events()
@@ -1768,9 +1769,7 @@ class TestParameterPanel(unittest.TestCase):
 
     def test_a_script_removing_the_edited_object_keeps_the_removal(self):
         max_layer = self.layers.MaxLayer.Value
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        self.applied(self.layers, "MaxLayer", max_layer / 2)
         self.doc.removeObject(self.toolpath.Name)
         self.doc.removeObject(self.layers.Name)  # ends the edit
         process_events()
@@ -1785,9 +1784,7 @@ class TestParameterPanel(unittest.TestCase):
     def test_another_edit_beginning_keeps_what_was_applied_and_its_own_transaction(self):
         max_layer = self.layers.MaxLayer.Value
         undo_steps = self.doc.UndoCount
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        panel = self.applied(self.layers, "MaxLayer", max_layer / 2)
         # As a double-click on the part in the tree does: FreeCAD opens the part's edit
         # transaction (which commits the panel's), then ends the panel's edit.
         FreeCAD.setActiveTransaction("Edit L")
@@ -1818,9 +1815,7 @@ class TestParameterPanel(unittest.TestCase):
                 FreeCADGui.Control.closeDialog()
             process_events()
 
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        self.applied(self.layers, "MaxLayer", max_layer / 2)
         # The part's placement edit opens its own undo step first: the panel's is committed.
         self.assertTrue(self.part.ViewObject.doubleClicked())
         process_events()
@@ -1828,9 +1823,7 @@ class TestParameterPanel(unittest.TestCase):
         self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
         self.assertEqual(self.doc.UndoNames[0], "Edit 'Layers'")
         end_other_edit()
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 4)
-        self.press("apply")
+        self.applied(self.layers, "MaxLayer", max_layer / 4)
         # A sketch's edit joins the panel's transaction, and ends the panel's edit in it: undone.
         self.assertTrue(sketch.ViewObject.doubleClicked())
         process_events()
@@ -1843,9 +1836,7 @@ class TestParameterPanel(unittest.TestCase):
         import PartGui  # noqa: F401 (Part_Box)
 
         max_layer = self.layers.MaxLayer.Value
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        panel = self.applied(self.layers, "MaxLayer", max_layer / 2)
         applied = self.features.slice_result(self.layers)
         FreeCADGui.runCommand("Part_Box")  # its undo step commits the panel's edit
         process_events()
@@ -1866,9 +1857,7 @@ class TestParameterPanel(unittest.TestCase):
         import PartGui  # noqa: F401 (Part_Box)
 
         max_layer = self.layers.MaxLayer.Value
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        self.applied(self.layers, "MaxLayer", max_layer / 2)
         applied = self.features.slice_result(self.layers)
         FreeCADGui.runCommand("Part_Box")
         process_events()
@@ -1914,9 +1903,7 @@ class TestParameterPanel(unittest.TestCase):
 
     def test_a_dialog_closed_by_a_script_is_cancelled_at_the_next_edit(self):
         max_layer = self.layers.MaxLayer.Value
-        panel = self.open(self.layers)
-        self.set_field(panel, "MaxLayer", max_layer / 2)
-        self.press("apply")
+        panel = self.applied(self.layers, "MaxLayer", max_layer / 2)
         FreeCADGui.Control.closeDialog()  # neither OK nor Cancel
         process_events()
         panel = self.open(self.decomposition)  # no task is open: no "finish it first"

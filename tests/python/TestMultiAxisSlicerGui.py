@@ -38,6 +38,19 @@ def process_events():
     QtGui.QApplication.processEvents()
 
 
+def error_boxes():
+    """The workbench's error messages shown now."""
+    return [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
+                                                                "MultiAxisSlicerError")
+            if b.isVisible()]
+
+
+def close_error_boxes():
+    """Closes the workbench's error messages, shown or not (a test's leftovers)."""
+    for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox, "MultiAxisSlicerError"):
+        box.close()
+
+
 def wait_for_components(decomposition, count, seconds=5.0):
     """Processes events until the decomposition has `count` component objects, or the time is up:
     they are synchronised after the recompute ends, by a timer that waits 50 ms while it runs."""
@@ -115,8 +128,7 @@ class TestWorkbench(unittest.TestCase):
         self.assertIn(TOOLBAR, workbench.listMenus())
 
     def test_no_error_box_after_activation(self):
-        boxes = FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox, "MultiAxisSlicerError")
-        self.assertEqual([b for b in boxes if b.isVisible()], [])
+        self.assertEqual(error_boxes(), [])
 
 
 class TestSectionsCommand(unittest.TestCase):
@@ -266,9 +278,7 @@ class TestCentroidalAxisCommand(unittest.TestCase):
 
     def tearDown(self):
         FreeCADGui.Selection.clearSelection()
-        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                            "MultiAxisSlicerError"):
-            box.close()
+        close_error_boxes()
         FreeCAD.closeDocument(self.doc.Name)
         process_events()
 
@@ -352,9 +362,7 @@ class TestCentroidalAxisCommand(unittest.TestCase):
         obj = self.run_command()
         self.assertIsNone(obj)  # refused before anything is made: it could never work
         self.assertEqual(self.doc.UndoCount, undo)
-        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                                     "MultiAxisSlicerError")
-                 if b.isVisible()]
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("Centroidal axis: 'L': not a solid (1 face, 0 solids)", boxes[0].text())
         for box in boxes:
@@ -371,9 +379,7 @@ class TestCentroidalAxisCommand(unittest.TestCase):
         FreeCADGui.runCommand(AXIS_COMMAND)
         process_events()
         self.assertIsNone(self.doc.getObject("CentroidalAxis"))
-        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                                     "MultiAxisSlicerError")
-                 if b.isVisible()]
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("'Sections' is a Sections object (cross-sections), not a part: select the "
                       "solid or mesh it was made from", boxes[0].text())
@@ -541,9 +547,7 @@ class TestDecomposeCommand(unittest.TestCase):
 
     def tearDown(self):
         FreeCADGui.Selection.clearSelection()
-        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                            "MultiAxisSlicerError"):
-            box.close()
+        close_error_boxes()
         FreeCAD.closeDocument(self.doc.Name)
         process_events()
 
@@ -562,8 +566,7 @@ class TestDecomposeCommand(unittest.TestCase):
         self.assertEqual([o.Name for o in self.doc.Objects], names)
         self.assertEqual(self.doc.UndoCount, undo)
         self.assertTrue(self.part.ViewObject.Visibility)
-        self.assertEqual([b for b in FreeCADGui.getMainWindow().findChildren(
-            QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()], [])
+        self.assertEqual(error_boxes(), [])
         # The same command then runs through.
         import MultiAxisSlicer.features as features
 
@@ -604,8 +607,7 @@ class TestDecomposeCommand(unittest.TestCase):
         FreeCADGui.runCommand("Std_Delete")
         process_events()
         self.assertEqual(len(features.components_of(decomposition)), 2)
-        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(
-            QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()]
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("cannot be deleted on its own", boxes[0].text())
         for box in boxes:
@@ -787,9 +789,7 @@ class TestDecomposeCommand(unittest.TestCase):
         obj = self.run_command(self.part)
         self.assertIsNone(obj)  # refused before anything is made: it could never work
         self.assertEqual(self.doc.UndoCount, undo)
-        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                                     "MultiAxisSlicerError")
-                 if b.isVisible()]
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())
         self.assertTrue(self.part.ViewObject.Visibility)  # nothing replaced it
@@ -812,8 +812,7 @@ class TestDecomposeCommand(unittest.TestCase):
             obj = self.run_command(selected)
             self.assertIsNone(obj, selected.Label)
             self.assertEqual(self.doc.UndoCount, undo)
-            boxes = [b for b in FreeCADGui.getMainWindow().findChildren(
-                QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()]
+            boxes = error_boxes()
             self.assertEqual(len(boxes), 1, selected.Label)
             self.assertIn("Decompose: 'Scan' is a mesh: decomposing splits a BREP solid",
                           boxes[0].text())
@@ -830,9 +829,7 @@ class TestDecomposeCommand(unittest.TestCase):
         obj = self.run_command(axis)
         self.assertIsNotNone(obj)
         self.assertEqual(obj.ComponentCount, 0)
-        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                                     "MultiAxisSlicerError")
-                 if b.isVisible()]
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("CentroidalAxis: ", boxes[0].text())
         self.assertIn("not smaller than the part's height", boxes[0].text())
@@ -851,9 +848,7 @@ class TestSliceCommand(unittest.TestCase):
 
     def tearDown(self):
         FreeCADGui.Selection.clearSelection()
-        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                            "MultiAxisSlicerError"):
-            box.close()
+        close_error_boxes()
         FreeCAD.closeDocument(self.doc.Name)
         process_events()
 
@@ -862,11 +857,6 @@ class TestSliceCommand(unittest.TestCase):
         FreeCADGui.runCommand(SLICE_COMMAND)
         process_events()
         return self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
-
-    def error_boxes(self):
-        return [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                                    "MultiAxisSlicerError")
-                if b.isVisible()]
 
     def check_rendered_colours(self, obj):
         """The 3D view's line set is coloured with LineColorArray (FreeCAD 0.20 leaves garbage
@@ -948,7 +938,7 @@ class TestSliceCommand(unittest.TestCase):
         layers, toolpath = self.run_command(decomposition)
         self.assertIsNotNone(layers, "the command made no Layers object")
         self.assertIsNotNone(toolpath, "the command made no Toolpath object")
-        self.assertEqual(self.error_boxes(), [])
+        self.assertEqual(error_boxes(), [])
         self.assertTrue(layers.isValid(), layers.getStatusString())
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
         self.assertIs(layers.Decomposition, decomposition)
@@ -1125,7 +1115,7 @@ class TestSliceCommand(unittest.TestCase):
         self.assertIsNone(layers)  # refused before anything is made
         self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
         self.assertEqual(self.doc.UndoCount, undo)
-        boxes = self.error_boxes()
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("not a solid", boxes[0].text())
         self.assertIsNone(QtGui.QApplication.overrideCursor())
@@ -1179,7 +1169,7 @@ class TestSliceCommand(unittest.TestCase):
         self.doc.recompute()
         layers, toolpath = self.run_command(axis)
         self.assertIsNone(layers)  # nothing to slice: the decomposition's axis failed
-        boxes = self.error_boxes()
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("CentroidalAxis: ", boxes[0].text())
         self.assertIn("not smaller than the part's height", boxes[0].text())
@@ -1199,7 +1189,7 @@ class TestSliceCommand(unittest.TestCase):
             self.assertEqual([o.Name for o in self.doc.Objects], names, stage)
             self.assertEqual(self.doc.UndoCount, undo, stage)
             self.assertTrue(self.part.ViewObject.Visibility, stage)
-            self.assertEqual(self.error_boxes(), [], stage)
+            self.assertEqual(error_boxes(), [], stage)
             self.assertEqual(self.part.Shape.exportBrepToString(), before, stage)
             self.assertIsNone(QtGui.QApplication.overrideCursor(), stage)
             self.assertEqual(QtGui.QApplication.activeModalWidget(), None, stage)
@@ -1217,7 +1207,7 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual(canceller.clicks, 1)
         self.assertIn("Invalid", layers.State)
         self.assertIn("cancelled by the user", layers.getStatusString())
-        self.assertEqual(self.error_boxes(), [])
+        self.assertEqual(error_boxes(), [])
         self.doc.recompute()
         self.assertTrue(layers.isValid(), layers.getStatusString())
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
@@ -1307,17 +1297,10 @@ class TestMachineProgramCommands(unittest.TestCase):
     def tearDown(self):
         QtGui.QFileDialog.getSaveFileName = self.dialog
         FreeCADGui.Selection.clearSelection()
-        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                            "MultiAxisSlicerError"):
-            box.close()
+        close_error_boxes()
         FreeCAD.closeDocument(self.doc.Name)
         shutil.rmtree(self.folder)
         process_events()
-
-    def error_boxes(self):
-        return [b for b in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                                    "MultiAxisSlicerError")
-                if b.isVisible()]
 
     def answer_save_dialog(self, path):
         """The next save dialog answers `path` ("" for Cancel) and records its suggestion."""
@@ -1350,7 +1333,7 @@ class TestMachineProgramCommands(unittest.TestCase):
         process_events()
         program_obj = self.doc.getObject("MachineProgram")
         self.assertIsNotNone(program_obj, "the command made no MachineProgram object")
-        self.assertEqual(self.error_boxes(), [])
+        self.assertEqual(error_boxes(), [])
         self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
         self.assertIs(program_obj.Layers, self.layers)
         self.assertEqual(list(program_obj.ARange), [-90.0, 0.0])
@@ -1368,7 +1351,7 @@ class TestMachineProgramCommands(unittest.TestCase):
         process_events()
         # An unsaved document suggests the home folder.
         self.assertEqual(asked, [os.path.join(os.path.expanduser("~"), "MachineProgram.ngc")])
-        self.assertEqual(self.error_boxes(), [])
+        self.assertEqual(error_boxes(), [])
         with open(path) as f:
             self.assertEqual(f.read(), features.machine_program(program_obj).text)
         self.answer_save_dialog("")  # Cancel writes nothing
@@ -1391,7 +1374,7 @@ class TestMachineProgramCommands(unittest.TestCase):
         self.answer_save_dialog(path)
         FreeCADGui.runCommand(EXPORT_COMMAND)
         process_events()
-        self.assertEqual(self.error_boxes(), [])
+        self.assertEqual(error_boxes(), [])
         self.assertNotIn("Touched", self.layers.State)
         self.assertLess(obj.LineCount, lines)
         with open(path) as f:
@@ -1407,7 +1390,7 @@ class TestMachineProgramCommands(unittest.TestCase):
         FreeCADGui.runCommand(EXPORT_COMMAND)
         process_events()
         self.assertEqual(asked, [])  # refused before asking for a file
-        boxes = self.error_boxes()
+        boxes = error_boxes()
         self.assertEqual(len(boxes), 1)
         self.assertIn("beyond AMin and AMax -45 to 45", boxes[0].text())
         self.assertEqual(os.listdir(self.folder), [])
@@ -1458,9 +1441,7 @@ class TestParameterPanel(unittest.TestCase):
     def tearDown(self):
         if FreeCADGui.Control.activeDialog():
             self.press("cancel")
-        for box in FreeCADGui.getMainWindow().findChildren(QtGui.QMessageBox,
-                                                            "MultiAxisSlicerError"):
-            box.close()
+        close_error_boxes()
         FreeCAD.closeDocument(self.doc.Name)
         process_events()
 
@@ -1696,8 +1677,7 @@ class TestParameterPanel(unittest.TestCase):
         process_events()
         self.assertIs(self.panels.active_panel(), panel)
         self.assertEqual(self.layers.MaxLayer.Value, max_layer / 2)
-        boxes = [b for b in FreeCADGui.getMainWindow().findChildren(
-            QtGui.QMessageBox, "MultiAxisSlicerError") if b.isVisible()]
+        boxes = error_boxes()
         # The Toolpath's panel is this one: no message; the decomposition's is another.
         self.assertEqual(len(boxes), 1)
         self.assertIn("Finish the task open in the task view", boxes[0].text())

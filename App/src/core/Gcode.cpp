@@ -679,8 +679,10 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             }
             if (!continues) {
                 stop_deposit();
-                // The layer the tip is on: the one before, or this one between its paths.
+                // The layer the tip is on, and the tool axis it leaves along: the one before, or
+                // this one between its paths.
                 const std::size_t left = first_path && !first ? used[u - 1] : i;
+                const Eigen::Vector3d& back = layers[left].tool_axis;
                 std::vector<Waypoint> way;
                 if (first) {
                     // From the sphere's top down to the first path.
@@ -691,10 +693,9 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                     way.push_back({approach, a, int(i)});
                 } else if (new_component) {
                     // Out along the tool axis the last layer was deposited with, round the sphere.
-                    way = round_the_part(g.position(), g.angles(), layers[used[u - 1]].tool_axis,
-                                         int(used[u - 1]), s, n, a, int(i));
+                    way =
+                        round_the_part(g.position(), g.angles(), back, int(left), s, n, a, int(i));
                 } else {
-                    const Eigen::Vector3d& back = first_path ? layers[used[u - 1]].tool_axis : n;
                     way = {{g.position() + back * params.clearance_mm, g.angles(), int(left)},
                            {approach, a}};
                 }
@@ -702,8 +703,6 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                     ++stats.checked_routes;
                     std::optional<TravelHit> hit = meets(way, s, int(i), -1);
                     if (hit && !first && !new_component) {
-                        const Eigen::Vector3d& back =
-                            first_path ? layers[used[u - 1]].tool_axis : n;
                         // Round the sphere the tip leaves the layer's plane: the layer under way
                         // counts, all of it, but where the tip leaves it or comes back to it.
                         std::vector<Waypoint> round = round_the_part(g.position(), g.angles(), back,

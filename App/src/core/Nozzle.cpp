@@ -514,9 +514,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         if (!bounds[i].corners.empty())
             component_box[std::size_t(layers[i].component)].extend(bounds[i].box);
     }
-    auto sweep_box = [&](const Sweep& sweep) { return reach_box(sweep, shape); };
     PrismSamples samples(layers, m);
-    auto samples_of = [&](std::size_t y) -> const std::vector<Vector3d>& { return samples.of(y); };
     // Where layer y's prism lies seen from x's paths (`sweep` is x's): its corners' lowest and
     // highest heights above x's plane along the tool axis, and how far across the axis its
     // corners' box lies from the paths' (the prism lies within its corners' hull).
@@ -555,7 +553,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         // Below the tip, or off to the side, it misses.
         const Extent e = extent(sweep, y);
         if (e.hi < shape.standoff - shape.grow || e.gap > reach) return std::nullopt;
-        for (const Vector3d& q : samples_of(y)) {
+        for (const Vector3d& q : samples.of(y)) {
             const double r = shape.grown(n.dot(q) - sweep.height());
             if (r < 0.0) continue;
             if (const auto hit = sweep.near(sweep.frame().to_2d(q), r))
@@ -581,7 +579,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         Conflict where{int(x), -1, Vector3d::Zero(), Vector3d::Zero()};
         for (const auto& [least, y] : bound) {
             if (least >= best) break;
-            for (const Vector3d& q : samples_of(std::size_t(y))) {
+            for (const Vector3d& q : samples.of(std::size_t(y))) {
                 const double h = n.dot(q) - sweep.height();
                 const double r = shape.grown(h);
                 if (r < 0.0) continue;
@@ -619,7 +617,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         if (sweep.empty()) continue;
         const int cx = layers[x].component;
         if (params.check_plate) plate[x] = plate_meets(sweep, x);
-        const Eigen::AlignedBox3d reachable = sweep_box(sweep);
+        const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
         for (std::size_t y = 0; y < count; ++y) {
             if (y == x) continue;
             const int cy = layers[y].component;
@@ -740,7 +738,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
         if (params.check_plate && plate_meets(sweep, x)) return false;
         const Plane& top = layers[x].plane;
-        const Eigen::AlignedBox3d reachable = sweep_box(sweep);
+        const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
         for (std::size_t y = 0; y < count; ++y) {
             if (position[y] >= position[x] || bounds[y].corners.empty() ||
                 !bounds[y].box.intersects(reachable))
@@ -754,7 +752,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             if (centre + b.radius - sweep.lowest() < shape.standoff - shape.grow ||
                 centre - b.radius - sweep.highest() > shape.top + shape.grow)
                 continue;
-            for (const Vector3d& q : samples_of(y))
+            for (const Vector3d& q : samples.of(y))
                 if (sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) return false;
         }
         return true;

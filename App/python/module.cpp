@@ -1342,17 +1342,8 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value, bool 
             l.index = index_of(item, "index", what);
         l.tool_axis = vector3(required(item, "tool_axis", what), what + "['tool_axis']");
         l.max_thickness_mm = number_of(item, "max_thickness_mm", what);
-        const std::vector<bp::object> regions = items_of(item, "regions", what);
-        for (std::size_t r = 0; r < regions.size(); ++r) {
-            const std::string rw = what + "['regions'][" + std::to_string(r) + "]";
-            for (const auto& q : points_of(regions[r], "outer", rw)) l.outline.push_back(q);
-            const std::vector<bp::object> holes = items_of(regions[r], "holes", rw);
-            for (std::size_t h = 0; h < holes.size(); ++h)
-                for (const auto& q :
-                     points_from(holes[h], rw + "['holes'][" + std::to_string(h) + "]"))
-                    l.outline.push_back(q);
-        }
         // The prism, for the travel check: the layer's planes and its regions on the top one.
+        std::optional<mas::PlaneFrame> frame;
         if (prisms) {
             l.prism.plane = {vector3(required(item, "origin", what), what + "['origin']"),
                              vector3(required(item, "normal", what), what + "['normal']")};
@@ -1366,22 +1357,29 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value, bool 
                 invalid_argument(what +
                                  ": its lower plane must face the way its top does (normal . "
                                  "lower_normal > 0)");
-            const mas::PlaneFrame frame(l.prism.plane.normal);
-            auto loop2 = [&](const bp::object& loop, const std::string& lw) {
-                mas::Polygon2 out;
-                for (const auto& q : points_from(loop, lw)) out.points.push_back(frame.to_2d(q));
-                return out;
-            };
-            for (std::size_t r = 0; r < regions.size(); ++r) {
-                const std::string rw = what + "['regions'][" + std::to_string(r) + "]";
-                mas::Region2 region;
-                region.outer = loop2(required(regions[r], "outer", rw), rw + "['outer']");
-                const std::vector<bp::object> holes = items_of(regions[r], "holes", rw);
-                for (std::size_t h = 0; h < holes.size(); ++h)
-                    region.holes.push_back(
-                        loop2(holes[h], rw + "['holes'][" + std::to_string(h) + "]"));
-                l.prism.regions.push_back(std::move(region));
+            frame.emplace(l.prism.plane.normal);
+        }
+        // Each loop's points go into the outline and, with the prism, onto its top plane.
+        auto read_loop = [&](const bp::object& points, const std::string& lw) {
+            mas::Polygon2 out;
+            for (const auto& q : points_from(points, lw)) {
+                l.outline.push_back(q);
+                if (frame) out.points.push_back(frame->to_2d(q));
             }
+            return out;
+        };
+        const std::vector<bp::object> regions = items_of(item, "regions", what);
+        for (std::size_t r = 0; r < regions.size(); ++r) {
+            const std::string rw = what + "['regions'][" + std::to_string(r) + "]";
+            mas::Region2 region;
+            region.outer = read_loop(required(regions[r], "outer", rw), rw + "['outer']");
+            const std::vector<bp::object> holes = items_of(regions[r], "holes", rw);
+            for (std::size_t h = 0; h < holes.size(); ++h)
+                region.holes.push_back(
+                    read_loop(holes[h], rw + "['holes'][" + std::to_string(h) + "]"));
+            if (prisms) l.prism.regions.push_back(std::move(region));
+        }
+        if (prisms) {
             l.prism.max_thickness_mm = l.max_thickness_mm;
             // Its lower plane under its top wherever it reaches.
             for (std::size_t r = 0; r < l.prism.regions.size(); ++r)

@@ -232,6 +232,31 @@ TEST(Decompose, LBlockArmIsAChildBuiltAlongPlusXFromTheColumnSide) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, AnArmOverAGussetIsCutAtTheColumnsFaceWithTheWeb) {
+    // The column's sections beside the web reach out to its tip, so the arm's march starts past
+    // x = 43 and the column's nodes there lie at x > 20: the column's face x = 20 lies in Eq. 5's
+    // span only through the column's nodes below the arm. Cut there, the arm takes the web along
+    // (built along +X, each layer's web on the last one's), and the column is the 20 x 20 box;
+    // cut past the web's tip, the arm's near end beside the web overhung the column's layers.
+    const auto part = mas::test::gusset_bracket();
+    const auto axis = axis_of(part, 2.5);
+    ASSERT_EQ(axis.branches.size(), 2u);
+    ASSERT_GT(axis.nodes[std::size_t(axis.branches[1].parent_node)].position.x(), 20.0);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& column = d.components[0];
+    const auto& arm = d.components[1];
+    EXPECT_EQ(arm.rule, Rule::PlanarFace);
+    EXPECT_TRUE(near_box(column.solid, {0, 0, 0}, {20, 20, 80}));
+    EXPECT_NEAR(column.volume_mm3, 32000.0, 32000.0 * 1e-6);
+    const double web = 4.0 * 23.0 * 23.0 / 2.0;
+    EXPECT_TRUE(near_box(arm.solid, {20, 0, 37}, {70, 20, 80}));
+    EXPECT_NEAR(arm.volume_mm3, 20000.0 + web, 20000.0 * 1e-6);
+    EXPECT_TRUE(arm.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_TRUE(near_box(arm.base_face, {20, 0, 37}, {20, 20, 80}));
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, LBlockWithoutAConcaveEdgeFallsBackToTheSectionPlane) {
     // Criterion (2) gates the candidates: the L's inner edge is 90 degrees past flat, so with 95
     // required no planar face qualifies and the arm is cut where its march started, x = 20.

@@ -4,8 +4,10 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
@@ -91,6 +93,16 @@ Shape plate_with_hole() {
     const TopoDS_Shape hole =
         BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(30, 20, -1), gp_Dir(0, 0, 1)), 8, 12).Shape();
     return from_occt(BRepAlgoAPI_Cut(plate, hole).Shape());
+}
+
+Shape gusset_bracket() {
+    BRepBuilderAPI_MakePolygon outline(gp_Pnt(20, 8, 60), gp_Pnt(43, 8, 60), gp_Pnt(20, 8, 37),
+                                       true);
+    const TopoDS_Shape web =
+        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(0, 4, 0))
+            .Shape();
+    const TopoDS_Shape l = fuse(occ_box(0, 0, 0, 20, 20, 80), occ_box(20, 0, 60, 50, 20, 20));
+    return from_occt(fuse(l, web));
 }
 
 Shape two_posts() {

@@ -21,6 +21,10 @@ Shape cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double 
 // Paper Fig. 7: a 20 x 20 x 60 column on z = 0 with a 50 x 20 x 20 arm on its top reaching +X:
 // column [0,20]x[0,20]x[0,60], arm [20,70]x[0,20]x[40,60].
 Shape l_block();
+// The L-block's column 80 tall with the arm at its top, a gusset under the arm: column
+// [0,20]x[0,20]x[0,80], arm [20,70]x[0,20]x[60,80], web 4 thick ([8,12] in y), its triangle
+// (x, z) = (20, 60), (43, 60), (20, 37) against the column's face and the arm's underside.
+Shape gusset_bracket();
 // 60 x 40 x 10 plate [0,60]x[0,40]x[0,10] with a vertical through hole of radius 8 at (30, 20).
 Shape plate_with_hole();
 // Two 10 x 10 posts on one 40 x 10 x 5 base plate [0,40]x[0,10]x[0,5]: posts

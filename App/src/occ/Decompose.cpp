@@ -521,8 +521,8 @@ public:
         const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
         out.pos_end = first.position;
         out.inner = first.material_point();
-        const double lo_span = std::min(D.dot(pos_start), D.dot(out.pos_end));
-        const double hi_span = std::max(D.dot(pos_start), D.dot(out.pos_end));
+        double lo_span = std::min(D.dot(pos_start), D.dot(out.pos_end));
+        double hi_span = std::max(D.dot(pos_start), D.dot(out.pos_end));
         const double tol = params_.projection_tolerance_mm;
         const double junction = first.offset - 0.5 * axis_.params.step_mm;
         double best = std::numeric_limits<double>::infinity();
@@ -541,6 +541,25 @@ public:
         }
         reach.min().array() -= axis_.params.step_mm;
         reach.max().array() += axis_.params.step_mm;
+        // Eq. 5's span takes in the father's nodes beside the branch's first section, within a
+        // step of it along the father's march (criterion (3) in Decompose.hpp: a gusset).
+        if (const int fb = axis_.nodes[std::size_t(link.start)].branch; fb >= 0) {
+            const Vector3d along = axis_.branches[std::size_t(fb)].direction.normalized();
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            const Plane plane{first.normal * first.offset, first.normal};
+            for (int corner = 0; corner < 4; ++corner) {
+                const double t = along.dot(
+                    frame.to_3d(reach.corner(Eigen::AlignedBox2d::CornerType(corner)), plane));
+                lo = std::min(lo, t);
+                hi = std::max(hi, t);
+            }
+            for (const int n : axis_.branches[std::size_t(fb)].nodes) {
+                const Vector3d& p = axis_.nodes[std::size_t(n)].position;
+                if (along.dot(p) < lo || along.dot(p) > hi) continue;
+                lo_span = std::min(lo_span, D.dot(p));
+                hi_span = std::max(hi_span, D.dot(p));
+            }
+        }
         // Retried after a planar face's split was refused: the section plane only.
         if (!section_only) {
             for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {

@@ -588,6 +588,42 @@ TEST(Slicing, LBlockArmIsSlicedAlongItsLengthAndTheColumnAlongZ) {
     expect_invariants(s, params, "L-block");
 }
 
+TEST(Slicing, AColumnCutFromAnArmOverAGussetIsSlicedSquareWithEveryLayerSupported) {
+    // The column's axis nodes beside the arm lie at x = 21.4, where the whole part's sections
+    // (column, arm out to the web's tip) have their centroid; cut at the column's face, the
+    // column holds less than half of those sections. Its guide is moved to what it holds, the
+    // column's centre line: its layers stay square to Z. Left on the nodes, they leaned 12
+    // degrees after the arm and closed onto the flat top in wedges.
+    const auto params = default_params();
+    const auto s = slice(mas::test::gusset_bracket(), 2.5, params);
+    ASSERT_EQ(s.result.components.size(), 2u);
+    const auto& column = s.result.components[0];
+    const auto& arm = s.result.components[1];
+    EXPECT_EQ(column.layer_count, 40);  // 80 mm at 2 mm
+    for (int i = 0; i < column.layer_count; ++i) {
+        const auto& l = s.result.layers[std::size_t(column.first_layer + i)];
+        EXPECT_TRUE(l.plane.normal.isApprox(Vector3d::UnitZ(), 1e-9)) << "layer " << i;
+        EXPECT_NEAR(l.plane.origin.z(), 2.0 * (i + 1), 1e-9);
+        EXPECT_NEAR(l.area_mm2, 400.0, 1e-6);
+    }
+    // Along +X the arm's layers carry the web, each one's narrower than the last's. At this step
+    // the arm's first node lies on the web's tip (x = 42.5), its centroid a hair low: its guide
+    // leans by its first link's angle, and straight on from there back to the column's face.
+    const auto& first = s.axis.nodes[std::size_t(s.axis.branches[1].nodes[0])];
+    const auto& second = s.axis.nodes[std::size_t(s.axis.branches[1].nodes[1])];
+    const double lean = angle_deg(second.position - first.position, Vector3d::UnitX());
+    EXPECT_LT(lean, 2.0);
+    for (int i = 0; i < arm.layer_count; ++i) {
+        const auto& l = s.result.layers[std::size_t(arm.first_layer + i)];
+        EXPECT_LE(angle_deg(l.plane.normal, Vector3d::UnitX()), lean + 1e-9) << "layer " << i;
+    }
+    double unsupported = 0.0;
+    for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
+    EXPECT_EQ(unsupported, 0.0);
+    EXPECT_NEAR(s.result.stats.part_volume_mm3, 32000.0 + 20000.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-3);
+    expect_invariants(s, params, "gusset bracket");
+}
+
 TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {
     // Between tilted planes, VolDiff and the material are integrated by the midpoint rule over
     // `volume_samples` sections per layer. In this bend its error with the default 4 adds up to

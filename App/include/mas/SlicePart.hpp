@@ -99,7 +99,14 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 
 // Slices components given as meshes (a mesh part is one root component). `axis` is the part's
 // centroidal axis: component c follows the nodes of branch components[c].branch whose section's
-// material (AxisNode::material_point) lies inside its mesh. They are started in build_order();
+// material (AxisNode::material_point) lies inside its mesh. A node whose region (AxisNode::region)
+// the component lacks part of, wider than the tessellations' disagreement (twice the axis'
+// deflection, plus step / 100 and 0.1 micron), is moved to the centroid of the part it holds, on
+// its plane: where a split took from a father part of its nodes' sections (a column cut from the
+// arm whose near end, out to the tip of a gusset, its sections held), the father's layers follow
+// its own material, not what went to the child. Material a node's region never held (another
+// branch's, which a mesh sliced as one component keeps) moves nothing. They are started in
+// build_order();
 // each child's first layer is checked against everything built before it. Then the layers'
 // sequence against params.nozzle (plan_build_sequence): a component waits for its father and for
 // the components before it in build_order that its first layer rests on (those that, reaching its

@@ -137,6 +137,48 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
     return order;
 }
 
+namespace {
+
+// A guide point moved to the centroid of what of its node's region the component holds, on the
+// node's plane, where the component lacks part of that region: the axis was marched through the
+// whole part, and where a split took from a father part of what its nodes' sections held (a
+// column whose sections held an arm's near end, out to the tip of the gusset under it, the arm cut
+// off at the column's face), the nodes' centroids lie off the component's, and its layers would
+// lean after material that is not theirs. What the component lacks counts when it is wider than
+// the two tessellations' disagreement (the axis' deflection, twice, its simplification, step /
+// 100, and a tenth of a micron): a sliver along a curved outline moves nothing. Material the
+// node's region never held (another branch's, swept before, which a mesh sliced as one component
+// still has) moves nothing either. Nodes without their region (an axis from Python) stay.
+void recentre_guide(const TriangleMesh& mesh, const CentroidalAxis& axis,
+                    ComponentSlicingInput& input) {
+    const double sliver =
+        2.0 * std::max(axis.deflection_mm, 0.0) + axis.params.step_mm / 100.0 + 1e-4;
+    std::vector<Plane> planes;
+    for (const int n : input.guide_nodes) {
+        const AxisNode& node = axis.nodes[std::size_t(n)];
+        planes.push_back(make_plane(node.position, node.normal));
+    }
+    const std::vector<Section> sections = slice_mesh(mesh, planes);
+    for (std::size_t i = 0; i < sections.size(); ++i) {
+        const AxisNode& node = axis.nodes[std::size_t(input.guide_nodes[i])];
+        if (node.region.outer.points.empty()) continue;
+        Regions2 held;
+        for (const SectionRegion& r : sections[i].regions) held.push_back(r.shape);
+        const Regions2 lacked = difference({node.region}, held);
+        if (lacked.empty() || offset(lacked, -0.5 * sliver, JoinType::Miter).empty()) continue;
+        double a = 0.0;
+        Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+        for (const Region2& r : intersection({node.region}, held)) {
+            const double ar = area(r);
+            a += ar;
+            moment += ar * centroid(r);
+        }
+        if (a > 0.0) input.guide[i] = sections[i].frame().to_3d(moment / a, sections[i].plane);
+    }
+}
+
+}  // namespace
+
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const Progress& caller) {
@@ -191,6 +233,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                 input.guide.push_back(node.position);
                 input.guide_nodes.push_back(n);
             }
+            recentre_guide(comp.mesh, axis, input);
         }
         ComponentLayers& record = out.components[c];
         record.component = int(c);

@@ -164,7 +164,7 @@ Eigen::Vector3d parse_vector(const std::string& text, const std::string& what) {
 // Minimal JSON output: numbers to 15 significant digits (the engine's doubles within 1e-15).
 std::string num(double v) {
     std::ostringstream s;
-    s << std::setprecision(15) << v;
+    s << std::setprecision(15) << (v == 0.0 ? 0.0 : v);  // never -0
     return s.str();
 }
 

@@ -315,6 +315,11 @@ class CliSections(unittest.TestCase):
         for got, want in zip(arm["build_direction"], (1, 0, 0)):
             self.assertAlmostEqual(got, want, places=9)
         self.assertAlmostEqual(arm["base_origin"][0], 20.0, places=9)
+        # Minus its base face's normal, (-1, 0, 0): no zero is written as "-0".
+        self.assertIsNone(re.search(r"-0(?![.\d])", r.stdout), r.stdout)
+        text = run("decompose", os.path.join(DATA, "l_block.brep"), "--step", "2.5")
+        self.assertEqual(text.returncode, 0, text.stderr)
+        self.assertIn("\n1 0 planar_face 1,0,0 20000", text.stdout)
         # Each component is a STEP file the program reads back: the arm is 20 x 20 across X.
         self.assertEqual(sorted(os.listdir(steps)), ["component_001.step", "component_002.step"])
         back = self.json_sections(arm["step_file"], "--normal", "1,0,0", "--step", "10")

@@ -257,6 +257,32 @@ TEST(Decompose, AnArmOverAGussetIsCutAtTheColumnsFaceWithTheWeb) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, AShelfOverAGussetIsCutAtTheUprightsFaceWithTheWeb) {
+    // A 5 mm upright [0,60]x[0,5]x[0,50], a shelf [0,60]x[5,45]x[45,50] reaching +Y from its top,
+    // a 4 mm web under it (x in [28,32]) from (y, z) = (5, 15) up to (35, 45). The upright's
+    // nodes lie past its face y = 5 from two thirds of the way up the web; Eq. 5's span reaches its
+    // face through the nodes below, down the web to where the sections stop shrinking.
+    BRepBuilderAPI_MakePolygon outline(gp_Pnt(28, 5, 45), gp_Pnt(28, 35, 45), gp_Pnt(28, 5, 15),
+                                       true);
+    const TopoDS_Shape web =
+        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(4, 0, 0))
+            .Shape();
+    const auto part =
+        from_occt(fuse(fuse(occ_box(0, 0, 0, 60, 5, 50), occ_box(0, 5, 45, 60, 40, 5)), web));
+    const auto axis = axis_of(part, 2.5);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& upright = d.components[0];
+    const auto& shelf = d.components[1];
+    EXPECT_EQ(shelf.rule, Rule::PlanarFace);
+    EXPECT_TRUE(near_box(upright.solid, {0, 0, 0}, {60, 5, 50}));
+    EXPECT_NEAR(upright.volume_mm3, 15000.0, 15000.0 * 1e-6);
+    EXPECT_TRUE(near_box(shelf.solid, {0, 5, 15}, {60, 45, 50}));
+    EXPECT_NEAR(shelf.volume_mm3, 12000.0 + 4.0 * 30.0 * 30.0 / 2.0, 12000.0 * 1e-6);
+    EXPECT_TRUE(shelf.build_direction.isApprox(Vector3d::UnitY(), 1e-12));
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, LBlockWithoutAConcaveEdgeFallsBackToTheSectionPlane) {
     // Criterion (2) gates the candidates: the L's inner edge is 90 degrees past flat, so with 95
     // required no planar face qualifies and the arm is cut where its march started, x = 20.

@@ -541,23 +541,21 @@ public:
         }
         reach.min().array() -= axis_.params.step_mm;
         reach.max().array() += axis_.params.step_mm;
-        // Eq. 5's span takes in the father's nodes beside the branch's first section, within a
-        // step of it along the father's march (criterion (3) in Decompose.hpp: a gusset).
+        // Eq. 5's span takes in the father's nodes from pos_start back along its march for as
+        // long as their sections reach no further along D than the next one's (criterion (3) in
+        // Decompose.hpp: a gusset).
         if (const int fb = axis_.nodes[std::size_t(link.start)].branch; fb >= 0) {
-            const Vector3d along = axis_.branches[std::size_t(fb)].direction.normalized();
-            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-            const Plane plane{first.normal * first.offset, first.normal};
-            for (int corner = 0; corner < 4; ++corner) {
-                const double t = along.dot(
-                    frame.to_3d(reach.corner(Eigen::AlignedBox2d::CornerType(corner)), plane));
-                lo = std::min(lo, t);
-                hi = std::max(hi, t);
-            }
-            for (const int n : axis_.branches[std::size_t(fb)].nodes) {
-                const Vector3d& p = axis_.nodes[std::size_t(n)].position;
-                if (along.dot(p) < lo || along.dot(p) > hi) continue;
-                lo_span = std::min(lo_span, D.dot(p));
-                hi_span = std::max(hi_span, D.dot(p));
+            const std::vector<int>& march = axis_.branches[std::size_t(fb)].nodes;
+            auto k = std::find(march.begin(), march.end(), link.start);
+            double next = std::numeric_limits<double>::infinity();
+            for (; k != march.end(); --k) {
+                const AxisNode& n = axis_.nodes[std::size_t(*k)];
+                const double e = reach_along(n, D);
+                if (e > next + tol) break;
+                next = e;
+                lo_span = std::min(lo_span, D.dot(n.position));
+                hi_span = std::max(hi_span, D.dot(n.position));
+                if (k == march.begin()) break;
             }
         }
         // Retried after a planar face's split was refused: the section plane only.
@@ -607,6 +605,17 @@ public:
     }
 
 private:
+    // How far the node's section reaches along `d` (its centroid's projection for an axis handed
+    // over without regions).
+    static double reach_along(const AxisNode& n, const Vector3d& d) {
+        if (n.region.outer.points.empty()) return d.dot(n.position);
+        const PlaneFrame frame(n.normal);
+        const Plane plane{n.normal * n.offset, n.normal};
+        double t = -std::numeric_limits<double>::infinity();
+        for (const auto& q : n.region.outer.points) t = std::max(t, d.dot(frame.to_3d(q, plane)));
+        return t;
+    }
+
     const CentroidalAxis& axis_;
     const DecomposeParams& params_;
     double clearance_;

@@ -69,13 +69,15 @@ class AxisNode:
     """
 
     __slots__ = ("area", "offset", "thickness", "slab_start", "branch", "incoming_link",
-                 "_position", "_normal", "_interior")
+                 "_position", "_normal", "_interior", "_region")
 
     def __init__(self, data):
         self._position = data["position"]
         self._normal = data["normal"]
         # A point in the region's material (the engine's; the decomposition finds pipes by it).
         self._interior = data.get("interior", data["position"])
+        # The region, as bytes only the engine reads (decomposition and slicing), never shown.
+        self._region = data.get("region", b"")
         self.area = data["area"]
         self.offset = data["offset"]
         self.thickness = data["thickness"]
@@ -251,7 +253,8 @@ class CentroidalAxis:
             "nodes": [{"position": tuple(n._position), "normal": tuple(n._normal),
                        "area": n.area, "offset": n.offset, "thickness": n.thickness,
                        "slab_start": n.slab_start, "branch": n.branch,
-                       "incoming_link": n.incoming_link, "interior": tuple(n._interior)}
+                       "incoming_link": n.incoming_link, "interior": tuple(n._interior),
+                       "region": n._region}
                       for n in self.nodes],
             "links": [{"start": link.start, "end": link.end, "kind": link.kind,
                        "is_break": link.is_break, "turn_deg": link.turn} for link in self.links],

@@ -16,6 +16,7 @@
 #include <boost/python.hpp>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <limits>
 #include <optional>
@@ -631,9 +632,63 @@ const char* link_kind(mas::AxisLink::Kind kind) {
     return kind == mas::AxisLink::Kind::Connecting ? "connecting" : "step";
 }
 
-// The axis as plain data; node regions stay in the engine (the Python side has no use for them):
-// each node's interior point stands for its region where the decomposition and the slicer
-// need one.
+// A node's region as bytes for the Python side to hand back unread (it has no use for it; the
+// decomposition and the slicer do): native doubles, the loop count, then per loop (outer first,
+// then its holes) its point count and its points' u, v.
+bp::object region_to_py(const mas::Region2& region) {
+    std::vector<double> data;
+    if (!region.outer.points.empty()) {
+        data.push_back(double(1 + region.holes.size()));
+        auto loop = [&](const mas::Polygon2& p) {
+            data.push_back(double(p.points.size()));
+            for (const auto& q : p.points) data.insert(data.end(), {q.x(), q.y()});
+        };
+        loop(region.outer);
+        for (const auto& h : region.holes) loop(h);
+    }
+    return bp::object(bp::handle<>(PyBytes_FromStringAndSize(
+        reinterpret_cast<const char*>(data.data()), Py_ssize_t(data.size() * sizeof(double)))));
+}
+
+// The region region_to_py wrote; InvalidArgument naming `what` for bytes it cannot have written.
+mas::Region2 region_from_py(const bp::object& value, const std::string& what) {
+    char* bytes = nullptr;
+    Py_ssize_t size = 0;
+    if (!PyBytes_Check(value.ptr()) || PyBytes_AsStringAndSize(value.ptr(), &bytes, &size) != 0) {
+        PyErr_Clear();
+        invalid_argument(what + " must be the bytes the engine gave");
+    }
+    if (size % Py_ssize_t(sizeof(double)) != 0) invalid_argument(what + " is cut short");
+    std::vector<double> data(std::size_t(size) / sizeof(double));
+    std::memcpy(data.data(), bytes, std::size_t(size));
+    mas::Region2 region;
+    std::size_t at = 0;
+    auto count = [&]() {
+        if (at >= data.size() || !(data[at] >= 0.0) || data[at] > double(data.size()) ||
+            data[at] != std::floor(data[at]))
+            invalid_argument(what + " is not a region the engine wrote");
+        return std::size_t(data[at++]);
+    };
+    const std::size_t loops = data.empty() ? 0 : count();
+    for (std::size_t k = 0; k < loops; ++k) {
+        mas::Polygon2 loop;
+        const std::size_t n = count();
+        if (n < 3 || data.size() - at < 2 * n)
+            invalid_argument(what + " is not a region the engine wrote");
+        for (std::size_t i = 0; i < n; ++i, at += 2) {
+            if (!std::isfinite(data[at]) || !std::isfinite(data[at + 1]))
+                invalid_argument(what + " has a NaN or infinite point");
+            loop.points.emplace_back(data[at], data[at + 1]);
+        }
+        (k == 0 ? region.outer : region.holes.emplace_back()) = std::move(loop);
+    }
+    if (at != data.size()) invalid_argument(what + " is not a region the engine wrote");
+    return region;
+}
+
+// The axis as plain data. Each node's region goes as opaque bytes (region_to_py): the Python side
+// hands it back for the decomposition (the branch's first section) and the slicer (what a split
+// took from a node), and leaves it out of to_dict().
 bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
     bp::list nodes;
     for (const auto& n : axis.nodes) {
@@ -647,6 +702,7 @@ bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
         d["branch"] = n.branch;
         d["incoming_link"] = n.incoming_link;
         d["interior"] = to_py(n.interior);
+        d["region"] = region_to_py(n.region);
         nodes.append(d);
     }
     bp::list links;
@@ -786,9 +842,9 @@ std::vector<bp::object> items_of(const bp::object& value, const char* key,
     return out;
 }
 
-// The engine's axis from the dict centroidal_axis() returns (node regions are not needed: the
-// decomposition reads positions, normals, areas, offsets, thicknesses, the links, the branches,
-// the step, eps and the searched volume). Indices are checked by mas::decompose itself.
+// The engine's axis from the dict centroidal_axis() returns (node regions are optional: without
+// them the decomposition takes a square of the node's area for a branch's first section, and the
+// slicer leaves guide nodes where they are). Indices are checked by mas::decompose itself.
 mas::CentroidalAxis axis_from_py(const bp::object& value) {
     mas::CentroidalAxis axis;
     const std::vector<bp::object> nodes = items_of(value, "nodes", "axis");
@@ -815,6 +871,10 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
             n.interior = vector3(required(nodes[i], "interior", what), what + "['interior']");
             if (!n.interior.allFinite()) invalid_argument(what + "['interior'] is not finite");
         }
+        // Optional: the region, as the engine gave it (region_to_py).
+        if (PyObject* region = PyDict_GetItemString(nodes[i].ptr(), "region"))
+            n.region =
+                region_from_py(bp::object(bp::handle<>(bp::borrowed(region))), what + "['region']");
         axis.nodes.push_back(n);
     }
     const std::vector<bp::object> links = items_of(value, "links", "axis");

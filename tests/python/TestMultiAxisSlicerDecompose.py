@@ -11,6 +11,7 @@ import json
 import math
 import os
 import shutil
+import struct
 import subprocess
 import tempfile
 import unittest
@@ -291,6 +292,19 @@ class TestDecomposeBadInput(DecomposeTest):
         e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid,
                                          bad_deflection)
         self.assertIn("deflection_mm", str(e))
+        # A node's region is bytes only the engine reads: anything else it could not have
+        # written is named.
+        self.assertIsInstance(axis["nodes"][0]["region"], bytes)
+        nan = struct.pack("=8d", 1, 3, 0, 0, 1, 0, float("nan"), 1)
+        for region, says in (("text", "bytes"), (b"abc", "cut short"),
+                             (struct.pack("=2d", 1, 3), "not a region"),
+                             (axis["nodes"][0]["region"] + struct.pack("=d", 0), "not a region"),
+                             (nan, "NaN")):
+            bad = dict(axis, nodes=[dict(axis["nodes"][0], region=region)] + axis["nodes"][1:])
+            e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid,
+                                             bad)
+            self.assertIn("nodes'][0]['region']", str(e))
+            self.assertIn(says, str(e))
         self.assertEqual(len(mas._engine.decompose(solid, axis)["components"]), 2)
 
     def test_the_source_is_not_modified(self):

@@ -113,6 +113,26 @@ class TestSliceApi(SliceTest):
                                delta=44000.0 * REL)
         self.check_paths(result)
 
+    def test_a_column_cut_from_an_arm_over_a_gusset_is_built_square(self):
+        """The column's axis nodes beside the arm hold its near end, out to the web's tip: the
+        slicer moves them onto what the column kept, which it reads from the nodes' regions. Those
+        cross to Python and back with the axis; without them the column leaned after the arm, its
+        29 upper layers tilted (the command line's stayed square)."""
+        with support.scratch_folder("mas_slice_gusset_") as folder:
+            path = os.path.join(folder, "gusset.brep")
+            gusset_bracket().exportBrep(path)
+            result = mas.slice(gusset_bracket())
+            column = result.components[0]
+            self.assertEqual(column["layer_count"], 40)  # 80 mm at 2 mm
+            for i in range(40):
+                layer = result.layers[column["first_layer"] + i]
+                self.assertVectorAlmostEqual(layer.normal, (0, 0, 1))
+                self.assertAlmostEqual(layer.origin.z, 2.0 * (i + 1), delta=TOL)
+            self.assertEqual(result.stats["worst_unsupported_area_mm2"], 0.0)
+            cli = self.cli_json(folder, "slice", path)
+            cli.pop("file")
+            self.assertSameJson(cli, mas.slice(path).to_dict(), "slice")
+
     def test_a_given_decomposition_gives_the_same_result(self):
         parts = mas.decompose(l_block())
         given = mas.slice(l_block(), components=parts)
@@ -331,6 +351,15 @@ class TestSliceProgress(SliceTest):
         for call in (mas.slice, mas.decompose):
             with self.assertRaisesRegex(TypeError, "progress must be None or callable"):
                 call(l_block(), progress=5)
+
+
+def gusset_bracket():
+    """A 20 x 20 column 80 tall, an arm [20,70]x[0,20]x[60,80] at its top, a web 4 thick under
+    it ([8,12] in y) from (x, z) = (20, 37) out to (43, 60)."""
+    web = Part.Face(Part.makePolygon([V(20, 8, 60), V(43, 8, 60), V(20, 8, 37), V(20, 8, 60)]))
+    column = Part.makeBox(20, 20, 80)
+    return column.fuse([Part.makeBox(50, 20, 20, V(20, 0, 60)),
+                        web.extrude(V(0, 4, 0))]).removeSplitter()
 
 
 def block_with_pin_hole():

@@ -660,7 +660,7 @@ mas::Region2 region_from_py(const bp::object& value, const std::string& what) {
     }
     if (size % Py_ssize_t(sizeof(double)) != 0) invalid_argument(what + " is cut short");
     std::vector<double> data(std::size_t(size) / sizeof(double));
-    std::memcpy(data.data(), bytes, std::size_t(size));
+    if (size > 0) std::memcpy(data.data(), bytes, std::size_t(size));
     mas::Region2 region;
     std::size_t at = 0;
     auto count = [&]() {

@@ -283,6 +283,32 @@ TEST(Decompose, AShelfOverAGussetIsCutAtTheUprightsFaceWithTheWeb) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, AFaceBehindTheJunctionFacingAwayFromTheBranchIsNoSplittingFace) {
+    // A 20 x 20 column leaning +X (from [0,20] at z = 0 to [30,50] at z = 100), an arm
+    // [40,80]x[0,20]x[70,85] off its +X side, and a pocket [16,28]x[5,15]x[70,85] cut into its -X
+    // side: the pocket's floor x = 28 is parallel to the arm's cut, with concave edges, over the
+    // arm, and behind the junction. The column's sections shrink away from the arm all the way
+    // down, so Eq. 5's widened span reaches the floor; facing -X, away from the arm, it is no
+    // face the arm leaves from. Taken, it cut off the column's +X side from a quarter way up.
+    BRepBuilderAPI_MakePolygon square(gp_Pnt(0, 0, 0), gp_Pnt(20, 0, 0), gp_Pnt(20, 20, 0),
+                                      gp_Pnt(0, 20, 0), true);
+    const TopoDS_Shape column =
+        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(square.Wire()).Face(), gp_Vec(30, 0, 100))
+            .Shape();
+    const TopoDS_Shape pocket = occ_box(16, 5, 70, 12, 10, 15);
+    const auto part =
+        from_occt(BRepAlgoAPI_Cut(fuse(column, occ_box(40, 0, 70, 40, 20, 15)), pocket).Shape());
+    const auto d = mas::decompose(part, axis_of(part, 2.5));
+    ASSERT_GE(d.components.size(), 2u);
+    for (std::size_t c = 1; c < d.components.size(); ++c) {
+        EXPECT_NE(d.components[c].rule, Rule::PlanarFace) << "component " << c;
+        EXPECT_GT(d.components[c].base_origin.x(), 40.0) << "component " << c;
+    }
+    // The root keeps the column up to the arm: all of it below z = 70, 20 x 20 x 70.
+    EXPECT_GT(d.components[0].volume_mm3, 28000.0);
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, LBlockWithoutAConcaveEdgeFallsBackToTheSectionPlane) {
     // Criterion (2) gates the candidates: the L's inner edge is 90 degrees past flat, so with 95
     // required no planar face qualifies and the arm is cut where its march started, x = 20.

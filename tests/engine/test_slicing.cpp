@@ -592,8 +592,8 @@ TEST(Slicing, AColumnCutFromAnArmOverAGussetIsSlicedSquareWithEveryLayerSupporte
     // The column's axis nodes beside the arm lie at x = 21.4, where the whole part's sections
     // (column, arm out to the web's tip) have their centroid; cut at the column's face, the
     // column holds less than half of those sections. Its guide is moved to what it holds, the
-    // column's centre line: its layers stay square to Z. Left on the nodes, they leaned 12
-    // degrees after the arm and closed onto the flat top in wedges.
+    // column's centre line: its layers stay square to Z. Left on the nodes, they leaned after
+    // the arm (12 degrees at the derived step) and closed onto the flat top in wedges.
     const auto params = default_params();
     const auto s = slice(mas::test::gusset_bracket(), 2.5, params);
     ASSERT_EQ(s.result.components.size(), 2u);

@@ -292,6 +292,12 @@ class TestDecomposeBadInput(DecomposeTest):
         e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid,
                                          bad_deflection)
         self.assertIn("deflection_mm", str(e))
+        # A node naming a branch the axis lacks (the decomposition walks a node's branch).
+        start = axis["links"][0]["start"]
+        far = dict(axis, nodes=[dict(n, branch=50000000) if i == start else n
+                                for i, n in enumerate(axis["nodes"])])
+        e = self.assertRaisesEngineError("invalid_argument", mas._engine.decompose, solid, far)
+        self.assertIn("node {} names branch 50000000".format(start), str(e))
         # A node's region is bytes only the engine reads: anything else it could not have
         # written is named.
         self.assertIsInstance(axis["nodes"][0]["region"], bytes)

@@ -15,15 +15,18 @@
 //   with a concave edge on their boundary (interior angle over 180 + concave_angle_deg degrees,
 //   from the two faces' normals at the edge's midpoint), (3) meeting Eq. 5 along D: the outer
 //   wire's Proj_min or Proj_max along D lies in [D.Pos_start, D.Pos_end] (+- projection_tolerance),
-//   the span widened to take in the father's nodes from Pos_start's back along its march, for as
-//   long as each one's section reaches no further along D than the next one's (+- the same
-//   tolerance): the father's sections beside b can hold the near end of b's own material, which
-//   Eq. 4 left to the father, and their centroids, Pos_start among them, then lie past the face b
-//   leaves from. A gusset under an arm: the column's sections reach out to the web's tip, less
-//   far at each plane down the web, and the column's face x = 20 lies behind their centroids
-//   (x = 21.4 beside the arm); cut past the tip, the arm's underside beside the web overhung the
-//   column's layers. Where the sections reach further back down the march (a father bulging
-//   towards b) the walk stops;
+//   or, for a face whose outward normal points along +D (one the child can leave from), in
+//   that span widened to take in the father's nodes from Pos_start's back along its march, each
+//   reaching along D no further than the next one's (+- the tolerance), up to the first that
+//   stops shrinking away from b once they have begun to: the father's sections beside b
+//   can hold the near end of b's own material, which Eq. 4 left to the father, and their
+//   centroids, Pos_start among them, then lie past the face b leaves from. A gusset under an
+//   arm: the column's sections reach out to the web's tip, less far at each plane down the web,
+//   and the column's face x = 20 lies behind their centroids (x = 21.4 beside the arm); cut past
+//   the tip, the arm's underside beside the web overhung the column's layers. The walk stops
+//   where a section reaches further than the next one (the father bulging towards b). A face
+//   facing away from b (a pocket's floor on the far side of a column leaning towards b, which
+//   the walk reaches all the way down) would cut the father through;
 //   and lying over the branch: seen along D, the face's box meets the branch's first section grown
 //   by a step (else a face of another feature, parallel to D, may cut through the father).
 //   The one whose plane lies nearest the junction (b's first plane minus half a step) wins.

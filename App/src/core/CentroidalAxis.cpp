@@ -1345,6 +1345,11 @@ void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& b
     for (const auto& l : axis.links)
         if (!node_ok(l.start) || !node_ok(l.end))
             throw Error(ErrorCode::InvalidArgument, caller + ": the axis has a dangling link");
+    for (std::size_t i = 0; i < axis.nodes.size(); ++i)
+        if (axis.nodes[i].branch < -1 || axis.nodes[i].branch >= int(axis.branches.size()))
+            throw Error(ErrorCode::InvalidArgument,
+                        caller + ": the axis' node " + std::to_string(i) + " names branch " +
+                            std::to_string(axis.nodes[i].branch) + ", which it lacks");
     for (std::size_t b = 0; b < axis.branches.size(); ++b) {
         const auto& br = axis.branches[b];
         bool ok = br.parent < int(b) && !br.nodes.empty() &&

@@ -541,20 +541,30 @@ public:
         }
         reach.min().array() -= axis_.params.step_mm;
         reach.max().array() += axis_.params.step_mm;
-        // Eq. 5's span takes in the father's nodes from pos_start back along its march for as
-        // long as their sections reach no further along D than the next one's (criterion (3) in
-        // Decompose.hpp: a gusset).
-        if (const int fb = axis_.nodes[std::size_t(link.start)].branch; fb >= 0) {
+        // Eq. 5's span, widened to take in the father's nodes from pos_start back along its march
+        // while they reach no further towards the branch, up to the first that stops shrinking
+        // away from it (criterion (3) in Decompose.hpp: a gusset). A face only the widened span
+        // admits must face the branch.
+        const double lo_eq5 = lo_span, hi_eq5 = hi_span;
+        const int fb = axis_.nodes[std::size_t(link.start)].branch;
+        if (fb >= 0 && std::size_t(fb) < axis_.branches.size()) {
             const std::vector<int>& march = axis_.branches[std::size_t(fb)].nodes;
             auto k = std::find(march.begin(), march.end(), link.start);
             double next = std::numeric_limits<double>::infinity();
+            bool shrinking = false;
             for (; k != march.end(); --k) {
                 const AxisNode& n = axis_.nodes[std::size_t(*k)];
                 const double e = reach_along(n, D);
-                if (e > next + tol) break;
-                next = e;
+                if (e > next + tol) break;  // reaching further back: bulging towards the branch
                 lo_span = std::min(lo_span, D.dot(n.position));
                 hi_span = std::max(hi_span, D.dot(n.position));
+                if (std::isfinite(next)) {
+                    if (e < next - tol)
+                        shrinking = true;
+                    else if (shrinking)
+                        break;  // shrunk down to the father's own section
+                }
+                next = e;
                 if (k == march.begin()) break;
             }
         }
@@ -566,10 +576,13 @@ public:
                 if (std::abs(pf.normal.dot(D)) < cos_face_) continue;  // (1)
                 double lo, hi;
                 projection_range(pf.face, D, lo, hi);
-                const auto in_span = [&](double v) {
-                    return v >= lo_span - tol && v <= hi_span + tol;
+                const auto in_span = [&](double v, double from, double to) {
+                    return v >= from - tol && v <= to + tol;
                 };
-                if (!in_span(lo) && !in_span(hi)) continue;  // (3)
+                if (!in_span(lo, lo_eq5, hi_eq5) && !in_span(hi, lo_eq5, hi_eq5) &&
+                    (pf.normal.dot(D) <= 0.0 ||
+                     (!in_span(lo, lo_span, hi_span) && !in_span(hi, lo_span, hi_span))))
+                    continue;  // (3)
                 const Eigen::AlignedBox3d box = occ::tight_bounds(pf.face);
                 Eigen::AlignedBox2d across;
                 for (int corner = 0; corner < 8; ++corner)

@@ -233,11 +233,12 @@ TEST(Decompose, LBlockArmIsAChildBuiltAlongPlusXFromTheColumnSide) {
 }
 
 TEST(Decompose, AnArmOverAGussetIsCutAtTheColumnsFaceWithTheWeb) {
-    // The column's sections beside the web reach out to its tip, so the arm's march starts past
-    // x = 43 and the column's nodes there lie at x > 20: the column's face x = 20 lies in Eq. 5's
-    // span only through the column's nodes below the arm. Cut there, the arm takes the web along
-    // (built along +X, each layer's web on the last one's), and the column is the 20 x 20 box;
-    // cut past the web's tip, the arm's near end beside the web overhung the column's layers.
+    // The column's sections beside the web reach out to its tip, so the arm's march starts near
+    // it (x = 43), and the column's nodes beside the arm lie at x > 20. The column's face x = 20
+    // lies in Eq. 5's span only through the column's nodes below the arm. Cut there, the arm
+    // takes the web along (built along +X, each layer's web on the last one's), and the column
+    // is the 20 x 20 box; cut past the web's tip, the arm's near end beside the web overhung the
+    // column's layers.
     const auto part = mas::test::gusset_bracket();
     const auto axis = axis_of(part, 2.5);
     ASSERT_EQ(axis.branches.size(), 2u);

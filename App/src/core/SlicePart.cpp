@@ -148,7 +148,8 @@ namespace {
 // the two tessellations' disagreement (the axis' deflection, twice, its simplification, step /
 // 100, and a tenth of a micron): a sliver along a curved outline moves nothing. Material the
 // node's region never held (another branch's, swept before, which a mesh sliced as one component
-// still has) moves nothing either. Nodes without their region (an axis from Python) stay.
+// still has) moves nothing either. Nodes without their region (an axis dict built by hand)
+// stay.
 void recentre_guide(const TriangleMesh& mesh, const CentroidalAxis& axis,
                     ComponentSlicingInput& input) {
     const double sliver =

@@ -530,8 +530,8 @@ public:
         // The branch's first section, seen along D (the node's plane has normal D), grown by a
         // step: a splitting face must lie over it. Without this, the side face of one blade on a
         // hub, parallel to another blade's branch, cut the hub in half.
-        // An axis handed over without its regions (from Python) gives a square around the
-        // centroid with the section's area, half again as wide.
+        // An axis handed over without its regions (a dict built by hand) gives a square around
+        // the centroid with the section's area, half again as wide.
         const PlaneFrame frame(first.normal);
         Eigen::AlignedBox2d reach = bounds(first.region);
         if (first.region.outer.points.empty()) {

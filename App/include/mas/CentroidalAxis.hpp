@@ -207,6 +207,12 @@ CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& param
 void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& box,
                         double volume_mm3, const std::string& caller);
 
+// Eq. 4's T: how far the outer loop of `region` (in PlaneFrame(normal) coordinates, on the plane
+// {normal . p = offset}) reaches along `dir`, the greatest dir . p over its points; -infinity for
+// an empty region.
+double extent_along(const Region2& region, const Eigen::Vector3d& normal, double offset,
+                    const Eigen::Vector3d& dir);
+
 // Distance from a point to a region in the same 2-D frame: 0 inside, else to the nearest edge of
 // the outer loop (holes count as outside: a point in a hole is at its distance to the hole edge).
 double distance_to_region(const Region2& region, const Eigen::Vector2d& point);

@@ -51,6 +51,15 @@ Eigen::Vector2d nearest_boundary_point(const Region2& region, const Eigen::Vecto
 
 }  // namespace
 
+double extent_along(const Region2& region, const Eigen::Vector3d& normal, double offset,
+                    const Eigen::Vector3d& dir) {
+    const PlaneFrame frame(normal);
+    const Plane plane{normal * offset, normal};
+    double t = -std::numeric_limits<double>::infinity();
+    for (const auto& q : region.outer.points) t = std::max(t, dir.dot(frame.to_3d(q, plane)));
+    return t;
+}
+
 double distance_to_region(const Region2& region, const Eigen::Vector2d& point) {
     if (contains(region, point)) return 0.0;
     return (nearest_boundary_point(region, point) - point).norm();
@@ -95,15 +104,6 @@ std::vector<Vector3d> sides_from(const Vector3d& first, const Vector3d& n) {
             if (a != axis_index(n) && d != first) out.push_back(d);
         }
     return out;
-}
-
-// Eq. 4's T: the extent of a region's outer loop on the plane {n.p = offset} along `dir`.
-double extent(const Region2& region, const Vector3d& dir, const Vector3d& n, double offset) {
-    const PlaneFrame frame(n);
-    const Plane plane{n * offset, n};
-    double t = -std::numeric_limits<double>::infinity();
-    for (const auto& q : region.outer.points) t = std::max(t, dir.dot(frame.to_3d(q, plane)));
-    return t;
 }
 
 // The regions split at {dir.p = t} (dir perpendicular to the frame's normal): the parts beyond,
@@ -1084,10 +1084,10 @@ private:
             for (const Vector3d& side : sides) {
                 if (rest.empty()) break;
                 // Around the lower section: beyond every lower region's extent.
-                double t_max = extent(track.region.front(), side, n, lower_offset);
+                double t_max = extent_along(track.region.front(), n, lower_offset, side);
                 if (around)
                     for (const auto& l : lower)
-                        t_max = std::max(t_max, extent(l, side, n, lower_offset));
+                        t_max = std::max(t_max, extent_along(l, n, lower_offset, side));
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
                 rest = std::move(behind);
                 if (share.empty()) continue;

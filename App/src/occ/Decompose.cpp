@@ -622,11 +622,7 @@ private:
     // over without regions).
     static double reach_along(const AxisNode& n, const Vector3d& d) {
         if (n.region.outer.points.empty()) return d.dot(n.position);
-        const PlaneFrame frame(n.normal);
-        const Plane plane{n.normal * n.offset, n.normal};
-        double t = -std::numeric_limits<double>::infinity();
-        for (const auto& q : n.region.outer.points) t = std::max(t, d.dot(frame.to_3d(q, plane)));
-        return t;
+        return extent_along(n.region, n.normal, n.offset, d);
     }
 
     const CentroidalAxis& axis_;

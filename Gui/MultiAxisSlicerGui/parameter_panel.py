@@ -264,7 +264,7 @@ class ParameterPanel:
         back with the properties."""
         import MultiAxisSlicer.features as features
 
-        objects = [self.obj] + self.obj.InListRecursive
+        objects = self._family()
         self.remembered = features.remembered_results(objects)
         self.computed = {o.Name for o in objects if features.failure(o) is None}
         self.opened = {f.prop: getattr(self.obj, f.prop) for f in self.fields}
@@ -273,6 +273,10 @@ class ParameterPanel:
         # command beginning (which commits it, as FreeCAD does) can end it before OK or Cancel.
         self.transaction = FreeCAD.getActiveTransaction()
         self.applied = False  # whether Apply wrote a value (recorded in the transaction)
+
+    def _family(self):
+        """The edited object and everything made from it."""
+        return [self.obj] + self.obj.InListRecursive
 
     def field(self, prop):
         """The editor of `prop` (for scripts and tests)."""
@@ -316,7 +320,7 @@ class ParameterPanel:
             # A decomposition's Component objects follow its count now, within the edit (the
             # view provider's timer would make them an undo step of their own after OK), before
             # what depends on them is recomputed (a component left over would fail meanwhile).
-            for o in [self.obj] + self.obj.InListRecursive:
+            for o in self._family():
                 if (features.is_decomposition(o) and o.isValid() and
                         len(features.components_of(o)) != o.ComponentCount):
                     features.sync_components(o)
@@ -396,7 +400,7 @@ class ParameterPanel:
         # left one touched, from the results put back, without computing them anew (all of
         # them: one recomputed touches those made from it); those that were not stay as they
         # were.
-        objects = [o for o in [self.obj] + self.obj.InListRecursive if o.Name in self.computed]
+        objects = [o for o in self._family() if o.Name in self.computed]
         if any("Touched" in o.State or not o.isValid() for o in objects):
             self.doc.recompute(objects)
 
@@ -462,6 +466,12 @@ class _UndoWatch:
             QtCore.QTimer.singleShot(0, lambda: panel.ended(undone))
 
 
+def _say_task_open(obj):
+    """The message for an edit asked for while a task is open in the task view."""
+    MultiAxisSlicerGui.show_error(
+        "Finish the task open in the task view (OK or Cancel), then edit '{}'.".format(obj.Label))
+
+
 def edited_object(obj):
     """The object whose parameters `obj`'s panel edits: itself, or a Toolpath's Layers object."""
     import MultiAxisSlicer.features as features
@@ -487,9 +497,7 @@ def edit(obj):
     if panel is not None and panel.obj is edited_object(obj):
         return True  # its panel is open already
     if panel is not None or FreeCADGui.Control.activeDialog():
-        MultiAxisSlicerGui.show_error(
-            "Finish the task open in the task view (OK or Cancel), then edit '{}'.".format(
-                obj.Label))
+        _say_task_open(obj)
         return True
     FreeCADGui.getDocument(obj.Document.Name).setEdit(obj.Name, 0)
     return True
@@ -503,9 +511,7 @@ def open_panel(obj):
     import MultiAxisSlicer.features as features
 
     if FreeCADGui.Control.activeDialog():
-        MultiAxisSlicerGui.show_error(
-            "Finish the task open in the task view (OK or Cancel), then edit '{}'.".format(
-                obj.Label))
+        _say_task_open(obj)
         return False
     edited = edited_object(obj)
     if edited is None or not features.parameters(edited):

@@ -6,8 +6,6 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
-#include <BRepBuilderAPI_MakeFace.hxx>
-#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
@@ -15,7 +13,6 @@
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
-#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
@@ -36,6 +33,7 @@ using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
 using mas::test::occ_cylinder;
+using mas::test::occ_prism;
 using mas::test::to_occt;
 using Rule = mas::Component::SplitRule;
 
@@ -263,11 +261,7 @@ TEST(Decompose, AShelfOverAGussetIsCutAtTheUprightsFaceWithTheWeb) {
     // a 4 mm web under it (x in [28,32]) from (y, z) = (5, 15) up to (35, 45). The upright's
     // nodes lie past its face y = 5 from two thirds of the way up the web; Eq. 5's span reaches its
     // face through the nodes below, down the web to where the sections stop shrinking.
-    BRepBuilderAPI_MakePolygon outline(gp_Pnt(28, 5, 45), gp_Pnt(28, 35, 45), gp_Pnt(28, 5, 15),
-                                       true);
-    const TopoDS_Shape web =
-        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(4, 0, 0))
-            .Shape();
+    const TopoDS_Shape web = occ_prism({{28, 5, 45}, {28, 35, 45}, {28, 5, 15}}, {4, 0, 0});
     const auto part =
         from_occt(fuse(fuse(occ_box(0, 0, 0, 60, 5, 50), occ_box(0, 5, 45, 60, 40, 5)), web));
     const auto axis = axis_of(part, 2.5);
@@ -291,11 +285,8 @@ TEST(Decompose, AFaceBehindTheJunctionFacingAwayFromTheBranchIsNoSplittingFace) 
     // arm, and behind the junction. The column's sections shrink away from the arm all the way
     // down, so Eq. 5's widened span reaches the floor; facing -X, away from the arm, it is no
     // face the arm leaves from. Taken, it cut off the column's +X side from a quarter way up.
-    BRepBuilderAPI_MakePolygon square(gp_Pnt(0, 0, 0), gp_Pnt(20, 0, 0), gp_Pnt(20, 20, 0),
-                                      gp_Pnt(0, 20, 0), true);
     const TopoDS_Shape column =
-        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(square.Wire()).Face(), gp_Vec(30, 0, 100))
-            .Shape();
+        occ_prism({{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 20, 0}}, {30, 0, 100});
     const TopoDS_Shape pocket = occ_box(16, 5, 70, 12, 10, 15);
     const auto part =
         from_occt(BRepAlgoAPI_Cut(fuse(column, occ_box(40, 0, 70, 40, 20, 15)), pocket).Shape());
@@ -466,17 +457,9 @@ TEST(Decompose, ADraftedFaceAtTheJunctionSplitsWhenOneEndOfItMeetsTheSpan) {
     // along the face's normal. (Requiring both ends in the interval, it fell back to the section
     // plane, 0.26 mm past x = 20, and left a sliver of the arm on the column.)
     const double draft = 5.0 * M_PI / 180.0;
-    BRepBuilderAPI_MakePolygon outline;
-    for (const auto& [x, z] : {std::pair{0.0, 0.0},
-                               {20.0 + 40.0 * std::tan(draft), 0.0},
-                               {20.0, 40.0},
-                               {20.0, 60.0},
-                               {0.0, 60.0}})
-        outline.Add(gp_Pnt(x, 0, z));
-    outline.Close();
-    const TopoDS_Shape column =
-        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(0, 20, 0))
-            .Shape();
+    const TopoDS_Shape column = occ_prism(
+        {{0, 0, 0}, {20.0 + 40.0 * std::tan(draft), 0, 0}, {20, 0, 40}, {20, 0, 60}, {0, 0, 60}},
+        {0, 20, 0});
     const auto part = from_occt(fuse(column, occ_box(20, 0, 40, 50, 20, 20)));
     const auto axis = axis_of(part, 2.5);
     ASSERT_EQ(axis.branches.size(), 2u);

@@ -59,6 +59,16 @@ TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
     return f.Shape();
 }
 
+TopoDS_Shape occ_prism(const std::vector<Eigen::Vector3d>& outline,
+                       const Eigen::Vector3d& extrusion) {
+    BRepBuilderAPI_MakePolygon polygon;
+    for (const auto& p : outline) polygon.Add(gp_Pnt(p.x(), p.y(), p.z()));
+    polygon.Close();
+    return BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(polygon.Wire()).Face(),
+                                 gp_Vec(extrusion.x(), extrusion.y(), extrusion.z()))
+        .Shape();
+}
+
 Shape box(double x0, double y0, double z0, double dx, double dy, double dz) {
     return from_occt(occ_box(x0, y0, z0, dx, dy, dz));
 }
@@ -96,11 +106,7 @@ Shape plate_with_hole() {
 }
 
 Shape gusset_bracket() {
-    BRepBuilderAPI_MakePolygon outline(gp_Pnt(20, 8, 60), gp_Pnt(43, 8, 60), gp_Pnt(20, 8, 37),
-                                       true);
-    const TopoDS_Shape web =
-        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(0, 4, 0))
-            .Shape();
+    const TopoDS_Shape web = occ_prism({{20, 8, 60}, {43, 8, 60}, {20, 8, 37}}, {0, 4, 0});
     const TopoDS_Shape l = fuse(occ_box(0, 0, 0, 20, 20, 80), occ_box(20, 0, 60, 50, 20, 20));
     return from_occt(fuse(l, web));
 }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <TopoDS_Shape.hxx>
+#include <vector>
 
 #include "mas/Mesh.hpp"
 #include "mas/Nozzle.hpp"
@@ -70,5 +71,8 @@ TopoDS_Shape occ_box(double x0, double y0, double z0, double dx, double dy, doub
 TopoDS_Shape occ_cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double r,
                           double h);
 TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b);
+// The planar polygon through `outline` (closed back to its first point) swept along `extrusion`.
+TopoDS_Shape occ_prism(const std::vector<Eigen::Vector3d>& outline,
+                       const Eigen::Vector3d& extrusion);
 
 }  // namespace mas::test

@@ -6,12 +6,9 @@
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
-#include <BRepBuilderAPI_MakeFace.hxx>
-#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
-#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <Eigen/Geometry>
@@ -32,6 +29,7 @@ using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
 using mas::test::occ_cylinder;
+using mas::test::occ_prism;
 using mas::test::to_occt;
 
 namespace {
@@ -693,13 +691,8 @@ TEST(Slicing, VolDiffIsTheMismatchOverTheDepositedPrismsVolume) {
     // widths are linear in z, the midpoint rule is exact: over a layer t thick vol(P) =
     // 10 t (40 - 2 z0 - 2 Delta), vol(M) = 10 t (40 - 2 z0 - t), and VolDiff =
     // (t - 2 Delta) / (40 - 2 z0 - 2 Delta), under the 0.1 bound at max_layer all the way up.
-    BRepBuilderAPI_MakePolygon trapezoid;
-    for (const auto& [x, z] : {std::pair{0.0, 0.0}, {40.0, 0.0}, {30.0, 10.0}, {10.0, 10.0}})
-        trapezoid.Add(gp_Pnt(x, 0, z));
-    trapezoid.Close();
     const TopoDS_Shape prism =
-        BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(trapezoid.Wire()).Face(), gp_Vec(0, 10, 0))
-            .Shape();
+        occ_prism({{0, 0, 0}, {40, 0, 0}, {30, 0, 10}, {10, 0, 10}}, {0, 10, 0});
     auto params = default_params();
     params.layers.initial_offset_mm = 0.01;
     const double delta = params.layers.initial_offset_mm;

@@ -384,27 +384,80 @@ TEST(CentroidalAxis, ShortLugsOnAThickColumnBranchAtTheDerivedThreshold) {
     expect_invariants(given, mesh);
 }
 
-TEST(CentroidalAxis, ALugCentredWithinASixthOfTheColumnsSizeStaysInIt) {
+TEST(CentroidalAxis, ALugCentredWithinTheThresholdTurnsForItsFlatUnderside) {
     // The column above with a lug sticking out 9 mm instead of 12: [30,39]x[11,19]x[16,24]. With
     // a 4 mm step the derived d is min(8, 30 / 6) = 5 mm (CentroidalAxis.hpp, Eq. 3); the lug's
-    // section is centred 4.5 mm outside the column, within d, so it is no turn: one branch. (At
-    // an eighth of the size, the bump distance 3.75 mm, it would be far; it then reaches out less
-    // than half the column's size and stays in it all the same.) The planes through the lug,
-    // z = 16.001 and 20.001, carry column and lug: 900 + 72 mm^2, centroid x = (900 x 15 + 72 x
-    // 34.5) / 972.
+    // section on z = 16.001 is centred 4.5 mm outside the column, within d. But it appears at
+    // once (nothing of it on z = 12.001 nor half a step up, on z = 14.001) and reaches 9 mm past
+    // the column, more than a step and than the bump distance (an eighth of the size, 3.75 mm):
+    // a ledge, whose underside the march could not lay. It turns +X from the column's face
+    // (Eq. 4's T, x = 30), its sections on x = 32.001 and 36.001 (the +X grid's planes past T):
+    // 8 x 8, on the lug's centre line. The column keeps its 30 x 30 sections, the lug swept
+    // from them.
     const auto mesh =
         mesh_of(from_occt(fuse(occ_box(0, 0, 0, 30, 30, 60), occ_box(30, 11, 16, 9, 8, 8))));
     mas::AxisParams p;
     p.step_mm = 4.0;
     const auto a = mas::centroidal_axis(mesh, p);
-    ASSERT_EQ(a.branches.size(), 1u);
-    ASSERT_EQ(a.nodes.size(), 15u);  // z = 0.001 ... 56.001
-    for (const auto& node : a.nodes) {
-        const bool lug = node.offset > 16.0 && node.offset < 24.0;
-        EXPECT_NEAR(node.area, lug ? 972.0 : 900.0, 1e-6) << "z = " << node.offset;
-        EXPECT_NEAR(node.position.x(), lug ? (900.0 * 15.0 + 72.0 * 34.5) / 972.0 : 15.0, kGrid)
+    EXPECT_EQ(a.params.distance_threshold_mm, 8.0);
+    ASSERT_EQ(a.branches.size(), 2u);
+    ASSERT_EQ(a.branches[0].nodes.size(), 15u);  // z = 0.001 ... 56.001
+    for (int n : a.branches[0].nodes) {
+        const auto& node = a.nodes[std::size_t(n)];
+        EXPECT_NEAR(node.area, 900.0, 1e-6) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.x(), 15.0, kGrid) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.y(), 15.0, kGrid);
+    }
+    const auto& lug = a.branches[1];
+    EXPECT_EQ(lug.parent, 0);
+    EXPECT_TRUE(lug.direction.isApprox(Vector3d::UnitX(), 1e-12)) << lug.direction.transpose();
+    ASSERT_EQ(lug.nodes.size(), 2u);
+    EXPECT_NEAR(a.nodes[std::size_t(lug.nodes.front())].slab_start, 30.0, 1e-9);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const auto& node = a.nodes[std::size_t(lug.nodes[i])];
+        EXPECT_NEAR(node.offset, 32.001 + 4.0 * double(i), 1e-9);
+        EXPECT_NEAR(node.area, 64.0, 1e-6);
+        EXPECT_NEAR(node.position.y(), 15.0, kGrid);
+        EXPECT_NEAR(node.position.z(), 20.0, kGrid);
+    }
+    expect_invariants(a, mesh);
+
+    // A threshold given is used as given, ledges and all (Eq. 3 alone): at 5 mm the lug is no
+    // turn, and the planes through it, z = 16.001 and 20.001, carry column and lug: 900 + 72
+    // mm^2, centroid x = (900 x 15 + 72 x 34.5) / 972.
+    p.distance_threshold_mm = 5.0;
+    const auto given = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(given.branches.size(), 1u);
+    ASSERT_EQ(given.nodes.size(), 15u);
+    for (const auto& node : given.nodes) {
+        const bool in_lug = node.offset > 16.0 && node.offset < 24.0;
+        EXPECT_NEAR(node.area, in_lug ? 972.0 : 900.0, 1e-6) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.x(), in_lug ? (900.0 * 15.0 + 72.0 * 34.5) / 972.0 : 15.0, kGrid)
             << "z = " << node.offset;
         EXPECT_NEAR(node.position.y(), 15.0, kGrid);
+    }
+    expect_invariants(given, mesh);
+}
+
+TEST(CentroidalAxis, ALugOnASlopingUndersideIsNoLedge) {
+    // The lug above with its underside sloping from the column's face at z = 12 to its end at
+    // z = 16 (x = 30 + 9 (z - 12) / 4): on z = 16.001 the stick-out is the same 9 x 8 section,
+    // centred 4.5 mm out, within the derived d = 5 mm. But it grows over the step: half a step
+    // down, on z = 14.001, half of it is there (out to x = 34.5). A side sloping out, however
+    // steeply, is no ledge (an organic body's flanks are such, on every plane): the lug stays in
+    // the column, one branch, the planes z = 16.001 and 20.001 carrying column and lug.
+    const TopoDS_Shape lug =
+        mas::test::occ_prism({{30, 11, 12}, {39, 11, 16}, {39, 11, 24}, {30, 11, 24}}, {0, 8, 0});
+    const auto mesh = mesh_of(from_occt(fuse(occ_box(0, 0, 0, 30, 30, 60), lug)));
+    mas::AxisParams p;
+    p.step_mm = 4.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 1u);
+    ASSERT_EQ(a.nodes.size(), 15u);
+    for (const auto& node : a.nodes) {
+        if (node.offset < 16.0 || node.offset > 24.0) continue;
+        EXPECT_NEAR(node.area, 972.0, 1e-6) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.x(), (900.0 * 15.0 + 72.0 * 34.5) / 972.0, kGrid);
     }
     expect_invariants(a, mesh);
 }

@@ -111,6 +111,12 @@ Shape gusset_bracket() {
     return from_occt(fuse(l, web));
 }
 
+Shape staircase() {
+    TopoDS_Shape stairs = occ_box(0, 0, 0, 20, 20, 10);
+    for (int i = 1; i < 4; ++i) stairs = fuse(stairs, occ_box(5.0 * i, 0, 10.0 * i, 20, 20, 10));
+    return from_occt(stairs);
+}
+
 Shape two_posts() {
     const TopoDS_Shape base = occ_box(0, 0, 0, 40, 10, 5);
     const TopoDS_Shape posts = fuse(occ_box(0, 0, 5, 10, 10, 25), occ_box(30, 0, 5, 10, 10, 25));

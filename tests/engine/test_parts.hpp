@@ -26,6 +26,9 @@ Shape l_block();
 // [0,20]x[0,20]x[0,80], arm [20,70]x[0,20]x[60,80], web 4 thick ([8,12] in y), its triangle
 // (x, z) = (20, 60), (43, 60), (20, 37) against the column's face and the arm's underside.
 Shape gusset_bracket();
+// Four 20 x 20 x 10 tiers, each 5 mm further along +X than the one below it:
+// [5i, 20 + 5i] x [0, 20] x [10i, 10i + 10] for i = 0 .. 3. Every tier's +X end overhangs.
+Shape staircase();
 // 60 x 40 x 10 plate [0,60]x[0,40]x[0,10] with a vertical through hole of radius 8 at (30, 20).
 Shape plate_with_hole();
 // Two 10 x 10 posts on one 40 x 10 x 5 base plate [0,40]x[0,10]x[0,5]: posts

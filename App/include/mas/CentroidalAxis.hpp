@@ -34,6 +34,17 @@
 //   one stick-out centred on the neck. It is shared out among the four sides as below, each
 //   side's T taken over every lower region, and each share is judged as a stick-out of its own.
 //   Reaching out less, it is the part widening (an organic body at its shoulders).
+// - A ledge turns however near its centre (with a derived `distance_threshold` only; one given
+//   is used as given): a stick-out centred outside L, not wrapping round it, meeting L along one
+//   stretch (not spanning a gap, as a bore's ceiling closing a ring does), reaching out past L by
+//   more than a step (an overhang steeper than 45 degrees over the step) and a bump, and
+//   appearing at once: none of it on L's plane and, half a step up, over 90 % of its area or
+//   under 10 % (a flat underside, or one tangent to the planes, below or above that plane; a side
+//   sloping out, however steeply, shows about half). Its first layer in the march would hang in
+//   the air, and Eq. 3 by its centre (and G_k - E plus the step, mostly along the march while the
+//   centre is within a step) kept a staircase's 5 mm steps in the march at the derived step,
+//   2.84 mm. It turns the closest of the four sides to G_k - E, and is shared out among the sides
+//   as below, each share turning if it reaches out of the bump.
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a

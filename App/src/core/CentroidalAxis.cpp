@@ -451,6 +451,10 @@ private:
         std::vector<std::atomic<int>> chunk_state;
         std::vector<char> chunk_used;
         std::unique_ptr<SectionGrid> sections;  // the mesh prepared for cutting these planes
+        // The planes half a step above each, cut one at a time where a ledge is looked for
+        // (appears_at_once), on the search's thread only.
+        std::unique_ptr<SectionGrid> halves;
+        std::vector<std::unique_ptr<Regions2>> half_regions;
         bool ready = false;
     };
     static constexpr std::size_t kGridChunk = 16;
@@ -706,6 +710,43 @@ private:
 
     double offset(const Grid& g, std::size_t k) const { return g.origin + double(k) * p_.step_mm; }
 
+    // Whether stick-out `da` meets the lower regions in more than one place: it spans a gap
+    // between them or between two ends of one of them (a bore's ceiling closing a ring the bore
+    // broke open), as a bridge does. A ledge meets them along one stretch.
+    bool spans_a_gap(const Region2& da, const Regions2& lower) const {
+        const Regions2 grown = mas::offset({da}, p_.step_mm / 100.0, JoinType::Miter);
+        int contacts = 0;
+        for (const auto& piece : intersection(grown, lower))
+            if (area(piece) > p_.min_region_area_mm2) ++contacts;
+        return contacts > 1;
+    }
+
+    // Whether stick-out `da` of plane k over plane k - 1 appears at once between them: none of it
+    // on plane k - 1 and, half a step up, nearly all of it or nearly none (a flat underside
+    // below or above the half plane; where a sloping side grows the section, about half of it).
+    // Shares are of da's area; "nearly" is a tenth.
+    bool appears_at_once(const Region2& da, Grid& g, std::size_t k) {
+        const double a = area(da);
+        if (!(a > 0.0) || k == 0) return false;
+        if (area(intersection({da}, g.regions[k - 1])) > 0.1 * a) return false;
+        if (!g.halves) {
+            std::vector<Plane> planes(g.count);
+            for (std::size_t i = 0; i < g.count; ++i)
+                planes[i] = Plane{g.normal * (offset(g, i) + 0.5 * p_.step_mm), g.normal};
+            g.halves = std::make_unique<SectionGrid>(mesh_, std::move(planes));
+            g.half_regions.resize(g.count);
+        }
+        std::unique_ptr<Regions2>& half = g.half_regions[k - 1];
+        if (!half) {
+            half = std::make_unique<Regions2>();
+            for (auto& section : g.halves->cut(k - 1, k))
+                for (const auto& r : section.regions)
+                    half->push_back(simplify(r.shape, p_.step_mm / 100.0));
+        }
+        const double share = area(intersection({da}, *half)) / a;
+        return share >= 0.9 || share <= 0.1;
+    }
+
     // B - Bs of the planes a march reaches next, worked out on another thread while the march
     // handles the current plane: the Booleans of the two are most of the axis' time, and each
     // plane's B - Bs needs only the slabs swept before it. It stays valid while only the march's
@@ -945,8 +986,8 @@ private:
                     Regions2 lower;
                     for (int o : overlapping[j])
                         lower.push_back(tracks[std::size_t(o)].region.front());
-                    for (auto& piece : classify(upper[j].front(), stick_out[j], lower, tracks[t], n,
-                                                offset_of(k - 1), offset_of(k), children))
+                    for (auto& piece :
+                         classify(upper[j].front(), stick_out[j], lower, tracks[t], g, k, children))
                         pieces.push_back(std::move(piece));
                 }
                 pieces = keep_larger(std::move(pieces), p_.min_region_area_mm2);
@@ -974,11 +1015,13 @@ private:
 
     // Eq. 2 on one upper region over its lower region(s), given U - L: returns what continues
     // this march and queues a new branch for every stick-out whose centre lies beyond the
-    // distance threshold.
+    // distance threshold, and for every ledge.
     Regions2 classify(const Region2& upper, const Regions2& stick_out, const Regions2& lower,
-                      const Track& track, const Vector3d& n, double lower_offset,
-                      double upper_offset, std::vector<Task>& children) {
+                      const Track& track, Grid& planes, std::size_t k,
+                      std::vector<Task>& children) {
         if (stick_out.empty()) return {upper};  // Eq. 2: empty, same direction
+        const Vector3d& n = planes.normal;
+        const double lower_offset = offset(planes, k - 1), upper_offset = offset(planes, k);
         const PlaneFrame frame(n);
         const Plane upper_plane{n * upper_offset, n};
         // Far: centred "much greater than the step" (d) outside L, and not a bump on a large
@@ -1053,6 +1096,7 @@ private:
                 if (touched > 1) turn = false;
             }
             Vector3d dir = n;
+            bool along = false;  // far, but still along the march
             if (turn) {
                 // The turn follows the way the stick-out leaves the lower section: from the
                 // nearest point of its boundary to G. (The paper's G - C sends a lug near the
@@ -1060,10 +1104,33 @@ private:
                 // searched.)
                 dir = closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane) +
                                    n * (upper_offset - lower_offset));
-                if (std::abs(dir.dot(n)) > 0.5) continue;  // still along the march: no turn
-            } else if (!reaches({da}, std::max(p_.distance_threshold_mm, 4.0 * bump))) {
-                continue;  // near, or a bridge, and reaching out less than half L's size
+                along = std::abs(dir.dot(n)) > 0.5;
+                turn = !along;
             }
+            // Reaching out past every lower region by more than half their size: wrapping round
+            // the lower section (below).
+            const bool wide =
+                !turn && reaches({da}, std::max(p_.distance_threshold_mm, 4.0 * bump));
+            // A ledge: material that appears at once between the planes (on an underside flat
+            // along the march, or tangent to its planes), centred outside the lower section and
+            // reaching out past it by more than a step (steeper than 45 degrees over it) and a
+            // bump, not round it. Near or not, the march cannot lay it (its first layer would
+            // hang in the air), so it turns the way it leaves the lower section, without Eq. 3's
+            // test of its centre. Only with a derived threshold: one given is used as given.
+            // (Kept in the march, a staircase's 5 mm steps left 88 mm^2 and a cube's 6 mm lip
+            // 142 mm^2 unsupported.) Material spanning a gap is a bridge, as above.
+            bool ledge = false;
+            if (derived_threshold_ && !turn && !wide && dist > 0.0 &&
+                reaches({da}, std::max(p_.step_mm, bump)) && !spans_a_gap(da, lower) &&
+                appears_at_once(da, planes, k)) {
+                const Vector3d out = frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane);
+                if (out.norm() > p_.step_mm / 100.0) {
+                    dir = closest_axis(out);
+                    turn = ledge = true;
+                }
+            }
+            if (!turn && (along || !wide))
+                continue;  // far but along the march; or near, or a bridge, and not wide
             // Otherwise (not a turn, yet reaching out past every lower region by more than half
             // their size) the stick-out wraps round the lower section or spans past the regions
             // it joins: a hub lying across the neck it stands on, whose two ends make one
@@ -1103,7 +1170,9 @@ private:
                 double d_share = std::numeric_limits<double>::infinity();
                 for (const auto& l : lower)
                     d_share = std::min(d_share, distance_to_region(l, g_share));
-                if (!is_far(share, d_share)) continue;
+                // A ledge's share turns wherever it reaches out of the bump; any other only
+                // when far.
+                if (ledge ? !reaches(share, bump) : !is_far(share, d_share)) continue;
                 // Eq. 4: the new march starts just beyond the lower boundary's extent T.
                 Task child;
                 child.direction = side;

@@ -111,6 +111,14 @@ Shape gusset_bracket() {
     return from_occt(fuse(l, web));
 }
 
+Shape gusset_tee(double arm) {
+    const TopoDS_Shape webs = fuse(occ_prism({{20, 8, 60}, {43, 8, 60}, {20, 8, 37}}, {0, 4, 0}),
+                                   occ_prism({{0, 8, 60}, {-23, 8, 60}, {0, 8, 37}}, {0, 4, 0}));
+    const TopoDS_Shape tee =
+        fuse(occ_box(0, 0, 0, 20, 20, 80), occ_box(-arm, 0, 60, 20 + 2 * arm, 20, 20));
+    return from_occt(fuse(tee, webs));
+}
+
 Shape staircase() {
     TopoDS_Shape stairs = occ_box(0, 0, 0, 20, 20, 10);
     for (int i = 1; i < 4; ++i) stairs = fuse(stairs, occ_box(5.0 * i, 0, 10.0 * i, 20, 20, 10));

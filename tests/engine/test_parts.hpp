@@ -26,6 +26,10 @@ Shape l_block();
 // [0,20]x[0,20]x[0,80], arm [20,70]x[0,20]x[60,80], web 4 thick ([8,12] in y), its triangle
 // (x, z) = (20, 60), (43, 60), (20, 37) against the column's face and the arm's underside.
 Shape gusset_bracket();
+// The gusset bracket's column with an arm `arm` mm long each way at its top, [-arm, 0] and
+// [20, 20 + arm] in x, each over a web 4 thick ([8,12] in y) and 23 mm long and deep against the
+// column's face.
+Shape gusset_tee(double arm);
 // Four 20 x 20 x 10 tiers, each 5 mm further along +X than the one below it:
 // [5i, 20 + 5i] x [0, 20] x [10i, 10i + 10] for i = 0 .. 3. Every tier's +X end overhangs.
 Shape staircase();

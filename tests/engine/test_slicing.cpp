@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <gp_Trsf.hxx>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -649,6 +650,38 @@ TEST(Slicing, AStaircasesOverhangingTiersAreBuiltSidewaysWithEveryLayerSupported
     for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
     EXPECT_EQ(unsupported, 0.0);
     expect_invariants(s, params, "staircase");
+}
+
+TEST(Slicing, ATeesArmsOverGussetsAreCutAtTheColumnsFacesWithEveryLayerSupported) {
+    // 25 mm arms over 23 mm webs. Above z = 60 the section holds both arms; under it the column
+    // and the two webs. Each arm's stick-out wraps round the web under it, so its centre lies on
+    // the web, inside the section below: no turn by Eq. 3, and no direction out of that section
+    // from its nearest point. It appears at once on the arm's flat underside and reaches about
+    // 8 mm from the web: a ledge, turned the way from the lower section's centroid to its centre,
+    // +X and -X. Each arm's march starts past its web's tip (Eq. 4's T) and sweeps its last 2 to
+    // 3 mm; the arm is cut at the column's face, web and all, the 22 mm between allowed for
+    // (Decompose.hpp), and built sideways. Left in the column, the arms' undersides overhung the
+    // column's Z layers: 564 mm^2 at worst.
+    const double arm = 25.0;
+    const auto params = default_params();
+    const auto s = slice(mas::test::gusset_tee(arm), 0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 3u);
+    EXPECT_NEAR(comps[0].volume_mm3, 20.0 * 20.0 * 80.0, 1e-6);
+    std::set<double> sides;
+    for (std::size_t c = 1; c < 3; ++c) {
+        const double side = comps[c].build_direction.x();
+        EXPECT_TRUE(comps[c].build_direction.isApprox(Vector3d(side, 0, 0), 1e-12));
+        sides.insert(side);
+        EXPECT_EQ(comps[c].parent, 0);
+        EXPECT_NEAR(comps[c].base_origin.x(), side > 0 ? 20.0 : 0.0, 1e-9);
+        EXPECT_NEAR(comps[c].volume_mm3, arm * 20.0 * 20.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-6);
+    }
+    EXPECT_EQ(sides, (std::set<double>{-1.0, 1.0}));
+    double unsupported = 0.0;
+    for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
+    EXPECT_EQ(unsupported, 0.0);
+    expect_invariants(s, params, "tee over gussets");
 }
 
 TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {

@@ -43,8 +43,9 @@
 //   sloping out, however steeply, shows about half). Its first layer in the march would hang in
 //   the air, and Eq. 3 by its centre (and G_k - E plus the step, mostly along the march while the
 //   centre is within a step) kept a staircase's 5 mm steps in the march at the derived step,
-//   2.84 mm. It turns the closest of the four sides to G_k - E, and is shared out among the sides
-//   as below, each share turning if it reaches out of the bump.
+//   2.84 mm. It turns the closest of the four sides to G_k - E, or to G_k - C when G_k lies
+//   inside L (an arm's underside wrapping round the web under it), and is shared out among the
+//   sides as below, each share turning if it reaches out of the bump.
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a

@@ -66,8 +66,10 @@
 //   - holds the father's base face, all that is left of it: a split may take part of it (the
 //     upper half of a bar built along X, cut off to be built up on the lower half), never all;
 //   - holds over four times what b and its sub-branches swept (plus two steps of b's first
-//     section): it is mostly other branches' material (a sliver the sections left beside a pipe
-//     tee's branch would cut the branch pipe in two with its plane);
+//     section, plus that section swept back from where b's march began, Eq. 4's T, to the plane
+//     when the plane lies behind it: a face the span widened over a gusset admitted): it is
+//     mostly other branches' material (a sliver the sections left beside a pipe tee's branch
+//     would cut the branch pipe in two with its plane);
 //   - is no valid solid, whatever is tried.
 //   When the plane was a planar face's, the branch then tries the section plane (below) once
 //   instead, unless its piece was too short, and is noted only if that is refused too. A face's

@@ -1120,10 +1120,12 @@ private:
             // (Kept in the march, a staircase's 5 mm steps left 88 mm^2 and a cube's 6 mm lip
             // 142 mm^2 unsupported.) Material spanning a gap is a bridge, as above.
             bool ledge = false;
-            if (derived_threshold_ && !turn && !wide && dist > 0.0 &&
-                reaches({da}, std::max(p_.step_mm, bump)) && !spans_a_gap(da, lower) &&
-                appears_at_once(da, planes, k)) {
-                const Vector3d out = frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane);
+            if (derived_threshold_ && !turn && !wide && reaches({da}, std::max(p_.step_mm, bump)) &&
+                !spans_a_gap(da, lower) && appears_at_once(da, planes, k)) {
+                // Out of L from E, or, centred inside L (an arm's underside round the web under
+                // it), from L's centroid C (the paper's G_k - C).
+                const Vector2d from = dist > 0.0 ? exit : centroid(track.region.front());
+                const Vector3d out = frame.to_3d(g, upper_plane) - frame.to_3d(from, upper_plane);
                 if (out.norm() > p_.step_mm / 100.0) {
                     dir = closest_axis(out);
                     turn = ledge = true;

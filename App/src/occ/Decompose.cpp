@@ -686,6 +686,15 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             max_volume[b] = 4.0 * max_volume[b] +
                             2.0 * axis.params.step_mm *
                                 axis.nodes[std::size_t(axis.branches[b].nodes.front())].area;
+        // A split at a face behind where the branch's march began (Eq. 5's span widened over a
+        // gusset, Decompose.hpp) takes the material between as well: at most the branch's first
+        // section swept back from T to the face.
+        const auto allowance = [&](std::size_t b, const Plan& plan) {
+            const AxisBranch& br = axis.branches[b];
+            const AxisNode& first = axis.nodes[std::size_t(br.nodes.front())];
+            const double behind = first.slab_start - br.direction.normalized().dot(plan.point);
+            return max_volume[b] + first.area * std::max(0.0, behind);
+        };
         // The component holding each branch's material; -1 until the branch is handled.
         std::vector<int> holder(nb, -1);
         const auto splits = [&](std::size_t b) {
@@ -780,7 +789,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             // components each would get from its own split of the reduced father.
             std::vector<std::size_t> group{b};
             std::vector<Vector3d> inner{p.inner};
-            std::vector<double> most{max_volume[b]};
+            std::vector<double> most{allowance(b, p)};
             for (std::size_t c = b + 1; c < nb; ++c) {
                 at.check();  // each sibling classifies a point in the father and scans its faces
                 if (holder[c] >= 0 || !splits(c) || rejoins(c)) continue;
@@ -794,7 +803,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                     continue;
                 group.push_back(c);
                 inner.push_back(q.inner);
-                most.push_back(max_volume[c]);
+                most.push_back(allowance(c, q));
             }
             at.check();
 

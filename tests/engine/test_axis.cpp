@@ -462,6 +462,35 @@ TEST(CentroidalAxis, ALugOnASlopingUndersideIsNoLedge) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, ACorniceOnTheFarPierOfAPortalIsMarchedFromThatPiersFace) {
+    // Piers A [0,20] and B [30,40] (x) under a deck [0,46] x [0,30] x [20,30]: the deck's 6 mm
+    // cornice [40,46] overhangs B's outer face. Where the piers' tracks merge into the deck, the
+    // deck continues A's track; the cornice, a ledge, leaves B's section. Its march starts at B's
+    // face (x = 40, Eq. 4's T of the region it leaves), and its sections past it hold the cornice
+    // alone, 30 x 10 on its centre line. (Started at A's face, x = 20, its first section held none
+    // of it: a march that never reached it, its slab taken from the deck's march all the same.)
+    const auto mesh =
+        mesh_of(from_occt(fuse(fuse(occ_box(0, 0, 0, 20, 30, 20), occ_box(30, 0, 0, 10, 30, 20)),
+                               occ_box(0, 0, 20, 46, 30, 10))));
+    const auto a = mas::centroidal_axis(mesh, {});
+    int cornice = -1;
+    for (std::size_t b = 0; b < a.branches.size(); ++b)
+        if (a.branches[b].direction.isApprox(Vector3d::UnitX(), 1e-12)) cornice = int(b);
+    ASSERT_GE(cornice, 0);
+    const auto& nodes = a.branches[std::size_t(cornice)].nodes;
+    ASSERT_FALSE(nodes.empty());
+    EXPECT_NEAR(a.nodes[std::size_t(nodes.front())].slab_start, 40.0, 1e-9);
+    EXPECT_LE(a.nodes[std::size_t(nodes.front())].offset, 40.0 + a.params.step_mm);
+    for (int n : nodes) {
+        const auto& node = a.nodes[std::size_t(n)];
+        EXPECT_GT(node.offset, 40.0);
+        EXPECT_NEAR(node.area, 300.0, 1e-6);
+        EXPECT_NEAR(node.position.y(), 15.0, kGrid);
+        EXPECT_NEAR(node.position.z(), 25.0, kGrid);
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, AStickOutLessThanAStepSidewaysIsNoTurn) {
     // A 4 x 4 column [0,4]^2 x [0,20] widening at z = 10 by a ledge [4,5.5]x[0,4]x[10,20], step 2.
     // On the plane z = 10.001 the ledge is centred 0.75 mm outside the column: past the derived

@@ -35,23 +35,27 @@
 //   side's T taken over every lower region, and each share is judged as a stick-out of its own.
 //   Reaching out less, it is the part widening (an organic body at its shoulders).
 // - A ledge turns however near its centre (with a derived `distance_threshold` only; one given
-//   is used as given): a stick-out centred outside L, not wrapping round it, meeting L along one
-//   stretch (not spanning a gap, as a bore's ceiling closing a ring does), reaching out past L by
-//   more than a step (an overhang steeper than 45 degrees over the step) and a bump, and
-//   appearing at once: none of it on L's plane and, half a step up, over 90 % of its area or
+//   is used as given): a stick-out not wrapping round L (above), meeting L along one stretch (not
+//   spanning a gap, as a bore's ceiling closing a ring does), reaching out past L by more than a
+//   step (an overhang steeper than 45 degrees over the step) and a bump, and appearing at once:
+//   under 10 % of its area in the lower plane's whole section and, half a step up, over 90 % or
 //   under 10 % (a flat underside, or one tangent to the planes, below or above that plane; a side
-//   sloping out, however steeply, shows about half). Its first layer in the march would hang in
-//   the air, and Eq. 3 by its centre (and G_k - E plus the step, mostly along the march while the
-//   centre is within a step) kept a staircase's 5 mm steps in the march at the derived step,
-//   2.84 mm. It turns the closest of the four sides to G_k - E, or to G_k - C when G_k lies
-//   inside L (an arm's underside wrapping round the web under it), and is shared out among the
-//   sides as below, each share turning if it reaches out of the bump.
+//   sloping out over the whole step, however steeply, shows about half, and so is no ledge; a
+//   chamfer or fillet under a ledge may show either, by where the planes fall). Its first layer
+//   in the march would hang in the air, and Eq. 3 by its centre (and G_k - E plus the step,
+//   mostly along the march while the centre is within a step) kept a staircase's 5 mm steps in
+//   the march at the derived step, 2.84 mm. It turns the closest of the four sides to G_k - E, or
+//   to G_k - C when G_k lies inside L (an arm's underside wrapping round the web under it), C the
+//   centroid of the lower region nearest G_k, and is shared out among the sides as below, each
+//   share turning if it reaches out of the bump.
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a
-//   march that way, from the same plane. What lies beyond no side, or too close, stays with the
-//   march that found it: an inward lip over a tube's bore (its centre is in the bore, far from
-//   the lower ring, yet no sideways march could reach it), a C-shaped section's mouth filled.
+//   march that way, from the same plane. T is the extent of the lower region nearest G_k: where
+//   tracks merge, a stick-out off the far one of two piers is marched from that pier's face. What
+//   lies beyond no side, or too close, stays with the march that found it: an inward lip over a
+//   tube's bore (its centre is in the bore, far from the lower ring, yet no sideways march could
+//   reach it), a C-shaped section's mouth filled.
 // - GetSweepBody / B = B - Bs (Sec. 3.2.4) as bookkeeping on the sections, not a solid Boolean:
 //   each node sweeps a slab, its region extruded from its plane to the next one along the march
 //   direction. Every later section first subtracts the slabs it crosses (all directions are

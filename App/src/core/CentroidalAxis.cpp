@@ -17,6 +17,7 @@
 #include <numeric>
 #include <sstream>
 #include <thread>
+#include <unordered_map>
 
 #include "SectionGrid.hpp"
 #include "mas/Error.hpp"
@@ -451,9 +452,10 @@ private:
         std::vector<std::atomic<int>> chunk_state;
         std::vector<char> chunk_used;
         std::unique_ptr<SectionGrid> sections;  // the mesh prepared for cutting these planes
-        // The planes half a step above each, cut one at a time where a ledge is looked for
-        // (appears_at_once), on the search's thread only.
-        std::unique_ptr<SectionGrid> halves;
+        // For appears_at_once, on the search's thread only: every vertex's offset along the
+        // normal (empty until a ledge is first looked for), and the section half a step above
+        // each plane, once cut.
+        std::vector<double> vertex_offsets;
         std::vector<std::unique_ptr<Regions2>> half_regions;
         bool ready = false;
     };
@@ -721,27 +723,50 @@ private:
         return contacts > 1;
     }
 
-    // Whether stick-out `da` of plane k over plane k - 1 appears at once between them: none of it
-    // on plane k - 1 and, half a step up, nearly all of it or nearly none (a flat underside
-    // below or above the half plane; where a sloping side grows the section, about half of it).
-    // Shares are of da's area; "nearly" is a tenth.
+    // Whether stick-out `da` of plane k over plane k - 1 appears at once between them: nearly
+    // none of it in plane k - 1's section (the whole section, every march's) and, half a step
+    // up, nearly all of it or nearly none (a flat underside below or above the half plane; where
+    // a side sloping out over the whole step grows the section, about half of it). Shares are of
+    // da's area; "nearly" is within a tenth.
     bool appears_at_once(const Region2& da, Grid& g, std::size_t k) {
         const double a = area(da);
         if (!(a > 0.0) || k == 0) return false;
         if (area(intersection({da}, g.regions[k - 1])) > 0.1 * a) return false;
-        if (!g.halves) {
-            std::vector<Plane> planes(g.count);
-            for (std::size_t i = 0; i < g.count; ++i)
-                planes[i] = Plane{g.normal * (offset(g, i) + 0.5 * p_.step_mm), g.normal};
-            g.halves = std::make_unique<SectionGrid>(mesh_, std::move(planes));
+        if (g.vertex_offsets.empty()) {
+            g.vertex_offsets.reserve(mesh_.vertices.size());
+            for (const auto& v : mesh_.vertices) g.vertex_offsets.push_back(g.normal.dot(v));
             g.half_regions.resize(g.count);
         }
         std::unique_ptr<Regions2>& half = g.half_regions[k - 1];
         if (!half) {
+            // Cut from the facets that reach the plane alone (a few hundred of an organic mesh's
+            // tens of thousands): preparing the whole mesh for a grid of half planes, as the
+            // sections' grid is, cost more than the axis' own Booleans on CGAL's armadillo.
+            const double h = offset(g, k - 1) + 0.5 * p_.step_mm;
+            const std::vector<double>& at = g.vertex_offsets;
+            TriangleMesh crossing;
+            std::unordered_map<int, int> index;
+            for (const auto& t : mesh_.triangles) {
+                const double a = at[std::size_t(t[0])], b = at[std::size_t(t[1])],
+                             c = at[std::size_t(t[2])];
+                if (std::min({a, b, c}) > h || std::max({a, b, c}) < h) continue;
+                Eigen::Vector3i u;
+                for (int i = 0; i < 3; ++i) {
+                    const auto [it, added] = index.emplace(t[i], int(crossing.vertices.size()));
+                    if (added) crossing.vertices.push_back(mesh_.vertices[std::size_t(t[i])]);
+                    u[i] = it->second;
+                }
+                crossing.triangles.push_back(u);
+            }
+            // Isolated, as cut_chunk is: while waiting for its own work this thread must not pick
+            // up a Lookahead's task.
+            Section section;
+            tbb::this_task_arena::isolate([&] {
+                section = slice_mesh(crossing, Plane{g.normal * h, g.normal});
+            });
             half = std::make_unique<Regions2>();
-            for (auto& section : g.halves->cut(k - 1, k))
-                for (const auto& r : section.regions)
-                    half->push_back(simplify(r.shape, p_.step_mm / 100.0));
+            for (const auto& r : section.regions)
+                half->push_back(simplify(r.shape, p_.step_mm / 100.0));
         }
         const double share = area(intersection({da}, *half)) / a;
         return share >= 0.9 || share <= 0.1;
@@ -1038,16 +1063,18 @@ private:
         // used as given.
         const double d = derived_threshold_ ? std::min(p_.distance_threshold_mm, size / 6.0)
                                             : p_.distance_threshold_mm;
-        // Whether any point of `piece`'s outline lies farther than `limit` outside every lower
-        // region. A point within `limit` of the last point of L found nearest to an earlier one
-        // is within `limit` of L: along a stick-out hugging L only every few points need the
-        // search through L's edges.
-        const auto reaches = [&](const Regions2& piece, double limit) {
+        // How far `piece`'s outline reaches outside every lower region, as far as it matters:
+        // the farthest of its points not skipped, or the first found farther than `upto`. A
+        // point within `within` of the last point of L found nearest to an earlier one is within
+        // `within` of L, and skipped: along a stick-out hugging L only every few points need the
+        // search through L's edges. Exact wherever it exceeds `within`.
+        const auto reach = [&](const Regions2& piece, double within, double upto) {
+            double farthest = 0.0;
             for (const auto& r : piece) {
                 bool witness_known = false;
                 Vector2d witness = Vector2d::Zero();  // a point of L (boundary or inside)
                 for (const auto& q : r.outer.points) {
-                    if (witness_known && (q - witness).norm() <= limit) continue;
+                    if (witness_known && (q - witness).norm() <= within) continue;
                     double to_lower = std::numeric_limits<double>::infinity();
                     for (const auto& l : lower) {
                         if (contains(l, q)) {
@@ -1062,11 +1089,17 @@ private:
                             witness = b;
                         }
                     }
-                    if (to_lower > limit) return true;
+                    farthest = std::max(farthest, to_lower);
+                    if (farthest > upto) return farthest;
                     witness_known = true;
                 }
             }
-            return false;
+            return farthest;
+        };
+        // Whether any point of `piece`'s outline lies farther than `limit` outside every lower
+        // region.
+        const auto reaches = [&](const Regions2& piece, double limit) {
+            return reach(piece, limit, limit) > limit;
         };
         const auto is_far = [&](const Regions2& piece, double centre_distance) {
             if (centre_distance <= d) return false;
@@ -1078,11 +1111,13 @@ private:
             const Vector2d g = centroid(da);
             double dist = std::numeric_limits<double>::infinity();
             Vector2d exit = g;  // where the stick-out leaves the lower section
+            const Region2* left = &track.region.front();  // the lower region it leaves
             for (const auto& l : lower) {
                 const double d = distance_to_region(l, g);
                 if (d < dist) {
                     dist = d;
                     exit = nearest_boundary_point(l, g);
+                    left = &l;
                 }
             }
             bool turn = is_far({da}, dist);
@@ -1108,9 +1143,16 @@ private:
                 turn = !along;
             }
             // Reaching out past every lower region by more than half their size: wrapping round
-            // the lower section (below).
-            const bool wide =
-                !turn && reaches({da}, std::max(p_.distance_threshold_mm, 4.0 * bump));
+            // the lower section (below). With a derived threshold, how far it reaches is read
+            // down to the ledge's limit at once.
+            const double wide_limit = std::max(p_.distance_threshold_mm, 4.0 * bump);
+            const double ledge_limit = std::max(p_.step_mm, bump);
+            const double out_of_lower =
+                turn ? 0.0
+                     : reach({da},
+                             derived_threshold_ ? std::min(ledge_limit, wide_limit) : wide_limit,
+                             wide_limit);
+            const bool wide = out_of_lower > wide_limit;
             // A ledge: material that appears at once between the planes (on an underside flat
             // along the march, or tangent to its planes), centred outside the lower section and
             // reaching out past it by more than a step (steeper than 45 degrees over it) and a
@@ -1120,11 +1162,11 @@ private:
             // (Kept in the march, a staircase's 5 mm steps left 88 mm^2 and a cube's 6 mm lip
             // 142 mm^2 unsupported.) Material spanning a gap is a bridge, as above.
             bool ledge = false;
-            if (derived_threshold_ && !turn && !wide && reaches({da}, std::max(p_.step_mm, bump)) &&
+            if (derived_threshold_ && !turn && !wide && out_of_lower > ledge_limit &&
                 !spans_a_gap(da, lower) && appears_at_once(da, planes, k)) {
                 // Out of L from E, or, centred inside L (an arm's underside round the web under
                 // it), from L's centroid C (the paper's G_k - C).
-                const Vector2d from = dist > 0.0 ? exit : centroid(track.region.front());
+                const Vector2d from = dist > 0.0 ? exit : centroid(*left);
                 const Vector3d out = frame.to_3d(g, upper_plane) - frame.to_3d(from, upper_plane);
                 if (out.norm() > p_.step_mm / 100.0) {
                     dir = closest_axis(out);
@@ -1152,8 +1194,11 @@ private:
                 sides_from(around ? axis_vector((axis_index(n) + 1) % 3, 1.0) : dir, n);
             for (const Vector3d& side : sides) {
                 if (rest.empty()) break;
-                // Around the lower section: beyond every lower region's extent.
-                double t_max = extent_along(track.region.front(), n, lower_offset, side);
+                // Beyond the extent of the lower region it leaves (where tracks merge, not
+                // necessarily this track's: a cornice on the far pier of a portal, whose march
+                // would otherwise start at the near pier's face and never reach it, its slab lost
+                // all the same); around the lower section, beyond every lower region's.
+                double t_max = extent_along(*left, n, lower_offset, side);
                 if (around)
                     for (const auto& l : lower)
                         t_max = std::max(t_max, extent_along(l, n, lower_offset, side));

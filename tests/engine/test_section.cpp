@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "SectionGrid.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
@@ -109,6 +110,34 @@ TEST(SectionBatch, ManyPlanesInAnyOrderMatchOneByOne) {
     EXPECT_TRUE(batch[4].empty());
     EXPECT_NEAR(batch[5].area, 300.0, 1e-9);
     EXPECT_NEAR(batch[5].plane.normal.norm(), 1.0, 1e-15);
+}
+
+TEST(SectionGrid, CutAtAnyOffsetIsSliceMeshsSection) {
+    // The axis cuts planes between a grid's own (a ledge's half-step test) from the facets that
+    // reach them: the same section as slice_mesh's, between the grid's planes, on one, below and
+    // above them all, and through the torus' equator and its lowest vertices, which lie on the
+    // plane (a vertex on it counts as above: the plane at z = -5 cuts nothing).
+    const auto torus = mesh_of(mas::test::torus(20.0, 5.0)).mesh;
+    std::vector<mas::Plane> planes;
+    for (int i = 0; i < 5; ++i) planes.push_back(plane(0, 0, -4.0 + 2.0 * i, 0, 0, 1));
+    const mas::SectionGrid grid(torus, planes);
+    for (double z : {-4.5, -3.0, -2.0, 0.0, 0.7, 3.999, 5.5, -5.0, -6.0}) {
+        SCOPED_TRACE(z);
+        const mas::Section at = grid.cut_at(z);
+        const mas::Section want = mas::slice_mesh(torus, plane(0, 0, z, 0, 0, 1));
+        ASSERT_EQ(at.regions.size(), want.regions.size());
+        EXPECT_DOUBLE_EQ(at.area, want.area);
+        expect_near(at.centroid, want.centroid, 1e-9);
+        expect_near(at.plane.origin, want.plane.origin, 0.0);
+        for (std::size_t r = 0; r < at.regions.size(); ++r) {
+            EXPECT_DOUBLE_EQ(at.regions[r].area, want.regions[r].area);
+            EXPECT_EQ(at.regions[r].shape.holes.size(), want.regions[r].shape.holes.size());
+        }
+    }
+    EXPECT_TRUE(grid.cut_at(-5.0).empty());
+    EXPECT_TRUE(grid.cut_at(5.5).empty());
+    EXPECT_EQ(grid.cut_at(0.0).regions.size(), 1u);  // the annulus
+    EXPECT_EQ(grid.cut_at(0.0).regions[0].shape.holes.size(), 1u);
 }
 
 TEST(SectionBatch, TotalsOnlyModeAgreesWithRegions) {

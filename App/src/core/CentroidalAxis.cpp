@@ -17,7 +17,6 @@
 #include <numeric>
 #include <sstream>
 #include <thread>
-#include <unordered_map>
 
 #include "SectionGrid.hpp"
 #include "mas/Error.hpp"
@@ -452,10 +451,8 @@ private:
         std::vector<std::atomic<int>> chunk_state;
         std::vector<char> chunk_used;
         std::unique_ptr<SectionGrid> sections;  // the mesh prepared for cutting these planes
-        // For appears_at_once, on the search's thread only: every vertex's offset along the
-        // normal (empty until a ledge is first looked for), and the section half a step above
-        // each plane, once cut.
-        std::vector<double> vertex_offsets;
+        // For appears_at_once, on the search's thread only: the section half a step above each
+        // plane, once cut (empty until a ledge is first looked for).
         std::vector<std::unique_ptr<Regions2>> half_regions;
         bool ready = false;
     };
@@ -731,44 +728,27 @@ private:
     bool appears_at_once(const Region2& da, Grid& g, std::size_t k) {
         const double a = area(da);
         if (!(a > 0.0) || k == 0) return false;
-        if (area(intersection({da}, g.regions[k - 1])) > 0.1 * a) return false;
-        if (g.vertex_offsets.empty()) {
-            g.vertex_offsets.reserve(mesh_.vertices.size());
-            for (const auto& v : mesh_.vertices) g.vertex_offsets.push_back(g.normal.dot(v));
-            g.half_regions.resize(g.count);
-        }
+        const Eigen::AlignedBox2d box = bounds(da);
+        // The regions of `rs` whose boxes meet da's: the others cannot overlap it.
+        const auto near = [&](const Regions2& rs) {
+            Regions2 out;
+            for (const auto& r : rs)
+                if (bounds(r).intersects(box)) out.push_back(r);
+            return out;
+        };
+        if (area(intersection({da}, near(g.regions[k - 1]))) > 0.1 * a) return false;
+        if (g.half_regions.empty()) g.half_regions.resize(g.count);
         std::unique_ptr<Regions2>& half = g.half_regions[k - 1];
         if (!half) {
-            // Cut from the facets that reach the plane alone (a few hundred of an organic mesh's
-            // tens of thousands): preparing the whole mesh for a grid of half planes, as the
-            // sections' grid is, cost more than the axis' own Booleans on CGAL's armadillo.
-            const double h = offset(g, k - 1) + 0.5 * p_.step_mm;
-            const std::vector<double>& at = g.vertex_offsets;
-            TriangleMesh crossing;
-            std::unordered_map<int, int> index;
-            for (const auto& t : mesh_.triangles) {
-                const double a = at[std::size_t(t[0])], b = at[std::size_t(t[1])],
-                             c = at[std::size_t(t[2])];
-                if (std::min({a, b, c}) > h || std::max({a, b, c}) < h) continue;
-                Eigen::Vector3i u;
-                for (int i = 0; i < 3; ++i) {
-                    const auto [it, added] = index.emplace(t[i], int(crossing.vertices.size()));
-                    if (added) crossing.vertices.push_back(mesh_.vertices[std::size_t(t[i])]);
-                    u[i] = it->second;
-                }
-                crossing.triangles.push_back(u);
-            }
-            // Isolated, as cut_chunk is: while waiting for its own work this thread must not pick
-            // up a Lookahead's task.
-            Section section;
-            tbb::this_task_arena::isolate([&] {
-                section = slice_mesh(crossing, Plane{g.normal * h, g.normal});
-            });
+            // Cut from the grid's own preparation of the mesh, from the facets reaching the
+            // plane (a grid of half planes, prepared as the sections' grid is, cost more than
+            // the axis' own Booleans on CGAL's armadillo).
+            const Section section = g.sections->cut_at(offset(g, k - 1) + 0.5 * p_.step_mm);
             half = std::make_unique<Regions2>();
             for (const auto& r : section.regions)
                 half->push_back(simplify(r.shape, p_.step_mm / 100.0));
         }
-        const double share = area(intersection({da}, *half)) / a;
+        const double share = area(intersection({da}, near(*half))) / a;
         return share >= 0.9 || share <= 0.1;
     }
 
@@ -1163,7 +1143,7 @@ private:
             // 142 mm^2 unsupported.) Material spanning a gap is a bridge, as above.
             bool ledge = false;
             if (derived_threshold_ && !turn && !wide && out_of_lower > ledge_limit &&
-                !spans_a_gap(da, lower) && appears_at_once(da, planes, k)) {
+                appears_at_once(da, planes, k) && !spans_a_gap(da, lower)) {
                 // Out of L from E, or, centred inside L (an arm's underside round the web under
                 // it), from L's centroid C (the paper's G_k - C).
                 const Vector2d from = dist > 0.0 ? exit : centroid(*left);

@@ -607,6 +607,30 @@ std::uint32_t SectionGrid::upper_bound(double x) const {
     return std::uint32_t(k);
 }
 
+Section SectionGrid::cut_at(double offset) const {
+    Section s;
+    if (planes_.empty()) return s;
+    const Eigen::Vector3d n = planes_.front().normal;
+    s.plane = make_plane(n * offset, n);
+    s.centroid = s.plane.origin;
+    // A facet crosses the plane when some vertex lies below it and some at or above (slice_mesh's
+    // convention): then its plane range [first_, last_] holds upper_bound(offset).
+    const std::uint32_t j = upper_bound(offset);
+    std::vector<Segment> segs;
+    for (std::size_t i = 0; i < first_.size(); ++i) {
+        if (first_[i] > j || last_[i] < j) continue;
+        const Eigen::Vector3i& t = mesh_.triangles[i];
+        const double a = h_[std::size_t(t[0])], b = h_[std::size_t(t[1])],
+                     c = h_[std::size_t(t[2])];
+        if (!(std::min({a, b, c}) < offset && std::max({a, b, c}) >= offset)) continue;
+        const Crossing x = cross_facet(t, offset, h_);
+        segs.push_back(Segment{edge_key(x.down_a, x.down_b), edge_key(x.up_a, x.up_b),
+                               crossing(x.down_a, x.down_b, offset, h_, uv_)});
+    }
+    build_regions(segs.data(), segs.size(), params_, s);
+    return s;
+}
+
 std::vector<Section> SectionGrid::cut(
     std::size_t first, std::size_t last,
     const std::function<void(std::size_t, Section&)>& each) const {

@@ -28,6 +28,12 @@ public:
     std::vector<Section> cut(std::size_t first, std::size_t last,
                              const std::function<void(std::size_t, Section&)>& each = {}) const;
 
+    // The section of the plane at `offset` along the grid's normal, any offset (between the
+    // grid's planes, say), cut from the facets that reach it: the same regions as slice_mesh
+    // gives on that plane. One scan of the facets' plane ranges, no preparation; on the calling
+    // thread alone.
+    Section cut_at(double offset) const;
+
 private:
     std::uint32_t upper_bound(double x) const;  // heights_ at or below x
 

@@ -1134,13 +1134,13 @@ private:
                              wide_limit);
             const bool wide = out_of_lower > wide_limit;
             // A ledge: material that appears at once between the planes (on an underside flat
-            // along the march, or tangent to its planes), centred outside the lower section and
-            // reaching out past it by more than a step (steeper than 45 degrees over it) and a
-            // bump, not round it. Near or not, the march cannot lay it (its first layer would
-            // hang in the air), so it turns the way it leaves the lower section, without Eq. 3's
-            // test of its centre. Only with a derived threshold: one given is used as given.
-            // (Kept in the march, a staircase's 5 mm steps left 88 mm^2 and a cube's 6 mm lip
-            // 142 mm^2 unsupported.) Material spanning a gap is a bridge, as above.
+            // along the march, or tangent to its planes), reaching out past the lower section by
+            // more than a step (steeper than 45 degrees over it) and a bump, not round it. Near
+            // or not, the march cannot lay it (its first layer would hang in the air), so it
+            // turns the way it leaves the lower section, without Eq. 3's test of its centre.
+            // Only with a derived threshold: one given is used as given. (Kept in the march, a
+            // staircase's 5 mm steps left 88 mm^2 and a cube's 6 mm lip 142 mm^2 unsupported.)
+            // Material spanning a gap is a bridge, as above.
             bool ledge = false;
             if (derived_threshold_ && !turn && !wide && out_of_lower > ledge_limit &&
                 appears_at_once(da, planes, k) && !spans_a_gap(da, lower)) {

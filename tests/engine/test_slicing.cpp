@@ -684,6 +684,50 @@ TEST(Slicing, ATeesArmsOverGussetsAreCutAtTheColumnsFacesWithEveryLayerSupported
     expect_invariants(s, params, "tee over gussets");
 }
 
+TEST(Slicing, AnArmOverAGussetWithAStepOnItIsCutAtTheColumnsFace) {
+    // The gusset bracket's column with a 28 mm arm [20,48] x [0,20] x [50,58] over a 23 x 23 web,
+    // and a step on the arm's top by the column, [20,30] x [0,20] x [58,62]. The arm's march
+    // starts past the web's tip; the step's end face (x = 30, facing +X) lies nearer that than
+    // the column's face does. Cut there, the arm's stub over the web stayed in the column, its
+    // underside beside the web overhanging (134 mm^2). Over a gusset the face nearest the
+    // column's own (where the walk down the column finds its sections stop shrinking) is chosen:
+    // the column's face, x = 20, and the arm, web and step are built along +X.
+    const TopoDS_Shape arm = fuse(occ_box(20, 0, 50, 28, 20, 8), occ_box(20, 0, 58, 10, 20, 4));
+    const TopoDS_Shape web = occ_prism({{20, 8, 50}, {43, 8, 50}, {20, 8, 27}}, {0, 4, 0});
+    const auto params = default_params();
+    const auto s =
+        slice(from_occt(fuse(fuse(occ_box(0, 0, 0, 20, 20, 80), arm), web)), 0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 2u);
+    EXPECT_NEAR(comps[0].volume_mm3, 20.0 * 20.0 * 80.0, 1e-6);
+    EXPECT_TRUE(comps[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_NEAR(comps[1].base_origin.x(), 20.0, 1e-9);
+    EXPECT_NEAR(comps[1].volume_mm3,
+                28.0 * 20.0 * 8.0 + 10.0 * 20.0 * 4.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-6);
+    double unsupported = 0.0;
+    for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
+    EXPECT_EQ(unsupported, 0.0);
+    expect_invariants(s, params, "arm with a step over a gusset");
+}
+
+TEST(Slicing, ACorniceOverAGussetOnAPortalsFarPierIsCutAtThatPiersFace) {
+    // Piers [0,20] and [30,40] (x) under a deck [0,56] x [0,20] x [30,38], a 14 x 14 web under
+    // the deck's 16 mm cornice against the far pier's face. The deck continues the near pier's
+    // march, so the walk down the father for the gusset's own face finds the near pier's, x = 20;
+    // cut there, the split takes the deck over the gap and is refused. The face nearest the
+    // junction, the far pier's at x = 40, is tried next (Decompose.hpp), not the section plane
+    // past the web's tip, which left the cornice's underside beside the web overhanging.
+    const TopoDS_Shape piers = fuse(occ_box(0, 0, 0, 20, 20, 30), occ_box(30, 0, 0, 10, 20, 30));
+    const TopoDS_Shape web = occ_prism({{40, 8, 30}, {54, 8, 30}, {40, 8, 16}}, {0, 4, 0});
+    const auto s = decomposed(from_occt(fuse(fuse(piers, occ_box(0, 0, 30, 56, 20, 8)), web)));
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 2u);
+    EXPECT_EQ(comps[1].rule, mas::Component::SplitRule::PlanarFace);
+    EXPECT_TRUE(comps[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_NEAR(comps[1].base_origin.x(), 40.0, 1e-9);
+    EXPECT_NEAR(comps[1].volume_mm3, 16.0 * 20.0 * 8.0 + 4.0 * 14.0 * 14.0 / 2.0, 1e-6);
+}
+
 TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {
     // Between tilted planes, VolDiff and the material are integrated by the midpoint rule over
     // `volume_samples` sections per layer. In this bend its error with the default 4 adds up to

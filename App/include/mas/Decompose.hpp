@@ -29,7 +29,10 @@
 //   the walk reaches all the way down) would cut the father through;
 //   and lying over the branch: seen along D, the face's box meets the branch's first section grown
 //   by a step (else a face of another feature, parallel to D, may cut through the father).
-//   The one whose plane lies nearest the junction (b's first plane minus half a step) wins.
+//   The one whose plane lies nearest the junction (b's first plane minus half a step) wins;
+//   where the walk found the father's own section (a gusset), the one nearest that section's
+//   reach along D: b's march starts past the web's tip, and a face of the arm on the way (a
+//   post's, a step's on its top) cut it partway, the stub over the web left in the father.
 // - The father is split by the chosen face's whole plane. The child is the piece containing
 //   Pos_end, on the +D side; every other piece goes back into the father (fused, seams removed).
 //   "Containing Pos_end" is read with a point in the material of b's first section
@@ -71,8 +74,11 @@
 //     mostly other branches' material (a sliver the sections left beside a pipe tee's branch
 //     would cut the branch pipe in two with its plane);
 //   - is no valid solid, whatever is tried.
-//   When the plane was a planar face's, the branch then tries the section plane (below) once
-//   instead, unless its piece was too short, and is noted only if that is refused too. A face's
+//   When the plane was a planar face's, the branch then tries the face nearest the junction, if
+//   the refused one was chosen nearest the father's own section (where the walk crossed where
+//   the father's march merged another, a portal's deck over two piers, that is the wrong
+//   pier's), and then the section plane (below) once instead, unless its piece was too short;
+//   it is noted only if that is refused too. A face's
 //   whole plane can reach far past the branch: with two square arms meeting at a round column, the
 //   side of one arm, nearest the other's junction, cuts the column off down to the plate; the
 //   section plane at the column's extent cuts the arm alone.

@@ -493,9 +493,10 @@ struct Work {
 // Where a branch asks to be cut from its father, and by which plane.
 struct Plan {
     Component::SplitRule rule = Component::SplitRule::PlanarFace;
-    Vector3d point, normal;  // the splitting plane; normal . D > 0
-    Vector3d pos_end;        // the branch's first node
-    Vector3d inner;          // a point in the material of its first section
+    Vector3d point, normal;    // the splitting plane; normal . D > 0
+    Vector3d pos_end;          // the branch's first node
+    Vector3d inner;            // a point in the material of its first section
+    bool by_own_face = false;  // a face chosen nearest the father's own face (over a gusset)
 };
 
 class Decomposer {
@@ -509,11 +510,12 @@ public:
           min_concave_(params.concave_angle_deg * kPi / 180.0) {}
 
     // The splitting plane for branch b on the father solid `fs` (edge-face map `e2f`): the
-    // criteria's face nearest the junction, else (or with `section_only`) the section plane;
-    // false for none.
+    // criteria's face nearest the father's own face over a gusset (`attempt` 0) or nearest the
+    // junction (0 without a gusset, or 1), else (or with `attempt` 2) the section plane; false
+    // for none.
     bool plan(std::size_t b, const TopoDS_Shape& fs,
               const TopTools_IndexedDataMapOfShapeListOfShape& e2f, Plan& out,
-              bool section_only = false) const {
+              int attempt = 0) const {
         const AxisBranch& br = axis_.branches[b];
         const AxisLink& link = axis_.links[std::size_t(br.first_link)];
         const Vector3d D = br.direction.normalized();
@@ -546,6 +548,9 @@ public:
         // away from it (criterion (3) in Decompose.hpp: a gusset). A face only the widened span
         // admits must face the branch.
         const double lo_eq5 = lo_span, hi_eq5 = hi_span;
+        // Where the walk found the father's own section (how far it reaches along D), if it
+        // did: over a gusset, the face to cut at is the one nearest it, not the junction.
+        double own_face = std::numeric_limits<double>::quiet_NaN();
         const int fb = axis_.nodes[std::size_t(link.start)].branch;
         if (fb >= 0 && std::size_t(fb) < axis_.branches.size()) {
             const std::vector<int>& march = axis_.branches[std::size_t(fb)].nodes;
@@ -559,17 +564,22 @@ public:
                 lo_span = std::min(lo_span, D.dot(n.position));
                 hi_span = std::max(hi_span, D.dot(n.position));
                 if (std::isfinite(next)) {
-                    if (e < next - tol)
+                    if (e < next - tol) {
                         shrinking = true;
-                    else if (shrinking)
+                    } else if (shrinking) {
+                        own_face = e;
                         break;  // shrunk down to the father's own section
+                    }
                 }
                 next = e;
                 if (k == march.begin()) break;
             }
         }
-        // Retried after a planar face's split was refused: the section plane only.
-        if (!section_only) {
+        // Retried after a planar face's split was refused: nearest the junction, then the
+        // section plane only.
+        const bool by_own_face = attempt == 0 && !std::isnan(own_face);
+        const double near_to = by_own_face ? own_face : junction;
+        if (attempt < 2) {
             for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {
                 PlanarFace pf;
                 if (!planar(TopoDS::Face(x.Current()), pf)) continue;
@@ -589,7 +599,13 @@ public:
                     across.extend(frame.to_2d(box.corner(Eigen::AlignedBox3d::CornerType(corner))));
                 if (!across.intersects(reach)) continue;                 // over the branch
                 if (!has_concave_edge(pf, e2f, min_concave_)) continue;  // (2)
-                const double d = std::abs(D.dot(pf.point) - junction);
+                // Nearest the junction; over a gusset, nearest the father's own face first (the
+                // branch's march starts past the web's tip, and a face of the arm on the way,
+                // a post's or a step's, would cut it partway, its stub over the web left in
+                // the father, overhanging). Where the walk down the father crossed where its
+                // march merged another (a portal's deck over two piers), that face may be the
+                // wrong pier's: its split is refused, and the junction's face is tried.
+                const double d = std::abs(D.dot(pf.point) - near_to);
                 if (d < best) {
                     best = d;
                     chosen = pf;
@@ -598,6 +614,7 @@ public:
         }
         if (!chosen.face.IsNull()) {
             out.rule = Component::SplitRule::PlanarFace;
+            out.by_own_face = by_own_face;
             out.point = chosen.point;
             out.normal = chosen.normal.dot(D) > 0 ? chosen.normal : -chosen.normal;
             return true;
@@ -736,16 +753,20 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         };
         // Branches whose split at a planar face was refused (its piece took the father's footing,
         // reached other branches' material, or was no valid solid; not one too short, which a
-        // plane near the junction cannot lengthen): they try the section plane at Eq. 4's T
-        // instead. (The side face of one of two square arms meeting at a round column, chosen for
-        // the other, cuts through the column down to the plate: that arm stayed in the root,
-        // overhanging.)
-        std::vector<char> section_only(nb, 0);
+        // plane near the junction cannot lengthen): a face chosen nearest the father's own face
+        // over a gusset gives way to the face nearest the junction, and that to the section plane
+        // at Eq. 4's T. (The side face of one of two square arms meeting at a round column,
+        // chosen for the other, cuts through the column down to the plate: that arm stayed in
+        // the root, overhanging.) Per branch: 0, 1 or 2, as plan() takes it.
+        std::vector<int> attempt(nb, 0);
         const auto retry = [&](std::size_t g, const Plan& p) {
-            if (p.rule != Component::SplitRule::PlanarFace || !params.section_plane_fallback ||
-                section_only[g])
+            if (p.rule != Component::SplitRule::PlanarFace || attempt[g] >= 2) return false;
+            if (p.by_own_face && attempt[g] == 0)
+                attempt[g] = 1;
+            else if (params.section_plane_fallback)
+                attempt[g] = 2;
+            else
                 return false;
-            section_only[g] = 1;
             holder[g] = -1;
             return true;
         };
@@ -774,7 +795,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             TopTools_IndexedDataMapOfShapeListOfShape e2f;
             TopExp::MapShapesAndAncestors(fs, TopAbs_EDGE, TopAbs_FACE, e2f);
             Plan p;
-            if (!decomposer.plan(b, fs, e2f, p, section_only[b])) {
+            if (!decomposer.plan(b, fs, e2f, p, attempt[b])) {
                 note(b,
                      params.section_plane_fallback
                          ? "no splitting plane could be placed"
@@ -798,7 +819,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end()) continue;
                 if (father_of(c) != father) continue;
                 Plan q;
-                if (!decomposer.plan(c, fs, e2f, q, section_only[c]) ||
+                if (!decomposer.plan(c, fs, e2f, q, attempt[c]) ||
                     !Decomposer::same_plane(p, q, plane_tol))
                     continue;
                 group.push_back(c);
@@ -831,7 +852,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                         : "the split at the chosen plane would leave its father no valid solid "
                           "(OCCT's check, or a closed mesh)";
                 if (retry(b, p))
-                    --b;  // once more at the section plane (b > 0: the root never splits)
+                    --b;  // once more, at the next plane (b > 0: the root never splits)
                 else
                     note(b, why, father);
                 continue;

@@ -62,10 +62,13 @@ Shape wrap(const TopoDS_Shape& shape) {
 
 namespace {
 
-// The process's handlers while OCCT's are in, and how many SignalHandlers hold them in.
+// The process's handlers while OCCT's are in, and how many SignalHandlers hold them in;
+// OCCT's handlers, once OSD::SetSignal has shown them.
 std::mutex signal_mutex;
 int signal_holders = 0;
 std::vector<struct sigaction> process_handlers(NSIG);
+std::vector<struct sigaction> occt_handlers(NSIG);
+bool occt_handlers_known = false;
 constexpr int kFatalSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL};
 
 bool fatal(int sig) {
@@ -82,12 +85,24 @@ SignalHandlers::SignalHandlers() {
         fedisableexcept(FE_ALL_EXCEPT);  // what OSD::SetSignal does for the first one's thread
         return;
     }
-    for (int sig = 1; sig < NSIG; ++sig) sigaction(sig, nullptr, &process_handlers[sig]);
+    for (const int sig : kFatalSignals) sigaction(sig, nullptr, &process_handlers[sig]);
+    if (occt_handlers_known) {
+        // OCCT's, for the fatal signals alone: OSD::SetSignal would take SIGINT too, for as long
+        // as it takes to put it back, each time (another thread reading SIGINT's handler then,
+        // or a Ctrl-C, met OCCT's), and turns this thread's traps off, as here.
+        for (const int sig : kFatalSignals) sigaction(sig, &occt_handlers[sig], nullptr);
+        fedisableexcept(FE_ALL_EXCEPT);
+        return;
+    }
+    // The first time: OSD::SetSignal, whose handlers for the fatal signals are kept. It takes
+    // SIGINT, SIGHUP, SIGQUIT and more too: those go back at once, never to be taken again.
+    std::vector<struct sigaction> before(NSIG);
+    for (int sig = 1; sig < NSIG; ++sig) sigaction(sig, nullptr, &before[sig]);
     OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
-    // OSD::SetSignal takes SIGINT, SIGHUP, SIGQUIT and more too: those go back at once.
+    for (const int sig : kFatalSignals) sigaction(sig, nullptr, &occt_handlers[sig]);
+    occt_handlers_known = true;
     for (int sig = 1; sig < NSIG; ++sig)
-        if (!fatal(sig) && sig != SIGKILL && sig != SIGSTOP)
-            sigaction(sig, &process_handlers[sig], nullptr);
+        if (!fatal(sig) && sig != SIGKILL && sig != SIGSTOP) sigaction(sig, &before[sig], nullptr);
 }
 
 SignalHandlers::~SignalHandlers() {

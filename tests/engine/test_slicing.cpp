@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <gp_Trsf.hxx>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -726,6 +727,40 @@ TEST(Slicing, ACorniceOverAGussetOnAPortalsFarPierIsCutAtThatPiersFace) {
     EXPECT_TRUE(comps[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
     EXPECT_NEAR(comps[1].base_origin.x(), 40.0, 1e-9);
     EXPECT_NEAR(comps[1].volume_mm3, 16.0 * 20.0 * 8.0 + 4.0 * 14.0 * 14.0 / 2.0, 1e-6);
+}
+
+TEST(Slicing, ALaddersRungIsNotCarvedThinnerThanAStep) {
+    // The gusset bracket's column with two 28 mm arms (z 30..38 and 60..68), each over a 20 x 20
+    // web, joined at their tips by a bar [42,48] x [0,20] x [38,60]: a closed loop. The lower
+    // arm is split off along +X; later splits of it (the bar up, the upper arm back) carved it
+    // down to a 0.07 mm slab, and slicing failed: no layer fits. A split that would leave its
+    // father (a child itself) thinner along its build direction than a child may be is refused
+    // (Decompose.hpp), its material left in that father, and the part is sliced.
+    const TopoDS_Shape arms = fuse(occ_box(20, 0, 30, 28, 20, 8), occ_box(20, 0, 60, 28, 20, 8));
+    const TopoDS_Shape webs = fuse(occ_prism({{20, 8, 30}, {40, 8, 30}, {20, 8, 10}}, {0, 4, 0}),
+                                   occ_prism({{20, 8, 60}, {40, 8, 60}, {20, 8, 40}}, {0, 4, 0}));
+    const TopoDS_Shape ladder =
+        fuse(fuse(fuse(occ_box(0, 0, 0, 20, 20, 80), arms), webs), occ_box(42, 0, 38, 6, 20, 22));
+    const auto params = default_params();
+    const auto s = slice(from_occt(ladder), 0.0, params);
+    const auto& comps = s.decomposition.components;
+    double volume = 0.0;
+    for (std::size_t c = 0; c < comps.size(); ++c) {
+        volume += comps[c].volume_mm3;
+        if (c == 0) continue;
+        // Planar faces: the mesh's box is the solid's.
+        const Eigen::AlignedBox3d box = mas::bounding_box(mas::tessellate(comps[c].solid));
+        const Vector3d d = comps[c].build_direction;
+        double top = -std::numeric_limits<double>::infinity();
+        for (int corner = 0; corner < 8; ++corner)
+            top = std::max(top, d.dot(box.corner(Eigen::AlignedBox3d::CornerType(corner))));
+        EXPECT_GE(top - d.dot(comps[c].base_origin), s.axis.params.step_mm - 1e-6)
+            << "component " << c;
+    }
+    EXPECT_NEAR(volume, s.result.stats.part_volume_mm3, 1e-6 * volume);
+    ASSERT_EQ(s.result.components.size(), comps.size());
+    for (const auto& c : s.result.components) EXPECT_GE(c.layer_count, 1);
+    expect_invariants(s, params, "ladder", false);
 }
 
 TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {

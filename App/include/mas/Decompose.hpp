@@ -73,7 +73,10 @@
 //     when the plane lies behind it: a face the span widened over a gusset admitted): it is
 //     mostly other branches' material (a sliver the sections left beside a pipe tee's branch
 //     would cut the branch pipe in two with its plane);
-//   - is no valid solid, whatever is tried.
+//   - is no valid solid, whatever is tried;
+//   - would leave the father, when it is a child itself, thinner along its build direction than
+//     a child may be (the axis step or min_component_height): later splits of a closed loop's
+//     rung (a ladder of two arms joined at their tips) carved it down to a slab no layer fits.
 //   When the plane was a planar face's, the branch then tries the face nearest the junction, if
 //   the refused one was chosen nearest the father's own section (where the walk crossed where
 //   the father's march merged another, a portal's deck over two piers, that is the wrong

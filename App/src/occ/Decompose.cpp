@@ -837,15 +837,25 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             footing.tol = std::max(plane_tol, axis.params.eps_mm);
             std::vector<Child> children;
             TopoDS_Shape father_new;
-            const SplitOutcome outcome =
-                split_by_plane(fs, footing, p.point, p.normal, inner,
-                               std::max(axis.params.step_mm, params.min_component_height_mm), most,
-                               mesh_deflection, at, children, father_new);
+            const double min_height = std::max(axis.params.step_mm, params.min_component_height_mm);
+            SplitOutcome outcome = split_by_plane(fs, footing, p.point, p.normal, inner, min_height,
+                                                  most, mesh_deflection, at, children, father_new);
+            // A child's father must stay as tall as a child must be: later splits of a ladder's
+            // rung (a closed loop) carved it down to a 0.07 mm slab no layer fits.
+            bool thinned = false;
+            if (outcome == SplitOutcome::Split && fc.has_base_face &&
+                height_along(father_new, fc.base_origin, fc.build_direction) < min_height) {
+                thinned = true;
+                outcome = SplitOutcome::Invalid;
+            }
             if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
                 // The siblings that would have shared the split try their own in turn (and
                 // note their own outcome).
                 const char* why =
-                    outcome == SplitOutcome::Failed
+                    thinned ? "the split at the chosen plane would leave its father thinner along "
+                              "its build direction than the axis step (or the least component "
+                              "height)"
+                    : outcome == SplitOutcome::Failed
                         ? "OCCT could not split its father at the chosen plane"
                     : outcome == SplitOutcome::Apart
                         ? "the split at the chosen plane would leave its father in pieces"

@@ -108,6 +108,13 @@ Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& pa
 
 Sliced slice(const mas::Shape& part, double step) { return slice(part, step, default_params()); }
 
+// The unsupported area of every layer, added up, mm^2.
+double total_unsupported(const Sliced& s) {
+    double total = 0.0;
+    for (const auto& l : s.result.layers) total += l.unsupported_area_mm2;
+    return total;
+}
+
 double angle_deg(const Vector3d& a, const Vector3d& b) {
     return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
 }
@@ -617,9 +624,7 @@ TEST(Slicing, AColumnCutFromAnArmOverAGussetIsSlicedSquareWithEveryLayerSupporte
         const auto& l = s.result.layers[std::size_t(arm.first_layer + i)];
         EXPECT_LE(angle_deg(l.plane.normal, Vector3d::UnitX()), lean + 1e-9) << "layer " << i;
     }
-    double unsupported = 0.0;
-    for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
-    EXPECT_EQ(unsupported, 0.0);
+    EXPECT_EQ(total_unsupported(s), 0.0);
     EXPECT_NEAR(s.result.stats.part_volume_mm3, 32000.0 + 20000.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-3);
     expect_invariants(s, params, "gusset bracket");
 }
@@ -647,9 +652,7 @@ TEST(Slicing, AStaircasesOverhangingTiersAreBuiltSidewaysWithEveryLayerSupported
     // Beyond x = 20: 5, 10 and 15 mm of the upper three tiers' 20 x 10 sections.
     EXPECT_NEAR(comps[1].volume_mm3, (5.0 + 10.0 + 15.0) * 200.0, 1e-6);
     EXPECT_NEAR(comps[0].volume_mm3, 4.0 * 4000.0 - 6000.0, 1e-6);
-    double unsupported = 0.0;
-    for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
-    EXPECT_EQ(unsupported, 0.0);
+    EXPECT_EQ(total_unsupported(s), 0.0);
     expect_invariants(s, params, "staircase");
 }
 
@@ -679,9 +682,7 @@ TEST(Slicing, ATeesArmsOverGussetsAreCutAtTheColumnsFacesWithEveryLayerSupported
         EXPECT_NEAR(comps[c].volume_mm3, arm * 20.0 * 20.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-6);
     }
     EXPECT_EQ(sides, (std::set<double>{-1.0, 1.0}));
-    double unsupported = 0.0;
-    for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
-    EXPECT_EQ(unsupported, 0.0);
+    EXPECT_EQ(total_unsupported(s), 0.0);
     expect_invariants(s, params, "tee over gussets");
 }
 
@@ -705,9 +706,7 @@ TEST(Slicing, AnArmOverAGussetWithAStepOnItIsCutAtTheColumnsFace) {
     EXPECT_NEAR(comps[1].base_origin.x(), 20.0, 1e-9);
     EXPECT_NEAR(comps[1].volume_mm3,
                 28.0 * 20.0 * 8.0 + 10.0 * 20.0 * 4.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-6);
-    double unsupported = 0.0;
-    for (const auto& l : s.result.layers) unsupported += l.unsupported_area_mm2;
-    EXPECT_EQ(unsupported, 0.0);
+    EXPECT_EQ(total_unsupported(s), 0.0);
     expect_invariants(s, params, "arm with a step over a gusset");
 }
 

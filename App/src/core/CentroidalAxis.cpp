@@ -729,14 +729,16 @@ private:
         const double a = area(da);
         if (!(a > 0.0) || k == 0) return false;
         const Eigen::AlignedBox2d box = bounds(da);
-        // The regions of `rs` whose boxes meet da's: the others cannot overlap it.
-        const auto near = [&](const Regions2& rs) {
+        // The regions of `rs` whose boxes (`boxes`, in the same order, if known) meet da's: the
+        // others cannot overlap it.
+        const auto near = [&](const Regions2& rs, const std::vector<Eigen::AlignedBox2d>* boxes) {
             Regions2 out;
-            for (const auto& r : rs)
-                if (bounds(r).intersects(box)) out.push_back(r);
+            for (std::size_t i = 0; i < rs.size(); ++i)
+                if ((boxes ? (*boxes)[i] : bounds(rs[i])).intersects(box)) out.push_back(rs[i]);
             return out;
         };
-        if (area(intersection({da}, near(g.regions[k - 1]))) > 0.1 * a) return false;
+        if (area(intersection({da}, near(g.regions[k - 1], &g.bounds2[k - 1]))) > 0.1 * a)
+            return false;
         if (g.half_regions.empty()) g.half_regions.resize(g.count);
         std::unique_ptr<Regions2>& half = g.half_regions[k - 1];
         if (!half) {
@@ -748,7 +750,7 @@ private:
             for (const auto& r : section.regions)
                 half->push_back(simplify(r.shape, p_.step_mm / 100.0));
         }
-        const double share = area(intersection({da}, near(*half))) / a;
+        const double share = area(intersection({da}, near(*half, nullptr))) / a;
         return share >= 0.9 || share <= 0.1;
     }
 

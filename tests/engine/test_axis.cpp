@@ -491,6 +491,50 @@ TEST(CentroidalAxis, ACorniceOnTheFarPierOfAPortalIsMarchedFromThatPiersFace) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, AnArmEndingAtItsGussetsTipIsMarchedFromTheColumnsFace) {
+    // Column [0,20]^2 x [0,80], arm [20,43] x [0,20] x [60,80], and under it a web 4 thick
+    // ([8,12] in y) whose tip meets the arm's end: (x, z) = (20, 60), (43, 60), (20, 37). Step
+    // 3.5: on z = 59.501 the web reaches x = 42.501; on z = 63.001 the arm's underside appears at
+    // once round it, a ledge turned +X (from the section's centroid, its centre lying on the web).
+    // Eq. 4's T is the web's tip, and past it lies 0.499 mm of the arm, less than a step: the
+    // march from there found nothing and the arm stayed in the column's layers, its underside
+    // beside the web overhanging. Past the column's face, x = 20, where the stick-out begins,
+    // the section below holds only the web, a fin under it: the march starts there.
+    const TopoDS_Shape web =
+        mas::test::occ_prism({{20, 8, 60}, {43, 8, 60}, {20, 8, 37}}, {0, 4, 0});
+    const auto mesh = mesh_of(
+        from_occt(fuse(fuse(occ_box(0, 0, 0, 20, 20, 80), occ_box(20, 0, 60, 23, 20, 20)), web)));
+    mas::AxisParams p;
+    p.step_mm = 3.5;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 2u);
+    const auto& arm = a.branches[1];
+    EXPECT_EQ(arm.parent, 0);
+    EXPECT_TRUE(arm.direction.isApprox(Vector3d::UnitX(), 1e-12)) << arm.direction.transpose();
+    EXPECT_NEAR(a.nodes[std::size_t(arm.nodes.front())].slab_start, 20.0, kGrid);
+    // The +X grid's planes x = 21.001 ... 42.001. Each holds the arm's 20 x 20 section less what
+    // the column's march swept of it over the web: the web's strip [8,12] in y from the arm's
+    // underside up to z = 66.501, where the slab of the node on z = 63.001 ends (that node keeps
+    // the column and the web's strip, its stick-out handed to the arm).
+    ASSERT_EQ(arm.nodes.size(), 7u);
+    const double notch = 4.0 * (66.501 - 60.0);
+    for (std::size_t i = 0; i < 7; ++i) {
+        const auto& node = a.nodes[std::size_t(arm.nodes[i])];
+        EXPECT_NEAR(node.offset, 21.001 + 3.5 * double(i), 1e-9);
+        EXPECT_NEAR(node.area, 400.0 - notch, 1e-6) << "x = " << node.offset;
+        EXPECT_NEAR(node.position.y(), 10.0, kGrid);
+        EXPECT_NEAR(node.position.z(),
+                    (400.0 * 70.0 - notch * (60.0 + 66.501) / 2.0) / (400.0 - notch), kGrid);
+    }
+    for (int n : a.branches[0].nodes) {
+        const auto& node = a.nodes[std::size_t(n)];
+        if (node.offset > 66.0) {
+            EXPECT_NEAR(node.area, 400.0, 1e-6) << "z = " << node.offset;
+        }
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, AStickOutLessThanAStepSidewaysIsNoTurn) {
     // A 4 x 4 column [0,4]^2 x [0,20] widening at z = 10 by a ledge [4,5.5]x[0,4]x[10,20], step 2.
     // On the plane z = 10.001 the ledge is centred 0.75 mm outside the column: past the derived

@@ -657,33 +657,60 @@ TEST(Slicing, AStaircasesOverhangingTiersAreBuiltSidewaysWithEveryLayerSupported
 }
 
 TEST(Slicing, ATeesArmsOverGussetsAreCutAtTheColumnsFacesWithEveryLayerSupported) {
-    // 25 mm arms over 23 mm webs. Above z = 60 the section holds both arms; under it the column
-    // and the two webs. Each arm's stick-out wraps round the web under it, so its centre lies on
-    // the web, inside the section below: no turn by Eq. 3, and no direction out of that section
-    // from its nearest point. It appears at once on the arm's flat underside and reaches about
-    // 8 mm from the web: a ledge, turned the way from the lower section's centroid to its centre,
-    // +X and -X. Each arm's march starts past its web's tip (Eq. 4's T) and sweeps its last 2 to
-    // 3 mm; the arm is cut at the column's face, web and all, the 22 mm between allowed for
-    // (Decompose.hpp), and built sideways. Left in the column, the arms' undersides overhung the
-    // column's Z layers: 564 mm^2 at worst.
-    const double arm = 25.0;
+    // Arms over 23 mm webs, 25 mm long and 23 (the webs' tips flush with the arms' ends). Above
+    // z = 60 the section holds both arms; under it the column and the two webs. Each arm's
+    // stick-out wraps round the web under it, so its centre lies on the web, inside the section
+    // below: no turn by Eq. 3, and no direction out of that section from its nearest point. It
+    // appears at once on the arm's flat underside and reaches about 8 mm from the web: a ledge,
+    // turned the way from the lower section's centroid to its centre, +X and -X. Past the web's
+    // tip (Eq. 4's T) lie 0 to 3 mm of the arm, less than the step (3.5 mm): the march starts at
+    // the column's face instead, where the stick-out begins, the web a fin under it
+    // (CentroidalAxis.hpp). The arm is cut there, web and all, and built sideways. Left in the
+    // column, the arms' undersides overhung the column's Z layers: 564 and 504 mm^2 at worst.
     const auto params = default_params();
-    const auto s = slice(mas::test::gusset_tee(arm), 0.0, params);
-    const auto& comps = s.decomposition.components;
-    ASSERT_EQ(comps.size(), 3u);
-    EXPECT_NEAR(comps[0].volume_mm3, 20.0 * 20.0 * 80.0, 1e-6);
-    std::set<double> sides;
-    for (std::size_t c = 1; c < 3; ++c) {
-        const double side = comps[c].build_direction.x();
-        EXPECT_TRUE(comps[c].build_direction.isApprox(Vector3d(side, 0, 0), 1e-12));
-        sides.insert(side);
-        EXPECT_EQ(comps[c].parent, 0);
-        EXPECT_NEAR(comps[c].base_origin.x(), side > 0 ? 20.0 : 0.0, 1e-9);
-        EXPECT_NEAR(comps[c].volume_mm3, arm * 20.0 * 20.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-6);
+    for (const double arm : {25.0, 23.0}) {
+        SCOPED_TRACE("arms " + std::to_string(arm) + " mm");
+        const auto s = slice(mas::test::gusset_tee(arm), 0.0, params);
+        const auto& comps = s.decomposition.components;
+        ASSERT_EQ(comps.size(), 3u);
+        EXPECT_NEAR(comps[0].volume_mm3, 20.0 * 20.0 * 80.0, 1e-6);
+        std::set<double> sides;
+        for (std::size_t c = 1; c < 3; ++c) {
+            const double side = comps[c].build_direction.x();
+            EXPECT_TRUE(comps[c].build_direction.isApprox(Vector3d(side, 0, 0), 1e-12));
+            sides.insert(side);
+            EXPECT_EQ(comps[c].parent, 0);
+            EXPECT_NEAR(comps[c].base_origin.x(), side > 0 ? 20.0 : 0.0, 1e-9);
+            EXPECT_NEAR(comps[c].volume_mm3, arm * 20.0 * 20.0 + 4.0 * 23.0 * 23.0 / 2.0, 1e-6);
+        }
+        EXPECT_EQ(sides, (std::set<double>{-1.0, 1.0}));
+        EXPECT_EQ(total_unsupported(s), 0.0);
+        expect_invariants(s, params, "tee over gussets");
     }
-    EXPECT_EQ(sides, (std::set<double>{-1.0, 1.0}));
+}
+
+TEST(Slicing, AnArmOnAFinReachingItsEndIsCutAtTheColumnsFace) {
+    // A column [0,20]^2 x [0,80] with an arm [20,50] x [0,20] x [70,80] on a fin 4 thick ([8,12]
+    // in y) that runs under the whole arm: (x, z) = (20, 40), (20, 70), (50, 70), (50, 65). The
+    // arm's underside appears as two strips, one each side of the fin, centred 4 mm out of the
+    // section below: each turns (Eq. 3) the way it leaves it, -Y and +Y, where nothing lies past
+    // the column (Eq. 4's T), and +X, where the fin reaches as far as the arm. Past the column's
+    // face, where the strips begin, the section below holds only the fin: the march along +X
+    // starts there, and the arm and fin are built sideways from the column's face.
+    const TopoDS_Shape fin =
+        occ_prism({{20, 8, 40}, {20, 8, 70}, {50, 8, 70}, {50, 8, 65}}, {0, 4, 0});
+    const auto params = default_params();
+    const auto s = slice(
+        from_occt(fuse(fuse(occ_box(0, 0, 0, 20, 20, 80), occ_box(20, 0, 70, 30, 20, 10)), fin)),
+        0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 2u);
+    EXPECT_NEAR(comps[0].volume_mm3, 20.0 * 20.0 * 80.0, 1e-6);
+    EXPECT_TRUE(comps[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_NEAR(comps[1].base_origin.x(), 20.0, 1e-9);
+    EXPECT_NEAR(comps[1].volume_mm3, 30.0 * 20.0 * 10.0 + 4.0 * (30.0 + 5.0) / 2.0 * 30.0, 1e-6);
     EXPECT_EQ(total_unsupported(s), 0.0);
-    expect_invariants(s, params, "tee over gussets");
+    expect_invariants(s, params, "arm on a fin");
 }
 
 TEST(Slicing, AnArmOverAGussetWithAStepOnItIsCutAtTheColumnsFace) {

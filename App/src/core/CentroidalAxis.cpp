@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -1087,10 +1088,58 @@ private:
             if (centre_distance <= d) return false;
             return centre_distance > bump || reaches(piece, bump);
         };
+        // Across a march along `side` (perpendicular to n): the span of `regions`' outer loops
+        // along and across it.
+        const auto spans = [&](const Regions2& regions, const Vector3d& side) {
+            const Vector2d along(side.dot(frame.u), side.dot(frame.v));
+            const Vector2d across(-along.y(), along.x());
+            Eigen::AlignedBox2d box;  // (along, across)
+            for (const auto& r : regions)
+                for (const auto& q : r.outer.points)
+                    box.extend(Vector2d(along.dot(q), across.dot(q)));
+            return box;
+        };
+        // Where a march along `side` starts when `piece` lies beside a fin of the lower region
+        // `from`: `piece` reaches less than a step past from's extent T along side (the march
+        // from T would find at most a sliver of it) and begins more than a step behind T, and
+        // what of `from` lies past where it begins is fins under the stick-out, each no wider
+        // across side than half the stick-out (all of this plane's) and within its span, with
+        // less area than `piece` together. With the stick-out appearing at once (the caller
+        // asks), that is a web or gusset under an arm's flat underside, ending at the arm's end:
+        // the march starts at the face the web stands on (the column's), where the arm does.
+        // A column's own material past that place (a round column, whose surface the stick-out
+        // meets behind its extent) is no fin: none.
+        const auto fin_root = [&](const Regions2& piece, const Region2& from, const Vector3d& side,
+                                  double t) -> std::optional<double> {
+            if (piece.empty()) return std::nullopt;
+            const Eigen::AlignedBox2d own = spans(piece, side);
+            if (own.max().x() - t >= p_.step_mm || t - own.min().x() < p_.step_mm)
+                return std::nullopt;
+            const double root = own.min().x();
+            const Regions2 fins = split_at({from}, frame, side, root).first;
+            const Eigen::AlignedBox2d out = spans(stick_out, side);
+            const double tolerance = p_.step_mm / 100.0;
+            double fin_area = 0.0;
+            for (const auto& f : fins) {
+                const Eigen::AlignedBox2d box = spans({f}, side);
+                if (box.min().y() < out.min().y() - tolerance ||
+                    box.max().y() > out.max().y() + tolerance ||
+                    box.sizes().y() > 0.5 * out.sizes().y())
+                    return std::nullopt;
+                fin_area += area(f);
+            }
+            if (fins.empty() || fin_area >= area(piece)) return std::nullopt;
+            return root;
+        };
         Regions2 far;
         for (const auto& da : stick_out) {
             if (area(da) <= p_.min_region_area_mm2) continue;
             const Vector2d g = centroid(da);
+            std::optional<bool> once;  // appears_at_once(da), once asked
+            const auto at_once = [&] {
+                if (!once) once = appears_at_once(da, planes, k);
+                return *once;
+            };
             double dist = std::numeric_limits<double>::infinity();
             Vector2d exit = g;  // where the stick-out leaves the lower section
             const Region2* left = &track.region.front();  // the lower region it leaves
@@ -1144,8 +1193,8 @@ private:
             // staircase's 5 mm steps left 88 mm^2 and a cube's 6 mm lip 142 mm^2 unsupported.)
             // Material spanning a gap is a bridge, as above.
             bool ledge = false;
-            if (derived_threshold_ && !turn && !wide && out_of_lower > ledge_limit &&
-                appears_at_once(da, planes, k) && !spans_a_gap(da, lower)) {
+            if (derived_threshold_ && !turn && !wide && out_of_lower > ledge_limit && at_once() &&
+                !spans_a_gap(da, lower)) {
                 // Out of L from E, or, centred inside L (an arm's underside round the web under
                 // it), from L's centroid C (the paper's G_k - C).
                 const Vector2d from = dist > 0.0 ? exit : centroid(*left);
@@ -1184,6 +1233,12 @@ private:
                 if (around)
                     for (const auto& l : lower)
                         t_max = std::max(t_max, extent_along(l, n, lower_offset, side));
+                // Beside a fin of the lower section (a web under an arm, its tip flush with the
+                // arm's end), the march from T would find nothing: it starts where the stick-out
+                // does, at the face the fin stands on.
+                std::optional<double> t_fin = fin_root(rest, *left, side, t_max);
+                if (t_fin && !at_once()) t_fin.reset();
+                if (t_fin) t_max = *t_fin;
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
                 rest = std::move(behind);
                 if (share.empty()) continue;
@@ -1199,9 +1254,9 @@ private:
                 double d_share = std::numeric_limits<double>::infinity();
                 for (const auto& l : lower)
                     d_share = std::min(d_share, distance_to_region(l, g_share));
-                // A ledge's share turns wherever it reaches out of the bump; any other only
-                // when far.
-                if (ledge ? !reaches(share, bump) : !is_far(share, d_share)) continue;
+                // A ledge's or a fin's share turns wherever it reaches out of the bump; any
+                // other only when far.
+                if (ledge || t_fin ? !reaches(share, bump) : !is_far(share, d_share)) continue;
                 // Eq. 4: the new march starts just beyond the lower boundary's extent T.
                 Task child;
                 child.direction = side;

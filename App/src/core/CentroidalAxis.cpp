@@ -1099,8 +1099,8 @@ private:
                     box.extend(Vector2d(along.dot(q), across.dot(q)));
             return box;
         };
-        // Where a march along `side` starts when `piece` lies beside a fin of the lower region
-        // `from`: `piece` reaches less than a step past from's extent T along side (the march
+        // Where a march along `side` starts when `piece` lies beside a fin of the lower regions
+        // `from`: `piece` reaches less than a step past their extent T along side (the march
         // from T would find at most a sliver of it) and begins more than a step behind T, and
         // what of `from` lies past where it begins is fins under the stick-out, each no wider
         // across side than half the stick-out (all of this plane's) and within its span, with
@@ -1109,14 +1109,14 @@ private:
         // the march starts at the face the web stands on (the column's), where the arm does.
         // A column's own material past that place (a round column, whose surface the stick-out
         // meets behind its extent) is no fin: none.
-        const auto fin_root = [&](const Regions2& piece, const Region2& from, const Vector3d& side,
+        const auto fin_root = [&](const Regions2& piece, const Regions2& from, const Vector3d& side,
                                   double t) -> std::optional<double> {
             if (piece.empty()) return std::nullopt;
             const Eigen::AlignedBox2d own = spans(piece, side);
             if (own.max().x() - t >= p_.step_mm || t - own.min().x() < p_.step_mm)
                 return std::nullopt;
             const double root = own.min().x();
-            const Regions2 fins = split_at({from}, frame, side, root).first;
+            const Regions2 fins = split_at(from, frame, side, root).first;
             const Eigen::AlignedBox2d out = spans(stick_out, side);
             const double tolerance = p_.step_mm / 100.0;
             double fin_area = 0.0;
@@ -1236,7 +1236,8 @@ private:
                 // Beside a fin of the lower section (a web under an arm, its tip flush with the
                 // arm's end), the march from T would find nothing: it starts where the stick-out
                 // does, at the face the fin stands on.
-                std::optional<double> t_fin = fin_root(rest, *left, side, t_max);
+                std::optional<double> t_fin =
+                    fin_root(rest, around ? lower : Regions2{*left}, side, t_max);
                 if (t_fin && !at_once()) t_fin.reset();
                 if (t_fin) t_max = *t_fin;
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);

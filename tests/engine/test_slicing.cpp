@@ -663,8 +663,8 @@ TEST(Slicing, ATeesArmsOverGussetsAreCutAtTheColumnsFacesWithEveryLayerSupported
     // below: no turn by Eq. 3, and no direction out of that section from its nearest point. It
     // appears at once on the arm's flat underside and reaches about 8 mm from the web: a ledge,
     // turned the way from the lower section's centroid to its centre, +X and -X. Past the web's
-    // tip (Eq. 4's T) lie 0 to 3 mm of the arm, less than the step (3.5 mm): the march starts at
-    // the column's face instead, where the stick-out begins, the web a fin under it
+    // tip (Eq. 4's T) lie 0 to 3 mm of the arm, less than the derived step (3.48 mm): the march
+    // starts at the column's face instead, where the stick-out begins, the web a fin under it
     // (CentroidalAxis.hpp). The arm is cut there, web and all, and built sideways. Left in the
     // column, the arms' undersides overhung the column's Z layers: 564 and 504 mm^2 at worst.
     const auto params = default_params();
@@ -693,10 +693,11 @@ TEST(Slicing, AnArmOnAFinReachingItsEndIsCutAtTheColumnsFace) {
     // A column [0,20]^2 x [0,80] with an arm [20,50] x [0,20] x [70,80] on a fin 4 thick ([8,12]
     // in y) that runs under the whole arm: (x, z) = (20, 40), (20, 70), (50, 70), (50, 65). The
     // arm's underside appears as two strips, one each side of the fin, centred 4 mm out of the
-    // section below: each turns (Eq. 3) the way it leaves it, -Y and +Y, where nothing lies past
-    // the column (Eq. 4's T), and +X, where the fin reaches as far as the arm. Past the column's
-    // face, where the strips begin, the section below holds only the fin: the march along +X
-    // starts there, and the arm and fin are built sideways from the column's face.
+    // section below: each turns (Eq. 3) the way it leaves the fin, -Y or +Y. Nothing of it lies
+    // past the section's extent that way (Eq. 4's T: the column's side), nor along +X, where the
+    // fin reaches as far as the arm. Past the column's face, where the strips begin, the section
+    // below holds only the fin: the march along +X starts there, and the arm and fin are built
+    // sideways from the column's face.
     const TopoDS_Shape fin =
         occ_prism({{20, 8, 40}, {20, 8, 70}, {50, 8, 70}, {50, 8, 65}}, {0, 4, 0});
     const auto params = default_params();

@@ -662,11 +662,13 @@ TEST(Slicing, ATeesArmsOverGussetsAreCutAtTheColumnsFacesWithEveryLayerSupported
     // stick-out wraps round the web under it, so its centre lies on the web, inside the section
     // below: no turn by Eq. 3, and no direction out of that section from its nearest point. It
     // appears at once on the arm's flat underside and reaches about 8 mm from the web: a ledge,
-    // turned the way from the lower section's centroid to its centre, +X and -X. Past the web's
-    // tip (Eq. 4's T) lie 0 to 3 mm of the arm, less than the derived step (3.48 mm): the march
-    // starts at the column's face instead, where the stick-out begins, the web a fin under it
-    // (CentroidalAxis.hpp). The arm is cut there, web and all, and built sideways. Left in the
-    // column, the arms' undersides overhung the column's Z layers: 564 and 504 mm^2 at worst.
+    // turned the way from the lower section's centroid to its centre, +X and -X. The 25 mm arm's
+    // march starts past its web's tip (Eq. 4's T) and sweeps its last 2 to 3 mm; past the 23 mm
+    // arm's T no plane of the +X grid (derived step 3.48 mm) cuts anything, and its march starts
+    // at the column's face instead, where the stick-out begins, the web a fin under it
+    // (CentroidalAxis.hpp). Either arm is cut at the column's face, web and all, and built
+    // sideways. Left in the column, the arms' undersides overhung the column's Z layers: 564 and
+    // 504 mm^2 at worst.
     const auto params = default_params();
     for (const double arm : {25.0, 23.0}) {
         SCOPED_TRACE("arms " + std::to_string(arm) + " mm");
@@ -712,6 +714,35 @@ TEST(Slicing, AnArmOnAFinReachingItsEndIsCutAtTheColumnsFace) {
     EXPECT_NEAR(comps[1].volume_mm3, 30.0 * 20.0 * 10.0 + 4.0 * (30.0 + 5.0) / 2.0 * 30.0, 1e-6);
     EXPECT_EQ(total_unsupported(s), 0.0);
     expect_invariants(s, params, "arm on a fin");
+}
+
+TEST(Slicing, ANarrowColumnUnderAWideArmIsNoFin) {
+    // A 16 mm column [-8,8]^2 x [0,80] under an arm [0,33] x [-20,20] x [60,80], 40 mm wide, on a
+    // web 4 thick ([-2,2] in y) whose tip meets the arm's end: (x, z) = (8, 35), (8, 60), (33, 60).
+    // The arm's flanks past the column's sides turn +-Y and are built sideways. Looking back along
+    // the arm (-X), the flanks begin at its far end, and past that lies the whole column, no wider
+    // than half the arm: it must not pass for a fin (no wider than half the section below either),
+    // or a march from the arm's end back through the column takes the flanks, and everything is
+    // built in the column's Z layers (72 mm^2 unsupported at worst). The arm's middle, over the
+    // column and the web, stays in the column's layers, its underside beside the web overhanging
+    // (a few mm^2 per layer): not every layer is supported.
+    const TopoDS_Shape web = occ_prism({{8, -2, 35}, {8, -2, 60}, {33, -2, 60}}, {0, 4, 0});
+    const auto params = default_params();
+    const auto s = slice(
+        from_occt(fuse(fuse(occ_box(-8, -8, 0, 16, 16, 80), occ_box(0, -20, 60, 33, 40, 20)), web)),
+        0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 3u);
+    std::set<double> sides;
+    for (std::size_t c = 1; c < 3; ++c) {
+        const double side = comps[c].build_direction.y();
+        EXPECT_TRUE(comps[c].build_direction.isApprox(Vector3d(0, side, 0), 1e-12));
+        sides.insert(side);
+        EXPECT_NEAR(comps[c].base_origin.y(), 8.0 * side, 1e-9);
+        EXPECT_NEAR(comps[c].volume_mm3, 12.0 * 33.0 * 20.0, 1e-6);
+    }
+    EXPECT_EQ(sides, (std::set<double>{-1.0, 1.0}));
+    expect_invariants(s, params, "narrow column under a wide arm", false);
 }
 
 TEST(Slicing, AnArmOverAGussetWithAStepOnItIsCutAtTheColumnsFace) {

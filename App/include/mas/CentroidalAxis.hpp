@@ -60,14 +60,18 @@
 //   within a step of the arm's end (flush, the common bracket) puts T at the tip: the march past
 //   it finds nothing, and the arm stayed in its father's layers, its underside beside the web
 //   overhanging (a tee with 23 mm arms over 23 mm webs: 504 mm^2 in one layer). When a share
-//   reaches less than a step past its side's T, begins more than a step behind it, appears at
-//   once, and what of the lower region lies past where it begins is fins (each within the
-//   plane's stick-out's span across the side and no wider than half of it, with less area than
+//   reaches less than a step past its side's T and no plane of that side's grid cuts it there
+//   (where one does, the march finds the arm's end, as past a shorter web), begins more than a
+//   step behind T, appears at once, and what of the lower region lies past where it begins is
+//   fins (each within the plane's stick-out's span across the side, no wider across than half
+//   of it nor than half the lower section, longer along the side than wide, with less area than
 //   the share together), the march along that side starts where the share begins: the column's
 //   face the web stands on. The share turns if it reaches out of the bump, as a ledge's does.
 //   The decomposition then cuts the arm at that face, web and all (Decompose.hpp). A column's
-//   own material past that place is no fin (a round column under a webbed arm, whose surface
-//   the stick-out meets behind its extent, half the column across): T stays.
+//   own material past that place is no fin, and T stays: a round column's under a webbed arm,
+//   whose surface the stick-out meets behind its extent (half the column across), or a 16 mm
+//   column's under an arm 40 mm wide, whose flanks begin at the column's far side (for a march
+//   back along the arm, at the arm's far end).
 // - GetSweepBody / B = B - Bs (Sec. 3.2.4) as bookkeeping on the sections, not a solid Boolean:
 //   each node sweeps a slab, its region extruded from its plane to the next one along the march
 //   direction. Every later section first subtracts the slabs it crosses (all directions are

@@ -1100,31 +1100,44 @@ private:
             return box;
         };
         // Where a march along `side` starts when `piece` lies beside a fin of the lower regions
-        // `from`: `piece` reaches less than a step past their extent T along side (the march
-        // from T would find at most a sliver of it) and begins more than a step behind T, and
-        // what of `from` lies past where it begins is fins under the stick-out, each no wider
-        // across side than half the stick-out (all of this plane's) and within its span, with
-        // less area than `piece` together. With the stick-out appearing at once (the caller
+        // `from`: `piece` reaches less than a step past their extent T along side, no plane of
+        // the march's grid past T cutting it (the march from T would find nothing of it), and
+        // begins more than a step behind T, and
+        // what of `from` lies past where it begins is fins under the stick-out: each within the
+        // stick-out's span across side (all of this plane's), no wider across than half of it
+        // nor than half `from`, and longer along side than wide, with less area than `piece`
+        // together. With the stick-out appearing at once (the caller
         // asks), that is a web or gusset under an arm's flat underside, ending at the arm's end:
         // the march starts at the face the web stands on (the column's), where the arm does.
-        // A column's own material past that place (a round column, whose surface the stick-out
-        // meets behind its extent) is no fin: none.
+        // A column's own material past that place is no fin: a round column's, whose surface
+        // the stick-out meets behind its extent, or a narrow column's under an arm more than
+        // twice as wide, whose flanks begin at its far side (or at the arm's far end, for a
+        // march back along the arm).
         const auto fin_root = [&](const Regions2& piece, const Regions2& from, const Vector3d& side,
                                   double t) -> std::optional<double> {
             if (piece.empty()) return std::nullopt;
             const Eigen::AlignedBox2d own = spans(piece, side);
             if (own.max().x() - t >= p_.step_mm || t - own.min().x() < p_.step_mm)
                 return std::nullopt;
+            // A plane of the march's grid through the share past T: the march finds it, and the
+            // decomposition cuts at the column's face all the same (Decompose.hpp).
+            const Grid& ahead = grid(side);
+            const double past_t = std::ceil((t + p_.eps_mm - ahead.origin) / p_.step_mm - 1e-9);
+            if (past_t < double(ahead.count) &&
+                offset(ahead, std::size_t(std::max(0.0, past_t))) < own.max().x())
+                return std::nullopt;
             const double root = own.min().x();
             const Regions2 fins = split_at(from, frame, side, root).first;
-            const Eigen::AlignedBox2d out = spans(stick_out, side);
+            const Eigen::AlignedBox2d out = spans(stick_out, side), whole = spans(from, side);
             const double tolerance = p_.step_mm / 100.0;
             double fin_area = 0.0;
             for (const auto& f : fins) {
                 const Eigen::AlignedBox2d box = spans({f}, side);
+                const double across = box.sizes().y();
                 if (box.min().y() < out.min().y() - tolerance ||
                     box.max().y() > out.max().y() + tolerance ||
-                    box.sizes().y() > 0.5 * out.sizes().y())
+                    across > 0.5 * std::min(out.sizes().y(), whole.sizes().y()) ||
+                    box.sizes().x() < across)
                     return std::nullopt;
                 fin_area += area(f);
             }

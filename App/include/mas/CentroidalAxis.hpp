@@ -58,20 +58,26 @@
 //   reach it), a C-shaped section's mouth filled.
 // - Beside a fin, T is where the stick-out begins. A web or gusset under an arm whose tip comes
 //   within a step of the arm's end (flush, the common bracket) puts T at the tip: the march past
-//   it finds nothing, and the arm stayed in its father's layers, its underside beside the web
-//   overhanging (a tee with 23 mm arms over 23 mm webs: 504 mm^2 in one layer). When a share
-//   reaches less than a step past its side's T and no plane of that side's grid cuts it there
-//   (where one does, the march finds the arm's end, as past a shorter web), begins more than a
+//   it found nothing, and the arm stayed in its father's layers, its underside beside the web
+//   overhanging (a tee with 23 mm arms over 23 mm webs: 504 mm^2 in one layer); where it found a
+//   sliver, the decomposition's cut could leave a piece too thin to build (a shelf over two
+//   flush webs). When a share reaches less than a step past its side's T, begins more than a
 //   step behind T, appears at once, and what of the lower region lies past where it begins is
 //   fins (each within the plane's stick-out's span across the side, no wider across than half
 //   of it nor than half the lower section, longer along the side than wide, with less area than
 //   the share together), the march along that side starts where the share begins: the column's
-//   face the web stands on. The share turns if it reaches out of the bump, as a ledge's does.
-//   The decomposition then cuts the arm at that face, web and all (Decompose.hpp). A column's
-//   own material past that place is no fin, and T stays: a round column's under a webbed arm,
-//   whose surface the stick-out meets behind its extent (half the column across), or a 16 mm
-//   column's under an arm 40 mm wide, whose flanks begin at the column's far side (for a march
-//   back along the arm, at the arm's far end).
+//   face the web stands on. The share turns if it reaches out of the bump, as a ledge's does,
+//   and takes with it the arm over the fin on that plane; the node below, whose slab swept the
+//   fin's section up to that plane, ends it beyond the root where the arm's underside appears
+//   (found by halving between the planes, to 1e-4 of a step), so the arm's sections are whole
+//   and their centroids on its centre line. (With the notch over the fin, they sat up to half a
+//   millimetre off it until the fin ended; the guide bent there and a bracket's last layers
+//   tilted past the arm's end, beyond the volumetric bound.) The decomposition then cuts the arm
+//   at that face, web and all (Decompose.hpp). A column's own material past that place is no
+//   fin, and T stays: a round column's under a webbed arm, whose surface the stick-out meets
+//   behind its extent (half the column across), or a 16 mm column's under an arm 40 mm wide,
+//   whose flanks begin at the column's far side (for a march back along the arm, at the arm's
+//   far end).
 // - GetSweepBody / B = B - Bs (Sec. 3.2.4) as bookkeeping on the sections, not a solid Boolean:
 //   each node sweeps a slab, its region extruded from its plane to the next one along the march
 //   direction. Every later section first subtracts the slabs it crosses (all directions are
@@ -145,7 +151,9 @@ struct AxisNode {
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // the section plane's normal (march dir.)
     double area = 0.0;                                   // region area, mm^2 (after B - Bs)
     double offset = 0.0;                                 // normal . point on the plane, mm
-    double thickness = 0.0;  // length of the slab this node sweeps along `normal`, mm
+    // Length of the slab this node sweeps along `normal`, mm (beyond a fin's root, the node under
+    // an arm's underside sweeps up to that underside only: see the reading above).
+    double thickness = 0.0;
     // Where that slab starts along `normal` (normal . point), mm: the node's own plane, except
     // for a march's first node: a root's reaches down to the base plane (eps below; one step
     // below for a root of material hanging in mid-air), a turned branch's back from its grid
@@ -193,7 +201,7 @@ struct CentroidalAxis {
     std::vector<AxisLink> links;
     std::vector<AxisBranch> branches;
     AxisParams params;                 // with derived values filled in
-    double searched_volume_mm3 = 0.0;  // sum of the nodes' slabs (area x thickness)
+    double searched_volume_mm3 = 0.0;  // sum of the swept slabs' volumes (area x length)
     // Chordal deflection of the tessellation the sections were cut from, mm; 0 when not known (a
     // mesh taken as it is). Set by whoever tessellated: section loops on curved faces lie up to
     // this far inside the solid's surface, and so may an extent such as Eq. 4's T.

@@ -356,7 +356,7 @@ public:
         axis.branches = std::move(branches_);
         axis.params = p_;
         axis.sections_cut = sections_cut_;
-        for (const auto& n : axis.nodes) axis.searched_volume_mm3 += n.area * n.thickness;
+        for (const auto& s : slabs_) axis.searched_volume_mm3 += area(s.region) * (s.h1 - s.h0);
         return axis;
     }
 
@@ -583,6 +583,81 @@ private:
     // would end there. A thin stem or pin is wider than that at any sensible step, and kept.
     bool speck(const Region2& r) const {
         return area(r) <= p_.min_region_area_mm2 || bounds(r).diagonal().norm() < p_.step_mm / 20.0;
+    }
+
+    // A march starting at a fin's root (classify) takes the arm over the fin, which the node
+    // below, on the last plane under the arm's underside, swept up to the plane above it with the
+    // fin's section: the arm's sections would have a notch over the fin up to there, and their
+    // centroids sit off its centre line until the fin ends (the last node's did not: the guide
+    // bent there, and a bracket's last layers tilted past the arm's end, beyond the volumetric
+    // bound). That node's slab gives the arm back: beyond the fin's root it ends at the arm's
+    // underside.
+    struct Release {
+        int node;            // the node below the plane where the arm appeared
+        Vector3d side;       // the fin march's direction
+        double root = 0.0;   // where it starts (offset along side)
+        Regions2 stick_out;  // the arm's share on the plane above, present from the underside up
+    };
+
+    // Ends the slab of the node the releases `rs` name (one node, each release a side), beyond
+    // each one's root along its side, where its stick-out appears: the highest height between
+    // the node's plane and the next one of g (plane k) where under half of it lies in the part's
+    // section, to a ten-thousandth of a step; below there, beyond the root, the slab sweeps the
+    // fin's section at that height. Between the march's planes (no Lookahead reading the slabs).
+    void release(const std::vector<Release>& rs, Grid& g, std::size_t k) {
+        const std::size_t node = std::size_t(rs.front().node);
+        const Slab slab = slabs_[node];
+        const PlaneFrame frame(g.normal);
+        const double lo = std::max(slab.h0, offset(g, k - 1));
+        const Plane base{g.normal * lo, g.normal};
+        const auto cut_at = [&](double height) {
+            Regions2 cut;
+            for (const auto& region : g.sections->cut_at(height).regions)
+                cut.push_back(region.shape);
+            return cut;
+        };
+        const auto add = [&](Region2 region, double h0, double h1) {
+            Slab piece{slab.normal, h0, h1, std::move(region), {}, slab.branch};
+            for (const auto& q : piece.region.outer.points) {
+                const Vector3d point = frame.to_3d(q, base);
+                piece.box.extend(point + g.normal * (h0 - lo));
+                piece.box.extend(point + g.normal * (h1 - lo));
+            }
+            slabs_.push_back(std::move(piece));
+        };
+        Regions2 rest{slab.region};
+        double lowest = slab.h1;
+        std::vector<std::pair<Regions2, double>> ends;  // per release: beyond its root, underside
+        for (const auto& r : rs) {
+            auto [beyond, behind] = split_at(std::move(rest), frame, r.side, r.root);
+            rest = std::move(behind);
+            if (beyond.empty()) continue;
+            const double half = 0.5 * area(r.stick_out);
+            double absent = lo, present = slab.h1;
+            while (present - absent > 1e-4 * p_.step_mm) {
+                const double mid = 0.5 * (absent + present);
+                (area(intersection(cut_at(mid), r.stick_out)) >= half ? present : absent) = mid;
+            }
+            // The fin reaches further under the underside than on the node's plane (a gusset's
+            // slope): the slab takes that too, with the fin's section just under the underside,
+            // or the arm's last sections, past the fin's tip on the node's plane, would hold the
+            // fin's end under them and their centroids sit below the centre line.
+            for (auto& piece :
+                 difference(split_at(cut_at(absent), frame, r.side, r.root).first, beyond))
+                if (area(piece) > p_.min_region_area_mm2) {
+                    searched_ += area(piece) * (absent - lo);
+                    add(std::move(piece), lo, absent);
+                }
+            for (const auto& piece : beyond) searched_ -= area(piece) * (slab.h1 - absent);
+            lowest = std::min(lowest, absent);
+            ends.emplace_back(std::move(beyond), absent);
+        }
+        if (ends.empty()) return;
+        slabs_[node].h1 = lowest;
+        for (auto& piece : rest) add(std::move(piece), lowest, slab.h1);
+        for (auto& [beyond, absent] : ends)
+            if (absent > lowest)
+                for (auto& piece : beyond) add(std::move(piece), lowest, absent);
     }
 
     int new_branch(const Vector3d& dir, int parent, int parent_node) {
@@ -1016,7 +1091,19 @@ private:
             tracks = std::move(next);
             // Branch-first: every branch found here is searched to its end before this march
             // goes on, so that the march's later sections no longer see its material.
+            std::vector<Release> releases;
+            releases.swap(releases_);
             if (!children.empty()) ahead.restart(k);
+            std::stable_sort(releases.begin(), releases.end(),
+                             [](const Release& a, const Release& b) { return a.node < b.node; });
+            for (std::size_t i = 0; i < releases.size();) {
+                std::size_t j = i;
+                std::vector<Release> one_node;
+                while (j < releases.size() && releases[j].node == releases[i].node)
+                    one_node.push_back(std::move(releases[j++]));
+                release(one_node, g, k);
+                i = j;
+            }
             for (const auto& child : children) search(child, depth + 1);
         }
     }
@@ -1100,9 +1187,8 @@ private:
             return box;
         };
         // Where a march along `side` starts when `piece` lies beside a fin of the lower regions
-        // `from`: `piece` reaches less than a step past their extent T along side, no plane of
-        // the march's grid past T cutting it (the march from T would find nothing of it), and
-        // begins more than a step behind T, and
+        // `from`: `piece` reaches less than a step past their extent T along side (the march
+        // from T would find a sliver of it at most) and begins more than a step behind T, and
         // what of `from` lies past where it begins is fins under the stick-out: each within the
         // stick-out's span across side (all of this plane's), no wider across than half of it
         // nor than half `from`, and longer along side than wide, with less area than `piece`
@@ -1118,13 +1204,6 @@ private:
             if (piece.empty()) return std::nullopt;
             const Eigen::AlignedBox2d own = spans(piece, side);
             if (own.max().x() - t >= p_.step_mm || t - own.min().x() < p_.step_mm)
-                return std::nullopt;
-            // A plane of the march's grid through the share past T: the march finds it, and the
-            // decomposition cuts at the column's face all the same (Decompose.hpp).
-            const Grid& ahead = grid(side);
-            const double past_t = std::ceil((t + p_.eps_mm - ahead.origin) / p_.step_mm - 1e-9);
-            if (past_t < double(ahead.count) &&
-                offset(ahead, std::size_t(std::max(0.0, past_t))) < own.max().x())
                 return std::nullopt;
             const double root = own.min().x();
             const Regions2 fins = split_at(from, frame, side, root).first;
@@ -1278,6 +1357,13 @@ private:
                 child.slab_start = t_max;
                 child.parent_branch = track.branch;
                 child.father_node = track.node;
+                if (t_fin) {
+                    // The arm over the fin goes to the new march too (and the node below gives
+                    // back what its slab took of it: release()).
+                    releases_.push_back(Release{track.node, side, *t_fin, share});
+                    for (auto& r : split_at({upper}, frame, side, *t_fin).first)
+                        far.push_back(std::move(r));
+                }
                 // The new march keeps the regions of its first section that meet its share
                 // swept from the lower plane to one step above the upper one: a strip one plane
                 // thick could miss a region that starts a hair above the plane on a faceted
@@ -1362,6 +1448,7 @@ private:
     std::vector<AxisBranch> branches_;
     // Grown by the march while a Lookahead reads the ones already there from another thread.
     tbb::concurrent_vector<Slab> slabs_;
+    std::vector<Release> releases_;  // found on the plane a march is at, not yet made
     std::array<Grid, 6> grids_;
     std::size_t sections_cut_ = 0;
 };

@@ -547,6 +547,58 @@ TEST(CentroidalAxis, AnArmEndingAtItsGussetsTipIsMarchedFromTheColumnsFace) {
     }
 }
 
+TEST(CentroidalAxis, ArmsOnGussetsAtTwoHeightsBesideAnotherColumnAreMarchedWhole) {
+    // Column A [0,20]^2 x [0,100] and column B [60,80] x [0,20] x [0,80] on a plate [0,80] x
+    // [0,20] x [0,5]; on A two arms [20,43] x [0,20], z in [40,55] and [85,100], each over a web
+    // 4 thick ([8,12] in y) whose tip meets the arm's end: (x, z) = (20, 40), (43, 40), (20, 17)
+    // and the same 45 higher. Each arm is marched from A's face, its node below giving back what
+    // its slab took of the arm (the slab of that node, not of the node with the same index among
+    // the slabs: the first release adds slabs, and the second arm kept its notch, 297 mm^2 of
+    // 300), and sweeping the web's end under the arm. B's nodes keep their whole sections.
+    const TopoDS_Shape web1 =
+        mas::test::occ_prism({{20, 8, 40}, {43, 8, 40}, {20, 8, 17}}, {0, 4, 0});
+    const TopoDS_Shape web2 =
+        mas::test::occ_prism({{20, 8, 85}, {43, 8, 85}, {20, 8, 62}}, {0, 4, 0});
+    TopoDS_Shape part = fuse(occ_box(0, 0, 0, 80, 20, 5), occ_box(0, 0, 0, 20, 20, 100));
+    part = fuse(fuse(part, occ_box(60, 0, 0, 20, 20, 80)), occ_box(20, 0, 40, 23, 20, 15));
+    part = fuse(fuse(fuse(part, occ_box(20, 0, 85, 23, 20, 15)), web1), web2);
+    const auto mesh = mesh_of(from_occt(part));
+    mas::AxisParams p;
+    p.step_mm = 3.3;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const double hair = 4.0 * 1e-4 * p.step_mm;
+    std::vector<double> arms;  // their centre lines' heights
+    for (const auto& b : a.branches) {
+        if (!b.direction.isApprox(Vector3d::UnitX(), 1e-12)) continue;
+        const double z = a.nodes[std::size_t(b.nodes.front())].position.z();
+        arms.push_back(z);
+        const double centre = z < 70.0 ? 47.5 : 92.5;
+        EXPECT_NEAR(a.nodes[std::size_t(b.nodes.front())].slab_start, 20.0, kGrid);
+        for (int n : b.nodes) {
+            const auto& node = a.nodes[std::size_t(n)];
+            EXPECT_GE(node.area, 300.0 - 1e-6) << "x = " << node.offset << ", arm at " << centre;
+            EXPECT_LE(node.area, 300.0 + hair) << "x = " << node.offset << ", arm at " << centre;
+            EXPECT_NEAR(node.position.y(), 10.0, kGrid);
+            EXPECT_NEAR(node.position.z(), centre, hair * 7.5 / 300.0 + kGrid);
+        }
+    }
+    ASSERT_EQ(arms.size(), 2u);
+    EXPECT_NE(arms[0] < 70.0, arms[1] < 70.0);
+    // B's nodes above the plate: its whole 20 x 20 section, none swept by A's arms' nodes.
+    int b_nodes = 0;
+    for (const auto& node : a.nodes) {
+        if (!node.normal.isApprox(Vector3d::UnitZ(), 1e-12) || node.offset < 6.0 ||
+            node.position.x() < 50.0)
+            continue;
+        ++b_nodes;
+        EXPECT_NEAR(node.area, 400.0, 1e-6) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.x(), 70.0, kGrid) << "z = " << node.offset;
+    }
+    EXPECT_EQ(b_nodes,
+              int(std::ceil((80.0 - 0.001) / p.step_mm)) - int(std::ceil(6.0 / p.step_mm)));
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, AStickOutLessThanAStepSidewaysIsNoTurn) {
     // A 4 x 4 column [0,4]^2 x [0,20] widening at z = 10 by a ledge [4,5.5]x[0,4]x[10,20], step 2.
     // On the plane z = 10.001 the ledge is centred 0.75 mm outside the column: past the derived

@@ -151,8 +151,9 @@ struct AxisNode {
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // the section plane's normal (march dir.)
     double area = 0.0;                                   // region area, mm^2 (after B - Bs)
     double offset = 0.0;                                 // normal . point on the plane, mm
-    // Length of the slab this node sweeps along `normal`, mm (beyond a fin's root, the node under
-    // an arm's underside sweeps up to that underside only: see the reading above).
+    // Length of the slab this node sweeps along `normal`, mm. (Beyond a fin's root, the slab of
+    // the node under an arm's underside ends at that underside, the reading above; `thickness`
+    // stays the whole length.)
     double thickness = 0.0;
     // Where that slab starts along `normal` (normal . point), mm: the node's own plane, except
     // for a march's first node: a root's reaches down to the base plane (eps below; one step

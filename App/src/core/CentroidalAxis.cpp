@@ -605,10 +605,11 @@ private:
     // section, to a ten-thousandth of a step; below there, beyond the root, the slab sweeps the
     // fin's section at that height. Between the march's planes (no Lookahead reading the slabs).
     void release(const std::vector<Release>& rs, Grid& g, std::size_t k) {
-        const std::size_t node = std::size_t(rs.front().node);
-        const Slab slab = slabs_[node];
+        const std::size_t index = node_slab_[std::size_t(rs.front().node)];
+        const Slab slab = slabs_[index];
         const PlaneFrame frame(g.normal);
         const double lo = std::max(slab.h0, offset(g, k - 1));
+        if (!(slab.h1 > lo)) return;
         const Plane base{g.normal * lo, g.normal};
         const auto cut_at = [&](double height) {
             Regions2 cut;
@@ -639,11 +640,15 @@ private:
                 (area(intersection(cut_at(mid), r.stick_out)) >= half ? present : absent) = mid;
             }
             // The fin reaches further under the underside than on the node's plane (a gusset's
-            // slope): the slab takes that too, with the fin's section just under the underside,
-            // or the arm's last sections, past the fin's tip on the node's plane, would hold the
-            // fin's end under them and their centroids sit below the centre line.
-            for (auto& piece :
-                 difference(split_at(cut_at(absent), frame, r.side, r.root).first, beyond))
+            // slope): the slab takes that too, with the fin's section just under the underside
+            // (the section's regions beyond the root that meet the slab's there, not another
+            // column's), or the arm's last sections, past the fin's tip on the node's plane,
+            // would hold the fin's end under them and their centroids sit below the centre line.
+            Regions2 fin;
+            for (auto& piece : split_at(cut_at(absent), frame, r.side, r.root).first)
+                if (area(intersection({piece}, beyond)) > p_.min_region_area_mm2)
+                    fin.push_back(std::move(piece));
+            for (auto& piece : difference(fin, beyond))
                 if (area(piece) > p_.min_region_area_mm2) {
                     searched_ += area(piece) * (absent - lo);
                     add(std::move(piece), lo, absent);
@@ -653,7 +658,7 @@ private:
             ends.emplace_back(std::move(beyond), absent);
         }
         if (ends.empty()) return;
-        slabs_[node].h1 = lowest;
+        slabs_[index].h1 = lowest;
         for (auto& piece : rest) add(std::move(piece), lowest, slab.h1);
         for (auto& [beyond, absent] : ends)
             if (absent > lowest)
@@ -695,6 +700,7 @@ private:
             slab.box.extend(p + n * (slab_from - offset));
             slab.box.extend(p + n * (slab_to - offset));
         }
+        node_slab_.push_back(slabs_.size());
         slabs_.push_back(std::move(slab));
         nodes_.push_back(std::move(node));
         const int id = static_cast<int>(nodes_.size()) - 1;
@@ -1448,7 +1454,8 @@ private:
     std::vector<AxisBranch> branches_;
     // Grown by the march while a Lookahead reads the ones already there from another thread.
     tbb::concurrent_vector<Slab> slabs_;
-    std::vector<Release> releases_;  // found on the plane a march is at, not yet made
+    std::vector<std::size_t> node_slab_;  // per node: its slab's index in slabs_
+    std::vector<Release> releases_;       // found on the plane a march is at, not yet made
     std::array<Grid, 6> grids_;
     std::size_t sections_cut_ = 0;
 };

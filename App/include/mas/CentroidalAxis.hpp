@@ -69,8 +69,9 @@
 //   face the web stands on. The share turns if it reaches out of the bump, as a ledge's does,
 //   and takes with it the arm over the fin on that plane; the node below, whose slab swept the
 //   fin's section up to that plane, ends it beyond the root where the arm's underside appears
-//   (found by halving between the planes, to 1e-4 of a step), so the arm's sections are whole
-//   and their centroids on its centre line. (With the notch over the fin, they sat up to half a
+//   (found by halving between the planes, to 1e-4 of a step) and below there sweeps the fin's
+//   section at that height, out to the fin's tip, so the arm's sections are whole and their
+//   centroids on its centre line. (With the notch over the fin, they sat up to half a
 //   millimetre off it until the fin ended; the guide bent there and a bracket's last layers
 //   tilted past the arm's end, beyond the volumetric bound.) The decomposition then cuts the arm
 //   at that face, web and all (Decompose.hpp). A column's own material past that place is no

@@ -150,6 +150,21 @@ struct Slab {
     int branch = -1;  // the branch whose node swept it (-1: not swept by a node)
 };
 
+// The 3-D box of `region` (PlaneFrame(n) coordinates, on the plane at offset `at` along n) swept
+// along n over [h0, h1].
+Eigen::AlignedBox3d slab_box(const Region2& region, const PlaneFrame& frame, double at, double h0,
+                             double h1) {
+    const Vector3d& n = frame.normal;
+    const Plane plane{n * at, n};
+    Eigen::AlignedBox3d box;
+    for (const auto& q : region.outer.points) {
+        const Vector3d p = frame.to_3d(q, plane);
+        box.extend(p + n * (h0 - at));
+        box.extend(p + n * (h1 - at));
+    }
+    return box;
+}
+
 // A slab cut by a perpendicular plane: the band [s0, s1] along the slab's axis `ia`, times the
 // intervals `t` along the third axis `it`, all on the plane's coordinate `pib` along axis `ib`.
 struct Strip {
@@ -610,7 +625,6 @@ private:
         const PlaneFrame frame(g.normal);
         const double lo = std::max(slab.h0, offset(g, k - 1));
         if (!(slab.h1 > lo)) return;
-        const Plane base{g.normal * lo, g.normal};
         const auto cut_at = [&](double height) {
             Regions2 cut;
             for (const auto& region : g.sections->cut_at(height).regions)
@@ -618,13 +632,8 @@ private:
             return cut;
         };
         const auto add = [&](Region2 region, double h0, double h1) {
-            Slab piece{slab.normal, h0, h1, std::move(region), {}, slab.branch};
-            for (const auto& q : piece.region.outer.points) {
-                const Vector3d point = frame.to_3d(q, base);
-                piece.box.extend(point + g.normal * (h0 - lo));
-                piece.box.extend(point + g.normal * (h1 - lo));
-            }
-            slabs_.push_back(std::move(piece));
+            const Eigen::AlignedBox3d box = slab_box(region, frame, lo, h0, h1);
+            slabs_.push_back(Slab{slab.normal, h0, h1, std::move(region), box, slab.branch});
         };
         Regions2 rest{slab.region};
         double lowest = slab.h1;
@@ -694,14 +703,9 @@ private:
         node.slab_start = slab_from;
         node.branch = branch;
         node.region = region;
-        Slab slab{n, slab_from, slab_to, region, {}, branch};
-        for (const auto& q : region.outer.points) {
-            const Vector3d p = frame.to_3d(q, plane);
-            slab.box.extend(p + n * (slab_from - offset));
-            slab.box.extend(p + n * (slab_to - offset));
-        }
+        const Eigen::AlignedBox3d box = slab_box(region, frame, offset, slab_from, slab_to);
         node_slab_.push_back(slabs_.size());
-        slabs_.push_back(std::move(slab));
+        slabs_.push_back(Slab{n, slab_from, slab_to, region, box, branch});
         nodes_.push_back(std::move(node));
         const int id = static_cast<int>(nodes_.size()) - 1;
         branches_[branch].nodes.push_back(id);

@@ -193,6 +193,89 @@ TEST(Nozzle, AComponentGoesFirstWhenTheEarlierWouldBlockIt) {
     EXPECT_TRUE(s.collisions.empty());
 }
 
+// A 10 x 10 column of 1 mm layers (tops z = 1 ... 40) and a ledge beside it, [10, 20] x [0, 10]
+// with its top at z = 20, deposited at its centre, under a nozzle whose tip (10 across) stands
+// 1 mm off the deposit point (margin 0.5). The ledge's box grown by the thickest layer (1 mm) meets
+// the column's layers up to the one with its top at z = 22: the ledge may rest on those, and they
+// come before it, though its nozzle meets the two above z = 20 (each 5 mm across from the deposit
+// point, within the tip). The column's layers above do not touch it: they and the ledge are
+// ordered like brothers' layers, and the next one, 2 to 3 mm above the deposit point, would lie
+// in its nozzle: the ledge goes first. (Waiting for the whole column, the ledge's nozzle met the
+// column's top layers.)
+TEST(Nozzle, AChildWaitsForTheLayersOfItsFatherItMayRestOnAndNoMore) {
+    Built b;
+    for (int k = 0; k < 40; ++k) add_square(b, 0, 0, 0, 10, 10, 1.0 + k);
+    add_square(b, 1, 10, 0, 20, 10, 20.0);
+    mas::NozzleParams p = coaxial(false);
+    p.standoff_mm = 1.0;
+    p.margin_mm = 0.5;
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0}, {0, 1}), p);
+    std::vector<int> expected;
+    for (int k = 0; k < 22; ++k) expected.push_back(k);
+    expected.push_back(40);
+    for (int k = 22; k < 40; ++k) expected.push_back(k);
+    EXPECT_EQ(s.layers, expected);
+    ASSERT_EQ(s.collisions.size(), 1u);
+    EXPECT_EQ(s.collisions[0].layer, 40);
+    EXPECT_EQ(s.collisions[0].obstacle_layer, 21);  // top at z = 22, 1 to 2 mm up: in the tip
+    EXPECT_EQ(s.component_switches, 2);
+    EXPECT_EQ(s.interrupted_components, 1);
+    // Waiting for all of its father, it comes last, and meets the column's top layers.
+    mas::SequenceInput whole = input(b, {-1, 0}, {0, 1});
+    whole.waits_for[1] = {0};
+    const mas::BuildSequence w = mas::plan_build_sequence(whole, p);
+    EXPECT_EQ(w.layers.back(), 40);
+    ASSERT_EQ(w.collisions.size(), 1u);
+    EXPECT_GT(w.collisions[0].obstacle_layer, 21);
+}
+
+// A post standing on a ledge 4 mm from the column the ledge leaves (the post's grandfather), as
+// sliced parts have them: the post touches none of the column's layers, and goes up with the
+// column, each discontinued just before the other's nozzle would meet it. Built after the whole
+// column (the paper's "a child cannot be built until its father has been deposited", taken down
+// the tree), the post's upper layers have the nozzle's cone meet the column's top.
+TEST(Nozzle, APostOnALedgeGoesUpWithTheColumnTheLedgeLeaves) {
+    Built b;
+    for (int k = 0; k < 40; ++k) add_square(b, 0, 0, 0, 10, 10, 1.0 + k);   // 0 .. 39
+    add_square(b, 1, 10, 0, 20, 10, 20.0);                                  // 40
+    for (int k = 0; k < 20; ++k) add_square(b, 2, 14, 3, 18, 7, 21.0 + k);  // 41 .. 60
+    const mas::SequenceInput in = input(b, {-1, 0, 1}, {0, 1, 2});
+    const mas::BuildSequence s = mas::plan_build_sequence(in, coaxial());
+    // The grown nozzle (from 6 mm up, 5 + 4 / cos 30 = 9.62 mm across its axis there) holds a
+    // layer of the other 6 mm or more above the deposit point: the post's (6 mm from the column)
+    // holds the column's layers 6 mm above it, the column's (9 mm from the post) the post's. The
+    // ledge's (5 mm from the column) holds the column's from z = 26 on: the column goes up to
+    // z = 25, then the ledge, the column's layer at 26, the post to 32 (its next one would lie in
+    // the column's nozzle at 27), the column to 38, the post to its top, and the column's last two.
+    std::vector<int> expected;
+    auto column = [&](int from, int to) {
+        for (int z = from; z <= to; ++z) expected.push_back(z - 1);
+    };
+    auto post = [&](int from, int to) {
+        for (int z = from; z <= to; ++z) expected.push_back(20 + z);
+    };
+    column(1, 25);
+    expected.push_back(40);
+    column(26, 26);
+    post(21, 32);
+    column(27, 38);
+    post(33, 40);
+    column(39, 40);
+    EXPECT_EQ(s.layers, expected);
+    EXPECT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.component_switches, 6);
+    EXPECT_EQ(s.interrupted_components, 2);
+    // Waiting for all of the column, the post collides with it.
+    mas::SequenceInput whole = in;
+    whole.waits_for[2] = {0};
+    const mas::BuildSequence w = mas::plan_build_sequence(whole, coaxial());
+    EXPECT_FALSE(w.collisions.empty());
+    for (const mas::NozzleCollision& c : w.collisions) {
+        EXPECT_GE(c.layer, 41);
+        EXPECT_LT(c.obstacle_layer, 40);
+    }
+}
+
 TEST(Nozzle, CollisionsNoOrderAvoidsAreReported) {
     {
         // One component whose second layer's nozzle meets its first, 29 mm above and 7 across.

@@ -893,6 +893,50 @@ TEST(Slicing, ATeesBranchWaitsForThePipeAboveItsJunction) {
     expect_invariants(s, params, "tee", false);
 }
 
+TEST(Slicing, APostOnALedgeBesideItsColumnGoesUpWithTheColumn) {
+    // A column [0,20]^2 x [0,60], a ledge [20,35] x [0,20] x [30,35] and a 6 mm post on it 3 mm
+    // from the column, to z = 55. The ledge is built sideways (+X) from the column's face, the post
+    // up from the ledge. Built after the whole column, the post's layers from z = 37 up had the
+    // nozzle's cone meet the column's top (9 layers). The post rests on none of the column's
+    // layers: the column's layers above the ledge and the post go up together (Nozzle.hpp).
+    const auto params = default_params();
+    const auto s =
+        slice(from_occt(fuse(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(20, 0, 30, 15, 20, 5)),
+                             occ_box(23, 7, 35, 6, 6, 20))),
+              0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 3u);
+    EXPECT_NEAR(comps[0].volume_mm3, 20.0 * 20.0 * 60.0, 1e-6);
+    EXPECT_TRUE(comps[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_NEAR(comps[1].volume_mm3, 15.0 * 20.0 * 5.0, 1e-6);
+    EXPECT_EQ(comps[2].parent, 1);
+    EXPECT_TRUE(comps[2].build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+    EXPECT_NEAR(comps[2].volume_mm3, 6.0 * 6.0 * 20.0, 1e-6);
+    const mas::SlicedPart& r = s.result;
+    EXPECT_TRUE(r.sequence.collisions.empty());
+    EXPECT_EQ(r.stats.colliding_layers, 0);
+    EXPECT_EQ(total_unsupported(s), 0.0);
+    // The column's last layer comes after the post's first; the ledge's first after every column
+    // layer reaching its underside.
+    std::vector<int> position(r.layers.size(), -1);
+    for (std::size_t k = 0; k < r.sequence.layers.size(); ++k)
+        position[std::size_t(r.sequence.layers[k])] = int(k);
+    const auto& column = r.components[0];
+    const auto& ledge = r.components[1];
+    const auto& post = r.components[2];
+    EXPECT_GT(position[std::size_t(column.first_layer + column.layer_count - 1)],
+              position[std::size_t(post.first_layer)]);
+    for (int k = 0; k < column.layer_count; ++k) {
+        const mas::Layer& l = r.layers[std::size_t(column.first_layer + k)];
+        if (l.lower.origin.z() < 35.0) {
+            EXPECT_LT(position[std::size_t(column.first_layer + k)],
+                      position[std::size_t(ledge.first_layer)]);
+        }
+    }
+    EXPECT_GE(r.sequence.interrupted_components, 1);
+    expect_invariants(s, params, "post on a ledge");
+}
+
 // A prism 10 deep along Y whose section is a trapezoid 40 wide at z = 0 and 20 wide at z = 10,
 // its sides at 45 degrees: at height z it is 40 - 2z wide.
 TEST(Slicing, VolDiffIsTheMismatchOverTheDepositedPrismsVolume) {

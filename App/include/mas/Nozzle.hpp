@@ -24,20 +24,28 @@
 //   deposits on.
 //   The plate is exact: the nozzle's lowest point comes within margin_mm of it.
 // - The order (Sec. 4.2.3: a child waits for its father; brothers switch when a collision would
-//   occur, "discontinued just before a collision happens"). A component starts once its father and
-//   every component it must wait for (`waits_for`: the earlier components its first layer rests
-//   on, SlicePart.hpp's build order) are complete. A layer y of one component and a layer x of
-//   another that neither must wait for give x before y when y's prism would lie in x's nozzle. The
+//   occur, "discontinued just before a collision happens"). The paper's child waits for all of
+//   its father; what it rests on is the father's layers next to it, and a post on a ledge a few
+//   mm from the column the ledge leaves, built after the whole column, has the nozzle meet the
+//   column's top all the way up. So a component starts once every component it must wait for
+//   (`waits_for`: the earlier components its first layer rests on, SlicePart.hpp's build order)
+//   is complete, and its father's layers it may rest on are deposited: up to the last one whose
+//   prism's box comes within the part's thickest layer of the box of the component's own layers
+//   (all of them when none does); the same holds down the tree (a component does not start before
+//   its father may). A layer y of one component and a layer x of another, neither of which comes
+//   first by those rules, give x before y when y's prism would lie in x's nozzle: so a father's
+//   layers above those its child may rest on go up with the child, as brothers' layers do. The
 //   layers are then taken one by one: the same component's next layer while nothing it would
 //   block is still to come; otherwise, of the components that may go on, the first in
 //   `start_order` whose next layer blocks nothing to come. When none may go on (the constraints
 //   form a cycle), the next layer that blocks the fewest layers to come is taken (then the first
 //   in `start_order`): those layers collide. (A heuristic: another order might leave fewer.)
-// - A layer whose nozzle meets its own component's earlier layers, an ancestor's or one it waits
-//   for collides whatever the order; so does one whose nozzle meets the plate. Each colliding
-//   layer is reported once, with one obstacle: the plate, else the layer that comes deepest into
-//   the nozzle itself (the least signed distance from the nozzle's surface, negative inside, of
-//   any of its samples over the deposit point nearest it), at that sample and point.
+// - A layer whose nozzle meets its own component's earlier layers, or a layer of another that
+//   comes first by the rules above, collides whatever the order; so does one whose nozzle meets
+//   the plate. Each colliding layer is reported once, with one obstacle: the plate, else the layer
+//   that comes deepest into the nozzle itself (the least signed distance from the nozzle's
+//   surface, negative inside, of any of its samples over the deposit point nearest it), at that
+//   sample and point.
 // - Leaning the nozzle (not in the paper; a 5-axis CAM's "tilt the tool to avoid a collision"). A
 //   sideways arm near the plate has a coaxial nozzle's body reach under the plate, whatever the
 //   order. The layer stays as it is, and its paths; only the tool axis a leans from the layer's

@@ -108,9 +108,10 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 // branch's, which a mesh sliced as one component keeps) moves nothing. They are started in
 // build_order();
 // each child's first layer is checked against everything built before it. Then the layers'
-// sequence against params.nozzle (plan_build_sequence): a component waits for its father and for
-// the components before it in build_order that its first layer rests on (those that, reaching its
-// base, leave less of it unsupported than its father alone); the plate is the root's base.
+// sequence against params.nozzle (plan_build_sequence): a component waits for its father's
+// layers it may rest on and for the components before it in build_order that its first layer
+// rests on (those that, reaching its base, leave less of it unsupported than its father alone);
+// the plate is the root's base.
 // `progress` (Progress.hpp) follows the build order (a few per cent), the components' layers
 // (each its share by volume, reported after every layer and checked between candidate planes),
 // the paths (layer by layer), what each component rests on and the sequence (the last tenth),

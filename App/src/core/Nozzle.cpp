@@ -471,29 +471,70 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             bad("component " + std::to_string(c) + "'s layers do not lie together");
         of[std::size_t(c)].push_back(int(i));
     }
-    // before[a][b]: a must be complete before b starts (fathers and waits, transitively).
-    std::vector<std::vector<int>> preds(comps);
+    // The layers' boxes, and each component's (of its layers' prisms).
+    std::vector<LayerBounds> bounds(count);
+    std::vector<Eigen::AlignedBox3d> component_box(comps);
+    double thickest = 0.0;
+    for (std::size_t i = 0; i < count; ++i) {
+        bounds[i] = layer_bounds(layers[i]);
+        if (!bounds[i].corners.empty())
+            component_box[std::size_t(layers[i].component)].extend(bounds[i].box);
+        thickest = std::max(thickest, layers[i].max_thickness_mm);
+    }
+    // need[p][c]: how many of p's layers (bottom first) must be deposited before c's first, -1
+    // when c does not wait for p. A component waits for every layer of a component in its
+    // `waits_for`, and for its father's layers up to the last one coming within the thickest
+    // layer of its own layers' box (those it may rest on; all of them when none comes so near).
+    // The father's layers above those and the child are then ordered like brothers' layers.
+    // Transitively: c cannot start before a component it waits for starts.
+    std::vector<std::vector<std::pair<int, int>>> preds(comps);  // (p, layers of p), direct
     for (std::size_t c = 0; c < comps; ++c) {
-        if (in.parent[c] >= 0) preds[c].push_back(in.parent[c]);
-        for (int w : in.waits_for[c]) preds[c].push_back(w);
-        for (int p : preds[c])
+        std::vector<int> ps;
+        if (in.parent[c] >= 0) ps.push_back(in.parent[c]);
+        for (int w : in.waits_for[c]) ps.push_back(w);
+        for (int p : ps)
             if (p < 0 || std::size_t(p) >= comps || std::size_t(p) == c)
                 bad("component " + std::to_string(c) + " waits for component " + std::to_string(p) +
                     ", which cannot come before it");
+        for (std::size_t k = 0; k < ps.size(); ++k) {
+            const std::vector<int>& mine = of[std::size_t(ps[k])];
+            int n = int(mine.size());
+            if (k == 0 && in.parent[c] >= 0 && !component_box[c].isEmpty()) {
+                const Eigen::AlignedBox3d near(
+                    component_box[c].min() - Vector3d::Constant(thickest + 1e-9),
+                    component_box[c].max() + Vector3d::Constant(thickest + 1e-9));
+                int last = -1;
+                for (std::size_t j = 0; j < mine.size(); ++j) {
+                    const LayerBounds& b = bounds[std::size_t(mine[j])];
+                    if (!b.corners.empty() && b.box.intersects(near)) last = int(j);
+                }
+                if (last >= 0) n = last + 1;
+            }
+            preds[c].emplace_back(ps[k], n);
+        }
     }
-    std::vector<std::vector<char>> before(comps, std::vector<char>(comps, 0));
+    std::vector<std::vector<int>> need(comps, std::vector<int>(comps, -1));
     for (std::size_t c = 0; c < comps; ++c) {
-        std::vector<int> stack(preds[c].begin(), preds[c].end());
+        std::vector<int> stack = {int(c)}, seen(comps, 0);
         while (!stack.empty()) {
-            const int p = stack.back();
+            const std::size_t q = std::size_t(stack.back());  // c waits for q to start
             stack.pop_back();
-            if (before[std::size_t(p)][c]) continue;
-            before[std::size_t(p)][c] = 1;
-            for (int q : preds[std::size_t(p)]) stack.push_back(q);
+            for (const auto& [p, n] : preds[q]) {
+                const std::size_t pp = std::size_t(p);
+                need[pp][c] = std::max(need[pp][c], n);
+                if (!seen[pp]) {
+                    seen[pp] = 1;
+                    stack.push_back(p);
+                }
+            }
         }
     }
     for (std::size_t c = 0; c < comps; ++c)
-        if (before[c][c]) bad("component " + std::to_string(c) + " waits for itself");
+        if (need[c][c] >= 0) bad("component " + std::to_string(c) + " waits for itself");
+    // Where layer i lies in its component's order.
+    std::vector<int> index(count, 0);
+    for (const std::vector<int>& mine : of)
+        for (std::size_t j = 0; j < mine.size(); ++j) index[std::size_t(mine[j])] = int(j);
     std::vector<int> rank(comps, int(comps));
     for (std::size_t k = 0; k < in.start_order.size(); ++k) {
         const int c = in.start_order[k];
@@ -507,13 +548,6 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     const Shape shape(params);
     const double m = params.margin_mm;
     const double reach = shape.grown(shape.top);  // of the grown nozzle, sideways
-    std::vector<LayerBounds> bounds(count);
-    std::vector<Eigen::AlignedBox3d> component_box(comps);  // of its layers' prisms
-    for (std::size_t i = 0; i < count; ++i) {
-        bounds[i] = layer_bounds(layers[i]);
-        if (!bounds[i].corners.empty())
-            component_box[std::size_t(layers[i].component)].extend(bounds[i].box);
-    }
     PrismSamples samples(layers, m);
     // Where layer y's prism lies seen from x's paths (`sweep` is x's): its corners' lowest and
     // highest heights above x's plane along the tool axis, and how far across the axis its
@@ -630,10 +664,10 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             if (cx == cy) {
                 if (y > x) continue;
                 unavoidable = true;
-            } else if (before[std::size_t(cy)][std::size_t(cx)]) {
-                unavoidable = true;
-            } else if (before[std::size_t(cx)][std::size_t(cy)]) {
-                continue;
+            } else if (index[y] < need[std::size_t(cy)][std::size_t(cx)]) {
+                unavoidable = true;  // y is deposited before x's component starts
+            } else if (index[x] < need[std::size_t(cx)][std::size_t(cy)]) {
+                continue;  // and x before y's
             } else {
                 unavoidable = false;
             }
@@ -654,29 +688,16 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     BuildSequence out;
     out.layers.reserve(count);
     std::vector<std::size_t> next(comps, 0);  // per component: its layers taken
-    std::vector<int> waiting(comps, 0);       // per component: predecessors not complete
-    for (std::size_t c = 0; c < comps; ++c) waiting[c] = int(preds[c].size());
-    std::vector<char> left(comps, 0);  // left unfinished for another
+    std::vector<char> left(comps, 0);         // left unfinished for another
     std::vector<int> position(count, -1);
     auto complete = [&](std::size_t c) { return next[c] >= of[c].size(); };
-    // Components with no layers are complete from the start.
-    std::vector<std::vector<int>> successors(comps);
+    // Per component: the components whose layers it waits for that are not yet deposited.
+    std::vector<int> waiting(comps, 0);
+    for (std::size_t p = 0; p < comps; ++p)
+        for (std::size_t c = 0; c < comps; ++c) waiting[c] += need[p][c] > 0;
+    std::vector<int> open;  // may go on: every layer waited for deposited, layers left
     for (std::size_t c = 0; c < comps; ++c)
-        for (int p : preds[c]) successors[std::size_t(p)].push_back(int(c));
-    std::vector<char> released(comps, 0);
-    std::vector<int> open;  // may go on: predecessors complete, layers left
-    std::function<void(std::size_t)> release = [&](std::size_t c) {
-        if (released[c]) return;
-        released[c] = 1;
-        if (!complete(c)) {
-            open.push_back(int(c));
-            return;
-        }
-        for (int s : successors[c])
-            if (--waiting[std::size_t(s)] == 0) release(std::size_t(s));
-    };
-    for (std::size_t c = 0; c < comps; ++c)
-        if (waiting[c] == 0) release(c);
+        if (waiting[c] == 0 && !complete(c)) open.push_back(int(c));
     int current = -1;
     const Progress order = progress.span(0.9, 0.95, "ordering the layers");
     while (out.layers.size() < count) {
@@ -710,11 +731,10 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         position[std::size_t(x)] = int(out.layers.size());
         out.layers.push_back(x);
         for (int y : blocks[std::size_t(x)]) --pending[std::size_t(y)];
-        if (complete(c)) {
-            open.erase(std::find(open.begin(), open.end(), pick));
-            for (int s : successors[c])
-                if (--waiting[std::size_t(s)] == 0) release(std::size_t(s));
-        }
+        if (complete(c)) open.erase(std::find(open.begin(), open.end(), pick));
+        for (std::size_t d = 0; d < comps; ++d)
+            if (need[c][d] == int(next[c]) && --waiting[d] == 0 && !complete(d))
+                open.push_back(int(d));
     }
     for (std::size_t c = 0; c < comps; ++c) out.interrupted_components += left[c];
 

@@ -63,13 +63,13 @@ bool near_box(const mas::Shape& s, const Vector3d& lo, const Vector3d& hi, doubl
     return (b.min() - lo).norm() < tol && (b.max() - hi).norm() < tol;
 }
 
-mas::CentroidalAxis axis_of(const mas::Shape& part, double step) {
+mas::CentroidalAxis axis_of(const mas::Shape& part, double step, double deflection = kDeflection) {
     mas::TessellationParams tp;
-    tp.deflection_mm = kDeflection;
+    tp.deflection_mm = deflection;
     mas::AxisParams ap;
     ap.step_mm = step;
     mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
-    axis.deflection_mm = kDeflection;
+    axis.deflection_mm = deflection;
     return axis;
 }
 
@@ -523,6 +523,46 @@ TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlaneAtTheCylindersExte
         EXPECT_TRUE(near_box(boss.solid, {cut, -6, 14}, {40, 6, 26}, 1e-5));
         const double boss_volume = M_PI * 36.0 * (40.0 - cut);
         EXPECT_NEAR(boss.volume_mm3, boss_volume, boss_volume * 1e-6);
+        expect_invariants(d, part);
+    }
+}
+
+TEST(Decompose, ABoltsHeadIsCutClearOfItsRoundShank) {
+    // A bolt on its thread end: a shank of radius 10 to z = 80 and a hex head 22 mm to its
+    // corners (19.05 to its flats, along +-Y) from there to z = 94. The head overhangs the shank
+    // all round, and each side is built sideways from a section plane at Eq. 4's T, the shank's
+    // extent. T is measured on the mesh, whose polygon may fall short of the circle by up to the
+    // deflection: there, the plane crossed the shank's side, and the piece past it kept a sliver
+    // of the shank down to the plate, so was refused and its side of the head stayed in the root,
+    // overhanging (at a deflection of 0.05 mm and the derived step, the -X side). Each plane
+    // clears the shank (|x| or |y| >= 10), and no piece holds any of it.
+    std::vector<Vector3d> hex;
+    for (int k = 0; k < 6; ++k)
+        hex.emplace_back(22 * std::cos(k * M_PI / 3), 22 * std::sin(k * M_PI / 3), 80);
+    const auto part = from_occt(
+        fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10, 80), occ_prism(hex, {0, 0, 14})));
+    const double deflection = 0.05;
+    for (const double step : {0.0, 2.0, 3.0}) {
+        SCOPED_TRACE("step " + std::to_string(step));
+        const auto axis = axis_of(part, step, deflection);
+        const auto d = mas::decompose(part, axis);
+        EXPECT_TRUE(d.notes.empty()) << d.notes.front();
+        ASSERT_EQ(d.components.size(), 5u);
+        std::set<std::pair<int, int>> sides;
+        for (std::size_t c = 1; c < 5; ++c) {
+            const auto& piece = d.components[c];
+            SCOPED_TRACE("component " + std::to_string(c));
+            EXPECT_EQ(piece.rule, Rule::SectionPlane);
+            const Vector3d D = piece.build_direction;
+            sides.insert({int(std::lround(D.x())), int(std::lround(D.y()))});
+            EXPECT_NEAR(bounds(piece.solid).min().z(), 80.0, 1e-6);
+            const Eigen::AlignedBox3d base = bounds(piece.base_face);
+            const double at = std::min(D.dot(base.min()), D.dot(base.max()));
+            EXPECT_GE(at, 10.0);
+            EXPECT_LE(at,
+                      10.0 + 2.0 * axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
+        }
+        EXPECT_EQ(sides, (std::set<std::pair<int, int>>{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}));
         expect_invariants(d, part);
     }
 }

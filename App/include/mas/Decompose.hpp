@@ -96,8 +96,14 @@
 //   much); never past b's first plane less eps. That plane lies up to a step further on, where the
 //   axis snapped the branch to its grid: cut there, the branch's material before it would stay on
 //   the father as a stub whose underside overhangs (11 mm^2 in all under a crossbar through a round
-//   column, against 0.4 cut at T). The same piece selection follows. What lies between the father's
-//   surface and that plane (the lens of a round boss on a round body) stays in the father.
+//   column, against 0.4 cut at T). When b's first plane is nearer than that clearance, the cut
+//   there may still cross a curved face of the father that reaches a little further (a round
+//   shank under a bolt's hex head, 0.013 mm past): the piece would keep a sliver of it down to the
+//   plate and be refused. The plane then goes past every face of the father it crosses that
+//   reaches no more than the clearance past it (exact, on the BREP's faces), plus eps, and b's
+//   first node's material point is taken that far along D too. The same piece selection follows.
+//   What lies between the father's surface and that plane (the lens of a round boss on a round
+//   body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
 //   the branch's material stays in its father, as it was (each split works on a copy: a failed

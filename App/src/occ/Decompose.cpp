@@ -624,8 +624,15 @@ public:
         // Where the march started, Eq. 4's T, plus the clearance: the first node's grid plane can
         // lie up to a step further on, and the material between, left in the father, would be a
         // stub of the branch hanging off it (a crossbar through a round column).
-        out.point = D * std::min(first.offset - axis_.params.eps_mm, first.slab_start + clearance_);
+        const double at =
+            std::min(first.offset - axis_.params.eps_mm, first.slab_start + clearance_);
+        const double cut = past_slivers(fs, D, at);
+        out.point = D * cut;
         out.normal = D;
+        // The first node's material, moved along the branch past the plane where it moved past
+        // the node's plane (by no more than twice the clearance), lies in the piece.
+        if (D.dot(out.inner) < cut + clearance_)
+            out.inner += D * (cut + clearance_ - D.dot(out.inner));
         return true;
     }
 
@@ -635,6 +642,30 @@ public:
     }
 
 private:
+    // T was measured on the mesh, whose chords lie inside a curved face by up to the deflection:
+    // a plane at `at` along D (one of +-X, +-Y, +-Z) can cross a face of the father that reaches
+    // only a little further (a round shank under a bolt's hex head, its side reaching 0.013 mm
+    // past), and the piece past it would keep that sliver of the face's material down to wherever
+    // the face runs (the plate). The plane goes past every face it crosses that reaches no further
+    // than the clearance past it: to the furthest such reach (exact, on the BREP), plus eps.
+    // (A face reaching less than a micron past it is the plane's own: a round column's side where
+    // T was found exactly.)
+    double past_slivers(const TopoDS_Shape& fs, const Vector3d& D, double at) const {
+        double out = at;
+        for (TopExp_Explorer ex(fs, TopAbs_FACE); ex.More(); ex.Next()) {
+            Bnd_Box box;
+            BRepBndLib::AddOptimal(ex.Current(), box, false, false);
+            if (box.IsVoid()) continue;
+            double x0, y0, z0, x1, y1, z1;
+            box.Get(x0, y0, z0, x1, y1, z1);
+            const double a = D.dot(Vector3d(x0, y0, z0)), c = D.dot(Vector3d(x1, y1, z1));
+            const double lo = std::min(a, c), hi = std::max(a, c);
+            if (lo < at && hi > at + 1e-6 && hi <= at + clearance_)
+                out = std::max(out, hi + axis_.params.eps_mm);
+        }
+        return out;
+    }
+
     // How far the node's section reaches along `d` (its centroid's projection for an axis handed
     // over without regions).
     static double reach_along(const AxisNode& n, const Vector3d& d) {

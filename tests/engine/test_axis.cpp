@@ -439,6 +439,48 @@ TEST(CentroidalAxis, ALugCentredWithinTheThresholdTurnsForItsFlatUnderside) {
     expect_invariants(given, mesh);
 }
 
+TEST(CentroidalAxis, ACollarAllRoundAColumnTurnsEachWayFromTheColumnsFaces) {
+    // A column [-10,10]^2 x [0,70] with a collar [-15,15]^2 x [40,50]. With a 4 mm step, the
+    // collar's section on z = 40.001 sticks out 5 mm all round, centred on the column's centroid:
+    // no turn by Eq. 3 and no way out of it. It appears at once (nothing of it on z = 36.001 nor
+    // on 38.001) and reaches past the column by 7.07 mm, more than a step (4) and the bump
+    // (2.5 mm), less than wide (4 bumps, 10 mm): a ledge all round, shared out among the
+    // column's sides, +X and -X first (their shares 30 mm across, corners and all), then +Y and
+    // -Y (20 mm across). Each turns from the column's face (Eq. 4's T, 10 mm out) and has one
+    // node, on its grid's plane 13.001 mm out, centred on the collar's mid-height. The column
+    // keeps its 20 x 20 sections, the collar swept from them. (It stayed in the column's march,
+    // its underside overhanging 5 mm all round.)
+    const auto mesh = mesh_of(
+        from_occt(fuse(occ_box(-10, -10, 0, 20, 20, 70), occ_box(-15, -15, 40, 30, 30, 10))));
+    mas::AxisParams p;
+    p.step_mm = 4.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 5u);
+    ASSERT_EQ(a.branches[0].nodes.size(), 18u);  // z = 0.001 ... 68.001
+    for (int n : a.branches[0].nodes) {
+        const auto& node = a.nodes[std::size_t(n)];
+        EXPECT_NEAR(node.area, 400.0, 1e-6) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.head<2>().norm(), 0.0, kGrid) << "z = " << node.offset;
+    }
+    const std::vector<Vector3d> sides = {Vector3d::UnitX(), -Vector3d::UnitX(), Vector3d::UnitY(),
+                                         -Vector3d::UnitY()};
+    for (std::size_t b = 1; b < 5; ++b) {
+        SCOPED_TRACE("branch " + std::to_string(b));
+        const auto& br = a.branches[b];
+        EXPECT_EQ(br.parent, 0);
+        EXPECT_TRUE(br.direction.isApprox(sides[b - 1], 1e-12)) << br.direction.transpose();
+        ASSERT_EQ(br.nodes.size(), 1u);
+        const auto& node = a.nodes[std::size_t(br.nodes.front())];
+        EXPECT_NEAR(node.slab_start, 10.0, 1e-9);
+        EXPECT_NEAR(node.offset, 13.001, 1e-9);
+        EXPECT_NEAR(node.area, b < 3 ? 300.0 : 200.0, 1e-6);
+        EXPECT_NEAR((node.position - (13.001 * sides[b - 1] + Vector3d(0, 0, 45))).norm(), 0.0,
+                    kGrid)
+            << node.position.transpose();
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, ALugOnASlopingUndersideIsNoLedge) {
     // The lug above with its underside sloping from the column's face at z = 12 to its end at
     // z = 16 (x = 30 + 9 (z - 12) / 4): on z = 16.001 the stick-out is the same 9 x 8 section,

@@ -529,6 +529,47 @@ TEST(Slicing, ShortLugsOnAThickColumnAreBuiltSidewaysWithEveryLayerSupported) {
     expect_invariants(s, params, "column with short lugs");
 }
 
+TEST(Slicing, ACollarAndAShelfWiderThanTheirColumnsAreBuiltSidewaysFromItsFaces) {
+    // A collar [-15,15]^2 x [40,50] all round a column [-10,10]^2 x [0,70] (CentroidalAxis test
+    // of the same name), and a shelf [-55,55] x [-20,20] x [50,56] through a column
+    // [-15,15]^2 x [0,100], reaching 40 mm past it along X and 5 along Y: wrapping round the
+    // column on a flat underside, its shares past the sides turn as a ledge's, the 5 mm ones
+    // along Y too (within Eq. 3's threshold of the column). Each is cut at the column's face,
+    // the +-X pieces corners and all, and built sideways. Left in the column's Z layers, the
+    // collar's underside overhung 328 mm^2 and the shelf's margins along the column 180.
+    const auto params = default_params();
+    struct Case {
+        const char* name;
+        TopoDS_Shape shape;
+        double half, x_piece, y_piece;  // the column's half-width, the pieces' volumes
+    };
+    const std::vector<Case> cases = {
+        {"collar", fuse(occ_box(-10, -10, 0, 20, 20, 70), occ_box(-15, -15, 40, 30, 30, 10)), 10.0,
+         5.0 * 30.0 * 10.0, 5.0 * 20.0 * 10.0},
+        {"shelf", fuse(occ_box(-15, -15, 0, 30, 30, 100), occ_box(-55, -20, 50, 110, 40, 6)), 15.0,
+         40.0 * 40.0 * 6.0, 5.0 * 30.0 * 6.0}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        const auto s = slice(from_occt(c.shape), 0.0, params);
+        const auto& comps = s.decomposition.components;
+        ASSERT_EQ(comps.size(), 5u);
+        std::set<std::pair<int, int>> sides;
+        for (std::size_t k = 1; k < 5; ++k) {
+            const auto& piece = comps[k];
+            const Vector3d D = piece.build_direction;
+            EXPECT_EQ(piece.parent, 0);
+            EXPECT_NEAR(std::abs(D.x()) + std::abs(D.y()), 1.0, 1e-12) << D.transpose();
+            sides.insert({int(std::lround(D.x())), int(std::lround(D.y()))});
+            EXPECT_NEAR(D.dot(piece.base_origin), c.half, 1e-9);
+            const double volume = D.x() != 0.0 ? c.x_piece : c.y_piece;
+            EXPECT_NEAR(piece.volume_mm3, volume, 1e-6 * volume);
+        }
+        EXPECT_EQ(sides, (std::set<std::pair<int, int>>{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}));
+        EXPECT_EQ(total_unsupported(s), 0.0);
+        expect_invariants(s, params, c.name);
+    }
+}
+
 // A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
 // reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
 // where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.

@@ -32,8 +32,12 @@
 //   regions) yet reaches out past L by more than `distance_threshold` and half L's size wraps
 //   round L or spans past the regions it joins: a hub lying across the neck it stands on makes
 //   one stick-out centred on the neck. It is shared out among the four sides as below, each
-//   side's T taken over every lower region, and each share is judged as a stick-out of its own.
-//   Reaching out less, it is the part widening (an organic body at its shoulders).
+//   side's T taken over every lower region, and each share is judged as a stick-out of its own;
+//   where it appears at once on a flat underside and spans no gap (a shelf through a column,
+//   wider than it too), each share turns if it reaches out of the bump, as a ledge's does (the
+//   shelf's 5 mm margins along a 30 mm column, centred within Eq. 3's threshold of it, stayed in
+//   the column, overhanging: 180 mm^2). Reaching out less, it is the part widening (an organic
+//   body at its shoulders), unless it is a ledge all round (below).
 // - A ledge turns however near its centre (with a derived `distance_threshold` only; one given
 //   is used as given): a stick-out not wrapping round L (above), meeting L along one stretch (not
 //   spanning a gap, as a bore's ceiling closing a ring does), reaching out past L by more than a
@@ -47,7 +51,12 @@
 //   the march at the derived step, 2.84 mm. It turns the closest of the four sides to G_k - E, or
 //   to G_k - C when G_k lies inside L (an arm's underside wrapping round the web under it), C the
 //   centroid of the lower region nearest G_k, and is shared out among the sides as below, each
-//   share turning if it reaches out of the bump.
+//   share turning if it reaches out of the bump. Centred on C itself (a collar or a head all
+//   round a rod), it goes no one way: it is shared out round L as a wide stick-out is, from the
+//   side after the march's axis, each share turning if it reaches out of the bump. (A collar
+//   sticking out 5 mm all round a 20 mm column stayed in the column's layers: 328 mm^2 of its
+//   underside overhung in one layer.) What lies past no side's T stays in the march: on a round
+//   rod, the collar's four lenses between the sides' planes.
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a

@@ -1298,15 +1298,18 @@ private:
             if (derived_threshold_ && !turn && !wide && out_of_lower > ledge_limit && at_once() &&
                 !spans_a_gap(da, lower)) {
                 // Out of L from E, or, centred inside L (an arm's underside round the web under
-                // it), from L's centroid C (the paper's G_k - C).
+                // it), from L's centroid C (the paper's G_k - C). Centred on C itself (a head or
+                // a collar all round a rod), it goes no one way: it wraps round L (below), and
+                // its shares turn as a ledge's.
+                ledge = true;
                 const Vector2d from = dist > 0.0 ? exit : centroid(*left);
                 const Vector3d out = frame.to_3d(g, upper_plane) - frame.to_3d(from, upper_plane);
                 if (out.norm() > p_.step_mm / 100.0) {
                     dir = closest_axis(out);
-                    turn = ledge = true;
+                    turn = true;
                 }
             }
-            if (!turn && (along || !wide))
+            if (!turn && !ledge && (along || !wide))
                 continue;  // far but along the march; or near, or a bridge, and not wide
             // Otherwise (not a turn, yet reaching out past every lower region by more than half
             // their size) the stick-out wraps round the lower section or spans past the regions
@@ -1315,6 +1318,10 @@ private:
             // turn. (Reaching out less, it is the part widening, as an organic body does at its
             // shoulders: turned, CGAL's armadillo grew 35 branches and took twice as long.)
             const bool around = !turn;
+            // Wrapping round L on a flat underside (a shelf through a column, wider than it),
+            // its shares turn as a ledge's too: what reaches out of the bump past a side.
+            if (around && !ledge && derived_threshold_ && at_once() && !spans_a_gap(da, lower))
+                ledge = true;
             // A march in a new direction starts at Eq. 4's T, the lower boundary's extent along
             // it, and reaches only what lies beyond. The stick-out is shared out among the four
             // sides of the lower section, the turn's own first: each side's share beyond its T

@@ -570,6 +570,58 @@ TEST(Slicing, ACollarAndAShelfWiderThanTheirColumnsAreBuiltSidewaysFromItsFaces)
     }
 }
 
+TEST(Slicing, ArmsOverGussetsOnARoundColumnAreCutPastTheColumn) {
+    // A round column (radius 12, on a disc of radius 30, 10 thick) to z = 100 carrying an arm
+    // [-65,65] x [-11,11] x [88,100], on gussets 5 thick under it from the column's axis' side to
+    // x = +-45: (|x|, z) = (8, 88), (45, 88), (8, 50). The arms turn at the gussets' tips (Eq. 4's
+    // T), 20 mm short of their ends. The column has no planar face to cut at: the section plane
+    // goes past the column's own section (where the walk down its march stops shrinking) instead
+    // of at T, and each arm is built sideways from there, gusset and all. Cut at T, the arms over
+    // the gussets stayed in the column's Z layers: 832 mm^2 unsupported in one layer.
+    const auto params = default_params();
+    TopoDS_Shape part = fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 30, 10),
+                             occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 12, 100));
+    part = fuse(part, occ_box(-65, -11, 88, 130, 22, 12));
+    for (const double side : {1.0, -1.0})
+        part = fuse(part,
+                    occ_prism({{side * 8, -2.5, 88}, {side * 45, -2.5, 88}, {side * 8, -2.5, 50}},
+                              {0, 5, 0}));
+    const mas::Shape shape = from_occt(part);
+    const auto s = slice(shape, 0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 3u);
+    // The decomposition's clearance for a T measured on a mesh (Decompose.hpp), with the part's
+    // default deflection (the axis here records none).
+    ASSERT_EQ(s.axis.deflection_mm, 0.0);
+    const double clearance = s.axis.params.eps_mm +
+                             mas::effective_deflection(shape, mas::TessellationParams{}) +
+                             0.01 * s.axis.params.step_mm;
+    double cut = 0.0;
+    for (std::size_t c = 1; c < 3; ++c) {
+        SCOPED_TRACE("component " + std::to_string(c));
+        const auto& arm = comps[c];
+        const Vector3d D = arm.build_direction;
+        EXPECT_TRUE(D.isApprox(Vector3d(D.x(), 0, 0), 1e-12) && std::abs(D.x()) == 1.0);
+        EXPECT_EQ(arm.rule, mas::Component::SplitRule::SectionPlane);
+        // Past the column (|x| = 12), by no more than the clearance.
+        cut = D.dot(arm.base_origin);
+        EXPECT_GE(cut, 12.0);
+        EXPECT_LE(cut, 12.0 + clearance);
+        // The arm past the plane, and the gusset's triangle past it: 19 (45 - c)^2 / 37 mm^2.
+        const double volume =
+            (65.0 - cut) * 22.0 * 12.0 + 5.0 * 19.0 * (45.0 - cut) * (45.0 - cut) / 37.0;
+        EXPECT_NEAR(arm.volume_mm3, volume, 1e-6 * volume);
+        const auto& rec = s.result.components[c];
+        for (int k = 0; k < rec.layer_count; ++k)
+            EXPECT_EQ(s.result.layers[std::size_t(rec.first_layer + k)].unsupported_area_mm2, 0.0);
+    }
+    // What may overhang is the arm's middle over the column: the rectangle |x| <= cut,
+    // |y| <= 11 less the column's disc there.
+    const double disc = 2.0 * (11.0 * std::sqrt(144.0 - 121.0) + 144.0 * std::asin(11.0 / 12.0));
+    EXPECT_LE(total_unsupported(s), 2.0 * cut * 22.0 - disc);
+    expect_invariants(s, params, "arms over gussets on a round column", false);
+}
+
 // A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
 // reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
 // where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.

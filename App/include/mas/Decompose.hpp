@@ -101,7 +101,12 @@
 //   shank under a bolt's hex head, 0.013 mm past): the piece would keep a sliver of it down to the
 //   plate and be refused. The plane then goes past every face of the father it crosses that
 //   reaches no more than the clearance past it (exact, on the BREP's faces), plus eps, and b's
-//   first node's material point is taken that far along D too. The same piece selection follows.
+//   first node's material point is taken that far along D too. Over a gusset (the walk down the
+//   father's march above found the father's own section, and it reaches less far than T by more
+//   than a step: the gusset's tip), the plane is at the father's own extent plus the clearance
+//   instead, so that the arm over the gusset goes with the branch, gusset and all, as a face's
+//   split at a square column's side takes it; refused, the plane at T is tried. The same piece
+//   selection follows.
 //   What lies between the father's surface and that plane (the lens of a round boss on a round
 //   body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in

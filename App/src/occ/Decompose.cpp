@@ -624,8 +624,18 @@ public:
         // Where the march started, Eq. 4's T, plus the clearance: the first node's grid plane can
         // lie up to a step further on, and the material between, left in the father, would be a
         // stub of the branch hanging off it (a crossbar through a round column).
-        const double at =
-            std::min(first.offset - axis_.params.eps_mm, first.slab_start + clearance_);
+        double at = std::min(first.offset - axis_.params.eps_mm, first.slab_start + clearance_);
+        // Over a gusset whose father has no planar face to cut at (a round column), the father's
+        // own section, where the walk down its march stopped shrinking, reaches less far than T
+        // (the gusset's tip) by more than a step: the plane goes past it instead, so that the arm
+        // over the gusset goes with the branch, gusset and all, as a face's split takes it (cut at
+        // T, it stayed in the column's layers, its underside beside the gusset overhanging). When
+        // that split is refused, the plane at T is tried.
+        out.by_own_face = false;
+        if (by_own_face && own_face + clearance_ < first.slab_start - axis_.params.step_mm) {
+            at = own_face + clearance_;
+            out.by_own_face = true;
+        }
         const double cut = past_slivers(fs, D, at);
         out.point = D * cut;
         out.normal = D;
@@ -786,13 +796,17 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         // reached other branches' material, or was no valid solid; not one too short, which a
         // plane near the junction cannot lengthen): a face chosen nearest the father's own face
         // over a gusset gives way to the face nearest the junction, and that to the section plane
-        // at Eq. 4's T. (The side face of one of two square arms meeting at a round column,
+        // at Eq. 4's T; a section plane past the father's own section over a gusset gives way to
+        // the one at T. (The side face of one of two square arms meeting at a round column,
         // chosen for the other, cuts through the column down to the plate: that arm stayed in
         // the root, overhanging.) Per branch: 0, 1 or 2, as plan() takes it.
         std::vector<int> attempt(nb, 0);
         const auto retry = [&](std::size_t g, const Plan& p) {
-            if (p.rule != Component::SplitRule::PlanarFace || attempt[g] >= 2) return false;
-            if (p.by_own_face && attempt[g] == 0)
+            if (attempt[g] >= 2) return false;
+            if (p.rule == Component::SplitRule::SectionPlane) {
+                if (!p.by_own_face) return false;
+                attempt[g] = 2;  // at T (no planar face was found the first time either)
+            } else if (p.by_own_face && attempt[g] == 0)
                 attempt[g] = 1;
             else if (params.section_plane_fallback)
                 attempt[g] = 2;

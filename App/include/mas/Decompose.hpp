@@ -93,22 +93,22 @@
 //   section (b's first node's slab_start), plus a clearance of the axis' eps, the deflection of the
 //   mesh T was measured on (CentroidalAxis::deflection_mm, else the part's default: a loop on a
 //   curved face lies up to that far inside it) and step / 100 (the axis simplifies loops by that
-//   much); never past b's first plane less eps. That plane lies up to a step further on, where the
-//   axis snapped the branch to its grid: cut there, the branch's material before it would stay on
-//   the father as a stub whose underside overhangs (11 mm^2 in all under a crossbar through a round
-//   column, against 0.4 cut at T). When b's first plane is nearer than that clearance, the cut
-//   there may still cross a curved face of the father that reaches a little further (a round
-//   shank under a bolt's hex head, 0.013 mm past): the piece would keep a sliver of it down to the
-//   plate and be refused. The plane then goes past every face of the father it crosses that
-//   reaches no more than the clearance past it (exact, on the BREP's faces), plus eps, and b's
-//   first node's material point is taken that far along D too. Over a gusset (the walk down the
-//   father's march above found the father's own section, and it reaches less far than T by more
-//   than a step: the gusset's tip), the plane is at the father's own extent plus the clearance
-//   instead, so that the arm over the gusset goes with the branch, gusset and all, as a face's
-//   split at a square column's side takes it; refused, the plane at T is tried. The same piece
-//   selection follows.
-//   What lies between the father's surface and that plane (the lens of a round boss on a round
-//   body) stays in the father.
+//   much), but not past b's first plane less eps. That plane lies up to a step further on, where
+//   the axis snapped the branch to its grid: cut there, the branch's material before it would stay
+//   on the father as a stub whose underside overhangs (11 mm^2 in all under a crossbar through a
+//   round column, against 0.4 cut at T). Over a gusset (the walk down the father's march above
+//   found the father's own section, and it reaches less far than T by more than a step: the
+//   gusset's tip), the plane is at the father's own extent plus the clearance instead, so that the
+//   arm over the gusset goes with the branch, gusset and all, as a face's split at a square
+//   column's side takes it; refused, the plane at T is tried. Either plane may still cross a face
+//   of the father, over the branch (its first section grown by a step), that reaches a little
+//   further (a round shank under a bolt's hex head, 0.013 mm past where b's first plane less eps
+//   put it): the piece would keep a sliver of it down to the plate and be refused. The plane then
+//   goes past every such face reaching no more than the clearance past it (exact, on the BREP's
+//   faces; again while it crosses another), plus eps; where that takes it past b's first plane,
+//   b's first node's material point is taken that far along D too. The same piece selection
+//   follows. What lies between the father's surface and that plane (the lens of a round boss on a
+//   round body) stays in the father.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
 //   the branch's material stays in its father, as it was (each split works on a copy: a failed

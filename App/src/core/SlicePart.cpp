@@ -302,7 +302,8 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     out.plate = sequence.plate;
     sequence.parent.resize(components.size());
     sequence.waits_for.resize(components.size());
-    // A component waits for its father, and for the earlier components its first layer rests on:
+    // A component waits for its father (the layers of it it may rest on: plan_build_sequence),
+    // and for all of the earlier components its first layer rests on:
     // those whose mesh reaching its base leaves less of it unsupported than its father alone
     // (a tee's branch and the pipe above the junction); not for a neighbour that merely comes
     // near (two posts side by side, which may then go up together).

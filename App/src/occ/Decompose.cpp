@@ -636,12 +636,12 @@ public:
             at = own_face + clearance_;
             out.by_own_face = true;
         }
-        const double cut = past_slivers(fs, D, at);
+        const double cut = past_slivers(fs, D, at, frame, reach);
         out.point = D * cut;
         out.normal = D;
-        // The first node's material, moved along the branch past the plane where it moved past
-        // the node's plane (by no more than twice the clearance), lies in the piece.
-        if (D.dot(out.inner) < cut + clearance_)
+        // Where the plane moved past the first node's plane, the node's material, moved along
+        // the branch past it (by no more than twice the clearance), lies in the piece.
+        if (cut > at && D.dot(out.inner) < cut + clearance_)
             out.inner += D * (cut + clearance_ - D.dot(out.inner));
         return true;
     }
@@ -657,21 +657,32 @@ private:
     // only a little further (a round shank under a bolt's hex head, its side reaching 0.013 mm
     // past), and the piece past it would keep that sliver of the face's material down to wherever
     // the face runs (the plate). The plane goes past every face it crosses that reaches no further
-    // than the clearance past it: to the furthest such reach (exact, on the BREP), plus eps.
-    // (A face reaching less than a micron past it is the plane's own: a round column's side where
-    // T was found exactly.)
-    double past_slivers(const TopoDS_Shape& fs, const Vector3d& D, double at) const {
-        double out = at;
+    // than the clearance past it, over the branch (its first section grown by a step, `reach` in
+    // `frame`, as for a splitting face; not the stub another branch's cut left elsewhere): to the
+    // furthest such reach (exact, on the BREP), plus eps. (A face reaching less than a micron past
+    // it is the plane's own: a round column's side where T was found exactly.)
+    double past_slivers(const TopoDS_Shape& fs, const Vector3d& D, double at,
+                        const PlaneFrame& frame, const Eigen::AlignedBox2d& reach) const {
+        std::vector<std::pair<double, double>> faces;  // (lo, hi) along D, over the branch
         for (TopExp_Explorer ex(fs, TopAbs_FACE); ex.More(); ex.Next()) {
-            Bnd_Box box;
-            BRepBndLib::AddOptimal(ex.Current(), box, false, false);
-            if (box.IsVoid()) continue;
-            double x0, y0, z0, x1, y1, z1;
-            box.Get(x0, y0, z0, x1, y1, z1);
-            const double a = D.dot(Vector3d(x0, y0, z0)), c = D.dot(Vector3d(x1, y1, z1));
-            const double lo = std::min(a, c), hi = std::max(a, c);
-            if (lo < at && hi > at + 1e-6 && hi <= at + clearance_)
-                out = std::max(out, hi + axis_.params.eps_mm);
+            const Eigen::AlignedBox3d box = occ::tight_bounds(TopoDS::Face(ex.Current()));
+            if (box.isEmpty()) continue;
+            Eigen::AlignedBox2d across;
+            for (int corner = 0; corner < 8; ++corner)
+                across.extend(frame.to_2d(box.corner(Eigen::AlignedBox3d::CornerType(corner))));
+            if (!across.intersects(reach)) continue;
+            faces.emplace_back(std::min(D.dot(box.min()), D.dot(box.max())),
+                               std::max(D.dot(box.min()), D.dot(box.max())));
+        }
+        // Until the plane crosses no such face (moved, it may cross another).
+        double out = at;
+        for (bool moved = true; moved;) {
+            moved = false;
+            for (const auto& [lo, hi] : faces)
+                if (lo < out && hi > out + 1e-6 && hi <= out + clearance_) {
+                    out = hi + axis_.params.eps_mm;
+                    moved = true;
+                }
         }
         return out;
     }

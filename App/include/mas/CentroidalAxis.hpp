@@ -52,11 +52,14 @@
 //   to G_k - C when G_k lies inside L (an arm's underside wrapping round the web under it), C the
 //   centroid of the lower region nearest G_k, and is shared out among the sides as below, each
 //   share turning if it reaches out of the bump. Centred on C itself (a collar or a head all
-//   round a rod), it goes no one way: it is shared out round L as a wide stick-out is, from the
-//   side after the march's axis, each share turning if it reaches out of the bump. (A collar
-//   sticking out 5 mm all round a 20 mm column stayed in the column's layers: 328 mm^2 of its
-//   underside overhung in one layer.) What lies past no side's T stays in the march: on a round
-//   rod, the collar's four lenses between the sides' planes.
+//   round a rod), it goes no one way: reaching out past L by more than two bumps, it is shared
+//   out round L as a wide stick-out is, from the side after the march's axis, each share turning
+//   if it reaches out of the bump. (A collar sticking out 5 mm all round a 20 mm column stayed in
+//   the column's layers: 328 mm^2 of its underside overhung in one layer.) What lies past no
+//   side's T stays in the march: on a round rod, the collar's four lenses between the sides'
+//   planes. Reaching out less, it is a shoulder, which the march lays (cut into four, a 2 mm
+//   shoulder on a 12 mm shaft gave pieces tapering over the volumetric bound, and the lenses left
+//   overhung more than the shoulder had).
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a

@@ -1299,14 +1299,17 @@ private:
                 !spans_a_gap(da, lower)) {
                 // Out of L from E, or, centred inside L (an arm's underside round the web under
                 // it), from L's centroid C (the paper's G_k - C). Centred on C itself (a head or
-                // a collar all round a rod), it goes no one way: it wraps round L (below), and
-                // its shares turn as a ledge's.
-                ledge = true;
+                // a collar all round a rod), it goes no one way: reaching out more than two
+                // bumps, it wraps round L (below), and its shares turn as a ledge's; less, it is
+                // a shoulder, which the march lays (split into four pieces, a shaft's 2 mm
+                // shoulder on a 12 mm rod tapered over the volumetric bound and overhung more).
                 const Vector2d from = dist > 0.0 ? exit : centroid(*left);
                 const Vector3d out = frame.to_3d(g, upper_plane) - frame.to_3d(from, upper_plane);
                 if (out.norm() > p_.step_mm / 100.0) {
                     dir = closest_axis(out);
-                    turn = true;
+                    turn = ledge = true;
+                } else {
+                    ledge = out_of_lower > 2.0 * bump;
                 }
             }
             if (!turn && !ledge && (along || !wide))

@@ -481,6 +481,23 @@ TEST(CentroidalAxis, ACollarAllRoundAColumnTurnsEachWayFromTheColumnsFaces) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, AShoulderAllRoundAColumnStaysInItsMarch) {
+    // The column above with a collar [-13,13]^2 instead: at a 1 mm step it reaches past the
+    // column by 3 mm (4.24 at its corners), more than a step and a bump (2.5 mm) but not two
+    // bumps (5 mm): a shoulder, which the column's march lays. The 30 mm collar turns each way
+    // at that step too.
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    for (const double half : {13.0, 15.0}) {
+        SCOPED_TRACE("collar " + std::to_string(2 * half));
+        const auto mesh = mesh_of(from_occt(fuse(
+            occ_box(-10, -10, 0, 20, 20, 70), occ_box(-half, -half, 40, 2 * half, 2 * half, 10))));
+        const auto a = mas::centroidal_axis(mesh, p);
+        EXPECT_EQ(a.branches.size(), half < 14.0 ? 1u : 5u);
+        expect_invariants(a, mesh);
+    }
+}
+
 TEST(CentroidalAxis, ALugOnASlopingUndersideIsNoLedge) {
     // The lug above with its underside sloping from the column's face at z = 12 to its end at
     // z = 16 (x = 30 + 9 (z - 12) / 4): on z = 16.001 the stick-out is the same 9 x 8 section,

@@ -482,18 +482,21 @@ TEST(CentroidalAxis, ACollarAllRoundAColumnTurnsEachWayFromTheColumnsFaces) {
 }
 
 TEST(CentroidalAxis, AShoulderAllRoundAColumnStaysInItsMarch) {
-    // The column above with a collar [-13,13]^2 instead: at a 1 mm step it reaches past the
-    // column by 3 mm (4.24 at its corners), more than a step and a bump (2.5 mm) but not two
-    // bumps (5 mm): a shoulder, which the column's march lays. The 30 mm collar turns each way
-    // at that step too.
+    // A rod of radius 6 to z = 60 with a collar on z in [30, 40]. At a 1 mm step, a collar of
+    // radius 8 reaches past the rod by 2 mm: more than a step and a bump (1.33 mm), less than two
+    // bumps, and no more than layers at slicing's defaults lay (2 mm thick, 45 degrees): a
+    // shoulder, which the rod's march lays. Of radius 8.5 it reaches 2.5 mm and turns each way.
+    // (Cut into four, the 2 mm shoulder gave pieces tapering over the volumetric bound, and the
+    // lenses between them left 9 mm^2 unsupported where the rod's layers left 0.1.)
     mas::AxisParams p;
     p.step_mm = 1.0;
-    for (const double half : {13.0, 15.0}) {
-        SCOPED_TRACE("collar " + std::to_string(2 * half));
-        const auto mesh = mesh_of(from_occt(fuse(
-            occ_box(-10, -10, 0, 20, 20, 70), occ_box(-half, -half, 40, 2 * half, 2 * half, 10))));
+    for (const double collar : {8.0, 8.5}) {
+        SCOPED_TRACE("collar radius " + std::to_string(collar));
+        const auto mesh = mesh_of(
+            from_occt(fuse(mas::test::occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 6, 60),
+                           mas::test::occ_cylinder({0, 0, 30}, Vector3d::UnitZ(), collar, 10))));
         const auto a = mas::centroidal_axis(mesh, p);
-        EXPECT_EQ(a.branches.size(), half < 14.0 ? 1u : 5u);
+        EXPECT_EQ(a.branches.size(), collar < 8.2 ? 1u : 5u);
         expect_invariants(a, mesh);
     }
 }

@@ -34,7 +34,7 @@
 //   one stick-out centred on the neck. It is shared out among the four sides as below, each
 //   side's T taken over every lower region, and each share is judged as a stick-out of its own;
 //   where it appears at once on a flat underside and spans no gap (a shelf through a column,
-//   wider than it too), each share turns if it reaches out of the bump, as a ledge's does (the
+//   wider than it too), each share turns as a centred ledge's (below) does (the
 //   shelf's 5 mm margins along a 30 mm column, centred within Eq. 3's threshold of it, stayed in
 //   the column, overhanging: 180 mm^2). Reaching out less, it is the part widening (an organic
 //   body at its shoulders), unless it is a ledge all round (below).
@@ -52,9 +52,11 @@
 //   to G_k - C when G_k lies inside L (an arm's underside wrapping round the web under it), C the
 //   centroid of the lower region nearest G_k, and is shared out among the sides as below, each
 //   share turning if it reaches out of the bump. Centred on C itself (a collar or a head all
-//   round a rod), it goes no one way: reaching out past L by more than two bumps, it is shared
-//   out round L as a wide stick-out is, from the side after the march's axis, each share turning
-//   if it reaches out of the bump. (A collar sticking out 5 mm all round a 20 mm column stayed in
+//   round a rod), it goes no one way: reaching out past L by more than two bumps, or by more than
+//   layers at slicing's defaults lay (2 mm thick at 45 degrees: 2 mm, give or take a twentieth for
+//   the chords of a round column), it is shared out round L as a wide stick-out is, from the side
+//   after the march's axis, each share turning if it reaches out of the bump or of what those
+//   layers lay, whichever is less. (A collar sticking out 5 mm all round a 20 mm column stayed in
 //   the column's layers: 328 mm^2 of its underside overhung in one layer.) What lies past no
 //   side's T stays in the march: on a round rod, the collar's four lenses between the sides'
 //   planes. Reaching out less, it is a shoulder, which the march lays (cut into four, a 2 mm

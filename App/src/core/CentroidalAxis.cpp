@@ -23,6 +23,7 @@
 #include "mas/Error.hpp"
 #include "mas/Progress.hpp"
 #include "mas/Section.hpp"
+#include "mas/Slicing.hpp"
 
 namespace mas {
 
@@ -48,6 +49,16 @@ Eigen::Vector2d nearest_boundary_point(const Region2& region, const Eigen::Vecto
     edges(region.outer);
     for (const auto& h : region.holes) edges(h);
     return nearest;
+}
+
+// How far a flat underside may overhang the layer under it and still be laid by layers at
+// slicing's defaults (Slicing.hpp: the thickest layer, 2 mm, times tan(overhang_angle), 45
+// degrees): 2 mm. A collar reaching out no more than that all round (within a twentieth, more
+// than a section's chords fall short of a round column) is a shoulder its column's layers lay.
+double laid_overhang_mm() {
+    const LayerParams defaults;
+    return defaults.max_layer_mm *
+           std::tan(defaults.overhang_angle_deg * 3.14159265358979323846 / 180.0);
 }
 
 }  // namespace
@@ -1309,7 +1320,7 @@ private:
                     dir = closest_axis(out);
                     turn = ledge = true;
                 } else {
-                    ledge = out_of_lower > 2.0 * bump;
+                    ledge = out_of_lower > 2.0 * bump || out_of_lower > 1.05 * laid_overhang_mm();
                 }
             }
             if (!turn && !ledge && (along || !wide))
@@ -1367,9 +1378,10 @@ private:
                 double d_share = std::numeric_limits<double>::infinity();
                 for (const auto& l : lower)
                     d_share = std::min(d_share, distance_to_region(l, g_share));
-                // A ledge's or a fin's share turns wherever it reaches out of the bump; any
-                // other only when far.
-                if (ledge || t_fin ? !reaches(share, bump) : !is_far(share, d_share)) continue;
+                // A ledge's or a fin's share turns wherever it reaches out of the bump (round
+                // its column, out of what the layers lay, if less); any other only when far.
+                const double out_of = around && ledge ? std::min(bump, laid_overhang_mm()) : bump;
+                if (ledge || t_fin ? !reaches(share, out_of) : !is_far(share, d_share)) continue;
                 // Eq. 4: the new march starts just beyond the lower boundary's extent T.
                 Task child;
                 child.direction = side;

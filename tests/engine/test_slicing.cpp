@@ -622,6 +622,61 @@ TEST(Slicing, ArmsOverGussetsOnARoundColumnAreCutPastTheColumn) {
     expect_invariants(s, params, "arms over gussets on a round column", false);
 }
 
+TEST(Slicing, TheArmsOfAForkAreCutWhereTheyPartAndTheTrunkStaysUpright) {
+    // A Y: an 18 x 18 stem to z = 50 on a 50 x 50 x 8 plate, and two 18 x 18 arms 60 long
+    // leaning 40 degrees off Z either way in XZ from (0, 0, 48.5). The axis marches through the
+    // fork in Z: its sections part at the crotch, z = 48.5 + 9 / sin 40, into two branches born of
+    // a split, both +Z. Each arm is cut there, at the section plane, and the trunk stays in the
+    // root's Z layers. The walk down the father's march for a gusset used to run down the stem
+    // (its sections, across Z, lie under the arms) to the plate's top: one arm took the stem,
+    // and the stem's layers, tilted towards that arm, left the other arm's root overhanging
+    // (257 mm^2 on a 45 degree Y).
+    const auto params = default_params();
+    const double lean = 40.0 * kPi / 180.0;
+    TopoDS_Shape part = fuse(occ_box(-25, -25, 0, 50, 50, 8), occ_box(-9, -9, 0, 18, 18, 50));
+    for (const double side : {1.0, -1.0}) {
+        gp_Trsf turn, move;
+        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), side * lean);
+        move.SetTranslation(gp_Vec(0, 0, 48.5));
+        part = fuse(
+            part,
+            BRepBuilderAPI_Transform(occ_box(-9, -9, 0, 18, 18, 60), move * turn, true).Shape());
+    }
+    const mas::Shape shape = from_occt(part);
+    const auto s = slice(shape, 0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 3u);
+    const double crotch = 48.5 + 9.0 / std::sin(lean);
+    double sides = 0.0;
+    for (std::size_t c = 1; c < 3; ++c) {
+        SCOPED_TRACE("component " + std::to_string(c));
+        const auto& arm = comps[c];
+        EXPECT_EQ(arm.parent, 0);
+        EXPECT_EQ(arm.rule, mas::Component::SplitRule::SectionPlane);
+        EXPECT_TRUE(arm.build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+        // At the crotch, by no more than a step (where the march found the arms apart).
+        const double cut = arm.base_origin.z();
+        EXPECT_GE(cut, crotch);
+        EXPECT_LE(cut, crotch + s.axis.params.step_mm);
+        // The arm above the plane, whole: 18 x 18 x (60 - (cut - 48.5) / cos 40).
+        const double volume = 324.0 * (60.0 - (cut - 48.5) / std::cos(lean));
+        EXPECT_NEAR(arm.volume_mm3, volume, 1e-6 * volume);
+        const auto b = arm.solid.info().bounds;
+        EXPECT_GE(b.min().z(), cut - 1e-6);
+        // One arm each side of the stem's axis.
+        EXPECT_TRUE(b.min().x() > -1e-6 || b.max().x() < 1e-6);
+        sides += b.min().x() > -1e-6 ? 1.0 : -1.0;
+    }
+    EXPECT_EQ(sides, 0.0);
+    // The trunk: plate, stem and the arms' roots up to the crotch, in Z layers.
+    const auto& root = s.result.components[0];
+    for (int k = 0; k < root.layer_count; ++k)
+        EXPECT_TRUE(s.result.layers[std::size_t(root.first_layer + k)].plane.normal.isApprox(
+            Vector3d::UnitZ(), 1e-9));
+    EXPECT_EQ(total_unsupported(s), 0.0);
+    expect_invariants(s, params, "a fork");
+}
+
 // A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
 // reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
 // where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.

@@ -24,7 +24,13 @@
 //   arm: the column's sections reach out to the web's tip, less far at each plane down the web,
 //   and the column's face x = 20 lies behind their centroids (x = 21.4 beside the arm); cut past
 //   the tip, the arm's underside beside the web overhung the column's layers. The walk stops
-//   where a section reaches further than the next one (the father bulging towards b). A face
+//   where a section reaches further than the next one (the father bulging towards b), and at a
+//   section across D (past Pos_start's): where the father marches along D itself (two arms
+//   forking out of a column's march, each born of a split along the column's direction), its
+//   sections below lie under b, the trunk both arms stand on, not beside it. Walked down to the
+//   plate's top, one arm took the whole stem, whose layers then tilted towards that arm and left
+//   the other's root overhanging (257 mm^2 on a 45-degree Y): cut where the sections part, the
+//   trunk stays in its father's layers. A face
 //   facing away from b (a pocket's floor on the far side of a column leaning towards b, which
 //   the walk reaches all the way down) would cut the father through;
 //   and lying over the branch: seen along D, the face's box meets the branch's first section grown

@@ -559,6 +559,10 @@ public:
             bool shrinking = false;
             for (; k != march.end(); --k) {
                 const AxisNode& n = axis_.nodes[std::size_t(*k)];
+                // A section across D lies under the branch, not beside it: where the father
+                // marches along D itself (two arms forking out of a column's march), its sections
+                // below are the trunk both arms stand on, not the branch's near end.
+                if (*k != link.start && std::abs(n.normal.dot(D)) > 0.5) break;
                 const double e = reach_along(n, D);
                 if (e > next + tol) break;  // reaching further back: bulging towards the branch
                 lo_span = std::min(lo_span, D.dot(n.position));

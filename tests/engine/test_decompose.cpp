@@ -496,6 +496,44 @@ TEST(Decompose, TwoPostsSplitAtThePlateTopAndBuildPlusZ) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, NothingIsBuiltDownward) {
+    // A column [-15,15]^2 x [0,60] with an arm [15,55] x [-8,8] x [32,48] ending in a collar
+    // [49,54] x [-12,12] x [28,52], 4 mm past the arm all round. The arm is built +X from the
+    // column's face; the collar is shared out among the arm's sides, +-Y (5 x 4 x 24 each) and +-Z
+    // (5 x 16 x 4), each cut at the arm's face. The -Z share would be built downward, its nozzle
+    // under the part: no tilting table turns a part upside down (the default machine's tilts
+    // 100 degrees at most, and the program refused it). It stays in the arm, with a note.
+    const auto part =
+        from_occt(fuse(fuse(occ_box(-15, -15, 0, 30, 30, 60), occ_box(15, -8, 32, 40, 16, 16)),
+                       occ_box(49, -12, 28, 5, 24, 24)));
+    const auto axis = axis_of(part, 2.0);
+    int downward = 0;
+    for (const auto& b : axis.branches) downward += b.direction.isApprox(-Vector3d::UnitZ());
+    ASSERT_EQ(downward, 1);  // the axis has the -Z share; the decomposition builds none
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 5u);
+    EXPECT_NEAR(d.components[0].volume_mm3, 54000.0, 1e-6 * 54000.0);
+    const auto& arm = d.components[1];
+    EXPECT_TRUE(arm.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_NEAR(arm.volume_mm3, 10240.0 + 320.0, 1e-6 * 10560.0);  // the -Z share in it
+    const std::vector<Vector3d> shares = {Vector3d::UnitY(), -Vector3d::UnitY(), Vector3d::UnitZ()};
+    for (std::size_t i = 2; i < 5; ++i) {
+        const auto& c = d.components[i];
+        SCOPED_TRACE("component " + std::to_string(i));
+        EXPECT_EQ(c.parent, 1);
+        EXPECT_TRUE(c.build_direction.isApprox(shares[i - 2], 1e-12));
+        EXPECT_NEAR(c.volume_mm3, i < 4 ? 480.0 : 320.0, 1e-6 * 480.0);
+    }
+    for (const auto& c : d.components) EXPECT_GT(c.build_direction.z(), -0.5);
+    ASSERT_EQ(d.notes.size(), 1u);
+    EXPECT_NE(d.notes[0].find("(along 0,0,-1): it would be built downward (-Z), its nozzle under "
+                              "the part, which no tilting table turns to; its material stays in "
+                              "component 1"),
+              std::string::npos)
+        << d.notes[0];
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlaneAtTheCylindersExtent) {
     // The boss (radius 6, along X) leaves the cylinder (radius 20) at x = 20: Eq. 4's T. With a
     // 2.5 mm step the boss' first grid plane is x = -19.999 + 16 x 2.5 = 20.001, T + eps; with a

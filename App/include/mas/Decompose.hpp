@@ -91,6 +91,12 @@
 //   whole plane can reach far past the branch: with two square arms meeting at a round column, the
 //   side of one arm, nearest the other's junction, cuts the column off down to the plate; the
 //   section plane at the column's extent cuts the arm alone.
+// - A branch marching -Z (material hanging from what is above it: a hook's tip, a blade's half
+//   under a disk, a collar's share under a horizontal arm) is not cut: its child would be built
+//   downward, its nozzle under the part, which no tilting table turns to (the default machine's
+//   tilts 100 degrees at most, Gcode.hpp, and the program refused such a component). Its material
+//   stays in the father, built with the father's layers (overhanging where it hangs), with a
+//   note. Its own sub-branches are cut from the father as any other's.
 // - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
 // - No planar face meets the criteria (a round boss on a round body), or its split was refused:
@@ -180,7 +186,7 @@ struct Decomposition {
     std::vector<Component> components;  // tree order: a father before its children; [0] is root
     // One line per branch that asked for a cut and got none (no splitting plane, a split OCCT
     // could not perform, no piece holding the branch, a piece too thin or holding what its father
-    // stands on), saying why and where its material stayed.
+    // stands on, a child that would be built downward), saying why and where its material stayed.
     std::vector<std::string> notes;
 };
 

@@ -851,6 +851,13 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 continue;
             }
             holder[b] = father;
+            if (axis.branches[b].direction.z() < -0.5) {
+                note(b,
+                     "it would be built downward (-Z), its nozzle under the part, which no "
+                     "tilting table turns to",
+                     father);
+                continue;
+            }
             const TopoDS_Shape fs = work[std::size_t(father)].solid;
             TopTools_IndexedDataMapOfShapeListOfShape e2f;
             TopExp::MapShapesAndAncestors(fs, TopAbs_EDGE, TopAbs_FACE, e2f);

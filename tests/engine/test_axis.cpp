@@ -449,36 +449,45 @@ TEST(CentroidalAxis, ACollarAllRoundAColumnTurnsEachWayFromTheColumnsFaces) {
     // -Y (20 mm across). Each turns from the column's face (Eq. 4's T, 10 mm out) and has one
     // node, on its grid's plane 13.001 mm out, centred on the collar's mid-height. The column
     // keeps its 20 x 20 sections, the collar swept from them. (It stayed in the column's march,
-    // its underside overhanging 5 mm all round.)
-    const auto mesh = mesh_of(
-        from_occt(fuse(occ_box(-10, -10, 0, 20, 20, 70), occ_box(-15, -15, 40, 30, 30, 10))));
-    mas::AxisParams p;
-    p.step_mm = 4.0;
-    const auto a = mas::centroidal_axis(mesh, p);
-    ASSERT_EQ(a.branches.size(), 5u);
-    ASSERT_EQ(a.branches[0].nodes.size(), 18u);  // z = 0.001 ... 68.001
-    for (int n : a.branches[0].nodes) {
-        const auto& node = a.nodes[std::size_t(n)];
-        EXPECT_NEAR(node.area, 400.0, 1e-6) << "z = " << node.offset;
-        EXPECT_NEAR(node.position.head<2>().norm(), 0.0, kGrid) << "z = " << node.offset;
+    // its underside overhanging 5 mm all round.) The same with a bore [-4,4]^2 all through the
+    // column (a collar round a pipe): Eq. 2 reads the sections on their external contours, so the
+    // collar's centre, in the bore, is centred inside the column, not 4 mm out of its material
+    // (where, near by Eq. 3 once shared out, it stayed in the march: 137 mm^2 of a pipe port's end
+    // collar overhung in one layer).
+    for (const bool bore : {false, true}) {
+        SCOPED_TRACE(bore ? "pipe" : "column");
+        TopoDS_Shape part =
+            fuse(occ_box(-10, -10, 0, 20, 20, 70), occ_box(-15, -15, 40, 30, 30, 10));
+        if (bore) part = BRepAlgoAPI_Cut(part, occ_box(-4, -4, -1, 8, 8, 72)).Shape();
+        const auto mesh = mesh_of(from_occt(part));
+        mas::AxisParams p;
+        p.step_mm = 4.0;
+        const auto a = mas::centroidal_axis(mesh, p);
+        ASSERT_EQ(a.branches.size(), 5u);
+        ASSERT_EQ(a.branches[0].nodes.size(), 18u);  // z = 0.001 ... 68.001
+        for (int n : a.branches[0].nodes) {
+            const auto& node = a.nodes[std::size_t(n)];
+            EXPECT_NEAR(node.area, bore ? 336.0 : 400.0, 1e-6) << "z = " << node.offset;
+            EXPECT_NEAR(node.position.head<2>().norm(), 0.0, kGrid) << "z = " << node.offset;
+        }
+        const std::vector<Vector3d> sides = {Vector3d::UnitX(), -Vector3d::UnitX(),
+                                             Vector3d::UnitY(), -Vector3d::UnitY()};
+        for (std::size_t b = 1; b < 5; ++b) {
+            SCOPED_TRACE("branch " + std::to_string(b));
+            const auto& br = a.branches[b];
+            EXPECT_EQ(br.parent, 0);
+            EXPECT_TRUE(br.direction.isApprox(sides[b - 1], 1e-12)) << br.direction.transpose();
+            ASSERT_EQ(br.nodes.size(), 1u);
+            const auto& node = a.nodes[std::size_t(br.nodes.front())];
+            EXPECT_NEAR(node.slab_start, 10.0, 1e-9);
+            EXPECT_NEAR(node.offset, 13.001, 1e-9);
+            EXPECT_NEAR(node.area, b < 3 ? 300.0 : 200.0, 1e-6);
+            EXPECT_NEAR((node.position - (13.001 * sides[b - 1] + Vector3d(0, 0, 45))).norm(), 0.0,
+                        kGrid)
+                << node.position.transpose();
+        }
+        expect_invariants(a, mesh, !bore);  // a pipe's centroid is in its bore
     }
-    const std::vector<Vector3d> sides = {Vector3d::UnitX(), -Vector3d::UnitX(), Vector3d::UnitY(),
-                                         -Vector3d::UnitY()};
-    for (std::size_t b = 1; b < 5; ++b) {
-        SCOPED_TRACE("branch " + std::to_string(b));
-        const auto& br = a.branches[b];
-        EXPECT_EQ(br.parent, 0);
-        EXPECT_TRUE(br.direction.isApprox(sides[b - 1], 1e-12)) << br.direction.transpose();
-        ASSERT_EQ(br.nodes.size(), 1u);
-        const auto& node = a.nodes[std::size_t(br.nodes.front())];
-        EXPECT_NEAR(node.slab_start, 10.0, 1e-9);
-        EXPECT_NEAR(node.offset, 13.001, 1e-9);
-        EXPECT_NEAR(node.area, b < 3 ? 300.0 : 200.0, 1e-6);
-        EXPECT_NEAR((node.position - (13.001 * sides[b - 1] + Vector3d(0, 0, 45))).norm(), 0.0,
-                    kGrid)
-            << node.position.transpose();
-    }
-    expect_invariants(a, mesh);
 }
 
 TEST(CentroidalAxis, AShoulderAllRoundAColumnStaysInItsMarch) {
@@ -1082,8 +1091,9 @@ TEST(CentroidalAxis, HubLyingAcrossItsNeckTurnsBothWays) {
 TEST(CentroidalAxis, InwardLipOfATubeStaysWithItsMarch) {
     // A tube (radius 30, bore 25) standing on its rim, its top 10 mm a lip reaching in to a bore
     // of 10. Over the tube's ring the lip's sections stick out inwards: an annulus whose centre
-    // lies in the bore, 25 mm from the lower section. It lies beyond no side of that section, so
-    // no march in another direction could reach it: it is no turn, the march goes on with it.
+    // lies in the bore, inside the lower ring's external contour (Eq. 2), 25 mm from its material.
+    // It lies beyond no side of that section, so no march in another direction could reach it: it
+    // is no turn, the march goes on with it.
     // (Taken for a turn it went to a march starting past the tube's outside, and the whole lip
     // was never searched.)
     const TopoDS_Shape tube =

@@ -12,7 +12,9 @@
 //   Booleans' grid) along the shorter of the two outlines is none: it is a hairline the Booleans'
 //   snapping left, such as the one U minus a turn's far pieces keeps along their outline.
 // - Eq. 2 on a region U over its lower region(s) L: the parts of U - L, dA_k, whose centre G_k lies
-//   farther than d outside L (2-D distance on the plane) start new branches, unless they are
+//   farther than d outside L's external contour (2-D distance on the plane; a centre in L's hole
+//   is inside it: a collar round a pipe is centred on the pipe, not 4 mm out of its wall) start
+//   new branches, unless they are
 //   bumps on a large section's surface (which made organic meshes sprout hundreds of branches):
 //   centred and reaching no farther than an eighth of L's size (sqrt of its area) outside L. One
 //   that reaches farther is an overhang growing out of the part, however near its centre: a
@@ -68,8 +70,8 @@
 //   march that way, from the same plane. T is the extent of the lower region nearest G_k: where
 //   tracks merge, a stick-out off the far one of two piers is marched from that pier's face. What
 //   lies beyond no side, or too close, stays with the march that found it: an inward lip over a
-//   tube's bore (its centre is in the bore, far from the lower ring, yet no sideways march could
-//   reach it), a C-shaped section's mouth filled.
+//   tube's bore (centred in the bore, inside the ring's external contour; no sideways march
+//   could reach it), a C-shaped section's mouth filled.
 // - Beside a fin, T is where the stick-out begins. A web or gusset under an arm whose tip comes
 //   within a step of the arm's end (flush, the common bracket) puts T at the tip: the march past
 //   it found nothing, and the arm stayed in its father's layers, its underside beside the web

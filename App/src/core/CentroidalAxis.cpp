@@ -1257,10 +1257,15 @@ private:
             Vector2d exit = g;  // where the stick-out leaves the lower section
             const Region2* left = &track.region.front();  // the lower region it leaves
             for (const auto& l : lower) {
-                const double d = distance_to_region(l, g);
+                // On L's external contour (Eq. 2): a stick-out centred in L's hole (a collar round
+                // a pipe) is centred inside L, not far out of it.
+                Region2 filled;
+                if (!l.holes.empty()) filled.outer = l.outer;
+                const Region2& outline = l.holes.empty() ? l : filled;
+                const double d = distance_to_region(outline, g);
                 if (d < dist) {
                     dist = d;
-                    exit = nearest_boundary_point(l, g);
+                    exit = nearest_boundary_point(outline, g);
                     left = &l;
                 }
             }

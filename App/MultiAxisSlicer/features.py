@@ -735,6 +735,9 @@ _SLICE_PROPERTIES = (
      "Averaging a layer's direction stops when it changes by less than this"),
     ("OverhangAngle", "Layers", "overhang_angle", "App::PropertyAngle",
      "A layer may stick out over the one below by its thickness x tan(this)"),
+    ("MaxTilt", "Layers", "max_tilt", "App::PropertyAngle",
+     "The most a layer's normal (the tool axis) tilts from the build plate's +Z: the machine's "
+     "reach, 90 to 180 (the default machine's table tilts A from -100 to 50: 100)"),
     ("VolumeSamples", "Layers", "volume_samples", "App::PropertyInteger",
      "Sections per layer for integrating its volumetric difference"),
     ("Strict", "Layers", "strict", "App::PropertyBool",
@@ -904,8 +907,9 @@ class LayersFeature(_EngineFeature):
 
     Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced, each
     along its own build direction), the layer parameters (MinLayer, MaxLayer, MaxVolumeDifference,
-    EpsAngle, OverhangAngle, VolumeSamples, Strict, FillHoles), the path parameters (BeadWidth,
-    Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature, MeasureCoverage), the
+    EpsAngle, OverhangAngle, MaxTilt, VolumeSamples, Strict, FillHoles), the path parameters
+    (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
+    MeasureCoverage), the
     nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
     NozzleBodyLength, NozzleMargin, CheckPlate, NozzleMaxLean) and
     Deflection (mm chordal deflection for tessellating the components, 0 = automatic). Outputs:
@@ -1209,7 +1213,7 @@ def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
     returns (layers, toolpath). Recompute the document to compute them.
 
     ``params``: the slicing parameters of ``MultiAxisSlicer.slice`` (min_layer, max_layer,
-    max_volume_difference, eps_angle, overhang_angle, volume_samples, strict, fill_holes,
+    max_volume_difference, eps_angle, overhang_angle, max_tilt, volume_samples, strict, fill_holes,
     bead_width, overlap, contour_count, infill, raster_angle, raster_angle_step, min_feature,
     measure_coverage, the nozzle's nozzle_standoff, nozzle_tip_diameter, nozzle_cone_angle,
     nozzle_body_diameter, nozzle_body_length, nozzle_margin, check_plate, nozzle_max_lean; mm and

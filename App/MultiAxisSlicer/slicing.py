@@ -32,6 +32,7 @@ SLICE_DEFAULTS = {
     "max_volume_difference": 0.1,
     "eps_angle": 1.0,
     "overhang_angle": 45.0,
+    "max_tilt": 100.0,
     "volume_samples": 4,
     "strict": False,
     "bead_width": 1.0,
@@ -357,7 +358,7 @@ def _slice_params(values):
                  "nozzle_standoff", "nozzle_tip_diameter", "nozzle_body_diameter",
                  "nozzle_body_length", "nozzle_margin"):
         p[name] = _number(values[name], name, "millimetres")
-    for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step",
+    for name in ("eps_angle", "overhang_angle", "max_tilt", "raster_angle", "raster_angle_step",
                  "nozzle_cone_angle", "nozzle_max_lean"):
         p[name] = _number(values[name], name, "degrees")
     p["max_volume_difference"] = _number(values["max_volume_difference"],
@@ -388,6 +389,8 @@ def _slice_params(values):
     if not (p["max_volume_difference"] > 0.0):
         raise ValueError("max_volume_difference must be a positive fraction, got {}".format(
             p["max_volume_difference"]))
+    if not (90.0 <= p["max_tilt"] <= 180.0):
+        raise ValueError("max_tilt must be in [90, 180] degrees, got {}".format(p["max_tilt"]))
     _check_nozzle(p)
     return p
 
@@ -445,6 +448,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         min_layer and flagged; ``strict=True`` makes that an error.
       * ``eps_angle``: direction averaging stops below this angle (1).
       * ``overhang_angle``: the support allowance is the layer thickness x tan(this) (45).
+      * ``max_tilt``: the most a layer's normal (the tool axis) tilts from the build plate's +Z,
+        in [90, 180]: the machine's reach (100, the default machine's A from -100 to 50; 180: no
+        limit). Where the axis turns further (a return bend's far leg), the layers stop there.
       * ``volume_samples``: sections per layer integrating VolDiff (4).
       * ``bead_width`` (1.0), ``overlap`` (fraction of a bead shared with its neighbour, 0.15),
         ``contour_count`` (2), ``infill`` ("raster", "contour" or "none"), ``raster_angle`` (0)

@@ -43,7 +43,8 @@ const char* kUsage =
     "                                       [--json [OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
     "                                   [--max-volume-difference F] [--eps-angle DEG]\n"
-    "                                   [--overhang-angle DEG] [--volume-samples N] [--strict]\n"
+    "                                   [--overhang-angle DEG] [--max-tilt DEG]\n"
+    "                                   [--volume-samples N] [--strict]\n"
     "                                   [--bead-width MM] [--overlap F] [--contours N]\n"
     "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
     "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
@@ -590,6 +591,7 @@ const std::set<std::string> kSliceOptions = {"--min-layer",
                                              "--max-volume-difference",
                                              "--eps-angle",
                                              "--overhang-angle",
+                                             "--max-tilt",
                                              "--volume-samples",
                                              "--bead-width",
                                              "--overlap",
@@ -663,6 +665,7 @@ mas::SlicePartParams slice_params(const Args& a) {
     l.max_volume_difference = a.number("--max-volume-difference", l.max_volume_difference);
     l.eps_angle_deg = a.number("--eps-angle", l.eps_angle_deg);
     l.overhang_angle_deg = a.number("--overhang-angle", l.overhang_angle_deg);
+    l.max_tilt_deg = a.number("--max-tilt", l.max_tilt_deg);
     l.volume_samples = a.integer("--volume-samples", l.volume_samples);
     mas::PathParams& t = p.paths;
     t.bead_width_mm = a.number("--bead-width", t.bead_width_mm);
@@ -770,6 +773,7 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"max_volume_difference\": " << num(l.max_volume_difference)
             << ", \"eps_angle\": " << num(l.eps_angle_deg)
             << ", \"overhang_angle\": " << num(l.overhang_angle_deg)
+            << ", \"max_tilt\": " << num(l.max_tilt_deg)
             << ", \"volume_samples\": " << l.volume_samples
             << ", \"strict\": " << (l.strict ? "true" : "false")
             << ", \"bead_width\": " << num(t.bead_width_mm) << ", \"overlap\": " << num(t.overlap)

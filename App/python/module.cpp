@@ -1059,6 +1059,8 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             p.layers.initial_offset_mm = number();
         else if (key == "overhang_angle")
             p.layers.overhang_angle_deg = number();
+        else if (key == "max_tilt")
+            p.layers.max_tilt_deg = number();
         else if (key == "volume_samples")
             p.layers.volume_samples = integer();
         else if (key == "strict")
@@ -1318,7 +1320,7 @@ void bind_slice() {
     const char* params_doc =
         " `params` is a dict of slicing parameters (lengths in mm, angles in degrees): "
         "min_layer, max_layer, max_volume_difference, eps_angle, initial_offset, overhang_angle, "
-        "volume_samples, strict, bead_width, overlap, contour_count, infill ('raster' | "
+        "max_tilt, volume_samples, strict, bead_width, overlap, contour_count, infill ('raster' | "
         "'contour' | 'none'), raster_angle, raster_angle_step, min_feature, measure_coverage, "
         "deflection and fill_holes (the largest hole diameter to deposit solid and drill; "
         "slice_part only); missing ones take the engine's defaults. Returns a dict: "

@@ -214,6 +214,8 @@ class CliSections(unittest.TestCase):
         self.expect_error(["axis", box, "--eps", "-1"], 1, "invalid_argument", "eps")
         self.expect_error(["slice", box, "--infill", "bogus"], 1, "invalid_argument", "infill")
         self.expect_error(["slice", box, "--min-layer", "3"], 1, "invalid_argument", "min_layer")
+        self.expect_error(["slice", box, "--max-tilt", "80"], 1, "invalid_argument",
+                          "max_tilt must be in [90, 180] degrees, got 80")
         self.expect_error(["sections", box, "--normal", "1,2"], 2, "X,Y,Z")
         self.expect_error(["sections"], 2, "FILE")
         self.expect_error(["explode", box], 2, "unknown command")

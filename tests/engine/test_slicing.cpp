@@ -1161,6 +1161,60 @@ TEST(Slicing, LayersFollowAGuideTurningByMoreThanATenthOfEpsAngle) {
     expect_invariants(s, params, "bar leaning 0.5 degrees");
 }
 
+TEST(Slicing, LayersTiltNoFurtherFromThePlatesNormalThanTheMachineReaches) {
+    // A 6 x 6 bar built along +X from x = 0 that bends down at x = 20 to (sin 120, 0, cos 120),
+    // 120 degrees from +Z, for 20 mm (a return bend's far leg, a hook's tip), its axis the guide.
+    // Following it, the layers would face below the horizontal, further than the default
+    // machine's table tilts (A from -100 to 50 degrees: the program refused them). Within
+    // max_tilt (100 by default) they follow the guide no further than that; with 180 (no limit)
+    // they follow it past 110.
+    const double a = 120.0 * kPi / 180.0;
+    const Vector3d leg(std::sin(a), 0.0, std::cos(a));
+    gp_Trsf turn, move;
+    turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), a);
+    move.SetTranslation(gp_Vec(20, 0, 0));
+    const TopoDS_Shape bent =
+        fuse(occ_box(0, -3, -3, 23, 6, 6),
+             BRepBuilderAPI_Transform(occ_box(-3, -3, 0, 6, 6, 20), move * turn, true).Shape());
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const mas::TriangleMesh mesh = mas::tessellate(from_occt(bent), tp);
+    mas::ComponentSlicingInput input;
+    input.component = 1;
+    input.mesh = &mesh;
+    input.base = mas::make_plane(Vector3d::Zero(), Vector3d::UnitX());
+    input.guide = {Vector3d::Zero(), Vector3d(20, 0, 0), Vector3d(20, 0, 0) + 20.0 * leg};
+    for (const double reach : {100.0, 180.0}) {
+        SCOPED_TRACE("max_tilt " + std::to_string(reach));
+        mas::LayerParams params = default_params().layers;
+        params.max_tilt_deg = reach;
+        const std::vector<mas::Layer> layers = mas::slice_component(input, params);
+        double most = 0.0;
+        for (std::size_t i = 0; i < layers.size(); ++i) {
+            const double tilt = angle_deg(layers[i].plane.normal, Vector3d::UnitZ());
+            EXPECT_LE(tilt, reach + 1e-9) << "layer " << i;
+            most = std::max(most, tilt);
+        }
+        if (reach < 180.0)
+            EXPECT_NEAR(most, reach, 1e-9);  // turned onto the limit, not short of it
+        else
+            EXPECT_GT(most, 110.0);
+    }
+    // A component built past the limit is refused, naming it.
+    mas::LayerParams params = default_params().layers;
+    input.base = mas::make_plane(Vector3d(0, 0, 3), -Vector3d::UnitZ());
+    try {
+        mas::slice_component(input, params);
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("component 1 is built along (0, 0, -1), 180 degrees "
+                                             "from the build plate's normal, past max_tilt (100"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Slicing, ABlockHangingUnderABridgeIsSlicedWithItsFirstLayerUnsupported) {
     // The block first appears at z = 15 in mid-air (test_parts.hpp): sliced with the root, in Z,
     // its first layer rests on nothing, all 400 mm^2 of it (the legs lie 10 mm away, past any
@@ -1244,6 +1298,11 @@ TEST(SlicingErrors, BadParametersAreNamed) {
         ADD_FAILURE() << "no error for overhang_angle";
     } catch (const mas::Error& e) {
         EXPECT_EQ(std::string(e.what()), "overhang_angle must be in [0, 90) degrees, got 95");
+    }
+    for (const double tilt : {89.0, 180.5, std::nan("")}) {
+        p = default_params();
+        p.layers.max_tilt_deg = tilt;
+        expect_invalid(p, "max_tilt must be in [90, 180] degrees, got ");
     }
     p = default_params();
     p.paths.bead_width_mm = 0.0;

@@ -540,7 +540,10 @@ class TestSliceSequence(SliceTest):
                  dict(nozzle_max_lean=90.0)),
                 (ValueError, "nozzle_max_lean", dict(nozzle_max_lean=-1.0)),
                 (ValueError, "nozzle_max_lean", dict(nozzle_max_lean=math.nan)),
-                (TypeError, "nozzle_max_lean", dict(nozzle_max_lean="30 deg"))):
+                (TypeError, "nozzle_max_lean", dict(nozzle_max_lean="30 deg")),
+                (ValueError, r"max_tilt must be in \[90, 180\] degrees, got 180.5",
+                 dict(max_tilt=180.5)),
+                (ValueError, "max_tilt", dict(max_tilt=math.nan))):
             with self.assertRaisesRegex(error, text, msg=str(kwargs)):
                 mas.slice(box, **kwargs)
         # One diameter: no cone, whatever its angle.

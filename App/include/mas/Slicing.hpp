@@ -85,7 +85,11 @@ struct LayerParams {
     double initial_offset_mm = 0.0;
     double overhang_angle_deg = 45.0;  // support allowance = thickness x tan(this), degrees
     int volume_samples = 4;            // sections per layer for VolDiff, >= 1
-    bool strict = false;               // a layer that cannot meet max_volume_difference is an error
+    // The most a layer's normal (the tool axis) tilts from the build plate's normal (+Z), degrees,
+    // in [90, 180]: the machine's reach. The default machine's table tilts A from -100 to 50
+    // degrees (Gcode.hpp): 100. 180 sets no limit.
+    double max_tilt_deg = 100.0;
+    bool strict = false;  // a layer that cannot meet max_volume_difference is an error
     // Accept a plane only when the next layer's footprint is supported (see above). False: Eq. 9
     // alone, as in plain adaptive slicing (the benchmark's planar baselines).
     bool require_support = true;

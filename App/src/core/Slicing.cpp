@@ -246,6 +246,17 @@ public:
     std::vector<Layer> run();
 
 private:
+    // `d`, turned towards the build plate's normal (+Z) onto max_tilt where it tilts further
+    // (in the plane of d and Z; straight down, in the plane of `fallback` and Z).
+    Vector3d within_reach(const Vector3d& d, const Vector3d& fallback) const {
+        const double limit = params_.max_tilt_deg * kPi / 180.0;
+        if (std::atan2(Vector2d(d.x(), d.y()).norm(), d.z()) <= limit) return d;
+        Vector3d side(d.x(), d.y(), 0.0);
+        if (side.norm() < 1e-9) side = Vector3d(fallback.x(), fallback.y(), 0.0);
+        if (side.norm() < 1e-9) side = Vector3d::UnitX();
+        return std::cos(limit) * Vector3d::UnitZ() + std::sin(limit) * side.normalized();
+    }
+
     // The highest point of the material along unit d.
     double top_along(const Vector3d& d) const {
         double top = -std::numeric_limits<double>::infinity();
@@ -414,6 +425,13 @@ std::vector<Layer> ComponentSlicer::run() {
                 " tall along its build direction, less than min_layer (" +
                 mm(params_.min_layer_mm) + "): no layer fits; lower min_layer");
 
+    if (angle_deg(base.normal, Vector3d::UnitZ()) > params_.max_tilt_deg + 1e-9)
+        invalid("component " + std::to_string(input_.component) + " is built along (" +
+                format_number(base.normal.x() + 0.0) + ", " +  // + 0: -0 prints as 0
+                format_number(base.normal.y() + 0.0) + ", " + format_number(base.normal.z() + 0.0) +
+                "), " + format_number(angle_deg(base.normal, Vector3d::UnitZ())) +
+                " degrees from the build plate's normal, past max_tilt (" +
+                format_number(params_.max_tilt_deg) + " degrees): the machine cannot reach it");
     std::vector<Layer> layers;
     double material = 0.0;  // of the layers so far
     Vector3d d_lower = base.normal;
@@ -461,6 +479,7 @@ std::vector<Layer> ComponentSlicer::run() {
             // A guide doubling back, or turning by less than a tenth of eps_angle (centroid
             // noise): keep the lower direction.
             if (d.dot(d_lower) <= 0.0 || angle_deg(d, d_lower) < 0.1 * eps_angle) d = d_lower;
+            d = within_reach(d, d_lower);
             for (;;) {
                 progress_.check();
                 ++tries;
@@ -476,7 +495,7 @@ std::vector<Layer> ComponentSlicer::run() {
                      unsupported_rate(c) < unsupported_rate(*tilted) - rate_tolerance(c)))
                     tilted = c;
                 if (parallel || angle_deg(d, d_lower) < eps_angle) break;
-                d = (d + d_lower).normalized();
+                d = within_reach((d + d_lower).normalized(), d_lower);
             }
             if (delta <= params_.min_layer_mm) break;
             delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
@@ -603,6 +622,8 @@ void validate(const LayerParams& p) {
     if (!(p.overhang_angle_deg >= 0.0 && p.overhang_angle_deg < 90.0))
         invalid("overhang_angle must be in [0, 90) degrees, got " +
                 format_number(p.overhang_angle_deg));
+    if (!(p.max_tilt_deg >= 90.0 && p.max_tilt_deg <= 180.0))
+        invalid("max_tilt must be in [90, 180] degrees, got " + format_number(p.max_tilt_deg));
     if (p.volume_samples < 1 || p.volume_samples > 64)
         invalid("volume_samples must be in [1, 64], got " + std::to_string(p.volume_samples));
     if (p.max_layers < 1) invalid("max_layers must be at least 1");

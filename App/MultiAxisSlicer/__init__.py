@@ -596,7 +596,8 @@ def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, br
 
 
 def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
-                       deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0):
+                       deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0,
+                       max_tilt=100.0):
     """Adds a parametric ``Decomposition`` object (FreeCAD only) splitting the document object
     ``source`` (optionally following the ``CentroidalAxis`` object ``axis``, whose parameters are
     then used), computes it and adds one ``Component`` object per sub-component (labelled
@@ -607,7 +608,8 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     return features.make_decomposition(source, axis=axis, face_angle=face_angle,
                                        section_plane_fallback=section_plane_fallback,
                                        deflection=deflection, name=name, doc=doc,
-                                       min_component_height=min_component_height)
+                                       min_component_height=min_component_height,
+                                       max_tilt=max_tilt)
 
 
 def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",

@@ -152,7 +152,7 @@ class Decomposition:
     ``Component``), ``axis`` (the ``CentroidalAxis`` it followed), ``part_volume`` (mm³, the
     part's; the components' volumes add up to it), ``params`` (the decomposition's parameters:
     face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback,
-    min_component_height_mm),
+    min_component_height_mm, max_tilt_deg),
     ``notes`` (one line per axis branch that asked for a cut and got none: why, and which
     component kept its material).
     """
@@ -199,7 +199,7 @@ class Decomposition:
 def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
               deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
               eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0,
-              progress=None):
+              max_tilt=100.0, progress=None):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
@@ -222,6 +222,10 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
       * ``min_component_height``: a child must reach at least this far past its splitting plane,
         and at least one axis step; a thinner piece stays in its father (default 0 mm: the step).
         ``slice()`` passes its ``min_layer``, so that every component fits a layer.
+      * ``max_tilt``: no child is built further than this from the build plate's +Z (default
+        100, in [90, 180]): the machine's reach. A branch marching further (straight down) is
+        not cut, and a face whose child would tilt further is no splitting face. ``slice()``
+        passes its own ``max_tilt``.
 
     ``progress``: None or ``progress(fraction, stage)``, reported branch by branch; an exception it
     raises (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
@@ -241,6 +245,9 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     if not (0.0 <= min_height_mm < float("inf")):
         raise ValueError("min_component_height must be a finite, non-negative number of "
                          "millimetres, got {}".format(min_height_mm))
+    max_tilt_deg = _number(max_tilt, "max_tilt", "degrees")
+    if not (90.0 <= max_tilt_deg <= 180.0):
+        raise ValueError("max_tilt must be in [90, 180] degrees, got {}".format(max_tilt_deg))
     _progress.check(progress)
     if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
         raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
@@ -266,9 +273,10 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     params = {"face_angle_deg": face_angle_deg, "concave_angle_deg": concave_angle_deg,
               "projection_tolerance_mm": tolerance_mm,
               "section_plane_fallback": bool(section_plane_fallback),
-              "min_component_height_mm": min_height_mm}
+              "min_component_height_mm": min_height_mm, "max_tilt_deg": max_tilt_deg}
     data = eng.decompose(solid, axis._engine_dict(), face_angle=face_angle_deg,
                          concave_angle=concave_angle_deg, projection_tolerance=tolerance_mm,
                          section_plane_fallback=bool(section_plane_fallback),
-                         min_component_height=min_height_mm, progress=progress)
+                         min_component_height=min_height_mm, max_tilt=max_tilt_deg,
+                         progress=progress)
     return Decomposition(data, axis, params)

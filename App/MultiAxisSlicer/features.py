@@ -28,6 +28,7 @@ import Part
 
 import MultiAxisSlicer as mas
 from MultiAxisSlicer import progress as _progress
+from MultiAxisSlicer.axis import _number
 from MultiAxisSlicer.decompose import _angle
 from MultiAxisSlicer.gcode import _machine_params
 
@@ -447,11 +448,11 @@ class DecompositionFeature(_EngineFeature):
     VIEW_PROVIDER = "ViewProviderDecomposition"
     PROPERTY_NAMES = _AXIS_NAMES + _names(
         ("face_angle", "FaceAngle"), ("concave_angle", "ConcaveAngle"),
-        ("min_component_height", "MinComponentHeight"),
+        ("min_component_height", "MinComponentHeight"), ("max_tilt", "MaxTilt"),
         ("section_plane_fallback", "SectionPlaneFallback"))
     PARAMETERS = (("Decomposition",
                    ("Step", "Deflection", "FaceAngle", "ConcaveAngle", "SectionPlaneFallback",
-                    "MinComponentHeight")),)
+                    "MinComponentHeight", "MaxTilt")),)
 
     @staticmethod
     def ensure_properties(obj):
@@ -476,6 +477,14 @@ class DecompositionFeature(_EngineFeature):
         _add_property(obj, "App::PropertyLength", "MinComponentHeight", group,
                       "A sub-component reaches at least this far past its cut, and one axis step "
                       "(0 = the step); the Slice command sets MinLayer here", 0.0)
+        # A document saved before the reach bounded the build directions keeps them unbounded
+        # (MaxTilt 180) until the user changes it.
+        if (_add_property(obj, "App::PropertyAngle", "MaxTilt", group,
+                          "No sub-component is built further from the build plate's +Z: the "
+                          "machine's reach, 90 to 180 (the default machine's table tilts A from "
+                          "-100 to 50: 100). Nothing is built straight down", 100.0) and
+                "ComponentCount" in obj.PropertiesList):
+            obj.MaxTilt = 180.0
         result = "Result"
         _add_property(obj, "App::PropertyInteger", "ComponentCount", result,
                       "Number of sub-components", 0, _OUTPUT)
@@ -547,7 +556,8 @@ def decomposition_inputs(obj):
         params = dict(step=obj.Step.Value or None, deflection=obj.Deflection.Value or None)
     params.update(face_angle=obj.FaceAngle.Value, concave_angle=obj.ConcaveAngle.Value,
                   section_plane_fallback=bool(obj.SectionPlaneFallback),
-                  min_component_height=obj.MinComponentHeight.Value)
+                  min_component_height=obj.MinComponentHeight.Value,
+                  max_tilt=obj.MaxTilt.Value)
     return source, params
 
 
@@ -677,13 +687,16 @@ def sync_components(decomposition):
 
 
 def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
-                       deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0):
+                       deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0,
+                       max_tilt=100.0):
     """Adds a ``Decomposition`` object splitting ``source`` to ``doc`` (default: the source's,
     else the axis object's document), computes it and adds its Component objects; returns the
     Decomposition object. ``axis``: an optional ``CentroidalAxis`` object whose parameters (and
     Source, when ``source`` is None) are used. ``face_angle`` in degrees, ``deflection`` in mm (0 =
     automatic; used without ``axis``), ``min_component_height`` in mm (the least a sub-component
-    reaches past its cut, besides one axis step). A failing computation leaves the object marked
+    reaches past its cut, besides one axis step), ``max_tilt`` in degrees (no sub-component is
+    built further from +Z: the machine's reach, 90 to 180). A failing computation leaves the
+    object marked
     invalid with the message, without components. The source is not changed.
 
     In the GUI the objects get their view providers (one distinct colour per component)."""
@@ -700,6 +713,9 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     deflection = mas._length(deflection, "deflection", allow_zero=True)
     min_component_height = mas._length(min_component_height, "min_component_height",
                                        allow_zero=True)
+    max_tilt = _number(max_tilt, "max_tilt", "degrees")
+    if not (90.0 <= max_tilt <= 180.0):
+        raise ValueError("max_tilt must be in [90, 180] degrees, got {}".format(max_tilt))
     obj = doc.addObject("Part::FeaturePython", name)
     DecompositionFeature(obj)
     obj.Source = source
@@ -708,6 +724,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     obj.SectionPlaneFallback = bool(section_plane_fallback)
     obj.Deflection = deflection
     obj.MinComponentHeight = min_component_height
+    obj.MaxTilt = max_tilt
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, DecompositionFeature.VIEW_PROVIDER)
     obj.recompute(True)  # with what it depends on: the count decides the Component objects
@@ -947,7 +964,8 @@ class LayersFeature(_EngineFeature):
         _add_property(obj, "App::PropertyLink", "Decomposition", "Layers",
                       "Decomposition object whose part is sliced, component by component")
         # A document saved before the nozzle could lean was computed with it coaxial: it keeps
-        # that (NozzleMaxLean 0, each tool axis its layer's normal) until the user changes it.
+        # that (NozzleMaxLean 0, each tool axis its layer's normal) until the user changes it;
+        # one saved before the layers' tilt was bounded keeps them unbounded (MaxTilt 180).
         computed_coaxial = "LayerCount" in obj.PropertiesList
         for prop, group, name, type_id, doc in _SLICE_PROPERTIES:
             if type_id == "App::PropertyEnumeration":
@@ -955,8 +973,11 @@ class LayersFeature(_EngineFeature):
                     setattr(obj, prop, INFILL_PATTERNS)
                     setattr(obj, prop, mas.SLICE_DEFAULTS[name])
             elif (_add_property(obj, type_id, prop, group, doc, mas.SLICE_DEFAULTS[name]) and
-                  prop == "NozzleMaxLean" and computed_coaxial):
-                obj.NozzleMaxLean = 0.0
+                  computed_coaxial):
+                if prop == "NozzleMaxLean":
+                    obj.NozzleMaxLean = 0.0
+                elif prop == "MaxTilt":
+                    obj.MaxTilt = 180.0
         _add_property(obj, "App::PropertyLength", "Deflection", "Layers",
                       "Chordal deflection for tessellating the components (0 = automatic)", 0.0)
         result = "Result"

@@ -530,9 +530,10 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         axis = centroidal_axis(solid, **axis_params)
     slicing_progress = progress
     if components is None:
-        # No component thinner than a layer: the slicer could not lay one on it.
+        # No component thinner than a layer, nor built past the reach: the slicer could not lay
+        # one on it.
         components = decompose(solid, axis=axis, min_component_height=p["min_layer"],
-                               progress=_progress.span(progress, 0.0, 0.2))
+                               max_tilt=p["max_tilt"], progress=_progress.span(progress, 0.0, 0.2))
         slicing_progress = _progress.span(progress, 0.2, 1.0)
     engine_components = [{"solid": c._solid, "parent": c.parent,
                           "build_direction": tuple(c._build_direction),

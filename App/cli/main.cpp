@@ -39,7 +39,8 @@ const char* kUsage =
     "                                  [--json [OUT.json]]\n"
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG]\n"
     "                                       [--concave-angle DEG] [--no-fallback]\n"
-    "                                       [--min-height MM] [--step-dir DIR] [--progress]\n"
+    "                                       [--min-height MM] [--max-tilt DEG] [--step-dir DIR]\n"
+    "                                       [--progress]\n"
     "                                       [--json [OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
     "                                   [--max-volume-difference F] [--eps-angle DEG]\n"
@@ -62,13 +63,17 @@ const char* kUsage =
     "decompose  split the part into sub-components at its axis' turns and branches (Sec. 4.1):\n"
     "           the tree, each component's build direction, base face and volume; --step-dir\n"
     "           writes every component as DIR/component_NNN.step. Needs a BREP solid. A child\n"
-    "           reaches at least --min-height (default 0) and one axis step past its cut.\n"
+    "           reaches at least --min-height (default 0) and one axis step past its cut, and\n"
+    "           is built no more than --max-tilt (default 100) degrees from +Z, the machine's\n"
+    "           reach: nothing is built straight down.\n"
     "slice      adaptive multi-axis layers of every sub-component (Sec. 4.2) and the bead paths\n"
     "           in every layer: per layer its plane, thickness range, volumetric difference and\n"
     "           unsupported area; --json adds its regions, its unsupported regions (on the\n"
     "           plane below it) and its paths (points, tool axis, thickness).\n"
     "           Defaults: layers 0.5 to 2 mm, volume difference 0.1, bead 1 mm, overlap 0.15,\n"
-    "           2 contours, raster infill. A mesh is sliced as one component; a solid is\n"
+    "           2 contours, raster infill, --max-tilt 100: no layer or component tilts further\n"
+    "           from +Z (the machine's reach; with --gcode and --a-limits, the farther A limit,\n"
+    "           within 90 to 180). A mesh is sliced as one component; a solid is\n"
     "           decomposed with --min-height at --min-layer. --fill-holes MM deposits a solid's\n"
     "           round holes up to MM across solid where their axis leans past the overhang\n"
     "           angle off the build direction (their ceilings would overhang), listing them to\n"
@@ -502,7 +507,7 @@ int run_axis(const std::vector<std::string>& args) {
 
 int run_decompose(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
-    allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--step-dir"});
+    allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--max-tilt", "--step-dir"});
     // --no-fallback takes no value: take it out before the common parser sees it.
     std::vector<std::string> rest;
     bool fallback = true, report = false;
@@ -520,6 +525,7 @@ int run_decompose(const std::vector<std::string>& args) {
     dp.face_angle_deg = a.number("--face-angle", dp.face_angle_deg);
     dp.concave_angle_deg = a.number("--concave-angle", dp.concave_angle_deg);
     dp.min_component_height_mm = a.number("--min-height", dp.min_component_height_mm);
+    dp.max_tilt_deg = a.number("--max-tilt", dp.max_tilt_deg);
     dp.section_plane_fallback = fallback;
     const Part part = load_part(a);
     if (part.model.kind != mas::Model::Kind::Solid)
@@ -740,17 +746,26 @@ int run_slice(const std::vector<std::string>& args) {
     mas::validate(sp.paths);
     mas::validate(sp.nozzle);
     const mas::MachineParams machine = machine_params(a);
+    // The machine given, and no reach: the layers tilt no further than its table turns them.
+    if (!a.has("--max-tilt") && a.has("--a-limits"))
+        sp.layers.max_tilt_deg =
+            std::clamp(std::max(-machine.a_min_deg, machine.a_max_deg), 90.0, 180.0);
     const Part part = load_part(a);
     const mas::CentroidalAxis axis = axis_of(part, ap);
     mas::SlicedPart r;
     const mas::Progress progress = report ? stderr_progress() : mas::Progress();
     if (part.model.kind == mas::Model::Kind::Solid) {
         const mas::Shape solid = part.model.shape.single_solid(a.file);
-        mas::DecomposeParams dp;  // no component thinner than a layer
+        mas::DecomposeParams dp;  // no component thinner than a layer, none past the reach
         dp.min_component_height_mm = sp.layers.min_layer_mm;
+        dp.max_tilt_deg = sp.layers.max_tilt_deg;
         // Decomposing is the first fifth, as in the Python API.
         const mas::Decomposition d = mas::decompose(solid, axis, dp, progress.span(0.0, 0.2));
         r = mas::slice_part(solid, axis, d, sp, progress.span(0.2, 1.0));
+        // Why a branch got no sub-component of its own (material hanging from above stays in
+        // its father, overhanging): said with the holes' notes.
+        for (std::size_t i = 0; i < d.notes.size(); ++i)
+            r.notes.insert(r.notes.begin() + std::ptrdiff_t(i), "decomposition: " + d.notes[i]);
     } else {
         r = mas::slice_mesh_part(part.mesh, axis, sp, progress);  // a mesh cannot be split
     }

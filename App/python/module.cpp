@@ -944,13 +944,14 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
 
 bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
                    double concave_angle, double projection_tolerance, bool section_plane_fallback,
-                   double min_component_height, const bp::object& progress) {
+                   double min_component_height, double max_tilt, const bp::object& progress) {
     mas::DecomposeParams params;
     params.face_angle_deg = finite_number(face_angle, "face_angle");
     params.concave_angle_deg = finite_number(concave_angle, "concave_angle");
     params.projection_tolerance_mm = finite_number(projection_tolerance, "projection_tolerance");
     params.section_plane_fallback = section_plane_fallback;
     params.min_component_height_mm = finite_number(min_component_height, "min_component_height");
+    params.max_tilt_deg = finite_number(max_tilt, "max_tilt");
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     mas::Decomposition d;
     double part_volume = 0.0;
@@ -989,11 +990,12 @@ void bind_decompose() {
         (bp::arg("shape"), bp::arg("axis"), bp::arg("face_angle") = 10.0,
          bp::arg("concave_angle") = 1.0, bp::arg("projection_tolerance") = 0.01,
          bp::arg("section_plane_fallback") = true, bp::arg("min_component_height") = 0.0,
-         bp::arg("progress") = bp::object()),
+         bp::arg("max_tilt") = 100.0, bp::arg("progress") = bp::object()),
         "Splits a solid (a Shape holding one closed solid) into sub-components along its "
         "centroidal axis `axis` (the dict centroidal_axis() returns for this solid; node regions "
         "are not needed). Angles in degrees, projection_tolerance and min_component_height (the "
-        "least a child reaches past its splitting plane, besides one axis step) in mm. Returns a "
+        "least a child reaches past its splitting plane, besides one axis step) in mm; max_tilt: "
+        "no child is built further from +Z, degrees (the machine's reach). Returns a "
         "dict: "
         "components [{solid (Shape), parent (-1 for the root), build_direction, has_base_face, "
         "base_face (Shape or None), base_origin, base_normal, branch, break_link, rule ('root' | "

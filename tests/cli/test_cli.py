@@ -301,6 +301,37 @@ class CliSections(unittest.TestCase):
                           "open_mesh")
         self.expect_error(["axis", box, "--normal", "1,0,0"], 2, "unknown option")
 
+    def test_nothing_is_built_straight_down_and_slice_says_why(self):
+        # The collar at the arm's end is shared out +-Y, +Z and -Z; the -Z share would be built
+        # downward, 180 degrees from +Z, past --max-tilt (100): it stays in the arm, and the
+        # slice's notes say so. A machine reaching 180 degrees (--max-tilt 180) builds it.
+        part = os.path.join(DATA, "arm_collar.brep")
+        for reach, components, notes in ((None, 5, 1), ("180", 6, 0)):
+            args = ["decompose", part, "--step", "2", "--json"]
+            if reach:
+                args += ["--max-tilt", reach]
+            r = run(*args)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            doc = json.loads(r.stdout)
+            self.assertEqual(len(doc["components"]), components, reach)
+            self.assertEqual(len(doc["notes"]), notes, reach)
+            downward = [c for c in doc["components"] if c["build_direction"][2] < -0.5]
+            self.assertEqual(len(downward), 1 if reach else 0)
+        r = run("slice", part, "--step", "2", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        notes = json.loads(r.stdout)["notes"]
+        self.assertEqual(len(notes), 1, notes)
+        self.assertTrue(notes[0].startswith("decomposition: branch "), notes[0])
+        self.assertIn("(along 0,0,-1): it would be built 180 degrees from the build plate's +Z, "
+                      "past max_tilt (100 degrees): the machine cannot reach it; its material "
+                      "stays in component 1", notes[0])
+        self.assertEqual(json.loads(r.stdout)["params"]["max_tilt"], 100)
+        # The machine given: its farther A limit is the reach.
+        r = run("slice", part, "--step", "2", "--json", "--gcode",
+                os.path.join(self.tmp.name, "collar.ngc"), "--a-limits", "-95,30")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.loads(r.stdout)["params"]["max_tilt"], 95)
+
     def test_decompose_splits_the_arm_off_the_l_block(self):
         steps = os.path.join(self.tmp.name, "components")
         r = run("decompose", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--step-dir",

@@ -81,3 +81,9 @@ cross.translate(V(0, 0, -250))
 cross = cross.removeSplitter()
 cross.translate(V(0, 0, -cross.BoundBox.ZMin))
 cross.exportStep(os.path.join(here, "pipe_cross.step"))
+
+# arm_collar.brep   a column [-15,15]^2 x [0,60] with an arm [15,55] x [-8,8] x [32,48] ending in
+# a collar [49,54] x [-12,12] x [28,52]: the collar's share under the arm hangs (not built down)
+collar = Part.makeBox(30, 30, 60, V(-15, -15, 0)).fuse(Part.makeBox(40, 16, 16, V(15, -8, 32)))
+collar = collar.fuse(Part.makeBox(5, 24, 24, V(49, -12, 28))).removeSplitter()
+collar.Solids[0].exportBrep(os.path.join(here, "arm_collar.brep"))

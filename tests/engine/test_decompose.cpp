@@ -501,8 +501,9 @@ TEST(Decompose, NothingIsBuiltDownward) {
     // [49,54] x [-12,12] x [28,52], 4 mm past the arm all round. The arm is built +X from the
     // column's face; the collar is shared out among the arm's sides, +-Y (5 x 4 x 24 each) and +-Z
     // (5 x 16 x 4), each cut at the arm's face. The -Z share would be built downward, its nozzle
-    // under the part: no tilting table turns a part upside down (the default machine's tilts
-    // 100 degrees at most, and the program refused it). It stays in the arm, with a note.
+    // under the part, past the machine's reach (max_tilt: the default machine's table tilts 100
+    // degrees at most, and the program refused it). It stays in the arm, with a note. A machine
+    // reaching 180 degrees builds it too.
     const auto part =
         from_occt(fuse(fuse(occ_box(-15, -15, 0, 30, 30, 60), occ_box(15, -8, 32, 40, 16, 16)),
                        occ_box(49, -12, 28, 5, 24, 24)));
@@ -526,12 +527,54 @@ TEST(Decompose, NothingIsBuiltDownward) {
     }
     for (const auto& c : d.components) EXPECT_GT(c.build_direction.z(), -0.5);
     ASSERT_EQ(d.notes.size(), 1u);
-    EXPECT_NE(d.notes[0].find("(along 0,0,-1): it would be built downward (-Z), its nozzle under "
-                              "the part, which no tilting table turns to; its material stays in "
-                              "component 1"),
+    EXPECT_NE(d.notes[0].find("(along 0,0,-1): it would be built 180 degrees from the build "
+                              "plate's +Z, past max_tilt (100 degrees): the machine cannot reach "
+                              "it; its material stays in component 1"),
               std::string::npos)
         << d.notes[0];
     expect_invariants(d, part);
+    mas::DecomposeParams anywhere;
+    anywhere.max_tilt_deg = 180.0;
+    const auto all = mas::decompose(part, axis, anywhere);
+    ASSERT_EQ(all.components.size(), 6u);
+    EXPECT_TRUE(all.notes.empty());
+    EXPECT_TRUE(all.components[5].build_direction.isApprox(-Vector3d::UnitZ(), 1e-12));
+    EXPECT_NEAR(all.components[5].volume_mm3, 320.0, 1e-6 * 320.0);
+    EXPECT_NEAR(all.components[1].volume_mm3, 10240.0, 1e-6 * 10240.0);
+}
+
+TEST(Decompose, AFaceWhoseChildWouldTiltPastTheReachIsNoSplittingFace) {
+    // A 20 x 20 column, [-10,10] x [-10,10] at its foot, whose +X face leans out 5 degrees as it
+    // rises (x = 10 + z tan 5 to z = 60), and a 10 x 10 arm [10,50] x [-5,5] x [30,40] out of it.
+    // That face meets the three criteria, and the arm cut at its plane is built along its normal,
+    // (cos 5, 0, -sin 5): 95 degrees from +Z. Within a max_tilt of 100 (the default) that is the
+    // cut, the arm past it 10 x (400 - 350 tan 5) mm^3; a machine reaching 94 degrees could not
+    // build it, and the section plane, normal to +X, cuts instead.
+    const double draft = 5.0 * M_PI / 180.0;
+    const TopoDS_Shape column = occ_prism(
+        {{-10, -10, 0}, {10, -10, 0}, {10.0 + 60.0 * std::tan(draft), -10, 60}, {-10, -10, 60}},
+        {0, 20, 0});
+    const auto part = from_occt(fuse(column, occ_box(10, -5, 30, 40, 10, 10)));
+    const auto axis = axis_of(part, 0.0);  // the derived step
+    for (const double reach : {100.0, 94.0}) {
+        SCOPED_TRACE("max_tilt " + std::to_string(reach));
+        mas::DecomposeParams p;
+        p.max_tilt_deg = reach;
+        const auto d = mas::decompose(part, axis, p);
+        ASSERT_EQ(d.components.size(), 2u);
+        const auto& arm = d.components[1];
+        if (reach > 95.0) {
+            EXPECT_EQ(arm.rule, Rule::PlanarFace);
+            EXPECT_TRUE(
+                arm.build_direction.isApprox(Vector3d(std::cos(draft), 0, -std::sin(draft)), 1e-9));
+            const double volume = 10.0 * (400.0 - 350.0 * std::tan(draft));
+            EXPECT_NEAR(arm.volume_mm3, volume, 1e-6 * volume);
+        } else {
+            EXPECT_EQ(arm.rule, Rule::SectionPlane);
+            EXPECT_TRUE(arm.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+        }
+        expect_invariants(d, part);
+    }
 }
 
 TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlaneAtTheCylindersExtent) {

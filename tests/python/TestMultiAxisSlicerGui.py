@@ -1615,7 +1615,7 @@ class TestParameterPanel(unittest.TestCase):
                  "nodes"),
                 (sections, ["Normal", "Step", "Deflection"], "sections"),
                 (self.decomposition, ["Step", "Deflection", "FaceAngle", "ConcaveAngle",
-                                      "SectionPlaneFallback", "MinComponentHeight"],
+                                      "SectionPlaneFallback", "MinComponentHeight", "MaxTilt"],
                  "2 sub-component(s)")):
             panel = self.open(obj)
             self.assertEqual([f.prop for f in panel.fields], props)

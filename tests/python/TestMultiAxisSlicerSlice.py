@@ -948,6 +948,26 @@ class TestLayersObject(SliceObjectTest):
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
         doc.save()  # saving restored proxies works too
 
+    def test_max_tilt_is_a_property_and_old_documents_keep_the_tilt_unbounded(self):
+        decomposition, layers, toolpath = self.make()
+        self.assertEqual((decomposition.MaxTilt.Value, layers.MaxTilt.Value), (100.0, 100.0))
+        self.assertEqual(layers.getGroupOfProperty("MaxTilt"), "Layers")
+        layers.MaxTilt = 80.0
+        self.doc.recompute()
+        self.assertFalse(layers.isValid())
+        self.assertIn("MaxTilt must be in [90, 180] degrees, got 80", layers.getStatusString())
+        layers.MaxTilt = 100.0
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        # Saved before the property: computed with the tilt unbounded, and kept so on reopening.
+        decomposition.removeProperty("MaxTilt")
+        layers.removeProperty("MaxTilt")
+        name = decomposition.Name
+        layers = self.reopened("MasSliceOldTilt.FCStd")
+        decomposition = self.doc.getObject(name)
+        self.assertEqual((decomposition.MaxTilt.Value, layers.MaxTilt.Value), (180.0, 180.0))
+        self.assertEqual(layers.LayerCount, 11)
+
     def test_undo_removes_both_objects(self):
         self.doc.UndoMode = 1
         decomposition = mas.make_decomposition(self.part)

@@ -93,10 +93,12 @@
 //   section plane at the column's extent cuts the arm alone.
 // - A branch marching -Z (material hanging from what is above it: a hook's tip, a blade's half
 //   under a disk, a collar's share under a horizontal arm) is not cut: its child would be built
-//   downward, its nozzle under the part, which no tilting table turns to (the default machine's
-//   tilts 100 degrees at most, Gcode.hpp, and the program refused such a component). Its material
-//   stays in the father, built with the father's layers (overhanging where it hangs), with a
-//   note. Its own sub-branches are cut from the father as any other's.
+//   downward, its nozzle under the part, past the machine's reach (max_tilt_deg; the default
+//   machine's table tilts 100 degrees at most, Gcode.hpp, and the program refused such a
+//   component). Its material stays in the father, built with the father's layers (overhanging
+//   where it hangs), with a note. Its own sub-branches are cut from the father as any other's.
+//   Nor is a planar face whose normal tilts past max_tilt_deg a splitting face (a drafted face
+//   10 degrees off X builds its child 100 degrees from +Z).
 // - Later siblings in the same father whose own choice is the same plane (posts on a plate) are
 //   cut by the same split: the components are those of one split per sibling, for one Boolean.
 // - No planar face meets the criteria (a round boss on a round body), or its split was refused:
@@ -156,6 +158,12 @@ struct DecomposeParams {
     // step; a thinner piece stays in its father. Slicing sets its min_layer here, so that no
     // component is too thin for a layer.
     double min_component_height_mm = 0.0;
+    // The most a child's build direction may tilt from the build plate's +Z, degrees, in
+    // [90, 180]: the machine's reach (LayerParams::max_tilt_deg; slicing sets its own here). A
+    // branch marching further (straight down, -Z, below 180) is not cut, and a planar face whose
+    // normal tilts further is no splitting face (the section plane, normal to the branch's
+    // direction, is tried instead).
+    double max_tilt_deg = 100.0;
 };
 
 struct Component {

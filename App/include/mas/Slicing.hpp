@@ -30,8 +30,10 @@
 //   this layer (below, with min_layer's allowance).
 //   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then
 //   delta -= delta / 4, from max_layer down to min_layer. Turns under eps_angle / 10 (centroid
-//   noise) are ignored. The paper prefers a thinner tilted layer to a thick parallel one: that is
-//   what lets the layers follow a bend.
+//   noise) are ignored. Every D tilting more than max_tilt_deg from the build plate's +Z (the
+//   machine's reach) is turned back towards +Z onto it, in the plane of D and Z: where the guide
+//   turns further (a return bend's far leg), the layers stop at the reach. The paper prefers a
+//   thinner tilted layer to a thick parallel one: that is what lets the layers follow a bend.
 // - Where no direction between D_upper and D_lower meets both at any delta (a tilt the thickness
 //   bounds forbid, an overhang of the part's own such as the ceiling of a horizontal hole), the
 //   layer keeps D_lower: the thickest parallel layer that meets both, else, of those that meet
@@ -165,10 +167,11 @@ struct Layer {
 };
 
 // Slices one component. Throws mas::Error: InvalidArgument for bad params, a null mesh, a base
-// plane with no material above it or a component thinner than min_layer_mm along its build
-// direction; OpenMesh for a mesh that is not a closed surface; GeometryFailure when strict and a
-// layer misses the volumetric bound; whatever `progress` throws (see Progress.hpp: checked between
-// candidate planes; after each layer, the material sliced so far over the mesh's volume).
+// plane with no material above it, a component thinner than min_layer_mm along its build
+// direction or built further than max_tilt_deg from +Z; OpenMesh for a mesh that is not a closed
+// surface; GeometryFailure when strict and a layer misses the volumetric bound; whatever `progress`
+// throws (see Progress.hpp: checked between candidate planes; after each layer, the material sliced
+// so far over the mesh's volume).
 std::vector<Layer> slice_component(const ComponentSlicingInput& input, const LayerParams& params,
                                    const Progress& progress = {});
 

@@ -252,8 +252,8 @@ private:
         const double limit = params_.max_tilt_deg * kPi / 180.0;
         if (std::atan2(Vector2d(d.x(), d.y()).norm(), d.z()) <= limit) return d;
         Vector3d side(d.x(), d.y(), 0.0);
-        if (side.norm() < 1e-9) side = Vector3d(fallback.x(), fallback.y(), 0.0);
-        if (side.norm() < 1e-9) side = Vector3d::UnitX();
+        if (side.norm() < 1e-6) side = Vector3d(fallback.x(), fallback.y(), 0.0);
+        if (side.norm() < 1e-6) side = Vector3d::UnitX();
         return std::cos(limit) * Vector3d::UnitZ() + std::sin(limit) * side.normalized();
     }
 
@@ -431,7 +431,8 @@ std::vector<Layer> ComponentSlicer::run() {
                 format_number(base.normal.y() + 0.0) + ", " + format_number(base.normal.z() + 0.0) +
                 "), " + format_number(angle_deg(base.normal, Vector3d::UnitZ())) +
                 " degrees from the build plate's normal, past max_tilt (" +
-                format_number(params_.max_tilt_deg) + " degrees): the machine cannot reach it");
+                format_number(params_.max_tilt_deg) +
+                " degrees): the machine cannot reach it (decompose with the same max_tilt)");
     std::vector<Layer> layers;
     double material = 0.0;  // of the layers so far
     Vector3d d_lower = base.normal;
@@ -478,8 +479,8 @@ std::vector<Layer> ComponentSlicer::run() {
             Vector3d d = guide_.direction(along);
             // A guide doubling back, or turning by less than a tenth of eps_angle (centroid
             // noise): keep the lower direction.
-            if (d.dot(d_lower) <= 0.0 || angle_deg(d, d_lower) < 0.1 * eps_angle) d = d_lower;
             d = within_reach(d, d_lower);
+            if (d.dot(d_lower) <= 0.0 || angle_deg(d, d_lower) < 0.1 * eps_angle) d = d_lower;
             for (;;) {
                 progress_.check();
                 ++tries;

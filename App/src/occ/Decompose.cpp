@@ -483,6 +483,15 @@ void check_params(const DecomposeParams& p) {
     if (!(p.min_component_height_mm >= 0.0 && std::isfinite(p.min_component_height_mm)))
         throw Error(ErrorCode::InvalidArgument,
                     "decompose: minimum component height must be finite and not negative");
+    if (!(p.max_tilt_deg >= 90.0 && p.max_tilt_deg <= 180.0))
+        throw Error(ErrorCode::InvalidArgument,
+                    "decompose: max_tilt must be in [90, 180] degrees, got " +
+                        format_number(p.max_tilt_deg));
+}
+
+// How far `d` tilts from the build plate's normal (+Z), degrees.
+double tilt_deg(const Vector3d& d) {
+    return std::atan2(Eigen::Vector2d(d.x(), d.y()).norm(), d.z()) * 180.0 / kPi;
 }
 
 struct Work {
@@ -588,6 +597,10 @@ public:
                 PlanarFace pf;
                 if (!planar(TopoDS::Face(x.Current()), pf)) continue;
                 if (std::abs(pf.normal.dot(D)) < cos_face_) continue;  // (1)
+                // The child would be built along the face's normal: within the machine's reach.
+                if (tilt_deg(pf.normal.dot(D) > 0.0 ? pf.normal : Vector3d(-pf.normal)) >
+                    params_.max_tilt_deg + 1e-9)
+                    continue;
                 double lo, hi;
                 projection_range(pf.face, D, lo, hi);
                 const auto in_span = [&](double v, double from, double to) {
@@ -800,6 +813,12 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             return false;
         };
 
+        // A child built along b's direction would tilt past the machine's reach (straight down,
+        // -Z, at the default): b is not cut, its material stays in its father.
+        const auto beyond_reach = [&](std::size_t b) {
+            return tilt_deg(axis.branches[b].direction) > params.max_tilt_deg + 1e-9;
+        };
+
         const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
             const Vector3d& d = axis.branches[b].direction;
             std::ostringstream line;
@@ -851,11 +870,12 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 continue;
             }
             holder[b] = father;
-            if (axis.branches[b].direction.z() < -0.5) {
-                note(b,
-                     "it would be built downward (-Z), its nozzle under the part, which no "
-                     "tilting table turns to",
-                     father);
+            if (beyond_reach(b)) {
+                std::ostringstream why;
+                why << "it would be built " << tilt_deg(axis.branches[b].direction)
+                    << " degrees from the build plate's +Z, past max_tilt (" << params.max_tilt_deg
+                    << " degrees): the machine cannot reach it";
+                note(b, why.str(), father);
                 continue;
             }
             const TopoDS_Shape fs = work[std::size_t(father)].solid;
@@ -880,7 +900,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             std::vector<double> most{allowance(b, p)};
             for (std::size_t c = b + 1; c < nb; ++c) {
                 at.check();  // each sibling classifies a point in the father and scans its faces
-                if (holder[c] >= 0 || !splits(c) || rejoins(c)) continue;
+                if (holder[c] >= 0 || !splits(c) || rejoins(c) || beyond_reach(c)) continue;
                 const int cp = axis.branches[c].parent;
                 if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch
                 if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end()) continue;

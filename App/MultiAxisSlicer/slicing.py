@@ -264,8 +264,10 @@ class SliceResult:
     layers_over_volume_difference, worst_unsupported_area_mm2, worst_unsupported_layer,
     deposit_length_mm, travel_length_mm, centre_line_passes, unfilled_features, colliding_layers,
     component_switches, leaned_layers, filled_holes, filled_volume_mm3), ``filled_holes`` (``FilledHole`` list:
-    the holes deposited solid, to drill), ``notes`` (one string per hole that qualified for
-    filling and stayed open, saying why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
+    the holes deposited solid, to drill), ``notes`` (when ``slice()`` decomposed the part, the
+    decomposition's notes first, each "decomposition: ...", saying which branches got no
+    component of their own and why; then one string per hole that qualified for filling and
+    stayed open, saying why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
     ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
     """
 
@@ -529,7 +531,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     elif axis is None:
         axis = centroidal_axis(solid, **axis_params)
     slicing_progress = progress
-    if components is None:
+    decomposed_here = components is None
+    if decomposed_here:
         # No component thinner than a layer, nor built past the reach: the slicer could not lay
         # one on it.
         components = decompose(solid, axis=axis, min_component_height=p["min_layer"],
@@ -540,4 +543,6 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
                           "base_origin": tuple(c._base_origin), "branch": c.branch}
                          for c in components]
     data = eng.slice_part(solid, axis._engine_dict(), engine_components, p, slicing_progress)
+    if decomposed_here:  # why a branch got no component of its own, as the CLI says it
+        data["notes"] = ["decomposition: " + n for n in components.notes] + list(data["notes"])
     return SliceResult(data, p, axis, components, kind)

@@ -522,6 +522,25 @@ class TestSliceSequence(SliceTest):
         self.assertEqual([c.layer for c in mas.slice(l_block(), nozzle_body_diameter=100.0,
                                                      nozzle_max_lean=7.0).collisions], arm)
 
+    def test_the_notes_say_what_hangs_and_stays_in_its_father(self):
+        # A collar at an arm's end: its share under the arm would be built straight down, past
+        # max_tilt (100 degrees); it stays in the arm, and slice() says so when it decomposes.
+        part = Part.makeBox(30, 30, 60, V(-15, -15, 0)).fuse(Part.makeBox(40, 16, 16, V(15, -8, 32)))
+        part = part.fuse(Part.makeBox(5, 24, 24, V(49, -12, 28))).removeSplitter()
+        result = mas.slice(part, step=2.0)
+        self.assertEqual(len(result.notes), 1, result.notes)
+        self.assertTrue(result.notes[0].startswith("decomposition: branch "), result.notes[0])
+        self.assertIn("past max_tilt (100 degrees): the machine cannot reach it; its material "
+                      "stays in component 1", result.notes[0])
+        self.assertEqual(["decomposition: " + n for n in result.decomposition.notes], result.notes)
+        self.assertEqual(len(result.decomposition), 5)
+        # A machine reaching 180 degrees builds it: six components, nothing to say.
+        unbounded = mas.slice(part, step=2.0, max_tilt=180.0)
+        self.assertEqual((len(unbounded.decomposition), unbounded.notes), (6, []))
+        # With the decomposition given, its notes stay on it.
+        again = mas.slice(part, components=result.decomposition)
+        self.assertEqual(again.notes, [])
+
     def test_bad_nozzle_parameters_are_named(self):
         box = box_20_10_21()
         for error, text, kwargs in (

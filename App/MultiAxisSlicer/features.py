@@ -696,8 +696,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     automatic; used without ``axis``), ``min_component_height`` in mm (the least a sub-component
     reaches past its cut, besides one axis step), ``max_tilt`` in degrees (no sub-component is
     built further from +Z: the machine's reach, 90 to 180). A failing computation leaves the
-    object marked
-    invalid with the message, without components. The source is not changed.
+    object marked invalid with the message, without components. The source is not changed.
 
     In the GUI the objects get their view providers (one distinct colour per component)."""
     _check_source(source, "make_decomposition")
@@ -926,8 +925,7 @@ class LayersFeature(_EngineFeature):
     along its own build direction), the layer parameters (MinLayer, MaxLayer, MaxVolumeDifference,
     EpsAngle, OverhangAngle, MaxTilt, VolumeSamples, Strict, FillHoles), the path parameters
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
-    MeasureCoverage), the
-    nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
+    MeasureCoverage), the nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
     NozzleBodyLength, NozzleMargin, CheckPlate, NozzleMaxLean) and
     Deflection (mm chordal deflection for tessellating the components, 0 = automatic). Outputs:
     Shape (a compound of one sub-compound per layer, component by component in build order and

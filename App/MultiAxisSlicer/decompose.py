@@ -42,6 +42,14 @@ def _angle(value, name, upper):
     return angle
 
 
+def _max_tilt(value):
+    """The machine's reach, checked as the engine does (decomposing and slicing alike)."""
+    tilt = _number(value, "max_tilt", "degrees")
+    if not (90.0 <= tilt <= 180.0):  # also NaN
+        raise ValueError("max_tilt must be in [90, 180] degrees, got {}".format(tilt))
+    return tilt
+
+
 class Component:
     """One sub-component: a closed solid built from its base face along its build direction.
 
@@ -245,9 +253,7 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     if not (0.0 <= min_height_mm < float("inf")):
         raise ValueError("min_component_height must be a finite, non-negative number of "
                          "millimetres, got {}".format(min_height_mm))
-    max_tilt_deg = _number(max_tilt, "max_tilt", "degrees")
-    if not (90.0 <= max_tilt_deg <= 180.0):
-        raise ValueError("max_tilt must be in [90, 180] degrees, got {}".format(max_tilt_deg))
+    max_tilt_deg = _max_tilt(max_tilt)
     _progress.check(progress)
     if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
         raise TypeError("section_plane_fallback must be True or False, got {!r}".format(

@@ -28,8 +28,7 @@ import Part
 
 import MultiAxisSlicer as mas
 from MultiAxisSlicer import progress as _progress
-from MultiAxisSlicer.axis import _number
-from MultiAxisSlicer.decompose import _angle
+from MultiAxisSlicer.decompose import _angle, _max_tilt
 from MultiAxisSlicer.gcode import _machine_params
 
 # Bad input the user can fix (a face instead of a solid, an open mesh, Step = 0, no Source), or a
@@ -712,9 +711,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     deflection = mas._length(deflection, "deflection", allow_zero=True)
     min_component_height = mas._length(min_component_height, "min_component_height",
                                        allow_zero=True)
-    max_tilt = _number(max_tilt, "max_tilt", "degrees")
-    if not (90.0 <= max_tilt <= 180.0):
-        raise ValueError("max_tilt must be in [90, 180] degrees, got {}".format(max_tilt))
+    max_tilt = _max_tilt(max_tilt)
     obj = doc.addObject("Part::FeaturePython", name)
     DecompositionFeature(obj)
     obj.Source = source

@@ -21,7 +21,7 @@ import numbers
 from . import _as_list, _as_vector, _model, _require_engine
 from . import progress as _progress
 from .axis import CentroidalAxis, _number, centroidal_axis
-from .decompose import Decomposition, decompose
+from .decompose import Decomposition, _max_tilt, decompose
 
 __all__ = ["Layer", "ToolPath", "FilledHole", "SliceResult", "slice", "SLICE_DEFAULTS"]
 
@@ -360,7 +360,7 @@ def _slice_params(values):
                  "nozzle_standoff", "nozzle_tip_diameter", "nozzle_body_diameter",
                  "nozzle_body_length", "nozzle_margin"):
         p[name] = _number(values[name], name, "millimetres")
-    for name in ("eps_angle", "overhang_angle", "max_tilt", "raster_angle", "raster_angle_step",
+    for name in ("eps_angle", "overhang_angle", "raster_angle", "raster_angle_step",
                  "nozzle_cone_angle", "nozzle_max_lean"):
         p[name] = _number(values[name], name, "degrees")
     p["max_volume_difference"] = _number(values["max_volume_difference"],
@@ -391,8 +391,7 @@ def _slice_params(values):
     if not (p["max_volume_difference"] > 0.0):
         raise ValueError("max_volume_difference must be a positive fraction, got {}".format(
             p["max_volume_difference"]))
-    if not (90.0 <= p["max_tilt"] <= 180.0):
-        raise ValueError("max_tilt must be in [90, 180] degrees, got {}".format(p["max_tilt"]))
+    p["max_tilt"] = _max_tilt(values["max_tilt"])
     _check_nozzle(p)
     return p
 

@@ -103,6 +103,9 @@ struct LayerParams {
 double base_offset(const LayerParams& params);
 // tan(overhang_angle): how far a layer may overhang the one below per mm of its thickness.
 double overhang_allowance(const LayerParams& params);
+// How far `direction` tilts from the build plate's normal (+Z), degrees in [0, 180]: what
+// max_tilt_deg bounds (a layer's normal here, a child's build direction in Decompose.hpp).
+double tilt_from_plate_deg(const Eigen::Vector3d& direction);
 
 // The largest max_layer_mm accepted (a kilometre): thicker, adding it to a plane's offset would
 // lose the part's height to rounding.

@@ -57,8 +57,7 @@ Eigen::Vector2d nearest_boundary_point(const Region2& region, const Eigen::Vecto
 // than a section's chords fall short of a round column) is a shoulder its column's layers lay.
 double laid_overhang_mm() {
     const LayerParams defaults;
-    return defaults.max_layer_mm *
-           std::tan(defaults.overhang_angle_deg * 3.14159265358979323846 / 180.0);
+    return defaults.max_layer_mm * overhang_allowance(defaults);
 }
 
 }  // namespace

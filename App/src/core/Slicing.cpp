@@ -249,8 +249,8 @@ private:
     // `d`, turned towards the build plate's normal (+Z) onto max_tilt where it tilts further
     // (in the plane of d and Z; straight down, in the plane of `fallback` and Z).
     Vector3d within_reach(const Vector3d& d, const Vector3d& fallback) const {
+        if (tilt_from_plate_deg(d) <= params_.max_tilt_deg) return d;
         const double limit = params_.max_tilt_deg * kPi / 180.0;
-        if (std::atan2(Vector2d(d.x(), d.y()).norm(), d.z()) <= limit) return d;
         Vector3d side(d.x(), d.y(), 0.0);
         if (side.norm() < 1e-6) side = Vector3d(fallback.x(), fallback.y(), 0.0);
         if (side.norm() < 1e-6) side = Vector3d::UnitX();
@@ -425,11 +425,12 @@ std::vector<Layer> ComponentSlicer::run() {
                 " tall along its build direction, less than min_layer (" +
                 mm(params_.min_layer_mm) + "): no layer fits; lower min_layer");
 
-    if (angle_deg(base.normal, Vector3d::UnitZ()) > params_.max_tilt_deg + 1e-9)
+    const double base_tilt = tilt_from_plate_deg(base.normal);
+    if (base_tilt > params_.max_tilt_deg + 1e-9)
         invalid("component " + std::to_string(input_.component) + " is built along (" +
                 format_number(base.normal.x() + 0.0) + ", " +  // + 0: -0 prints as 0
                 format_number(base.normal.y() + 0.0) + ", " + format_number(base.normal.z() + 0.0) +
-                "), " + format_number(angle_deg(base.normal, Vector3d::UnitZ())) +
+                "), " + format_number(base_tilt) +
                 " degrees from the build plate's normal, past max_tilt (" +
                 format_number(params_.max_tilt_deg) +
                 " degrees): the machine cannot reach it (decompose with the same max_tilt)");
@@ -636,6 +637,10 @@ double base_offset(const LayerParams& params) {
 
 double overhang_allowance(const LayerParams& params) {
     return std::tan(params.overhang_angle_deg * kPi / 180.0);
+}
+
+double tilt_from_plate_deg(const Eigen::Vector3d& direction) {
+    return std::atan2(Vector2d(direction.x(), direction.y()).norm(), direction.z()) * 180.0 / kPi;
 }
 
 void validate(const LayerParams& p, const TriangleMesh& mesh, const std::string& what) {

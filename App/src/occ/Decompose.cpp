@@ -38,6 +38,7 @@
 #include "ShapeImpl.hpp"
 #include "mas/Mesh.hpp"
 #include "mas/Section.hpp"
+#include "mas/Slicing.hpp"
 
 namespace mas {
 
@@ -489,11 +490,6 @@ void check_params(const DecomposeParams& p) {
                         format_number(p.max_tilt_deg));
 }
 
-// How far `d` tilts from the build plate's normal (+Z), degrees.
-double tilt_deg(const Vector3d& d) {
-    return std::atan2(Eigen::Vector2d(d.x(), d.y()).norm(), d.z()) * 180.0 / kPi;
-}
-
 struct Work {
     TopoDS_Shape solid;
     Component c;
@@ -598,7 +594,7 @@ public:
                 if (!planar(TopoDS::Face(x.Current()), pf)) continue;
                 if (std::abs(pf.normal.dot(D)) < cos_face_) continue;  // (1)
                 // The child would be built along the face's normal: within the machine's reach.
-                if (tilt_deg(pf.normal.dot(D) > 0.0 ? pf.normal : Vector3d(-pf.normal)) >
+                if (tilt_from_plate_deg(pf.normal.dot(D) > 0.0 ? pf.normal : Vector3d(-pf.normal)) >
                     params_.max_tilt_deg + 1e-9)
                     continue;
                 double lo, hi;
@@ -816,7 +812,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         // A child built along b's direction would tilt past the machine's reach (straight down,
         // -Z, at the default): b is not cut, its material stays in its father.
         const auto beyond_reach = [&](std::size_t b) {
-            return tilt_deg(axis.branches[b].direction) > params.max_tilt_deg + 1e-9;
+            return tilt_from_plate_deg(axis.branches[b].direction) > params.max_tilt_deg + 1e-9;
         };
 
         const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
@@ -872,7 +868,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             holder[b] = father;
             if (beyond_reach(b)) {
                 std::ostringstream why;
-                why << "it would be built " << tilt_deg(axis.branches[b].direction)
+                why << "it would be built " << tilt_from_plate_deg(axis.branches[b].direction)
                     << " degrees from the build plate's +Z, past max_tilt (" << params.max_tilt_deg
                     << " degrees): the machine cannot reach it";
                 note(b, why.str(), father);

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <gp_Trsf.hxx>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -567,6 +568,44 @@ TEST(Slicing, ACollarAndAShelfWiderThanTheirColumnsAreBuiltSidewaysFromItsFaces)
         EXPECT_EQ(sides, (std::set<std::pair<int, int>>{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}));
         EXPECT_EQ(total_unsupported(s), 0.0);
         expect_invariants(s, params, c.name);
+    }
+}
+
+TEST(Slicing, AWebRoundTheColumnAnArmLeavesIsBuiltSidewaysFromTheColumnsOtherFaces) {
+    // A web [-14,60] x [-15,15] x [50,60] on a column [-10,10]^2 (a crank's web round its
+    // shaft): centred far out along +X, it turns there, and its shares past the column's other
+    // sides hang from the web's first layer, on its flat underside, as a ledge's do: 5 mm along
+    // +-Y, 4 along -X, more than a bump (the column's size / 8 = 2.5 mm) and more than the
+    // layers lay. Each turns too and is built sideways from the column's face, whether the
+    // column ends under the web or goes on past it. Left in the column's Z layers, as before,
+    // they overhung 219 mm^2.
+    const auto params = default_params();
+    for (const double top : {50.0, 80.0}) {
+        SCOPED_TRACE("column to z = " + std::to_string(top));
+        const auto s = slice(
+            from_occt(fuse(occ_box(-10, -10, 0, 20, 20, top), occ_box(-14, -15, 50, 74, 30, 10))),
+            0.0, params);
+        const auto& comps = s.decomposition.components;
+        ASSERT_EQ(comps.size(), 5u);
+        std::map<std::pair<int, int>, double> volumes;
+        for (std::size_t k = 1; k < 5; ++k) {
+            const auto& piece = comps[k];
+            const Vector3d D = piece.build_direction;
+            EXPECT_EQ(piece.parent, 0);
+            EXPECT_NEAR(std::abs(D.x()) + std::abs(D.y()), 1.0, 1e-12) << D.transpose();
+            EXPECT_NEAR(D.dot(piece.base_origin), 10.0, 1e-9);  // at the column's face
+            volumes[{int(std::lround(D.x())), int(std::lround(D.y()))}] = piece.volume_mm3;
+        }
+        // The arm and the -X piece corners and all, the +-Y pieces along the column.
+        const std::map<std::pair<int, int>, double> expected = {{{1, 0}, 50.0 * 30.0 * 10.0},
+                                                                {{-1, 0}, 4.0 * 30.0 * 10.0},
+                                                                {{0, 1}, 20.0 * 5.0 * 10.0},
+                                                                {{0, -1}, 20.0 * 5.0 * 10.0}};
+        ASSERT_EQ(volumes.size(), expected.size());
+        for (const auto& [side, volume] : expected)
+            EXPECT_NEAR(volumes[side], volume, 1e-6 * volume) << side.first << ", " << side.second;
+        EXPECT_EQ(total_unsupported(s), 0.0);
+        expect_invariants(s, params, "web");
     }
 }
 

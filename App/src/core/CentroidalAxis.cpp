@@ -1337,9 +1337,10 @@ private:
             // shoulders: turned, CGAL's armadillo grew 35 branches and took twice as long.)
             const bool around = !turn;
             // Wrapping round L on a flat underside (a shelf through a column, wider than it),
-            // its shares turn as a ledge's too: what reaches out of the bump past a side.
-            if (around && !ledge && derived_threshold_ && at_once() && !spans_a_gap(da, lower))
-                ledge = true;
+            // its shares turn as a ledge's too: what reaches out of the bump past a side. So do
+            // those of a far stick-out on a flat underside beside the turn's own: a crank's web
+            // round the shaft it leaves hangs past the shaft's other sides from its first layer.
+            if (!ledge && derived_threshold_ && at_once() && !spans_a_gap(da, lower)) ledge = true;
             // A march in a new direction starts at Eq. 4's T, the lower boundary's extent along
             // it, and reaches only what lies beyond. The stick-out is shared out among the four
             // sides of the lower section, the turn's own first: each side's share beyond its T

@@ -843,6 +843,52 @@ TEST(Slicing, AStaircasesOverhangingTiersAreBuiltSidewaysWithEveryLayerSupported
     expect_invariants(s, params, "staircase");
 }
 
+TEST(Slicing, ATierOverhangingTheTierAMarchTurnedUpOntoTurnsAgain) {
+    // Five tiers 40 x 40 x 20, each set 15 mm further along +X than the one below. The root's
+    // march turns +X at the first tier's face (x = 40) under the overhanging tiers' ends; that
+    // march meets the third tier's underside above it and turns +Z at the second tier's top
+    // (z = 60). The +Z march's first section is the third tier, which hangs 15 mm past the
+    // second tier's end (x = 70) from its first layer: Eq. 2 against the part's section a plane
+    // below it, where that hangs at once on a flat underside (a ledge), turns +X once more. The
+    // decomposition cuts it at the section plane past x = 70, and every layer rests on one
+    // below. Read as a whole, as the paper's first sections are, the third tier's first layer
+    // overhung 520 mm^2.
+    TopoDS_Shape part = occ_box(0, 0, 0, 40, 40, 20);
+    for (int i = 1; i < 5; ++i) part = fuse(part, occ_box(15.0 * i, 0, 20.0 * i, 40, 40, 20));
+    const mas::Shape shape = from_occt(part);
+    const auto params = default_params();
+    const auto s = slice(shape, 0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 4u);
+    const std::vector<Vector3d> directions = {Vector3d::UnitZ(), Vector3d::UnitX(),
+                                              Vector3d::UnitZ(), Vector3d::UnitX()};
+    for (std::size_t c = 0; c < 4; ++c) {
+        SCOPED_TRACE("component " + std::to_string(c));
+        EXPECT_TRUE(comps[c].build_direction.isApprox(directions[c], 1e-12));
+        EXPECT_EQ(comps[c].parent, int(c) - 1);
+    }
+    // 800 mm^3 per mm of a tier along X. The root: the first tier, and the next two up to
+    // x = 40; then the second and third tiers past it.
+    EXPECT_NEAR(comps[0].volume_mm3, 800.0 * (40.0 + 25.0 + 10.0), 1e-6);
+    EXPECT_NEAR(comps[1].base_origin.x(), 40.0, 1e-9);
+    EXPECT_NEAR(comps[1].volume_mm3, 800.0 * (15.0 + 30.0), 1e-6);
+    EXPECT_NEAR(comps[2].base_origin.z(), 60.0, 1e-9);
+    // The cut past the second tier's end, by no more than the decomposition's clearance for a
+    // T measured on a mesh (Decompose.hpp).
+    const double clearance = s.axis.params.eps_mm +
+                             mas::effective_deflection(shape, mas::TessellationParams{}) +
+                             0.01 * s.axis.params.step_mm;
+    const double cut = comps[3].base_origin.x();
+    EXPECT_GE(cut, 70.0);
+    EXPECT_LE(cut, 70.0 + clearance);
+    EXPECT_EQ(comps[3].rule, mas::Component::SplitRule::SectionPlane);
+    // The third and fourth tiers on either side of it.
+    EXPECT_NEAR(comps[2].volume_mm3, 800.0 * ((cut - 45.0) + (cut - 60.0)), 1e-6);
+    EXPECT_NEAR(comps[3].volume_mm3, 800.0 * ((85.0 - cut) + (100.0 - cut)), 1e-6);
+    EXPECT_EQ(total_unsupported(s), 0.0);
+    expect_invariants(s, params, "tiers");
+}
+
 TEST(Slicing, ATeesArmsOverGussetsAreCutAtTheColumnsFacesWithEveryLayerSupported) {
     // Arms over 23 mm webs, 25 mm long and 23 (the webs' tips flush with the arms' ends). Above
     // z = 60 the section holds both arms; under it the column and the two webs. Each arm's

@@ -71,7 +71,19 @@
 //   tracks merge, a stick-out off the far one of two piers is marched from that pier's face. What
 //   lies beyond no side, or too close, stays with the march that found it: an inward lip over a
 //   tube's bore (centred in the bore, inside the ring's external contour; no sideways march
-//   could reach it), a C-shaped section's mouth filled.
+//   could reach it), a C-shaped section's mouth filled. Where the stick-out appears at once on a
+//   flat underside and spans no gap, the shares beside a far turn's own are judged as a
+//   ledge's: each turns if it reaches out of the bump. (A web round the column an arm leaves,
+//   a crank's round its shaft, hangs past the column's other sides from its first layer: its
+//   4 and 5 mm margins, within the threshold, stayed in the column and overhung 219 mm^2.)
+// - A turned branch's first section is judged by Eq. 2 too, against the part's whole section
+//   one plane behind it (whichever march swept that), but only where what it holds past that
+//   appears at once: a ledge, as above, which turns and is shared out as one. A tier of an
+//   inverted staircase overhanging the tier a sideways march turned up onto hangs 15 mm from
+//   its first layer (520 mm^2 overhung, read whole as the paper's first sections are). A first
+//   section cut across a sloping side grows past the one behind it as the march's sections do,
+//   and is left to the march (read on every first section, CGAL's fandisk grew two branches
+//   marching down from a sideways one, and its slabs 9 % less volume).
 // - Beside a fin, T is where the stick-out begins. A web or gusset under an arm whose tip comes
 //   within a step of the arm's end (flush, the common bracket) puts T at the tip: the march past
 //   it found nothing, and the arm stayed in its father's layers, its underside beside the web

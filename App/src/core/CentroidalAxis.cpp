@@ -978,6 +978,42 @@ private:
         std::vector<Eigen::AlignedBox2d> near_;
     };
 
+    // Eq. 2 on a turned branch's first section too, against the part's whole section one plane
+    // behind it (what lies there, whichever march swept it): what hangs past that (a stair's
+    // tier overhanging the tier the march turned up onto) is a stick-out like any other, and
+    // may turn again. Returns what the branch keeps (all of `region`, unless something turns);
+    // the branches leaving it are queued in `children`, with branch `b` their father.
+    Regions2 first_pieces(const Region2& region, Grid& g, std::size_t k0, int b, int father_node,
+                          std::vector<Task>& children) {
+        cut_chunk(g, k0 - 1);
+        const Eigen::AlignedBox2d box = bounds(region);
+        Regions2 below;
+        for (std::size_t i = 0; i < g.regions[k0 - 1].size(); ++i)
+            if (g.bounds2[k0 - 1][i].intersects(box)) below.push_back(g.regions[k0 - 1][i]);
+        Regions2 out = difference({region}, below);
+        if (area(out) <= p_.min_region_area_mm2 || below.empty()) return {region};
+        // Only what hangs at once (on a flat underside, as a ledge): a first section cut across
+        // a sloping side grows past the one behind it as the march's next sections would, and
+        // Eq. 2 there is left to the march. (Read on every first section, CGAL's fandisk grew
+        // two branches marching down from a sideways one, and its slabs 9 % less volume.)
+        if (std::none_of(out.begin(), out.end(), [&](const Region2& da) {
+                return area(da) > p_.min_region_area_mm2 && appears_at_once(da, g, k0);
+            }))
+            return {region};
+        const std::size_t queued = children.size(), released = releases_.size();
+        const Track track{b, father_node, {region}, box, outline_of(region)};
+        Regions2 pieces = keep_larger(classify(region, out, below, track, g, k0, children),
+                                      p_.min_region_area_mm2);
+        // Nothing left to march on, or a fin's arm to give back from a node of another
+        // direction's march: the section stays whole, as the paper's first section is.
+        if (pieces.empty() || releases_.size() != released) {
+            children.resize(queued);
+            releases_.resize(released);
+            return {region};
+        }
+        return pieces;
+    }
+
     void search(const Task& task, int depth) {
         if (depth > 1000)
             throw Error(ErrorCode::GeometryFailure, "centroidal axis: branches nested too deep");
@@ -1020,11 +1056,23 @@ private:
             }
         }
         std::vector<Track> tracks;
+        std::vector<Task> hanging;  // branches leaving the first section
         for (const auto& region : first) {
             const int b = new_branch(n, task.parent_branch, task.father_node);
-            const int node = add_node(region, n, offset_of(k0), task.slab_start, slab_end(k0), b);
-            tracks.push_back({b, node, {region}, bounds(region), outline_of(region)});
+            Regions2 pieces{region};
+            if (!task.constraints.empty() && k0 > 0)
+                pieces = first_pieces(region, g, k0, b, task.father_node, hanging);
+            for (std::size_t i = 0; i < pieces.size(); ++i) {
+                const int piece_branch =
+                    i == 0 ? b : new_branch(n, task.parent_branch, task.father_node);
+                const int node = add_node(pieces[i], n, offset_of(k0), task.slab_start,
+                                          slab_end(k0), piece_branch);
+                tracks.push_back(
+                    {piece_branch, node, {}, bounds(pieces[i]), outline_of(pieces[i])});
+                tracks.back().region.push_back(std::move(pieces[i]));
+            }
         }
+        for (const auto& child : hanging) search(child, depth + 1);
 
         Lookahead ahead(*this, g, k0 + 1);
         for (std::size_t k = k0 + 1; k < count && !tracks.empty(); ++k) {

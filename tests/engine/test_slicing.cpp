@@ -716,6 +716,36 @@ TEST(Slicing, TheArmsOfAForkAreCutWhereTheyPartAndTheTrunkStaysUpright) {
     expect_invariants(s, params, "a fork");
 }
 
+// Centroid noise: the guide of a 10 x 10 stem 10 tall under a 30 x 30 slab, 2 thick, steps 3
+// microns sideways at the slab (a centroid off by the sections' faceting), 0.17 degrees over the
+// 1 mm to its next node: more than a tenth of eps_angle. Across the stem the plane would move
+// 0.02 mm, under a tenth of min_layer: the layers keep their direction, and the slab's first
+// layer lies on its underside. (Tilted, the plane crossed the underside, and the slab's first
+// layer was laid on nothing in two layers.)
+TEST(Slicing, AGuideSteppingAsideByMicronsIsNoise) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const mas::TriangleMesh mesh = mas::tessellate(
+        from_occt(fuse(occ_box(0, 0, 0, 10, 10, 10), occ_box(-10, -10, 10, 30, 30, 2))), tp);
+    mas::ComponentSlicingInput input;
+    input.component = 0;
+    input.mesh = &mesh;
+    input.base = mas::make_plane(Vector3d(5, 5, 0), Vector3d::UnitZ());
+    input.guide = {{5, 5, 0}, {5, 5, 9.5}, {5.003, 5, 10.5}, {5.003, 5, 11.5}};
+    const mas::LayerParams params = default_params().layers;
+    const std::vector<mas::Layer> layers = mas::slice_component(input, params);
+    int unsupported = 0;
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        EXPECT_TRUE(layers[i].plane.normal.isApprox(Vector3d::UnitZ(), 1e-12))
+            << layers[i].plane.normal.transpose();
+        if (layers[i].unsupported_area_mm2 == 0.0) continue;
+        ++unsupported;
+        EXPECT_NEAR(layers[i].lower.signed_distance(Vector3d(0, 0, 10)), 0.0, 1e-9);
+    }
+    EXPECT_EQ(unsupported, 1);
+}
+
 // A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
 // reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
 // where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.

@@ -29,8 +29,9 @@
 //   Eq. 9 holds and the next layer's footprint (the component's section on U) is supported by
 //   this layer (below, with min_layer's allowance).
 //   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then
-//   delta -= delta / 4, from max_layer down to min_layer. Turns under eps_angle / 10 (centroid
-//   noise) are ignored. Every D tilting more than max_tilt_deg from the build plate's +Z (the
+//   delta -= delta / 4, from max_layer down to min_layer. Turns under eps_angle / 10, or moving
+//   the plane less than a tenth of min_layer across the layer below (centroid noise), are
+//   ignored. Every D tilting more than max_tilt_deg from the build plate's +Z (the
 //   machine's reach) is turned back towards +Z onto it, in the plane of D and Z: where the guide
 //   turns further (a return bend's far leg), the layers stop at the reach. The paper prefers a
 //   thinner tilted layer to a thick parallel one: that is what lets the layers follow a bend.

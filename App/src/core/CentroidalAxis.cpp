@@ -1462,7 +1462,17 @@ private:
             }
         }
         if (far.empty()) return {upper};
-        return difference({upper}, far);
+        // What is left holds hairlines of the Booleans along the shares' split lines (a micron
+        // wide, a share's side long): no region, though over the least area. Kept, two of them
+        // split a crank's march where its web's shares left its round shaft, and the
+        // decomposition cut the shaft across the web.
+        Regions2 kept = difference({upper}, far);
+        kept.erase(std::remove_if(kept.begin(), kept.end(),
+                                  [&](const Region2& r) {
+                                      return 2.0 * area(r) < p_.step_mm / 100.0 * outline_of(r);
+                                  }),
+                   kept.end());
+        return kept;
     }
 
     // FindConnectingLink: a turned branch's first node links to the nearest node of its father

@@ -305,8 +305,8 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     // A component waits for its father (the layers of it it may rest on: plan_build_sequence),
     // and for all of the earlier components its first layer rests on:
     // those whose mesh reaching its base leaves less of it unsupported than its father alone
-    // (a tee's branch and the pipe above the junction); not for a neighbour that merely comes
-    // near (two posts side by side, which may then go up together).
+    // (an arm and the pieces shared out beside it, past its column); not for a neighbour that
+    // merely comes near (two posts side by side, which may then go up together).
     const BaseReach reaches_base(components, params.layers);
     const Progress waits = progress.span(0.9, 0.92, "finding what each component rests on");
     for (std::size_t k = 0; k < out.build_order.size(); ++k) {

@@ -634,6 +634,41 @@ TEST(Slicing, AWebRoundTheColumnAnArmLeavesIsBuiltSidewaysFromTheColumnsOtherFac
     }
 }
 
+TEST(Slicing, AHeadsMarginsThinnerThanAStepPastItsRodAreBuiltSidewaysToo) {
+    // A head [-18,18] x [-15,15] x [55,100] on a rod [-12,12]^2 (a clevis's): a ledge all round,
+    // shared out from the rod's faces, 6 mm past them along X and 3 along Y. The axis turns each
+    // share by how far it reaches out of the rod's section; along its own direction a +-Y piece
+    // is 3 mm thick, less than the derived step (5.5 mm), under which a sliver a march finds on
+    // its last plane stays in its father. A branch that turned need only hold a thickest layer
+    // (2 mm): each piece is built sideways from the rod's face. (Kept in the rod, their
+    // undersides overhung 48 mm^2.)
+    const auto params = default_params();
+    const auto s =
+        slice(from_occt(fuse(occ_box(-12, -12, 0, 24, 24, 55), occ_box(-18, -15, 55, 36, 30, 45))),
+              0.0, params);
+    ASSERT_GT(s.axis.params.step_mm, 3.0);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 5u);
+    EXPECT_NEAR(comps[0].volume_mm3, 24.0 * 24.0 * 100.0, 1e-6);
+    std::map<std::pair<int, int>, double> volumes;
+    for (std::size_t k = 1; k < 5; ++k) {
+        const Vector3d D = comps[k].build_direction;
+        EXPECT_EQ(comps[k].parent, 0);
+        EXPECT_NEAR(D.dot(comps[k].base_origin), 12.0, 1e-9);  // at the rod's face
+        volumes[{int(std::lround(D.x())), int(std::lround(D.y()))}] = comps[k].volume_mm3;
+    }
+    // The +-X pieces corners and all.
+    const std::map<std::pair<int, int>, double> expected = {{{1, 0}, 6.0 * 30.0 * 45.0},
+                                                            {{-1, 0}, 6.0 * 30.0 * 45.0},
+                                                            {{0, 1}, 3.0 * 24.0 * 45.0},
+                                                            {{0, -1}, 3.0 * 24.0 * 45.0}};
+    ASSERT_EQ(volumes.size(), expected.size());
+    for (const auto& [side, volume] : expected)
+        EXPECT_NEAR(volumes[side], volume, 1e-6 * volume) << side.first << ", " << side.second;
+    EXPECT_EQ(total_unsupported(s), 0.0);
+    expect_invariants(s, params, "head");
+}
+
 TEST(Slicing, ArmsOverGussetsOnARoundColumnAreCutPastTheColumn) {
     // A round column (radius 12, on a disc of radius 30, 10 thick) to z = 100 carrying an arm
     // [-65,65] x [-11,11] x [88,100], on gussets 5 thick under it from the column's axis' side to

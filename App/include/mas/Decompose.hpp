@@ -68,7 +68,10 @@
 //   - reaches less than one axis step (or min_component_height) past the plane: a sliver cut off
 //     the father's end where its march found the split on its last plane (a hub's crown between
 //     two blades), thinner than the axis can resolve and than a layer; the father builds it on
-//     top;
+//     top. A branch that turned from its father's direction was found by how far its share
+//     reaches out of the section it leaves, however thin along its own direction: its piece
+//     need only reach a thickest layer at slicing's defaults (2 mm), or the step if that is
+//     less (a clevis head's 3 mm margins past a rod, at a 5.5 mm step);
 //   - rests on the build plate, when the father is the root: material on the plate is built up
 //     from it (a nozzle building it sideways would meet the plate), and the root must keep its
 //     footing (a ring standing on its rim, whose axis comes round back to the plate);
@@ -155,8 +158,9 @@ struct DecomposeParams {
     // the split at the one that does is refused.
     bool section_plane_fallback = true;
     // A child must reach at least this far past its splitting plane, mm, and at least one axis
-    // step; a thinner piece stays in its father. Slicing sets its min_layer here, so that no
-    // component is too thin for a layer.
+    // step (a turned branch: a thickest layer at slicing's defaults, or the step if less); a
+    // thinner piece stays in its father. Slicing sets its min_layer here, so that no component
+    // is too thin for a layer.
     double min_component_height_mm = 0.0;
     // The most a child's build direction may tilt from the build plate's +Z, degrees, in
     // [90, 180]: the machine's reach (LayerParams::max_tilt_deg; slicing sets its own here). A

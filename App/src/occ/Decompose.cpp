@@ -920,7 +920,18 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             footing.tol = std::max(plane_tol, axis.params.eps_mm);
             std::vector<Child> children;
             TopoDS_Shape father_new;
-            const double min_height = std::max(axis.params.step_mm, params.min_component_height_mm);
+            // A sliver the father's march found on its last plane (a branch born of a split, going
+            // on as its father went) must reach a step past the plane, which the axis cannot
+            // resolve below. A branch that turned was found by how far its share reaches out of
+            // the section it leaves, however thin it is along its own direction (a 3 mm margin of
+            // a clevis's head past the rod under it): it need only hold a thickest layer.
+            const int father_branch = axis.branches[b].parent;
+            const bool turned = father_branch >= 0 &&
+                                axis.branches[b].direction.dot(
+                                    axis.branches[std::size_t(father_branch)].direction) < 0.5;
+            const double least = turned ? std::min(axis.params.step_mm, LayerParams{}.max_layer_mm)
+                                        : axis.params.step_mm;
+            const double min_height = std::max(least, params.min_component_height_mm);
             SplitOutcome outcome = split_by_plane(fs, footing, p.point, p.normal, inner, min_height,
                                                   most, mesh_deflection, at, children, father_new);
             // A child's father must stay as tall as a child must be: later splits of a ladder's

@@ -494,8 +494,8 @@ TEST(CentroidalAxis, ACranksWebSharedOutRoundARoundShaftLeavesTheShaftsMarchWhol
     // A round shaft (radius 10) to z = 50 with a web z = 40..50 round it: a boss of radius 14,
     // tapering to radius 9 round (50, 0), with a pin (radius 6) on its end. The web turns +X at
     // its first plane and is shared out round the shaft beside that (a ledge's shares: -X, +Y,
-    // -Y). What is left of the plane is the shaft's section less four lenses, and hairlines of the
-    // Booleans along the shares' split lines, a micron wide and 50 mm long.
+    // -Y). What is left of the plane is the boss's disc within the shaft's square [-10,10]^2, and
+    // hairlines of the Booleans along the shares' split lines, a micron wide and 50 mm long.
     const double k = 0.1, c = std::sqrt(1.0 - k * k);  // the tangents' normal: (k, +-c)
     TopoDS_Shape part = fuse(mas::test::occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10, 50),
                              mas::test::occ_cylinder({0, 0, 40}, Vector3d::UnitZ(), 14, 10));

@@ -612,6 +612,7 @@ TEST(Slicing, AWebRoundTheColumnAnArmLeavesIsBuiltSidewaysFromTheColumnsOtherFac
         int arm = -1;
         for (std::size_t c = 1; c < comps.size(); ++c)
             if (comps[c].build_direction.isApprox(Vector3d::UnitX(), 1e-12)) arm = int(c);
+        ASSERT_GE(arm, 0);
         mas::TessellationParams tp;
         tp.deflection_mm = kDeflection;
         const mas::TriangleMesh root = mas::tessellate(comps[0].solid, tp);
@@ -936,12 +937,12 @@ TEST(Slicing, AStaircasesOverhangingTiersAreBuiltSidewaysWithEveryLayerSupported
 TEST(Slicing, ATierOverhangingTheTierAMarchTurnedUpOntoTurnsAgain) {
     // Five tiers 40 x 40 x 20, each set 15 mm further along +X than the one below. The root's
     // march turns +X at the first tier's face (x = 40) under the overhanging tiers' ends; that
-    // march meets the third tier's underside above it and turns +Z at the second tier's top
-    // (z = 60). The +Z march's first section is the third tier, which hangs 15 mm past the
-    // second tier's end (x = 70) from its first layer: Eq. 2 against the part's section a plane
+    // march meets the fourth tier's underside above it and turns +Z at the third tier's top
+    // (z = 60). The +Z march's first section is the fourth tier, which hangs 15 mm past the
+    // third tier's end (x = 70) from its first layer: Eq. 2 against the part's section a plane
     // below it, where that hangs at once on a flat underside (a ledge), turns +X once more. The
     // decomposition cuts it at the section plane past x = 70, and every layer rests on one
-    // below. Read as a whole, as the paper's first sections are, the third tier's first layer
+    // below. Read as a whole, as the paper's first sections are, the fourth tier's first layer
     // overhung 520 mm^2.
     TopoDS_Shape part = occ_box(0, 0, 0, 40, 40, 20);
     for (int i = 1; i < 5; ++i) part = fuse(part, occ_box(15.0 * i, 0, 20.0 * i, 40, 40, 20));
@@ -972,7 +973,7 @@ TEST(Slicing, ATierOverhangingTheTierAMarchTurnedUpOntoTurnsAgain) {
     EXPECT_GE(cut, 70.0);
     EXPECT_LE(cut, 70.0 + clearance);
     EXPECT_EQ(comps[3].rule, mas::Component::SplitRule::SectionPlane);
-    // The third and fourth tiers on either side of it.
+    // The fourth and fifth tiers on either side of it.
     EXPECT_NEAR(comps[2].volume_mm3, 800.0 * ((cut - 45.0) + (cut - 60.0)), 1e-6);
     EXPECT_NEAR(comps[3].volume_mm3, 800.0 * ((85.0 - cut) + (100.0 - cut)), 1e-6);
     EXPECT_EQ(total_unsupported(s), 0.0);

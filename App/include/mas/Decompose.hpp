@@ -70,8 +70,9 @@
 //     two blades), thinner than the axis can resolve and than a layer; the father builds it on
 //     top. A branch that turned from its father's direction was found by how far its share
 //     reaches out of the section it leaves, however thin along its own direction: its piece
-//     need only reach a thickest layer at slicing's defaults (2 mm), or the step if that is
-//     less (a clevis head's 3 mm margins past a rod, at a 5.5 mm step);
+//     need only reach a thickest layer at slicing's defaults (2 mm, whatever max_layer is
+//     given), or the step if that is less (a clevis head's 3 mm margins past a rod, at a 5.5 mm
+//     step), when every branch cut at that plane turned;
 //   - rests on the build plate, when the father is the root: material on the plate is built up
 //     from it (a nozzle building it sideways would meet the plate), and the root must keep its
 //     footing (a ring standing on its rim, whose axis comes round back to the plate);

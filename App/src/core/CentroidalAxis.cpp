@@ -996,11 +996,16 @@ private:
         // a sloping side grows past the one behind it as the march's next sections would, and
         // Eq. 2 there is left to the march. (Read on every first section, CGAL's fandisk grew
         // two branches marching down from a sideways one, and its slabs 9 % less volume.)
-        if (std::none_of(out.begin(), out.end(), [&](const Region2& da) {
-                return area(da) > p_.min_region_area_mm2 && appears_at_once(da, g, k0);
-            }))
-            return {region};
+        out.erase(std::remove_if(out.begin(), out.end(),
+                                 [&](const Region2& da) {
+                                     return area(da) <= p_.min_region_area_mm2 ||
+                                            !appears_at_once(da, g, k0);
+                                 }),
+                  out.end());
+        if (out.empty()) return {region};
         const std::size_t queued = children.size(), released = releases_.size();
+        // The children hang from b (the piece kept first, the largest; connect_turned_branches
+        // ties each to b's nearest node, since father_node is the father march's).
         const Track track{b, father_node, {region}, box, outline_of(region)};
         Regions2 pieces = keep_larger(classify(region, out, below, track, g, k0, children),
                                       p_.min_region_area_mm2);
@@ -1060,7 +1065,7 @@ private:
         for (const auto& region : first) {
             const int b = new_branch(n, task.parent_branch, task.father_node);
             Regions2 pieces{region};
-            if (!task.constraints.empty() && k0 > 0)
+            if (task.parent_branch >= 0 && k0 > 0)  // a turned branch, not a root in mid-air
                 pieces = first_pieces(region, g, k0, b, task.father_node, hanging);
             for (std::size_t i = 0; i < pieces.size(); ++i) {
                 const int piece_branch =

@@ -375,7 +375,8 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 std::ostringstream why;
                 why << "its piece reaches only " << height << " mm past the splitting plane, "
                     << "less than " << min_height
-                    << " mm (the axis step or the least component height): too thin to build "
+                    << " mm (the axis step, or a thickest layer for a branch that turned, or the "
+                       "least component height): too thin to build "
                        "on its own";
                 children[k].kept_because = why.str();
                 children[k].too_short = true;
@@ -924,21 +925,29 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             // on as its father went) must reach a step past the plane, which the axis cannot
             // resolve below. A branch that turned was found by how far its share reaches out of
             // the section it leaves, however thin it is along its own direction (a 3 mm margin of
-            // a clevis's head past the rod under it): it need only hold a thickest layer.
-            const int father_branch = axis.branches[b].parent;
-            const bool turned = father_branch >= 0 &&
-                                axis.branches[b].direction.dot(
-                                    axis.branches[std::size_t(father_branch)].direction) < 0.5;
-            const double least = turned ? std::min(axis.params.step_mm, LayerParams{}.max_layer_mm)
-                                        : axis.params.step_mm;
-            const double min_height = std::max(least, params.min_component_height_mm);
+            // a clevis's head past the rod under it): it need only hold a thickest layer at
+            // slicing's defaults. So when every branch cut at this plane turned.
+            const auto turned = [&](std::size_t c) {
+                const int father_branch = axis.branches[c].parent;
+                return father_branch >= 0 &&
+                       axis.branches[c].direction.dot(
+                           axis.branches[std::size_t(father_branch)].direction) < 0.5;
+            };
+            const double step_height =
+                std::max(axis.params.step_mm, params.min_component_height_mm);
+            const double min_height =
+                std::all_of(group.begin(), group.end(), turned)
+                    ? std::max(std::min(axis.params.step_mm, LayerParams{}.max_layer_mm),
+                               params.min_component_height_mm)
+                    : step_height;
             SplitOutcome outcome = split_by_plane(fs, footing, p.point, p.normal, inner, min_height,
                                                   most, mesh_deflection, at, children, father_new);
             // A child's father must stay as tall as a child must be: later splits of a ladder's
-            // rung (a closed loop) carved it down to a 0.07 mm slab no layer fits.
+            // rung (a closed loop) carved it down to a 0.07 mm slab no layer fits. (A step, as
+            // for a branch born of a split: the father is what a march went on through.)
             bool thinned = false;
             if (outcome == SplitOutcome::Split && fc.has_base_face &&
-                height_along(father_new, fc.base_origin, fc.build_direction) < min_height) {
+                height_along(father_new, fc.base_origin, fc.build_direction) < step_height) {
                 thinned = true;
                 outcome = SplitOutcome::Invalid;
             }

@@ -635,6 +635,39 @@ TEST(Slicing, AWebRoundTheColumnAnArmLeavesIsBuiltSidewaysFromTheColumnsOtherFac
     }
 }
 
+TEST(Slicing, APlatesMarginsWithinABumpOfAWideColumnAreBuiltSidewaysBesideItsArm) {
+    // A plate [-31,31]^2 x [50,60] on a column [-25,25]^2, with an arm 40 wide reaching to
+    // x = 100 (a bracket's): the stick-out turns +X, and its shares past the column's other
+    // faces reach 6 mm, within a bump of the 50 mm column (6.25 mm). Hanging from the plate's
+    // first layer, each reaches out of what the layers lay (2 mm) and turns too. (Kept in the
+    // column, as a share that is no ledge's would be, the +-Y margins overhung 400 mm^2 in the
+    // column's layers.)
+    const auto params = default_params();
+    TopoDS_Shape part = fuse(occ_box(-25, -25, 0, 50, 50, 60), occ_box(-31, -31, 50, 62, 62, 10));
+    part = fuse(part, occ_box(0, -20, 50, 100, 40, 10));
+    const auto s = slice(from_occt(part), 0.0, params);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 5u);
+    std::map<std::pair<int, int>, double> volumes;
+    for (std::size_t k = 1; k < 5; ++k) {
+        const Vector3d D = comps[k].build_direction;
+        EXPECT_EQ(comps[k].parent, 0);
+        EXPECT_NEAR(D.dot(comps[k].base_origin), 25.0, 1e-9);  // at the column's face
+        volumes[{int(std::lround(D.x())), int(std::lround(D.y()))}] = comps[k].volume_mm3;
+    }
+    // The arm with the plate's +X margin, the -X margin corners and all, the +-Y margins.
+    const std::map<std::pair<int, int>, double> expected = {
+        {{1, 0}, (6.0 * 62.0 + 69.0 * 40.0) * 10.0},
+        {{-1, 0}, 6.0 * 62.0 * 10.0},
+        {{0, 1}, 6.0 * 50.0 * 10.0},
+        {{0, -1}, 6.0 * 50.0 * 10.0}};
+    ASSERT_EQ(volumes.size(), expected.size());
+    for (const auto& [side, volume] : expected)
+        EXPECT_NEAR(volumes[side], volume, 1e-6 * volume) << side.first << ", " << side.second;
+    EXPECT_EQ(total_unsupported(s), 0.0);
+    expect_invariants(s, params, "plate");
+}
+
 TEST(Slicing, AHeadsMarginsThinnerThanAStepPastItsRodAreBuiltSidewaysToo) {
     // A head [-18,18] x [-15,15] x [55,100] on a rod [-12,12]^2 (a clevis's): a ledge all round,
     // shared out from the rod's faces, 6 mm past them along X and 3 along Y. The axis turns each

@@ -53,7 +53,8 @@
 //   the march at the derived step, 2.84 mm. It turns the closest of the four sides to G_k - E, or
 //   to G_k - C when G_k lies inside L (an arm's underside wrapping round the web under it), C the
 //   centroid of the lower region nearest G_k, and is shared out among the sides as below, each
-//   share turning if it reaches out of the bump. Centred on C itself (a collar or a head all
+//   share turning if it reaches out of the bump or of what layers at slicing's defaults lay
+//   (below), whichever is less. Centred on C itself (a collar or a head all
 //   round a rod), it goes no one way: reaching out past L by more than two bumps, or by more than
 //   layers at slicing's defaults lay (2 mm thick at 45 degrees: 2 mm, give or take a twentieth for
 //   the chords of a round column), it is shared out round L as a wide stick-out is, from the side
@@ -73,9 +74,11 @@
 //   tube's bore (centred in the bore, inside the ring's external contour; no sideways march
 //   could reach it), a C-shaped section's mouth filled. Where the stick-out appears at once on a
 //   flat underside and spans no gap, the shares beside a far turn's own are judged as a
-//   ledge's: each turns if it reaches out of the bump. (A web round the column an arm leaves,
-//   a crank's round its shaft, hangs past the column's other sides from its first layer: its
-//   4 and 5 mm margins, within the threshold, stayed in the column and overhung 219 mm^2.)
+//   ledge's: each turns if it reaches out of the bump or of what layers at slicing's defaults
+//   lay (2 mm), whichever is less, as a ledge's share does. (A web round the column an arm
+//   leaves, a crank's round its shaft, hangs past the column's other sides from its first
+//   layer: its 4 and 5 mm margins, within the threshold, stayed in the column and overhung
+//   219 mm^2; a bracket plate's 6 mm margins on a 50 mm column, within its bump, 400 mm^2.)
 // - A turned branch's first section is judged by Eq. 2 too, against the part's whole section
 //   one plane behind it (whichever march swept that), but only where what it holds past that
 //   appears at once: a ledge, as above, which turns and is shared out as one. A tier of an

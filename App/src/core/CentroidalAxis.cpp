@@ -1436,9 +1436,11 @@ private:
                 double d_share = std::numeric_limits<double>::infinity();
                 for (const auto& l : lower)
                     d_share = std::min(d_share, distance_to_region(l, g_share));
-                // A ledge's or a fin's share turns wherever it reaches out of the bump (round
-                // its column, out of what the layers lay, if less); any other only when far.
-                const double out_of = around && ledge ? std::min(bump, laid_overhang_mm()) : bump;
+                // A ledge's or a fin's share turns wherever it reaches out of the bump (a ledge's,
+                // out of what the layers lay, if less: hanging from its first layer, a bracket
+                // plate's 6 mm margins past a 50 mm column beside its arm stayed in the column,
+                // within its 6.25 mm bump, and overhung 400 mm^2); any other only when far.
+                const double out_of = ledge ? std::min(bump, laid_overhang_mm()) : bump;
                 if (ledge || t_fin ? !reaches(share, out_of) : !is_far(share, d_share)) continue;
                 // Eq. 4: the new march starts just beyond the lower boundary's extent T.
                 Task child;

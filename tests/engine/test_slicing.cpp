@@ -116,6 +116,25 @@ double total_unsupported(const Sliced& s) {
     return total;
 }
 
+// A root and, cut off it at faces `face` mm out along +-X and +-Y, one piece per side built that
+// way, of the volumes `expected` (keyed by the side's (x, y)).
+void expect_side_pieces(const Sliced& s, double face,
+                        const std::map<std::pair<int, int>, double>& expected) {
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), expected.size() + 1);
+    std::map<std::pair<int, int>, double> volumes;
+    for (std::size_t k = 1; k < comps.size(); ++k) {
+        const Vector3d D = comps[k].build_direction;
+        EXPECT_EQ(comps[k].parent, 0);
+        EXPECT_NEAR(std::abs(D.x()) + std::abs(D.y()), 1.0, 1e-12) << D.transpose();
+        EXPECT_NEAR(D.dot(comps[k].base_origin), face, 1e-9);
+        volumes[{int(std::lround(D.x())), int(std::lround(D.y()))}] = comps[k].volume_mm3;
+    }
+    ASSERT_EQ(volumes.size(), expected.size());
+    for (const auto& [side, volume] : expected)
+        EXPECT_NEAR(volumes[side], volume, 1e-6 * volume) << side.first << ", " << side.second;
+}
+
 double angle_deg(const Vector3d& a, const Vector3d& b) {
     return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
 }
@@ -585,25 +604,13 @@ TEST(Slicing, AWebRoundTheColumnAnArmLeavesIsBuiltSidewaysFromTheColumnsOtherFac
         const auto s = slice(
             from_occt(fuse(occ_box(-10, -10, 0, 20, 20, top), occ_box(-14, -15, 50, 74, 30, 10))),
             0.0, params);
-        const auto& comps = s.decomposition.components;
-        ASSERT_EQ(comps.size(), 5u);
-        std::map<std::pair<int, int>, double> volumes;
-        for (std::size_t k = 1; k < 5; ++k) {
-            const auto& piece = comps[k];
-            const Vector3d D = piece.build_direction;
-            EXPECT_EQ(piece.parent, 0);
-            EXPECT_NEAR(std::abs(D.x()) + std::abs(D.y()), 1.0, 1e-12) << D.transpose();
-            EXPECT_NEAR(D.dot(piece.base_origin), 10.0, 1e-9);  // at the column's face
-            volumes[{int(std::lround(D.x())), int(std::lround(D.y()))}] = piece.volume_mm3;
-        }
         // The arm and the -X piece corners and all, the +-Y pieces along the column.
-        const std::map<std::pair<int, int>, double> expected = {{{1, 0}, 50.0 * 30.0 * 10.0},
-                                                                {{-1, 0}, 4.0 * 30.0 * 10.0},
-                                                                {{0, 1}, 20.0 * 5.0 * 10.0},
-                                                                {{0, -1}, 20.0 * 5.0 * 10.0}};
-        ASSERT_EQ(volumes.size(), expected.size());
-        for (const auto& [side, volume] : expected)
-            EXPECT_NEAR(volumes[side], volume, 1e-6 * volume) << side.first << ", " << side.second;
+        expect_side_pieces(s, 10.0,
+                           {{{1, 0}, 50.0 * 30.0 * 10.0},
+                            {{-1, 0}, 4.0 * 30.0 * 10.0},
+                            {{0, 1}, 20.0 * 5.0 * 10.0},
+                            {{0, -1}, 20.0 * 5.0 * 10.0}});
+        const auto& comps = s.decomposition.components;
         EXPECT_EQ(total_unsupported(s), 0.0);
         // The arm's first layer, 30 mm across, rests on the column's web (20 across) and on the
         // +-Y pieces: against its father alone, 5 mm each side of it stand on nothing (less what
@@ -646,24 +653,12 @@ TEST(Slicing, APlatesMarginsWithinABumpOfAWideColumnAreBuiltSidewaysBesideItsArm
     TopoDS_Shape part = fuse(occ_box(-25, -25, 0, 50, 50, 60), occ_box(-31, -31, 50, 62, 62, 10));
     part = fuse(part, occ_box(0, -20, 50, 100, 40, 10));
     const auto s = slice(from_occt(part), 0.0, params);
-    const auto& comps = s.decomposition.components;
-    ASSERT_EQ(comps.size(), 5u);
-    std::map<std::pair<int, int>, double> volumes;
-    for (std::size_t k = 1; k < 5; ++k) {
-        const Vector3d D = comps[k].build_direction;
-        EXPECT_EQ(comps[k].parent, 0);
-        EXPECT_NEAR(D.dot(comps[k].base_origin), 25.0, 1e-9);  // at the column's face
-        volumes[{int(std::lround(D.x())), int(std::lround(D.y()))}] = comps[k].volume_mm3;
-    }
     // The arm with the plate's +X margin, the -X margin corners and all, the +-Y margins.
-    const std::map<std::pair<int, int>, double> expected = {
-        {{1, 0}, (6.0 * 62.0 + 69.0 * 40.0) * 10.0},
-        {{-1, 0}, 6.0 * 62.0 * 10.0},
-        {{0, 1}, 6.0 * 50.0 * 10.0},
-        {{0, -1}, 6.0 * 50.0 * 10.0}};
-    ASSERT_EQ(volumes.size(), expected.size());
-    for (const auto& [side, volume] : expected)
-        EXPECT_NEAR(volumes[side], volume, 1e-6 * volume) << side.first << ", " << side.second;
+    expect_side_pieces(s, 25.0,
+                       {{{1, 0}, (6.0 * 62.0 + 69.0 * 40.0) * 10.0},
+                        {{-1, 0}, 6.0 * 62.0 * 10.0},
+                        {{0, 1}, 6.0 * 50.0 * 10.0},
+                        {{0, -1}, 6.0 * 50.0 * 10.0}});
     EXPECT_EQ(total_unsupported(s), 0.0);
     expect_invariants(s, params, "plate");
 }
@@ -681,24 +676,13 @@ TEST(Slicing, AHeadsMarginsThinnerThanAStepPastItsRodAreBuiltSidewaysToo) {
         slice(from_occt(fuse(occ_box(-12, -12, 0, 24, 24, 55), occ_box(-18, -15, 55, 36, 30, 45))),
               0.0, params);
     ASSERT_GT(s.axis.params.step_mm, 3.0);
-    const auto& comps = s.decomposition.components;
-    ASSERT_EQ(comps.size(), 5u);
-    EXPECT_NEAR(comps[0].volume_mm3, 24.0 * 24.0 * 100.0, 1e-6);
-    std::map<std::pair<int, int>, double> volumes;
-    for (std::size_t k = 1; k < 5; ++k) {
-        const Vector3d D = comps[k].build_direction;
-        EXPECT_EQ(comps[k].parent, 0);
-        EXPECT_NEAR(D.dot(comps[k].base_origin), 12.0, 1e-9);  // at the rod's face
-        volumes[{int(std::lround(D.x())), int(std::lround(D.y()))}] = comps[k].volume_mm3;
-    }
+    EXPECT_NEAR(s.decomposition.components[0].volume_mm3, 24.0 * 24.0 * 100.0, 1e-6);
     // The +-X pieces corners and all.
-    const std::map<std::pair<int, int>, double> expected = {{{1, 0}, 6.0 * 30.0 * 45.0},
-                                                            {{-1, 0}, 6.0 * 30.0 * 45.0},
-                                                            {{0, 1}, 3.0 * 24.0 * 45.0},
-                                                            {{0, -1}, 3.0 * 24.0 * 45.0}};
-    ASSERT_EQ(volumes.size(), expected.size());
-    for (const auto& [side, volume] : expected)
-        EXPECT_NEAR(volumes[side], volume, 1e-6 * volume) << side.first << ", " << side.second;
+    expect_side_pieces(s, 12.0,
+                       {{{1, 0}, 6.0 * 30.0 * 45.0},
+                        {{-1, 0}, 6.0 * 30.0 * 45.0},
+                        {{0, 1}, 3.0 * 24.0 * 45.0},
+                        {{0, -1}, 3.0 * 24.0 * 45.0}});
     EXPECT_EQ(total_unsupported(s), 0.0);
     expect_invariants(s, params, "head");
 }

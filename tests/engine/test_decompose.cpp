@@ -14,9 +14,12 @@
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
 #include <cmath>
 #include <gp_Trsf.hxx>
 #include <set>
@@ -177,6 +180,12 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
             BRepExtrema_DistShapeShape to_self(face, s);
             ASSERT_TRUE(to_self.IsDone());
             EXPECT_NEAR(to_self.Value(), 0.0, 1e-6);
+            // Nothing of it lies behind its base: every vertex is on the plane or in front.
+            for (TopExp_Explorer v(s, TopAbs_VERTEX); v.More(); v.Next()) {
+                const gp_Pnt q = BRep_Tool::Pnt(TopoDS::Vertex(v.Current()));
+                EXPECT_GE(c.build_direction.dot(Vector3d(q.X(), q.Y(), q.Z()) - c.base_origin),
+                          -1e-6);
+            }
         }
         // No two components overlap.
         for (std::size_t j = 0; j < i; ++j) {
@@ -196,6 +205,65 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
 }
 
 }  // namespace
+
+// An S bracket: a plate on the build plate, an upright at its +X end, a middle plate over both
+// reaching back to x = 0, an upright at its -X end, and a top plate from there to x = 45, past
+// the lower upright. The middle plate is cut off at the upright's face (x = 32) and built along
+// -X; the whole plane x = 32 also cuts off the top plate's tail, on the father's side but joined
+// only to the middle plate's piece. That tail goes with the piece, and the top plate's own split
+// (+X, at the upper upright's face) takes it on: every piece is built from its base.
+// (The upper upright `upper` tall, the top plate to x = `end`.)
+mas::Shape s_bracket(double upper = 30.0, double end = 45.0) {
+    TopoDS_Shape s = fuse(occ_box(0, 0, 0, 40, 25, 8), occ_box(32, 0, 8, 8, 25, 30));
+    s = fuse(s, occ_box(0, 0, 38, 40, 25, 8));
+    s = fuse(s, occ_box(0, 0, 46, 8, 25, upper));
+    return from_occt(fuse(s, occ_box(0, 0, 46 + upper, end, 25, 8)));
+}
+
+TEST(Decompose, ATailCutOffWithAChildGoesWithItToTheBranchItBelongsTo) {
+    const mas::Shape part = s_bracket();
+    const auto d = mas::decompose(part, axis_of(part, 2.0));
+    ASSERT_EQ(d.components.size(), 4u);
+    EXPECT_TRUE(d.notes.empty());
+    struct Want {
+        int parent;
+        Vector3d direction;
+        double base, volume;  // base: along the direction
+    };
+    const std::vector<Want> want = {
+        {-1, Vector3d::UnitZ(), 0.0, (40.0 * 8.0 + 8.0 * 30.0 + 8.0 * 8.0) * 25.0},
+        {0, -Vector3d::UnitX(), -32.0, 32.0 * 8.0 * 25.0},
+        {1, Vector3d::UnitZ(), 46.0, (8.0 * 30.0 + 8.0 * 8.0) * 25.0},
+        {2, Vector3d::UnitX(), 8.0, 37.0 * 8.0 * 25.0}};
+    for (std::size_t i = 0; i < want.size(); ++i) {
+        SCOPED_TRACE("component " + std::to_string(i));
+        const auto& c = d.components[i];
+        EXPECT_EQ(c.parent, want[i].parent);
+        EXPECT_TRUE(c.build_direction.isApprox(want[i].direction, 1e-12));
+        if (i > 0) EXPECT_NEAR(c.build_direction.dot(c.base_origin), want[i].base, 1e-9);
+        EXPECT_NEAR(c.volume_mm3, want[i].volume, 1e-6 * want[i].volume);
+    }
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, ATailNoLaterSplitTakesLeavesTheChildsSplitRefused) {
+    // An S bracket whose upper upright is 20 mm tall and whose top plate ends at x = 36, with
+    // every child 30 mm tall at least: the middle plate (32 mm past its plane) may be cut, the
+    // upper upright with the top plate (28 mm) and the top plate past the upright (28 mm) not.
+    // The tail would then stay in the middle plate's piece, behind its base; so the middle
+    // plate's split is refused as it was before tails were joined (its father would be left in
+    // pieces), and the part is one component.
+    const mas::Shape part = s_bracket(20.0, 36.0);
+    mas::DecomposeParams p;
+    p.min_component_height_mm = 30.0;
+    const auto d = mas::decompose(part, axis_of(part, 2.0), p);
+    ASSERT_EQ(d.components.size(), 1u);
+    bool in_pieces = false;
+    for (const auto& n : d.notes)
+        in_pieces = in_pieces || n.find("would leave its father in pieces") != std::string::npos;
+    EXPECT_TRUE(in_pieces);
+    expect_invariants(d, part);
+}
 
 TEST(Decompose, BoxIsOneRootComponent) {
     const auto part = mas::test::box(0, 0, 0, 10, 20, 30);

@@ -127,6 +127,14 @@
 //   b's first node's material point is taken that far along D too. The same piece selection
 //   follows. What lies between the father's surface and that plane (the lens of a round boss on a
 //   round body) stays in the father.
+// - The whole plane can cut off, on the father's side, material joined only to the child's
+//   piece: an S bracket's middle plate, cut off its lower upright's face, takes with it the top
+//   plate's tail past that face. Such a piece goes with the child, to be taken on by the later
+//   split of the branch it belongs to (the top plate's, along +X). Once every branch is handled,
+//   each such piece must lie in a component that builds it (in front of its base, or in the
+//   root); if one does not, the decomposition is done again without joining, and those splits
+//   are refused as leaving their father in pieces. (Refused, the S bracket's middle plate stayed
+//   in the root, its underside overhanging 750 mm^2.)
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
 //   the branch's material stays in its father, as it was (each split works on a copy: a failed

@@ -326,7 +326,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                             const std::vector<Vector3d>& inner, double min_height,
                             const std::vector<double>& max_volume, double mesh_deflection,
                             const Progress& progress, std::vector<Child>& children,
-                            TopoDS_Shape& father_out) {
+                            TopoDS_Shape& father_out, std::vector<Vector3d>* joined) {
     try {
         const Eigen::AlignedBox3d b = bounds_of(father);
         const double r = 2.0 * b.diagonal().norm() + 1.0;
@@ -359,6 +359,34 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
         };
         children.assign(inner.size(), Child{});
         const double tol = 1e-6 * (1.0 + b.diagonal().norm());
+        // The base face: the child's face on the plane, facing -n, that lies under the branch's
+        // first node; the largest one if none does. (A plane can cut a piece in several faces: a
+        // half ring standing on its rim has one at each end, and the branch starts from one of
+        // them.)
+        const auto find_base = [&](std::size_t k, Child& child) {
+            child.base = TopoDS_Face();
+            const Vector3d under = inner[k] - n * n.dot(inner[k] - point);
+            bool best_under = false;
+            double best_area = 0.0;
+            for (TopExp_Explorer x(child.solid, TopAbs_FACE); x.More(); x.Next()) {
+                PlanarFace pf;
+                if (!planar(TopoDS::Face(x.Current()), pf)) continue;
+                if (pf.normal.dot(-n) < 1.0 - 1e-9) continue;
+                if (std::abs(n.dot(pf.point - point)) > tol) continue;
+                GProp_GProps fp;
+                BRepGProp::SurfaceProperties(pf.face, fp);
+                const TopAbs_State st = BRepClass_FaceClassifier(pf.face, pnt(under), tol).State();
+                const bool is_under = st == TopAbs_IN || st == TopAbs_ON;
+                if (best_under && !is_under) continue;
+                if (best_under == is_under && fp.Mass() <= best_area) continue;
+                best_under = is_under;
+                best_area = fp.Mass();
+                child.base = pf.face;
+                child.base_origin = vec(fp.CentreOfMass());
+                child.base_normal = pf.normal;
+            }
+            return !child.base.IsNull();
+        };
         int found = 0;
         for (std::size_t k = 0; k < inner.size(); ++k) {
             std::size_t piece = pieces.size();
@@ -413,31 +441,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                     "its piece of the split is no valid solid (OCCT's check, or a closed mesh)";
                 continue;
             }
-            // The base face: the child's face on the plane, facing -n, that lies under the
-            // branch's first node; the largest one if none does. (A plane can cut a piece in
-            // several faces: a half ring standing on its rim has one at each end, and the branch
-            // starts from one of them.)
-            const Vector3d under = inner[k] - n * n.dot(inner[k] - point);
-            bool best_under = false;
-            double best_area = 0.0;
-            for (TopExp_Explorer x(child.solid, TopAbs_FACE); x.More(); x.Next()) {
-                PlanarFace pf;
-                if (!planar(TopoDS::Face(x.Current()), pf)) continue;
-                if (pf.normal.dot(-n) < 1.0 - 1e-9) continue;
-                if (std::abs(n.dot(pf.point - point)) > tol) continue;
-                GProp_GProps fp;
-                BRepGProp::SurfaceProperties(pf.face, fp);
-                const TopAbs_State st = BRepClass_FaceClassifier(pf.face, pnt(under), tol).State();
-                const bool is_under = st == TopAbs_IN || st == TopAbs_ON;
-                if (best_under && !is_under) continue;
-                if (best_under == is_under && fp.Mass() <= best_area) continue;
-                best_under = is_under;
-                best_area = fp.Mass();
-                child.base = pf.face;
-                child.base_origin = vec(fp.CentreOfMass());
-                child.base_normal = pf.normal;
-            }
-            if (child.base.IsNull()) continue;
+            if (!find_base(k, child)) continue;
             taken[piece] = true;
             children[k] = child;
             ++found;
@@ -462,8 +466,52 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             if (!fuse.IsDone() || fuse.HasErrors()) return SplitOutcome::Failed;
             father_new = fuse.Shape();
         }
-        const TopoDS_Shape unified = occ::unify(father_new);
-        if (solids_of(unified).size() != 1) return SplitOutcome::Apart;
+        TopoDS_Shape unified = occ::unify(father_new);
+        if (solids_of(unified).size() != 1) {
+            // The plane may cut off, on the father's side, material joined only to a child: an
+            // S bracket's top plate, whose tail past the plane hangs from the part of it the
+            // middle plate's child takes. Such a piece goes with that child (when asked), to be
+            // taken from it by the later split of the branch it belongs to; what stands on the
+            // father's footing stays the father.
+            if (!joined) return SplitOutcome::Apart;
+            TopoDS_Shape main;
+            std::vector<TopoDS_Shape> orphans;
+            for (const auto& s : solids_of(unified)) {
+                if (holds_footing(s, footing)) {
+                    if (!main.IsNull()) return SplitOutcome::Apart;
+                    main = s;
+                } else {
+                    orphans.push_back(s);
+                }
+            }
+            if (main.IsNull()) return SplitOutcome::Apart;
+            for (const auto& o : orphans) {
+                progress.check();
+                bool placed = false;
+                for (std::size_t k = 0; k < children.size() && !placed; ++k) {
+                    if (children[k].solid.IsNull()) continue;
+                    BRepAlgoAPI_Fuse join(children[k].solid, o);
+                    if (!join.IsDone() || join.HasErrors()) continue;
+                    const TopoDS_Shape whole = occ::unify(join.Shape());
+                    if (solids_of(whole).size() != 1) continue;  // not touching this child
+                    Child grown = children[k];
+                    if (!valid_solid(join.Shape(), grown.solid, mesh_deflection, progress, whole) ||
+                        !find_base(k, grown))
+                        return SplitOutcome::Apart;
+                    // Its centre, to find where it ends (a piece hollow there is not joined).
+                    GProp_GProps props;
+                    BRepGProp::VolumeProperties(o, props);
+                    const Vector3d centre = vec(props.CentreOfMass());
+                    if (!contains(o, centre)) return SplitOutcome::Apart;
+                    joined->push_back(centre);
+                    children[k] = grown;
+                    placed = true;
+                }
+                if (!placed) return SplitOutcome::Apart;
+            }
+            father_new = main;
+            unified = occ::unify(main);
+        }
         progress.check();
         if (!valid_solid(father_new, father_out, mesh_deflection, progress, unified))
             return SplitOutcome::Invalid;
@@ -721,298 +769,331 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     const Progress progress = caller.span(0.0, 1.0, "decomposing");
     check_params(params);
     const Shape checked = input.single_solid("decompose");
-    std::vector<Work> work;
-    std::vector<std::string> notes;  // branches that asked for a cut and got none
-    try {
-        // Work on a copy: OCCT's algorithms must never touch the caller's shape.
-        const TopoDS_Shape solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
-        const Eigen::AlignedBox3d box = bounds_of(solid);
-        check_axis_belongs(axis, box, occ::volume_of(solid), "decompose");
-        const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
-        // The part's default deflection: what slicing tessellates with unless told otherwise.
-        const double default_deflection = effective_deflection(checked, TessellationParams{});
-        // A part with C0 geometry, or with curves off their faces, which OCCT's Booleans do not
-        // promise to split soundly: every component must also mesh closed at the deflection
-        // slicing uses by default, the part's. (Checked on every part, meshing each piece would
-        // add a quarter to the time of slicing a flanged bend or a flat torus.)
-        const Progress checking = progress.span(0.0, 0.0, "checking edges against their faces");
-        const bool unsound =
-            has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, checking);
-        const double mesh_deflection = unsound ? default_deflection : 0.0;
+    // One pass over the branches. With `join_orphans`, a split's pieces cut off on the father's
+    // side but joined only to a child go with that child (split_by_plane), their centres in
+    // `joined`.
+    const auto pass = [&](bool join_orphans, std::vector<Work>& work,
+                          std::vector<std::string>& notes, std::vector<Vector3d>& joined) {
+        try {
+            // Work on a copy: OCCT's algorithms must never touch the caller's shape.
+            const TopoDS_Shape solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
+            const Eigen::AlignedBox3d box = bounds_of(solid);
+            check_axis_belongs(axis, box, occ::volume_of(solid), "decompose");
+            const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
+            // The part's default deflection: what slicing tessellates with unless told otherwise.
+            const double default_deflection = effective_deflection(checked, TessellationParams{});
+            // A part with C0 geometry, or with curves off their faces, which OCCT's Booleans do not
+            // promise to split soundly: every component must also mesh closed at the deflection
+            // slicing uses by default, the part's. (Checked on every part, meshing each piece would
+            // add a quarter to the time of slicing a flanged bend or a flat torus.)
+            const Progress checking = progress.span(0.0, 0.0, "checking edges against their faces");
+            const bool unsound =
+                has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, checking);
+            const double mesh_deflection = unsound ? default_deflection : 0.0;
 
-        Work root;
-        root.solid = solid;
-        root.c.branch = 0;
-        root.c.build_direction = axis.branches.front().direction.normalized();
-        root.c.base_normal = -root.c.build_direction;
-        root.c.base_origin = Vector3d(box.center().x(), box.center().y(), box.min().z());
-        work.push_back(root);
+            Work root;
+            root.solid = solid;
+            root.c.branch = 0;
+            root.c.build_direction = axis.branches.front().direction.normalized();
+            root.c.base_normal = -root.c.build_direction;
+            root.c.base_origin = Vector3d(box.center().x(), box.center().y(), box.min().z());
+            work.push_back(root);
 
-        // T was measured on a section of the mesh: on a curved face up to the tessellation's
-        // deflection inside the solid, and up to the step / 100 the axis simplifies loops by.
-        const double deflection =
-            axis.deflection_mm > 0.0 ? axis.deflection_mm : default_deflection;
-        const Decomposer decomposer(axis, params,
-                                    axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
-        const std::size_t nb = axis.branches.size();
-        // The most a branch's component may hold: four times what it and its sub-branches swept
-        // (a split plane short of where the march began adds the material between), plus two
-        // steps of its first section.
-        std::vector<double> max_volume(nb, 0.0);
-        for (const auto& node : axis.nodes)
-            if (node.branch >= 0 && std::size_t(node.branch) < nb)
-                max_volume[std::size_t(node.branch)] += node.area * node.thickness;
-        for (std::size_t b = nb; b-- > 1;)
-            if (axis.branches[b].parent >= 0)
-                max_volume[std::size_t(axis.branches[b].parent)] += max_volume[b];
-        for (std::size_t b = 0; b < nb; ++b)
-            max_volume[b] = 4.0 * max_volume[b] +
-                            2.0 * axis.params.step_mm *
-                                axis.nodes[std::size_t(axis.branches[b].nodes.front())].area;
-        // A split at a face behind where the branch's march began (Eq. 5's span widened over a
-        // gusset, Decompose.hpp) takes the material between as well: at most the branch's first
-        // section swept back from T to the face.
-        const auto allowance = [&](std::size_t b, const Plan& plan) {
-            const AxisBranch& br = axis.branches[b];
-            const AxisNode& first = axis.nodes[std::size_t(br.nodes.front())];
-            const double behind = first.slab_start - br.direction.normalized().dot(plan.point);
-            return max_volume[b] + first.area * std::max(0.0, behind);
-        };
-        // The component holding each branch's material; -1 until the branch is handled.
-        std::vector<int> holder(nb, -1);
-        const auto splits = [&](std::size_t b) {
-            const AxisBranch& br = axis.branches[b];
-            return br.parent >= 0 && br.first_link >= 0 && !br.nodes.empty();
-        };
-        // The father component of branch b: its parent branch's holder, or whichever component
-        // now holds b's first node (an earlier whole-plane split may have moved it), newest
-        // first; -1 for none.
-        const auto father_of = [&](std::size_t b) {
-            const int h = holder[std::size_t(axis.branches[b].parent)];
-            const Vector3d p =
-                axis.nodes[std::size_t(axis.branches[b].nodes.front())].material_point();
-            if (h >= 0 && contains(work[std::size_t(h)].solid, p)) return h;
-            for (int k = int(work.size()) - 1; k >= 0; --k)
-                if (contains(work[std::size_t(k)].solid, p)) return k;
-            return -1;
-        };
-
-        // Tracks that split around a hole and join again beyond it (the axis records the merge)
-        // are one feature with a hole in it, not sub-components: they stay in their father.
-        const auto rejoins = [&](std::size_t b) {
-            const AxisBranch& br = axis.branches[b];
-            if (br.parent < 0 ||
-                !br.direction.isApprox(axis.branches[std::size_t(br.parent)].direction))
-                return false;
-            if (br.merged_into >= 0) return true;
-            for (const auto& other : axis.branches)
-                if (other.merged_into == int(b)) return true;
-            return false;
-        };
-
-        // A child built along b's direction would tilt past the machine's reach (straight down,
-        // -Z, at the default): b is not cut, its material stays in its father.
-        const auto beyond_reach = [&](std::size_t b) {
-            return tilt_from_plate_deg(axis.branches[b].direction) > params.max_tilt_deg + 1e-9;
-        };
-
-        const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
-            const Vector3d& d = axis.branches[b].direction;
-            std::ostringstream line;
-            line << "branch " << b << " (along " << d.x() << "," << d.y() << "," << d.z()
-                 << "): " << why << "; its material stays in component " << kept_in;
-            notes.push_back(line.str());
-        };
-        // Branches whose split at a planar face was refused (its piece took the father's footing,
-        // reached other branches' material, or was no valid solid; not one too short, which a
-        // plane near the junction cannot lengthen): a face chosen nearest the father's own face
-        // over a gusset gives way to the face nearest the junction, and that to the section plane
-        // at Eq. 4's T; a section plane past the father's own section over a gusset gives way to
-        // the one at T. (The side face of one of two square arms meeting at a round column,
-        // chosen for the other, cuts through the column down to the plate: that arm stayed in
-        // the root, overhanging.) Per branch: 0, 1 or 2, as plan() takes it.
-        std::vector<int> attempt(nb, 0);
-        const auto retry = [&](std::size_t g, const Plan& p) {
-            if (attempt[g] >= 2) return false;
-            if (p.rule == Component::SplitRule::SectionPlane) {
-                if (!p.by_own_face) return false;
-                attempt[g] = 2;  // at T (no planar face was found the first time either)
-            } else if (p.by_own_face && attempt[g] == 0)
-                attempt[g] = 1;
-            else if (params.section_plane_fallback)
-                attempt[g] = 2;
-            else
-                return false;
-            holder[g] = -1;
-            return true;
-        };
-        for (std::size_t b = 0; b < nb; ++b) {
-            if (holder[b] >= 0) continue;  // cut with an earlier sibling
-            const Progress at = progress.span(
-                double(b) / double(nb), double(b + 1) / double(nb),
-                "splitting at branch " + std::to_string(b) + " of " + std::to_string(nb));
-            at(0.0);
-            if (!splits(b)) {
-                holder[b] = 0;
-                continue;
-            }
-            if (rejoins(b)) {
-                holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
-                continue;
-            }
-            const int father = father_of(b);
-            if (father < 0) {
-                holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
-                note(b, "its first node lies in no component", holder[b]);
-                continue;
-            }
-            holder[b] = father;
-            if (beyond_reach(b)) {
-                std::ostringstream why;
-                why << "it would be built " << tilt_from_plate_deg(axis.branches[b].direction)
-                    << " degrees from the build plate's +Z, past max_tilt (" << params.max_tilt_deg
-                    << " degrees): the machine cannot reach it";
-                note(b, why.str(), father);
-                continue;
-            }
-            const TopoDS_Shape fs = work[std::size_t(father)].solid;
-            TopTools_IndexedDataMapOfShapeListOfShape e2f;
-            TopExp::MapShapesAndAncestors(fs, TopAbs_EDGE, TopAbs_FACE, e2f);
-            Plan p;
-            if (!decomposer.plan(b, fs, e2f, p, attempt[b])) {
-                note(b,
-                     params.section_plane_fallback
-                         ? "no splitting plane could be placed"
-                         : "no planar face meets the three criteria and the section-plane "
-                           "fallback is off",
-                     father);
-                continue;
-            }
-
-            // Later siblings in the same father that choose the same plane are cut in the same
-            // split: one Boolean instead of one per sibling (a plate with many posts), with the
-            // components each would get from its own split of the reduced father.
-            std::vector<std::size_t> group{b};
-            std::vector<Vector3d> inner{p.inner};
-            std::vector<double> most{allowance(b, p)};
-            for (std::size_t c = b + 1; c < nb; ++c) {
-                at.check();  // each sibling classifies a point in the father and scans its faces
-                if (holder[c] >= 0 || !splits(c) || rejoins(c) || beyond_reach(c)) continue;
-                const int cp = axis.branches[c].parent;
-                if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch
-                if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end()) continue;
-                if (father_of(c) != father) continue;
-                Plan q;
-                if (!decomposer.plan(c, fs, e2f, q, attempt[c]) ||
-                    !Decomposer::same_plane(p, q, plane_tol))
-                    continue;
-                group.push_back(c);
-                inner.push_back(q.inner);
-                most.push_back(allowance(c, q));
-            }
-            at.check();
-
-            const Component& fc = work[std::size_t(father)].c;
-            Footing footing;
-            footing.root = !fc.has_base_face;
-            footing.plate_z = box.min().z();
-            if (fc.has_base_face) footing.base = TopoDS::Face(occ::occt(fc.base_face));
-            footing.normal = fc.base_normal;
-            footing.tol = std::max(plane_tol, axis.params.eps_mm);
-            std::vector<Child> children;
-            TopoDS_Shape father_new;
-            // A sliver the father's march found on its last plane (a branch born of a split, going
-            // on as its father went) must reach a step past the plane, which the axis cannot
-            // resolve below. A branch that turned was found by how far its share reaches out of
-            // the section it leaves, however thin it is along its own direction (a 3 mm margin of
-            // a clevis's head past the rod under it): it need only hold a thickest layer at
-            // slicing's defaults. So when every branch cut at this plane turned.
-            const auto turned = [&](std::size_t c) {
-                const int father_branch = axis.branches[c].parent;
-                return father_branch >= 0 &&
-                       axis.branches[c].direction.dot(
-                           axis.branches[std::size_t(father_branch)].direction) < 0.5;
+            // T was measured on a section of the mesh: on a curved face up to the tessellation's
+            // deflection inside the solid, and up to the step / 100 the axis simplifies loops by.
+            const double deflection =
+                axis.deflection_mm > 0.0 ? axis.deflection_mm : default_deflection;
+            const Decomposer decomposer(
+                axis, params, axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
+            const std::size_t nb = axis.branches.size();
+            // The most a branch's component may hold: four times what it and its sub-branches swept
+            // (a split plane short of where the march began adds the material between), plus two
+            // steps of its first section.
+            std::vector<double> max_volume(nb, 0.0);
+            for (const auto& node : axis.nodes)
+                if (node.branch >= 0 && std::size_t(node.branch) < nb)
+                    max_volume[std::size_t(node.branch)] += node.area * node.thickness;
+            for (std::size_t b = nb; b-- > 1;)
+                if (axis.branches[b].parent >= 0)
+                    max_volume[std::size_t(axis.branches[b].parent)] += max_volume[b];
+            for (std::size_t b = 0; b < nb; ++b)
+                max_volume[b] = 4.0 * max_volume[b] +
+                                2.0 * axis.params.step_mm *
+                                    axis.nodes[std::size_t(axis.branches[b].nodes.front())].area;
+            // A split at a face behind where the branch's march began (Eq. 5's span widened over a
+            // gusset, Decompose.hpp) takes the material between as well: at most the branch's first
+            // section swept back from T to the face.
+            const auto allowance = [&](std::size_t b, const Plan& plan) {
+                const AxisBranch& br = axis.branches[b];
+                const AxisNode& first = axis.nodes[std::size_t(br.nodes.front())];
+                const double behind = first.slab_start - br.direction.normalized().dot(plan.point);
+                return max_volume[b] + first.area * std::max(0.0, behind);
             };
-            const double step_height =
-                std::max(axis.params.step_mm, params.min_component_height_mm);
-            const double min_height =
-                std::all_of(group.begin(), group.end(), turned)
-                    ? std::max(std::min(axis.params.step_mm, LayerParams{}.max_layer_mm),
-                               params.min_component_height_mm)
-                    : step_height;
-            SplitOutcome outcome = split_by_plane(fs, footing, p.point, p.normal, inner, min_height,
-                                                  most, mesh_deflection, at, children, father_new);
-            // A child's father must stay as tall as a child must be: later splits of a ladder's
-            // rung (a closed loop) carved it down to a 0.07 mm slab no layer fits. (A step, as
-            // for a branch born of a split: the father is what a march went on through.)
-            bool thinned = false;
-            if (outcome == SplitOutcome::Split && fc.has_base_face &&
-                height_along(father_new, fc.base_origin, fc.build_direction) < step_height) {
-                thinned = true;
-                outcome = SplitOutcome::Invalid;
-            }
-            if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
-                // The siblings that would have shared the split try their own in turn (and
-                // note their own outcome).
-                const char* why =
-                    thinned ? "the split at the chosen plane would leave its father thinner along "
+            // The component holding each branch's material; -1 until the branch is handled.
+            std::vector<int> holder(nb, -1);
+            const auto splits = [&](std::size_t b) {
+                const AxisBranch& br = axis.branches[b];
+                return br.parent >= 0 && br.first_link >= 0 && !br.nodes.empty();
+            };
+            // The father component of branch b: its parent branch's holder, or whichever component
+            // now holds b's first node (an earlier whole-plane split may have moved it), newest
+            // first; -1 for none.
+            const auto father_of = [&](std::size_t b) {
+                const int h = holder[std::size_t(axis.branches[b].parent)];
+                const Vector3d p =
+                    axis.nodes[std::size_t(axis.branches[b].nodes.front())].material_point();
+                if (h >= 0 && contains(work[std::size_t(h)].solid, p)) return h;
+                for (int k = int(work.size()) - 1; k >= 0; --k)
+                    if (contains(work[std::size_t(k)].solid, p)) return k;
+                return -1;
+            };
+
+            // Tracks that split around a hole and join again beyond it (the axis records the merge)
+            // are one feature with a hole in it, not sub-components: they stay in their father.
+            const auto rejoins = [&](std::size_t b) {
+                const AxisBranch& br = axis.branches[b];
+                if (br.parent < 0 ||
+                    !br.direction.isApprox(axis.branches[std::size_t(br.parent)].direction))
+                    return false;
+                if (br.merged_into >= 0) return true;
+                for (const auto& other : axis.branches)
+                    if (other.merged_into == int(b)) return true;
+                return false;
+            };
+
+            // A child built along b's direction would tilt past the machine's reach (straight down,
+            // -Z, at the default): b is not cut, its material stays in its father.
+            const auto beyond_reach = [&](std::size_t b) {
+                return tilt_from_plate_deg(axis.branches[b].direction) > params.max_tilt_deg + 1e-9;
+            };
+
+            const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
+                const Vector3d& d = axis.branches[b].direction;
+                std::ostringstream line;
+                line << "branch " << b << " (along " << d.x() << "," << d.y() << "," << d.z()
+                     << "): " << why << "; its material stays in component " << kept_in;
+                notes.push_back(line.str());
+            };
+            // Branches whose split at a planar face was refused (its piece took the father's
+            // footing, reached other branches' material, or was no valid solid; not one too short,
+            // which a plane near the junction cannot lengthen): a face chosen nearest the father's
+            // own face over a gusset gives way to the face nearest the junction, and that to the
+            // section plane at Eq. 4's T; a section plane past the father's own section over a
+            // gusset gives way to the one at T. (The side face of one of two square arms meeting at
+            // a round column, chosen for the other, cuts through the column down to the plate: that
+            // arm stayed in the root, overhanging.) Per branch: 0, 1 or 2, as plan() takes it.
+            std::vector<int> attempt(nb, 0);
+            const auto retry = [&](std::size_t g, const Plan& p) {
+                if (attempt[g] >= 2) return false;
+                if (p.rule == Component::SplitRule::SectionPlane) {
+                    if (!p.by_own_face) return false;
+                    attempt[g] = 2;  // at T (no planar face was found the first time either)
+                } else if (p.by_own_face && attempt[g] == 0)
+                    attempt[g] = 1;
+                else if (params.section_plane_fallback)
+                    attempt[g] = 2;
+                else
+                    return false;
+                holder[g] = -1;
+                return true;
+            };
+            for (std::size_t b = 0; b < nb; ++b) {
+                if (holder[b] >= 0) continue;  // cut with an earlier sibling
+                const Progress at = progress.span(
+                    double(b) / double(nb), double(b + 1) / double(nb),
+                    "splitting at branch " + std::to_string(b) + " of " + std::to_string(nb));
+                at(0.0);
+                if (!splits(b)) {
+                    holder[b] = 0;
+                    continue;
+                }
+                if (rejoins(b)) {
+                    holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
+                    continue;
+                }
+                const int father = father_of(b);
+                if (father < 0) {
+                    holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
+                    note(b, "its first node lies in no component", holder[b]);
+                    continue;
+                }
+                holder[b] = father;
+                if (beyond_reach(b)) {
+                    std::ostringstream why;
+                    why << "it would be built " << tilt_from_plate_deg(axis.branches[b].direction)
+                        << " degrees from the build plate's +Z, past max_tilt ("
+                        << params.max_tilt_deg << " degrees): the machine cannot reach it";
+                    note(b, why.str(), father);
+                    continue;
+                }
+                const TopoDS_Shape fs = work[std::size_t(father)].solid;
+                TopTools_IndexedDataMapOfShapeListOfShape e2f;
+                TopExp::MapShapesAndAncestors(fs, TopAbs_EDGE, TopAbs_FACE, e2f);
+                Plan p;
+                if (!decomposer.plan(b, fs, e2f, p, attempt[b])) {
+                    note(b,
+                         params.section_plane_fallback
+                             ? "no splitting plane could be placed"
+                             : "no planar face meets the three criteria and the section-plane "
+                               "fallback is off",
+                         father);
+                    continue;
+                }
+
+                // Later siblings in the same father that choose the same plane are cut in the same
+                // split: one Boolean instead of one per sibling (a plate with many posts), with the
+                // components each would get from its own split of the reduced father.
+                std::vector<std::size_t> group{b};
+                std::vector<Vector3d> inner{p.inner};
+                std::vector<double> most{allowance(b, p)};
+                for (std::size_t c = b + 1; c < nb; ++c) {
+                    // Each sibling classifies a point in the father and scans its faces.
+                    at.check();
+                    if (holder[c] >= 0 || !splits(c) || rejoins(c) || beyond_reach(c)) continue;
+                    const int cp = axis.branches[c].parent;
+                    if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch
+                    if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end())
+                        continue;
+                    if (father_of(c) != father) continue;
+                    Plan q;
+                    if (!decomposer.plan(c, fs, e2f, q, attempt[c]) ||
+                        !Decomposer::same_plane(p, q, plane_tol))
+                        continue;
+                    group.push_back(c);
+                    inner.push_back(q.inner);
+                    most.push_back(allowance(c, q));
+                }
+                at.check();
+
+                const Component& fc = work[std::size_t(father)].c;
+                Footing footing;
+                footing.root = !fc.has_base_face;
+                footing.plate_z = box.min().z();
+                if (fc.has_base_face) footing.base = TopoDS::Face(occ::occt(fc.base_face));
+                footing.normal = fc.base_normal;
+                footing.tol = std::max(plane_tol, axis.params.eps_mm);
+                std::vector<Child> children;
+                TopoDS_Shape father_new;
+                // A sliver the father's march found on its last plane (a branch born of a split,
+                // going on as its father went) must reach a step past the plane, which the axis
+                // cannot resolve below. A branch that turned was found by how far its share reaches
+                // out of the section it leaves, however thin it is along its own direction (a 3 mm
+                // margin of a clevis's head past the rod under it): it need only hold a thickest
+                // layer at slicing's defaults. So when every branch cut at this plane turned.
+                const auto turned = [&](std::size_t c) {
+                    const int father_branch = axis.branches[c].parent;
+                    return father_branch >= 0 &&
+                           axis.branches[c].direction.dot(
+                               axis.branches[std::size_t(father_branch)].direction) < 0.5;
+                };
+                const double step_height =
+                    std::max(axis.params.step_mm, params.min_component_height_mm);
+                const double min_height =
+                    std::all_of(group.begin(), group.end(), turned)
+                        ? std::max(std::min(axis.params.step_mm, LayerParams{}.max_layer_mm),
+                                   params.min_component_height_mm)
+                        : step_height;
+                SplitOutcome outcome = split_by_plane(
+                    fs, footing, p.point, p.normal, inner, min_height, most, mesh_deflection, at,
+                    children, father_new, join_orphans ? &joined : nullptr);
+                // A child's father must stay as tall as a child must be: later splits of a ladder's
+                // rung (a closed loop) carved it down to a 0.07 mm slab no layer fits. (A step, as
+                // for a branch born of a split: the father is what a march went on through.)
+                bool thinned = false;
+                if (outcome == SplitOutcome::Split && fc.has_base_face &&
+                    height_along(father_new, fc.base_origin, fc.build_direction) < step_height) {
+                    thinned = true;
+                    outcome = SplitOutcome::Invalid;
+                }
+                if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
+                    // The siblings that would have shared the split try their own in turn (and
+                    // note their own outcome).
+                    const char* why =
+                        thinned
+                            ? "the split at the chosen plane would leave its father thinner along "
                               "its build direction than the axis step (or the least component "
                               "height)"
-                    : outcome == SplitOutcome::Failed
-                        ? "OCCT could not split its father at the chosen plane"
-                    : outcome == SplitOutcome::Apart
-                        ? "the split at the chosen plane would leave its father in pieces"
-                        : "the split at the chosen plane would leave its father no valid solid "
-                          "(OCCT's check, or a closed mesh)";
-                if (retry(b, p))
-                    --b;  // once more, at the next plane (b > 0: the root never splits)
-                else
-                    note(b, why, father);
-                continue;
-            }
-            if (outcome == SplitOutcome::Split) work[std::size_t(father)].solid = father_new;
-            bool again = false;  // b itself tries the section plane
-            for (std::size_t k = 0; k < group.size(); ++k) {
-                const std::size_t g = group[k];
-                if (!children[k].kept_because.empty()) {
-                    // A sibling's retry comes in its own pass, later in this loop.
-                    if (!children[k].too_short && retry(g, p)) {
-                        again = again || g == b;
+                        : outcome == SplitOutcome::Failed
+                            ? "OCCT could not split its father at the chosen plane"
+                        : outcome == SplitOutcome::Apart
+                            ? "the split at the chosen plane would leave its father in pieces"
+                            : "the split at the chosen plane would leave its father no valid solid "
+                              "(OCCT's check, or a closed mesh)";
+                    if (retry(b, p))
+                        --b;  // once more, at the next plane (b > 0: the root never splits)
+                    else
+                        note(b, why, father);
+                    continue;
+                }
+                if (outcome == SplitOutcome::Split) work[std::size_t(father)].solid = father_new;
+                bool again = false;  // b itself tries the section plane
+                for (std::size_t k = 0; k < group.size(); ++k) {
+                    const std::size_t g = group[k];
+                    if (!children[k].kept_because.empty()) {
+                        // A sibling's retry comes in its own pass, later in this loop.
+                        if (!children[k].too_short && retry(g, p)) {
+                            again = again || g == b;
+                            continue;
+                        }
+                        holder[g] = father;
+                        note(g, children[k].kept_because, father);
                         continue;
                     }
-                    holder[g] = father;
-                    note(g, children[k].kept_because, father);
-                    continue;
+                    if (children[k].solid.IsNull()) {
+                        // No piece of its own: left for its own pass (its material may now sit in a
+                        // sibling's piece or back in the father).
+                        if (k > 0)
+                            holder[g] = -1;
+                        else if (retry(g, p))
+                            again = true;
+                        else
+                            note(g, "the split left no piece holding its first node", father);
+                        continue;
+                    }
+                    Work child;
+                    child.solid = children[k].solid;
+                    child.c.parent = father;
+                    child.c.branch = int(g);
+                    child.c.break_link = axis.branches[g].first_link;
+                    child.c.rule = p.rule;
+                    child.c.has_base_face = true;
+                    child.c.base_face = occ::wrap(children[k].base);
+                    child.c.base_origin = children[k].base_origin;
+                    child.c.base_normal = children[k].base_normal;
+                    child.c.build_direction = -children[k].base_normal;
+                    holder[g] = int(work.size());
+                    work.push_back(child);
                 }
-                if (children[k].solid.IsNull()) {
-                    // No piece of its own: left for its own pass (its material may now sit in a
-                    // sibling's piece or back in the father).
-                    if (k > 0)
-                        holder[g] = -1;
-                    else if (retry(g, p))
-                        again = true;
-                    else
-                        note(g, "the split left no piece holding its first node", father);
-                    continue;
-                }
-                Work child;
-                child.solid = children[k].solid;
-                child.c.parent = father;
-                child.c.branch = int(g);
-                child.c.break_link = axis.branches[g].first_link;
-                child.c.rule = p.rule;
-                child.c.has_base_face = true;
-                child.c.base_face = occ::wrap(children[k].base);
-                child.c.base_origin = children[k].base_origin;
-                child.c.base_normal = children[k].base_normal;
-                child.c.build_direction = -children[k].base_normal;
-                holder[g] = int(work.size());
-                work.push_back(child);
+                if (again) --b;  // once more at the section plane (b > 0: the root never splits)
             }
-            if (again) --b;  // once more at the section plane (b > 0: the root never splits)
+        } catch (const Standard_Failure& e) {
+            throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
         }
+    };
+    std::vector<Work> work;
+    std::vector<std::string> notes;  // branches that asked for a cut and got none
+    std::vector<Vector3d> joined;
+    pass(true, work, notes, joined);
+    // A piece that went with a child must end in a component that builds it: in front of that
+    // component's base (the later split of its own branch took it), or in the root. Else the
+    // pass is done again without joining (the split is refused, as a father in pieces).
+    const auto built = [&](const Vector3d& p) {
+        for (const auto& w : work)
+            if (contains(w.solid, p))
+                return !w.c.has_base_face || w.c.build_direction.dot(p - w.c.base_origin) > 0.0;
+        return false;
+    };
+    bool all_built = true;
+    try {
+        all_built = std::all_of(joined.begin(), joined.end(), built);
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
+    }
+    if (!all_built) {
+        work.clear();
+        notes.clear();
+        joined.clear();
+        pass(false, work, notes, joined);
     }
 
     Decomposition out;

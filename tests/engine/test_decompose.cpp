@@ -180,7 +180,7 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
             BRepExtrema_DistShapeShape to_self(face, s);
             ASSERT_TRUE(to_self.IsDone());
             EXPECT_NEAR(to_self.Value(), 0.0, 1e-6);
-            // Nothing of it lies behind its base: every vertex is on the plane or in front.
+            // No vertex of it lies behind its base (on the plane or in front).
             for (TopExp_Explorer v(s, TopAbs_VERTEX); v.More(); v.Next()) {
                 const gp_Pnt q = BRep_Tool::Pnt(TopoDS::Vertex(v.Current()));
                 EXPECT_GE(c.build_direction.dot(Vector3d(q.X(), q.Y(), q.Z()) - c.base_origin),

@@ -129,12 +129,14 @@
 //   round body) stays in the father.
 // - The whole plane can cut off, on the father's side, material joined only to the child's
 //   piece: an S bracket's middle plate, cut off its lower upright's face, takes with it the top
-//   plate's tail past that face. Such a piece goes with the child, to be taken on by the later
-//   split of the branch it belongs to (the top plate's, along +X). Once every branch is handled,
-//   each such piece must lie in a component that builds it (in front of its base, or in the
-//   root); if one does not, the decomposition is done again without joining, and those splits
-//   are refused as leaving their father in pieces. (Refused, the S bracket's middle plate stayed
-//   in the root, its underside overhanging 750 mm^2.)
+//   plate's tail past that face. Such a piece (wholly on the father's side, joined to exactly
+//   one child, the grown child within its volume allowance) goes with the child, to be taken on
+//   by the later split of the branch it belongs to (the top plate's, along +X). Once every branch
+//   is handled, every component must lie in front of its base (checked on the solids' boxes:
+//   exact along the axis-aligned directions, erring towards "behind" otherwise); if one does not,
+//   the decomposition is done again without joining, and those splits are refused as leaving
+//   their father in pieces. (Refused, the S bracket's middle plate stayed in the root, its
+//   underside overhanging 750 mm^2.)
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
 //   the branch's material stays in its father, as it was (each split works on a copy: a failed

@@ -320,13 +320,16 @@ enum class SplitOutcome {
 // `inner` points on the +n side (one each, a piece at most once; a point without a piece gets a
 // null child) that reach at least `min_height` beyond the plane, hold at most `max_volume[k]`
 // and none of the father's `footing`. Every other piece goes back into the father (fused, seams
-// removed). `progress` is checked between the steps (OCCT's own calls run uninterrupted).
+// removed). With `joined`, a piece that then stands apart from the father's footing, on the
+// father's side of the plane and joined to exactly one child, goes with that child instead, and
+// `joined` counts them (set only on Split). `progress` is checked between the steps (OCCT's own
+// calls run uninterrupted).
 SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                             const Vector3d& point, const Vector3d& n,
                             const std::vector<Vector3d>& inner, double min_height,
                             const std::vector<double>& max_volume, double mesh_deflection,
                             const Progress& progress, std::vector<Child>& children,
-                            TopoDS_Shape& father_out, std::vector<Vector3d>* joined) {
+                            TopoDS_Shape& father_out, int* joined) {
     try {
         const Eigen::AlignedBox3d b = bounds_of(father);
         const double r = 2.0 * b.diagonal().norm() + 1.0;
@@ -467,6 +470,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             father_new = fuse.Shape();
         }
         TopoDS_Shape unified = occ::unify(father_new);
+        int joins = 0;
         if (solids_of(unified).size() != 1) {
             // The plane may cut off, on the father's side, material joined only to a child: an
             // S bracket's top plate, whose tail past the plane hangs from the part of it the
@@ -485,36 +489,54 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 }
             }
             if (main.IsNull()) return SplitOutcome::Apart;
+            std::vector<Child> grown = children;
             for (const auto& o : orphans) {
                 progress.check();
-                bool placed = false;
-                for (std::size_t k = 0; k < children.size() && !placed; ++k) {
-                    if (children[k].solid.IsNull()) continue;
-                    BRepAlgoAPI_Fuse join(children[k].solid, o);
-                    if (!join.IsDone() || join.HasErrors()) continue;
-                    const TopoDS_Shape whole = occ::unify(join.Shape());
-                    if (solids_of(whole).size() != 1) continue;  // not touching this child
-                    Child grown = children[k];
-                    if (!valid_solid(join.Shape(), grown.solid, mesh_deflection, progress, whole) ||
-                        !find_base(k, grown))
-                        return SplitOutcome::Apart;
-                    // Its centre, to find where it ends (a piece hollow there is not joined).
-                    GProp_GProps props;
-                    BRepGProp::VolumeProperties(o, props);
-                    const Vector3d centre = vec(props.CentreOfMass());
-                    if (!contains(o, centre)) return SplitOutcome::Apart;
-                    joined->push_back(centre);
-                    children[k] = grown;
-                    placed = true;
+                // Only material on the father's side: a piece reaching past the plane holds what
+                // went back to the father from the child's side (a sibling's piece too short or
+                // too big), other branches' material.
+                double lo, hi;
+                range_along(bounds_of(o), n, lo, hi);
+                if (hi - n.dot(point) > tol) return SplitOutcome::Apart;
+                // Joined to exactly one child.
+                int to = -1;
+                TopoDS_Shape fused, whole;
+                for (std::size_t k = 0; k < grown.size(); ++k) {
+                    if (grown[k].solid.IsNull()) continue;
+                    BRepAlgoAPI_Fuse join;
+                    TopTools_ListOfShape with, tool;
+                    with.Append(grown[k].solid);
+                    tool.Append(o);
+                    join.SetArguments(with);
+                    join.SetTools(tool);
+                    join.SetNonDestructive(Standard_True);
+                    join.Build();
+                    if (!join.IsDone() || join.HasErrors()) return SplitOutcome::Failed;
+                    const TopoDS_Shape u = occ::unify(join.Shape());
+                    if (solids_of(u).size() != 1) continue;  // not touching this child
+                    if (to >= 0) return SplitOutcome::Apart;
+                    to = int(k);
+                    fused = join.Shape();
+                    whole = u;
                 }
-                if (!placed) return SplitOutcome::Apart;
+                if (to < 0) return SplitOutcome::Apart;
+                Child& c = grown[std::size_t(to)];
+                if (!valid_solid(fused, c.solid, mesh_deflection, progress, whole) ||
+                    !find_base(std::size_t(to), c))
+                    return SplitOutcome::Invalid;
+                GProp_GProps props;
+                BRepGProp::VolumeProperties(c.solid, props);
+                if (props.Mass() > max_volume[std::size_t(to)]) return SplitOutcome::Apart;
             }
+            children = std::move(grown);
+            joins = int(orphans.size());
             father_new = main;
             unified = occ::unify(main);
         }
         progress.check();
         if (!valid_solid(father_new, father_out, mesh_deflection, progress, unified))
             return SplitOutcome::Invalid;
+        if (joined) *joined = joins;
         return SplitOutcome::Split;
     } catch (const Standard_Failure&) {
         return SplitOutcome::Failed;  // a split OCCT cannot perform: the branches stay put
@@ -770,10 +792,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     check_params(params);
     const Shape checked = input.single_solid("decompose");
     // One pass over the branches. With `join_orphans`, a split's pieces cut off on the father's
-    // side but joined only to a child go with that child (split_by_plane), their centres in
-    // `joined`.
+    // side but joined only to a child go with that child (split_by_plane), counted in `joins`.
     const auto pass = [&](bool join_orphans, std::vector<Work>& work,
-                          std::vector<std::string>& notes, std::vector<Vector3d>& joined) {
+                          std::vector<std::string>& notes, int& joins) {
         try {
             // Work on a copy: OCCT's algorithms must never touch the caller's shape.
             const TopoDS_Shape solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
@@ -993,9 +1014,10 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                         ? std::max(std::min(axis.params.step_mm, LayerParams{}.max_layer_mm),
                                    params.min_component_height_mm)
                         : step_height;
+                int joins_here = 0;
                 SplitOutcome outcome = split_by_plane(
                     fs, footing, p.point, p.normal, inner, min_height, most, mesh_deflection, at,
-                    children, father_new, join_orphans ? &joined : nullptr);
+                    children, father_new, join_orphans ? &joins_here : nullptr);
                 // A child's father must stay as tall as a child must be: later splits of a ladder's
                 // rung (a closed loop) carved it down to a 0.07 mm slab no layer fits. (A step, as
                 // for a branch born of a split: the father is what a march went on through.)
@@ -1005,6 +1027,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                     thinned = true;
                     outcome = SplitOutcome::Invalid;
                 }
+                if (outcome == SplitOutcome::Split) joins += joins_here;
                 if (outcome != SplitOutcome::Split && outcome != SplitOutcome::NoChild) {
                     // The siblings that would have shared the split try their own in turn (and
                     // note their own outcome).
@@ -1072,28 +1095,31 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     };
     std::vector<Work> work;
     std::vector<std::string> notes;  // branches that asked for a cut and got none
-    std::vector<Vector3d> joined;
-    pass(true, work, notes, joined);
-    // A piece that went with a child must end in a component that builds it: in front of that
-    // component's base (the later split of its own branch took it), or in the root. Else the
-    // pass is done again without joining (the split is refused, as a father in pieces).
-    const auto built = [&](const Vector3d& p) {
-        for (const auto& w : work)
-            if (contains(w.solid, p))
-                return !w.c.has_base_face || w.c.build_direction.dot(p - w.c.base_origin) > 0.0;
-        return false;
-    };
-    bool all_built = true;
+    int joins = 0;
+    pass(true, work, notes, joins);
+    // A piece that went with a child must end in a component that builds it. Without joining
+    // every component lies in front of its base (each split's pieces lie on their side of the
+    // plane, and later splits only take from them); with it, that is checked (on the solids'
+    // boxes: exact along the axis-aligned directions, else erring on the side of "behind"). If
+    // one reaches behind its base, the pass is done again without joining: those splits are
+    // refused as leaving their father in pieces.
+    bool in_front = true;
     try {
-        all_built = std::all_of(joined.begin(), joined.end(), built);
+        for (const auto& w : work) {
+            if (!w.c.has_base_face || joins == 0) continue;
+            double lo, hi;
+            range_along(bounds_of(w.solid), w.c.build_direction, lo, hi);
+            const double tol = 1e-6 * (1.0 + (hi - lo));
+            if (lo < w.c.build_direction.dot(w.c.base_origin) - tol) in_front = false;
+        }
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
     }
-    if (!all_built) {
+    if (!in_front) {
         work.clear();
         notes.clear();
-        joined.clear();
-        pass(false, work, notes, joined);
+        joins = 0;
+        pass(false, work, notes, joins);
     }
 
     Decomposition out;

@@ -308,6 +308,21 @@ double height_along(const TopoDS_Shape& s, const Vector3d& point, const Vector3d
     return hi - n.dot(point);
 }
 
+// `first` fused with `tools` in OCCT's non-destructive mode (the inputs are kept: a father's
+// other pieces, a child that may still go without the piece); false when OCCT fails.
+bool fuse_kept(const TopoDS_Shape& first, const TopTools_ListOfShape& tools, TopoDS_Shape& out) {
+    BRepAlgoAPI_Fuse fuse;
+    TopTools_ListOfShape arguments;
+    arguments.Append(first);
+    fuse.SetArguments(arguments);
+    fuse.SetTools(tools);
+    fuse.SetNonDestructive(Standard_True);
+    fuse.Build();
+    if (!fuse.IsDone() || fuse.HasErrors()) return false;
+    out = fuse.Shape();
+    return true;
+}
+
 enum class SplitOutcome {
     Split,    // at least one child; the father is what is left
     NoChild,  // no piece qualified as a child: nothing changes
@@ -458,16 +473,9 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
         if (rest.Extent() == 1) {
             father_new = rest.First();
         } else {
-            BRepAlgoAPI_Fuse fuse;
-            TopTools_ListOfShape first;
-            first.Append(rest.First());
+            const TopoDS_Shape first = rest.First();
             rest.RemoveFirst();
-            fuse.SetArguments(first);
-            fuse.SetTools(rest);
-            fuse.SetNonDestructive(Standard_True);
-            fuse.Build();
-            if (!fuse.IsDone() || fuse.HasErrors()) return SplitOutcome::Failed;
-            father_new = fuse.Shape();
+            if (!fuse_kept(first, rest, father_new)) return SplitOutcome::Failed;
         }
         TopoDS_Shape unified = occ::unify(father_new);
         int joins = 0;
@@ -503,20 +511,15 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 TopoDS_Shape fused, whole;
                 for (std::size_t k = 0; k < grown.size(); ++k) {
                     if (grown[k].solid.IsNull()) continue;
-                    BRepAlgoAPI_Fuse join;
-                    TopTools_ListOfShape with, tool;
-                    with.Append(grown[k].solid);
+                    TopTools_ListOfShape tool;
                     tool.Append(o);
-                    join.SetArguments(with);
-                    join.SetTools(tool);
-                    join.SetNonDestructive(Standard_True);
-                    join.Build();
-                    if (!join.IsDone() || join.HasErrors()) return SplitOutcome::Failed;
-                    const TopoDS_Shape u = occ::unify(join.Shape());
+                    TopoDS_Shape joined_shape;
+                    if (!fuse_kept(grown[k].solid, tool, joined_shape)) return SplitOutcome::Failed;
+                    const TopoDS_Shape u = occ::unify(joined_shape);
                     if (solids_of(u).size() != 1) continue;  // not touching this child
                     if (to >= 0) return SplitOutcome::Apart;
                     to = int(k);
-                    fused = join.Shape();
+                    fused = joined_shape;
                     whole = u;
                 }
                 if (to < 0) return SplitOutcome::Apart;
@@ -791,27 +794,35 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     const Progress progress = caller.span(0.0, 1.0, "decomposing");
     check_params(params);
     const Shape checked = input.single_solid("decompose");
+    // The part, checked once for every pass. Work on a copy: OCCT's algorithms must never touch
+    // the caller's shape (and each split works on a copy of its father: a pass leaves it as it
+    // is).
+    TopoDS_Shape solid;
+    Eigen::AlignedBox3d box;
+    double default_deflection = 0.0, mesh_deflection = 0.0;
+    try {
+        solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
+        box = bounds_of(solid);
+        check_axis_belongs(axis, box, occ::volume_of(solid), "decompose");
+        // The part's default deflection: what slicing tessellates with unless told otherwise.
+        default_deflection = effective_deflection(checked, TessellationParams{});
+        // A part with C0 geometry, or with curves off their faces, which OCCT's Booleans do not
+        // promise to split soundly: every component must also mesh closed at the deflection
+        // slicing uses by default, the part's. (Checked on every part, meshing each piece would
+        // add a quarter to the time of slicing a flanged bend or a flat torus.)
+        const Progress checking = progress.span(0.0, 0.0, "checking edges against their faces");
+        const bool unsound =
+            has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, checking);
+        mesh_deflection = unsound ? default_deflection : 0.0;
+    } catch (const Standard_Failure& e) {
+        throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
+    }
+    const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
     // One pass over the branches. With `join_orphans`, a split's pieces cut off on the father's
     // side but joined only to a child go with that child (split_by_plane), counted in `joins`.
     const auto pass = [&](bool join_orphans, std::vector<Work>& work,
                           std::vector<std::string>& notes, int& joins) {
         try {
-            // Work on a copy: OCCT's algorithms must never touch the caller's shape.
-            const TopoDS_Shape solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
-            const Eigen::AlignedBox3d box = bounds_of(solid);
-            check_axis_belongs(axis, box, occ::volume_of(solid), "decompose");
-            const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
-            // The part's default deflection: what slicing tessellates with unless told otherwise.
-            const double default_deflection = effective_deflection(checked, TessellationParams{});
-            // A part with C0 geometry, or with curves off their faces, which OCCT's Booleans do not
-            // promise to split soundly: every component must also mesh closed at the deflection
-            // slicing uses by default, the part's. (Checked on every part, meshing each piece would
-            // add a quarter to the time of slicing a flanged bend or a flat torus.)
-            const Progress checking = progress.span(0.0, 0.0, "checking edges against their faces");
-            const bool unsound =
-                has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, checking);
-            const double mesh_deflection = unsound ? default_deflection : 0.0;
-
             Work root;
             root.solid = solid;
             root.c.branch = 0;
@@ -1106,7 +1117,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     bool in_front = true;
     try {
         for (const auto& w : work) {
-            if (!w.c.has_base_face || joins == 0) continue;
+            if (joins == 0) break;
+            if (!w.c.has_base_face) continue;
             double lo, hi;
             range_along(bounds_of(w.solid), w.c.build_direction, lo, hi);
             const double tol = 1e-6 * (1.0 + (hi - lo));

@@ -1416,11 +1416,11 @@ private:
                         t_max = std::max(t_max, extent_along(l, n, lower_offset, side));
                 // Beside a fin of the lower section (a web under an arm, its tip flush with the
                 // arm's end), the march from T would find nothing: it starts where the stick-out
-                // does, at the face the fin stands on.
-                std::optional<double> t_fin =
+                // does, at the face the fin stands on, which is then T.
+                const std::optional<double> fin =
                     fin_root(rest, around ? lower : Regions2{*left}, side, t_max);
-                if (t_fin && !at_once()) t_fin.reset();
-                if (t_fin) t_max = *t_fin;
+                const bool at_fin = fin.has_value() && at_once();
+                if (at_fin) t_max = fin.value();
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
                 rest = std::move(behind);
                 if (share.empty()) continue;
@@ -1441,7 +1441,7 @@ private:
                 // plate's 6 mm margins past a 50 mm column beside its arm stayed in the column,
                 // within its 6.25 mm bump, and overhung 400 mm^2); any other only when far.
                 const double out_of = ledge ? std::min(bump, laid_overhang_mm()) : bump;
-                if (ledge || t_fin ? !reaches(share, out_of) : !is_far(share, d_share)) continue;
+                if (ledge || at_fin ? !reaches(share, out_of) : !is_far(share, d_share)) continue;
                 // Eq. 4: the new march starts just beyond the lower boundary's extent T.
                 Task child;
                 child.direction = side;
@@ -1449,11 +1449,11 @@ private:
                 child.slab_start = t_max;
                 child.parent_branch = track.branch;
                 child.father_node = track.node;
-                if (t_fin) {
+                if (at_fin) {
                     // The arm over the fin goes to the new march too (and the node below gives
                     // back what its slab took of it: release()).
-                    releases_.push_back(Release{track.node, side, *t_fin, share});
-                    for (auto& r : split_at({upper}, frame, side, *t_fin).first)
+                    releases_.push_back(Release{track.node, side, t_max, share});
+                    for (auto& r : split_at({upper}, frame, side, t_max).first)
                         far.push_back(std::move(r));
                 }
                 // The new march keeps the regions of its first section that meet its share

@@ -137,8 +137,9 @@ void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& me
         if (root_start) {
             // From the base; or, material the march from the base cannot reach (hanging under a
             // bridge), from the grid plane below the one where it begins.
-            if (node.slab_start != a.params.base_z_mm)
+            if (node.slab_start != a.params.base_z_mm) {
                 EXPECT_NEAR(node.slab_start, node.offset - a.params.step_mm, 1e-9) << "node " << n;
+            }
         } else if (turned_start) {
             EXPECT_LE(node.slab_start, node.offset - a.params.eps_mm + 1e-9) << "node " << n;
             EXPECT_GE(node.slab_start, node.offset - a.params.eps_mm - a.params.step_mm - 1e-9)

@@ -240,7 +240,9 @@ TEST(Decompose, ATailCutOffWithAChildGoesWithItToTheBranchItBelongsTo) {
         const auto& c = d.components[i];
         EXPECT_EQ(c.parent, want[i].parent);
         EXPECT_TRUE(c.build_direction.isApprox(want[i].direction, 1e-12));
-        if (i > 0) EXPECT_NEAR(c.build_direction.dot(c.base_origin), want[i].base, 1e-9);
+        if (i > 0) {
+            EXPECT_NEAR(c.build_direction.dot(c.base_origin), want[i].base, 1e-9);
+        }
         EXPECT_NEAR(c.volume_mm3, want[i].volume, 1e-6 * want[i].volume);
     }
     expect_invariants(d, part);

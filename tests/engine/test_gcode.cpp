@@ -173,7 +173,9 @@ TEST(TableAngles, TurnEveryReachableAxisToTheNozzleWithinTheLimits) {
         EXPECT_GE(a.a_deg, m.a_min_deg);
         EXPECT_LE(a.a_deg, m.a_max_deg);
         // Past A's 50 degrees only the negative tilt reaches.
-        if (t / kDeg > 50.0) EXPECT_LT(a.a_deg, -50.0);
+        if (t / kDeg > 50.0) {
+            EXPECT_LT(a.a_deg, -50.0);
+        }
     }
 }
 

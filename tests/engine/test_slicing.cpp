@@ -632,10 +632,13 @@ TEST(Slicing, AWebRoundTheColumnAnArmLeavesIsBuiltSidewaysFromTheColumnsOtherFac
         std::vector<int> done(comps.size(), 0);
         for (const int l : s.result.sequence.layers) {
             const int c = s.result.layers[std::size_t(l)].component;
-            if (c == arm)
-                for (std::size_t k = 1; k < comps.size(); ++k)
-                    if (comps[k].build_direction.y() != 0.0)
+            if (c == arm) {
+                for (std::size_t k = 1; k < comps.size(); ++k) {
+                    if (comps[k].build_direction.y() != 0.0) {
                         EXPECT_EQ(done[k], s.result.components[k].layer_count) << "piece " << k;
+                    }
+                }
+            }
             ++done[std::size_t(c)];
         }
         expect_invariants(s, params, "web");

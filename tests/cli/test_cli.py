@@ -411,6 +411,18 @@ class CliSections(unittest.TestCase):
         with open(out) as f:
             self.assertEqual(len(json.load(f)["components"]), 2)
 
+    def test_a_sound_part_is_split_only_where_its_pieces_mesh_closed(self):
+        # A pipe on a flange lying on its side passes Check geometry, but its split across the
+        # bend left a piece with a C0 edge off its face, which meshed with an edge shared by three
+        # triangles: `slice` failed naming that component. Now the split is refused, and it slices.
+        self.expect_components_mesh_closed("bend_on_side.step")
+        out = os.path.join(self.tmp.name, "bend.json")
+        r = run("slice", os.path.join(DATA, "bend_on_side.step"), "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            notes = json.load(f)["notes"]
+        self.assertTrue(any("is no valid solid" in n for n in notes), notes)
+
     def test_decompose_bad_input(self):
         self.expect_error(["decompose", self.write("box.stl", box_stl(10, 10, 10))], 1,
                           "not_a_solid", "not a mesh")

@@ -87,3 +87,17 @@ cross.exportStep(os.path.join(here, "pipe_cross.step"))
 collar = Part.makeBox(30, 30, 60, V(-15, -15, 0)).fuse(Part.makeBox(40, 16, 16, V(15, -8, 32)))
 collar = collar.fuse(Part.makeBox(5, 24, 24, V(49, -12, 28))).removeSplitter()
 collar.Solids[0].exportBrep(os.path.join(here, "arm_collar.brep"))
+
+# bend_on_side.step   a hollow pipe on a flange lying on its side: flange radius 24, 8 thick, bore
+# radius 7; a tube (outer radius 10) to 28 mm; a 135-degree bend of radius 30 towards +X; then
+# turned 90 degrees about X and put on z = 0. A sound solid (FreeCAD's Check geometry passes), but
+# its split across the bend came out of OCCT's splitter with a C0 edge off its face, which passed
+# the shape check and meshed with an edge shared by three triangles: slicing stopped there
+bend_face = Part.Face(Part.Wire(Part.makeCircle(10, V(0, 0, 28), V(0, 0, 1))))
+bend_face = bend_face.cut(Part.Face(Part.Wire(Part.makeCircle(7, V(0, 0, 28), V(0, 0, 1))))).Faces[0]
+bend = Part.makeCylinder(24, 8).cut(Part.makeCylinder(7, 10, V(0, 0, -1)))
+stem = Part.makeCylinder(10, 20, V(0, 0, 8)).cut(Part.makeCylinder(7, 22, V(0, 0, 7)))
+bend = bend.fuse(stem).fuse(bend_face.revolve(V(30, 0, 28), V(0, 1, 0), 135)).Solids[0]
+bend.rotate(V(0, 0, 0), V(1, 0, 0), 90)
+bend.translate(V(0, 0, -bend.BoundBox.ZMin))
+bend.exportStep(os.path.join(here, "bend_on_side.step"))

@@ -20,6 +20,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
+#include <algorithm>
 #include <cmath>
 #include <gp_Trsf.hxx>
 #include <set>
@@ -982,6 +983,31 @@ TEST(Decompose, APartWithCurvesOffItsFacesIsSplitOnlyWherePiecesMeshClosed) {
         << d.notes[0];
     EXPECT_EQ(d.notes[1].rfind("branch 3 ", 0), 0u) << d.notes[1];
     EXPECT_NE(d.notes[1].find("mostly other branches' material"), std::string::npos) << d.notes[1];
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, ASplitOfASoundPartThatLeavesAPieceWithCurvesOffItsFacesMustMeshClosed) {
+    // tests/data/bend_on_side.step: a pipe on a flange lying on its side, sound (no C0 geometry,
+    // no curve off its face), so its pieces were not meshed. Its split across the bend came out of
+    // OCCT's splitter with a C0 edge off its face, passed the shape check and meshed with an edge
+    // shared by three triangles at the part's deflection: slicing stopped at that component. A
+    // piece a split leaves so must now mesh closed, or the split is refused with a note.
+    const mas::Model model = mas::read_model(std::string(MAS_TEST_DATA) + "/bend_on_side.step");
+    const mas::Shape& part = model.shape;
+    mas::TessellationParams tp;  // the part's own deflection, which slicing uses
+    tp.deflection_mm = mas::effective_deflection(part, mas::TessellationParams{});
+    mas::AxisParams ap;
+    ap.step_mm = 0.0;  // derived, as by default
+    mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
+    axis.deflection_mm = tp.deflection_mm;
+    const auto d = mas::decompose(part, axis);
+    ASSERT_GE(d.components.size(), 1u);
+    for (std::size_t i = 0; i < d.components.size(); ++i)
+        EXPECT_NO_THROW(mas::tessellate(d.components[i].solid, tp)) << "component " << i;
+    const auto refused = std::count_if(d.notes.begin(), d.notes.end(), [](const std::string& n) {
+        return n.find("is no valid solid (OCCT's check, or a closed mesh)") != std::string::npos;
+    });
+    EXPECT_GE(refused, 1) << "the split across the bend is refused, with a note";
     expect_invariants(d, part);
 }
 

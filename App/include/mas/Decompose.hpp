@@ -48,8 +48,10 @@
 //   part with C0 faces or edges, or with edges whose curves stray off their faces (FreeCAD's
 //   Check geometry: BOPAlgo_InvalidCurveOnSurface, common where cylinders were fused), which
 //   OCCT's Booleans do not promise to split soundly, it must also mesh closed at the part's
-//   default deflection (what slicing uses). (Meshing every piece of every part would add a
-//   quarter to the time of slicing some.)
+//   default deflection (what slicing uses). So must a piece of a sound part that the split itself
+//   left with such an edge or face (a pipe bend lying on its side, cut across the bend: a C0 edge
+//   off its face, which the shape check passed and the mesh shared among three triangles).
+//   (Meshing every piece of every part would add a quarter to the time of slicing some.)
 //   The child's base face is its face on the plane under Pos_end (the largest one when none is:
 //   a plane cuts a half ring standing on its rim in two faces, one at each end); build_direction
 //   = minus its outward normal (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The

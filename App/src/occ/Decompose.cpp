@@ -205,13 +205,32 @@ bool meshes_closed(const TopoDS_Shape& solid, double deflection) {
     }
 }
 
-// One solid of `piece` that OCCT's shape check accepts and that meshes closed at
-// `mesh_deflection` (0: not checked), for a component: the piece with the seams between coplanar or
-// co-cylindrical faces removed (`unified`, when already done), else the piece as the split left it,
-// else what ShapeFix makes of it; false when none is one valid solid. (The splitter and the seam
-// removal can leave a face whose wires the check rejects: a tee's pipe cut across its branch.)
-// `progress` is checked before each attempt: on a C0 part each one meshes the piece.
-bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, double mesh_deflection,
+// Which pieces of a split must mesh closed at `deflection` mm (slicing's, the part's; 0: none).
+// On a part OCCT's Booleans do not promise to split soundly (C0 geometry, curves off their
+// faces), every piece. On a sound part, a piece the split itself left so: a pipe bend lying on
+// its side, cut across its torus, came out of the splitter with a C0 edge off its face, which
+// passed the shape check and then meshed with an edge shared by three triangles, and slicing
+// stopped there.
+struct MeshCheck {
+    double deflection = 0.0;
+    bool every_piece = false;
+};
+
+bool meshes_as_needed(const TopoDS_Shape& solid, const MeshCheck& mesh, const Progress& progress) {
+    if (mesh.deflection <= 0.0) return true;
+    if (!mesh.every_piece && !has_c0_geometry(solid) &&
+        !has_invalid_curve_on_surface(solid, progress))
+        return true;
+    return meshes_closed(solid, mesh.deflection);
+}
+
+// One solid of `piece` that OCCT's shape check accepts and that meshes closed as `mesh` asks, for
+// a component: the piece with the seams between coplanar or co-cylindrical faces removed
+// (`unified`, when already done), else the piece as the split left it, else what ShapeFix makes
+// of it; false when none is one valid solid. (The splitter and the seam removal can leave a face
+// whose wires the check rejects: a tee's pipe cut across its branch.) `progress` is checked
+// before each attempt: on a C0 part each one meshes the piece.
+bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, const MeshCheck& mesh,
                  const Progress& progress, const TopoDS_Shape& unified = TopoDS_Shape()) {
     for (int attempt = 0; attempt < 3; ++attempt) {
         progress.check();
@@ -224,7 +243,7 @@ bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, double mesh_defle
         }
         const auto solids = solids_of(s);
         if (solids.size() == 1 && BRepCheck_Analyzer(solids.front()).IsValid() &&
-            meshes_closed(solids.front(), mesh_deflection)) {
+            meshes_as_needed(solids.front(), mesh, progress)) {
             out = solids.front();
             return true;
         }
@@ -342,7 +361,7 @@ enum class SplitOutcome {
 SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                             const Vector3d& point, const Vector3d& n,
                             const std::vector<Vector3d>& inner, double min_height,
-                            const std::vector<double>& max_volume, double mesh_deflection,
+                            const std::vector<double>& max_volume, const MeshCheck& mesh,
                             const Progress& progress, std::vector<Child>& children,
                             TopoDS_Shape& father_out, int* joined) {
     try {
@@ -454,7 +473,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 continue;
             }
             Child child;
-            if (!valid_solid(pieces[piece], child.solid, mesh_deflection, progress)) {
+            if (!valid_solid(pieces[piece], child.solid, mesh, progress)) {
                 children[k].kept_because =
                     "its piece of the split is no valid solid (OCCT's check, or a closed mesh)";
                 continue;
@@ -524,7 +543,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
                 }
                 if (to < 0) return SplitOutcome::Apart;
                 Child& c = grown[std::size_t(to)];
-                if (!valid_solid(fused, c.solid, mesh_deflection, progress, whole) ||
+                if (!valid_solid(fused, c.solid, mesh, progress, whole) ||
                     !find_base(std::size_t(to), c))
                     return SplitOutcome::Invalid;
                 GProp_GProps props;
@@ -537,7 +556,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             unified = occ::unify(main);
         }
         progress.check();
-        if (!valid_solid(father_new, father_out, mesh_deflection, progress, unified))
+        if (!valid_solid(father_new, father_out, mesh, progress, unified))
             return SplitOutcome::Invalid;
         if (joined) *joined = joins;
         return SplitOutcome::Split;
@@ -799,7 +818,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     // is).
     TopoDS_Shape solid;
     Eigen::AlignedBox3d box;
-    double default_deflection = 0.0, mesh_deflection = 0.0;
+    double default_deflection = 0.0;
+    MeshCheck mesh;
     try {
         solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
         box = bounds_of(solid);
@@ -813,7 +833,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
         const Progress checking = progress.span(0.0, 0.0, "checking edges against their faces");
         const bool unsound =
             has_c0_geometry(solid) || has_invalid_curve_on_surface(solid, checking);
-        mesh_deflection = unsound ? default_deflection : 0.0;
+        mesh.deflection = default_deflection;
+        mesh.every_piece = unsound;
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
     }
@@ -1026,9 +1047,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                                    params.min_component_height_mm)
                         : step_height;
                 int joins_here = 0;
-                SplitOutcome outcome = split_by_plane(
-                    fs, footing, p.point, p.normal, inner, min_height, most, mesh_deflection, at,
-                    children, father_new, join_orphans ? &joins_here : nullptr);
+                SplitOutcome outcome =
+                    split_by_plane(fs, footing, p.point, p.normal, inner, min_height, most, mesh,
+                                   at, children, father_new, join_orphans ? &joins_here : nullptr);
                 // A child's father must stay as tall as a child must be: later splits of a ladder's
                 // rung (a closed loop) carved it down to a 0.07 mm slab no layer fits. (A step, as
                 // for a branch born of a split: the father is what a march went on through.)

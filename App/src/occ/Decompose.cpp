@@ -216,10 +216,12 @@ struct MeshCheck {
     bool every_piece = false;
 };
 
-bool meshes_as_needed(const TopoDS_Shape& solid, const MeshCheck& mesh, const Progress& progress) {
+// The piece's faces are scanned without a stop between them (valid_solid's attempts are the stops,
+// each reported: one per face would flood a GUI with reports on a part of many faces).
+bool meshes_as_needed(const TopoDS_Shape& solid, const MeshCheck& mesh) {
     if (mesh.deflection <= 0.0) return true;
     if (!mesh.every_piece && !has_c0_geometry(solid) &&
-        !has_invalid_curve_on_surface(solid, progress))
+        !has_invalid_curve_on_surface(solid, Progress()))
         return true;
     return meshes_closed(solid, mesh.deflection);
 }
@@ -243,7 +245,7 @@ bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, const MeshCheck& 
         }
         const auto solids = solids_of(s);
         if (solids.size() == 1 && BRepCheck_Analyzer(solids.front()).IsValid() &&
-            meshes_as_needed(solids.front(), mesh, progress)) {
+            meshes_as_needed(solids.front(), mesh)) {
             out = solids.front();
             return true;
         }

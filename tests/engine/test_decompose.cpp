@@ -25,6 +25,8 @@
 #include <gp_Trsf.hxx>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
@@ -221,9 +223,29 @@ mas::Shape s_bracket(double upper = 30.0, double end = 45.0) {
     return from_occt(fuse(s, occ_box(0, 0, 46 + upper, end, 25, 8)));
 }
 
+namespace {
+
+// Every report decompose() makes: (fraction, stage).
+using Reports = std::vector<std::pair<double, std::string>>;
+mas::Progress recording(Reports& reports) {
+    return mas::Progress(
+        [&reports](double f, const std::string& stage) { reports.emplace_back(f, stage); });
+}
+
+// How many reports are of the pass done again without joining tails.
+long reports_again(const Reports& reports) {
+    return std::count_if(reports.begin(), reports.end(), [](const auto& r) {
+        return r.second.rfind("again, leaving cut-off tails in their fathers: splitting at branch ",
+                              0) == 0;
+    });
+}
+
+}  // namespace
+
 TEST(Decompose, ATailCutOffWithAChildGoesWithItToTheBranchItBelongsTo) {
     const mas::Shape part = s_bracket();
-    const auto d = mas::decompose(part, axis_of(part, 2.0));
+    Reports reports;
+    const auto d = mas::decompose(part, axis_of(part, 2.0), {}, recording(reports));
     ASSERT_EQ(d.components.size(), 4u);
     EXPECT_TRUE(d.notes.empty());
     struct Want {
@@ -246,6 +268,7 @@ TEST(Decompose, ATailCutOffWithAChildGoesWithItToTheBranchItBelongsTo) {
         }
         EXPECT_NEAR(c.volume_mm3, want[i].volume, 1e-6 * want[i].volume);
     }
+    EXPECT_EQ(reports_again(reports), 0) << "the joins stand: one pass";
     expect_invariants(d, part);
 }
 
@@ -259,8 +282,15 @@ TEST(Decompose, ATailNoLaterSplitTakesLeavesTheChildsSplitRefused) {
     const mas::Shape part = s_bracket(20.0, 36.0);
     mas::DecomposeParams p;
     p.min_component_height_mm = 30.0;
-    const auto d = mas::decompose(part, axis_of(part, 2.0), p);
+    Reports reports;
+    const auto d = mas::decompose(part, axis_of(part, 2.0), p, recording(reports));
     ASSERT_EQ(d.components.size(), 1u);
+    // The pass done again names itself in its stage; its fractions never go back.
+    EXPECT_GT(reports_again(reports), 0);
+    ASSERT_FALSE(reports.empty());
+    for (std::size_t i = 1; i < reports.size(); ++i)
+        EXPECT_GE(reports[i].first, reports[i - 1].first) << "report " << i;
+    EXPECT_EQ(reports.back().first, 1.0);
     bool in_pieces = false;
     for (const auto& n : d.notes)
         in_pieces = in_pieces || n.find("would leave its father in pieces") != std::string::npos;

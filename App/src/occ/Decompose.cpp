@@ -954,9 +954,13 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             };
             for (std::size_t b = 0; b < nb; ++b) {
                 if (holder[b] >= 0) continue;  // cut with an earlier sibling
+                // Done again without joining, the pass says so: its fractions stay where the first
+                // pass left them (a report never goes back), while its branches start over.
                 const Progress at = progress.span(
                     double(b) / double(nb), double(b + 1) / double(nb),
-                    "splitting at branch " + std::to_string(b) + " of " + std::to_string(nb));
+                    std::string(join_orphans ? ""
+                                             : "again, leaving cut-off tails in their fathers: ") +
+                        "splitting at branch " + std::to_string(b) + " of " + std::to_string(nb));
                 at(0.0);
                 if (!splits(b)) {
                     holder[b] = 0;

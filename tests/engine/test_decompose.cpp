@@ -22,6 +22,7 @@
 #include <TopoDS.hxx>
 #include <algorithm>
 #include <cmath>
+#include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 #include <set>
 #include <string>
@@ -183,12 +184,26 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
             BRepExtrema_DistShapeShape to_self(face, s);
             ASSERT_TRUE(to_self.IsDone());
             EXPECT_NEAR(to_self.Value(), 0.0, 1e-6);
-            // No vertex of it lies behind its base (on the plane or in front).
+            // No vertex of it lies behind its base (on the plane or in front), nor any of its
+            // material: a curved face may bulge behind the plane between its vertices.
             for (TopExp_Explorer v(s, TopAbs_VERTEX); v.More(); v.Next()) {
                 const gp_Pnt q = BRep_Tool::Pnt(TopoDS::Vertex(v.Current()));
                 EXPECT_GE(c.build_direction.dot(Vector3d(q.X(), q.Y(), q.Z()) - c.base_origin),
                           -1e-6);
             }
+            const double r = 2.0 * part.info().bounds.diagonal().norm() + 1.0;
+            const Vector3d back = -c.build_direction.normalized();
+            const gp_Dir z(back.x(), back.y(), back.z());
+            const gp_Dir x = gp_Dir(
+                z.XYZ().Crossed(std::abs(back.z()) < 0.9 ? gp_XYZ(0, 0, 1) : gp_XYZ(1, 0, 0)));
+            const gp_Dir y = z.Crossed(x);
+            const gp_Pnt corner(c.base_origin.x() - r * (x.X() + y.X()),
+                                c.base_origin.y() - r * (x.Y() + y.Y()),
+                                c.base_origin.z() - r * (x.Z() + y.Z()));
+            const TopoDS_Shape behind =
+                BRepPrimAPI_MakeBox(gp_Ax2(corner, z, x), 2.0 * r, 2.0 * r, r).Shape();
+            EXPECT_NEAR(volume(BRepAlgoAPI_Common(s, behind).Shape()), 0.0, 1e-6 * part_volume)
+                << "material behind the base";
         }
         // No two components overlap.
         for (std::size_t j = 0; j < i; ++j) {

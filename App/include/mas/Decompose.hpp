@@ -139,7 +139,7 @@
 //   the decomposition is done again without joining, and those splits are refused as leaving
 //   their father in pieces. (Refused, the S bracket's middle plate stayed in the root, its
 //   underside overhanging 750 mm^2.) The second pass's progress stages begin "again, leaving
-//   cut-off tails in their fathers: ", its fraction going on from where the first pass ended.
+//   cut-off tails in their fathers: ", its fraction staying where the first pass ended.
 // - A split that OCCT cannot perform, or that leaves no piece containing Pos_end or a father in
 //   several pieces or no valid solid, is skipped (a planar face's after the section plane's try):
 //   the branch's material stays in its father, as it was (each split works on a copy: a failed

@@ -394,6 +394,14 @@ class CliSections(unittest.TestCase):
             r = run("axis", os.path.join(folder, component), "--deflection", repr(deflection))
             self.assertEqual(r.returncode, 0, component + ": " + r.stderr)
 
+    def sliced(self, name):
+        """`slice` of DATA/name at the defaults, which must succeed: its JSON."""
+        out = os.path.join(self.tmp.name, name + ".slice.json")
+        r = run("slice", os.path.join(DATA, name), "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            return json.load(f)
+
     def test_a_part_with_c0_surfaces_is_split_only_where_its_pieces_mesh_closed(self):
         # The coil's surfaces are only C0. One split of it passed OCCT's shape check but meshed
         # with edges shared by three triangles, and slicing stopped at that component. Now such a
@@ -405,22 +413,14 @@ class CliSections(unittest.TestCase):
         # geometry: BOPAlgo_InvalidCurveOnSurface). The same happened as on the coil, and
         # `slice` failed naming component 2; now it slices.
         self.expect_components_mesh_closed("pins_on_column.step")
-        out = os.path.join(self.tmp.name, "pins.json")
-        r = run("slice", os.path.join(DATA, "pins_on_column.step"), "--json", out)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        with open(out) as f:
-            self.assertEqual(len(json.load(f)["components"]), 2)
+        self.assertEqual(len(self.sliced("pins_on_column.step")["components"]), 2)
 
     def test_a_sound_part_is_split_only_where_its_pieces_mesh_closed(self):
         # A pipe on a flange lying on its side passes Check geometry, but its split across the
         # bend left a piece with a C0 edge off its face, which meshed with an edge shared by three
         # triangles: `slice` failed naming that component. Now the split is refused, and it slices.
         self.expect_components_mesh_closed("bend_on_side.step")
-        out = os.path.join(self.tmp.name, "bend.json")
-        r = run("slice", os.path.join(DATA, "bend_on_side.step"), "--json", out)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        with open(out) as f:
-            notes = json.load(f)["notes"]
+        notes = self.sliced("bend_on_side.step")["notes"]
         self.assertTrue(any("is no valid solid" in n for n in notes), notes)
 
     def test_decompose_bad_input(self):

@@ -1001,26 +1001,44 @@ TEST(Decompose, PartsStandingOnATipAreDecomposed) {
     }
 }
 
+namespace {
+
+// tests/data/`name` decomposed as slicing does it by default: on the axis of its tessellation at
+// the part's own deflection, which slicing also meshes every component with.
+struct AsSlicingDecomposes {
+    explicit AsSlicingDecomposes(const std::string& name)
+        : model(mas::read_model(std::string(MAS_TEST_DATA) + "/" + name)) {
+        tp.deflection_mm = mas::effective_deflection(model.shape, mas::TessellationParams{});
+        mas::AxisParams ap;
+        ap.step_mm = 0.0;  // derived, as by default
+        mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(model.shape, tp), ap);
+        axis.deflection_mm = tp.deflection_mm;
+        d = mas::decompose(model.shape, axis);
+    }
+    void expect_components_mesh_closed() const {
+        for (std::size_t i = 0; i < d.components.size(); ++i)
+            EXPECT_NO_THROW(mas::tessellate(d.components[i].solid, tp)) << "component " << i;
+    }
+    mas::Model model;
+    mas::TessellationParams tp;
+    mas::Decomposition d;
+};
+
+}  // namespace
+
 TEST(Decompose, APartWithCurvesOffItsFacesIsSplitOnlyWherePiecesMeshClosed) {
     // tests/data/pins_on_column.step: two pins on a column, a valid solid whose fused cylinders'
     // edges have curves off their faces (OCCT's curve-on-surface check). One split of it (the
     // column above the level pin, cut for the rising pin's branch) passed the shape check and
     // meshed with an edge shared by three triangles at the part's deflection, so slicing stopped
     // there. Such a split is now refused, with a note, and every component meshes closed.
-    const mas::Model model = mas::read_model(std::string(MAS_TEST_DATA) + "/pins_on_column.step");
-    const mas::Shape& part = model.shape;
-    mas::TessellationParams tp;  // the part's own deflection, which slicing uses
-    tp.deflection_mm = mas::effective_deflection(part, mas::TessellationParams{});
-    mas::AxisParams ap;
-    ap.step_mm = 0.0;  // derived, as by default
-    mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
-    axis.deflection_mm = tp.deflection_mm;
-    const auto d = mas::decompose(part, axis);
+    const AsSlicingDecomposes run("pins_on_column.step");
+    const mas::Shape& part = run.model.shape;
+    const mas::Decomposition& d = run.d;
     // The level pin is still cut off; the column above it (branch 2), whose piece meshed with
     // the faulty edge, and the rising pin (branch 3), whose split would take that column, stay.
     ASSERT_EQ(d.components.size(), 2u);
-    for (std::size_t i = 0; i < d.components.size(); ++i)
-        EXPECT_NO_THROW(mas::tessellate(d.components[i].solid, tp)) << "component " << i;
+    run.expect_components_mesh_closed();
     ASSERT_EQ(d.notes.size(), 2u);
     EXPECT_EQ(d.notes[0].rfind("branch 2 ", 0), 0u) << d.notes[0];
     EXPECT_NE(d.notes[0].find("is no valid solid (OCCT's check, or a closed mesh)"),
@@ -1037,18 +1055,11 @@ TEST(Decompose, ASplitOfASoundPartThatLeavesAPieceWithCurvesOffItsFacesMustMeshC
     // OCCT's splitter with a C0 edge off its face, passed the shape check and meshed with an edge
     // shared by three triangles at the part's deflection: slicing stopped at that component. A
     // piece a split leaves so must now mesh closed, or the split is refused with a note.
-    const mas::Model model = mas::read_model(std::string(MAS_TEST_DATA) + "/bend_on_side.step");
-    const mas::Shape& part = model.shape;
-    mas::TessellationParams tp;  // the part's own deflection, which slicing uses
-    tp.deflection_mm = mas::effective_deflection(part, mas::TessellationParams{});
-    mas::AxisParams ap;
-    ap.step_mm = 0.0;  // derived, as by default
-    mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
-    axis.deflection_mm = tp.deflection_mm;
-    const auto d = mas::decompose(part, axis);
+    const AsSlicingDecomposes run("bend_on_side.step");
+    const mas::Shape& part = run.model.shape;
+    const mas::Decomposition& d = run.d;
     ASSERT_GE(d.components.size(), 1u);
-    for (std::size_t i = 0; i < d.components.size(); ++i)
-        EXPECT_NO_THROW(mas::tessellate(d.components[i].solid, tp)) << "component " << i;
+    run.expect_components_mesh_closed();
     const auto refused = std::count_if(d.notes.begin(), d.notes.end(), [](const std::string& n) {
         return n.find("is no valid solid (OCCT's check, or a closed mesh)") != std::string::npos;
     });

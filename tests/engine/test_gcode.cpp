@@ -526,6 +526,18 @@ TEST(Gcode, BadInputNamesTheProblem) {
 
     EXPECT_EQ(error_of([] { mas::write_gcode({}, mas::MachineParams()); }),
               "empty_input: G-code: no layer has a path to deposit");
+    // Layers narrower than a bead: sliced, with no path in any of them.
+    std::vector<mas::GcodeLayer> pathless = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2)};
+    for (auto& l : pathless) l.paths.clear();
+    EXPECT_EQ(error_of([&] { mas::write_gcode(pathless, mas::MachineParams()); }),
+              "empty_input: G-code: no layer has a path to deposit: none of the 2 layers holds a "
+              "bead path (regions too narrow for the bead are listed as the slice's unfilled "
+              "features; a smaller bead width may fill them)");
+    pathless.pop_back();
+    EXPECT_EQ(error_of([&] { mas::write_gcode(pathless, mas::MachineParams()); }),
+              "empty_input: G-code: no layer has a path to deposit: its one layer holds no bead "
+              "path (regions too narrow for the bead are listed as the slice's unfilled features; "
+              "a smaller bead width may fill them)");
     std::vector<mas::GcodeLayer> skewed = {square_layer(0, 0, 0, 1)};
     skewed[0].tool_axis = Vector3d(0, 0, 2);
     EXPECT_EQ(error_of([&] { mas::write_gcode(skewed, mas::MachineParams()); }),

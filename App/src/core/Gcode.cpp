@@ -441,7 +441,18 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         }
         used.push_back(i);
     }
-    if (used.empty()) throw Error(ErrorCode::EmptyInput, "G-code: no layer has a path to deposit");
+    if (used.empty()) {
+        // Layers without paths: their regions are narrower than the bead paths fill (a part
+        // smaller than a bead), listed by slicing as unfilled features.
+        std::string why = "G-code: no layer has a path to deposit";
+        if (!layers.empty())
+            why += (layers.size() == 1 ? std::string(": its one layer holds no bead path")
+                                       : ": none of the " + std::to_string(layers.size()) +
+                                             " layers holds a bead path") +
+                   " (regions too narrow for the bead are listed as the slice's unfilled "
+                   "features; a smaller bead width may fill them)";
+        throw Error(ErrorCode::EmptyInput, why);
+    }
 
     GcodeStats stats;
     const double reference = params.reference_thickness_mm > 0.0

@@ -334,6 +334,34 @@ TEST(Slicing, BoxOfAwkwardHeightNeverLeavesASliverOnTop) {
     EXPECT_NEAR(layers[10].plane.origin.z(), 20.3, 1e-9);
 }
 
+TEST(Slicing, ACavitysFloorAndCeilingAreLayerPlanes) {
+    // A 20 mm cube round a closed cavity [1, 19]^3. A layer deposits the section just above its
+    // lower plane, swept to its upper one. The first layer (0 to 1.125, within the volumetric
+    // bound by its sections, all below z = 1) filled 0.125 mm of the cavity; after 2 mm layers,
+    // the next plane fell at 19.09, and the last layer, crossing the ceiling's underside at 19,
+    // laid the walls there: 30 mm^3 of ceiling missing. (On a 50 mm box with 0.5 mm walls,
+    // 1200 mm^3.) Now the planes fall on both faces: 1, then 2 mm layers to 17, 18.5 (none less
+    // than min_layer below the ceiling), 19, and the ceiling, laid whole and reported unsupported
+    // over the cavity, but for the 1 mm its walls carry.
+    const TopoDS_Shape cube = occ_box(0, 0, 0, 20, 20, 20);
+    const auto part = from_occt(BRepAlgoAPI_Cut(cube, occ_box(1, 1, 1, 18, 18, 18)).Shape());
+    const auto s = slice(part, 2.0);
+    const auto& layers = s.result.layers;
+    const std::vector<double> tops = {1, 3, 5, 7, 9, 11, 13, 15, 17, 18.5, 19, 20};
+    ASSERT_EQ(layers.size(), tops.size());
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_TRUE(layers[i].plane.normal.isApprox(Vector3d::UnitZ(), 1e-12));
+        EXPECT_NEAR(layers[i].plane.origin.z(), tops[i], 1e-9);
+        const bool whole = i == 0 || i + 1 == layers.size();
+        EXPECT_NEAR(layers[i].area_mm2, whole ? 400.0 : 400.0 - 18.0 * 18.0, 1e-6);
+        EXPECT_LT(layers[i].volume_difference, 1e-9);
+        EXPECT_NEAR(layers[i].unsupported_area_mm2, i + 1 == layers.size() ? 16.0 * 16.0 : 0.0,
+                    1e-6);
+    }
+    EXPECT_NEAR(s.result.stats.deposited_volume_mm3, 8000.0 - 18.0 * 18.0 * 18.0, 1e-6);
+}
+
 TEST(Slicing, NarrowThicknessBoundsStillFitEveryLayer) {
     // With layers of 0.8 to 1.0 mm not every height can be filled (1.5 mm cannot): 10.5 mm
     // takes eleven layers, none of them outside the bounds.

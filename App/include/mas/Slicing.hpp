@@ -29,8 +29,14 @@
 //   Eq. 9 holds and the next layer's footprint (the component's section on U) is supported by
 //   this layer (below, with min_layer's allowance).
 //   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then
-//   delta -= delta / 4, from max_layer down to min_layer. Turns under eps_angle / 10, or moving
-//   the plane less than a tenth of min_layer across the layer below (centroid noise), are
+//   delta -= delta / 4, from max_layer down to min_layer. Where a face of the part square to L
+//   (a ceiling's underside, a floor's or a step's top) lies between min_layer and max_layer
+//   above L, the first such face is tried too, and no delta that would cross it or put the plane
+//   less than min_layer below it: a layer across a ceiling lays the walls only (the section just
+//   above L) and never the ceiling above its underside, which Eq. 9's sampled sections may not
+//   see (a 0.5 mm ceiling over a closed box's cavity went missing, one layer flagged); one
+//   across a floor lays the section below into the space above it. Turns under eps_angle / 10,
+//   or moving the plane less than a tenth of min_layer across the layer below (centroid noise), are
 //   ignored. Every D tilting more than max_tilt_deg from the build plate's +Z (the
 //   machine's reach) is turned back towards +Z onto it, in the plane of D and Z: where the guide
 //   turns further (a return bend's far leg), the layers stop at the reach. The paper prefers a

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -276,6 +277,66 @@ private:
         return top;
     }
 
+    // The offsets along unit d of the material's faces square to d (triangles whose normal is
+    // within a hundredth of a degree of +-d), ascending, each once. Kept for the last d asked.
+    const std::vector<double>& flat_offsets(const Vector3d& d) const {
+        if (flat_dir_ && flat_dir_->isApprox(d, 1e-12)) return flats_;
+        flats_.clear();
+        const TriangleMesh& m = *input_.mesh;
+        const double square = std::cos(0.01 * kPi / 180.0);
+        for (const auto& t : m.triangles) {
+            const Vector3d& a = m.vertices[std::size_t(t[0])];
+            const Vector3d n =
+                (m.vertices[std::size_t(t[1])] - a).cross(m.vertices[std::size_t(t[2])] - a);
+            const double len = n.norm();
+            if (len > 0.0 && std::abs(n.dot(d)) >= square * len) flats_.push_back(a.dot(d));
+        }
+        std::sort(flats_.begin(), flats_.end());
+        flats_.erase(std::unique(flats_.begin(), flats_.end(),
+                                 [](double x, double y) { return y - x <= 1e-9; }),
+                     flats_.end());
+        flat_dir_ = d;
+        return flats_;
+    }
+
+    // The thicknesses Sec. 4.2.2 tries above `lower`, thickest first: max_layer, then a quarter
+    // less each time down to min_layer (the search's own), and in between those putting a plane
+    // parallel to the lower one onto a face square to it. A layer deposits the section just above
+    // its lower plane, swept to its upper one: across a ceiling (the top over a closed box's
+    // cavity, a shelf's underside) it lays the walls only, and the ceiling above its underside is
+    // never laid; across a floor (the cavity's, a step's top) it lays the section below into the
+    // space above. The volumetric bound may not even see it: its sections can all fall on one side
+    // of a face near a plane (a 0.5 mm ceiling over a 49 mm cavity lost 1200 of the box's
+    // 7351 mm^3, one layer flagged; a 20 mm cube's first layer filled 0.125 mm of its cavity). So
+    // where a plane can fall on such a face, the first above the lower plane, none crosses it, and
+    // none falls less than min_layer below it, which would leave the next layer no choice but to.
+    std::vector<double> deltas(const PlanarRegions& lower) const {
+        const double min_layer = params_.min_layer_mm, max_layer = params_.max_layer_mm;
+        std::vector<double> out;
+        for (double delta = max_layer;;) {
+            out.push_back(delta);
+            if (delta <= min_layer) break;
+            delta = std::max(min_layer, delta - delta / 4.0);
+        }
+        const Vector3d& d = lower.plane.normal;
+        const double from = d.dot(lower.plane.origin);
+        const std::vector<double>& flats = flat_offsets(d);
+        const auto first = std::lower_bound(flats.begin(), flats.end(), from + min_layer - 1e-9);
+        if (first != flats.end() && *first - from <= max_layer + 1e-9) {
+            const double face = *first;
+            out.erase(std::remove_if(
+                          out.begin(), out.end(),
+                          [&](double delta) { return from + delta > face - min_layer + 1e-9; }),
+                      out.end());
+            out.push_back(std::clamp(face - from, min_layer, max_layer));
+        }
+        std::sort(out.begin(), out.end(), std::greater<double>());
+        out.erase(
+            std::unique(out.begin(), out.end(), [](double x, double y) { return x - y <= 1e-9; }),
+            out.end());
+        return out;
+    }
+
     PlanarRegions section_above(const Plane& plane) const {
         const Plane cut = make_plane(plane.origin + offset_ * plane.normal, plane.normal);
         return planar_regions(slice_mesh(*input_.mesh, cut), plane);
@@ -300,8 +361,10 @@ private:
     const Progress& progress_;
     double volume_ = 0.0;  // the mesh's: the layers' material over it is the progress
     Guide guide_;
-    double offset_ = 0.0;     // Eq. 6's Delta
-    double allowance_ = 1.0;  // tan(overhang angle)
+    double offset_ = 0.0;                       // Eq. 6's Delta
+    double allowance_ = 1.0;                    // tan(overhang angle)
+    mutable std::optional<Vector3d> flat_dir_;  // flat_offsets()' last d, and its offsets
+    mutable std::vector<double> flats_;
 };
 
 Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& d,
@@ -486,7 +549,9 @@ std::vector<Layer> ComponentSlicer::run() {
         // Sec. 4.2.2: from delta = max_layer, the guide's direction at P_upper, averaged with
         // D_lower until Eq. 9 holds (and the next layer is supported) or the two are within
         // eps_angle, then a shorter delta.
-        for (double delta = params_.max_layer_mm; !accepted;) {
+        const std::vector<double> thicknesses = deltas(lower);
+        for (const double delta : thicknesses) {
+            if (accepted) break;
             const double along = s_lower + delta;
             const Vector3d p_upper = guide_.point(along);
             Vector3d d = guide_.direction(along);
@@ -518,15 +583,13 @@ std::vector<Layer> ComponentSlicer::run() {
                 if (parallel || angle_deg(d, d_lower) < eps_angle) break;
                 d = within_reach((d + d_lower).normalized(), d_lower);
             }
-            if (delta <= params_.min_layer_mm) break;
-            delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
         }
         // Nothing met both (a tilt the thickness bounds forbid, an overhang of the part's own, a
         // dome's cap): planar adaptive along D_lower, the thickest layer that meets Eq. 9 with
         // the next layer supported, else the thickest that meets Eq. 9, else min_layer flagged.
         if (!accepted) {
             std::optional<Candidate> eq9_only;
-            for (double delta = params_.max_layer_mm;;) {
+            for (const double delta : thicknesses) {
                 progress_.check();
                 ++tries;
                 const double along = s_lower + delta;
@@ -542,8 +605,6 @@ std::vector<Layer> ComponentSlicer::run() {
                                                       eq9_only->unsupported_next - tolerance_of(c)))
                     eq9_only = c;
                 if (c.thickness_ok) fallback = std::move(c);
-                if (delta <= params_.min_layer_mm) break;
-                delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
             }
             // A wall past the overhang angle that the guide leans along (an arm leaning 60
             // degrees off a column): no single tilt makes the next layer supported, but tilting

@@ -555,7 +555,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             children = std::move(grown);
             joins = int(orphans.size());
             father_new = main;
-            unified = occ::unify(main);
+            unified = main;  // a solid of `unified`: its seams are already removed
         }
         progress.check();
         if (!valid_solid(father_new, father_out, mesh, progress, unified))

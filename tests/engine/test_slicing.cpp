@@ -360,6 +360,7 @@ TEST(Slicing, ACavitysFloorAndCeilingAreLayerPlanes) {
                     1e-6);
     }
     EXPECT_NEAR(s.result.stats.deposited_volume_mm3, 8000.0 - 18.0 * 18.0 * 18.0, 1e-6);
+    expect_invariants(s, default_params(), "closed cavity", false);  // the ceiling overhangs
 }
 
 TEST(Slicing, NarrowThicknessBoundsStillFitEveryLayer) {

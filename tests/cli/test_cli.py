@@ -31,11 +31,18 @@ def run(*args):
     return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
 
 
-def box_stl(x, y, z, drop_last=False, nan=False):
-    """ASCII STL of the box [0,x]x[0,y]x[0,z], 12 outward triangles (optionally broken)."""
-    c = [(x * (i & 1), y * ((i >> 1) & 1), z * ((i >> 2) & 1)) for i in range(8)]
+def box_corners_and_triangles(x, y, z, at=(0, 0, 0)):
+    """The box [0,x]x[0,y]x[0,z] moved by `at`: its 8 corners and 12 outward triangles."""
+    c = [(at[0] + x * (i & 1), at[1] + y * ((i >> 1) & 1), at[2] + z * ((i >> 2) & 1))
+         for i in range(8)]
     quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
-    tris = [t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+    return c, [t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+
+
+def box_stl(x, y, z, drop_last=False, nan=False, at=(0, 0, 0)):
+    """ASCII STL of the box [0,x]x[0,y]x[0,z] moved by `at`, 12 outward triangles (optionally
+    broken)."""
+    c, tris = box_corners_and_triangles(x, y, z, at)
     if drop_last:
         tris = tris[:-1]
     lines = ["solid box"]
@@ -774,6 +781,39 @@ class CliGcode(unittest.TestCase):
         r = run("slice", os.path.join(DATA, "l_block.brep"), "--step", "2.5", "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertNotIn("gcode", json.loads(r.stdout))
+
+    def test_a_part_modelled_off_the_plate_keeps_its_coordinates_and_the_header_says_so(self):
+        # A box modelled centred on its origin stands on its plane Z -3: the program deposits at
+        # the box's own Z, the header says where it stands and how G54 takes that, and LinuxCNC
+        # reads it.
+        part = os.path.join(self.tmp.name, "centred.stl")
+        with open(part, "w") as f:
+            f.write(box_stl(10, 10, 6, at=(-5, -5, -3)))
+        program = os.path.join(self.tmp.name, "centred.ngc")
+        out = os.path.join(self.tmp.name, "centred.json")
+        r = run("slice", part, "--gcode", program, "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            doc = json.load(f)
+        with open(program) as f:
+            header = [line for line in f.read().splitlines() if line.startswith("(")][:6]
+        self.assertIn("(build plate: the part stands on its plane Z-3; set G54's Z 3 mm above the "
+                      "plate's surface)", header)
+        deposits, on = [], False
+        for c in self.interpret(program):
+            if c == "SET_MOTION_OUTPUT_BIT(0)":
+                on = True
+            elif c == "CLEAR_MOTION_OUTPUT_BIT(0)":
+                on = False
+            elif c.startswith("STRAIGHT_FEED") and on:
+                deposits.append([float(v) for v in c[len("STRAIGHT_FEED("):-1].split(",")])
+        self.assertTrue(deposits)
+        # The first layer's paths lie on its plane, its thickness above -3; the last on the top.
+        first = doc["layers"][0]
+        self.assertEqual(first["lower_origin"][2], -3.0)
+        self.assertAlmostEqual(min(d[2] for d in deposits), first["origin"][2], delta=0.5e-4)
+        self.assertGreater(first["origin"][2], -3.0)
+        self.assertAlmostEqual(max(d[2] for d in deposits), 3.0, delta=0.5e-4)
 
     def test_text_summary_and_machine_options(self):
         program = os.path.join(self.tmp.name, "l.ngc")

@@ -810,12 +810,14 @@ TEST(Gcode, ARouteMeetingSomethingEvenRoundThePartIsReported) {
     EXPECT_EQ(count("(warning: on the way to layer 7 the nozzle meets the build plate near "), 2u);
     EXPECT_EQ(count("(warning: on the way off the part the nozzle meets the build plate near "),
               1u);
-    // Unchecked, the same program without the warnings.
+    // Unchecked, the same program without the warnings (and without the line saying where the
+    // build plate is, which only a program given the plate says).
     std::string unchecked = mas::write_gcode({side}, mas::MachineParams());
     std::string stripped;
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);)
-        if (line.rfind("(warning:", 0) != 0) stripped += line + "\n";
+        if (line.rfind("(warning:", 0) != 0 && line.rfind("(build plate:", 0) != 0)
+            stripped += line + "\n";
     EXPECT_EQ(stripped, unchecked);
 }
 
@@ -859,8 +861,15 @@ TEST(Gcode, WhereNothingIsMetTheCheckedProgramIsTheSame) {
     set_prism(layers[2], Vector3d::UnitZ(), {rectangle(100, 0, 110, 10, 1)}, 1.0);
     const mas::TravelNozzle nozzle{mas::NozzleParams(), {Vector3d::Zero(), Vector3d::UnitZ()}};
     mas::GcodeStats stats;
-    EXPECT_EQ(mas::write_gcode(layers, mas::MachineParams(), &stats, {}, &nozzle),
-              mas::write_gcode(layers, mas::MachineParams()));
+    // The same program, but for the line that says where the build plate is (only a program given
+    // the plate knows it).
+    const std::string plate_line =
+        "(build plate: the part stands on its plane Z0; set G54's Z on the plate's surface)\n";
+    std::string checked = mas::write_gcode(layers, mas::MachineParams(), &stats, {}, &nozzle);
+    const std::size_t at = checked.find(plate_line);
+    ASSERT_NE(at, std::string::npos);
+    checked.erase(at, plate_line.size());
+    EXPECT_EQ(checked, mas::write_gcode(layers, mas::MachineParams()));
     EXPECT_EQ(stats.checked_routes, 4);
     EXPECT_EQ(stats.rerouted_travels, 0);
     EXPECT_TRUE(stats.travel_collisions.empty());
@@ -868,6 +877,48 @@ TEST(Gcode, WhereNothingIsMetTheCheckedProgramIsTheSame) {
     bad.params.body_length_mm = 0.0;
     EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams(), nullptr, {}, &bad); }),
               "invalid_argument: the nozzle's body length must be > 0 mm, got 0");
+}
+
+// A part modelled off the plane Z = 0 keeps its coordinates in the program, so the header says
+// where it stands and how the work offset takes that: a part standing at Z 7.5 (modelled above the
+// origin) has G54's Z 7.5 mm below the plate's surface, one centred on its origin (standing at
+// Z -10) 10 mm above it. The moves are the part's coordinates whatever the plate.
+TEST(Gcode, TheHeaderSaysWhereThePartStandsAndHowG54TakesIt) {
+    auto header = [](double z, const Vector3d& normal = Vector3d::UnitZ()) {
+        std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, z + 1.0)};
+        set_prism(layers[0], Vector3d::UnitZ(), {rectangle(0, 0, 10, 10, z + 1.0)}, 1.0);
+        const mas::TravelNozzle nozzle{mas::NozzleParams(), {Vector3d(3, 4, z), normal}};
+        const std::string text =
+            mas::write_gcode(layers, mas::MachineParams(), nullptr, {}, &nozzle);
+        std::istringstream in(text);
+        std::string line, plate = "no build plate line", rest;
+        while (std::getline(in, line))
+            if (line.rfind("(build plate:", 0) == 0)
+                plate = line;
+            else
+                rest += line + "\n";
+        // Standing on a plane of Z, nothing is met on the way: the program is the one written
+        // without the plate but for that line.
+        if (normal == Vector3d::UnitZ()) {
+            EXPECT_EQ(rest, mas::write_gcode(layers, mas::MachineParams()));
+        }
+        return plate;
+    };
+    EXPECT_EQ(header(7.5),
+              "(build plate: the part stands on its plane Z7.5; set G54's Z 7.5 mm below the "
+              "plate's surface)");
+    EXPECT_EQ(header(-10.0),
+              "(build plate: the part stands on its plane Z-10; set G54's Z 10 mm above the "
+              "plate's surface)");
+    EXPECT_EQ(header(-0.0),
+              "(build plate: the part stands on its plane Z0; set G54's Z on the plate's surface)");
+    // A plate the slicing never gives (it stands the part on Z): said as the plane it is.
+    EXPECT_EQ(header(2.0, Vector3d::UnitX()),
+              "(build plate: the plane through 3 4 2 square to 1 0 0 in the part's coordinates)");
+    // Without the plate nothing is said of it.
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1.0)};
+    EXPECT_EQ(mas::write_gcode(layers, mas::MachineParams()).find("build plate"),
+              std::string::npos);
 }
 
 // A wall 10 mm tall (component 0), and beside it two layers of component 1, the second leaned 30

@@ -42,6 +42,14 @@ def deposit_moves(text):
     return out
 
 
+def without_plate_line(text):
+    """A program without its header's line on the build plate (written when the plate is known)."""
+    lines = text.splitlines(keepends=True)
+    plate = [line for line in lines if line.startswith("(build plate: ")]
+    assert len(plate) == 1, plate
+    return "".join(line for line in lines if line not in plate)
+
+
 class GcodeTest(support.EngineTestCase):
     @classmethod
     def setUpClass(cls):
@@ -75,6 +83,9 @@ class TestGcodeApi(GcodeTest):
                                self.result.stats["deposit_length_mm"], places=6)
         self.assertEqual(program.stats["lines"], len(program.text.splitlines()))
         self.assertEqual(str(program), program.text)
+        # The result's build plate (the L-block stands on Z = 0) is said in the header.
+        self.assertIn("(build plate: the part stands on its plane Z0; set G54's Z on the plate's "
+                      "surface)", program.text.splitlines()[:6])
 
     def test_the_same_program_as_the_command_line(self):
         """Scripting and the command line run one engine on the same layers: the same text."""
@@ -181,7 +192,9 @@ class TestGcodeApi(GcodeTest):
                                      {"deposit_output": True})
         broken = [dict(layers[0], component=True)]
         self.assertRaisesEngineError("invalid_argument", engine.write_gcode, broken)
-        self.assertEqual(engine.write_gcode(layers)["text"], mas.gcode(self.result).text)
+        # The same program but for the header's build plate, which the engine is not given here.
+        self.assertEqual(engine.write_gcode(layers)["text"],
+                         without_plate_line(mas.gcode(self.result).text))
 
 
 
@@ -243,7 +256,7 @@ class TestTravelCheck(GcodeTest):
         del data["plate_origin"], data["plate_normal"]
         old = mas.SliceResult(data, self.result.params, self.result.axis, None, "solid")
         self.assertEqual(mas.gcode(old).stats["checked_routes"], 0)
-        self.assertEqual(mas.gcode(old).text, program.text)
+        self.assertEqual(mas.gcode(old).text, without_plate_line(program.text))
 
     def test_bad_nozzle_or_plate(self):
         engine = mas._engine

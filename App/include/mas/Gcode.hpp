@@ -12,6 +12,9 @@
 //   work offset (G54) so that the part's origin is where the part sits on the table, and have the
 //   nozzle's tool length offset in force (G43), which xyzac-trt-kins reads for its tool-centre
 //   point: the program leaves tool length compensation as it finds it. A and C are in degrees.
+//   Given the build plate (a TravelNozzle), the header says the plane the part stands on and how
+//   far from the plate's surface G54's Z goes: a part modelled centred on its origin or above it
+//   keeps its own Z, which an operator setting G54 on the plate's surface would miss.
 // - Orientation. Each layer is deposited with its tool axis n (Nozzle.hpp), turned to machine +Z:
 //   towards the nozzle, which points down. xyzac-trt-kins maps a part vector v to Rx(A) Rz(C) v, so
 //   with the tilt theta = atan2(hypot(n.x, n.y), n.z) in [0, 180] degrees, n needs either

@@ -537,6 +537,22 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
               " deg, C " + format_number(params.c_min_deg) + " to " +
               format_number(params.c_max_deg) + " deg");
     g.comment("X Y Z: the part's coordinates in mm; set G54 to the part's origin on the table");
+    if (nozzle) {
+        // Where the part stands: a part modelled off the plane Z = 0 (centred on its origin, or
+        // above it) has its program's Z as modelled, so the work offset must take the difference.
+        const Plane& plate = nozzle->plate;
+        if ((plate.normal - Eigen::Vector3d::UnitZ()).norm() <= 1e-9) {
+            const double z = plate.origin.z() + 0.0;  // -0 reads as 0
+            const std::string level = format_number(z);
+            g.comment("build plate: the part stands on its plane Z" + level + "; set G54's Z " +
+                      (level == "0" ? std::string("on the plate's surface")
+                                    : format_number(std::abs(z)) + " mm " +
+                                          (z > 0.0 ? "below" : "above") + " the plate's surface"));
+        } else {
+            g.comment("build plate: the plane through " + vector_text(plate.origin) +
+                      " square to " + vector_text(plate.normal) + " in the part's coordinates");
+        }
+    }
     g.comment("the nozzle tip is the tool-centre point: its length offset must be in force");
     g.comment("deposition: digital output" + out_n + ", feed " + format_number(params.feed_mm_min) +
               " mm/min at " + format_number(reference, 4) + " mm thick, within " +

@@ -8,6 +8,7 @@ import os
 import re
 import resource
 import signal
+import struct
 import subprocess
 import sys
 import tempfile
@@ -37,6 +38,15 @@ def box_corners_and_triangles(x, y, z, at=(0, 0, 0)):
          for i in range(8)]
     quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
     return c, [t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+
+
+def box_binary_stl(x, y, z, header=b"binary STL"):
+    """Binary STL of the box [0,x]x[0,y]x[0,z], zero facet normals, as some exporters write."""
+    c, tris = box_corners_and_triangles(x, y, z)
+    data = header.ljust(80, b" ") + struct.pack("<I", len(tris))
+    for t in tris:
+        data += struct.pack("<12fH", 0, 0, 0, *c[t[0]], *c[t[1]], *c[t[2]], 0)
+    return data
 
 
 def box_stl(x, y, z, drop_last=False, nan=False, at=(0, 0, 0)):
@@ -106,6 +116,28 @@ class CliSections(unittest.TestCase):
         stl = self.json_sections(self.write("box.stl", box_stl(10, 20, 30)), "--step", "10")
         self.assertEqual(stl["kind"], "mesh")
         self.assertEqual(stl["triangles"], 12)
+        self.assertEqual([round(s["area_mm2"], 9) for s in stl["sections"]], [200.0] * 3)
+
+    def test_binary_and_ascii_stl_are_told_apart_by_size_and_solid(self):
+        # A binary STL is 84 bytes plus 50 per facet it announces, whatever its bytes: this one's
+        # first 134 (its header starting "solid", as some exporters write, 12 facets, a first
+        # facet of zero normal and corners 0, 10 and 40, whose floats' bytes are all below '~')
+        # look like text, which OCCT's own guess took for ASCII and then failed to read.
+        path = os.path.join(self.tmp.name, "box_binary.stl")
+        with open(path, "wb") as f:
+            f.write(box_binary_stl(10, 40, 12, header=b"solid box exported as binary"))
+        with open(path, "rb") as f:
+            self.assertTrue(all(b <= ord("~") for b in f.read(134)))
+        stl = self.json_sections(path, "--step", "4")
+        self.assertEqual((stl["kind"], stl["triangles"]), ("mesh", 12))
+        self.assertEqual([round(s["area_mm2"], 9) for s in stl["sections"]], [400.0] * 3)
+        # An ASCII STL starts with "solid": one naming its solid in UTF-8 (bytes past '~' in its
+        # first line, which OCCT's guess took for binary) reads as text.
+        path = os.path.join(self.tmp.name, "bügel.stl")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(box_stl(10, 20, 30).replace("solid box", "solid Bügel Ø12 — Halter", 1))
+        stl = self.json_sections(path, "--step", "10")
+        self.assertEqual((stl["kind"], stl["triangles"]), ("mesh", 12))
         self.assertEqual([round(s["area_mm2"], 9) for s in stl["sections"]], [200.0] * 3)
 
     def test_cylinder_within_deflection(self):

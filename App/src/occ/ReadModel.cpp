@@ -5,9 +5,10 @@
 #include <Bnd_Box.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
-#include <Poly_Triangulation.hxx>
-#include <RWStl.hxx>
+#include <Message_ProgressRange.hxx>
+#include <RWStl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Standard_ReadLineBuffer.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <gp_XYZ.hxx>
 #include <map>
 #include <mutex>
 #include <system_error>
@@ -124,9 +126,14 @@ TopoDS_Shape read_brep_file(const std::string& path) {
 
 // RWStl reads as many facets as a truncated STL holds and reports success; the cut then shows up
 // later, as a mesh with holes. Say "truncated" instead: a binary STL is exactly 84 bytes plus 50
-// per facet announced in its header, an ASCII one ends with "endsolid". Returns whether the file
-// is ASCII and holds "nan" or "inf" somewhere (any case): a coordinate may be one.
-bool require_complete_stl(const std::string& path) {
+// per facet announced in its header, an ASCII one starts with "solid" and ends with "endsolid".
+// That also tells the two apart: RWStl's own guess reads a file whose first 134 bytes are all
+// ASCII as text (a binary STL of a simple part with zero facet normals: 0x00 and small coordinates
+// such as 10.0f = 00 00 20 41), and one with a byte past '~' there as binary (an ASCII STL whose
+// solid is named in UTF-8, "solid Bügel"), and then fails on either.
+enum class StlKind { Binary, Ascii, AsciiNamingNanOrInf };
+
+StlKind stl_kind(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -134,7 +141,9 @@ bool require_complete_stl(const std::string& path) {
         const auto* p = reinterpret_cast<const unsigned char*>(bytes.data()) + 80;
         const std::uint64_t facets =
             p[0] | (p[1] << 8) | (p[2] << 16) | (std::uint64_t(p[3]) << 24);
-        if (bytes.size() == 84 + 50 * facets) return false;  // a complete binary STL
+        // (An ASCII file matches only if its bytes 80 to 83, text, count half a billion facets
+        // and it is 25 GB long.)
+        if (bytes.size() == 84 + 50 * facets) return StlKind::Binary;
     }
     const auto first = bytes.find_first_not_of(" \t\r\n");
     if (first != std::string::npos && bytes.compare(first, 5, "solid") == 0) {
@@ -148,7 +157,7 @@ bool require_complete_stl(const std::string& path) {
                        return std::tolower(static_cast<unsigned char>(a)) == b;
                    }) != bytes.end();
         };
-        return holds("nan") || holds("inf");
+        return holds("nan") || holds("inf") ? StlKind::AsciiNamingNanOrInf : StlKind::Ascii;
     }
     throw Error(ErrorCode::ReadFailed,
                 path + ": truncated or not an STL file (its size does not match its facet count)");
@@ -172,29 +181,52 @@ bool ascii_stl_has_non_finite(const std::string& path) {
     return false;
 }
 
+// RWStl_Reader's parsers, told the format: they merge nodes of equal coordinates (so the mesh
+// comes out welded) and drop facets with two corners at one node.
+class StlMeshReader final : public RWStl_Reader {
+public:
+    explicit StlMeshReader(TriangleMesh& mesh) : mesh_(mesh) {}
+    Standard_Integer AddNode(const gp_XYZ& p) override {
+        mesh_.vertices.emplace_back(p.X(), p.Y(), p.Z());
+        return static_cast<Standard_Integer>(mesh_.vertices.size() - 1);
+    }
+    void AddTriangle(Standard_Integer a, Standard_Integer b, Standard_Integer c) override {
+        mesh_.triangles.emplace_back(a, b, c);
+    }
+
+private:
+    TriangleMesh& mesh_;
+};
+
 TriangleMesh read_stl(const std::string& path) {
-    if (require_complete_stl(path) && ascii_stl_has_non_finite(path))
+    const StlKind kind = stl_kind(path);
+    if (kind == StlKind::AsciiNamingNanOrInf && ascii_stl_has_non_finite(path))
         throw Error(ErrorCode::NonFiniteCoordinate,
                     path + ": a vertex has NaN or infinite coordinates");
-    // RWStl reads ASCII and binary STL and merges coincident nodes, so the mesh comes out welded.
-    const Handle(Poly_Triangulation) tri = RWStl::ReadFile(path.c_str());
-    if (tri.IsNull())
-        throw Error(ErrorCode::ReadFailed, path + ": unreadable or truncated STL file");
     TriangleMesh mesh;
-    mesh.vertices.reserve(tri->NbNodes());
-    for (int i = 1; i <= tri->NbNodes(); ++i) {
-        const gp_Pnt p = tri->Node(i);
-        mesh.vertices.emplace_back(p.X(), p.Y(), p.Z());
-        if (!mesh.vertices.back().allFinite())
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(ErrorCode::ReadFailed, path + ": cannot open the file");
+    const Handle(StlMeshReader) reader = new StlMeshReader(mesh);
+    bool read = true;
+    if (kind == StlKind::Binary) {
+        read = reader->ReadBinary(in, Message_ProgressRange());
+    } else {
+        // One solid after another ("solid ... endsolid"), as RWStl_Reader::Read takes them.
+        in.seekg(0, std::ios::end);
+        const std::streampos end = in.tellg();
+        in.seekg(0, std::ios::beg);
+        Standard_ReadLineBuffer buffer(1024);
+        while (read && in.good()) {
+            read = reader->ReadAscii(in, buffer, end, Message_ProgressRange());
+            in >> std::ws;
+        }
+        read = read && !in.bad();
+    }
+    if (!read) throw Error(ErrorCode::ReadFailed, path + ": unreadable or truncated STL file");
+    for (const Eigen::Vector3d& v : mesh.vertices)
+        if (!v.allFinite())
             throw Error(ErrorCode::NonFiniteCoordinate,
                         path + ": a vertex has NaN or infinite coordinates");
-    }
-    mesh.triangles.reserve(tri->NbTriangles());
-    for (int t = 1; t <= tri->NbTriangles(); ++t) {
-        int a, b, c;
-        tri->Triangle(t).Get(a, b, c);
-        mesh.triangles.emplace_back(a - 1, b - 1, c - 1);
-    }
     if (mesh.triangles.empty()) throw Error(ErrorCode::EmptyInput, path + ": no triangles");
     return mesh;
 }

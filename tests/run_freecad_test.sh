@@ -21,10 +21,12 @@ module=$3
 
 home=$(mktemp -d "${TMPDIR:-/tmp}/mas-freecad-home.XXXXXX")
 trap 'rm -rf "$home"' EXIT
-mkdir -p "$home/.local/share/FreeCAD/Mod" "$home/.config" "$home/.cache"
+mkdir -p "$home/.local/share/FreeCAD/Mod" "$home/.config" "$home/.cache" "$home/tmp"
 ln -s "$addon" "$home/.local/share/FreeCAD/Mod/MultiAxisSlicer"
+# Temporary files go with the HOME too: FreeCAD's Start page leaves a FreeCADStartThumbnails*
+# folder in the temporary directory on every GUI start.
 export HOME="$home" XDG_DATA_HOME="$home/.local/share" XDG_CONFIG_HOME="$home/.config" \
-  XDG_CACHE_HOME="$home/.cache"
+  XDG_CACHE_HOME="$home/.cache" TMPDIR="$home/tmp"
 unset FREECAD_USER_HOME FREECAD_USER_DATA FREECAD_USER_TEMP
 log="$home/output.log"
 

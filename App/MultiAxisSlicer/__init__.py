@@ -293,7 +293,9 @@ def to_engine_mesh(obj, deflection=None):
     fine), a closed ``Mesh.Mesh``, a FreeCAD document object with such a ``Shape`` or ``Mesh``, a
     file path (.step/.stp, .iges/.igs, .brep/.brp, .stl, .off), or an engine ``Shape``/``Mesh``.
     Solids are tessellated with chordal ``deflection`` mm (None or 0: derived from the part's size,
-    see ``deflection()``). Meshes are checked and copied: an inside-out mesh is flipped in the copy.
+    see ``deflection()``). Meshes are checked and copied: an inside-out mesh is flipped in the copy,
+    and the copy's vertices are sorted by their coordinates and its triangles by their vertices, so
+    that the same surface given in any order (another exporter, a shuffled STL) slices the same.
 
     Raises EngineError (not_a_solid for a face, shell or wire; multiple_solids; open_mesh;
     non_finite_coordinate; empty_input; read_failed; unsupported_format), TypeError for anything

@@ -448,13 +448,14 @@ std::string mesh_repr(const mas::TriangleMesh& mesh) {
            " triangles=" + std::to_string(mesh.triangles.size()) + ">";
 }
 
-// A checked copy: closed, finite, outward-oriented (an inside-out copy is flipped); the argument
-// itself is never changed.
+// A checked copy: closed, finite, outward-oriented (an inside-out copy is flipped), in the
+// canonical order (mas::canonical_order); the argument itself is never changed.
 mas::TriangleMesh make_closed(const mas::TriangleMesh& mesh, const std::string& what) {
     mas::TriangleMesh copy = mesh;
     GilRelease nogil;
     mas::require_closed_mesh(copy, what);
     mas::require_one_solid(copy, what);
+    mas::canonical_order(copy);
     return copy;
 }
 

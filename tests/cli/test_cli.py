@@ -5,6 +5,7 @@ Run by ctest with MAS_CLI (the program) and MAS_TEST_DATA (tests/data) in the en
 import json
 import math
 import os
+import random
 import re
 import resource
 import signal
@@ -553,6 +554,45 @@ class CliSections(unittest.TestCase):
         self.assertEqual(len(rows), 7)  # 21 mm in 3 mm layers
         self.assertEqual([float(row[4]) for row in rows], [3.0] * 7)
         self.assertIn("# build order: 0\n", r.stdout)
+
+    def test_a_mesh_slices_the_same_whatever_order_its_facets_come_in(self):
+        # A ball of 32 x 16 facets cut flat at its bottom, written once in order and once with its
+        # facets shuffled and each one's corners turned round: read in one order, the same layers
+        # and paths to the last digit (sums in another order differ in their last bits, and an
+        # adaptive choice near its threshold can go the other way on them).
+        rings, sides, radius = 16, 32, 10.0
+        def point(i, k):  # ring i from the bottom cut (i = 1) to the top (i = rings)
+            polar = math.pi * (1.0 - i / rings) * 0.9
+            return (radius * math.sin(polar) * math.cos(2 * math.pi * k / sides),
+                    radius * math.sin(polar) * math.sin(2 * math.pi * k / sides),
+                    radius * (1.0 + math.cos(polar)))
+        facets = []
+        for k in range(sides):
+            k1 = (k + 1) % sides
+            facets.append(((0.0, 0.0, point(1, 0)[2]), point(1, k1), point(1, k)))  # the flat cut
+            for i in range(1, rings - 1):
+                facets += [(point(i, k), point(i, k1), point(i + 1, k1)),
+                           (point(i, k), point(i + 1, k1), point(i + 1, k))]
+            facets.append((point(rings - 1, k), point(rings - 1, k1), (0.0, 0.0, 2 * radius)))
+        shuffled = [f[n:] + f[:n] for n, f in zip([0, 1, 2] * len(facets), facets)]
+        random.Random(3).shuffle(shuffled)
+        docs = []
+        for name, order in (("ordered", facets), ("shuffled", shuffled)):
+            text = ["solid ball"]
+            for f in order:
+                text.append(" facet normal 0 0 0\n  outer loop")
+                text += ["   vertex %r %r %r" % p for p in f]
+                text.append("  endloop\n endfacet")
+            path = os.path.join(self.tmp.name, name + ".stl")
+            with open(path, "w") as f:
+                f.write("\n".join(text + ["endsolid ball"]) + "\n")
+            r = run("slice", path, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            doc = json.loads(r.stdout)
+            self.assertEqual(doc.pop("file"), path)
+            docs.append(doc)
+        self.assertGreater(len(docs[0]["layers"]), 5)
+        self.assertEqual(docs[0], docs[1])
 
     def test_slice_nozzle_options_and_collisions(self):
         """The L's arm is deposited sideways 40 to 60 mm up: a coaxial nozzle with a 100 mm body

@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "mas/Error.hpp"
@@ -220,6 +222,40 @@ TEST(MeshWeld, TriangleSoupBecomesClosed) {
     EXPECT_FALSE(mas::check_mesh(soup).closed());
     EXPECT_EQ(mas::weld_vertices(soup, 1e-9), 36u - 8u);
     EXPECT_TRUE(mas::check_mesh(soup).closed());
+}
+
+// The same box with its vertices listed backwards, its triangles reversed in order and each one's
+// corners turned round: in canonical order both are the same mesh, vertices sorted by x, y, z,
+// each triangle starting at its least vertex with its turn (the outward orientation) kept.
+TEST(MeshOrder, TheSameSurfaceInAnyOrderComesOutTheSame) {
+    const mas::TriangleMesh box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    mas::TriangleMesh scrambled;
+    const int nv = int(box.vertices.size());
+    scrambled.vertices.assign(box.vertices.rbegin(), box.vertices.rend());
+    for (std::size_t k = box.triangles.size(); k-- > 0;) {
+        const Eigen::Vector3i& t = box.triangles[k];
+        const Eigen::Vector3i back(nv - 1 - t[0], nv - 1 - t[1], nv - 1 - t[2]);
+        scrambled.triangles.push_back(k % 3 == 0   ? back
+                                      : k % 3 == 1 ? Eigen::Vector3i(back[1], back[2], back[0])
+                                                   : Eigen::Vector3i(back[2], back[0], back[1]));
+    }
+    mas::TriangleMesh a = box, b = scrambled;
+    mas::canonical_order(a);
+    mas::canonical_order(b);
+    EXPECT_EQ(a.vertices, b.vertices);
+    EXPECT_EQ(a.triangles, b.triangles);
+    for (std::size_t k = 1; k < a.vertices.size(); ++k) {
+        const Eigen::Vector3d& p = a.vertices[k - 1];
+        const Eigen::Vector3d& q = a.vertices[k];
+        EXPECT_TRUE(std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z()));
+    }
+    for (const Eigen::Vector3i& t : a.triangles) EXPECT_TRUE(t[0] < t[1] && t[0] < t[2]);
+    EXPECT_TRUE(std::is_sorted(a.triangles.begin(), a.triangles.end(),
+                               [](const Eigen::Vector3i& x, const Eigen::Vector3i& y) {
+                                   return std::tie(x[0], x[1], x[2]) < std::tie(y[0], y[1], y[2]);
+                               }));
+    EXPECT_TRUE(mas::check_mesh(a).closed());
+    EXPECT_DOUBLE_EQ(mas::mesh_volume(a), 6000.0);  // still facing out
 }
 
 TEST(ReadOff, ReadsQuadsAsTriangles) {

@@ -75,6 +75,14 @@ void require_closed_mesh(TriangleMesh& mesh, const std::string& what);
 // out on its own). A tessellated BREP solid is one by construction and is not checked.
 void require_one_solid(const TriangleMesh& mesh, const std::string& what);
 
+// Puts a mesh given as a mesh in one order whatever order it came in: vertices sorted by their
+// coordinates (x, then y, then z), each triangle starting at its least vertex (its turn kept),
+// triangles sorted. The same surface written with its facets or their corners in another order
+// (another exporter, a shuffled STL) then slices the same: sums over facets in another order
+// differ in their last bits, and a choice near its threshold (a layer's thickness, whether a
+// region is supported) can go the other way on it (a U handle's mesh, shuffled: 38 or 40 layers).
+void canonical_order(TriangleMesh& mesh);
+
 // Merges vertices closer than `tolerance_mm` (STL and OFF soups repeat vertices per triangle) and
 // drops triangles that collapse. Returns the number of vertices removed.
 std::size_t weld_vertices(TriangleMesh& mesh, double tolerance_mm);

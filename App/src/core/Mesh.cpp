@@ -10,8 +10,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <sstream>
+#include <tuple>
 #include <unordered_map>
 
 #include "mas/Error.hpp"
@@ -253,6 +255,34 @@ void require_closed_mesh(TriangleMesh& mesh, const std::string& what) {
                                                format_number(size) + " mm across)");
     if (r.volume_mm3 < 0.0)  // closed and consistent, but inside out
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+}
+
+void canonical_order(TriangleMesh& mesh) {
+    const std::size_t nv = mesh.vertices.size();
+    std::vector<int> by_position(nv);
+    std::iota(by_position.begin(), by_position.end(), 0);
+    const auto less = [&](int a, int b) {
+        const Eigen::Vector3d& p = mesh.vertices[std::size_t(a)];
+        const Eigen::Vector3d& q = mesh.vertices[std::size_t(b)];
+        return std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z());
+    };
+    std::stable_sort(by_position.begin(), by_position.end(), less);
+    std::vector<int> new_index(nv);
+    std::vector<Eigen::Vector3d> vertices(nv);
+    for (std::size_t k = 0; k < nv; ++k) {
+        new_index[std::size_t(by_position[k])] = int(k);
+        vertices[k] = mesh.vertices[std::size_t(by_position[k])];
+    }
+    mesh.vertices = std::move(vertices);
+    for (Eigen::Vector3i& t : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) t[k] = new_index[std::size_t(t[k])];
+        // Start at the least index, the turn (the facet's orientation) kept.
+        while (t[0] > t[1] || t[0] > t[2]) t = Eigen::Vector3i(t[1], t[2], t[0]);
+    }
+    std::sort(mesh.triangles.begin(), mesh.triangles.end(),
+              [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+                  return std::tie(a[0], a[1], a[2]) < std::tie(b[0], b[1], b[2]);
+              });
 }
 
 std::size_t weld_vertices(TriangleMesh& mesh, double tolerance_mm) {

@@ -275,6 +275,7 @@ TriangleMesh model_mesh(const Model& model, const TessellationParams& params) {
     TriangleMesh mesh = model.mesh;
     require_closed_mesh(mesh, what);
     require_one_solid(mesh, what);
+    canonical_order(mesh);
     return mesh;
 }
 

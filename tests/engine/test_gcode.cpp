@@ -912,6 +912,13 @@ TEST(Gcode, TheHeaderSaysWhereThePartStandsAndHowG54TakesIt) {
               "plate's surface)");
     EXPECT_EQ(header(-0.0),
               "(build plate: the part stands on its plane Z0; set G54's Z on the plate's surface)");
+    // To the 4 decimals of the program's words: a curved underside whose lowest point lies 6
+    // microns over the plane the part was placed on by a loose box, and noise at zero.
+    EXPECT_EQ(header(0.00619372),
+              "(build plate: the part stands on its plane Z0.0062; set G54's Z 0.0062 mm below "
+              "the plate's surface)");
+    EXPECT_EQ(header(-3e-13),
+              "(build plate: the part stands on its plane Z0; set G54's Z on the plate's surface)");
     // A plate the slicing never gives (it stands the part on Z): said as the plane it is.
     EXPECT_EQ(header(2.0, Vector3d::UnitX()),
               "(build plate: the plane through 3 4 2 square to 1 0 0 in the part's coordinates)");

@@ -542,7 +542,8 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         // above it) has its program's Z as modelled, so the work offset must take the difference.
         const Plane& plate = nozzle->plate;
         if ((plate.normal - Eigen::Vector3d::UnitZ()).norm() <= 1e-9) {
-            const double z = plate.origin.z() + 0.0;  // -0 reads as 0
+            // To the program's resolution (its words have 4 decimals); -0 reads as 0.
+            const double z = std::round(plate.origin.z() * 1e4) / 1e4 + 0.0;
             const std::string level = format_number(z);
             g.comment("build plate: the part stands on its plane Z" + level + "; set G54's Z " +
                       (level == "0" ? std::string("on the plate's surface")

@@ -614,17 +614,19 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
                                        max_tilt=max_tilt)
 
 
-def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
-               toolpath_name="Toolpath", doc=None, **params):
-    """Adds a parametric ``Layers`` object (FreeCAD only) slicing the part of the ``Decomposition``
-    object ``decomposition`` into adaptive multi-axis layers, and a ``Toolpath`` object showing
-    the bead paths planned in them; returns (layers, toolpath). Recompute the document to compute
-    them. ``params`` are ``slice()``'s slicing parameters (min_layer, max_layer, bead_width,
-    infill, ...), checked before anything is added. See ``MultiAxisSlicer.features``."""
+def make_slice(part, deflection=0.0, show_travel=False, name="Layers", toolpath_name="Toolpath",
+               doc=None, **params):
+    """Adds a parametric ``Layers`` object (FreeCAD only) slicing ``part`` into adaptive multi-axis
+    layers, and a ``Toolpath`` object showing the bead paths planned in them; returns (layers,
+    toolpath). Recompute the document to compute them. ``part`` is a ``Decomposition`` object
+    (its part sliced component by component) or a closed mesh object (``Mesh::Feature``, sliced as
+    one component, as ``slice()`` slices a mesh). ``params`` are ``slice()``'s slicing parameters
+    (min_layer, max_layer, bead_width, infill, ...), checked before anything is added. See
+    ``MultiAxisSlicer.features``."""
     from . import features
 
-    return features.make_slice(decomposition, deflection=deflection, show_travel=show_travel,
-                               name=name, toolpath_name=toolpath_name, doc=doc, **params)
+    return features.make_slice(part, deflection=deflection, show_travel=show_travel, name=name,
+                               toolpath_name=toolpath_name, doc=doc, **params)
 
 
 def make_machine_program(layers, name="MachineProgram", doc=None, **machine):

@@ -5,8 +5,8 @@
 closed wires. ``CentroidalAxis``: the part's centroidal axis, as a compound of vertices (nodes) and
 line segments (links). ``Decomposition``: the part's sub-components, as a compound of solids in
 tree order, with one ``Component`` object per solid (labelled Component001, ...) for the tree and
-the 3D view. ``Layers``: a decomposition's adaptive multi-axis layers, as a compound of their
-outlines; ``Toolpath``: the bead paths planned in them, as a compound of polylines;
+the 3D view. ``Layers``: a decomposition's (or a mesh's) adaptive multi-axis layers, as a compound
+of their outlines; ``Toolpath``: the bead paths planned in them, as a compound of polylines;
 ``MachineProgram``: the 5-axis G-code that deposits them, its travel moves as polylines. Thin like
 FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
 
@@ -15,6 +15,7 @@ FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
     axis = features.make_centroidal_axis(doc.Box, step=2.0)
     parts = features.make_decomposition(doc.Box, axis=axis)   # computes it, adds the components
     layers, toolpath = features.make_slice(parts, max_layer=1.5, bead_width=1.2)
+    scan_layers, scan_paths = features.make_slice(doc.Scan)      # a closed Mesh::Feature
     program = features.make_machine_program(layers, feed=900)
     doc.recompute()
     features.export_gcode(program, "/tmp/part.ngc")
@@ -811,10 +812,31 @@ def _check_link(obj, prop, check, what):
     return linked
 
 
+def is_mesh_part(obj):
+    """Whether the document object ``obj`` is a mesh a Layers object can slice as its Source (a
+    ``Mesh::Feature``; whether it is closed is checked when it is sliced)."""
+    return mas._is_document_object(obj) and obj.isDerivedFrom("Mesh::Feature")
+
+
 def slice_inputs(obj):
-    """(Decomposition object, slice() parameters, deflection or None) of a Layers object. Raises
-    ValueError / TypeError for a missing or wrong link or a bad parameter (naming it)."""
-    decomposition = _check_link(obj, "Decomposition", is_decomposition, "Decomposition")
+    """(Decomposition object or None, mesh Source object or None, slice() parameters, deflection
+    or None) of a Layers object: it slices either a Decomposition's part, component by component,
+    or a mesh as one component. Raises ValueError / TypeError for a missing or wrong link or a bad
+    parameter (naming it)."""
+    decomposition, source = obj.Decomposition, obj.Source
+    if decomposition is not None and source is not None:
+        raise ValueError("{}: both Decomposition '{}' and Source '{}' are set: a Layers object "
+                         "slices one or the other".format(obj.Label, decomposition.Label,
+                                                          source.Label))
+    if source is not None:
+        if not is_mesh_part(source):
+            raise TypeError("{}: Source '{}' is not a mesh: a solid is sliced through a "
+                            "Decomposition object (set Decomposition, not Source)".format(
+                                obj.Label, source.Label))
+    elif decomposition is None:
+        raise ValueError("{}: neither Decomposition nor Source is set".format(obj.Label))
+    else:
+        _check_link(obj, "Decomposition", is_decomposition, "Decomposition")
     params = {}
     for prop, _group, name, type_id, _doc in _SLICE_PROPERTIES:
         value = getattr(obj, prop)
@@ -822,23 +844,41 @@ def slice_inputs(obj):
             value = value.Value
         params[name] = value
     mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))  # before any decomposing
-    return decomposition, params, obj.Deflection.Value or None
+    return decomposition, source, params, obj.Deflection.Value or None
+
+
+def _mesh_fingerprint(mesh_obj):
+    """What tells one state of a mesh object's mesh from another, cheaply (FreeCAD computes each in
+    one pass over the facets): a Layers object's remembered result is for the mesh it was sliced
+    from."""
+    mesh = mesh_obj.Mesh
+    box = mesh.BoundBox
+    return (mesh_obj.Name, mesh.CountPoints, mesh.CountFacets, mesh.Volume, mesh.Area,
+            (box.XMin, box.YMin, box.ZMin, box.XMax, box.YMax, box.ZMax),
+            tuple(mesh.Placement.toMatrix().A))
 
 
 def slice_result(obj):
     """The engine's ``MultiAxisSlicer.SliceResult`` of a Layers object, as its properties and its
-    Decomposition give it.
+    Decomposition (or its mesh Source) give it.
 
     The proxy keeps the last one in memory (never saved): the Toolpath object reads its paths from
-    there. After a reopen, or when a parameter or the decomposition changed, it is computed anew
-    (the decomposition too, unless the Decomposition object still has it). Raises like
-    ``MultiAxisSlicer.slice``."""
-    decomposition_obj, params, deflection = slice_inputs(obj)
-    decomposition = decomposition_result(decomposition_obj)
-    source, _ = decomposition_inputs(decomposition_obj)
+    there. After a reopen, or when a parameter, the decomposition or the mesh changed, it is
+    computed anew (the decomposition too, unless the Decomposition object still has it). Raises
+    like ``MultiAxisSlicer.slice``."""
+    decomposition_obj, mesh_obj, params, deflection = slice_inputs(obj)
+    if mesh_obj is not None:
+        decomposition = None
+        source = mesh_obj
+        # The mesh, not a result holding it: the fingerprint names its state.
+        part_key = _mesh_fingerprint(mesh_obj)
+    else:
+        decomposition = decomposition_result(decomposition_obj)
+        source, _ = decomposition_inputs(decomposition_obj)
+        # The cached result holds its decomposition, so that id() is not reused while it is cached.
+        part_key = id(decomposition)
     proxy = obj.Proxy
-    # The cached result holds its decomposition, so that id() is not reused while it is cached.
-    key = (id(decomposition), tuple(sorted(params.items())), deflection)
+    key = (part_key, tuple(sorted(params.items())), deflection)
     cached = getattr(proxy, "_result", None)
     if cached is not None and cached[0] == key:
         return cached[1]
@@ -848,6 +888,20 @@ def slice_result(obj):
                            progress=progress, **params)
     proxy._result = (key, result)
     return result
+
+
+def one_component_note(obj, result):
+    """What the report view says of a Layers object `obj` that sliced a mesh (its Source) into
+    `result` where a layer stands on nothing: a mesh is one component, built along one axis, and
+    the solid made of it could be split where it branches. None otherwise."""
+    if obj.Source is None or result.stats["worst_unsupported_area_mm2"] <= 0.0:
+        return None
+    return ("'{}' is a mesh, sliced as one component, and its layers stand on nothing over up to "
+            "{:.3g} mm^2 (layer {}, red). A solid made of it (Part > Create shape from mesh, then "
+            "Part > Convert to solid) can be decomposed: each sub-component is then built along "
+            "its own direction".format(obj.Source.Label,
+                                       result.stats["worst_unsupported_area_mm2"],
+                                       result.stats["worst_unsupported_layer"]))
 
 
 def _polyline(points, closed=False):
@@ -916,11 +970,13 @@ def toolpath_shape(result, show_travel=False):
 
 class LayersFeature(_EngineFeature):
     """Proxy of a ``Part::FeaturePython`` holding the adaptive multi-axis layers of a
-    ``Decomposition`` object's part (``MultiAxisSlicer.slice``).
+    ``Decomposition`` object's part, or of a mesh (``MultiAxisSlicer.slice``).
 
     Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced, each
-    along its own build direction), the layer parameters (MinLayer, MaxLayer, MaxVolumeDifference,
-    EpsAngle, OverhangAngle, MaxTilt, VolumeSamples, Strict, FillHoles), the path parameters
+    along its own build direction) or, in its place, Source (a closed mesh object, sliced as one
+    component along its centroidal axis, the axis' parameters derived), the layer parameters
+    (MinLayer, MaxLayer, MaxVolumeDifference, EpsAngle, OverhangAngle, MaxTilt, VolumeSamples,
+    Strict, FillHoles), the path parameters
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
     MeasureCoverage), the nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
     NozzleBodyLength, NozzleMargin, CheckPlate, NozzleMaxLean) and
@@ -958,6 +1014,9 @@ class LayersFeature(_EngineFeature):
     def ensure_properties(obj):
         _add_property(obj, "App::PropertyLink", "Decomposition", "Layers",
                       "Decomposition object whose part is sliced, component by component")
+        _add_property(obj, "App::PropertyLink", "Source", "Layers",
+                      "A closed mesh (Mesh feature) sliced as one component along its centroidal "
+                      "axis, in place of a Decomposition (a mesh cannot be split into solids)")
         # A document saved before the nozzle could lean was computed with it coaxial: it keeps
         # that (NozzleMaxLean 0, each tool axis its layer's normal) until the user changes it;
         # one saved before the layers' tilt was bounded keeps them unbounded (MaxTilt 180).
@@ -1099,7 +1158,7 @@ class LayersFeature(_EngineFeature):
                 "{}: deposited solid, to drill afterwards: a hole {:.6g} mm across, {:.6g} mm "
                 "long, at ({:.6g}, {:.6g}, {:.6g}) along ({:.6g}, {:.6g}, {:.6g}) (component "
                 "{})\n".format(obj.Label, h.diameter, h.length, *h.centre, *h.axis, h.component))
-        for note in result.notes:
+        for note in result.notes + [n for n in [one_component_note(obj, result)] if n]:
             FreeCAD.Console.PrintWarning("{}: {}\n".format(obj.Label, note))
         if collisions:
             shown = collisions[:10]
@@ -1222,32 +1281,47 @@ def _slice_property_values(params):
     return {prop: checked[name] for prop, _g, name, _t, _d in _SLICE_PROPERTIES}
 
 
-def make_slice(decomposition, deflection=0.0, show_travel=False, name="Layers",
-               toolpath_name="Toolpath", doc=None, **params):
-    """Adds a ``Layers`` object slicing the part of the ``Decomposition`` object ``decomposition``
-    and a ``Toolpath`` object showing its paths to ``doc`` (default: the decomposition's document);
-    returns (layers, toolpath). Recompute the document to compute them.
+def make_slice(part, deflection=0.0, show_travel=False, name="Layers", toolpath_name="Toolpath",
+               doc=None, **params):
+    """Adds a ``Layers`` object slicing ``part`` and a ``Toolpath`` object showing its paths to
+    ``doc`` (default: the part's document); returns (layers, toolpath). Recompute the document to
+    compute them.
 
-    ``params``: the slicing parameters of ``MultiAxisSlicer.slice`` (min_layer, max_layer,
-    max_volume_difference, eps_angle, overhang_angle, max_tilt, volume_samples, strict, fill_holes,
-    bead_width, overlap, contour_count, infill, raster_angle, raster_angle_step, min_feature,
-    measure_coverage, the nozzle's nozzle_standoff, nozzle_tip_diameter, nozzle_cone_angle,
-    nozzle_body_diameter, nozzle_body_length, nozzle_margin, check_plate, nozzle_max_lean; mm and
-    degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before anything is added.
-    ``deflection``: mm for tessellating the components (0 = automatic). ``show_travel``: the
-    Toolpath also shows the travel moves. Nothing is changed on the decomposition or its source.
+    ``part`` is a ``Decomposition`` object, whose part is sliced component by component (a solid),
+    or a mesh object (``Mesh::Feature``), sliced as one component along its centroidal axis, the
+    axis' parameters derived (as ``MultiAxisSlicer.slice`` slices a mesh; a mesh cannot be split
+    into solids). ``params``: the slicing parameters of ``MultiAxisSlicer.slice`` (min_layer,
+    max_layer, max_volume_difference, eps_angle, overhang_angle, max_tilt, volume_samples, strict,
+    fill_holes, bead_width, overlap, contour_count, infill, raster_angle, raster_angle_step,
+    min_feature, measure_coverage, the nozzle's nozzle_standoff, nozzle_tip_diameter,
+    nozzle_cone_angle, nozzle_body_diameter, nozzle_body_length, nozzle_margin, check_plate,
+    nozzle_max_lean; mm and degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before
+    anything is added. ``deflection``: mm for tessellating the components (0 = automatic; a mesh
+    is sliced as it is, and takes none, nor ``fill_holes``, which needs a BREP's holes).
+    ``show_travel``: the Toolpath also shows the travel moves. Nothing is changed on the
+    decomposition, its source or the mesh.
 
     In the GUI they get their view providers (layers coloured by component, paths by kind)."""
-    if not is_decomposition(decomposition):
-        raise TypeError("make_slice() needs a Decomposition object, got {}".format(
-            getattr(decomposition, "TypeId", type(decomposition).__name__)))
+    mesh = is_mesh_part(part)
+    if not (mesh or is_decomposition(part)):
+        raise TypeError("make_slice() needs a Decomposition object or a mesh object, got {}".format(
+            getattr(part, "TypeId", type(part).__name__)))
     values = _slice_property_values(params)
     deflection = mas._length(deflection, "deflection", allow_zero=True)
+    if mesh and deflection > 0.0:
+        raise ValueError("make_slice: '{}' is a mesh, sliced as it is; deflection applies to "
+                         "solids only".format(part.Label))
+    if mesh and values.get("FillHoles", 0.0) > 0.0:
+        raise ValueError("make_slice: '{}' is a mesh, sliced as it is; fill_holes needs a solid, "
+                         "on whose BREP holes are recognised".format(part.Label))
     if doc is None:
-        doc = decomposition.Document
+        doc = part.Document
     layers = doc.addObject("Part::FeaturePython", name)
     LayersFeature(layers)
-    layers.Decomposition = decomposition
+    if mesh:
+        layers.Source = part
+    else:
+        layers.Decomposition = part
     for prop, value in values.items():
         setattr(layers, prop, value)
     layers.Deflection = deflection

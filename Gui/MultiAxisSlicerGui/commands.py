@@ -292,69 +292,48 @@ class _Busy:
 
 class SliceCommand(_PartCommand):
     """Adaptive multi-axis layers and bead paths of a selected Decomposition object (or of a
-    selected solid, decomposed first as the Decompose command does), as a parametric Layers object
-    (outlines coloured by component) and a Toolpath object (paths coloured by kind), in one
-    transaction. Slicing can take a while: the status bar says which stage runs, and a progress
-    dialog shows how far it is; its Cancel undoes the whole command."""
+    selected solid, decomposed first as the Decompose command does, or of a closed mesh, sliced as
+    one component), as a parametric Layers object (outlines coloured by component) and a Toolpath
+    object (paths coloured by kind), in one transaction. Slicing can take a while: the status bar
+    says which stage runs, and a progress dialog shows how far it is; its Cancel undoes the whole
+    command."""
 
     NAME = "MultiAxisSlicer_Slice"
     TRANSACTION = "Slice"
     ICON = "Slice.svg"
-    TOOLTIP = ("Slice the selected Decomposition (or solid, decomposed first) into adaptive "
-               "multi-axis layers, each component along its own build direction, and plan the bead "
-               "paths in every layer (parametric Layers and Toolpath objects: set MinLayer, "
-               "MaxLayer, BeadWidth, Infill, ...)")
+    TOOLTIP = ("Slice the selected Decomposition (or solid, decomposed first; or closed mesh, "
+               "as one component) into adaptive multi-axis layers, each component along its own "
+               "build direction, and plan the bead paths in every layer (parametric Layers and "
+               "Toolpath objects: set MinLayer, MaxLayer, BeadWidth, Infill, ...)")
 
     def Activated(self):
         import MultiAxisSlicer.features as features
 
         source = _selected_part()
         if source is None:
-            MultiAxisSlicerGui.show_error("Select one Decomposition object or one solid first.")
+            MultiAxisSlicerGui.show_error(
+                "Select one Decomposition object, one solid or one closed mesh first.")
             return
         if not mas.engine_available():
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
             return
-        problem = (None if features.is_decomposition(source) else
-                   DecomposeCommand().input_problem(source))
+        mesh = features.is_mesh_part(source)  # sliced as it is: a mesh cannot be split
+        if features.is_decomposition(source):
+            problem = None
+        elif mesh:
+            problem = _part_problem(source)
+        else:
+            problem = DecomposeCommand().input_problem(source)
         if problem is not None:
             MultiAxisSlicerGui.show_error("{}: {}".format(self.TRANSACTION, problem))
             return
         doc = source.Document
         visibility = _visibility(doc)
         before = {o.Name for o in doc.Objects}
-        failed = None
         doc.openTransaction(self.TRANSACTION)
         try:
             with _Busy() as busy:
-                if features.is_decomposition(source):
-                    decomposition = source
-                    busy.stage("Using the decomposition '{}'".format(source.Label))
-                    if "Touched" in decomposition.State:  # changed since: as it is now
-                        decomposition.recompute(True)
-                else:
-                    busy.stage("Decomposing '{}'...".format(source.Label))
-                    # No sub-component thinner than the layers (the default MinLayer).
-                    decomposition = DecomposeCommand().make(
-                        source, doc, mas.SLICE_DEFAULTS["min_layer"])
-                if features.failure(decomposition) is None:  # a cancelled one is not
-                    layers, toolpath = features.make_slice(decomposition, doc=doc)
-                    busy.stage("Slicing '{}' into layers...".format(source.Label))
-                    doc.recompute([layers])  # one stage at a time, for the feedback
-                    if features.failure(layers) is None:
-                        busy.stage("Drawing the bead paths...")
-                        doc.recompute([toolpath])
-                    if not busy.cancelled():  # else nothing is kept: no more work
-                        # The decomposition's components too: they follow it when it changed.
-                        _recompute_new(doc, before, features.components_of(decomposition))
-                    failed = features.failure(layers) or features.failure(toolpath)
-                    if failed is None:  # the layers take the part's place in the view
-                        part = features.decomposition_inputs(decomposition)[0]
-                        for o in [part] + features.components_of(decomposition):
-                            if o.ViewObject is not None:
-                                o.ViewObject.Visibility = False
-                else:
-                    failed = features.failure(decomposition)
+                failed = self._slice(source, mesh, doc, before, busy)
                 cancelled = busy.cancelled()
         except Exception as error:  # creating the objects failed: leave nothing behind
             doc.abortTransaction()
@@ -367,6 +346,46 @@ class SliceCommand(_PartCommand):
         doc.commitTransaction()
         if failed is not None:  # the objects stay so that their parameters can be fixed
             MultiAxisSlicerGui.show_error(failed)
+
+    @staticmethod
+    def _slice(source, mesh, doc, before, busy):
+        """Makes and computes the command's objects in the open transaction; returns what failed,
+        or None. A mesh is sliced as it is; a solid is decomposed first."""
+        import MultiAxisSlicer.features as features
+
+        if mesh:
+            busy.stage("Slicing the mesh '{}' as one component...".format(source.Label))
+            sliced, part, components = source, source, []
+        else:
+            if features.is_decomposition(source):
+                decomposition = source
+                busy.stage("Using the decomposition '{}'".format(source.Label))
+                if "Touched" in decomposition.State:  # changed since: as it is now
+                    decomposition.recompute(True)
+            else:
+                busy.stage("Decomposing '{}'...".format(source.Label))
+                # No sub-component thinner than the layers (the default MinLayer).
+                decomposition = DecomposeCommand().make(source, doc,
+                                                        mas.SLICE_DEFAULTS["min_layer"])
+            if features.failure(decomposition) is not None:  # a cancelled one too
+                return features.failure(decomposition)
+            busy.stage("Slicing '{}' into layers...".format(source.Label))
+            sliced, part = decomposition, features.decomposition_inputs(decomposition)[0]
+            components = features.components_of(decomposition)
+        layers, toolpath = features.make_slice(sliced, doc=doc)
+        doc.recompute([layers])  # one stage at a time, for the feedback
+        if features.failure(layers) is None:
+            busy.stage("Drawing the bead paths...")
+            doc.recompute([toolpath])
+        if not busy.cancelled():  # else nothing is kept: no more work
+            # The decomposition's components too: they follow it when it changed.
+            _recompute_new(doc, before, components)
+        failed = features.failure(layers) or features.failure(toolpath)
+        if failed is None:  # the layers take the part's place in the view
+            for o in [part] + components:
+                if o.ViewObject is not None:
+                    o.ViewObject.Visibility = False
+        return failed
 
 
 class MachineProgramCommand(_PartCommand):

@@ -633,14 +633,17 @@ class ViewProviderLayers(_Editable, _EdgeColoured):
 
     def onDelete(self, vobj, subelements):
         """Deleting the layers shows the components they were sliced from again (the Slice
-        command hid them, and the part)."""
+        command hid them, and the part), or the mesh they were sliced from."""
         import MultiAxisSlicer.features as features
 
         decomposition = getattr(vobj.Object, "Decomposition", None)
-        if decomposition is not None:
-            for c in features.components_of(decomposition):
-                if c.ViewObject is not None:
-                    c.ViewObject.Visibility = True
+        shown = features.components_of(decomposition) if decomposition is not None else []
+        mesh = getattr(vobj.Object, "Source", None)
+        if mesh is not None:
+            shown.append(mesh)
+        for o in shown:
+            if o.ViewObject is not None:
+                o.ViewObject.Visibility = True
         return True
 
     def getIcon(self):

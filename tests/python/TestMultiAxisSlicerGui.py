@@ -980,6 +980,68 @@ class TestSliceCommand(unittest.TestCase):
         process_events()
         self.assertEqual([o.Name for o in self.doc.Objects], names)
 
+    def test_command_slices_a_selected_mesh_as_one_component(self):
+        # A closed mesh cannot be decomposed (that needs a BREP solid): it is sliced as it is, as
+        # the scripting API and the command line slice one, in one undo step; the layers take its
+        # place in the view until they are deleted.
+        import Mesh
+        import MultiAxisSlicer.features as features
+
+        scan = self.doc.addObject("Mesh::Feature", "Scan")
+        scan.Mesh = Mesh.Mesh(Part.makeBox(20, 10, 21).tessellate(0.01))
+        self.doc.recompute()
+        topology = scan.Mesh.Topology
+        names = [o.Name for o in self.doc.Objects]
+        layers, toolpath = self.run_command(scan)
+        self.assertEqual(error_boxes(), [])
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertIs(layers.Source, scan)
+        self.assertIsNone(layers.Decomposition)
+        self.assertEqual([o.Name for o in self.doc.Objects], names + [layers.Name, toolpath.Name])
+        self.assertEqual(layers.LayerCount, 11)  # 21 mm: ten of 2 mm, one of 1 mm
+        self.assertEqual(list(layers.LayerComponents), [0] * 11)
+        self.assertEqual(scan.Mesh.Topology, topology)
+        self.assertFalse(scan.ViewObject.Visibility)
+        self.assertTrue(layers.ViewObject.Visibility)
+        # One component, nothing unsupported: every outline in the first component's colour.
+        (colour,) = layers.ViewObject.LineColorArray
+        self.assertTrue(same_colour(colour, view_providers.component_colour(0)))
+        self.assertIsNone(QtGui.QApplication.overrideCursor())
+        self.assertIn("Slice", self.doc.UndoNames)
+        self.doc.undo()  # one step takes both
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.assertTrue(scan.ViewObject.Visibility)
+        # Deleting the layers shows the mesh again (the view provider is asked as Std_Delete
+        # asks it, without its modal question about the Toolpath depending on them).
+        layers, toolpath = self.run_command(scan)
+        self.assertFalse(scan.ViewObject.Visibility)
+        self.doc.removeObject(toolpath.Name)
+        self.assertTrue(layers.ViewObject.Proxy.onDelete(layers.ViewObject, []))
+        self.doc.removeObject(layers.Name)
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.assertTrue(scan.ViewObject.Visibility)
+
+    def test_command_on_an_open_mesh_names_the_problem(self):
+        import Mesh
+
+        points, facets = Mesh.Mesh(Part.makeBox(20, 10, 21).tessellate(0.01)).Topology
+        scan = self.doc.addObject("Mesh::Feature", "Scan")
+        scan.Mesh = Mesh.Mesh([[points[i] for i in f] for f in facets[:-1]])
+        self.doc.recompute()
+        undo = self.doc.UndoCount
+        names = [o.Name for o in self.doc.Objects]
+        layers, toolpath = self.run_command(scan)
+        self.assertIsNone(layers)  # refused before anything is made
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.assertEqual(self.doc.UndoCount, undo)
+        boxes = error_boxes()
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("Slice: 'Scan'", boxes[0].text())
+        self.assertIn("3 boundary edges", boxes[0].text())
+        self.assertTrue(scan.ViewObject.Visibility)
+
     def test_unsupported_regions_are_drawn_in_red_where_layers_bridge_a_hole(self):
         """A block with a horizontal hole: the layers closing over its ceiling stand partly on
         nothing. Those regions are the Layers' faces, filled and outlined in ShapeColor (red), and

@@ -757,6 +757,171 @@ class SliceObjectTest(SliceTest):
                                delta=1e-6 * toolpath.PathLength.Value)
 
 
+class TestLayersOfAMesh(SliceObjectTest):
+    """A Layers object over a mesh object (Source in place of Decomposition): the mesh sliced as
+    one component, as ``mas.slice`` slices a mesh."""
+
+    def add_mesh(self, shape, name="Scan"):
+        import Mesh
+
+        obj = self.doc.addObject("Mesh::Feature", name)
+        obj.Mesh = Mesh.Mesh(shape.tessellate(0.01))
+        self.doc.recompute()
+        return obj
+
+    def test_a_mesh_object_is_sliced_as_one_component(self):
+        scan = self.add_mesh(box_20_10_21())
+        before = scan.Mesh.Topology
+        layers, toolpath = mas.make_slice(scan)
+        self.assertIs(layers.Source, scan)
+        self.assertIsNone(layers.Decomposition)
+        self.assertIn(scan, layers.OutList)
+        self.doc.recompute()
+        self.check_box_objects(layers, toolpath)
+        self.assertEqual(layers.Proxy._result[1].kind, "mesh")
+        self.assertIsNone(features.one_component_note(layers, layers.Proxy._result[1]))
+        self.assertEqual(scan.Mesh.Topology, before)  # the mesh is read, never changed
+        self.assertNotIn("Touched", scan.State)
+        # The same as the scripting API slicing the mesh, and its program too.
+        program = mas.make_machine_program(layers)
+        self.doc.recompute()
+        self.assertTrue(program.isValid(), program.getStatusString())
+        expected = mas.slice(scan.Mesh)
+        self.assertEqual(expected.to_dict(), features.slice_result(layers).to_dict())
+        self.assertEqual(program.LineCount, expected.gcode().stats["lines"])
+
+    def test_an_l_as_a_mesh_is_one_component_with_the_apis_layers(self):
+        scan = self.add_mesh(l_block())
+        layers, toolpath = mas.make_slice(scan, max_layer=1.5)
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        expected = mas.slice(scan.Mesh, max_layer=1.5)
+        self.assertEqual(list(layers.ComponentLayerCounts), [len(expected.layers)])
+        self.assertEqual(list(layers.LayerComponents), [0] * len(expected.layers))
+        self.assertEqual(list(layers.LayerNormals), [FreeCAD.Vector(layer.normal)
+                                                     for layer in expected.layers])
+        self.assertEqual(layers.DepositedVolume.Value,
+                         expected.stats["deposited_volume_mm3"])
+        self.assertEqual(layers.WorstUnsupportedArea.Value,
+                         expected.stats["worst_unsupported_area_mm2"])
+        # Its arm's first layers overhang: the report view says a solid could be decomposed.
+        self.assertGreater(layers.WorstUnsupportedArea.Value, 100.0)
+        note = features.one_component_note(layers, features.slice_result(layers))
+        self.assertEqual(note, "'Scan' is a mesh, sliced as one component, and its layers stand "
+                         "on nothing over up to {:.3g} mm^2 (layer {}, red). A solid made of it "
+                         "(Part > Create shape from mesh, then Part > Convert to solid) can be "
+                         "decomposed: each sub-component is then built along its own "
+                         "direction".format(layers.WorstUnsupportedArea.Value,
+                                            layers.WorstUnsupportedLayer))
+
+    def test_the_layers_follow_the_mesh(self):
+        import Mesh
+
+        scan = self.add_mesh(box_20_10_21())
+        layers, toolpath = mas.make_slice(scan)
+        self.doc.recompute()
+        self.assertEqual(layers.LayerCount, 11)
+        # Another mesh of as many points and facets, the same volume and area: 10 x 20, not 20 x
+        # 10. FreeCAD 0.20 marks the object changed only when told (see the README).
+        scan.Mesh = Mesh.Mesh(Part.makeBox(10, 20, 21).tessellate(0.01))
+        scan.touch()
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertEqual(layers.LayerCount, 11)
+        bb = layers.Shape.BoundBox
+        self.assertAlmostEqual(bb.XLength, 10.0, delta=TOL)
+        self.assertAlmostEqual(bb.YLength, 20.0, delta=TOL)
+        self.assertAlmostEqual(toolpath.Shape.BoundBox.YLength, 20.0, delta=1.0)
+        scan.Mesh = Mesh.Mesh(Part.makeBox(10, 20, 15).tessellate(0.01))
+        scan.touch()
+        self.doc.recompute()
+        self.assertEqual(layers.LayerCount, 8)  # 15 mm: seven of 2 mm, one of 1 mm
+        self.assertAlmostEqual(layers.PartVolume.Value, 3000.0, delta=3000.0 * REL)
+        layers.MaxLayer = 3.0
+        self.doc.recompute()
+        self.assertEqual(layers.LayerCount, 5)
+        self.assertEqual(toolpath.PathCounts[0], 2 * 5)
+
+    def test_a_bad_source_marks_the_object_with_the_message(self):
+        scan = self.add_mesh(box_20_10_21())
+        layers, toolpath = mas.make_slice(scan)
+        self.doc.recompute()
+        self.check_box_objects(layers, toolpath)
+        layers.Source = self.part  # a solid: through a Decomposition
+        self.doc.recompute()
+        self.assertEqual(layers.getStatusString(),
+                         "Layers: Source 'Box' is not a mesh: a solid is sliced through a "
+                         "Decomposition object (set Decomposition, not Source)")
+        decomposition = mas.make_decomposition(self.part)
+        layers.Source = scan
+        layers.Decomposition = decomposition
+        self.doc.recompute()
+        self.assertEqual(layers.getStatusString(),
+                         "Layers: both Decomposition 'Decomposition' and Source 'Scan' are set: a "
+                         "Layers object slices one or the other")
+        layers.Decomposition = None
+        layers.Deflection = 0.05
+        self.doc.recompute()
+        self.assertIn("'Scan' is a mesh, sliced as it is; Deflection applies to solids only",
+                      layers.getStatusString())
+        layers.Deflection = 0.0
+        layers.FillHoles = 5.0
+        self.doc.recompute()
+        self.assertIn("'Scan' is a mesh, sliced as it is; FillHoles needs a solid",
+                      layers.getStatusString())
+        layers.FillHoles = 0.0
+        import Mesh
+
+        points, facets = scan.Mesh.Topology
+        scan.Mesh = Mesh.Mesh([[points[i] for i in f] for f in facets[:-1]])  # open
+        scan.touch()
+        self.doc.recompute()
+        self.assertIn("Invalid", layers.State)
+        self.assertIn("'Scan'", layers.getStatusString())
+        self.assertIn("3 boundary edges", layers.getStatusString())
+        scan.Mesh = Mesh.Mesh(box_20_10_21().tessellate(0.01))
+        scan.touch()
+        self.doc.recompute()
+        self.check_box_objects(layers, toolpath)
+
+    def test_make_rejects_what_a_mesh_cannot_take_before_adding_anything(self):
+        scan = self.add_mesh(box_20_10_21())
+        names = [o.Name for o in self.doc.Objects]
+        with self.assertRaisesRegex(ValueError, "'Scan' is a mesh, sliced as it is; deflection"):
+            mas.make_slice(scan, deflection=0.05)
+        with self.assertRaisesRegex(ValueError, "'Scan' is a mesh, sliced as it is; fill_holes"):
+            mas.make_slice(scan, fill_holes=5.0)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+
+    def test_save_reopen_recompute_and_undo(self):
+        scan = self.add_mesh(box_20_10_21())
+        self.doc.UndoMode = 1
+        names = [o.Name for o in self.doc.Objects]
+        self.doc.openTransaction("Slice")
+        layers, toolpath = mas.make_slice(scan, max_layer=1.5)
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        self.assertEqual(layers.LayerCount, 14)
+        self.doc.undo()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.doc.redo()
+        layers = self.reopened("MasSliceMesh.FCStd")
+        toolpath = self.doc.getObject("Toolpath")
+        self.assertIs(layers.Source, self.doc.getObject("Scan"))
+        self.assertIsNone(layers.Decomposition)
+        self.assertEqual(layers.LayerCount, 14)
+        self.assertEqual(len(layers.Shape.Wires), 14)
+        self.assertIsNone(getattr(layers.Proxy, "_result", None))
+        toolpath.ShowTravel = True  # the slicing is redone on demand
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertGreater(toolpath.PathCounts[3], 0)
+        layers.MaxLayer = 2.0
+        toolpath.ShowTravel = False
+        self.doc.recompute()
+        self.check_box_objects(layers, toolpath)
+
+
 class TestLayersObject(SliceObjectTest):
     def test_make_slice_on_a_box_decomposition(self):
         decomposition, layers, toolpath = self.make()
@@ -1093,7 +1258,8 @@ class TestLayersObject(SliceObjectTest):
         layers.BeadWidth = 1.0
         layers.Decomposition = None
         self.doc.recompute()
-        self.assertIn("Decomposition is not set", layers.getStatusString())
+        self.assertEqual(layers.getStatusString(),
+                         "Layers: neither Decomposition nor Source is set")
         layers.Decomposition = self.part
         self.doc.recompute()
         self.assertIn("not a Decomposition object", layers.getStatusString())

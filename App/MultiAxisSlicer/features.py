@@ -84,10 +84,14 @@ def failure(obj):
 
 def parameters(obj):
     """The inputs of one of this workbench's objects that a user sets, as [(group, [property,
-    ...])] in the order its documentation gives them, the links to other objects left out: what
-    the GUI's parameter panel edits. [] for any other object."""
-    return [(group, list(props)) for group, props in
-            getattr(getattr(obj, "Proxy", None), "PARAMETERS", ())]
+    ...])] in the order its documentation gives them, the links to other objects left out, and
+    those that do not apply to it as it is (a Layers object slicing a mesh takes no Deflection
+    nor FillHoles): what the GUI's parameter panel edits. [] for any other object."""
+    proxy = getattr(obj, "Proxy", None)
+    skipped = proxy.not_applicable(obj) if hasattr(proxy, "not_applicable") else ()
+    groups = [(group, [p for p in props if p not in skipped])
+              for group, props in getattr(proxy, "PARAMETERS", ())]
+    return [(group, props) for group, props in groups if props]
 
 
 def _grouped(pairs):
@@ -1110,6 +1114,12 @@ class LayersFeature(_EngineFeature):
             if (_add_property(obj, type_id, prop, result, doc, default, _OUTPUT) and
                     prop == "LayerToolAxes" and computed_coaxial):
                 obj.LayerToolAxes = list(obj.LayerNormals)
+
+    @staticmethod
+    def not_applicable(obj):
+        """The parameters a mesh Source takes none of: it is sliced as it is (no tessellation)
+        and has no BREP holes to fill."""
+        return ("Deflection", "FillHoles") if getattr(obj, "Source", None) is not None else ()
 
     @staticmethod
     def recompute(obj):

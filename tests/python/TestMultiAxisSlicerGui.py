@@ -1562,6 +1562,27 @@ class TestParameterPanel(unittest.TestCase):
                       panel.form.result.text())
         self.assertEqual(self.gui_doc.getInEdit().Object, self.layers)
 
+    def test_the_layers_of_a_mesh_offer_no_deflection_nor_holes_to_fill(self):
+        # A mesh is sliced as it is, and has no BREP holes: the two would only fail.
+        import Mesh
+
+        scan = self.doc.addObject("Mesh::Feature", "Scan")
+        scan.Mesh = Mesh.Mesh(self.part.Shape.tessellate(0.01))
+        layers, toolpath = mas.make_slice(scan, name="MeshLayers", toolpath_name="MeshPaths")
+        self.doc.recompute()
+        self.assertIsNone(self.features.failure(toolpath))
+        panel = self.open(layers)
+        props = [f.prop for f in panel.fields]
+        want = [p for _, group in self.features.parameters(self.layers) for p in group
+                if p not in ("Deflection", "FillHoles")]
+        self.assertEqual(props, want)
+        self.assertIn("MaxLayer", props)
+        count = layers.LayerCount
+        self.set_field(panel, "MaxLayer", layers.MaxLayer.Value / 2)
+        self.press("ok")
+        self.assertIsNone(self.features.failure(layers))
+        self.assertGreater(layers.LayerCount, count)
+
     def test_apply_recomputes_the_layers_and_their_paths_and_ok_is_one_undo_step(self):
         before = (self.layers.MaxLayer.Value, self.layers.LayerCount, self.toolpath.PathCount)
         program = mas.make_machine_program(self.layers)

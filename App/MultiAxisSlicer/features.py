@@ -822,25 +822,46 @@ def is_mesh_part(obj):
     return mas._is_document_object(obj) and obj.isDerivedFrom("Mesh::Feature")
 
 
+def sliced_mesh(obj):
+    """The mesh a Layers object slices as one component: its Source, else its Axis object's; None
+    when it slices a Decomposition. Unchecked: slice_inputs() says what is wrong with the links."""
+    if obj.Source is not None:
+        return obj.Source
+    return getattr(obj.Axis, "Source", None) if obj.Axis is not None else None
+
+
 def slice_inputs(obj):
-    """(Decomposition object or None, mesh Source object or None, slice() parameters, deflection
-    or None) of a Layers object: it slices either a Decomposition's part, component by component,
-    or a mesh as one component. Raises ValueError / TypeError for a missing or wrong link or a bad
-    parameter (naming it)."""
-    decomposition, source = obj.Decomposition, obj.Source
-    if decomposition is not None and source is not None:
-        raise ValueError("{}: both Decomposition '{}' and Source '{}' are set: a Layers object "
-                         "slices one or the other".format(obj.Label, decomposition.Label,
-                                                          source.Label))
-    if source is not None:
-        if not is_mesh_part(source):
-            raise TypeError("{}: Source '{}' is not a mesh: a solid is sliced through a "
-                            "Decomposition object (set Decomposition, not Source)".format(
-                                obj.Label, source.Label))
-    elif decomposition is None:
-        raise ValueError("{}: neither Decomposition nor Source is set".format(obj.Label))
-    else:
+    """(Decomposition object or None, mesh object or None, slice() parameters, deflection or None)
+    of a Layers object: it slices either a Decomposition's part, component by component, or a mesh
+    (its Source, or its Axis object's) as one component, the parameters then holding the Axis
+    object's too. Raises ValueError / TypeError for a missing or wrong link or a bad parameter
+    (naming it)."""
+    decomposition, source, axis = obj.Decomposition, obj.Source, obj.Axis
+    mesh_links = [(name, o) for name, o in (("Source", source), ("Axis", axis)) if o is not None]
+    if decomposition is not None and mesh_links:
+        name, other = mesh_links[0]
+        raise ValueError("{}: both Decomposition '{}' and {} '{}' are set: a Layers object slices "
+                         "a decomposition or a mesh, not both".format(
+                             obj.Label, decomposition.Label, name, other.Label))
+    if decomposition is not None:
         _check_link(obj, "Decomposition", is_decomposition, "Decomposition")
+    elif not mesh_links:
+        raise ValueError("{}: neither Decomposition nor Source is set".format(obj.Label))
+    if axis is not None:
+        if not is_centroidal_axis(axis):
+            raise TypeError("{}: Axis '{}' is not a CentroidalAxis object".format(obj.Label,
+                                                                                 axis.Label))
+        if axis.Source is None:
+            raise ValueError("{}: Axis '{}' has no Source".format(obj.Label, axis.Label))
+        if source is not None and axis.Source != source:
+            raise ValueError("{}: Axis '{}' belongs to '{}', not to the Source '{}'".format(
+                obj.Label, axis.Label, axis.Source.Label, source.Label))
+    mesh = sliced_mesh(obj) if decomposition is None else None
+    if mesh is not None and not is_mesh_part(mesh):
+        raise TypeError("{}: {} '{}' is not a mesh: a solid is sliced through a Decomposition "
+                        "object (set Decomposition, not Source or Axis)".format(
+                            obj.Label, "Source" if source is not None else "Axis' Source",
+                            mesh.Label))
     params = {}
     for prop, _group, name, type_id, _doc in _SLICE_PROPERTIES:
         value = getattr(obj, prop)
@@ -848,7 +869,11 @@ def slice_inputs(obj):
             value = value.Value
         params[name] = value
     mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))  # before any decomposing
-    return decomposition, source, params, obj.Deflection.Value or None
+    if axis is not None:
+        params.update(step=axis.Step.Value or None,
+                      distance_threshold=axis.DistanceThreshold.Value or None,
+                      eps=axis.Epsilon.Value, break_angle=axis.BreakAngle.Value)
+    return decomposition, mesh, params, obj.Deflection.Value or None
 
 
 def _mesh_fingerprint(mesh_obj):
@@ -898,12 +923,13 @@ def one_component_note(obj, result):
     """What the report view says of a Layers object `obj` that sliced a mesh (its Source) into
     `result` where a layer stands on nothing: a mesh is one component, built along one axis, and
     the solid made of it could be split where it branches. None otherwise."""
-    if obj.Source is None or result.stats["worst_unsupported_area_mm2"] <= 0.0:
+    mesh = sliced_mesh(obj)
+    if mesh is None or result.stats["worst_unsupported_area_mm2"] <= 0.0:
         return None
     return ("'{}' is a mesh, sliced as one component, and its layers stand on nothing over up to "
             "{:.3g} mm^2 (layer {}, red). A solid made of it (Part > Create shape from mesh, then "
             "Part > Convert to solid) can be decomposed: each sub-component is then built along "
-            "its own direction".format(obj.Source.Label,
+            "its own direction".format(mesh.Label,
                                        result.stats["worst_unsupported_area_mm2"],
                                        result.stats["worst_unsupported_layer"]))
 
@@ -978,7 +1004,8 @@ class LayersFeature(_EngineFeature):
 
     Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced, each
     along its own build direction) or, in its place, Source (a closed mesh object, sliced as one
-    component along its centroidal axis, the axis' parameters derived), the layer parameters
+    component along its centroidal axis) and/or Axis (a CentroidalAxis object over that mesh, whose
+    parameters the axis then takes; without it they are derived), the layer parameters
     (MinLayer, MaxLayer, MaxVolumeDifference, EpsAngle, OverhangAngle, MaxTilt, VolumeSamples,
     Strict, FillHoles), the path parameters
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
@@ -1021,6 +1048,10 @@ class LayersFeature(_EngineFeature):
         _add_property(obj, "App::PropertyLink", "Source", "Layers",
                       "A closed mesh (Mesh feature) sliced as one component along its centroidal "
                       "axis, in place of a Decomposition (a mesh cannot be split into solids)")
+        _add_property(obj, "App::PropertyLink", "Axis", "Layers",
+                      "A CentroidalAxis object over that mesh (which then need not be set as "
+                      "Source): the mesh's axis takes its Step, DistanceThreshold, Epsilon and "
+                      "BreakAngle (none: derived)")
         # A document saved before the nozzle could lean was computed with it coaxial: it keeps
         # that (NozzleMaxLean 0, each tool axis its layer's normal) until the user changes it;
         # one saved before the layers' tilt was bounded keeps them unbounded (MaxTilt 180).
@@ -1119,7 +1150,9 @@ class LayersFeature(_EngineFeature):
     def not_applicable(obj):
         """The parameters a mesh Source takes none of: it is sliced as it is (no tessellation)
         and has no BREP holes to fill."""
-        return ("Deflection", "FillHoles") if getattr(obj, "Source", None) is not None else ()
+        if getattr(obj, "Source", None) is None and getattr(obj, "Axis", None) is None:
+            return ()
+        return ("Deflection", "FillHoles")
 
     @staticmethod
     def recompute(obj):
@@ -1300,35 +1333,44 @@ def make_slice(part, deflection=0.0, show_travel=False, name="Layers", toolpath_
     ``part`` is a ``Decomposition`` object, whose part is sliced component by component (a solid),
     or a mesh object (``Mesh::Feature``), sliced as one component along its centroidal axis, the
     axis' parameters derived (as ``MultiAxisSlicer.slice`` slices a mesh; a mesh cannot be split
-    into solids). ``params``: the slicing parameters of ``MultiAxisSlicer.slice`` (min_layer,
-    max_layer, max_volume_difference, eps_angle, overhang_angle, max_tilt, volume_samples, strict,
-    fill_holes, bead_width, overlap, contour_count, infill, raster_angle, raster_angle_step,
-    min_feature, measure_coverage, the nozzle's nozzle_standoff, nozzle_tip_diameter,
-    nozzle_cone_angle, nozzle_body_diameter, nozzle_body_length, nozzle_margin, check_plate,
-    nozzle_max_lean; mm and degrees, defaults ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before
-    anything is added. ``deflection``: mm for tessellating the components (0 = automatic; a mesh
-    is sliced as it is, and takes none, nor ``fill_holes``, which needs a BREP's holes).
-    ``show_travel``: the Toolpath also shows the travel moves. Nothing is changed on the
-    decomposition, its source or the mesh.
+    into solids), or a ``CentroidalAxis`` object over a mesh, whose mesh is sliced so, along an axis
+    with the object's parameters (the Layers' Axis). ``params``: the slicing parameters of
+    ``MultiAxisSlicer.slice`` (min_layer, max_layer, max_volume_difference, eps_angle,
+    overhang_angle, max_tilt, volume_samples, strict, fill_holes, bead_width, overlap,
+    contour_count, infill, raster_angle, raster_angle_step, min_feature, measure_coverage, the
+    nozzle's nozzle_standoff, nozzle_tip_diameter, nozzle_cone_angle, nozzle_body_diameter,
+    nozzle_body_length, nozzle_margin, check_plate, nozzle_max_lean; mm and degrees, defaults
+    ``MultiAxisSlicer.SLICE_DEFAULTS``), checked before anything is added. ``deflection``: mm for
+    tessellating the components (0 = automatic; a mesh is sliced as it is, and takes none, nor
+    ``fill_holes``, which needs a BREP's holes). ``show_travel``: the Toolpath also shows the travel
+    moves. Nothing is changed on the decomposition, its source or the mesh.
 
     In the GUI they get their view providers (layers coloured by component, paths by kind)."""
-    mesh = is_mesh_part(part)
-    if not (mesh or is_decomposition(part)):
+    axis = is_centroidal_axis(part)
+    mesh = part.Source if axis else part
+    if axis and not is_mesh_part(mesh):
+        raise TypeError("make_slice(): the CentroidalAxis object '{}' is not over a mesh{}: a "
+                        "solid is sliced through a Decomposition object (make_decomposition("
+                        "None, axis=...))".format(part.Label, "" if mesh is None else
+                                                  " but over '{}'".format(mesh.Label)))
+    if not (is_mesh_part(mesh) or is_decomposition(part)):
         raise TypeError("make_slice() needs a Decomposition object or a mesh object, got {}".format(
             getattr(part, "TypeId", type(part).__name__)))
     values = _slice_property_values(params)
     deflection = mas._length(deflection, "deflection", allow_zero=True)
-    if mesh and deflection > 0.0:
+    if is_mesh_part(mesh) and deflection > 0.0:
         raise ValueError("make_slice: '{}' is a mesh, sliced as it is; deflection applies to "
-                         "solids only".format(part.Label))
-    if mesh and values.get("FillHoles", 0.0) > 0.0:
+                         "solids only".format(mesh.Label))
+    if is_mesh_part(mesh) and values.get("FillHoles", 0.0) > 0.0:
         raise ValueError("make_slice: '{}' is a mesh, sliced as it is; fill_holes needs a solid, "
-                         "on whose BREP holes are recognised".format(part.Label))
+                         "on whose BREP holes are recognised".format(mesh.Label))
     if doc is None:
         doc = part.Document
     layers = doc.addObject("Part::FeaturePython", name)
     LayersFeature(layers)
-    if mesh:
+    if axis:
+        layers.Axis = part
+    elif is_mesh_part(part):
         layers.Source = part
     else:
         layers.Decomposition = part

@@ -47,7 +47,8 @@ def _part_problem(source, split=False):
             if split:
                 return ("'{}' is a mesh: decomposing splits a BREP solid into solids. Make a "
                         "solid of it first (Part > Create shape from mesh, then Part > Convert to "
-                        "solid) and select that.".format(source.Label))
+                        "solid) and select that, or slice the mesh as it is, as one component "
+                        "(Slice).".format(source.Label))
             mas._require_engine().make_closed(part, what)
         else:
             part.single_solid(what)
@@ -293,10 +294,10 @@ class _Busy:
 class SliceCommand(_PartCommand):
     """Adaptive multi-axis layers and bead paths of a selected Decomposition object (or of a
     selected solid, decomposed first as the Decompose command does, or of a closed mesh, sliced as
-    one component), as a parametric Layers object (outlines coloured by component) and a Toolpath
-    object (paths coloured by kind), in one transaction. Slicing can take a while: the status bar
-    says which stage runs, and a progress dialog shows how far it is; its Cancel undoes the whole
-    command."""
+    one component, or of the CentroidalAxis object of one, whose parameters its axis takes), as a
+    parametric Layers object (outlines coloured by component) and a Toolpath object (paths coloured
+    by kind), in one transaction. Slicing can take a while: the status bar says which stage runs,
+    and a progress dialog shows how far it is; its Cancel undoes the whole command."""
 
     NAME = "MultiAxisSlicer_Slice"
     TRANSACTION = "Slice"
@@ -317,11 +318,15 @@ class SliceCommand(_PartCommand):
         if not mas.engine_available():
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
             return
-        mesh = features.is_mesh_part(source)  # sliced as it is: a mesh cannot be split
+        # A mesh (or the axis of one, whose parameters it then takes) is sliced as it is: a mesh
+        # cannot be split into solids.
+        mesh = features.is_mesh_part(source) or (features.is_centroidal_axis(source) and
+                                                 features.is_mesh_part(source.Source))
         if features.is_decomposition(source):
             problem = None
         elif mesh:
-            problem = _part_problem(source)
+            problem = _part_problem(source.Source if features.is_centroidal_axis(source) else
+                                    source)
         else:
             problem = DecomposeCommand().input_problem(source)
         if problem is not None:
@@ -354,8 +359,9 @@ class SliceCommand(_PartCommand):
         import MultiAxisSlicer.features as features
 
         if mesh:
-            busy.stage("Slicing the mesh '{}' as one component...".format(source.Label))
-            sliced, part, components = source, source, []
+            part = source.Source if features.is_centroidal_axis(source) else source
+            busy.stage("Slicing the mesh '{}' as one component...".format(part.Label))
+            sliced, components = source, []
         else:
             if features.is_decomposition(source):
                 decomposition = source

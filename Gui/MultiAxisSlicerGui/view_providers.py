@@ -638,7 +638,7 @@ class ViewProviderLayers(_Editable, _EdgeColoured):
 
         decomposition = getattr(vobj.Object, "Decomposition", None)
         shown = features.components_of(decomposition) if decomposition is not None else []
-        mesh = getattr(vobj.Object, "Source", None)
+        mesh = features.sliced_mesh(vobj.Object) if vobj.Object is not None else None
         if mesh is not None:
             shown.append(mesh)
         for o in shown:

@@ -816,6 +816,8 @@ class TestDecomposeCommand(unittest.TestCase):
             self.assertEqual(len(boxes), 1, selected.Label)
             self.assertIn("Decompose: 'Scan' is a mesh: decomposing splits a BREP solid",
                           boxes[0].text())
+            self.assertIn("or slice the mesh as it is, as one component (Slice).",
+                          boxes[0].text())
             boxes[0].close()
 
     def test_command_on_a_failing_axis_shows_the_axis_message(self):
@@ -1021,6 +1023,28 @@ class TestSliceCommand(unittest.TestCase):
         self.doc.removeObject(layers.Name)
         process_events()
         self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.assertTrue(scan.ViewObject.Visibility)
+
+    def test_command_on_the_axis_of_a_mesh_slices_the_mesh_along_it(self):
+        # As a selected axis of a solid is decomposed with its parameters, the mesh of a selected
+        # axis is sliced along an axis with them.
+        import Mesh
+        import MultiAxisSlicer.features as features
+
+        scan = self.doc.addObject("Mesh::Feature", "Scan")
+        scan.Mesh = Mesh.Mesh(self.part.Shape.tessellate(0.01))
+        axis = mas.make_centroidal_axis(scan, step=2.5)
+        self.doc.recompute()
+        layers, toolpath = self.run_command(axis)
+        self.assertEqual(error_boxes(), [])
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertIs(layers.Axis, axis)
+        self.assertIsNone(layers.Source)
+        self.assertEqual(features.slice_result(layers).to_dict(),
+                         mas.slice(scan.Mesh, step=2.5).to_dict())
+        self.assertFalse(scan.ViewObject.Visibility)
+        self.doc.removeObject(toolpath.Name)
+        self.assertTrue(layers.ViewObject.Proxy.onDelete(layers.ViewObject, []))
         self.assertTrue(scan.ViewObject.Visibility)
 
     def test_command_on_an_open_mesh_names_the_problem(self):

@@ -851,14 +851,14 @@ class TestLayersOfAMesh(SliceObjectTest):
         self.doc.recompute()
         self.assertEqual(layers.getStatusString(),
                          "Layers: Source 'Box' is not a mesh: a solid is sliced through a "
-                         "Decomposition object (set Decomposition, not Source)")
+                         "Decomposition object (set Decomposition, not Source or Axis)")
         decomposition = mas.make_decomposition(self.part)
         layers.Source = scan
         layers.Decomposition = decomposition
         self.doc.recompute()
         self.assertEqual(layers.getStatusString(),
                          "Layers: both Decomposition 'Decomposition' and Source 'Scan' are set: a "
-                         "Layers object slices one or the other")
+                         "Layers object slices a decomposition or a mesh, not both")
         layers.Decomposition = None
         layers.Deflection = 0.05
         self.doc.recompute()
@@ -883,6 +883,58 @@ class TestLayersOfAMesh(SliceObjectTest):
         scan.touch()
         self.doc.recompute()
         self.check_box_objects(layers, toolpath)
+
+    def test_the_axis_object_of_a_mesh_gives_the_axis_its_parameters(self):
+        scan = self.add_mesh(l_block())
+        axis = mas.make_centroidal_axis(scan, step=2.5)
+        self.doc.recompute()
+        layers, toolpath = mas.make_slice(axis)
+        self.assertIs(layers.Axis, axis)
+        self.assertIsNone(layers.Source)
+        self.assertIsNone(layers.Decomposition)
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        got = features.slice_result(layers).to_dict()
+        self.assertEqual(got, mas.slice(scan.Mesh, step=2.5).to_dict())
+        self.assertNotEqual(got, mas.slice(scan.Mesh).to_dict())  # the step tells
+        self.assertEqual(features.sliced_mesh(layers), scan)
+        axis.Step = 3.0
+        axis.BreakAngle = 40.0
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertEqual(features.slice_result(layers).to_dict(),
+                         mas.slice(scan.Mesh, step=3.0, break_angle=40.0).to_dict())
+        layers.Source = scan  # both may be set, the axis over the mesh
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+
+    def test_bad_axis_links_are_named(self):
+        scan = self.add_mesh(l_block())
+        other = self.add_mesh(box_20_10_21(), "Other")
+        axis = mas.make_centroidal_axis(scan)
+        layers, toolpath = mas.make_slice(axis)
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        for links, message in (
+                (dict(Source=other), "Layers: Axis 'CentroidalAxis' belongs to 'Scan', not to "
+                                     "the Source 'Other'"),
+                (dict(Decomposition=mas.make_decomposition(self.part)),
+                 "Layers: both Decomposition 'Decomposition' and Axis 'CentroidalAxis' are set: a "
+                 "Layers object slices a decomposition or a mesh, not both"),
+                (dict(Axis=other), "Layers: Axis 'Other' is not a CentroidalAxis object"),
+                (dict(Axis=mas.make_centroidal_axis(self.part, name="BoxAxis")),
+                 "Layers: Axis' Source 'Box' is not a mesh: a solid is sliced through a "
+                 "Decomposition object (set Decomposition, not Source or Axis)")):
+            for prop, value in links.items():
+                setattr(layers, prop, value)
+            self.doc.recompute()
+            self.assertEqual(layers.getStatusString(), message)
+            layers.Source = layers.Decomposition = None
+            layers.Axis = axis
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        with self.assertRaisesRegex(TypeError, "'BoxAxis' is not over a mesh but over 'Box'"):
+            mas.make_slice(self.doc.getObject("BoxAxis"))
 
     def test_make_rejects_what_a_mesh_cannot_take_before_adding_anything(self):
         scan = self.add_mesh(box_20_10_21())

@@ -1025,6 +1025,44 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual([o.Name for o in self.doc.Objects], names)
         self.assertTrue(scan.ViewObject.Visibility)
 
+    def test_a_meshs_layers_survive_save_and_reopen_and_make_a_program(self):
+        # The L as a mesh: one component whose arm overhangs, drawn red where it stands on nothing.
+        import Mesh
+
+        scan = self.doc.addObject("Mesh::Feature", "Scan")
+        scan.Mesh = Mesh.Mesh(self.part.Shape.tessellate(0.01))
+        self.doc.recompute()
+        layers, toolpath = self.run_command(scan)
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertGreater(len(layers.Shape.Faces), 0)
+        self.check_colours(layers, toolpath)
+        count = layers.LayerCount
+        folder = tempfile.mkdtemp(prefix="mas_gui_slice_")
+        try:
+            path = os.path.join(folder, "mesh_slice.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+            process_events()
+            scan = self.doc.getObject("Scan")
+            layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
+            self.assertIs(layers.Source, scan)
+            self.assertIsInstance(layers.ViewObject.Proxy, view_providers.ViewProviderLayers)
+            self.assertEqual(layers.LayerCount, count)
+            self.assertFalse(scan.ViewObject.Visibility)
+            self.check_colours(layers, toolpath)
+            FreeCADGui.Selection.clearSelection()
+            FreeCADGui.Selection.addSelection(layers)
+            FreeCADGui.runCommand(PROGRAM_COMMAND)  # the slicing is redone on demand
+            process_events()
+            program = self.doc.getObject("MachineProgram")
+            self.assertIsNotNone(program)
+            self.assertEqual(error_boxes(), [])
+            self.assertTrue(program.isValid(), program.getStatusString())
+            self.assertGreater(program.DepositMoves, count)
+        finally:
+            shutil.rmtree(folder)
+
     def test_command_on_the_axis_of_a_mesh_slices_the_mesh_along_it(self):
         # As a selected axis of a solid is decomposed with its parameters, the mesh of a selected
         # axis is sliced along an axis with them.

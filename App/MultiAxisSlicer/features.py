@@ -920,8 +920,8 @@ def slice_result(obj):
 
 
 def one_component_note(obj, result):
-    """What the report view says of a Layers object `obj` that sliced a mesh (its Source) into
-    `result` where a layer stands on nothing: a mesh is one component, built along one axis, and
+    """What the report view says of a Layers object `obj` that sliced a mesh (its Source, or its
+    Axis object's) into `result` where a layer stands on nothing: a mesh is one component, built along one axis, and
     the solid made of it could be split where it branches. None otherwise."""
     mesh = sliced_mesh(obj)
     if mesh is None or result.stats["worst_unsupported_area_mm2"] <= 0.0:

@@ -434,27 +434,19 @@ class TestCentroidalAxisCommand(unittest.TestCase):
         vobj.BreakLineColor = (1.0, 0.5, 0.0)
         vobj.DrawOnTop = False
         self.assertEqual(vobj.Proxy._depth.function.getValue(), vobj.Proxy._depth.LESS)
-        folder = tempfile.mkdtemp(prefix="mas_gui_axis_")
-        try:
-            path = os.path.join(folder, "axis.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-            process_events()
-            obj = self.doc.getObject("CentroidalAxis")
-            self.part = self.doc.getObject("L")
-            vobj = obj.ViewObject
-            self.assertIsInstance(vobj.Proxy, view_providers.ViewProviderCentroidalAxis)
-            self.assertTrue(same_colour(vobj.BreakLineColor, (1.0, 0.5, 0.0)))
-            self.assertFalse(vobj.DrawOnTop)
-            self.assertEqual(vobj.Proxy._depth.function.getValue(), vobj.Proxy._depth.LESS)
-            self.check_edge_colours(obj)
-            obj.Step = 5.0
-            self.doc.recompute()
-            process_events()
-            self.check_edge_colours(obj)
-        finally:
-            shutil.rmtree(folder)
+        saved_and_reopened(self, "axis.FCStd")
+        obj = self.doc.getObject("CentroidalAxis")
+        self.part = self.doc.getObject("L")
+        vobj = obj.ViewObject
+        self.assertIsInstance(vobj.Proxy, view_providers.ViewProviderCentroidalAxis)
+        self.assertTrue(same_colour(vobj.BreakLineColor, (1.0, 0.5, 0.0)))
+        self.assertFalse(vobj.DrawOnTop)
+        self.assertEqual(vobj.Proxy._depth.function.getValue(), vobj.Proxy._depth.LESS)
+        self.check_edge_colours(obj)
+        obj.Step = 5.0
+        self.doc.recompute()
+        process_events()
+        self.check_edge_colours(obj)
 
     def test_a_document_made_without_the_gui_gets_its_colours(self):
         import MultiAxisSlicer.features as features
@@ -490,6 +482,18 @@ class TestCentroidalAxisCommand(unittest.TestCase):
                 FreeCAD.closeDocument(doc.Name)
         finally:
             shutil.rmtree(folder)
+
+
+def saved_and_reopened(test, file_name):
+    """Saves test.doc as `file_name` in a folder removed after the test, closes it and opens it
+    again as test.doc, drawn."""
+    folder = tempfile.mkdtemp(prefix="mas_gui_doc_")
+    test.addCleanup(shutil.rmtree, folder, True)
+    path = os.path.join(folder, file_name)
+    test.doc.saveAs(path)
+    FreeCAD.closeDocument(test.doc.Name)
+    test.doc = FreeCAD.openDocument(path)
+    process_events()
 
 
 def features_of():
@@ -685,35 +689,27 @@ class TestDecomposeCommand(unittest.TestCase):
         obj = self.run_command(self.part)
         components = features_of().components_of(obj)
         components[1].ViewObject.ShapeColor = (0.0, 0.0, 0.0)  # the user's choice is kept
-        folder = tempfile.mkdtemp(prefix="mas_gui_dec_")
-        try:
-            path = os.path.join(folder, "decomposition.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-            process_events()
-            obj = self.doc.getObject("Decomposition")
-            self.assertIsInstance(obj.ViewObject.Proxy, view_providers.ViewProviderDecomposition)
-            components = features_of().components_of(obj)
-            self.assertEqual(obj.ViewObject.Proxy.claimChildren(), components)
-            self.assertTrue(same_colour(components[0].ViewObject.ShapeColor,
-                                        view_providers.component_colour(0)))
-            self.assertTrue(same_colour(components[1].ViewObject.ShapeColor, (0.0, 0.0, 0.0)))
-            obj.touch()
-            self.doc.recompute()
-            process_events()
-            self.assertEqual(len(features_of().components_of(obj)), 2)
-            self.assertTrue(all(o.isValid() for o in self.doc.Objects))
-            part = self.doc.getObject("L")
-            self.assertFalse(part.ViewObject.Visibility)
-            FreeCADGui.getDocument(self.doc.Name).getObject(obj.Name).Proxy.onDelete(
-                obj.ViewObject, [])
-            self.doc.removeObject(obj.Name)
-            process_events()
-            self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
-            self.assertTrue(part.ViewObject.Visibility)  # in view again
-        finally:
-            shutil.rmtree(folder)
+        saved_and_reopened(self, "decomposition.FCStd")
+        obj = self.doc.getObject("Decomposition")
+        self.assertIsInstance(obj.ViewObject.Proxy, view_providers.ViewProviderDecomposition)
+        components = features_of().components_of(obj)
+        self.assertEqual(obj.ViewObject.Proxy.claimChildren(), components)
+        self.assertTrue(same_colour(components[0].ViewObject.ShapeColor,
+                                    view_providers.component_colour(0)))
+        self.assertTrue(same_colour(components[1].ViewObject.ShapeColor, (0.0, 0.0, 0.0)))
+        obj.touch()
+        self.doc.recompute()
+        process_events()
+        self.assertEqual(len(features_of().components_of(obj)), 2)
+        self.assertTrue(all(o.isValid() for o in self.doc.Objects))
+        part = self.doc.getObject("L")
+        self.assertFalse(part.ViewObject.Visibility)
+        FreeCADGui.getDocument(self.doc.Name).getObject(obj.Name).Proxy.onDelete(
+            obj.ViewObject, [])
+        self.doc.removeObject(obj.Name)
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+        self.assertTrue(part.ViewObject.Visibility)  # in view again
 
     def test_deleting_one_of_two_decompositions_leaves_the_part_hidden(self):
         # The other decomposition's components still show the part: showing it too would draw
@@ -1037,31 +1033,23 @@ class TestSliceCommand(unittest.TestCase):
         self.assertGreater(len(layers.Shape.Faces), 0)
         self.check_colours(layers, toolpath)
         count = layers.LayerCount
-        folder = tempfile.mkdtemp(prefix="mas_gui_slice_")
-        try:
-            path = os.path.join(folder, "mesh_slice.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-            process_events()
-            scan = self.doc.getObject("Scan")
-            layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
-            self.assertIs(layers.Source, scan)
-            self.assertIsInstance(layers.ViewObject.Proxy, view_providers.ViewProviderLayers)
-            self.assertEqual(layers.LayerCount, count)
-            self.assertFalse(scan.ViewObject.Visibility)
-            self.check_colours(layers, toolpath)
-            FreeCADGui.Selection.clearSelection()
-            FreeCADGui.Selection.addSelection(layers)
-            FreeCADGui.runCommand(PROGRAM_COMMAND)  # the slicing is redone on demand
-            process_events()
-            program = self.doc.getObject("MachineProgram")
-            self.assertIsNotNone(program)
-            self.assertEqual(error_boxes(), [])
-            self.assertTrue(program.isValid(), program.getStatusString())
-            self.assertGreater(program.DepositMoves, count)
-        finally:
-            shutil.rmtree(folder)
+        saved_and_reopened(self, "mesh_slice.FCStd")
+        scan = self.doc.getObject("Scan")
+        layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
+        self.assertIs(layers.Source, scan)
+        self.assertIsInstance(layers.ViewObject.Proxy, view_providers.ViewProviderLayers)
+        self.assertEqual(layers.LayerCount, count)
+        self.assertFalse(scan.ViewObject.Visibility)
+        self.check_colours(layers, toolpath)
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(layers)
+        FreeCADGui.runCommand(PROGRAM_COMMAND)  # the slicing is redone on demand
+        process_events()
+        program = self.doc.getObject("MachineProgram")
+        self.assertIsNotNone(program)
+        self.assertEqual(error_boxes(), [])
+        self.assertTrue(program.isValid(), program.getStatusString())
+        self.assertGreater(program.DepositMoves, count)
 
     def test_command_on_the_axis_of_a_mesh_slices_the_mesh_along_it(self):
         # As a selected axis of a solid is decomposed with its parameters, the mesh of a selected
@@ -1352,24 +1340,16 @@ class TestSliceCommand(unittest.TestCase):
 
     def test_colours_survive_save_and_reopen(self):
         self.run_command(mas.make_decomposition(self.part))
-        folder = tempfile.mkdtemp(prefix="mas_gui_slice_")
-        try:
-            path = os.path.join(folder, "slice.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-            process_events()
-            layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
-            self.assertIsInstance(layers.ViewObject.Proxy, view_providers.ViewProviderLayers)
-            self.assertIsInstance(toolpath.ViewObject.Proxy, view_providers.ViewProviderToolpath)
-            self.check_colours(layers, toolpath)
-            toolpath.ShowTravel = True  # the slicing is redone on demand
-            self.doc.recompute()
-            process_events()
-            self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
-            self.check_colours(layers, toolpath)
-        finally:
-            shutil.rmtree(folder)
+        saved_and_reopened(self, "slice.FCStd")
+        layers, toolpath = self.doc.getObject("Layers"), self.doc.getObject("Toolpath")
+        self.assertIsInstance(layers.ViewObject.Proxy, view_providers.ViewProviderLayers)
+        self.assertIsInstance(toolpath.ViewObject.Proxy, view_providers.ViewProviderToolpath)
+        self.check_colours(layers, toolpath)
+        toolpath.ShowTravel = True  # the slicing is redone on demand
+        self.doc.recompute()
+        process_events()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.check_colours(layers, toolpath)
 
 
     def test_a_document_made_without_the_gui_gets_its_colours(self):

@@ -619,8 +619,8 @@ def make_slice(part, deflection=0.0, show_travel=False, name="Layers", toolpath_
     """Adds a parametric ``Layers`` object (FreeCAD only) slicing ``part`` into adaptive multi-axis
     layers, and a ``Toolpath`` object showing the bead paths planned in them; returns (layers,
     toolpath). Recompute the document to compute them. ``part`` is a ``Decomposition`` object
-    (its part sliced component by component) or a closed mesh object (``Mesh::Feature``, sliced as
-    one component, as ``slice()`` slices a mesh), or a ``CentroidalAxis`` object over such a mesh
+    (its part sliced component by component) or a closed mesh object (``Mesh::Feature``, split at
+    section planes as ``slice()`` splits a mesh), or a ``CentroidalAxis`` object over such a mesh
     (whose parameters the mesh's axis then takes). ``params`` are ``slice()``'s slicing parameters
     (min_layer, max_layer, bead_width, infill, ...), checked before anything is added. See
     ``MultiAxisSlicer.features``."""

@@ -756,6 +756,9 @@ _SLICE_PROPERTIES = (
     ("MaxTilt", "Layers", "max_tilt", "App::PropertyAngle",
      "The most a layer's normal (the tool axis) tilts from the build plate's +Z: the machine's "
      "reach, 90 to 180 (the default machine's table tilts A from -100 to 50: 100)"),
+    ("SplitMesh", "Layers", "split_mesh", "App::PropertyBool",
+     "A mesh (Source) is split at section planes where its axis turns or branches, each piece "
+     "built along its own direction (off: sliced as one component)"),
     ("VolumeSamples", "Layers", "volume_samples", "App::PropertyInteger",
      "Sections per layer for integrating its volumetric difference"),
     ("Strict", "Layers", "strict", "App::PropertyBool",
@@ -823,8 +826,8 @@ def is_mesh_part(obj):
 
 
 def sliced_mesh(obj):
-    """The mesh a Layers object slices as one component: its Source, else its Axis object's; None
-    when it slices a Decomposition. Unchecked: slice_inputs() says what is wrong with the links."""
+    """The mesh a Layers object slices: its Source, else its Axis object's; None when it slices a
+    Decomposition. Unchecked: slice_inputs() says what is wrong with the links."""
     if obj.Source is not None:
         return obj.Source
     return getattr(obj.Axis, "Source", None) if obj.Axis is not None else None
@@ -833,8 +836,7 @@ def sliced_mesh(obj):
 def slice_inputs(obj):
     """(Decomposition object or None, mesh object or None, slice() parameters, deflection or None)
     of a Layers object: it slices either a Decomposition's part, component by component, or a mesh
-    (its Source, or its Axis object's) as one component, the parameters then holding the Axis
-    object's too. Raises ValueError / TypeError for a missing or wrong link or a bad parameter
+    (its Source, or its Axis object's), the parameters then holding the Axis object's too. Raises ValueError / TypeError for a missing or wrong link or a bad parameter
     (naming it)."""
     decomposition, source, axis = obj.Decomposition, obj.Source, obj.Axis
     mesh_links = [(name, o) for name, o in (("Source", source), ("Axis", axis)) if o is not None]
@@ -919,21 +921,6 @@ def slice_result(obj):
     return result
 
 
-def one_component_note(obj, result):
-    """What the report view says of a Layers object `obj` that sliced a mesh (its Source, or its
-    Axis object's) into `result` where a layer stands on nothing: a mesh is one component, built along one axis, and
-    the solid made of it could be split where it branches. None otherwise."""
-    mesh = sliced_mesh(obj)
-    if mesh is None or result.stats["worst_unsupported_area_mm2"] <= 0.0:
-        return None
-    return ("'{}' is a mesh, sliced as one component, and its layers stand on nothing over up to "
-            "{:.3g} mm^2 (layer {}, red). A solid made of it (Part > Create shape from mesh, then "
-            "Part > Convert to solid) can be decomposed: each sub-component is then built along "
-            "its own direction".format(mesh.Label,
-                                       result.stats["worst_unsupported_area_mm2"],
-                                       result.stats["worst_unsupported_layer"]))
-
-
 def _polyline(points, closed=False):
     """A Part wire through `points` (consecutive repeats dropped); closed: back to the first point.
     None when too few distinct points are left."""
@@ -1003,11 +990,12 @@ class LayersFeature(_EngineFeature):
     ``Decomposition`` object's part, or of a mesh (``MultiAxisSlicer.slice``).
 
     Inputs: Decomposition (the Decomposition object: its source and sub-components are sliced, each
-    along its own build direction) or, in its place, Source (a closed mesh object, sliced as one
-    component along its centroidal axis) and/or Axis (a CentroidalAxis object over that mesh, whose
-    parameters the axis then takes; without it they are derived), the layer parameters
-    (MinLayer, MaxLayer, MaxVolumeDifference, EpsAngle, OverhangAngle, MaxTilt, VolumeSamples,
-    Strict, FillHoles), the path parameters
+    along its own build direction) or, in its place, Source (a closed mesh object, split at
+    section planes as ``MultiAxisSlicer.slice`` splits a mesh, or sliced as one component with
+    SplitMesh off) and/or Axis (a CentroidalAxis object over that mesh, whose parameters the axis
+    then takes; without it they are derived), the layer parameters (MinLayer, MaxLayer,
+    MaxVolumeDifference, EpsAngle, OverhangAngle, MaxTilt, SplitMesh, VolumeSamples, Strict,
+    FillHoles), the path parameters
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
     MeasureCoverage), the nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
     NozzleBodyLength, NozzleMargin, CheckPlate, NozzleMaxLean) and
@@ -1046,8 +1034,8 @@ class LayersFeature(_EngineFeature):
         _add_property(obj, "App::PropertyLink", "Decomposition", "Layers",
                       "Decomposition object whose part is sliced, component by component")
         _add_property(obj, "App::PropertyLink", "Source", "Layers",
-                      "A closed mesh (Mesh feature) sliced as one component along its centroidal "
-                      "axis, in place of a Decomposition (a mesh cannot be split into solids)")
+                      "A closed mesh (Mesh feature) sliced in place of a Decomposition: split at "
+                      "section planes where its centroidal axis turns (see SplitMesh)")
         _add_property(obj, "App::PropertyLink", "Axis", "Layers",
                       "A CentroidalAxis object over that mesh (which then need not be set as "
                       "Source): the mesh's axis takes its Step, DistanceThreshold, Epsilon and "
@@ -1148,10 +1136,11 @@ class LayersFeature(_EngineFeature):
 
     @staticmethod
     def not_applicable(obj):
-        """The parameters a mesh Source takes none of: it is sliced as it is (no tessellation)
-        and has no BREP holes to fill."""
+        """The parameters that do not apply to `obj` as it is: a Decomposition's part is a solid
+        (SplitMesh is a mesh's); a mesh is not tessellated (Deflection) and has no BREP holes to
+        fill (FillHoles)."""
         if getattr(obj, "Source", None) is None and getattr(obj, "Axis", None) is None:
-            return ()
+            return ("SplitMesh",)
         return ("Deflection", "FillHoles")
 
     @staticmethod
@@ -1201,7 +1190,7 @@ class LayersFeature(_EngineFeature):
                 "{}: deposited solid, to drill afterwards: a hole {:.6g} mm across, {:.6g} mm "
                 "long, at ({:.6g}, {:.6g}, {:.6g}) along ({:.6g}, {:.6g}, {:.6g}) (component "
                 "{})\n".format(obj.Label, h.diameter, h.length, *h.centre, *h.axis, h.component))
-        for note in result.notes + [n for n in [one_component_note(obj, result)] if n]:
+        for note in result.notes:
             FreeCAD.Console.PrintWarning("{}: {}\n".format(obj.Label, note))
         if collisions:
             shown = collisions[:10]
@@ -1331,10 +1320,10 @@ def make_slice(part, deflection=0.0, show_travel=False, name="Layers", toolpath_
     compute them.
 
     ``part`` is a ``Decomposition`` object, whose part is sliced component by component (a solid),
-    or a mesh object (``Mesh::Feature``), sliced as one component along its centroidal axis, the
-    axis' parameters derived (as ``MultiAxisSlicer.slice`` slices a mesh; a mesh cannot be split
-    into solids), or a ``CentroidalAxis`` object over a mesh, whose mesh is sliced so, along an axis
-    with the object's parameters (the Layers' Axis). ``params``: the slicing parameters of
+    or a mesh object (``Mesh::Feature``), split at section planes where its centroidal axis turns,
+    the axis' parameters derived (as ``MultiAxisSlicer.slice`` splits a mesh; ``split_mesh=False``:
+    one component), or a ``CentroidalAxis`` object over a mesh, whose mesh is sliced so, along an
+    axis with the object's parameters (the Layers' Axis). ``params``: the slicing parameters of
     ``MultiAxisSlicer.slice`` (min_layer, max_layer, max_volume_difference, eps_angle,
     overhang_angle, max_tilt, volume_samples, strict, fill_holes, bead_width, overlap,
     contour_count, infill, raster_angle, raster_angle_step, min_feature, measure_coverage, the

@@ -44,6 +44,7 @@ SLICE_DEFAULTS = {
     "min_feature": 0.0,
     "measure_coverage": False,
     "fill_holes": 0.0,
+    "split_mesh": True,
     "nozzle_standoff": 10.0,
     "nozzle_tip_diameter": 10.0,
     "nozzle_cone_angle": 30.0,
@@ -371,7 +372,7 @@ def _slice_params(values):
         if isinstance(v, bool) or not isinstance(v, numbers.Integral):
             raise TypeError("{} must be an integer, got {!r}".format(name, v))
         p[name] = int(v)
-    for name in ("strict", "measure_coverage", "check_plate"):
+    for name in ("strict", "measure_coverage", "check_plate", "split_mesh"):
         if not isinstance(values[name], (bool, numbers.Integral)):
             raise TypeError("{} must be True or False, got {!r}".format(name, values[name]))
         p[name] = bool(values[name])
@@ -430,9 +431,12 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     """Slices a part into adaptive multi-axis "3-D" layers and plans the paths in every layer.
 
     ``shape``: a ``Part.Shape`` holding one closed solid, a document object with one, a file path
-    (.step/.stp, .iges/.igs, .brep/.brp; .stl/.off too) or a closed ``Mesh.Mesh``. A mesh cannot
-    be decomposed: it is sliced as one component standing on its lowest point, along its axis'
-    first branch.
+    (.step/.stp, .iges/.igs, .brep/.brp; .stl/.off too) or a closed ``Mesh.Mesh``. A mesh, which
+    has no faces to split at, stands on its lowest point and is split at section planes where its
+    axis turns or branches (the engine's decompose_mesh, SlicePart.hpp), each piece closed with a
+    cap; a piece some of whose layers the nozzle could not reach is left in its father, and the
+    mesh is sliced as one component when that leaves fewer layers in the nozzle's way. The
+    result's ``notes`` say which branches got no piece and why.
 
     ``axis``: the part's ``CentroidalAxis``; None: computed here (with ``step``,
     ``distance_threshold``, ``eps``, ``break_angle``, ``base_z`` from ``params`` when given; with
@@ -458,6 +462,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         and ``raster_angle_step`` (90, added every layer), ``min_feature`` (centre lines shorter
         than this are reported, not run; 0: half a bead), ``measure_coverage`` (also measure the
         area each layer's beads leave uncovered; False).
+      * ``split_mesh``: a mesh is split as above (True); False slices it as one component, along
+        its axis' first branch. A solid is always decomposed (``components`` gives the split).
       * ``fill_holes``: round holes up to this diameter whose axis leans past ``overhang_angle``
         off their sub-component's build direction, which a drill reaches from outside the part,
         are deposited solid, to be drilled afterwards: their ceilings would overhang (0: none; a
@@ -524,6 +530,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
             axis = centroidal_axis(mesh, **axis_params)
         data = eng.slice_mesh_part(mesh, axis._engine_dict(), p, progress)
         return SliceResult(data, p, axis, None, kind)
+    if not p["split_mesh"]:
+        raise ValueError("slice: {} is a solid, which is always decomposed; split_mesh=False "
+                         "applies to a mesh (pass components to choose the split)".format(what))
     solid = part.single_solid(what)
     if components is not None:
         axis = components.axis

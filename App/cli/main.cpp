@@ -49,7 +49,8 @@ const char* kUsage =
     "                                   [--bead-width MM] [--overlap F] [--contours N]\n"
     "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
     "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
-    "                                   [--measure-coverage] [--fill-holes MM] [--progress]\n"
+    "                                   [--measure-coverage] [--fill-holes MM] [--one-component]\n"
+    "                                   [--progress]\n"
     "                                   [nozzle options] [--no-plate-check]\n"
     "                                   [--gcode OUT.ngc [machine options]] [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
@@ -73,8 +74,10 @@ const char* kUsage =
     "           Defaults: layers 0.5 to 2 mm, volume difference 0.1, bead 1 mm, overlap 0.15,\n"
     "           2 contours, raster infill, --max-tilt 100: no layer or component tilts further\n"
     "           from +Z (the machine's reach; with --gcode and --a-limits, the farther A limit,\n"
-    "           within 90 to 180). A mesh is sliced as one component; a solid is\n"
-    "           decomposed with --min-height at --min-layer. --fill-holes MM deposits a solid's\n"
+    "           within 90 to 180). A solid is decomposed with --min-height at --min-layer;\n"
+    "           a mesh is split at section planes where its axis turns or branches (not where\n"
+    "           the layers of a piece would meet what is deposited before them), or sliced as\n"
+    "           one component with --one-component. --fill-holes MM deposits a solid's\n"
     "           round holes up to MM across solid where their axis leans past the overhang\n"
     "           angle off the build direction (their ceilings would overhang), listing them to\n"
     "           drill afterwards (default 0: none).\n"
@@ -723,10 +726,12 @@ int run_slice(const std::vector<std::string>& args) {
     allowed.insert(kMachineOptions.begin(), kMachineOptions.end());
     allowed.insert("--gcode");
     std::vector<std::string> rest;
-    bool strict = false, coverage = false, report = false, no_plate = false;
+    bool strict = false, coverage = false, report = false, no_plate = false, whole = false;
     for (const auto& arg : args) {
         if (arg == "--strict")
             strict = true;
+        else if (arg == "--one-component")
+            whole = true;
         else if (arg == "--no-plate-check")
             no_plate = true;
         else if (arg == "--measure-coverage")
@@ -742,6 +747,7 @@ int run_slice(const std::vector<std::string>& args) {
     sp.layers.strict = strict;
     sp.paths.measure_coverage = coverage;
     sp.nozzle.check_plate = !no_plate;
+    sp.split_mesh = !whole;
     mas::validate(sp.layers);
     mas::validate(sp.paths);
     mas::validate(sp.nozzle);
@@ -755,6 +761,10 @@ int run_slice(const std::vector<std::string>& args) {
     mas::SlicedPart r;
     const mas::Progress progress = report ? stderr_progress() : mas::Progress();
     if (part.model.kind == mas::Model::Kind::Solid) {
+        if (whole)
+            throw mas::Error(mas::ErrorCode::InvalidArgument,
+                             "--one-component applies to a mesh: a solid is decomposed (" + a.file +
+                                 " is a solid)");
         const mas::Shape solid = part.model.shape.single_solid(a.file);
         mas::DecomposeParams dp;  // no component thinner than a layer, none past the reach
         dp.min_component_height_mm = sp.layers.min_layer_mm;
@@ -767,7 +777,7 @@ int run_slice(const std::vector<std::string>& args) {
         for (std::size_t i = 0; i < d.notes.size(); ++i)
             r.notes.insert(r.notes.begin() + std::ptrdiff_t(i), "decomposition: " + d.notes[i]);
     } else {
-        r = mas::slice_mesh_part(part.mesh, axis, sp, progress);  // a mesh cannot be split
+        r = mas::slice_mesh_part(part.mesh, axis, sp, progress);
     }
     mas::GcodeStats gs;
     if (a.has("--gcode")) {
@@ -799,6 +809,7 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"min_feature\": " << num(t.min_feature_mm)
             << ", \"measure_coverage\": " << (t.measure_coverage ? "true" : "false")
             << ", \"fill_holes\": " << num(sp.fill_holes_up_to_mm)
+            << ", \"split_mesh\": " << (sp.split_mesh ? "true" : "false")
             << ", \"nozzle_standoff\": " << num(sp.nozzle.standoff_mm)
             << ", \"nozzle_tip_diameter\": " << num(sp.nozzle.tip_diameter_mm)
             << ", \"nozzle_cone_angle\": " << num(sp.nozzle.cone_angle_deg)

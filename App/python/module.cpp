@@ -1090,6 +1090,8 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             p.tessellation.deflection_mm = number();
         else if (key == "fill_holes")
             p.fill_holes_up_to_mm = number();
+        else if (key == "split_mesh")
+            p.split_mesh = truth();
         else if (key == "nozzle_standoff")
             p.nozzle.standoff_mm = number();
         else if (key == "nozzle_tip_diameter")

@@ -47,8 +47,8 @@ def _part_problem(source, split=False):
             if split:
                 return ("'{}' is a mesh: decomposing splits a BREP solid into solids. Make a "
                         "solid of it first (Part > Create shape from mesh, then Part > Convert to "
-                        "solid) and select that, or slice the mesh as it is, as one component "
-                        "(Slice).".format(source.Label))
+                        "solid) and select that, or slice the mesh (Slice), which splits it at "
+                        "section planes.".format(source.Label))
             mas._require_engine().make_closed(part, what)
         else:
             part.single_solid(what)
@@ -293,8 +293,8 @@ class _Busy:
 
 class SliceCommand(_PartCommand):
     """Adaptive multi-axis layers and bead paths of a selected Decomposition object (or of a
-    selected solid, decomposed first as the Decompose command does, or of a closed mesh, sliced as
-    one component, or of the CentroidalAxis object of one, whose parameters its axis takes), as a
+    selected solid, decomposed first as the Decompose command does, or of a closed mesh, split at
+    section planes, or of the CentroidalAxis object of one, whose parameters its axis takes), as a
     parametric Layers object (outlines coloured by component) and a Toolpath object (paths coloured
     by kind), in one transaction. Slicing can take a while: the status bar says which stage runs,
     and a progress dialog shows how far it is; its Cancel undoes the whole command."""
@@ -303,9 +303,9 @@ class SliceCommand(_PartCommand):
     TRANSACTION = "Slice"
     ICON = "Slice.svg"
     TOOLTIP = ("Slice the selected Decomposition (or solid, decomposed first; or closed mesh, "
-               "as one component) into adaptive multi-axis layers, each component along its own "
-               "build direction, and plan the bead paths in every layer (parametric Layers and "
-               "Toolpath objects: set MinLayer, MaxLayer, BeadWidth, Infill, ...)")
+               "split at section planes) into adaptive multi-axis layers, each component along "
+               "its own build direction, and plan the bead paths in every layer (parametric "
+               "Layers and Toolpath objects: set MinLayer, MaxLayer, BeadWidth, Infill, ...)")
 
     def Activated(self):
         import MultiAxisSlicer.features as features
@@ -355,12 +355,13 @@ class SliceCommand(_PartCommand):
     @staticmethod
     def _slice(source, mesh, doc, before, busy):
         """Makes and computes the command's objects in the open transaction; returns what failed,
-        or None. A mesh is sliced as it is; a solid is decomposed first."""
+        or None. A mesh is split as it is sliced (Layers' SplitMesh); a solid is decomposed
+        first, into a Decomposition object."""
         import MultiAxisSlicer.features as features
 
         if mesh:
             part = source.Source if features.is_centroidal_axis(source) else source
-            busy.stage("Slicing the mesh '{}' as one component...".format(part.Label))
+            busy.stage("Slicing the mesh '{}'...".format(part.Label))
             sliced, components = source, []
         else:
             if features.is_decomposition(source):

@@ -69,6 +69,28 @@ def box_stl(x, y, z, drop_last=False, nan=False, at=(0, 0, 0)):
     return "\n".join(lines) + "\n"
 
 
+def l_prism_stl():
+    """ASCII STL of the L of the tests (a 20 x 20 x 60 column, a 50 mm arm 20 x 20 at its top,
+    along +X), as the prism of its profile in XZ swept 20 mm along Y."""
+    profile = [(0, 0), (20, 0), (20, 40), (70, 40), (70, 60), (0, 60)]  # clockwise seen from -Y
+    caps = [(0, 1, 2), (0, 2, 5), (2, 3, 4), (2, 4, 5)]
+    facets = []
+    for a, b, c in caps:  # y = 0 facing -Y, y = 20 facing +Y
+        facets.append([(profile[i][0], 0, profile[i][1]) for i in (a, b, c)])
+        facets.append([(profile[i][0], 20, profile[i][1]) for i in (a, c, b)])
+    for i, p in enumerate(profile):
+        q = profile[(i + 1) % len(profile)]
+        a, b = (p[0], 0, p[1]), (q[0], 0, q[1])
+        c, d = (q[0], 20, q[1]), (p[0], 20, p[1])
+        facets += [[a, d, c], [a, c, b]]
+    lines = ["solid l"]
+    for f in facets:
+        lines.append(" facet normal 0 0 0\n  outer loop")
+        lines += ["   vertex %s %s %s" % v for v in f]
+        lines.append("  endloop\n endfacet")
+    return "\n".join(lines + ["endsolid l"]) + "\n"
+
+
 class CliSections(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -554,6 +576,37 @@ class CliSections(unittest.TestCase):
         self.assertEqual(len(rows), 7)  # 21 mm in 3 mm layers
         self.assertEqual([float(row[4]) for row in rows], [3.0] * 7)
         self.assertIn("# build order: 0\n", r.stdout)
+
+    def test_a_mesh_is_split_where_its_axis_turns_unless_kept_whole(self):
+        # The L as a mesh: its arm cut off at the column's face (plus the axis' clearance) and
+        # built along +X, nothing standing on nothing; with --one-component, the column's layers
+        # go on up through the arm, whose whole underside beyond the column stands on nothing.
+        path = self.write("l.stl", l_prism_stl())
+        out = os.path.join(self.tmp.name, "l.json")
+        r = run("slice", path, "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            doc = json.load(f)
+        self.assertEqual(doc["kind"], "mesh")
+        self.assertTrue(doc["params"]["split_mesh"])
+        self.assertEqual(len(doc["components"]), 2)
+        self.assertEqual(doc["stats"]["worst_unsupported_area_mm2"], 0.0)
+        self.assertEqual(doc["stats"]["colliding_layers"], 0)
+        for layer in doc["layers"]:
+            want = (0, 0, 1) if layer["component"] == 0 else (1, 0, 0)
+            for got, w in zip(layer["normal"], want):
+                self.assertAlmostEqual(got, w, places=9)
+        self.assertAlmostEqual(doc["stats"]["deposited_volume_mm3"], 44000.0, places=6)
+        r = run("slice", path, "--one-component", "--json", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            whole = json.load(f)
+        self.assertFalse(whole["params"]["split_mesh"])
+        self.assertEqual(len(whole["components"]), 1)
+        self.assertAlmostEqual(whole["stats"]["worst_unsupported_area_mm2"], 48 * 20, places=6)
+        r = run("slice", os.path.join(DATA, "l_block.brep"), "--one-component")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("--one-component applies to a mesh: a solid is decomposed", r.stderr)
 
     def test_a_mesh_slices_the_same_whatever_order_its_facets_come_in(self):
         # A ball of 32 x 16 facets cut flat at its bottom, written once in order and once with its

@@ -812,7 +812,7 @@ class TestDecomposeCommand(unittest.TestCase):
             self.assertEqual(len(boxes), 1, selected.Label)
             self.assertIn("Decompose: 'Scan' is a mesh: decomposing splits a BREP solid",
                           boxes[0].text())
-            self.assertIn("or slice the mesh as it is, as one component (Slice).",
+            self.assertIn("or slice the mesh (Slice), which splits it at section planes.",
                           boxes[0].text())
             boxes[0].close()
 
@@ -1022,7 +1022,7 @@ class TestSliceCommand(unittest.TestCase):
         self.assertTrue(scan.ViewObject.Visibility)
 
     def test_a_meshs_layers_survive_save_and_reopen_and_make_a_program(self):
-        # The L as a mesh: one component whose arm overhangs, drawn red where it stands on nothing.
+        # The L as a mesh: split into the column and the arm, each in its colour.
         import Mesh
 
         scan = self.doc.addObject("Mesh::Feature", "Scan")
@@ -1030,8 +1030,10 @@ class TestSliceCommand(unittest.TestCase):
         self.doc.recompute()
         layers, toolpath = self.run_command(scan)
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
-        self.assertGreater(len(layers.Shape.Faces), 0)
+        self.assertEqual(len(layers.ComponentLayerCounts), 2)
+        self.assertEqual(layers.Shape.Faces, [])  # nothing stands on nothing
         self.check_colours(layers, toolpath)
+        save_screenshot(self, self.doc, "slice_mesh_l_block.png", see_through=False)
         count = layers.LayerCount
         saved_and_reopened(self, "mesh_slice.FCStd")
         scan = self.doc.getObject("Scan")
@@ -1605,7 +1607,8 @@ class TestParameterPanel(unittest.TestCase):
         self.assertEqual(self.gui_doc.getInEdit().Object, self.layers)
 
     def test_the_layers_of_a_mesh_offer_no_deflection_nor_holes_to_fill(self):
-        # A mesh is sliced as it is, and has no BREP holes: the two would only fail.
+        # A mesh is not tessellated and has no BREP holes: the two would only fail. SplitMesh is
+        # a mesh's only.
         import Mesh
 
         scan = self.doc.addObject("Mesh::Feature", "Scan")
@@ -1615,9 +1618,11 @@ class TestParameterPanel(unittest.TestCase):
         self.assertIsNone(self.features.failure(toolpath))
         panel = self.open(layers)
         props = [f.prop for f in panel.fields]
-        want = [p for _, group in self.features.parameters(self.layers) for p in group
-                if p not in ("Deflection", "FillHoles")]
-        self.assertEqual(props, want)
+        of_solid = [p for _, group in self.features.parameters(self.layers) for p in group]
+        self.assertNotIn("SplitMesh", of_solid)
+        want = [p for p in of_solid if p not in ("Deflection", "FillHoles")]
+        self.assertEqual([p for p in props if p != "SplitMesh"], want)
+        self.assertIn("SplitMesh", props)
         self.assertIn("MaxLayer", props)
         count = layers.LayerCount
         self.set_field(panel, "MaxLayer", layers.MaxLayer.Value / 2)

@@ -176,6 +176,21 @@ class TestSliceApi(SliceTest):
         with self.assertRaisesRegex(TypeError, "mesh"):
             mas.slice(fc_mesh(box_20_10_21()), components=mas.decompose(box_20_10_21()))
 
+    def test_a_mesh_is_split_unless_kept_whole_and_a_solid_is_always_decomposed(self):
+        split = mas.slice(fc_mesh(l_block(), 0.01))
+        self.assertEqual(len(split.components), 2)
+        self.assertEqual(split.stats["worst_unsupported_area_mm2"], 0.0)
+        self.assertTrue(split.params["split_mesh"])
+        whole = mas.slice(fc_mesh(l_block(), 0.01), split_mesh=False)
+        self.assertEqual(len(whole.components), 1)
+        self.assertFalse(whole.params["split_mesh"])
+        self.assertAlmostEqual(whole.stats["worst_unsupported_area_mm2"], 48 * 20, places=6)
+        with self.assertRaisesRegex(ValueError, "is a solid, which is always decomposed; "
+                                                "split_mesh=False applies to a mesh"):
+            mas.slice(l_block(), split_mesh=False)
+        with self.assertRaisesRegex(TypeError, "split_mesh must be True or False"):
+            mas.slice(fc_mesh(l_block(), 0.01), split_mesh="no")
+
     def test_to_dict_is_json_ready(self):
         result = mas.slice(l_block())
         data = result.to_dict()
@@ -623,7 +638,7 @@ class TestUnsupportedRegions(SliceTest):
         the slab's first layer reaches 20 mm past the stem. What of it lies outside the stem grown
         by the allowance (its thickness x tan 45) is exactly a rectangle on the stem's top."""
         shelf = Part.makeBox(10, 10, 10).fuse(Part.makeBox(30, 10, 2, V(0, 0, 10)))
-        result = mas.slice(fc_mesh(shelf.removeSplitter()))
+        result = mas.slice(fc_mesh(shelf.removeSplitter()), split_mesh=False)
         flagged = [(i, layer) for i, layer in enumerate(result.layers) if layer.unsupported_regions]
         self.assertEqual(len(flagged), 1)
         i, layer = flagged[0]
@@ -655,7 +670,7 @@ class TestUnsupportedRegions(SliceTest):
         from 5 + t to 15, up to the deflection along both circles."""
         deflection = 0.05
         mushroom = Part.makeCylinder(5, 10).fuse(Part.makeCylinder(15, 2, V(0, 0, 10)))
-        result = mas.slice(fc_mesh(mushroom.removeSplitter(), deflection))
+        result = mas.slice(fc_mesh(mushroom.removeSplitter(), deflection), split_mesh=False)
         flagged = [i for i, layer in enumerate(result.layers) if layer.unsupported_regions]
         self.assertEqual(len(flagged), 1)
         layer = result.layers[flagged[0]]
@@ -779,7 +794,6 @@ class TestLayersOfAMesh(SliceObjectTest):
         self.doc.recompute()
         self.check_box_objects(layers, toolpath)
         self.assertEqual(layers.Proxy._result[1].kind, "mesh")
-        self.assertIsNone(features.one_component_note(layers, layers.Proxy._result[1]))
         self.assertEqual(scan.Mesh.Topology, before)  # the mesh is read, never changed
         self.assertNotIn("Touched", scan.State)
         # The same as the scripting API slicing the mesh, and its program too.
@@ -790,29 +804,33 @@ class TestLayersOfAMesh(SliceObjectTest):
         self.assertEqual(expected.to_dict(), features.slice_result(layers).to_dict())
         self.assertEqual(program.LineCount, expected.gcode().stats["lines"])
 
-    def test_an_l_as_a_mesh_is_one_component_with_the_apis_layers(self):
+    def test_an_l_as_a_mesh_is_split_as_the_api_and_the_solid_split_it(self):
         scan = self.add_mesh(l_block())
         layers, toolpath = mas.make_slice(scan, max_layer=1.5)
         self.doc.recompute()
         self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
         expected = mas.slice(scan.Mesh, max_layer=1.5)
-        self.assertEqual(list(layers.ComponentLayerCounts), [len(expected.layers)])
-        self.assertEqual(list(layers.LayerComponents), [0] * len(expected.layers))
-        self.assertEqual(list(layers.LayerNormals), [FreeCAD.Vector(layer.normal)
-                                                     for layer in expected.layers])
-        self.assertEqual(layers.DepositedVolume.Value,
-                         expected.stats["deposited_volume_mm3"])
+        self.assertEqual(features.slice_result(layers).to_dict(), expected.to_dict())
+        # The column up, the arm out along +X from the column's face (the solid is split at the
+        # face, the mesh at the section plane a clearance past it): nothing stands on nothing.
+        column, arm = layers.ComponentLayerCounts
+        self.assertEqual(list(layers.LayerComponents), [0] * column + [1] * arm)
+        for i, n in enumerate(layers.LayerNormals):
+            self.assertVectorAlmostEqual(n, (0, 0, 1) if i < column else (1, 0, 0))
+        self.assertEqual(layers.WorstUnsupportedArea.Value, 0.0)
+        solid = mas.slice(l_block(), max_layer=1.5)
+        self.assertEqual([c["layer_count"] for c in solid.components][1], arm)
+        self.assertAlmostEqual(layers.DepositedVolume.Value, solid.stats["deposited_volume_mm3"],
+                               delta=1e-6 * solid.stats["deposited_volume_mm3"])
+        # SplitMesh off: one component along +Z, the arm's first layer standing on nothing.
+        self.assertEqual(layers.getGroupOfProperty("SplitMesh"), "Layers")
+        layers.SplitMesh = False
+        self.doc.recompute()
+        whole = mas.slice(scan.Mesh, max_layer=1.5, split_mesh=False)
+        self.assertEqual(list(layers.ComponentLayerCounts), [len(whole.layers)])
         self.assertEqual(layers.WorstUnsupportedArea.Value,
-                         expected.stats["worst_unsupported_area_mm2"])
-        # Its arm's first layers overhang: the report view says a solid could be decomposed.
+                         whole.stats["worst_unsupported_area_mm2"])
         self.assertGreater(layers.WorstUnsupportedArea.Value, 100.0)
-        note = features.one_component_note(layers, features.slice_result(layers))
-        self.assertEqual(note, "'Scan' is a mesh, sliced as one component, and its layers stand "
-                         "on nothing over up to {:.3g} mm^2 (layer {}, red). A solid made of it "
-                         "(Part > Create shape from mesh, then Part > Convert to solid) can be "
-                         "decomposed: each sub-component is then built along its own "
-                         "direction".format(layers.WorstUnsupportedArea.Value,
-                                            layers.WorstUnsupportedLayer))
 
     def test_the_layers_follow_the_mesh(self):
         import Mesh

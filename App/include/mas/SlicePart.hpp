@@ -4,6 +4,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "mas/CentroidalAxis.hpp"
@@ -28,6 +29,9 @@ struct SlicePartParams {
     // layers.overhang_angle_deg off their component's build direction are deposited solid, to be
     // drilled afterwards (Holes.hpp). 0 fills none.
     double fill_holes_up_to_mm = 0.0;
+    // slice_mesh_part only: the mesh is decomposed (decompose_mesh); false slices it as one
+    // component.
+    bool split_mesh = true;
 };
 
 // One sub-component as a closed mesh, the input of slice_components.
@@ -121,9 +125,52 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const Progress& progress = {});
 
-// A closed mesh sliced as one root component (a mesh cannot be decomposed) on its build_plate(),
-// following the axis' first branch. Throws InvalidArgument for fill_holes_up_to_mm > 0: holes are
-// read on a BREP.
+// Decomposing a closed mesh, which has no faces to split at (Decompose.hpp): every branch of the
+// axis that turned from its father's direction asks for a cut at Decompose.hpp's section plane,
+// perpendicular to the branch's direction at Eq. 4's T plus the axis' clearance (eps, deflection,
+// step / 100; not past the branch's first plane less eps). The component holding the branch's
+// first section (AxisNode::material_point) is split there: the child is the connected piece of its
+// surface above the plane that a ray from that point (away from the plane) meets, closed with a
+// cap triangulated on the plane; the rest, closed with the same cap, stays the father. A branch
+// born of a split marches on in its father's direction and is built with it. As in Decompose.hpp,
+// the piece stays in the father, with a note, when the branch is built past max_tilt_deg from +Z,
+// when the piece reaches less than the step (at most 2 mm, the thickest layer at slicing's
+// defaults) or min_component_height past the plane, rests on the build plate (the root's father
+// builds it up), would take all of its father's base, holds over four times what the branch and
+// its sub-branches swept (plus two steps of its first section), or either piece is no closed
+// solid. The root stands on build_plate() and follows branch 0.
+struct MeshDecomposeParams {
+    double min_component_height_mm = 0.0;
+    double max_tilt_deg = 100.0;
+    std::vector<int> keep_branches;  // branches not cut off, whatever they are (no note)
+};
+struct MeshDecomposition {
+    std::vector<ComponentMesh> components;  // tree order: a father before its children
+    std::vector<std::string> notes;         // why a turned branch got no component of its own
+};
+MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis& axis,
+                                 const MeshDecomposeParams& params = {},
+                                 const Progress& progress = {});
+
+// Splits the closed mesh at `plane`: `above` is the connected piece of its surface above the plane
+// that holds `inside` (a point inside the mesh, above the plane), `below` all the rest, each closed
+// with one cap on the plane, facing out of it. The plane is moved along its normal by up to a
+// millionth of the part's size when a vertex lies on it; `cut_offset` receives where it cut
+// (normal . point). False, with `why`, when it cannot: `inside` is not above the plane or in the
+// mesh, or the cut's outline does not close or cannot be triangulated.
+bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vector3d& inside,
+                TriangleMesh& above, TriangleMesh& below, std::string& why,
+                double* cut_offset = nullptr);
+
+// A closed mesh sliced on its build_plate(), decomposed by decompose_mesh() with min_layer_mm as
+// the least component height and the layers' max_tilt_deg (unless params.split_mesh is false: one
+// component following the axis' first branch). Where some layers of the components would meet
+// what is deposited before them (no order or lean clears them, Nozzle.hpp), the branches of those
+// components are left in their fathers and the mesh is decomposed and sliced again, up to five
+// times in all; if layers are still in the way, the mesh as one component is sliced too and kept
+// when it leaves fewer. The decomposition's notes, saying all this, come first in the result's,
+// each "decomposition: ...". Throws InvalidArgument for fill_holes_up_to_mm > 0: holes are read on
+// a BREP.
 SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
                            const SlicePartParams& params, const Progress& progress = {});
 

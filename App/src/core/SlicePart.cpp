@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <set>
+#include <sstream>
 
 #include "mas/Error.hpp"
 
@@ -49,7 +51,56 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
     ComponentMesh root;
     root.mesh = mesh;
     root.base = build_plate(mesh);
-    return slice_components({root}, axis, params, progress);
+    if (!params.split_mesh) return slice_components({root}, axis, params, progress);
+    MeshDecomposeParams split;
+    split.min_component_height_mm = params.layers.min_layer_mm;
+    split.max_tilt_deg = params.layers.max_tilt_deg;
+    // Decomposed, then again with the branches of components some of whose layers the nozzle
+    // cannot reach (they meet what is deposited before them) left in their fathers, at most
+    // kMeshRounds times; the whole mesh as one component if that leaves fewer such layers.
+    constexpr int kMeshRounds = 5;
+    MeshDecomposition parts;
+    SlicedPart sliced;
+    std::vector<std::string> kept_notes;
+    for (int round = 0;; ++round) {
+        const double lo = 0.7 * round / kMeshRounds, hi = 0.7 * (round + 1) / kMeshRounds;
+        parts = decompose_mesh(mesh, axis, split, progress.span(lo, lo + 0.05 * (hi - lo)));
+        sliced = slice_components(parts.components, axis, params,
+                                  progress.span(lo + 0.05 * (hi - lo), hi));
+        if (sliced.stats.colliding_layers == 0 || parts.components.size() == 1 ||
+            round + 1 == kMeshRounds)
+            break;
+        std::set<int> branches;
+        for (const NozzleCollision& c : sliced.sequence.collisions) {
+            const int component = sliced.layers[std::size_t(c.layer)].component;
+            if (component > 0) branches.insert(parts.components[std::size_t(component)].branch);
+        }
+        if (branches.empty()) break;
+        for (int b : branches) {
+            split.keep_branches.push_back(b);
+            std::ostringstream note;
+            note << "branch " << b << " stays in its father's component: built on its own, "
+                 << "its layers would meet the plate or what is deposited before them";
+            kept_notes.push_back(note.str());
+        }
+    }
+    parts.notes.insert(parts.notes.end(), kept_notes.begin(), kept_notes.end());
+    if (parts.components.size() > 1 && sliced.stats.colliding_layers > 0) {
+        SlicedPart whole = slice_components({root}, axis, params, progress.span(0.7, 1.0));
+        if (whole.stats.colliding_layers < sliced.stats.colliding_layers) {
+            std::ostringstream note;
+            note << "sliced as one component: built in " << parts.components.size()
+                 << " components, " << sliced.stats.colliding_layers
+                 << " layer(s) would meet what is deposited before them, "
+                 << whole.stats.colliding_layers << " so";
+            parts.notes.push_back(note.str());
+            sliced = std::move(whole);
+        }
+    }
+    for (std::string& note : parts.notes) note = "decomposition: " + note;
+    sliced.notes.insert(sliced.notes.begin(), parts.notes.begin(), parts.notes.end());
+    progress(1.0);
+    return sliced;
 }
 
 namespace {

@@ -1,0 +1,603 @@
+// Decomposing a closed mesh (SlicePart.hpp, decompose_mesh): each branch of the centroidal axis
+// that turned or split cut off its father's mesh at the section plane, the cut closed with a cap on
+// both sides.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "mas/Error.hpp"
+#include "mas/Section.hpp"
+#include "mas/SlicePart.hpp"
+
+namespace mas {
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
+// ---- ear clipping of polygons with holes -------------------------------------------------------
+
+// A loop of global vertex indices with their 2-D points.
+struct Loop {
+    std::vector<int> index;
+    std::vector<Vec2> point;
+};
+
+double loop_area(const Loop& loop) {
+    double a = 0.0;
+    for (std::size_t i = 0, n = loop.point.size(); i < n; ++i)
+        a += loop.point[i].x() * loop.point[(i + 1) % n].y() -
+             loop.point[(i + 1) % n].x() * loop.point[i].y();
+    return 0.5 * a;
+}
+
+bool point_in_loop(const Loop& loop, const Vec2& p) {
+    bool in = false;
+    for (std::size_t i = 0, n = loop.point.size(), j = n - 1; i < n; j = i++) {
+        const Vec2& a = loop.point[i];
+        const Vec2& b = loop.point[j];
+        if ((a.y() > p.y()) != (b.y() > p.y()) &&
+            p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+            in = !in;
+    }
+    return in;
+}
+
+bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+    const double d1 = cross2(c, d, a), d2 = cross2(c, d, b);
+    const double d3 = cross2(a, b, c), d4 = cross2(a, b, d);
+    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+// Joins each hole (clockwise) into the outer loop (counter-clockwise) by a bridge from the hole's
+// rightmost point to an outer point it sees, holes taken rightmost first (Eberly's construction).
+// Returns false when no bridge is found (a degenerate section).
+bool bridge_holes(Loop& outer, std::vector<Loop> holes) {
+    std::sort(holes.begin(), holes.end(), [](const Loop& a, const Loop& b) {
+        const auto xa =
+            std::max_element(a.point.begin(), a.point.end(),
+                             [](const Vec2& p, const Vec2& q) { return p.x() < q.x(); });
+        const auto xb =
+            std::max_element(b.point.begin(), b.point.end(),
+                             [](const Vec2& p, const Vec2& q) { return p.x() < q.x(); });
+        return xa->x() > xb->x();
+    });
+    for (std::size_t joined_count = 0; joined_count < holes.size(); ++joined_count) {
+        const Loop& hole = holes[joined_count];
+        std::size_t h = 0;
+        for (std::size_t i = 1; i < hole.point.size(); ++i)
+            if (hole.point[i].x() > hole.point[h].x()) h = i;
+        const Vec2 m = hole.point[h];
+        // The outer points in order of distance from m, the first whose segment to m crosses no
+        // edge of the outer loop nor of any hole still to join (this one included) is the bridge.
+        std::vector<std::size_t> order(outer.point.size());
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            return (outer.point[a] - m).squaredNorm() < (outer.point[b] - m).squaredNorm();
+        });
+        auto clear = [&](const Vec2& a, const Vec2& b, const Loop& loop) {
+            for (std::size_t i = 0, n = loop.point.size(); i < n; ++i)
+                if (segments_cross(a, b, loop.point[i], loop.point[(i + 1) % n])) return false;
+            return true;
+        };
+        std::size_t found = outer.point.size();
+        for (std::size_t k : order) {
+            const Vec2 o = outer.point[k];
+            if (!clear(m, o, outer)) continue;
+            bool blocked = false;
+            for (std::size_t other = joined_count; other < holes.size() && !blocked; ++other)
+                blocked = !clear(m, o, holes[other]);
+            if (blocked) continue;
+            // Leaving o into the polygon's inside: m within the angle of o's two edges.
+            const std::size_t n = outer.point.size();
+            const Vec2& prev = outer.point[(k + n - 1) % n];
+            const Vec2& next = outer.point[(k + 1) % n];
+            const bool convex = cross2(prev, o, next) > 0.0;
+            const bool inside = convex ? cross2(prev, o, m) > 0.0 && cross2(o, next, m) > 0.0
+                                       : !(cross2(prev, o, m) <= 0.0 && cross2(o, next, m) <= 0.0);
+            if (!inside) continue;
+            found = k;
+            break;
+        }
+        if (found == outer.point.size()) return false;
+        Loop joined;
+        for (std::size_t i = 0; i <= found; ++i) {
+            joined.index.push_back(outer.index[i]);
+            joined.point.push_back(outer.point[i]);
+        }
+        for (std::size_t i = 0; i <= hole.point.size(); ++i) {
+            const std::size_t j = (h + i) % hole.point.size();
+            joined.index.push_back(hole.index[j]);
+            joined.point.push_back(hole.point[j]);
+        }
+        for (std::size_t i = found; i < outer.point.size(); ++i) {
+            joined.index.push_back(outer.index[i]);
+            joined.point.push_back(outer.point[i]);
+        }
+        outer = std::move(joined);
+    }
+    return true;
+}
+
+// Triangles (counter-clockwise) covering a counter-clockwise simple polygon (bridged holes allowed:
+// their two copies of a point are never tested against each other). False when it finds no ear.
+bool ear_clip(const Loop& polygon, std::vector<Eigen::Vector3i>& out) {
+    const std::size_t n0 = polygon.point.size();
+    if (n0 < 3) return n0 == 0;
+    std::vector<std::size_t> prev(n0), next(n0);
+    for (std::size_t i = 0; i < n0; ++i) {
+        prev[i] = (i + n0 - 1) % n0;
+        next[i] = (i + 1) % n0;
+    }
+    auto is_ear = [&](std::size_t i) {
+        const Vec2& a = polygon.point[prev[i]];
+        const Vec2& b = polygon.point[i];
+        const Vec2& c = polygon.point[next[i]];
+        if (cross2(a, b, c) <= 0.0) return false;  // reflex or flat
+        for (std::size_t j = next[next[i]]; j != prev[i]; j = next[j]) {
+            const Vec2& p = polygon.point[j];
+            if (p == a || p == b || p == c) continue;  // a bridge's other copy
+            if (cross2(a, b, p) >= 0.0 && cross2(b, c, p) >= 0.0 && cross2(c, a, p) >= 0.0)
+                return false;
+        }
+        return true;
+    };
+    std::size_t remaining = n0, i = 0, stalled = 0;
+    while (remaining > 3) {
+        if (is_ear(i)) {
+            out.emplace_back(polygon.index[prev[i]], polygon.index[i], polygon.index[next[i]]);
+            next[prev[i]] = next[i];
+            prev[next[i]] = prev[i];
+            --remaining;
+            i = prev[i];
+            stalled = 0;
+        } else {
+            // A flat corner (three points on a line) adds no area: drop it when nothing else does.
+            if (++stalled > remaining) {
+                std::size_t flat = n0;
+                for (std::size_t j = next[i], k = 0; k < remaining; j = next[j], ++k)
+                    if (std::abs(cross2(polygon.point[prev[j]], polygon.point[j],
+                                        polygon.point[next[j]])) == 0.0) {
+                        flat = j;
+                        break;
+                    }
+                if (flat == n0) return false;
+                out.emplace_back(polygon.index[prev[flat]], polygon.index[flat],
+                                 polygon.index[next[flat]]);
+                next[prev[flat]] = next[flat];
+                prev[next[flat]] = prev[flat];
+                --remaining;
+                i = prev[flat];
+                stalled = 0;
+                continue;
+            }
+            i = next[i];
+        }
+    }
+    out.emplace_back(polygon.index[prev[i]], polygon.index[i], polygon.index[next[i]]);
+    return true;
+}
+
+// Triangles covering the regions the loops bound (outer loops counter-clockwise, holes clockwise,
+// each hole inside the smallest outer loop holding it); false when the loops are degenerate.
+bool triangulate(std::vector<Loop> loops, std::vector<Eigen::Vector3i>& out) {
+    std::vector<Loop> outers, holes;
+    for (Loop& l : loops) {
+        const double a = loop_area(l);
+        if (a > 0.0)
+            outers.push_back(std::move(l));
+        else if (a < 0.0)
+            holes.push_back(std::move(l));
+        else
+            return false;
+    }
+    std::vector<std::vector<Loop>> holes_of(outers.size());
+    for (Loop& h : holes) {
+        std::size_t best = outers.size();
+        double best_area = 0.0;
+        for (std::size_t o = 0; o < outers.size(); ++o) {
+            const double a = loop_area(outers[o]);
+            if (point_in_loop(outers[o], h.point.front()) &&
+                (best == outers.size() || a < best_area)) {
+                best = o;
+                best_area = a;
+            }
+        }
+        if (best == outers.size()) return false;
+        holes_of[best].push_back(std::move(h));
+    }
+    for (std::size_t o = 0; o < outers.size(); ++o) {
+        if (!bridge_holes(outers[o], std::move(holes_of[o]))) return false;
+        if (!ear_clip(outers[o], out)) return false;
+    }
+    return true;
+}
+
+// ---- splitting a closed mesh by a plane
+// ----------------------------------------------------------
+
+std::uint64_t edge_key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+struct UnionFind {
+    std::vector<int> parent;
+    explicit UnionFind(std::size_t n) : parent(n) {
+        for (std::size_t i = 0; i < n; ++i) parent[i] = int(i);
+    }
+    int find(int i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    }
+    void join(int a, int b) { parent[find(a)] = find(b); }
+};
+
+// The nearest triangle the ray from `origin` along `dir` meets (t > 0), -1 for none.
+int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir) {
+    int best = -1;
+    double best_t = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const Vec3& a = mesh.vertices[mesh.triangles[t][0]];
+        const Vec3& b = mesh.vertices[mesh.triangles[t][1]];
+        const Vec3& c = mesh.vertices[mesh.triangles[t][2]];
+        const Vec3 e1 = b - a, e2 = c - a;
+        const Vec3 p = dir.cross(e2);
+        const double det = e1.dot(p);
+        if (det == 0.0) continue;
+        const Vec3 s = origin - a;
+        const double u = s.dot(p) / det;
+        if (u < 0.0 || u > 1.0) continue;
+        const Vec3 q = s.cross(e1);
+        const double v = dir.dot(q) / det;
+        if (v < 0.0 || u + v > 1.0) continue;
+        const double dist = e2.dot(q) / det;
+        if (dist > 0.0 && dist < best_t) {
+            best_t = dist;
+            best = int(t);
+        }
+    }
+    return best;
+}
+
+// Drops the vertices no triangle uses.
+TriangleMesh compacted(const std::vector<Vec3>& vertices,
+                       const std::vector<Eigen::Vector3i>& triangles) {
+    TriangleMesh out;
+    std::vector<int> remap(vertices.size(), -1);
+    out.triangles.reserve(triangles.size());
+    for (const Eigen::Vector3i& t : triangles) {
+        Eigen::Vector3i r;
+        for (int k = 0; k < 3; ++k) {
+            int& m = remap[t[k]];
+            if (m < 0) {
+                m = int(out.vertices.size());
+                out.vertices.push_back(vertices[t[k]]);
+            }
+            r[k] = m;
+        }
+        out.triangles.push_back(r);
+    }
+    return out;
+}
+
+}  // namespace
+
+bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vector3d& inside,
+                TriangleMesh& above, TriangleMesh& below, std::string& why, double* cut_offset) {
+    const std::size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
+    const Vec3 n = plane.normal;
+    // Off every vertex: a vertex on the plane would leave slivers of no area on one side.
+    double offset = n.dot(plane.origin);
+    std::vector<double> d(nv);
+    for (int attempt = 0;; ++attempt) {
+        double nearest = std::numeric_limits<double>::infinity();
+        double scale = 1.0;
+        for (std::size_t v = 0; v < nv; ++v) {
+            d[v] = n.dot(mesh.vertices[v]) - offset;
+            nearest = std::min(nearest, std::abs(d[v]));
+            scale = std::max(scale, mesh.vertices[v].cwiseAbs().maxCoeff());
+        }
+        if (nearest > 1e-12 * scale) break;
+        if (attempt == 8) {
+            why = "vertices lie on the cutting plane";
+            return false;
+        }
+        offset += 1e-7 * scale;
+    }
+    if (n.dot(inside) - offset <= 0.0) {
+        why = "its first section lies behind the cutting plane";
+        return false;
+    }
+    // The triangles above the plane (wholly or in part), joined where they share an edge with an
+    // end above it: each class is one connected piece of the surface above the plane.
+    std::unordered_map<std::uint64_t, std::array<int, 2>> edges;
+    edges.reserve(nt * 2);
+    for (std::size_t t = 0; t < nt; ++t)
+        for (int k = 0; k < 3; ++k) {
+            auto& e =
+                edges
+                    .try_emplace(edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]),
+                                 std::array<int, 2>{-1, -1})
+                    .first->second;
+            (e[0] < 0 ? e[0] : e[1]) = int(t);
+        }
+    UnionFind classes(nt);
+    for (const auto& [key, tris] : edges) {
+        const int a = int(key >> 32), b = int(key & 0xffffffffu);
+        if ((d[a] > 0.0 || d[b] > 0.0) && tris[0] >= 0 && tris[1] >= 0)
+            classes.join(tris[0], tris[1]);
+    }
+    // The piece holding `inside`: the first surface a ray from it meets, away from the plane
+    // (slightly askew, off edges and vertices that lie square to the plane).
+    const PlaneFrame frame(n);
+    const Vec3 dir = (n + 1.234567e-3 * frame.u + 0.7654321e-3 * frame.v).normalized();
+    const int hit = first_hit(mesh, inside, dir);
+    if (hit < 0) {
+        why = "its first section is not inside the mesh";
+        return false;
+    }
+    const int piece = classes.find(hit);
+    // The piece's triangles go above, cut where they cross the plane; the rest, whole, below.
+    std::vector<Vec3> vertices = mesh.vertices;
+    std::unordered_map<std::uint64_t, int> crossing;
+    auto cross_at = [&](int a, int b) {
+        const auto [it, added] = crossing.try_emplace(edge_key(a, b), int(vertices.size()));
+        if (added) {
+            const int lo = std::min(a, b), hi = std::max(a, b);
+            const double s = d[lo] / (d[lo] - d[hi]);
+            vertices.push_back(mesh.vertices[lo] + s * (mesh.vertices[hi] - mesh.vertices[lo]));
+        }
+        return it->second;
+    };
+    std::vector<Eigen::Vector3i> up, down;
+    std::unordered_map<int, int> cap_next;  // the above piece's open edges along the plane
+    bool branching = false;
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Eigen::Vector3i& tri = mesh.triangles[t];
+        const int ups = int(d[tri[0]] > 0.0) + int(d[tri[1]] > 0.0) + int(d[tri[2]] > 0.0);
+        if (ups == 0 || classes.find(int(t)) != piece) {
+            down.push_back(tri);
+            continue;
+        }
+        if (ups == 3) {
+            up.push_back(tri);
+            continue;
+        }
+        // Rotate so that i0 is the lone vertex on its side.
+        int r = 0;
+        for (int k = 0; k < 3; ++k)
+            if ((d[tri[k]] > 0.0) == (ups == 1)) r = k;
+        const int i0 = tri[r], i1 = tri[(r + 1) % 3], i2 = tri[(r + 2) % 3];
+        const int x01 = cross_at(i0, i1), x20 = cross_at(i2, i0);
+        std::vector<Eigen::Vector3i>& lone = ups == 1 ? up : down;
+        std::vector<Eigen::Vector3i>& pair = ups == 1 ? down : up;
+        lone.emplace_back(i0, x01, x20);
+        pair.emplace_back(x01, i1, i2);
+        pair.emplace_back(x01, i2, x20);
+        // The above piece's edge along the plane runs x01 -> x20 when i0 is above, else x20 ->
+        // x01; its cap runs the other way.
+        const int from = ups == 1 ? x20 : x01, to = ups == 1 ? x01 : x20;
+        branching |= !cap_next.emplace(from, to).second;
+    }
+    if (branching) {
+        why = "the cut meets itself";
+        return false;
+    }
+    // The cap's loops, seen from above the plane: each outer loop clockwise (it faces down).
+    std::vector<Loop> loops;
+    while (!cap_next.empty()) {
+        Loop loop;
+        int v = cap_next.begin()->first;
+        while (true) {
+            const auto it = cap_next.find(v);
+            if (it == cap_next.end()) break;
+            loop.index.push_back(v);
+            loop.point.push_back(frame.to_2d(vertices[v]));
+            v = it->second;
+            cap_next.erase(it);
+        }
+        if (v != loop.index.front()) {
+            why = "the cut's outline does not close";
+            return false;
+        }
+        std::reverse(loop.index.begin(), loop.index.end());  // counter-clockwise outer loops
+        std::reverse(loop.point.begin(), loop.point.end());
+        loops.push_back(std::move(loop));
+    }
+    if (loops.empty()) {
+        why = "the plane does not cut it";
+        return false;
+    }
+    std::vector<Eigen::Vector3i> cap;  // facing up: the below piece's
+    if (!triangulate(std::move(loops), cap)) {
+        why = "its section on the plane could not be closed";
+        return false;
+    }
+    for (const Eigen::Vector3i& t : cap) {
+        down.push_back(t);
+        up.emplace_back(t[0], t[2], t[1]);
+    }
+    above = compacted(vertices, up);
+    below = compacted(vertices, down);
+    if (cut_offset) *cut_offset = offset;
+    return true;
+}
+
+namespace {
+
+std::string direction_name(const Vec3& d) {
+    const char* names[] = {"X", "Y", "Z"};
+    int k = 0;
+    d.cwiseAbs().maxCoeff(&k);
+    return std::string(d[k] < 0 ? "-" : "+") + names[k];
+}
+
+double lowest_along(const TriangleMesh& mesh, const Vec3& n) {
+    double lo = std::numeric_limits<double>::infinity();
+    for (const Vec3& v : mesh.vertices) lo = std::min(lo, n.dot(v));
+    return lo;
+}
+
+double highest_along(const TriangleMesh& mesh, const Vec3& n) {
+    double hi = -std::numeric_limits<double>::infinity();
+    for (const Vec3& v : mesh.vertices) hi = std::max(hi, n.dot(v));
+    return hi;
+}
+
+}  // namespace
+
+MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis& axis,
+                                 const MeshDecomposeParams& params, const Progress& progress) {
+    MeshDecomposition out;
+    ComponentMesh root;
+    root.mesh = mesh;
+    root.base = build_plate(mesh);
+    out.components.push_back(std::move(root));
+    const std::size_t nb = axis.branches.size();
+    if (nb == 0) return out;
+    const double step = axis.params.step_mm;
+    const Eigen::AlignedBox3d box = bounding_box(mesh);
+    const double tol = 1e-9 * std::max(1.0, box.diagonal().norm()) + 1e-9;
+    const double plate_tol = std::max(axis.params.eps_mm, params.min_component_height_mm);
+    // What each branch and its sub-branches swept (section area x slab length).
+    std::vector<double> swept(nb, 0.0);
+    for (const AxisNode& node : axis.nodes)
+        if (node.branch >= 0) swept[node.branch] += node.area * node.thickness;
+    for (std::size_t b = nb; b-- > 1;)
+        if (axis.branches[b].parent >= 0) swept[axis.branches[b].parent] += swept[b];
+    std::vector<int> component_of(nb, 0);  // where each branch's material went
+    const double cos_tilt = std::cos(params.max_tilt_deg * 3.14159265358979323846 / 180.0);
+    for (std::size_t b = 0; b < nb; ++b) {
+        progress(double(b) / double(nb));
+        const AxisBranch& branch = axis.branches[b];
+        if (branch.parent < 0 || branch.nodes.empty()) continue;
+        component_of[b] = component_of[branch.parent];
+        const Vec3 dir = branch.direction.normalized();
+        // A branch that turned is found by how far it reaches out of the section it leaves,
+        // however thin along its own direction: its piece need only hold a thickest layer at
+        // slicing's defaults (Decompose.hpp).
+        const bool turned = dir.dot(axis.branches[branch.parent].direction.normalized()) < 0.5;
+        const double min_reach =
+            std::max(params.min_component_height_mm,
+                     turned ? std::min(step, LayerParams{}.max_layer_mm) : step);
+        const AxisNode& first = axis.nodes[branch.nodes.front()];
+        const Vec3 inside = first.material_point();
+        const bool kept = std::find(params.keep_branches.begin(), params.keep_branches.end(),
+                                    int(b)) != params.keep_branches.end();
+        // The component holding its first section: its father's, else the one it went to.
+        int father = -1;
+        for (int pass = 0; pass < 2 && father < 0; ++pass)
+            for (std::size_t c = 0; c < out.components.size() && father < 0; ++c) {
+                if ((pass == 0) != (int(c) == component_of[branch.parent])) continue;
+                const TriangleMesh& m = out.components[c].mesh;
+                if (bounding_box(m).contains(inside) && inside_mesh(m, inside)) father = int(c);
+            }
+        auto note = [&](const std::string& why) {
+            std::ostringstream text;
+            text << "branch " << b << " (" << direction_name(dir) << ") stays in component "
+                 << std::max(father, component_of[branch.parent]) << ": " << why;
+            out.notes.push_back(text.str());
+        };
+        if (father < 0) {
+            note("its first section lies in no component");
+            continue;
+        }
+        component_of[b] = father;
+        if (kept) continue;
+        if (dir.z() < cos_tilt - 1e-12) {
+            note("built along it, its layers would tilt past max_tilt from +Z");
+            continue;
+        }
+        // Eq. 4's T (where the branch's march began) plus the clearance the axis' loops need,
+        // not past the branch's first plane (Decompose.hpp's section plane).
+        const double clearance = axis.params.eps_mm + axis.deflection_mm + step / 100.0;
+        const double offset =
+            std::min(first.slab_start + clearance, first.offset - axis.params.eps_mm);
+        ComponentMesh& from = out.components[father];
+        TriangleMesh above, below;
+        std::string why;
+        double cut = offset;
+        if (!split_mesh(from.mesh, make_plane(dir * offset, dir), inside, above, below, why,
+                        &cut)) {
+            note("the section plane cannot split it: " + why);
+            continue;
+        }
+        const double reach = highest_along(above, dir) - cut;
+        if (reach < min_reach) {
+            std::ostringstream text;
+            text << std::setprecision(3) << "its piece reaches " << reach
+                 << " mm past the cut, less than " << min_reach;
+            note(text.str());
+            continue;
+        }
+        // Within a thinnest layer of the plate (a mesh's facets under a round body lying on it
+        // may stand a chordal deviation above it), the piece stands on it.
+        if (father == 0 &&
+            lowest_along(above, Vec3::UnitZ()) <= from.base.origin.z() + std::max(plate_tol, tol)) {
+            note("its piece rests on the build plate, from which the root builds it up");
+            continue;
+        }
+        const Vec3& base_normal = from.base.normal;
+        const double base_offset = base_normal.dot(from.base.origin);
+        if (lowest_along(below, base_normal) > base_offset + 1e-6) {
+            note("its piece would take all of the base its component is built from");
+            continue;
+        }
+        // Cut where its component begins (a branch born of a split whose brother's cut took
+        // their common plane with it, both legs meeting again above a window), the father would
+        // keep a sliver no layer fits.
+        const double left = highest_along(below, base_normal) - base_offset;
+        if (left < min_reach) {
+            std::ostringstream text;
+            text << std::setprecision(3) << "its component would keep only " << left
+                 << " mm along its build direction, less than " << min_reach;
+            note(text.str());
+            continue;
+        }
+        const double bound = 4.0 * (swept[b] + 2.0 * step * first.area);
+        if (mesh_volume(above) > bound) {
+            note("its piece holds over four times what the branch swept: mostly other material");
+            continue;
+        }
+        const MeshReport above_report = check_mesh(above), below_report = check_mesh(below);
+        bool solid = above_report.closed() && below_report.closed() &&
+                     above_report.volume_mm3 > 0.0 && below_report.volume_mm3 > 0.0;
+        if (solid) {
+            try {
+                require_one_solid(above, "piece");
+                require_one_solid(below, "piece");
+            } catch (const Error&) {
+                solid = false;
+            }
+        }
+        if (!solid) {
+            note("its pieces would not be closed solids");
+            continue;
+        }
+        from.mesh = std::move(below);
+        ComponentMesh child;
+        child.mesh = std::move(above);
+        child.parent = father;
+        child.base = make_plane(inside - (dir.dot(inside) - cut) * dir, dir);
+        child.branch = int(b);
+        component_of[b] = int(out.components.size());
+        out.components.push_back(std::move(child));
+    }
+    progress(1.0);
+    return out;
+}
+
+}  // namespace mas

@@ -1,0 +1,252 @@
+// Decomposing a closed mesh at section planes (SlicePart.hpp: split_mesh, decompose_mesh, and
+// slice_mesh_part with them): pieces closed and of the exact volumes the cuts give.
+#include <gtest/gtest.h>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <cmath>
+#include <string>
+
+#include "mas/CentroidalAxis.hpp"
+#include "mas/Error.hpp"
+#include "mas/Mesh.hpp"
+#include "mas/Shape.hpp"
+#include "mas/SlicePart.hpp"
+#include "test_parts.hpp"
+
+using Eigen::Vector3d;
+using mas::test::fuse;
+using mas::test::occ_box;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+mas::TriangleMesh mesh_of(const mas::Shape& shape) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = 0.02;
+    return mas::tessellate(shape, tp);
+}
+
+double lowest(const mas::TriangleMesh& m, const Vector3d& n) {
+    double lo = INFINITY;
+    for (const Vector3d& v : m.vertices) lo = std::min(lo, n.dot(v));
+    return lo;
+}
+
+double highest(const mas::TriangleMesh& m, const Vector3d& n) { return -lowest(m, -n); }
+
+// Closed, facing out, one solid.
+void expect_solid(const mas::TriangleMesh& m, const std::string& what) {
+    const mas::MeshReport r = mas::check_mesh(m);
+    EXPECT_TRUE(r.closed()) << what << ": " << r.boundary_edges << " boundary, "
+                            << r.non_manifold_edges << " non-manifold, " << r.inconsistent_edges
+                            << " inconsistent edges";
+    EXPECT_GT(r.volume_mm3, 0.0) << what;
+    EXPECT_NO_THROW(mas::require_one_solid(m, what)) << what;
+}
+
+mas::SlicePartParams params() {
+    mas::SlicePartParams p;
+    p.tessellation.deflection_mm = 0.02;
+    return p;
+}
+
+}  // namespace
+
+TEST(SplitMesh, ABoxCutAcrossGivesTwoBoxesOfTheExactVolumes) {
+    const auto box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    mas::TriangleMesh above, below;
+    std::string why;
+    double cut = 0.0;
+    ASSERT_TRUE(mas::split_mesh(box, mas::make_plane({0, 0, 12}, {0, 0, 1}), {5, 10, 20}, above,
+                                below, why, &cut))
+        << why;
+    EXPECT_EQ(cut, 12.0);
+    expect_solid(above, "above");
+    expect_solid(below, "below");
+    EXPECT_NEAR(mas::mesh_volume(above), 10 * 20 * 18, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(below), 10 * 20 * 12, 1e-9);
+    EXPECT_EQ(lowest(above, Vector3d::UnitZ()), 12.0);
+    EXPECT_EQ(highest(below, Vector3d::UnitZ()), 12.0);
+    // Sideways, along -X: the piece holding the point is the one past the plane along -X.
+    ASSERT_TRUE(mas::split_mesh(box, mas::make_plane({4, 0, 0}, {-1, 0, 0}), {1, 10, 20}, above,
+                                below, why))
+        << why;
+    EXPECT_NEAR(mas::mesh_volume(above), 4 * 20 * 30, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(below), 6 * 20 * 30, 1e-9);
+    expect_solid(above, "above -X");
+    expect_solid(below, "below -X");
+}
+
+TEST(SplitMesh, ACutAcrossAHoleLeavesTheHoleOpenInBothCaps) {
+    // A 60 x 40 x 10 plate with a round hole through it, cut at z = 4: prisms, so each piece holds
+    // its height's share of the mesh's own volume, exactly.
+    const auto plate = mesh_of(mas::test::plate_with_hole());
+    const double whole = mas::mesh_volume(plate);
+    EXPECT_NEAR(whole, 60 * 40 * 10 - kPi * 64 * 10, 2 * kPi * 8 * 10 * 0.02);
+    mas::TriangleMesh above, below;
+    std::string why;
+    ASSERT_TRUE(
+        mas::split_mesh(plate, mas::make_plane({0, 0, 4}, {0, 0, 1}), {2, 2, 8}, above, below, why))
+        << why;
+    expect_solid(above, "above");
+    expect_solid(below, "below");
+    EXPECT_NEAR(mas::mesh_volume(above), whole * 0.6, 1e-9 * whole);
+    EXPECT_NEAR(mas::mesh_volume(below), whole * 0.4, 1e-9 * whole);
+}
+
+TEST(SplitMesh, ACapWithTwoHolesAndANotchIsWhole) {
+    // The cap's outline is concave (a notch) and holds two holes: the ear clipping must bridge
+    // both and clip round the notch.
+    TopoDS_Shape plate = occ_box(0, 0, 0, 60, 40, 10);
+    for (const TopoDS_Shape& away :
+         {mas::test::occ_cylinder({15, 20, -1}, {0, 0, 1}, 6, 12),
+          mas::test::occ_cylinder({45, 22, -1}, {0, 0, 1}, 5, 12), occ_box(25, -1, -1, 10, 16, 12)})
+        plate = BRepAlgoAPI_Cut(plate, away).Shape();
+    const auto mesh = mesh_of(mas::test::from_occt(plate));
+    const double whole = mas::mesh_volume(mesh);
+    mas::TriangleMesh above, below;
+    std::string why;
+    ASSERT_TRUE(mas::split_mesh(mesh, mas::make_plane({0, 0, 7.5}, {0, 0, 1}), {2, 2, 9}, above,
+                                below, why))
+        << why;
+    expect_solid(above, "above");
+    expect_solid(below, "below");
+    EXPECT_NEAR(mas::mesh_volume(above), whole * 0.25, 1e-9 * whole);
+    EXPECT_NEAR(mas::mesh_volume(below), whole * 0.75, 1e-9 * whole);
+}
+
+TEST(SplitMesh, AVertexOnThePlaneMovesTheCutByAMillionthOfThePart) {
+    // The L's arm underside lies at z = 40, with its vertices: the cut moves up off them, and
+    // takes a sliver of the arm to the piece below.
+    const auto l = mesh_of(mas::test::l_block());
+    mas::TriangleMesh above, below;
+    std::string why;
+    double cut = 0.0;
+    ASSERT_TRUE(mas::split_mesh(l, mas::make_plane({0, 0, 40}, {0, 0, 1}), {45, 10, 50}, above,
+                                below, why, &cut))
+        << why;
+    EXPECT_GT(cut, 40.0);
+    EXPECT_LT(cut, 40.0 + 1e-6 * 70.0);
+    expect_solid(above, "above");
+    expect_solid(below, "below");
+    // Above: the column and the arm over the cut; below: the column under it, and the arm's
+    // underside up to the cut, joined to the column.
+    EXPECT_NEAR(mas::mesh_volume(above), (20 * 20 + 50 * 20) * (60 - cut), 1e-6);
+    EXPECT_NEAR(mas::mesh_volume(below), 20 * 20 * cut + 50 * 20 * (cut - 40), 1e-6);
+}
+
+TEST(SplitMesh, OnlyThePieceHoldingThePointIsCutOff) {
+    // Two posts on a base, cut at z = 20: the post holding the point goes above, the other post
+    // stays whole in the piece below (its surface is not cut, nor capped).
+    const auto posts = mesh_of(mas::test::two_posts());
+    mas::TriangleMesh above, below;
+    std::string why;
+    ASSERT_TRUE(mas::split_mesh(posts, mas::make_plane({0, 0, 20}, {0, 0, 1}), {35, 5, 25}, above,
+                                below, why))
+        << why;
+    expect_solid(above, "above");
+    expect_solid(below, "below");
+    EXPECT_NEAR(mas::mesh_volume(above), 10 * 10 * 10, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(below), 40 * 10 * 5 + 10 * 10 * 25 + 10 * 10 * 15, 1e-9);
+    EXPECT_GE(lowest(above, Vector3d::UnitX()), 30.0);
+    EXPECT_EQ(highest(below, Vector3d::UnitZ()), 30.0);  // the other post, whole
+}
+
+TEST(SplitMesh, APointNotAboveThePlaneOrOutsideTheMeshIsRefused) {
+    const auto box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    mas::TriangleMesh above, below;
+    std::string why;
+    EXPECT_FALSE(mas::split_mesh(box, mas::make_plane({0, 0, 12}, {0, 0, 1}), {5, 10, 8}, above,
+                                 below, why));
+    EXPECT_EQ(why, "its first section lies behind the cutting plane");
+    EXPECT_FALSE(mas::split_mesh(box, mas::make_plane({0, 0, 12}, {0, 0, 1}), {50, 10, 20}, above,
+                                 below, why));
+    EXPECT_EQ(why, "its first section is not inside the mesh");
+}
+
+TEST(DecomposeMesh, TheLIsSplitAtItsColumnsFaceAndItsArmBuiltAlongX) {
+    const auto l = mesh_of(mas::test::l_block());
+    const auto axis = mas::centroidal_axis(l);
+    const mas::MeshDecomposition d = mas::decompose_mesh(l, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    EXPECT_TRUE(d.notes.empty());
+    const mas::ComponentMesh &root = d.components[0], &arm = d.components[1];
+    EXPECT_EQ(root.parent, -1);
+    EXPECT_EQ(root.branch, 0);
+    EXPECT_EQ(root.base.normal, Vector3d::UnitZ());
+    EXPECT_EQ(arm.parent, 0);
+    EXPECT_EQ(arm.base.normal, Vector3d::UnitX());
+    EXPECT_EQ(axis.branches[std::size_t(arm.branch)].direction, Vector3d::UnitX());
+    // Cut at the column's face, x = 20 (Eq. 4's T), plus the axis' clearance.
+    const double cut = arm.base.origin.x();
+    const double clearance = axis.params.eps_mm + axis.params.step_mm / 100.0;
+    EXPECT_GT(cut, 20.0);
+    EXPECT_LE(cut, 20.0 + clearance + 1e-9);
+    EXPECT_NEAR(lowest(arm.mesh, Vector3d::UnitX()), cut, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(arm.mesh), (70.0 - cut) * 20 * 20, 1e-6);
+    EXPECT_NEAR(mas::mesh_volume(root.mesh), 20 * 20 * 60 + (cut - 20.0) * 20 * 20, 1e-6);
+    expect_solid(root.mesh, "column");
+    expect_solid(arm.mesh, "arm");
+}
+
+TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {
+    // A post with a beam over to the side and a block hanging from the beam's end (-Z: built
+    // downwards), and an arm along +X a fifth of a millimetre over the plate: its piece stands on
+    // the plate, from which the root builds it up.
+    const auto gallows = mesh_of(mas::test::from_occt(
+        fuse(fuse(occ_box(0, 0, 0, 12, 12, 70), occ_box(12, 0, 60, 50, 12, 10)),
+             fuse(occ_box(50, 0, 40, 8, 12, 20), occ_box(12, 0, 0.2, 20, 12, 8)))));
+    const auto axis = mas::centroidal_axis(gallows);
+    const mas::MeshDecomposition d = mas::decompose_mesh(gallows, axis, {0.5, 100.0, {}});
+    ASSERT_EQ(d.components.size(), 2u);  // the column and the beam
+    EXPECT_EQ(d.components[1].base.normal, Vector3d::UnitX());
+    std::string notes;
+    for (const auto& n : d.notes) notes += n + "\n";
+    EXPECT_NE(notes.find("(-Z) stays in component 1: built along it, its layers would tilt past "
+                         "max_tilt from +Z"),
+              std::string::npos)
+        << notes;
+    EXPECT_NE(notes.find("(+X) stays in component 0: its piece rests on the build plate, from "
+                         "which the root builds it up"),
+              std::string::npos)
+        << notes;
+    // A branch kept by the caller stays, without a note.
+    mas::MeshDecomposeParams keep{0.5, 100.0, {d.components[1].branch}};
+    const mas::MeshDecomposition whole = mas::decompose_mesh(gallows, axis, keep);
+    EXPECT_EQ(whole.components.size(), 1u);
+    EXPECT_EQ(whole.notes.size(), d.notes.size());
+}
+
+TEST(SliceMeshPart, TheLStandsOnItsOwnLayersAndAsOneComponentItsArmOverhangs) {
+    const auto l = mesh_of(mas::test::l_block());
+    const auto axis = mas::centroidal_axis(l);
+    mas::SlicePartParams p = params();
+    const mas::SlicedPart split = mas::slice_mesh_part(l, axis, p);
+    ASSERT_EQ(split.components.size(), 2u);
+    EXPECT_EQ(split.stats.worst_unsupported_area_mm2, 0.0);
+    EXPECT_EQ(split.stats.colliding_layers, 0);
+    for (const mas::Layer& layer : split.layers)
+        EXPECT_EQ(layer.plane.normal, layer.component == 0 ? Vector3d::UnitZ() : Vector3d::UnitX());
+    p.split_mesh = false;
+    const mas::SlicedPart whole = mas::slice_mesh_part(l, axis, p);
+    ASSERT_EQ(whole.components.size(), 1u);
+    EXPECT_NEAR(whole.stats.worst_unsupported_area_mm2, 48 * 20, 1e-6);  // the arm's underside
+}
+
+TEST(SliceMeshPart, APieceTheNozzleCannotReachStaysInItsFather) {
+    // A nozzle 100 mm across, kept coaxial: built along +X from the column, the arm's layers would
+    // meet the plate. The arm is then built with the column, up.
+    const auto l = mesh_of(mas::test::l_block());
+    const auto axis = mas::centroidal_axis(l);
+    mas::SlicePartParams p = params();
+    p.nozzle.body_diameter_mm = 100.0;
+    p.nozzle.max_lean_deg = 0.0;
+    const mas::SlicedPart r = mas::slice_mesh_part(l, axis, p);
+    EXPECT_EQ(r.components.size(), 1u);
+    EXPECT_EQ(r.stats.colliding_layers, 0);
+    ASSERT_FALSE(r.notes.empty());
+    EXPECT_EQ(r.notes.front(),
+              "decomposition: branch 1 stays in its father's component: built on its own, its "
+              "layers would meet the plate or what is deposited before them");
+}

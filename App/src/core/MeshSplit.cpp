@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -363,7 +364,9 @@ bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vecto
         return it->second;
     };
     std::vector<Eigen::Vector3i> up, down;
-    std::unordered_map<int, int> cap_next;  // the above piece's open edges along the plane
+    // The above piece's open edges along the plane, ordered: the loops, their first points and
+    // so the cap's triangles do not depend on a hash table's order.
+    std::map<int, int> cap_next;
     bool branching = false;
     for (std::size_t t = 0; t < nt; ++t) {
         const Eigen::Vector3i& tri = mesh.triangles[t];

@@ -836,8 +836,8 @@ def sliced_mesh(obj):
 def slice_inputs(obj):
     """(Decomposition object or None, mesh object or None, slice() parameters, deflection or None)
     of a Layers object: it slices either a Decomposition's part, component by component, or a mesh
-    (its Source, or its Axis object's), the parameters then holding the Axis object's too. Raises ValueError / TypeError for a missing or wrong link or a bad parameter
-    (naming it)."""
+    (its Source, or its Axis object's), the parameters then holding the Axis object's too. Raises
+    ValueError / TypeError for a missing or wrong link or a bad parameter (naming it)."""
     decomposition, source, axis = obj.Decomposition, obj.Source, obj.Axis
     mesh_links = [(name, o) for name, o in (("Source", source), ("Axis", axis)) if o is not None]
     if decomposition is not None and mesh_links:

@@ -40,7 +40,7 @@ const char* kUsage =
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG]\n"
     "                                       [--concave-angle DEG] [--no-fallback]\n"
     "                                       [--min-height MM] [--max-tilt DEG] [--step-dir DIR]\n"
-    "                                       [--progress]\n"
+    "                                       [--stl-dir DIR] [--progress]\n"
     "                                       [--json [OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
     "                                   [--max-volume-difference F] [--eps-angle DEG]\n"
@@ -63,7 +63,9 @@ const char* kUsage =
     "           --eps to 0.001 mm, --break-angle to 30 degrees, --base-z to the part's lowest z.\n"
     "decompose  split the part into sub-components at its axis' turns and branches (Sec. 4.1):\n"
     "           the tree, each component's build direction, base face and volume; --step-dir\n"
-    "           writes every component as DIR/component_NNN.step. Needs a BREP solid. A child\n"
+    "           writes every component as DIR/component_NNN.step. A mesh is split at section\n"
+    "           planes only (the pieces slice starts from): --stl-dir writes them as\n"
+    "           DIR/component_NNN.stl; the face options do not apply. A child\n"
     "           reaches at least --min-height (default 0) and one axis step past its cut, and\n"
     "           is built no more than --max-tilt (default 100) degrees from +Z, the machine's\n"
     "           reach: nothing is built straight down.\n"
@@ -508,9 +510,87 @@ int run_axis(const std::vector<std::string>& args) {
     return 0;
 }
 
+// The pieces a mesh is split into (decompose_mesh), written as `decompose` writes a solid's
+// components.
+int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& ap,
+                        const mas::DecomposeParams& dp, bool no_fallback, bool report) {
+    for (const char* option : {"--face-angle", "--concave-angle", "--step-dir"})
+        if (a.has(option))
+            throw mas::Error(mas::ErrorCode::InvalidArgument,
+                             std::string(option) + " applies to a solid: a mesh has no faces and " +
+                                 "is split at section planes (" + a.file + " is a mesh)");
+    if (no_fallback)
+        throw mas::Error(mas::ErrorCode::InvalidArgument,
+                         "--no-fallback applies to a solid: a mesh is split at section planes "
+                         "only (" +
+                             a.file + " is a mesh)");
+    const mas::CentroidalAxis axis = axis_of(part, ap);
+    mas::MeshDecomposeParams mp;
+    mp.min_component_height_mm = dp.min_component_height_mm;
+    mp.max_tilt_deg = dp.max_tilt_deg;
+    const mas::MeshDecomposition d =
+        mas::decompose_mesh(part.mesh, axis, mp, report ? stderr_progress() : mas::Progress());
+    std::vector<std::string> files(d.components.size());
+    if (a.has("--stl-dir")) {
+        const std::string dir = a.options.at("--stl-dir");
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        if (ec) throw mas::Error(mas::ErrorCode::WriteFailed, dir + ": cannot create the folder");
+        for (std::size_t i = 0; i < d.components.size(); ++i) {
+            std::ostringstream name;
+            name << "component_" << std::setw(3) << std::setfill('0') << i + 1 << ".stl";
+            files[i] = (std::filesystem::path(dir) / name.str()).string();
+            mas::write_stl(d.components[i].mesh, files[i]);
+        }
+    }
+    auto rule = [](const mas::ComponentMesh& c) {
+        return c.parent < 0 ? std::string("root") : std::string("section_plane");
+    };
+    std::ostringstream out;
+    if (a.json) {
+        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
+            << ",\n  \"part_volume_mm3\": " << num(mas::mesh_volume(part.mesh))
+            << ",\n  \"axis\": {\"step_mm\": " << num(axis.params.step_mm)
+            << ", \"nodes\": " << axis.nodes.size() << ", \"branches\": " << axis.branches.size()
+            << "},\n  \"components\": [";
+        for (std::size_t i = 0; i < d.components.size(); ++i) {
+            const auto& c = d.components[i];
+            out << (i ? "," : "") << "\n    {\"parent\": " << c.parent
+                << ", \"build_direction\": " << vec(c.base.normal)
+                << ", \"has_base_face\": " << (c.parent >= 0 ? "true" : "false")
+                << ", \"base_origin\": " << vec(c.base.origin)
+                << ", \"base_normal\": " << vec(-c.base.normal) << ", \"branch\": " << c.branch
+                << ", \"rule\": " << quoted(rule(c))
+                << ", \"volume_mm3\": " << num(mas::mesh_volume(c.mesh));
+            if (!files[i].empty()) out << ", \"stl_file\": " << quoted(files[i]);
+            out << "}";
+        }
+        out << "\n  ],\n  \"notes\": [";
+        for (std::size_t i = 0; i < d.notes.size(); ++i)
+            out << (i ? ", " : "") << "\n    " << quoted(d.notes[i]);
+        out << "\n  ]\n}\n";
+    } else {
+        for (const auto& note : d.notes) out << "# note: " << note << "\n";
+        out << "# " << a.file << ": " << d.components.size() << " components, axis step "
+            << num(axis.params.step_mm) << " mm\n# component parent rule build_direction volume_mm3"
+            << (a.has("--stl-dir") ? " stl_file" : "") << "\n";
+        for (std::size_t i = 0; i < d.components.size(); ++i) {
+            const auto& c = d.components[i];
+            out << i << " " << c.parent << " " << rule(c) << " " << num(c.base.normal.x()) << ","
+                << num(c.base.normal.y()) << "," << num(c.base.normal.z()) << " "
+                << num(mas::mesh_volume(c.mesh));
+            if (!files[i].empty()) out << " " << files[i];
+            out << "\n";
+        }
+    }
+    write_output(a, out.str());
+    return 0;
+}
+
 int run_decompose(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
-    allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--max-tilt", "--step-dir"});
+    allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--max-tilt", "--step-dir",
+                    "--stl-dir"});
     // --no-fallback takes no value: take it out before the common parser sees it.
     std::vector<std::string> rest;
     bool fallback = true, report = false;
@@ -532,9 +612,12 @@ int run_decompose(const std::vector<std::string>& args) {
     dp.section_plane_fallback = fallback;
     const Part part = load_part(a);
     if (part.model.kind != mas::Model::Kind::Solid)
-        throw mas::Error(
-            mas::ErrorCode::NotASolid,
-            a.file + ": decomposition splits a BREP solid (STEP, IGES, BREP), not a mesh");
+        return decompose_mesh_part(a, part, ap, dp, !fallback, report);
+    if (a.has("--stl-dir"))
+        throw mas::Error(mas::ErrorCode::InvalidArgument,
+                         "--stl-dir writes a mesh's pieces: a solid's components are written with "
+                         "--step-dir (" +
+                             a.file + " is a solid)");
     const mas::Shape solid = part.model.shape.single_solid(a.file);
     const mas::CentroidalAxis axis = axis_of(part, ap);
     const mas::Decomposition d =

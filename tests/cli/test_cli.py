@@ -433,6 +433,34 @@ class CliSections(unittest.TestCase):
         self.assertIn("branch 1 (along 1,0,0)", notes[0])
         self.assertIn("stays in component 0", notes[0])
 
+    def test_decompose_splits_a_mesh_at_section_planes_and_writes_its_pieces(self):
+        # The L as a mesh: the arm cut off at the column's face plus the axis' clearance, the two
+        # pieces written as STL files that read back closed and of their volumes.
+        path = self.write("l.stl", l_prism_stl())
+        folder = os.path.join(self.tmp.name, "pieces")
+        r = run("decompose", path, "--stl-dir", folder, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(doc["kind"], "mesh")
+        self.assertEqual(doc["notes"], [])
+        column, arm = doc["components"]
+        self.assertEqual((column["parent"], column["rule"], column["build_direction"]),
+                         (-1, "root", [0, 0, 1]))
+        self.assertEqual((arm["parent"], arm["rule"], arm["build_direction"], arm["base_normal"]),
+                         (0, "section_plane", [1, 0, 0], [-1, 0, 0]))
+        cut = arm["base_origin"][0]
+        self.assertGreater(cut, 20.0)
+        self.assertLess(cut, 20.0 + 0.001 + doc["axis"]["step_mm"] / 100 + 1e-9)
+        self.assertAlmostEqual(arm["volume_mm3"], (70 - cut) * 400, places=6)
+        self.assertAlmostEqual(column["volume_mm3"] + arm["volume_mm3"], 44000.0, places=6)
+        for piece in (column, arm):
+            # Written in float: the cut's coordinate rounded to 24 bits.
+            r = run("decompose", piece["stl_file"], "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertAlmostEqual(json.loads(r.stdout)["part_volume_mm3"], piece["volume_mm3"],
+                                   delta=400 * 70 * 2.0 ** -24)
+        self.assertEqual(sorted(os.listdir(folder)), ["component_001.stl", "component_002.stl"])
+
     def test_a_solid_that_meshes_with_gaps_is_named_as_such(self):
         elbow = os.path.join(DATA, "faulty_elbow.step")
         for command in ("sections", "axis", "decompose"):
@@ -486,8 +514,15 @@ class CliSections(unittest.TestCase):
         self.assertTrue(any("is no valid solid" in n for n in notes), notes)
 
     def test_decompose_bad_input(self):
-        self.expect_error(["decompose", self.write("box.stl", box_stl(10, 10, 10))], 1,
-                          "not_a_solid", "not a mesh")
+        mesh = self.write("l.stl", l_prism_stl())
+        for option, value in (("--face-angle", "5"), ("--concave-angle", "5"),
+                              ("--step-dir", self.tmp.name)):
+            self.expect_error(["decompose", mesh, option, value], 1, "invalid_argument", option,
+                              "applies to a solid: a mesh has no faces")
+        self.expect_error(["decompose", mesh, "--no-fallback"], 1, "invalid_argument",
+                          "--no-fallback applies to a solid")
+        self.expect_error(["decompose", os.path.join(DATA, "l_block.brep"), "--stl-dir",
+                           self.tmp.name], 1, "invalid_argument", "--stl-dir writes a mesh's pieces")
         self.expect_error(["decompose", os.path.join(DATA, "two_boxes.step")], 1, "multiple_solids")
         self.expect_error(["decompose", os.path.join(DATA, "l_block.brep"), "--face-angle", "95"], 1,
                           "face angle")

@@ -4,6 +4,7 @@
 
 #include <BRepAlgoAPI_Cut.hxx>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "mas/CentroidalAxis.hpp"
@@ -249,4 +250,22 @@ TEST(SliceMeshPart, APieceTheNozzleCannotReachStaysInItsFather) {
     EXPECT_EQ(r.notes.front(),
               "decomposition: branch 1 stays in its father's component: built on its own, its "
               "layers would meet the plate or what is deposited before them");
+}
+
+TEST(WriteStl, APieceWrittenReadsBackAndAnUnwritablePathIsNamed) {
+    const auto box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    const std::string path = ::testing::TempDir() + "mas_write_stl_box.stl";
+    mas::write_stl(box, path);
+    const mas::Model back = mas::read_model(path);
+    ASSERT_EQ(back.kind, mas::Model::Kind::Mesh);
+    EXPECT_EQ(back.mesh.triangles.size(), 12u);
+    EXPECT_NEAR(mas::mesh_volume(back.mesh), 6000.0, 1e-9);
+    std::remove(path.c_str());
+    try {
+        mas::write_stl(box, "/nonexistent-folder/box.stl");
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::WriteFailed);
+        EXPECT_EQ(std::string(e.what()), "/nonexistent-folder/box.stl: cannot be written");
+    }
 }

@@ -99,4 +99,8 @@ void range_along(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& directio
 // NonFiniteCoordinate).
 TriangleMesh read_off(const std::string& path);
 
+// Writes the mesh as a binary STL (coordinates rounded to float, zero facet normals, which
+// readers recompute from the corners' order). Throws mas::Error(WriteFailed) naming the path.
+void write_stl(const TriangleMesh& mesh, const std::string& path);
+
 }  // namespace mas

@@ -497,4 +497,23 @@ TriangleMesh read_off(const std::string& path) {
     return mesh;
 }
 
+void write_stl(const TriangleMesh& mesh, const std::string& path) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw Error(ErrorCode::WriteFailed, path + ": cannot be written");
+    char header[80] = "Multi-Axis Slicer mesh";
+    out.write(header, sizeof header);
+    const std::uint32_t count = std::uint32_t(mesh.triangles.size());
+    out.write(reinterpret_cast<const char*>(&count), 4);
+    for (const Eigen::Vector3i& t : mesh.triangles) {
+        float record[12] = {0.0f, 0.0f, 0.0f};
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c)
+                record[3 + 3 * k + c] = float(mesh.vertices[std::size_t(t[k])][c]);
+        out.write(reinterpret_cast<const char*>(record), sizeof record);
+        const std::uint16_t attributes = 0;
+        out.write(reinterpret_cast<const char*>(&attributes), 2);
+    }
+    if (!out.flush()) throw Error(ErrorCode::WriteFailed, path + ": cannot be written");
+}
+
 }  // namespace mas

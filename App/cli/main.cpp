@@ -510,8 +510,88 @@ int run_axis(const std::vector<std::string>& args) {
     return 0;
 }
 
-// The pieces a mesh is split into (decompose_mesh), written as `decompose` writes a solid's
-// components.
+// One component as `decompose` reports it: a solid's, or a mesh's piece.
+struct ComponentRow {
+    int parent = -1;
+    Eigen::Vector3d build_direction = Eigen::Vector3d::UnitZ();
+    bool has_base_face = false;
+    Eigen::Vector3d base_origin = Eigen::Vector3d::Zero();
+    Eigen::Vector3d base_normal = -Eigen::Vector3d::UnitZ();
+    int branch = 0;
+    int break_link = -1;
+    std::string rule;
+    double volume_mm3 = 0.0;
+    std::string file;  // where --step-dir or --stl-dir wrote it, empty when not written
+};
+
+// With the folder option `option` given, creates the folder and writes component i through
+// `write(i, path)` as DIR/component_NNN.`extension`; returns the paths (empty without it).
+std::vector<std::string> write_components(
+    const Args& a, const std::string& option, std::size_t count, const std::string& extension,
+    const std::function<void(std::size_t, const std::string&)>& write) {
+    std::vector<std::string> files(count);
+    if (!a.has(option)) return files;
+    const std::string dir = a.options.at(option);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw mas::Error(mas::ErrorCode::WriteFailed, dir + ": cannot create the folder");
+    for (std::size_t i = 0; i < count; ++i) {
+        std::ostringstream name;
+        name << "component_" << std::setw(3) << std::setfill('0') << i + 1 << "." << extension;
+        files[i] = (std::filesystem::path(dir) / name.str()).string();
+        write(i, files[i]);
+    }
+    return files;
+}
+
+// What `decompose` prints: the components (and the files written, under `file_key`) and the
+// notes, as JSON or text.
+void report_components(const Args& a, const Part& part, double part_volume_mm3,
+                       const mas::CentroidalAxis& axis, const std::vector<ComponentRow>& rows,
+                       const std::vector<std::string>& notes, const std::string& file_key) {
+    const bool files = std::any_of(rows.begin(), rows.end(),
+                                   [](const ComponentRow& r) { return !r.file.empty(); });
+    std::ostringstream out;
+    if (a.json) {
+        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
+            << ",\n  \"part_volume_mm3\": " << num(part_volume_mm3)
+            << ",\n  \"axis\": {\"step_mm\": " << num(axis.params.step_mm)
+            << ", \"nodes\": " << axis.nodes.size() << ", \"branches\": " << axis.branches.size()
+            << "},\n  \"components\": [";
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const ComponentRow& c = rows[i];
+            out << (i ? "," : "") << "\n    {\"parent\": " << c.parent
+                << ", \"build_direction\": " << vec(c.build_direction)
+                << ", \"has_base_face\": " << (c.has_base_face ? "true" : "false")
+                << ", \"base_origin\": " << vec(c.base_origin)
+                << ", \"base_normal\": " << vec(c.base_normal) << ", \"branch\": " << c.branch
+                << ", \"break_link\": " << c.break_link << ", \"rule\": " << quoted(c.rule)
+                << ", \"volume_mm3\": " << num(c.volume_mm3);
+            if (!c.file.empty()) out << ", \"" << file_key << "\": " << quoted(c.file);
+            out << "}";
+        }
+        out << "\n  ],\n  \"notes\": [";
+        for (std::size_t i = 0; i < notes.size(); ++i)
+            out << (i ? ", " : "") << "\n    " << quoted(notes[i]);
+        out << "\n  ]\n}\n";
+    } else {
+        for (const auto& note : notes) out << "# note: " << note << "\n";
+        out << "# " << a.file << ": " << rows.size() << " components, axis step "
+            << num(axis.params.step_mm) << " mm\n# component parent rule build_direction volume_mm3"
+            << (files ? " " + file_key : "") << "\n";
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const ComponentRow& c = rows[i];
+            out << i << " " << c.parent << " " << c.rule << " " << num(c.build_direction.x()) << ","
+                << num(c.build_direction.y()) << "," << num(c.build_direction.z()) << " "
+                << num(c.volume_mm3);
+            if (!c.file.empty()) out << " " << c.file;
+            out << "\n";
+        }
+    }
+    write_output(a, out.str());
+}
+
+// The pieces a mesh is split into (decompose_mesh), reported as a solid's components are.
 int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& ap,
                         const mas::DecomposeParams& dp, bool no_fallback, bool report) {
     for (const char* option : {"--face-angle", "--concave-angle", "--step-dir"})
@@ -530,60 +610,25 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
     mp.max_tilt_deg = dp.max_tilt_deg;
     const mas::MeshDecomposition d =
         mas::decompose_mesh(part.mesh, axis, mp, report ? stderr_progress() : mas::Progress());
-    std::vector<std::string> files(d.components.size());
-    if (a.has("--stl-dir")) {
-        const std::string dir = a.options.at("--stl-dir");
-        std::error_code ec;
-        std::filesystem::create_directories(dir, ec);
-        if (ec) throw mas::Error(mas::ErrorCode::WriteFailed, dir + ": cannot create the folder");
-        for (std::size_t i = 0; i < d.components.size(); ++i) {
-            std::ostringstream name;
-            name << "component_" << std::setw(3) << std::setfill('0') << i + 1 << ".stl";
-            files[i] = (std::filesystem::path(dir) / name.str()).string();
-            mas::write_stl(d.components[i].mesh, files[i]);
-        }
+    const std::vector<std::string> files = write_components(
+        a, "--stl-dir", d.components.size(), "stl", [&](std::size_t i, const std::string& path) {
+            mas::write_stl(d.components[i].mesh, path);
+        });
+    std::vector<ComponentRow> rows(d.components.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const mas::ComponentMesh& c = d.components[i];
+        ComponentRow& r = rows[i];
+        r.parent = c.parent;
+        r.build_direction = c.base.normal;
+        r.has_base_face = c.parent >= 0;
+        r.base_origin = c.base.origin;
+        r.base_normal = -c.base.normal;
+        r.branch = c.branch;
+        r.rule = c.parent < 0 ? "root" : "section_plane";
+        r.volume_mm3 = mas::mesh_volume(c.mesh);
+        r.file = files[i];
     }
-    auto rule = [](const mas::ComponentMesh& c) {
-        return c.parent < 0 ? std::string("root") : std::string("section_plane");
-    };
-    std::ostringstream out;
-    if (a.json) {
-        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
-            << ",\n  \"part_volume_mm3\": " << num(mas::mesh_volume(part.mesh))
-            << ",\n  \"axis\": {\"step_mm\": " << num(axis.params.step_mm)
-            << ", \"nodes\": " << axis.nodes.size() << ", \"branches\": " << axis.branches.size()
-            << "},\n  \"components\": [";
-        for (std::size_t i = 0; i < d.components.size(); ++i) {
-            const auto& c = d.components[i];
-            out << (i ? "," : "") << "\n    {\"parent\": " << c.parent
-                << ", \"build_direction\": " << vec(c.base.normal)
-                << ", \"has_base_face\": " << (c.parent >= 0 ? "true" : "false")
-                << ", \"base_origin\": " << vec(c.base.origin)
-                << ", \"base_normal\": " << vec(-c.base.normal) << ", \"branch\": " << c.branch
-                << ", \"rule\": " << quoted(rule(c))
-                << ", \"volume_mm3\": " << num(mas::mesh_volume(c.mesh));
-            if (!files[i].empty()) out << ", \"stl_file\": " << quoted(files[i]);
-            out << "}";
-        }
-        out << "\n  ],\n  \"notes\": [";
-        for (std::size_t i = 0; i < d.notes.size(); ++i)
-            out << (i ? ", " : "") << "\n    " << quoted(d.notes[i]);
-        out << "\n  ]\n}\n";
-    } else {
-        for (const auto& note : d.notes) out << "# note: " << note << "\n";
-        out << "# " << a.file << ": " << d.components.size() << " components, axis step "
-            << num(axis.params.step_mm) << " mm\n# component parent rule build_direction volume_mm3"
-            << (a.has("--stl-dir") ? " stl_file" : "") << "\n";
-        for (std::size_t i = 0; i < d.components.size(); ++i) {
-            const auto& c = d.components[i];
-            out << i << " " << c.parent << " " << rule(c) << " " << num(c.base.normal.x()) << ","
-                << num(c.base.normal.y()) << "," << num(c.base.normal.z()) << " "
-                << num(mas::mesh_volume(c.mesh));
-            if (!files[i].empty()) out << " " << files[i];
-            out << "\n";
-        }
-    }
-    write_output(a, out.str());
+    report_components(a, part, mas::mesh_volume(part.mesh), axis, rows, d.notes, "stl_file");
     return 0;
 }
 
@@ -623,58 +668,26 @@ int run_decompose(const std::vector<std::string>& args) {
     const mas::Decomposition d =
         mas::decompose(solid, axis, dp, report ? stderr_progress() : mas::Progress());
 
-    std::vector<std::string> step_files(d.components.size());
-    if (a.has("--step-dir")) {
-        const std::string dir = a.options.at("--step-dir");
-        std::error_code ec;
-        std::filesystem::create_directories(dir, ec);
-        if (ec) throw mas::Error(mas::ErrorCode::WriteFailed, dir + ": cannot create the folder");
-        for (std::size_t i = 0; i < d.components.size(); ++i) {
-            std::ostringstream name;
-            name << "component_" << std::setw(3) << std::setfill('0') << i + 1 << ".step";
-            step_files[i] = (std::filesystem::path(dir) / name.str()).string();
-            mas::write_step(d.components[i].solid, step_files[i]);
-        }
+    const std::vector<std::string> files = write_components(
+        a, "--step-dir", d.components.size(), "step", [&](std::size_t i, const std::string& path) {
+            mas::write_step(d.components[i].solid, path);
+        });
+    std::vector<ComponentRow> rows(d.components.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const auto& c = d.components[i];
+        ComponentRow& r = rows[i];
+        r.parent = c.parent;
+        r.build_direction = c.build_direction;
+        r.has_base_face = c.has_base_face;
+        r.base_origin = c.base_origin;
+        r.base_normal = c.base_normal;
+        r.branch = c.branch;
+        r.break_link = c.break_link;
+        r.rule = mas::to_string(c.rule);
+        r.volume_mm3 = c.volume_mm3;
+        r.file = files[i];
     }
-    std::ostringstream out;
-    if (a.json) {
-        out << "{\n  \"file\": " << quoted(a.file) << ",\n  \"kind\": " << quoted(part.kind())
-            << ",\n  \"part_volume_mm3\": " << num(solid.info().volume_mm3)
-            << ",\n  \"axis\": {\"step_mm\": " << num(axis.params.step_mm)
-            << ", \"nodes\": " << axis.nodes.size() << ", \"branches\": " << axis.branches.size()
-            << "},\n  \"components\": [";
-        for (std::size_t i = 0; i < d.components.size(); ++i) {
-            const auto& c = d.components[i];
-            out << (i ? "," : "") << "\n    {\"parent\": " << c.parent
-                << ", \"build_direction\": " << vec(c.build_direction)
-                << ", \"has_base_face\": " << (c.has_base_face ? "true" : "false")
-                << ", \"base_origin\": " << vec(c.base_origin)
-                << ", \"base_normal\": " << vec(c.base_normal) << ", \"branch\": " << c.branch
-                << ", \"break_link\": " << c.break_link
-                << ", \"rule\": " << quoted(mas::to_string(c.rule))
-                << ", \"volume_mm3\": " << num(c.volume_mm3);
-            if (!step_files[i].empty()) out << ", \"step_file\": " << quoted(step_files[i]);
-            out << "}";
-        }
-        out << "\n  ],\n  \"notes\": [";
-        for (std::size_t i = 0; i < d.notes.size(); ++i)
-            out << (i ? ", " : "") << "\n    " << quoted(d.notes[i]);
-        out << "\n  ]\n}\n";
-    } else {
-        for (const auto& note : d.notes) out << "# note: " << note << "\n";
-        out << "# " << a.file << ": " << d.components.size() << " components, axis step "
-            << num(axis.params.step_mm) << " mm\n# component parent rule build_direction volume_mm3"
-            << (a.has("--step-dir") ? " step_file" : "") << "\n";
-        for (std::size_t i = 0; i < d.components.size(); ++i) {
-            const auto& c = d.components[i];
-            out << i << " " << c.parent << " " << mas::to_string(c.rule) << " "
-                << num(c.build_direction.x()) << "," << num(c.build_direction.y()) << ","
-                << num(c.build_direction.z()) << " " << num(c.volume_mm3);
-            if (!step_files[i].empty()) out << " " << step_files[i];
-            out << "\n";
-        }
-    }
-    write_output(a, out.str());
+    report_components(a, part, solid.info().volume_mm3, axis, rows, d.notes, "step_file");
     return 0;
 }
 

@@ -212,7 +212,8 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
     Shape, a .step/.stp, .iges/.igs or .brep/.brp file, or an engine Shape. A mesh cannot be
-    split into solids: ``Mesh.Mesh``, mesh objects and .stl/.off files raise TypeError.
+    split into solids: ``Mesh.Mesh``, mesh objects and .stl/.off files raise TypeError
+    (``slice()`` splits a mesh into mesh pieces as it slices it, see the README's "Meshes").
 
     ``axis``: the ``CentroidalAxis`` of this very shape (``centroidal_axis(shape, ...)``, also of a
     mesh of it). None: computed here with ``step``, ``distance_threshold``, ``eps``,
@@ -272,7 +273,8 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     kind, part, what = _model(shape)
     if kind != "solid":
         raise TypeError("decompose() splits a BREP solid (Part.Shape, STEP, IGES or BREP file); "
-                        "{} is a mesh, which cannot be split into solids".format(what))
+                        "{} is a mesh, which cannot be split into solids (slice() splits a mesh "
+                        "into mesh pieces as it slices it)".format(what))
     solid = part.single_solid(what)
     if axis is None:
         axis = centroidal_axis(solid, **axis_params)

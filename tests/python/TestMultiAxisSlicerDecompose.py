@@ -260,7 +260,8 @@ class TestDecomposeBadInput(DecomposeTest):
             mas.decompose(42)
 
     def test_a_mesh_cannot_be_decomposed(self):
-        with self.assertRaisesRegex(TypeError, "BREP solid.*mesh"):
+        with self.assertRaisesRegex(TypeError, "BREP solid.*mesh.*slice\\(\\) splits a mesh into "
+                                               "mesh pieces as it slices it"):
             mas.decompose(Mesh.Mesh(l_block().tessellate(0.1)))
 
     def test_face_is_not_a_solid(self):

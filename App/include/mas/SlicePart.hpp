@@ -126,19 +126,20 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const Progress& progress = {});
 
 // Decomposing a closed mesh, which has no faces to split at (Decompose.hpp): every branch of the
-// axis that turned from its father's direction asks for a cut at Decompose.hpp's section plane,
+// axis that turned or split from its father asks for a cut at Decompose.hpp's section plane,
 // perpendicular to the branch's direction at Eq. 4's T plus the axis' clearance (eps, deflection,
 // step / 100; not past the branch's first plane less eps). The component holding the branch's
 // first section (AxisNode::material_point) is split there: the child is the connected piece of its
 // surface above the plane that a ray from that point (away from the plane) meets, closed with a
-// cap triangulated on the plane; the rest, closed with the same cap, stays the father. A branch
-// born of a split marches on in its father's direction and is built with it. As in Decompose.hpp,
-// the piece stays in the father, with a note, when the branch is built past max_tilt_deg from +Z,
-// when the piece reaches less than the step (at most 2 mm, the thickest layer at slicing's
-// defaults) or min_component_height past the plane, rests on the build plate (the root's father
-// builds it up), would take all of its father's base, holds over four times what the branch and
-// its sub-branches swept (plus two steps of its first section), or either piece is no closed
-// solid. The root stands on build_plate() and follows branch 0.
+// cap triangulated on the plane; the rest, closed with the same cap, stays the father. As in
+// Decompose.hpp, the piece stays in the father, with a note, when the branch is built past
+// max_tilt_deg from +Z, when the piece reaches less than min_component_height or the step past
+// the plane (a branch that turned: the step, at most 2 mm, the thickest layer at slicing's
+// defaults), rests on the build plate (comes within min_component_height, at least eps, of it:
+// the root builds it up), would take all of its father's base or leave the father thinner than
+// that along its build direction, holds over four times what the branch and its sub-branches
+// swept (plus two steps of its first section), or either piece is no closed solid. The root stands
+// on build_plate() and follows branch 0.
 struct MeshDecomposeParams {
     double min_component_height_mm = 0.0;
     double max_tilt_deg = 100.0;
@@ -146,7 +147,7 @@ struct MeshDecomposeParams {
 };
 struct MeshDecomposition {
     std::vector<ComponentMesh> components;  // tree order: a father before its children
-    std::vector<std::string> notes;         // why a turned branch got no component of its own
+    std::vector<std::string> notes;         // why a branch got no component of its own
 };
 MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis& axis,
                                  const MeshDecomposeParams& params = {},

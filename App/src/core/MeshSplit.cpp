@@ -226,8 +226,7 @@ bool triangulate(std::vector<Loop> loops, std::vector<Eigen::Vector3i>& out) {
     return true;
 }
 
-// ---- splitting a closed mesh by a plane
-// ----------------------------------------------------------
+// ---- splitting a closed mesh by a plane -------------------------------------------------------
 
 std::uint64_t edge_key(int a, int b) {
     if (a > b) std::swap(a, b);

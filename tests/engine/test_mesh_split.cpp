@@ -46,6 +46,28 @@ void expect_solid(const mas::TriangleMesh& m, const std::string& what) {
     EXPECT_NO_THROW(mas::require_one_solid(m, what)) << what;
 }
 
+// split_mesh's two pieces, each checked closed, facing out and one solid; ok is false (and the
+// failure recorded, with split_mesh's why) when it refuses.
+struct Pieces {
+    mas::TriangleMesh above, below;
+    double cut = 0.0;
+    bool ok = false;
+};
+
+Pieces split_into_solids(const mas::TriangleMesh& mesh, const Vector3d& origin,
+                         const Vector3d& normal, const Vector3d& inside) {
+    Pieces p;
+    std::string why;
+    p.ok = mas::split_mesh(mesh, mas::make_plane(origin, normal), inside, p.above, p.below, why,
+                           &p.cut);
+    EXPECT_TRUE(p.ok) << why;
+    if (p.ok) {
+        expect_solid(p.above, "above");
+        expect_solid(p.below, "below");
+    }
+    return p;
+}
+
 mas::SlicePartParams params() {
     mas::SlicePartParams p;
     p.tessellation.deflection_mm = 0.02;
@@ -56,27 +78,18 @@ mas::SlicePartParams params() {
 
 TEST(SplitMesh, ABoxCutAcrossGivesTwoBoxesOfTheExactVolumes) {
     const auto box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
-    mas::TriangleMesh above, below;
-    std::string why;
-    double cut = 0.0;
-    ASSERT_TRUE(mas::split_mesh(box, mas::make_plane({0, 0, 12}, {0, 0, 1}), {5, 10, 20}, above,
-                                below, why, &cut))
-        << why;
-    EXPECT_EQ(cut, 12.0);
-    expect_solid(above, "above");
-    expect_solid(below, "below");
-    EXPECT_NEAR(mas::mesh_volume(above), 10 * 20 * 18, 1e-9);
-    EXPECT_NEAR(mas::mesh_volume(below), 10 * 20 * 12, 1e-9);
-    EXPECT_EQ(lowest(above, Vector3d::UnitZ()), 12.0);
-    EXPECT_EQ(highest(below, Vector3d::UnitZ()), 12.0);
+    const Pieces across = split_into_solids(box, {0, 0, 12}, {0, 0, 1}, {5, 10, 20});
+    ASSERT_TRUE(across.ok);
+    EXPECT_EQ(across.cut, 12.0);
+    EXPECT_NEAR(mas::mesh_volume(across.above), 10 * 20 * 18, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(across.below), 10 * 20 * 12, 1e-9);
+    EXPECT_EQ(lowest(across.above, Vector3d::UnitZ()), 12.0);
+    EXPECT_EQ(highest(across.below, Vector3d::UnitZ()), 12.0);
     // Sideways, along -X: the piece holding the point is the one past the plane along -X.
-    ASSERT_TRUE(mas::split_mesh(box, mas::make_plane({4, 0, 0}, {-1, 0, 0}), {1, 10, 20}, above,
-                                below, why))
-        << why;
-    EXPECT_NEAR(mas::mesh_volume(above), 4 * 20 * 30, 1e-9);
-    EXPECT_NEAR(mas::mesh_volume(below), 6 * 20 * 30, 1e-9);
-    expect_solid(above, "above -X");
-    expect_solid(below, "below -X");
+    const Pieces sideways = split_into_solids(box, {4, 0, 0}, {-1, 0, 0}, {1, 10, 20});
+    ASSERT_TRUE(sideways.ok);
+    EXPECT_NEAR(mas::mesh_volume(sideways.above), 4 * 20 * 30, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(sideways.below), 6 * 20 * 30, 1e-9);
 }
 
 TEST(SplitMesh, ACutAcrossAHoleLeavesTheHoleOpenInBothCaps) {
@@ -85,15 +98,10 @@ TEST(SplitMesh, ACutAcrossAHoleLeavesTheHoleOpenInBothCaps) {
     const auto plate = mesh_of(mas::test::plate_with_hole());
     const double whole = mas::mesh_volume(plate);
     EXPECT_NEAR(whole, 60 * 40 * 10 - kPi * 64 * 10, 2 * kPi * 8 * 10 * 0.02);
-    mas::TriangleMesh above, below;
-    std::string why;
-    ASSERT_TRUE(
-        mas::split_mesh(plate, mas::make_plane({0, 0, 4}, {0, 0, 1}), {2, 2, 8}, above, below, why))
-        << why;
-    expect_solid(above, "above");
-    expect_solid(below, "below");
-    EXPECT_NEAR(mas::mesh_volume(above), whole * 0.6, 1e-9 * whole);
-    EXPECT_NEAR(mas::mesh_volume(below), whole * 0.4, 1e-9 * whole);
+    const Pieces p = split_into_solids(plate, {0, 0, 4}, {0, 0, 1}, {2, 2, 8});
+    ASSERT_TRUE(p.ok);
+    EXPECT_NEAR(mas::mesh_volume(p.above), whole * 0.6, 1e-9 * whole);
+    EXPECT_NEAR(mas::mesh_volume(p.below), whole * 0.4, 1e-9 * whole);
 }
 
 TEST(SplitMesh, ACapWithTwoHolesAndANotchIsWhole) {
@@ -106,52 +114,36 @@ TEST(SplitMesh, ACapWithTwoHolesAndANotchIsWhole) {
         plate = BRepAlgoAPI_Cut(plate, away).Shape();
     const auto mesh = mesh_of(mas::test::from_occt(plate));
     const double whole = mas::mesh_volume(mesh);
-    mas::TriangleMesh above, below;
-    std::string why;
-    ASSERT_TRUE(mas::split_mesh(mesh, mas::make_plane({0, 0, 7.5}, {0, 0, 1}), {2, 2, 9}, above,
-                                below, why))
-        << why;
-    expect_solid(above, "above");
-    expect_solid(below, "below");
-    EXPECT_NEAR(mas::mesh_volume(above), whole * 0.25, 1e-9 * whole);
-    EXPECT_NEAR(mas::mesh_volume(below), whole * 0.75, 1e-9 * whole);
+    const Pieces p = split_into_solids(mesh, {0, 0, 7.5}, {0, 0, 1}, {2, 2, 9});
+    ASSERT_TRUE(p.ok);
+    EXPECT_NEAR(mas::mesh_volume(p.above), whole * 0.25, 1e-9 * whole);
+    EXPECT_NEAR(mas::mesh_volume(p.below), whole * 0.75, 1e-9 * whole);
 }
 
 TEST(SplitMesh, AVertexOnThePlaneMovesTheCutByAMillionthOfThePart) {
     // The L's arm underside lies at z = 40, with its vertices: the cut moves up off them, and
     // takes a sliver of the arm to the piece below.
     const auto l = mesh_of(mas::test::l_block());
-    mas::TriangleMesh above, below;
-    std::string why;
-    double cut = 0.0;
-    ASSERT_TRUE(mas::split_mesh(l, mas::make_plane({0, 0, 40}, {0, 0, 1}), {45, 10, 50}, above,
-                                below, why, &cut))
-        << why;
-    EXPECT_GT(cut, 40.0);
-    EXPECT_LT(cut, 40.0 + 1e-6 * 70.0);
-    expect_solid(above, "above");
-    expect_solid(below, "below");
+    const Pieces p = split_into_solids(l, {0, 0, 40}, {0, 0, 1}, {45, 10, 50});
+    ASSERT_TRUE(p.ok);
+    EXPECT_GT(p.cut, 40.0);
+    EXPECT_LT(p.cut, 40.0 + 1e-6 * 70.0);
     // Above: the column and the arm over the cut; below: the column under it, and the arm's
     // underside up to the cut, joined to the column.
-    EXPECT_NEAR(mas::mesh_volume(above), (20 * 20 + 50 * 20) * (60 - cut), 1e-6);
-    EXPECT_NEAR(mas::mesh_volume(below), 20 * 20 * cut + 50 * 20 * (cut - 40), 1e-6);
+    EXPECT_NEAR(mas::mesh_volume(p.above), (20 * 20 + 50 * 20) * (60 - p.cut), 1e-6);
+    EXPECT_NEAR(mas::mesh_volume(p.below), 20 * 20 * p.cut + 50 * 20 * (p.cut - 40), 1e-6);
 }
 
 TEST(SplitMesh, OnlyThePieceHoldingThePointIsCutOff) {
     // Two posts on a base, cut at z = 20: the post holding the point goes above, the other post
     // stays whole in the piece below (its surface is not cut, nor capped).
     const auto posts = mesh_of(mas::test::two_posts());
-    mas::TriangleMesh above, below;
-    std::string why;
-    ASSERT_TRUE(mas::split_mesh(posts, mas::make_plane({0, 0, 20}, {0, 0, 1}), {35, 5, 25}, above,
-                                below, why))
-        << why;
-    expect_solid(above, "above");
-    expect_solid(below, "below");
-    EXPECT_NEAR(mas::mesh_volume(above), 10 * 10 * 10, 1e-9);
-    EXPECT_NEAR(mas::mesh_volume(below), 40 * 10 * 5 + 10 * 10 * 25 + 10 * 10 * 15, 1e-9);
-    EXPECT_GE(lowest(above, Vector3d::UnitX()), 30.0);
-    EXPECT_EQ(highest(below, Vector3d::UnitZ()), 30.0);  // the other post, whole
+    const Pieces p = split_into_solids(posts, {0, 0, 20}, {0, 0, 1}, {35, 5, 25});
+    ASSERT_TRUE(p.ok);
+    EXPECT_NEAR(mas::mesh_volume(p.above), 10 * 10 * 10, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(p.below), 40 * 10 * 5 + 10 * 10 * 25 + 10 * 10 * 15, 1e-9);
+    EXPECT_GE(lowest(p.above, Vector3d::UnitX()), 30.0);
+    EXPECT_EQ(highest(p.below, Vector3d::UnitZ()), 30.0);  // the other post, whole
 }
 
 TEST(SplitMesh, APointNotAboveThePlaneOrOutsideTheMeshIsRefused) {

@@ -301,14 +301,14 @@ bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vecto
     const Vec3 n = plane.normal;
     // Off every vertex: a vertex on the plane would leave slivers of no area on one side.
     double offset = n.dot(plane.origin);
+    double scale = 1.0;
+    for (const Vec3& v : mesh.vertices) scale = std::max(scale, v.cwiseAbs().maxCoeff());
     std::vector<double> d(nv);
     for (int attempt = 0;; ++attempt) {
         double nearest = std::numeric_limits<double>::infinity();
-        double scale = 1.0;
         for (std::size_t v = 0; v < nv; ++v) {
             d[v] = n.dot(mesh.vertices[v]) - offset;
             nearest = std::min(nearest, std::abs(d[v]));
-            scale = std::max(scale, mesh.vertices[v].cwiseAbs().maxCoeff());
         }
         if (nearest > 1e-12 * scale) break;
         if (attempt == 8) {

@@ -1342,24 +1342,22 @@ def make_slice(part, deflection=0.0, show_travel=False, name="Layers", toolpath_
                         "solid is sliced through a Decomposition object (make_decomposition("
                         "None, axis=...))".format(part.Label, "" if mesh is None else
                                                   " but over '{}'".format(mesh.Label)))
-    if not (is_mesh_part(mesh) or is_decomposition(part)):
+    of_mesh = is_mesh_part(mesh)
+    if not (of_mesh or is_decomposition(part)):
         raise TypeError("make_slice() needs a Decomposition object or a mesh object, got {}".format(
             getattr(part, "TypeId", type(part).__name__)))
     values = _slice_property_values(params)
     deflection = mas._length(deflection, "deflection", allow_zero=True)
-    if is_mesh_part(mesh) and deflection > 0.0:
-        raise ValueError("make_slice: '{}' is a mesh, sliced as it is; deflection applies to "
-                         "solids only".format(mesh.Label))
-    if is_mesh_part(mesh) and values.get("FillHoles", 0.0) > 0.0:
-        raise ValueError("make_slice: '{}' is a mesh, sliced as it is; fill_holes needs a solid, "
-                         "on whose BREP holes are recognised".format(mesh.Label))
+    if of_mesh:
+        mas.slicing._check_mesh_params("make_slice", "'{}'".format(mesh.Label), deflection > 0.0,
+                                       values["FillHoles"])
     if doc is None:
         doc = part.Document
     layers = doc.addObject("Part::FeaturePython", name)
     LayersFeature(layers)
     if axis:
         layers.Axis = part
-    elif is_mesh_part(part):
+    elif of_mesh:
         layers.Source = part
     else:
         layers.Decomposition = part

@@ -397,6 +397,17 @@ def _slice_params(values):
     return p
 
 
+def _check_mesh_params(caller, what, deflection, fill_holes):
+    """ValueError, from `caller`, when a mesh (`what`) is given a deflection (true when one is set)
+    or holes to fill: it is not tessellated, and has no BREP holes."""
+    if deflection:
+        raise ValueError("{}: {} is a mesh, sliced as it is; deflection applies to solids "
+                         "only".format(caller, what))
+    if fill_holes > 0.0:
+        raise ValueError("{}: {} is a mesh, sliced as it is; fill_holes needs a solid, on whose "
+                         "BREP holes are recognised".format(caller, what))
+
+
 def _check_nozzle(p):
     """ValueError naming the first nozzle parameter out of its range (the engine's own rules,
     checked here before any decomposing)."""
@@ -519,12 +530,7 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         if components is not None:
             raise TypeError("slice: {} is a mesh, which cannot be decomposed; pass no "
                             "components".format(what))
-        if "deflection" in p:
-            raise ValueError("slice: {} is a mesh, sliced as it is; deflection applies to solids "
-                             "only".format(what))
-        if p["fill_holes"] > 0.0:
-            raise ValueError("slice: {} is a mesh, sliced as it is; fill_holes needs a solid, on "
-                             "whose BREP holes are recognised".format(what))
+        _check_mesh_params("slice", what, "deflection" in p, p["fill_holes"])
         mesh = eng.make_closed(part, what)
         if axis is None:
             axis = centroidal_axis(mesh, **axis_params)

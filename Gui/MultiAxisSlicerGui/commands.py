@@ -318,15 +318,15 @@ class SliceCommand(_PartCommand):
         if not mas.engine_available():
             MultiAxisSlicerGui.show_error(mas.engine_missing_message())
             return
-        # A mesh (or the axis of one, whose parameters it then takes) is sliced as it is: a mesh
-        # cannot be split into solids.
-        mesh = features.is_mesh_part(source) or (features.is_centroidal_axis(source) and
-                                                 features.is_mesh_part(source.Source))
+        # A mesh (or the axis of one, whose parameters it then takes) is split as it is sliced: a
+        # mesh cannot be decomposed into solids.
+        mesh = source if features.is_mesh_part(source) else None
+        if features.is_centroidal_axis(source) and features.is_mesh_part(source.Source):
+            mesh = source.Source
         if features.is_decomposition(source):
             problem = None
-        elif mesh:
-            problem = _part_problem(source.Source if features.is_centroidal_axis(source) else
-                                    source)
+        elif mesh is not None:
+            problem = _part_problem(mesh)
         else:
             problem = DecomposeCommand().input_problem(source)
         if problem is not None:
@@ -355,14 +355,14 @@ class SliceCommand(_PartCommand):
     @staticmethod
     def _slice(source, mesh, doc, before, busy):
         """Makes and computes the command's objects in the open transaction; returns what failed,
-        or None. A mesh is split as it is sliced (Layers' SplitMesh); a solid is decomposed
-        first, into a Decomposition object."""
+        or None. `mesh`: the mesh object `source` is or is the axis of, else None. A mesh is split
+        as it is sliced (Layers' SplitMesh); a solid is decomposed first, into a Decomposition
+        object."""
         import MultiAxisSlicer.features as features
 
-        if mesh:
-            part = source.Source if features.is_centroidal_axis(source) else source
-            busy.stage("Slicing the mesh '{}'...".format(part.Label))
-            sliced, components = source, []
+        if mesh is not None:
+            busy.stage("Slicing the mesh '{}'...".format(mesh.Label))
+            sliced, part, components = source, mesh, []
         else:
             if features.is_decomposition(source):
                 decomposition = source

@@ -50,6 +50,31 @@ def _max_tilt(value):
     return tilt
 
 
+def _params(face_angle_deg=10.0, concave_angle_deg=1.0, projection_tolerance_mm=0.01,
+            section_plane_fallback=True, min_component_height_mm=0.0, max_tilt_deg=100.0,
+            keep_branches=()):
+    """A Decomposition's ``params``: decompose()'s, its defaults unless given."""
+    return {"face_angle_deg": face_angle_deg, "concave_angle_deg": concave_angle_deg,
+            "projection_tolerance_mm": projection_tolerance_mm,
+            "section_plane_fallback": section_plane_fallback,
+            "min_component_height_mm": min_component_height_mm, "max_tilt_deg": max_tilt_deg,
+            "keep_branches": tuple(keep_branches)}
+
+
+def _branch_list(value):
+    """keep_branches as a sorted tuple of distinct ints (which exist is the engine's to say)."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise TypeError("keep_branches must be a sequence of axis branch indices, got {!r}".format(
+            value))
+    out = set()
+    for b in value:
+        if isinstance(b, bool) or not isinstance(b, numbers.Integral):
+            raise TypeError("keep_branches must hold axis branch indices (ints), got {!r}".format(
+                b))
+        out.add(int(b))
+    return tuple(sorted(out))
+
+
 class Component:
     """One sub-component: a closed solid built from its base face along its build direction.
 
@@ -160,15 +185,18 @@ class Decomposition:
     ``Component``), ``axis`` (the ``CentroidalAxis`` it followed), ``part_volume`` (mm³, the
     part's; the components' volumes add up to it), ``params`` (the decomposition's parameters:
     face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback,
-    min_component_height_mm, max_tilt_deg),
+    min_component_height_mm, max_tilt_deg, keep_branches),
     ``notes`` (one line per axis branch that asked for a cut and got none: why, and which
-    component kept its material).
+    component kept its material), ``kept_branches`` (the branches of keep_branches that stayed in
+    their fathers so: ``decompose(..., keep_branches=d.kept_branches)`` gives this decomposition
+    again; ``slice()`` keeps those whose own layers the nozzle could not reach).
     """
 
     def __init__(self, data, axis, params):
         self.components = [Component(c) for c in data["components"]]
         self.part_volume = data["part_volume_mm3"]
         self.notes = list(data["notes"])
+        self.kept_branches = list(data["kept_branches"])
         self.axis = axis
         self.params = params
 
@@ -207,7 +235,7 @@ class Decomposition:
 def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
               deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
               eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0,
-              max_tilt=100.0, progress=None):
+              max_tilt=100.0, keep_branches=(), progress=None):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
@@ -235,14 +263,19 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
         100, in [90, 180]): the machine's reach. A branch marching further (straight down) is
         not cut, and a face whose child would tilt further is no splitting face. ``slice()``
         passes its own ``max_tilt``.
+      * ``keep_branches``: indices of axis branches (``axis.branches``, not the root's, 0) to
+        leave in their fathers' components whatever they qualify for, each with a note (default
+        none); their own sub-branches are cut from there as usual. ``slice()`` keeps so the
+        branches whose own components' layers the nozzle could not reach.
 
     ``progress``: None or ``progress(fraction, stage)``, reported branch by branch; an exception it
     raises (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
 
-    Returns a ``Decomposition``. Raises TypeError for a mesh, None or another type; ValueError for
-    a parameter out of range; EngineError (with ``code``) not_a_solid (a face, a shell),
-    multiple_solids, empty_input, read_failed, invalid_argument (an axis of another part, a
-    malformed axis), geometry_failure. Nothing the caller passed is modified.
+    Returns a ``Decomposition``. Raises TypeError for a mesh, None or another type (or
+    keep_branches not of ints); ValueError for a parameter out of range; EngineError (with
+    ``code``) not_a_solid (a face, a shell), multiple_solids, empty_input, read_failed,
+    invalid_argument (an axis of another part, a malformed axis, a kept branch the axis lacks or
+    its root), geometry_failure. Nothing the caller passed is modified.
     """
     face_angle_deg = _angle(face_angle, "face_angle", 90.0)
     concave_angle_deg = _angle(concave_angle, "concave_angle", 180.0)
@@ -255,6 +288,7 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
         raise ValueError("min_component_height must be a finite, non-negative number of "
                          "millimetres, got {}".format(min_height_mm))
     max_tilt_deg = _max_tilt(max_tilt)
+    keep = _branch_list(keep_branches)
     _progress.check(progress)
     if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
         raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
@@ -278,13 +312,11 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     solid = part.single_solid(what)
     if axis is None:
         axis = centroidal_axis(solid, **axis_params)
-    params = {"face_angle_deg": face_angle_deg, "concave_angle_deg": concave_angle_deg,
-              "projection_tolerance_mm": tolerance_mm,
-              "section_plane_fallback": bool(section_plane_fallback),
-              "min_component_height_mm": min_height_mm, "max_tilt_deg": max_tilt_deg}
+    params = _params(face_angle_deg, concave_angle_deg, tolerance_mm, bool(section_plane_fallback),
+                     min_height_mm, max_tilt_deg, keep)
     data = eng.decompose(solid, axis._engine_dict(), face_angle=face_angle_deg,
                          concave_angle=concave_angle_deg, projection_tolerance=tolerance_mm,
                          section_plane_fallback=bool(section_plane_fallback),
                          min_component_height=min_height_mm, max_tilt=max_tilt_deg,
-                         progress=progress)
+                         keep_branches=list(keep), progress=progress)
     return Decomposition(data, axis, params)

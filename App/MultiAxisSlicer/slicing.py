@@ -21,7 +21,8 @@ import numbers
 from . import _as_list, _as_vector, _model, _require_engine
 from . import progress as _progress
 from .axis import CentroidalAxis, _number, centroidal_axis
-from .decompose import Decomposition, _max_tilt, decompose
+from .decompose import Decomposition, _max_tilt
+from .decompose import _params as _decompose_params
 
 __all__ = ["Layer", "ToolPath", "FilledHole", "SliceResult", "slice", "SLICE_DEFAULTS"]
 
@@ -45,6 +46,7 @@ SLICE_DEFAULTS = {
     "measure_coverage": False,
     "fill_holes": 0.0,
     "split_mesh": True,
+    "avoid_collisions": True,
     "nozzle_standoff": 10.0,
     "nozzle_tip_diameter": 10.0,
     "nozzle_cone_angle": 30.0,
@@ -372,7 +374,7 @@ def _slice_params(values):
         if isinstance(v, bool) or not isinstance(v, numbers.Integral):
             raise TypeError("{} must be an integer, got {!r}".format(name, v))
         p[name] = int(v)
-    for name in ("strict", "measure_coverage", "check_plate", "split_mesh"):
+    for name in ("strict", "measure_coverage", "check_plate", "split_mesh", "avoid_collisions"):
         if not isinstance(values[name], (bool, numbers.Integral)):
             raise TypeError("{} must be True or False, got {!r}".format(name, values[name]))
         p[name] = bool(values[name])
@@ -445,9 +447,14 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     (.step/.stp, .iges/.igs, .brep/.brp; .stl/.off too) or a closed ``Mesh.Mesh``. A mesh, which
     has no faces to split at, stands on its lowest point and is split at section planes where its
     axis turns or branches (the engine's decompose_mesh, SlicePart.hpp), each piece closed with a
-    cap; a piece some of whose layers the nozzle could not reach is left in its father, and the
-    mesh is sliced as one component when that leaves fewer layers in the nozzle's way. The
-    result's ``notes`` say which branches got no piece and why.
+    cap. A solid is decomposed (``decompose()``) unless ``components`` are given. A mesh's piece,
+    or a solid's sub-component decomposed here, some of whose layers the nozzle could not reach
+    (they would meet the plate or what is deposited before them) is left in its father, and the
+    part is split and sliced again, up to five times; it is sliced as one component when that
+    leaves fewer layers in the nozzle's way (``avoid_collisions=False``: the first split is kept,
+    those layers listed in ``collisions``). The result's ``notes`` say which branches got no
+    component and why; for a solid its ``decomposition`` is the one sliced (its ``kept_branches``
+    the branches so kept).
 
     ``axis``: the part's ``CentroidalAxis``; None: computed here (with ``step``,
     ``distance_threshold``, ``eps``, ``break_angle``, ``base_z`` from ``params`` when given; with
@@ -475,6 +482,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         area each layer's beads leave uncovered; False).
       * ``split_mesh``: a mesh is split as above (True); False slices it as one component, along
         its axis' first branch. A solid is always decomposed (``components`` gives the split).
+      * ``avoid_collisions``: branches whose own layers the nozzle cannot reach stay in their
+        fathers, as above (True); False keeps the first split. Given ``components`` are sliced
+        as they are.
       * ``fill_holes``: round holes up to this diameter whose axis leans past ``overhang_angle``
         off their sub-component's build direction, which a drill reaches from outside the part,
         are deposited solid, to be drilled afterwards: their ceilings would overhang (0: none; a
@@ -544,19 +554,19 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         axis = components.axis
     elif axis is None:
         axis = centroidal_axis(solid, **axis_params)
-    slicing_progress = progress
-    decomposed_here = components is None
-    if decomposed_here:
-        # No component thinner than a layer, nor built past the reach: the slicer could not lay
-        # one on it.
-        components = decompose(solid, axis=axis, min_component_height=p["min_layer"],
-                               max_tilt=p["max_tilt"], progress=_progress.span(progress, 0.0, 0.2))
-        slicing_progress = _progress.span(progress, 0.2, 1.0)
+    if components is None:
+        # Decomposed as decompose() does, with no component thinner than a layer nor built past
+        # the reach (the slicer could not lay one on it), and again where layers collide; the
+        # notes say why a branch got no component of its own, as the CLI does.
+        data = eng.slice_solid_part(solid, axis._engine_dict(), p, progress)
+        d = data.pop("decomposition")
+        components = Decomposition(d, axis, _decompose_params(
+            min_component_height_mm=p["min_layer"], max_tilt_deg=p["max_tilt"],
+            keep_branches=d["kept_branches"]))
+        return SliceResult(data, p, axis, components, kind)
     engine_components = [{"solid": c._solid, "parent": c.parent,
                           "build_direction": tuple(c._build_direction),
                           "base_origin": tuple(c._base_origin), "branch": c.branch}
                          for c in components]
-    data = eng.slice_part(solid, axis._engine_dict(), engine_components, p, slicing_progress)
-    if decomposed_here:  # why a branch got no component of its own, as the CLI says it
-        data["notes"] = ["decomposition: " + n for n in components.notes] + list(data["notes"])
+    data = eng.slice_part(solid, axis._engine_dict(), engine_components, p, progress)
     return SliceResult(data, p, axis, components, kind)

@@ -50,7 +50,7 @@ const char* kUsage =
     "                                   [--infill raster|contour|none] [--raster-angle DEG]\n"
     "                                   [--raster-angle-step DEG] [--min-feature MM]\n"
     "                                   [--measure-coverage] [--fill-holes MM] [--one-component]\n"
-    "                                   [--progress]\n"
+    "                                   [--allow-collisions] [--progress]\n"
     "                                   [nozzle options] [--no-plate-check]\n"
     "                                   [--gcode OUT.ngc [machine options]] [--json [OUT.json]]\n"
     "       multiaxis-slicer --help | --version\n"
@@ -77,12 +77,15 @@ const char* kUsage =
     "           2 contours, raster infill, --max-tilt 100: no layer or component tilts further\n"
     "           from +Z (the machine's reach; with --gcode and --a-limits, the farther A limit,\n"
     "           within 90 to 180). A solid is decomposed with --min-height at --min-layer;\n"
-    "           a mesh is split at section planes where its axis turns or branches (not where\n"
-    "           the layers of a piece would meet what is deposited before them), or sliced as\n"
-    "           one component with --one-component. --fill-holes MM deposits a solid's\n"
-    "           round holes up to MM across solid where their axis leans past the overhang\n"
-    "           angle off the build direction (their ceilings would overhang), listing them to\n"
-    "           drill afterwards (default 0: none).\n"
+    "           a mesh is split at section planes where its axis turns or branches, or sliced\n"
+    "           as one component with --one-component. A branch whose own component's layers\n"
+    "           would meet the plate or what is deposited before them (nozzle options below)\n"
+    "           stays in its father, and a part whose layers still would is sliced as one\n"
+    "           component if that leaves fewer; --allow-collisions keeps the first split and\n"
+    "           lists such layers. --fill-holes MM deposits a solid's round holes up to MM\n"
+    "           across solid where their axis leans past the overhang angle off the build\n"
+    "           direction (their ceilings would overhang), listing them to drill afterwards\n"
+    "           (default 0: none).\n"
     "           The layers are sequenced so that the nozzle keeps clear of what is deposited\n"
     "           (Eq. 10), brothers built together where one would block the other; layers the\n"
     "           order found leaves in the way are listed. Nozzle options (mm, degrees):\n"
@@ -822,12 +825,15 @@ int run_slice(const std::vector<std::string>& args) {
     allowed.insert(kMachineOptions.begin(), kMachineOptions.end());
     allowed.insert("--gcode");
     std::vector<std::string> rest;
-    bool strict = false, coverage = false, report = false, no_plate = false, whole = false;
+    bool strict = false, coverage = false, report = false, no_plate = false, whole = false,
+         allow_collisions = false;
     for (const auto& arg : args) {
         if (arg == "--strict")
             strict = true;
         else if (arg == "--one-component")
             whole = true;
+        else if (arg == "--allow-collisions")
+            allow_collisions = true;
         else if (arg == "--no-plate-check")
             no_plate = true;
         else if (arg == "--measure-coverage")
@@ -844,6 +850,7 @@ int run_slice(const std::vector<std::string>& args) {
     sp.paths.measure_coverage = coverage;
     sp.nozzle.check_plate = !no_plate;
     sp.split_mesh = !whole;
+    sp.avoid_collisions = !allow_collisions;
     mas::validate(sp.layers);
     mas::validate(sp.paths);
     mas::validate(sp.nozzle);
@@ -862,16 +869,10 @@ int run_slice(const std::vector<std::string>& args) {
                              "--one-component applies to a mesh: a solid is decomposed (" + a.file +
                                  " is a solid)");
         const mas::Shape solid = part.model.shape.single_solid(a.file);
-        mas::DecomposeParams dp;  // no component thinner than a layer, none past the reach
-        dp.min_component_height_mm = sp.layers.min_layer_mm;
-        dp.max_tilt_deg = sp.layers.max_tilt_deg;
-        // Decomposing is the first fifth, as in the Python API.
-        const mas::Decomposition d = mas::decompose(solid, axis, dp, progress.span(0.0, 0.2));
-        r = mas::slice_part(solid, axis, d, sp, progress.span(0.2, 1.0));
         // Why a branch got no sub-component of its own (material hanging from above stays in
-        // its father, overhanging): said with the holes' notes.
-        for (std::size_t i = 0; i < d.notes.size(); ++i)
-            r.notes.insert(r.notes.begin() + std::ptrdiff_t(i), "decomposition: " + d.notes[i]);
+        // its father, overhanging) comes first in the notes, before the holes'.
+        mas::Decomposition d;
+        r = mas::slice_solid_part(solid, axis, mas::DecomposeParams(), sp, d, progress);
     } else {
         r = mas::slice_mesh_part(part.mesh, axis, sp, progress);
     }
@@ -906,6 +907,7 @@ int run_slice(const std::vector<std::string>& args) {
             << ", \"measure_coverage\": " << (t.measure_coverage ? "true" : "false")
             << ", \"fill_holes\": " << num(sp.fill_holes_up_to_mm)
             << ", \"split_mesh\": " << (sp.split_mesh ? "true" : "false")
+            << ", \"avoid_collisions\": " << (sp.avoid_collisions ? "true" : "false")
             << ", \"nozzle_standoff\": " << num(sp.nozzle.standoff_mm)
             << ", \"nozzle_tip_diameter\": " << num(sp.nozzle.tip_diameter_mm)
             << ", \"nozzle_cone_angle\": " << num(sp.nozzle.cone_angle_deg)

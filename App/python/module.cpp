@@ -943,23 +943,7 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
     return axis;
 }
 
-bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
-                   double concave_angle, double projection_tolerance, bool section_plane_fallback,
-                   double min_component_height, double max_tilt, const bp::object& progress) {
-    mas::DecomposeParams params;
-    params.face_angle_deg = finite_number(face_angle, "face_angle");
-    params.concave_angle_deg = finite_number(concave_angle, "concave_angle");
-    params.projection_tolerance_mm = finite_number(projection_tolerance, "projection_tolerance");
-    params.section_plane_fallback = section_plane_fallback;
-    params.min_component_height_mm = finite_number(min_component_height, "min_component_height");
-    params.max_tilt_deg = finite_number(max_tilt, "max_tilt");
-    const mas::CentroidalAxis axis = axis_from_py(axis_py);
-    mas::Decomposition d;
-    double part_volume = 0.0;
-    run_reporting(progress, [&](const mas::Progress& p) {
-        d = mas::decompose(shape, axis, params, p);
-        part_volume = shape.info().volume_mm3;
-    });
+bp::dict decomposition_to_py(const mas::Decomposition& d, double part_volume) {
     bp::list components;
     for (const auto& c : d.components) {
         bp::dict out;
@@ -976,13 +960,52 @@ bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double fa
         out["volume_mm3"] = c.volume_mm3;
         components.append(out);
     }
-    bp::list notes;
+    bp::list notes, kept;
     for (const auto& n : d.notes) notes.append(n);
+    for (int b : d.kept_branches) kept.append(b);
     bp::dict result;
     result["components"] = components;
     result["part_volume_mm3"] = part_volume;
     result["notes"] = notes;
+    result["kept_branches"] = kept;
     return result;
+}
+
+// Branches to keep in their fathers (a sequence of ints), each "kept in its father, as asked".
+std::vector<mas::KeptBranch> kept_branches_from_py(const bp::object& value) {
+    std::vector<mas::KeptBranch> kept;
+    bp::handle<> seq = fast_sequence(value, "keep_branches");
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        const bp::extract<int> b(items[i]);
+        if (!PyLong_Check(items[i]) || !b.check())
+            invalid_argument("keep_branches[" + std::to_string(i) + "] must be a branch index");
+        kept.push_back({b(), "kept in its father, as asked (keep_branches)"});
+    }
+    return kept;
+}
+
+bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
+                   double concave_angle, double projection_tolerance, bool section_plane_fallback,
+                   double min_component_height, double max_tilt, const bp::object& keep_branches,
+                   const bp::object& progress) {
+    mas::DecomposeParams params;
+    params.face_angle_deg = finite_number(face_angle, "face_angle");
+    params.concave_angle_deg = finite_number(concave_angle, "concave_angle");
+    params.projection_tolerance_mm = finite_number(projection_tolerance, "projection_tolerance");
+    params.section_plane_fallback = section_plane_fallback;
+    params.min_component_height_mm = finite_number(min_component_height, "min_component_height");
+    params.max_tilt_deg = finite_number(max_tilt, "max_tilt");
+    params.keep_branches = kept_branches_from_py(keep_branches);
+    const mas::CentroidalAxis axis = axis_from_py(axis_py);
+    mas::Decomposition d;
+    double part_volume = 0.0;
+    run_reporting(progress, [&](const mas::Progress& p) {
+        d = mas::decompose(shape, axis, params, p);
+        part_volume = shape.info().volume_mm3;
+    });
+    return decomposition_to_py(d, part_volume);
 }
 
 void bind_decompose() {
@@ -991,17 +1014,19 @@ void bind_decompose() {
         (bp::arg("shape"), bp::arg("axis"), bp::arg("face_angle") = 10.0,
          bp::arg("concave_angle") = 1.0, bp::arg("projection_tolerance") = 0.01,
          bp::arg("section_plane_fallback") = true, bp::arg("min_component_height") = 0.0,
-         bp::arg("max_tilt") = 100.0, bp::arg("progress") = bp::object()),
+         bp::arg("max_tilt") = 100.0, bp::arg("keep_branches") = bp::tuple(),
+         bp::arg("progress") = bp::object()),
         "Splits a solid (a Shape holding one closed solid) into sub-components along its "
         "centroidal axis `axis` (the dict centroidal_axis() returns for this solid; node regions "
         "are not needed). Angles in degrees, projection_tolerance and min_component_height (the "
         "least a child reaches past its splitting plane, besides one axis step) in mm; max_tilt: "
-        "no child is built further from +Z, degrees (the machine's reach). Returns a "
-        "dict: "
+        "no child is built further from +Z, degrees (the machine's reach); keep_branches: axis "
+        "branches (ints, not the root's) left in their fathers' components. Returns a dict: "
         "components [{solid (Shape), parent (-1 for the root), build_direction, has_base_face, "
         "base_face (Shape or None), base_origin, base_normal, branch, break_link, rule ('root' | "
         "'planar_face' | 'section_plane'), volume_mm3}] in tree order (a father before its "
-        "children), part_volume_mm3, notes (branches that got no cut, and why). EngineError "
+        "children), part_volume_mm3, notes (branches that got no cut, and why), kept_branches "
+        "(those of keep_branches kept so). EngineError "
         "not_a_solid / multiple_solids / empty_input "
         "for the shape, invalid_argument for bad parameters, a malformed axis or an axis of "
         "another part, geometry_failure when OCCT fails on the input. `progress`: None or "
@@ -1092,6 +1117,8 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             p.fill_holes_up_to_mm = number();
         else if (key == "split_mesh")
             p.split_mesh = truth();
+        else if (key == "avoid_collisions")
+            p.avoid_collisions = truth();
         else if (key == "nozzle_standoff")
             p.nozzle.standoff_mm = number();
         else if (key == "nozzle_tip_diameter")
@@ -1309,6 +1336,22 @@ bp::dict slice_part(const mas::Shape& shape, const bp::object& axis_py,
     return sliced_to_py(r);
 }
 
+bp::dict slice_solid_part(const mas::Shape& shape, const bp::object& axis_py,
+                          const bp::dict& params_py, const bp::object& progress) {
+    const mas::SlicePartParams params = slice_params_from_py(params_py);
+    const mas::CentroidalAxis axis = axis_from_py(axis_py);
+    mas::SlicedPart r;
+    mas::Decomposition d;
+    double part_volume = 0.0;
+    run_reporting(progress, [&](const mas::Progress& p) {
+        r = mas::slice_solid_part(shape, axis, mas::DecomposeParams(), params, d, p);
+        part_volume = shape.info().volume_mm3;
+    });
+    bp::dict out = sliced_to_py(r);
+    out["decomposition"] = decomposition_to_py(d, part_volume);
+    return out;
+}
+
 bp::dict slice_mesh_part(const mas::TriangleMesh& mesh, const bp::object& axis_py,
                          const bp::dict& params_py, const bp::object& progress) {
     if (params_py.has_key("deflection"))
@@ -1328,7 +1371,8 @@ void bind_slice() {
         "max_tilt, volume_samples, strict, bead_width, overlap, contour_count, infill ('raster' | "
         "'contour' | 'none'), raster_angle, raster_angle_step, min_feature, measure_coverage, "
         "deflection and fill_holes (the largest hole diameter to deposit solid and drill; "
-        "slice_part only); missing ones take the engine's defaults. Returns a dict: "
+        "a solid's only), split_mesh, avoid_collisions; missing ones take the engine's defaults. "
+        "Returns a dict: "
         "layers [{component, origin, normal, lower_origin, lower_normal, regions [{outer, "
         "holes}] as 3-D points, area_mm2, min_thickness_mm, max_thickness_mm, volume_mm3, "
         "material_volume_mm3, volume_difference, meets_volume_difference, unsupported_area_mm2, "
@@ -1354,9 +1398,24 @@ void bind_slice() {
              params_doc)
                 .c_str());
     bp::def(
+        "slice_solid_part", &slice_solid_part,
+        (bp::arg("shape"), bp::arg("axis"), bp::arg("params"), bp::arg("progress") = bp::object()),
+        (std::string("Decomposes a solid along its centroidal axis `axis` (decompose()'s "
+                     "defaults, min_component_height at min_layer, max_tilt the layers') and "
+                     "slices it; where some layers would meet what is deposited before them, "
+                     "their components' branches are kept in their fathers and it is done "
+                     "again (unless avoid_collisions is false; SlicePart.hpp). The result "
+                     "also holds `decomposition`, the one sliced, as decompose() returns "
+                     "it.") +
+         params_doc)
+            .c_str());
+    bp::def(
         "slice_mesh_part", &slice_mesh_part,
         (bp::arg("mesh"), bp::arg("axis"), bp::arg("params"), bp::arg("progress") = bp::object()),
-        (std::string("Slices a closed mesh as one component along its axis' first branch.") +
+        (std::string("Slices a closed mesh, split at section planes where its axis turns or "
+                     "branches (unless split_mesh is false: one component), keeping in "
+                     "their fathers the branches whose layers would meet what is deposited "
+                     "before them (unless avoid_collisions is false).") +
          params_doc)
             .c_str());
 }

@@ -684,11 +684,21 @@ class CliSections(unittest.TestCase):
 
     def test_slice_nozzle_options_and_collisions(self):
         """The L's arm is deposited sideways 40 to 60 mm up: a coaxial nozzle with a 100 mm body
-        reaches under the plate at every arm layer, which the text and the JSON list; without the
-        plate check, or with the default 50 mm body, nothing collides. Bad nozzle values are
-        refused."""
+        reaches under the plate at every arm layer, which the text and the JSON list when the
+        split is kept (--allow-collisions); without the plate check, or with the default 50 mm
+        body, nothing collides. By default the arm stays in the column instead, saying so. Bad
+        nozzle values are refused."""
         brep = os.path.join(DATA, "l_block.brep")
-        coaxial = ["--nozzle-body-diameter", "100", "--nozzle-max-lean", "0"]
+        coaxial = ["--nozzle-body-diameter", "100", "--nozzle-max-lean", "0", "--allow-collisions"]
+        kept = run("slice", brep, *coaxial[:-1], "--json")
+        self.assertEqual(kept.returncode, 0, kept.stderr)
+        data = json.loads(kept.stdout)
+        self.assertEqual(data["collisions"], [])
+        self.assertEqual(len(data["components"]), 1)
+        self.assertEqual(data["params"]["avoid_collisions"], True)
+        self.assertEqual(data["notes"], [
+            "decomposition: branch 1 (along 1,0,0): built on its own, its layers would meet the "
+            "plate or what is deposited before them; its material stays in component 0"])
         r = run("slice", brep, *coaxial, "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         data = json.loads(r.stdout)
@@ -699,13 +709,14 @@ class CliSections(unittest.TestCase):
         self.assertEqual(data["stats"]["leaned_layers"], 0)
         self.assertEqual(data["params"]["nozzle_body_diameter"], 100)
         self.assertEqual(data["params"]["nozzle_max_lean"], 0)
+        self.assertEqual(data["params"]["avoid_collisions"], False)
         self.assertEqual(data["sequence"], list(range(len(data["layers"]))))
         text = run("slice", brep, *coaxial)
         self.assertIn("; 0 layers with the nozzle leaned to clear; {} layers where the nozzle "
                       "meets what is deposited".format(len(arm)), text.stdout)
         self.assertIn("#   layer {} (component 1) meets the build plate near ".format(arm[0]),
                       text.stdout)
-        for extra in (["--no-plate-check", *coaxial], ["--nozzle-max-lean", "0"]):
+        for extra in (["--no-plate-check", *coaxial[:-1]], ["--nozzle-max-lean", "0"]):
             r = run("slice", brep, "--json", *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
             self.assertEqual(json.loads(r.stdout)["collisions"], [])
@@ -781,7 +792,8 @@ class CliSections(unittest.TestCase):
                            "ordering the components", "slicing component 0 (1 of 2)",
                            "slicing component 1 (2 of 2)", "planning the bead paths",
                            "finding what each component rests on",
-                           "checking the nozzle against the layers", "ordering the layers"])):
+                           "checking the nozzle against the layers", "ordering the layers",
+                           "slicing"])):
             plain = run(command, brep, "--json")
             r = run(command, brep, "--json", "--progress")
             self.assertEqual(r.returncode, 0, r.stderr)
@@ -1004,7 +1016,8 @@ class CliGcode(unittest.TestCase):
         # program, listed in the summary and in the JSON.
         brep = os.path.join(DATA, "l_block.brep")
         program = os.path.join(self.tmp.name, "wide.ngc")
-        nozzle = ["--nozzle-body-diameter", "150", "--nozzle-cone-angle", "80"]
+        nozzle = ["--nozzle-body-diameter", "150", "--nozzle-cone-angle", "80",
+                  "--allow-collisions"]
         r = run("slice", brep, "--step", "2.5", "--gcode", program, *nozzle)
         self.assertEqual(r.returncode, 0, r.stderr)
         with open(program) as f:

@@ -346,6 +346,37 @@ TEST(Decompose, LBlockArmIsAChildBuiltAlongPlusXFromTheColumnSide) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, AKeptBranchStaysInItsFatherSayingWhyAndIsListed) {
+    const auto part = mas::test::l_block();
+    const auto axis = axis_of(part, 2.5);
+    mas::DecomposeParams p;
+    p.keep_branches = {{1, "as asked"}};
+    const auto d = mas::decompose(part, axis, p);
+    ASSERT_EQ(d.components.size(), 1u);
+    EXPECT_NEAR(d.components[0].volume_mm3, 44000.0, 44000.0 * 1e-9);
+    EXPECT_EQ(d.notes, std::vector<std::string>{
+                           "branch 1 (along 1,0,0): as asked; its material stays in component 0"});
+    EXPECT_EQ(d.kept_branches, std::vector<int>{1});
+    expect_invariants(d, part);
+    // Unasked, nothing is kept.
+    EXPECT_TRUE(mas::decompose(part, axis).kept_branches.empty());
+    // Neither the root nor a branch the axis lacks can be kept.
+    for (const int b : {0, 2, -1}) {
+        p.keep_branches = {{b, "as asked"}};
+        try {
+            mas::decompose(part, axis, p);
+            ADD_FAILURE() << "branch " << b << " kept";
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_EQ(std::string(e.what()),
+                      b == 0 ? "decompose: branch 0 is the axis' root, which has no father to "
+                               "stay in"
+                             : "decompose: there is no branch " + std::to_string(b) +
+                                   " to keep in its father (the axis has 2 branches, 0 its root)");
+        }
+    }
+}
+
 TEST(Decompose, AnArmOverAGussetIsCutAtTheColumnsFaceWithTheWeb) {
     // The column's sections beside the web reach out to its tip, so the arm's march starts near
     // it (x = 43), and the column's nodes beside the arm lie at x > 20. The column's face x = 20

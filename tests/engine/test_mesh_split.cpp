@@ -1,11 +1,14 @@
 // Decomposing a closed mesh at section planes (SlicePart.hpp: split_mesh, decompose_mesh, and
-// slice_mesh_part with them): pieces closed and of the exact volumes the cuts give.
+// slice_mesh_part with them): pieces closed and of the exact volumes the cuts give. And the rounds
+// a mesh and a solid share, which keep in their fathers the branches the nozzle cannot reach.
 #include <gtest/gtest.h>
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Error.hpp"
@@ -204,11 +207,33 @@ TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {
                          "which the root builds it up"),
               std::string::npos)
         << notes;
-    // A branch kept by the caller stays, without a note.
-    mas::MeshDecomposeParams keep{0.5, 100.0, {d.components[1].branch}};
+    // A branch kept by the caller stays, its note saying why.
+    const int beam = d.components[1].branch;
+    mas::MeshDecomposeParams keep{0.5, 100.0, {{beam, "as asked"}}};
     const mas::MeshDecomposition whole = mas::decompose_mesh(gallows, axis, keep);
     EXPECT_EQ(whole.components.size(), 1u);
-    EXPECT_EQ(whole.notes.size(), d.notes.size());
+    ASSERT_EQ(whole.notes.size(), d.notes.size() + 1);
+    EXPECT_NE(std::find(whole.notes.begin(), whole.notes.end(),
+                        "branch " + std::to_string(beam) + " (+X) stays in component 0: as asked"),
+              whole.notes.end())
+        << notes;
+    // Neither the root nor a branch the axis lacks can be kept.
+    keep.keep_branches = {{0, "as asked"}};
+    EXPECT_THROW(
+        {
+            try {
+                mas::decompose_mesh(gallows, axis, keep);
+            } catch (const mas::Error& e) {
+                EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+                EXPECT_STREQ(e.what(),
+                             "decompose_mesh: branch 0 is the axis' root, which has no "
+                             "father to stay in");
+                throw;
+            }
+        },
+        mas::Error);
+    keep.keep_branches = {{int(axis.branches.size()), "as asked"}};
+    EXPECT_THROW(mas::decompose_mesh(gallows, axis, keep), mas::Error);
 }
 
 TEST(SliceMeshPart, TheLStandsOnItsOwnLayersAndAsOneComponentItsArmOverhangs) {
@@ -240,8 +265,57 @@ TEST(SliceMeshPart, APieceTheNozzleCannotReachStaysInItsFather) {
     EXPECT_EQ(r.stats.colliding_layers, 0);
     ASSERT_FALSE(r.notes.empty());
     EXPECT_EQ(r.notes.front(),
-              "decomposition: branch 1 stays in its father's component: built on its own, its "
-              "layers would meet the plate or what is deposited before them");
+              "decomposition: branch 1 (+X) stays in component 0: built on its own, its layers "
+              "would meet the plate or what is deposited before them");
+    // Kept as first split, the arm's layers are listed instead, every one of them.
+    p.avoid_collisions = false;
+    const mas::SlicedPart split = mas::slice_mesh_part(l, axis, p);
+    ASSERT_EQ(split.components.size(), 2u);
+    EXPECT_GT(split.components[1].layer_count, 0);
+    EXPECT_EQ(split.stats.colliding_layers, split.components[1].layer_count);
+    EXPECT_TRUE(split.notes.empty());
+}
+
+TEST(SliceSolidPart, ABranchTheNozzleCannotReachStaysInItsFatherAsForAMesh) {
+    const mas::Shape l = mas::test::l_block();
+    const auto axis = mas::centroidal_axis(mesh_of(l));
+    mas::SlicePartParams p = params();
+    // The default nozzle reaches the arm's layers: the decomposition's split, nothing kept.
+    mas::Decomposition d;
+    const mas::SlicedPart plain = mas::slice_solid_part(l, axis, {}, p, d);
+    ASSERT_EQ(d.components.size(), 2u);
+    EXPECT_TRUE(d.kept_branches.empty());
+    EXPECT_TRUE(plain.notes.empty());
+    EXPECT_EQ(plain.stats.colliding_layers, 0);
+    mas::DecomposeParams dp;
+    dp.min_component_height_mm = p.layers.min_layer_mm;
+    EXPECT_EQ(plain.layers.size(),
+              mas::slice_part(l, axis, mas::decompose(l, axis, dp), p).layers.size());
+    // A coaxial 100 mm nozzle would meet the plate at every arm layer: the arm stays in the
+    // column, which the decomposition names and decompose() keeping it gives again.
+    p.nozzle.body_diameter_mm = 100.0;
+    p.nozzle.max_lean_deg = 0.0;
+    const mas::SlicedPart kept = mas::slice_solid_part(l, axis, {}, p, d);
+    ASSERT_EQ(d.components.size(), 1u);
+    EXPECT_EQ(kept.stats.colliding_layers, 0);
+    EXPECT_EQ(d.kept_branches, std::vector<int>{1});
+    const std::string why =
+        "branch 1 (along 1,0,0): built on its own, its layers would meet the plate or what is "
+        "deposited before them; its material stays in component 0";
+    EXPECT_EQ(kept.notes, std::vector<std::string>{"decomposition: " + why});
+    EXPECT_EQ(d.notes, std::vector<std::string>{why});
+    for (const mas::Layer& layer : kept.layers) EXPECT_EQ(layer.plane.normal, Vector3d::UnitZ());
+    dp.keep_branches = {{1, "asked"}};
+    const mas::SlicedPart again = mas::slice_part(l, axis, mas::decompose(l, axis, dp), p);
+    ASSERT_EQ(again.layers.size(), kept.layers.size());
+    for (std::size_t i = 0; i < kept.layers.size(); ++i)
+        EXPECT_EQ(again.layers[i].plane.origin, kept.layers[i].plane.origin);
+    // Kept as first split, the arm's layers collide, all of them.
+    p.avoid_collisions = false;
+    const mas::SlicedPart split = mas::slice_solid_part(l, axis, {}, p, d);
+    ASSERT_EQ(d.components.size(), 2u);
+    EXPECT_GT(split.components[1].layer_count, 0);
+    EXPECT_EQ(split.stats.colliding_layers, split.components[1].layer_count);
 }
 
 TEST(WriteStl, APieceWrittenReadsBackAndAnUnwritablePathIsNamed) {

@@ -188,6 +188,27 @@ class TestDecomposeApi(DecomposeTest):
         self.assertEqual(len(d), 1)
         self.assertIn("reaches only 50 mm", d.notes[0])
 
+    def test_kept_branches_stay_in_their_fathers(self):
+        axis = mas.centroidal_axis(l_block(), step=2.5)
+        d = mas.decompose(l_block(), axis=axis, keep_branches=[1, 1])
+        self.assertEqual(len(d), 1)
+        self.assertEqual(d.kept_branches, [1])
+        self.assertEqual(d.params["keep_branches"], (1,))
+        self.assertEqual(d.notes, ["branch 1 (along 1,0,0): kept in its father, as asked "
+                                   "(keep_branches); its material stays in component 0"])
+        self.assertEqual(d[0].volume, d.part_volume)
+        plain = mas.decompose(l_block(), axis=axis)
+        self.assertEqual((len(plain), plain.kept_branches, plain.params["keep_branches"]),
+                         (2, [], ()))
+        for bad in ("1", 1, [1.0], [True], None):
+            with self.assertRaisesRegex(TypeError, "keep_branches", msg=repr(bad)):
+                mas.decompose(l_block(), axis=axis, keep_branches=bad)
+        for bad, message in ((0, "branch 0 is the axis' root"), (2, "there is no branch 2")):
+            with self.assertRaises(mas.EngineError) as e:
+                mas.decompose(l_block(), axis=axis, keep_branches=[bad])
+            self.assertEqual(e.exception.code, "invalid_argument")
+            self.assertIn(message, str(e.exception))
+
     def test_a_round_boss_is_cut_at_the_extent_of_the_body_it_leaves(self):
         # A boss (radius 6, along X) on a cylinder (radius 20): no planar face to split at, so the
         # section-plane fallback cuts where the boss' march started, Eq. 4's T (x = 20, measured on

@@ -289,11 +289,16 @@ class TestSliceProgress(SliceTest):
         # Every report names its stage, the last ones too (the end of decomposing, and of all).
         self.assertNotIn("", stages)
         self.assertEqual(reports[-1], (1.0, "slicing"))
-        self.assertIn((0.2, "decomposing"), reports)
-        # The decomposition's reports fill the first fifth, the slicing's the rest.
+        # The first split and slicing take 70 % (five rounds would take the next 20, the part
+        # sliced whole the last 10; the L needs neither); decomposing is its first fifth.
+        ends = [f for f, s in reports if s == "decomposing"]
+        self.assertEqual(len(ends), 1)
+        self.assertAlmostEqual(ends[0], 0.14, places=12)
         split = [f for f, s in reports if s.startswith("splitting")]
-        self.assertLessEqual(max(split), 0.2)
-        self.assertGreaterEqual(min(f for f, s in reports if s.startswith("tessellating")), 0.2)
+        self.assertLessEqual(max(split), ends[0])
+        self.assertGreaterEqual(min(f for f, s in reports if s.startswith("tessellating")),
+                                ends[0])
+        self.assertAlmostEqual(reports[-2][0], 0.7, places=12)
         # Reporting changes nothing in the result.
         self.assertEqual(result.to_dict(), mas.slice(l_block()).to_dict())
 
@@ -481,8 +486,12 @@ class TestSliceSequence(SliceTest):
     def test_a_wide_nozzle_sideways_near_the_plate_is_reported(self):
         # The L's arm is deposited sideways at z 40 to 60: a coaxial 100 mm body reaches 50 mm
         # below the tool axis, under the plate for every arm layer (deposit points below z = 52).
-        result = mas.slice(l_block(), nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
+        # Kept as decomposed (avoid_collisions=False), those layers are reported.
+        result = mas.slice(l_block(), nozzle_body_diameter=100.0, nozzle_max_lean=0.0,
+                           avoid_collisions=False)
         arm = [i for i, layer in enumerate(result.layers) if layer.component == 1]
+        self.assertEqual(len(result.decomposition), 2)
+        self.assertEqual(result.notes, [])
         self.assertEqual([c.layer for c in result.collisions], arm)
         self.assertEqual(result.stats["colliding_layers"], len(arm))
         for c in result.collisions:
@@ -497,6 +506,35 @@ class TestSliceSequence(SliceTest):
         self.assertEqual(mas.slice(l_block(), nozzle_body_diameter=100.0, nozzle_max_lean=0.0,
                                    check_plate=False).collisions, [])
         self.assertEqual(mas.slice(l_block(), nozzle_max_lean=0.0).collisions, [])
+
+    def test_a_branch_whose_layers_the_nozzle_cannot_reach_stays_in_its_father(self):
+        # The same nozzle, and by default: the arm, built on its own, would have the nozzle meet
+        # the plate at each of its layers, so it stays in the column, which builds it up along
+        # +Z (its underside then overhangs: the price of a nozzle that fits).
+        result = mas.slice(l_block(), nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
+        self.assertEqual(result.stats["colliding_layers"], 0)
+        self.assertEqual(len(result.decomposition), 1)
+        self.assertEqual(result.decomposition[0].volume, result.stats["part_volume_mm3"])
+        self.assertEqual({tuple(layer.normal) for layer in result.layers}, {(0.0, 0.0, 1.0)})
+        arm = result.axis.branches[1]
+        self.assertEqual(arm.direction, FreeCAD.Vector(1, 0, 0))
+        self.assertEqual(result.notes, [
+            "decomposition: branch 1 (along 1,0,0): built on its own, its layers would meet the "
+            "plate or what is deposited before them; its material stays in component 0"])
+        self.assertEqual(result.decomposition.notes, [result.notes[0][len("decomposition: "):]])
+        self.assertEqual(result.decomposition.kept_branches, [1])
+        self.assertEqual(result.decomposition.params["keep_branches"], (1,))
+        # decompose() keeping that branch gives the same decomposition.
+        again = mas.decompose(l_block(), axis=result.axis, min_component_height=0.5,
+                              keep_branches=result.decomposition.kept_branches)
+        self.assertEqual([c.to_dict() for c in again], [c.to_dict() for c in result.decomposition])
+        self.assertEqual(again.params, result.decomposition.params)
+        self.assertEqual(again.notes, ["branch 1 (along 1,0,0): kept in its father, as asked "
+                                       "(keep_branches); its material stays in component 0"])
+        # Sliced again with it, the layers are the same.
+        self.assertEqual(mas.slice(l_block(), components=again, nozzle_body_diameter=100.0,
+                                   nozzle_max_lean=0.0).to_dict()["layers"],
+                         result.to_dict()["layers"])
 
     def test_the_nozzle_leans_clear_of_the_plate(self):
         # Allowed to lean (30 degrees by default), the 100 mm body clears the plate at every arm
@@ -535,7 +573,8 @@ class TestSliceSequence(SliceTest):
         self.assertNotIn(-90.0, a_words)
         # Allowed 7 degrees (tried: 5 and 7), the arm collides as coaxial.
         self.assertEqual([c.layer for c in mas.slice(l_block(), nozzle_body_diameter=100.0,
-                                                     nozzle_max_lean=7.0).collisions], arm)
+                                                     nozzle_max_lean=7.0,
+                                                     avoid_collisions=False).collisions], arm)
 
     def test_the_notes_say_what_hangs_and_stays_in_its_father(self):
         # A collar at an arm's end: its share under the arm would be built straight down, past
@@ -549,9 +588,19 @@ class TestSliceSequence(SliceTest):
                       "stays in component 1", result.notes[0])
         self.assertEqual(["decomposition: " + n for n in result.decomposition.notes], result.notes)
         self.assertEqual(len(result.decomposition), 5)
-        # A machine reaching 180 degrees builds it: six components, nothing to say.
-        unbounded = mas.slice(part, step=2.0, max_tilt=180.0)
+        # A machine reaching 180 degrees, the plate no obstacle, builds it: six components,
+        # nothing to say.
+        unbounded = mas.slice(part, step=2.0, max_tilt=180.0, check_plate=False)
         self.assertEqual((len(unbounded.decomposition), unbounded.notes), (6, []))
+        # With the plate there, the nozzle would come up through it under the collar: it stays.
+        plate = mas.slice(part, step=2.0, max_tilt=180.0)
+        self.assertEqual((len(plate.decomposition), plate.stats["colliding_layers"]), (5, 0))
+        self.assertEqual(len(plate.notes), 1, plate.notes)
+        self.assertIn("(along 0,0,-1): built on its own, its layers would meet the plate or what "
+                      "is deposited before them; its material stays in component 1",
+                      plate.notes[0])
+        self.assertEqual(mas.slice(part, step=2.0, max_tilt=180.0,
+                                   avoid_collisions=False).stats["colliding_layers"], 2)
         # With the decomposition given, its notes stay on it.
         again = mas.slice(part, components=result.decomposition)
         self.assertEqual(again.notes, [])

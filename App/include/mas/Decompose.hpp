@@ -160,6 +160,17 @@
 
 namespace mas {
 
+// A branch of the axis left in its father's component whatever it qualifies for, and why (the
+// decomposition's note on it ends with this).
+struct KeptBranch {
+    int branch = -1;  // a branch of the axis other than its root (0)
+    std::string why;
+};
+
+// Throws InvalidArgument ("<caller>: ...") when a kept branch is the axis' root or one it lacks.
+void check_kept_branches(const std::vector<KeptBranch>& kept, const CentroidalAxis& axis,
+                         const std::string& caller);
+
 struct DecomposeParams {
     // Criterion (1): a splitting face's normal is within this angle of +-D, degrees.
     double face_angle_deg = 10.0;
@@ -182,6 +193,10 @@ struct DecomposeParams {
     // normal tilts further is no splitting face (the section plane, normal to the branch's
     // direction, is tried instead).
     double max_tilt_deg = 100.0;
+    // Branches not cut off (their material stays in their fathers' components, a note saying
+    // why; their sub-branches are cut from there as usual): what slicing asks for when a
+    // branch's own component would leave the nozzle no way to some of its layers (SlicePart.hpp).
+    std::vector<KeptBranch> keep_branches;
 };
 
 struct Component {
@@ -214,13 +229,16 @@ struct Decomposition {
     // could not perform, no piece holding the branch, a piece too thin or holding what its father
     // stands on, a child that would be built downward), saying why and where its material stayed.
     std::vector<std::string> notes;
+    // The branches DecomposeParams::keep_branches asked to keep that were kept so (the others
+    // got no cut for other reasons, or none was asked of them), in increasing order.
+    std::vector<int> kept_branches;
 };
 
 // Splits `solid` along `axis` (computed for this solid). Throws mas::Error: NotASolid /
-// MultipleSolids / EmptyInput as Shape::single_solid, InvalidArgument for bad parameters or an
-// axis computed for a different part, GeometryFailure when OCCT fails on the input itself,
-// whatever `progress` throws (Progress.hpp: reported branch by branch, checked before each split).
-// The input shape is never modified.
+// MultipleSolids / EmptyInput as Shape::single_solid, InvalidArgument for bad parameters, a kept
+// branch the axis lacks (or its root, branch 0), or an axis computed for a different part,
+// GeometryFailure when OCCT fails on the input itself, whatever `progress` throws (Progress.hpp:
+// reported branch by branch, checked before each split). The input shape is never modified.
 Decomposition decompose(const Shape& solid, const CentroidalAxis& axis,
                         const DecomposeParams& params = {}, const Progress& progress = {});
 

@@ -32,6 +32,10 @@ struct SlicePartParams {
     // slice_mesh_part only: the mesh is decomposed (decompose_mesh); false slices it as one
     // component.
     bool split_mesh = true;
+    // slice_mesh_part and slice_solid_part: where the nozzle cannot reach some layers of a
+    // component, its branch is kept in its father (slice_clear_of_collisions); false slices the
+    // first decomposition as it is, those layers listed in the sequence's collisions.
+    bool avoid_collisions = true;
 };
 
 // One sub-component as a closed mesh, the input of slice_components.
@@ -143,7 +147,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
 struct MeshDecomposeParams {
     double min_component_height_mm = 0.0;
     double max_tilt_deg = 100.0;
-    std::vector<int> keep_branches;  // branches not cut off, whatever they are (no note)
+    std::vector<KeptBranch> keep_branches;  // branches not cut off, whatever they are
 };
 struct MeshDecomposition {
     std::vector<ComponentMesh> components;  // tree order: a father before its children
@@ -165,15 +169,44 @@ bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vecto
 
 // A closed mesh sliced on its build_plate(), decomposed by decompose_mesh() with min_layer_mm as
 // the least component height and the layers' max_tilt_deg (unless params.split_mesh is false: one
-// component following the axis' first branch). Where some layers of the components would meet
-// what is deposited before them (no order or lean clears them, Nozzle.hpp), the branches of those
-// components are left in their fathers and the mesh is decomposed and sliced again, up to five
-// times in all; if layers are still in the way, the mesh as one component is sliced too and kept
-// when it leaves fewer. The decomposition's notes, saying all this, come first in the result's,
-// each "decomposition: ...". Throws InvalidArgument for fill_holes_up_to_mm > 0: holes are read on
-// a BREP.
+// component following the axis' first branch), in the rounds of slice_clear_of_collisions (below)
+// that keep the branches of components some of whose layers the nozzle cannot reach in their
+// fathers. Throws InvalidArgument for fill_holes_up_to_mm > 0: holes are read on a BREP.
 SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
                            const SlicePartParams& params, const Progress& progress = {});
+
+// A part decomposed and sliced, for slice_clear_of_collisions: the slicing, the axis branch each
+// of its components came from (the root's first) and the decomposition's notes.
+struct SplitSliced {
+    SlicedPart sliced;
+    std::vector<int> branches;
+    std::vector<std::string> notes;
+};
+
+// The rounds slice_mesh_part and slice_solid_part share. `split` decomposes the part, keeping the
+// branches it is given in their fathers, and slices it (given the first 70 % of `progress`).
+// Unless `avoid_collisions` is false: where some layers would meet what is deposited before them
+// (no order or lean clears them, Nozzle.hpp), the branches of their components (not the root's)
+// are kept too, each saying so, and the part is split and sliced again, up to five times in all
+// (the next 20 %); with layers still in the way, `whole` slices it as one component (the last
+// 10 %), kept when fewer of its layers are (`took_whole` says whether it was, and a note). The
+// decomposition's notes come first in the result's, each "decomposition: ...".
+SlicedPart slice_clear_of_collisions(
+    const std::function<SplitSliced(const std::vector<KeptBranch>& keep, const Progress& progress)>&
+        split,
+    const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
+    const Progress& progress, bool* took_whole = nullptr);
+
+// A solid decomposed (decompose(): `decompose_params`, with the layers' min_layer_mm as the least
+// component height and their max_tilt_deg; the first fifth of each round) and sliced
+// (slice_part), in the rounds of slice_clear_of_collisions: what the command line's and the Python
+// API's slice do with a solid. Sliced as one component, it is decomposed with every branch kept.
+// `decomposition` receives the decomposition sliced (decompose() with its kept_branches gives it
+// again); its notes are the result's "decomposition: ..." ones. Throws as decompose() and
+// slice_part().
+SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
+                            const DecomposeParams& decompose_params, const SlicePartParams& params,
+                            Decomposition& decomposition, const Progress& progress = {});
 
 // The decomposition's components, their holes filled when params.fill_holes_up_to_mm asks it,
 // tessellated with params.tessellation (the first tenth of `progress`), then slice_components.

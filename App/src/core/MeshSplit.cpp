@@ -461,8 +461,23 @@ double highest_along(const TriangleMesh& mesh, const Vec3& n) {
 
 }  // namespace
 
+void check_kept_branches(const std::vector<KeptBranch>& kept, const CentroidalAxis& axis,
+                         const std::string& caller) {
+    for (const KeptBranch& k : kept) {
+        if (k.branch == 0)
+            throw Error(ErrorCode::InvalidArgument,
+                        caller + ": branch 0 is the axis' root, which has no father to stay in");
+        if (k.branch < 0 || k.branch >= int(axis.branches.size()))
+            throw Error(ErrorCode::InvalidArgument,
+                        caller + ": there is no branch " + std::to_string(k.branch) +
+                            " to keep in its father (the axis has " +
+                            std::to_string(axis.branches.size()) + " branches, 0 its root)");
+    }
+}
+
 MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis& axis,
                                  const MeshDecomposeParams& params, const Progress& progress) {
+    check_kept_branches(params.keep_branches, axis, "decompose_mesh");
     MeshDecomposition out;
     ComponentMesh root;
     root.mesh = mesh;
@@ -497,8 +512,8 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
                      turned ? std::min(step, LayerParams{}.max_layer_mm) : step);
         const AxisNode& first = axis.nodes[branch.nodes.front()];
         const Vec3 inside = first.material_point();
-        const bool kept = std::find(params.keep_branches.begin(), params.keep_branches.end(),
-                                    int(b)) != params.keep_branches.end();
+        const auto kept = std::find_if(params.keep_branches.begin(), params.keep_branches.end(),
+                                       [&](const KeptBranch& k) { return k.branch == int(b); });
         // The component holding its first section: its father's, else the one it went to.
         int father = -1;
         for (int pass = 0; pass < 2 && father < 0; ++pass)
@@ -518,7 +533,10 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
             continue;
         }
         component_of[b] = father;
-        if (kept) continue;
+        if (kept != params.keep_branches.end()) {
+            note(kept->why);
+            continue;
+        }
         if (dir.z() < cos_tilt - 1e-12) {
             note("built along it, its layers would tilt past max_tilt from +Z");
             continue;

@@ -37,6 +37,55 @@ Plane build_plate(const TriangleMesh& mesh) {
                       Eigen::Vector3d::UnitZ());
 }
 
+SlicedPart slice_clear_of_collisions(
+    const std::function<SplitSliced(const std::vector<KeptBranch>& keep, const Progress& progress)>&
+        split,
+    const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
+    const Progress& progress, bool* took_whole) {
+    const int rounds = avoid_collisions ? 5 : 1;
+    std::vector<KeptBranch> keep;
+    SplitSliced parts;
+    for (int round = 0;; ++round) {
+        // The first round is most of the work (the rest, seldom needed, share a fifth; the part
+        // sliced whole the last tenth).
+        const double lo = round == 0 ? 0.0 : 0.7 + 0.2 * (round - 1) / (rounds - 1);
+        const double hi = round == 0 ? 0.7 : 0.7 + 0.2 * round / (rounds - 1);
+        parts = split(keep, progress.span(lo, hi));
+        if (parts.sliced.stats.colliding_layers == 0 || parts.branches.size() == 1 ||
+            round + 1 == rounds)
+            break;
+        std::set<int> branches;
+        for (const NozzleCollision& c : parts.sliced.sequence.collisions) {
+            const int component = parts.sliced.layers[std::size_t(c.layer)].component;
+            if (component > 0) branches.insert(parts.branches[std::size_t(component)]);
+        }
+        if (branches.empty()) break;
+        for (int b : branches)
+            keep.push_back({b,
+                            "built on its own, its layers would meet the plate or what is "
+                            "deposited before them"});
+    }
+    SlicedPart sliced = std::move(parts.sliced);
+    if (took_whole) *took_whole = false;
+    if (avoid_collisions && parts.branches.size() > 1 && sliced.stats.colliding_layers > 0) {
+        SlicedPart one = whole(progress.span(0.9, 1.0));
+        if (one.stats.colliding_layers < sliced.stats.colliding_layers) {
+            std::ostringstream note;
+            note << "sliced as one component: built in " << parts.branches.size() << " components, "
+                 << sliced.stats.colliding_layers
+                 << " layer(s) would meet what is deposited before them, "
+                 << one.stats.colliding_layers << " so";
+            parts.notes.push_back(note.str());
+            sliced = std::move(one);
+            if (took_whole) *took_whole = true;
+        }
+    }
+    for (std::string& note : parts.notes) note = "decomposition: " + note;
+    sliced.notes.insert(sliced.notes.begin(), parts.notes.begin(), parts.notes.end());
+    progress.span(0.0, 1.0, "slicing")(1.0);
+    return sliced;
+}
+
 SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
                            const SlicePartParams& params, const Progress& progress) {
     if (params.fill_holes_up_to_mm != 0.0)
@@ -52,58 +101,20 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
     root.mesh = mesh;
     root.base = build_plate(mesh);
     if (!params.split_mesh) return slice_components({root}, axis, params, progress);
-    MeshDecomposeParams split;
-    split.min_component_height_mm = params.layers.min_layer_mm;
-    split.max_tilt_deg = params.layers.max_tilt_deg;
-    // Decomposed, then again with the branches of components some of whose layers the nozzle
-    // cannot reach (they meet what is deposited before them) left in their fathers, at most
-    // kMeshRounds times; the whole mesh as one component if that leaves fewer such layers.
-    constexpr int kMeshRounds = 5;
-    MeshDecomposition parts;
-    SlicedPart sliced;
-    std::vector<std::string> kept_notes;
-    for (int round = 0;; ++round) {
-        // The first round is most of the work (the rest, seldom needed, share a fifth; the mesh
-        // sliced whole the last tenth).
-        const double lo = round == 0 ? 0.0 : 0.7 + 0.2 * (round - 1) / (kMeshRounds - 1);
-        const double hi = round == 0 ? 0.7 : 0.7 + 0.2 * round / (kMeshRounds - 1);
-        parts = decompose_mesh(mesh, axis, split, progress.span(lo, lo + 0.05 * (hi - lo)));
-        sliced = slice_components(parts.components, axis, params,
-                                  progress.span(lo + 0.05 * (hi - lo), hi));
-        if (sliced.stats.colliding_layers == 0 || parts.components.size() == 1 ||
-            round + 1 == kMeshRounds)
-            break;
-        std::set<int> branches;
-        for (const NozzleCollision& c : sliced.sequence.collisions) {
-            const int component = sliced.layers[std::size_t(c.layer)].component;
-            if (component > 0) branches.insert(parts.components[std::size_t(component)].branch);
-        }
-        if (branches.empty()) break;
-        for (int b : branches) {
-            split.keep_branches.push_back(b);
-            std::ostringstream note;
-            note << "branch " << b << " stays in its father's component: built on its own, "
-                 << "its layers would meet the plate or what is deposited before them";
-            kept_notes.push_back(note.str());
-        }
-    }
-    parts.notes.insert(parts.notes.end(), kept_notes.begin(), kept_notes.end());
-    if (parts.components.size() > 1 && sliced.stats.colliding_layers > 0) {
-        SlicedPart whole = slice_components({root}, axis, params, progress.span(0.9, 1.0));
-        if (whole.stats.colliding_layers < sliced.stats.colliding_layers) {
-            std::ostringstream note;
-            note << "sliced as one component: built in " << parts.components.size()
-                 << " components, " << sliced.stats.colliding_layers
-                 << " layer(s) would meet what is deposited before them, "
-                 << whole.stats.colliding_layers << " so";
-            parts.notes.push_back(note.str());
-            sliced = std::move(whole);
-        }
-    }
-    for (std::string& note : parts.notes) note = "decomposition: " + note;
-    sliced.notes.insert(sliced.notes.begin(), parts.notes.begin(), parts.notes.end());
-    progress(1.0);
-    return sliced;
+    const auto split = [&](const std::vector<KeptBranch>& keep, const Progress& round) {
+        MeshDecomposeParams split;
+        split.min_component_height_mm = params.layers.min_layer_mm;
+        split.max_tilt_deg = params.layers.max_tilt_deg;
+        split.keep_branches = keep;
+        MeshDecomposition parts = decompose_mesh(mesh, axis, split, round.span(0.0, 0.05));
+        SplitSliced out;
+        out.sliced = slice_components(parts.components, axis, params, round.span(0.05, 1.0));
+        for (const ComponentMesh& c : parts.components) out.branches.push_back(c.branch);
+        out.notes = std::move(parts.notes);
+        return out;
+    };
+    const auto whole = [&](const Progress& p) { return slice_components({root}, axis, params, p); };
+    return slice_clear_of_collisions(split, whole, params.avoid_collisions, progress);
 }
 
 namespace {

@@ -35,6 +35,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -886,6 +887,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     const Progress progress = caller.span(0.0, 1.0, "decomposing");
     check_params(params);
     const Shape checked = input.single_solid("decompose");
+    check_kept_branches(params.keep_branches, axis, "decompose");
     const KeptQueries keep;
     // The part, checked once for every pass. Work on a copy: OCCT's algorithms must never touch
     // the caller's shape (and each split works on a copy of its father: a pass leaves it as it
@@ -915,6 +917,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     const double plane_tol = 1e-6 * (1.0 + box.diagonal().norm());
     // One pass over the branches. With `join_orphans`, a split's pieces cut off on the father's
     // side but joined only to a child go with that child (split_by_plane), counted in `joins`.
+    std::set<int> kept_asked;  // the branches keep_branches kept, this pass
     const auto pass = [&](bool join_orphans, std::vector<Work>& work,
                           std::vector<std::string>& notes, int& joins) {
         try {
@@ -994,6 +997,13 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 return tilt_from_plate_deg(axis.branches[b].direction) > params.max_tilt_deg + 1e-9;
             };
 
+            // Asked to stay in its father (DecomposeParams::keep_branches): why, else null.
+            const auto asked_to_keep = [&](std::size_t b) -> const KeptBranch* {
+                for (const KeptBranch& k : params.keep_branches)
+                    if (k.branch == int(b)) return &k;
+                return nullptr;
+            };
+
             const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
                 const Vector3d& d = axis.branches[b].direction;
                 std::ostringstream line;
@@ -1049,6 +1059,11 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                     continue;
                 }
                 holder[b] = father;
+                if (const KeptBranch* k = asked_to_keep(b)) {
+                    kept_asked.insert(int(b));
+                    note(b, k->why, father);
+                    continue;
+                }
                 if (beyond_reach(b)) {
                     std::ostringstream why;
                     why << "it would be built " << tilt_from_plate_deg(axis.branches[b].direction)
@@ -1080,7 +1095,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
                 for (std::size_t c = b + 1; c < nb; ++c) {
                     // Each sibling classifies a point in the father and scans its faces.
                     at.check();
-                    if (holder[c] >= 0 || !splits(c) || rejoins(c) || beyond_reach(c)) continue;
+                    if (holder[c] >= 0 || !splits(c) || rejoins(c) || asked_to_keep(c) ||
+                        beyond_reach(c))
+                        continue;
                     const int cp = axis.branches[c].parent;
                     if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch
                     if (std::find(group.begin(), group.end(), std::size_t(cp)) != group.end())
@@ -1232,6 +1249,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     if (!in_front) {
         work.clear();
         notes.clear();
+        kept_asked.clear();
         joins = 0;
         pass(false, work, notes, joins);
     }
@@ -1244,6 +1262,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             out.components.push_back(w.c);
         }
         out.notes = std::move(notes);
+        out.kept_branches.assign(kept_asked.begin(), kept_asked.end());
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
     }

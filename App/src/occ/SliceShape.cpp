@@ -105,4 +105,45 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
     return out;
 }
 
+SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
+                            const DecomposeParams& decompose_params, const SlicePartParams& params,
+                            Decomposition& decomposition, const Progress& progress) {
+    const Shape part = solid.single_solid("slice");
+    DecomposeParams dp = decompose_params;  // no component thinner than a layer, none past reach
+    dp.min_component_height_mm = params.layers.min_layer_mm;
+    dp.max_tilt_deg = params.layers.max_tilt_deg;
+    const auto run = [&](const std::vector<KeptBranch>& keep, const Progress& round,
+                         Decomposition& into) {
+        DecomposeParams p = dp;
+        p.keep_branches.insert(p.keep_branches.end(), keep.begin(), keep.end());
+        into = decompose(part, axis, p, round.span(0.0, 0.2));
+        return slice_part(part, axis, into, params, round.span(0.2, 1.0));
+    };
+    Decomposition split_one, whole_one;
+    const auto split = [&](const std::vector<KeptBranch>& keep, const Progress& round) {
+        SplitSliced out;
+        out.sliced = run(keep, round, split_one);
+        for (const Component& c : split_one.components) out.branches.push_back(c.branch);
+        out.notes = split_one.notes;
+        return out;
+    };
+    const auto whole = [&](const Progress& p) {
+        std::vector<KeptBranch> all;
+        for (std::size_t b = 1; b < axis.branches.size(); ++b)
+            all.push_back({int(b), "the part is sliced as one component"});
+        return run(all, p, whole_one);
+    };
+    bool took_whole = false;
+    SlicedPart out =
+        slice_clear_of_collisions(split, whole, params.avoid_collisions, progress, &took_whole);
+    decomposition = took_whole ? std::move(whole_one) : std::move(split_one);
+    // The notes said with the result's (the split's, and why the part is sliced whole).
+    decomposition.notes.clear();
+    const std::string prefix = "decomposition: ";
+    for (const std::string& note : out.notes)
+        if (note.compare(0, prefix.size(), prefix) == 0)
+            decomposition.notes.push_back(note.substr(prefix.size()));
+    return out;
+}
+
 }  // namespace mas

@@ -50,15 +50,40 @@ def _max_tilt(value):
     return tilt
 
 
-def _params(face_angle_deg=10.0, concave_angle_deg=1.0, projection_tolerance_mm=0.01,
-            section_plane_fallback=True, min_component_height_mm=0.0, max_tilt_deg=100.0,
-            keep_branches=()):
-    """A Decomposition's ``params``: decompose()'s, its defaults unless given."""
+def _checked_params(face_angle=10.0, concave_angle=1.0, projection_tolerance=0.01,
+                    section_plane_fallback=True, min_component_height=0.0, max_tilt=100.0,
+                    keep_branches=()):
+    """decompose()'s decomposition parameters, checked (TypeError / ValueError naming the bad one),
+    as a Decomposition's ``params``."""
+    face_angle_deg = _angle(face_angle, "face_angle", 90.0)
+    concave_angle_deg = _angle(concave_angle, "concave_angle", 180.0)
+    tolerance_mm = _number(projection_tolerance, "projection_tolerance", "millimetres")
+    if not (0.0 <= tolerance_mm < float("inf")):
+        raise ValueError("projection_tolerance must be a finite, non-negative number of "
+                         "millimetres, got {}".format(tolerance_mm))
+    min_height_mm = _number(min_component_height, "min_component_height", "millimetres")
+    if not (0.0 <= min_height_mm < float("inf")):
+        raise ValueError("min_component_height must be a finite, non-negative number of "
+                         "millimetres, got {}".format(min_height_mm))
+    max_tilt_deg = _max_tilt(max_tilt)
+    keep = _branch_list(keep_branches)
+    if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
+        raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
+            section_plane_fallback))
     return {"face_angle_deg": face_angle_deg, "concave_angle_deg": concave_angle_deg,
-            "projection_tolerance_mm": projection_tolerance_mm,
-            "section_plane_fallback": section_plane_fallback,
-            "min_component_height_mm": min_component_height_mm, "max_tilt_deg": max_tilt_deg,
-            "keep_branches": tuple(keep_branches)}
+            "projection_tolerance_mm": tolerance_mm,
+            "section_plane_fallback": bool(section_plane_fallback),
+            "min_component_height_mm": min_height_mm, "max_tilt_deg": max_tilt_deg,
+            "keep_branches": keep}
+
+
+def _engine_args(params):
+    """A Decomposition's ``params`` as the engine's decompose() takes them."""
+    return {"face_angle": params["face_angle_deg"], "concave_angle": params["concave_angle_deg"],
+            "projection_tolerance": params["projection_tolerance_mm"],
+            "section_plane_fallback": params["section_plane_fallback"],
+            "min_component_height": params["min_component_height_mm"],
+            "max_tilt": params["max_tilt_deg"], "keep_branches": list(params["keep_branches"])}
 
 
 def _branch_list(value):
@@ -277,22 +302,9 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     invalid_argument (an axis of another part, a malformed axis, a kept branch the axis lacks or
     its root), geometry_failure. Nothing the caller passed is modified.
     """
-    face_angle_deg = _angle(face_angle, "face_angle", 90.0)
-    concave_angle_deg = _angle(concave_angle, "concave_angle", 180.0)
-    tolerance_mm = _number(projection_tolerance, "projection_tolerance", "millimetres")
-    if not (0.0 <= tolerance_mm < float("inf")):
-        raise ValueError("projection_tolerance must be a finite, non-negative number of "
-                         "millimetres, got {}".format(tolerance_mm))
-    min_height_mm = _number(min_component_height, "min_component_height", "millimetres")
-    if not (0.0 <= min_height_mm < float("inf")):
-        raise ValueError("min_component_height must be a finite, non-negative number of "
-                         "millimetres, got {}".format(min_height_mm))
-    max_tilt_deg = _max_tilt(max_tilt)
-    keep = _branch_list(keep_branches)
+    params = _checked_params(face_angle, concave_angle, projection_tolerance,
+                             section_plane_fallback, min_component_height, max_tilt, keep_branches)
     _progress.check(progress)
-    if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
-        raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
-            section_plane_fallback))
     axis_params = {"step": step, "distance_threshold": distance_threshold, "eps": eps,
                    "break_angle": break_angle, "base_z": base_z, "deflection": deflection}
     if axis is not None:
@@ -312,11 +324,5 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     solid = part.single_solid(what)
     if axis is None:
         axis = centroidal_axis(solid, **axis_params)
-    params = _params(face_angle_deg, concave_angle_deg, tolerance_mm, bool(section_plane_fallback),
-                     min_height_mm, max_tilt_deg, keep)
-    data = eng.decompose(solid, axis._engine_dict(), face_angle=face_angle_deg,
-                         concave_angle=concave_angle_deg, projection_tolerance=tolerance_mm,
-                         section_plane_fallback=bool(section_plane_fallback),
-                         min_component_height=min_height_mm, max_tilt=max_tilt_deg,
-                         keep_branches=list(keep), progress=progress)
+    data = eng.decompose(solid, axis._engine_dict(), progress=progress, **_engine_args(params))
     return Decomposition(data, axis, params)

@@ -21,8 +21,7 @@ import numbers
 from . import _as_list, _as_vector, _model, _require_engine
 from . import progress as _progress
 from .axis import CentroidalAxis, _number, centroidal_axis
-from .decompose import Decomposition, _max_tilt
-from .decompose import _params as _decompose_params
+from .decompose import Decomposition, _checked_params, _engine_args, _max_tilt
 
 __all__ = ["Layer", "ToolPath", "FilledHole", "SliceResult", "slice", "SLICE_DEFAULTS"]
 
@@ -399,6 +398,18 @@ def _slice_params(values):
     return p
 
 
+def _slice_decomposing(solid, axis, decomposition_params, p, progress):
+    """slice() of an engine solid it decomposes: decomposed with ``decomposition_params`` (a
+    Decomposition's ``params``, checked), sliced with ``p`` (checked), decomposed again keeping in
+    their fathers the branches whose layers the nozzle cannot reach (unless p["avoid_collisions"]
+    is false). The result's decomposition has the params that give it again."""
+    data = _require_engine().slice_solid_part(solid, axis._engine_dict(),
+                                               _engine_args(decomposition_params), p, progress)
+    d = data.pop("decomposition")
+    params = dict(decomposition_params, keep_branches=tuple(d["kept_branches"]))
+    return SliceResult(data, p, axis, Decomposition(d, axis, params), "solid")
+
+
 def _check_mesh_params(caller, what, deflection, fill_holes):
     """ValueError, from `caller`, when a mesh (`what`) is given a deflection (true when one is set)
     or holes to fill: it is not tessellated, and has no BREP holes."""
@@ -558,12 +569,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         # Decomposed as decompose() does, with no component thinner than a layer nor built past
         # the reach (the slicer could not lay one on it), and again where layers collide; the
         # notes say why a branch got no component of its own, as the CLI does.
-        data = eng.slice_solid_part(solid, axis._engine_dict(), p, progress)
-        d = data.pop("decomposition")
-        components = Decomposition(d, axis, _decompose_params(
-            min_component_height_mm=p["min_layer"], max_tilt_deg=p["max_tilt"],
-            keep_branches=d["kept_branches"]))
-        return SliceResult(data, p, axis, components, kind)
+        return _slice_decomposing(solid, axis, _checked_params(
+            min_component_height=p["min_layer"], max_tilt=p["max_tilt"]), p, progress)
     engine_components = [{"solid": c._solid, "parent": c.parent,
                           "build_direction": tuple(c._build_direction),
                           "base_origin": tuple(c._base_origin), "branch": c.branch}

@@ -871,8 +871,11 @@ int run_slice(const std::vector<std::string>& args) {
         const mas::Shape solid = part.model.shape.single_solid(a.file);
         // Why a branch got no sub-component of its own (material hanging from above stays in
         // its father, overhanging) comes first in the notes, before the holes'.
+        mas::DecomposeParams dp;  // no component thinner than a layer, none past the reach
+        dp.min_component_height_mm = sp.layers.min_layer_mm;
+        dp.max_tilt_deg = sp.layers.max_tilt_deg;
         mas::Decomposition d;
-        r = mas::slice_solid_part(solid, axis, mas::DecomposeParams(), sp, d, progress);
+        r = mas::slice_solid_part(solid, axis, dp, sp, d, progress);
     } else {
         r = mas::slice_mesh_part(part.mesh, axis, sp, progress);
     }

@@ -986,6 +986,38 @@ std::vector<mas::KeptBranch> kept_branches_from_py(const bp::object& value) {
     return kept;
 }
 
+// decompose()'s parameters from a dict of its argument names (face_angle, concave_angle,
+// projection_tolerance, section_plane_fallback, min_component_height, max_tilt, keep_branches);
+// missing ones take the engine's defaults, unknown names are errors.
+mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
+    mas::DecomposeParams p;
+    const bp::list keys = d.keys();
+    for (bp::ssize_t i = 0; i < bp::len(keys); ++i) {
+        const bp::extract<std::string> name(keys[i]);
+        if (!name.check()) invalid_argument("decomposition parameter names must be strings");
+        const std::string key = name();
+        const bp::object value = d[keys[i]];
+        const auto number = [&] { return finite_number(bp::extract<double>(value)(), key); };
+        if (key == "face_angle")
+            p.face_angle_deg = number();
+        else if (key == "concave_angle")
+            p.concave_angle_deg = number();
+        else if (key == "projection_tolerance")
+            p.projection_tolerance_mm = number();
+        else if (key == "section_plane_fallback")
+            p.section_plane_fallback = bp::extract<bool>(value)();
+        else if (key == "min_component_height")
+            p.min_component_height_mm = number();
+        else if (key == "max_tilt")
+            p.max_tilt_deg = number();
+        else if (key == "keep_branches")
+            p.keep_branches = kept_branches_from_py(value);
+        else
+            invalid_argument("unknown decomposition parameter '" + key + "'");
+    }
+    return p;
+}
+
 bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
                    double concave_angle, double projection_tolerance, bool section_plane_fallback,
                    double min_component_height, double max_tilt, const bp::object& keep_branches,
@@ -1337,14 +1369,16 @@ bp::dict slice_part(const mas::Shape& shape, const bp::object& axis_py,
 }
 
 bp::dict slice_solid_part(const mas::Shape& shape, const bp::object& axis_py,
-                          const bp::dict& params_py, const bp::object& progress) {
+                          const bp::dict& decompose_py, const bp::dict& params_py,
+                          const bp::object& progress) {
     const mas::SlicePartParams params = slice_params_from_py(params_py);
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
+    const mas::DecomposeParams dp = decompose_params_from_py(decompose_py);
     mas::SlicedPart r;
     mas::Decomposition d;
     double part_volume = 0.0;
     run_reporting(progress, [&](const mas::Progress& p) {
-        r = mas::slice_solid_part(shape, axis, mas::DecomposeParams(), params, d, p);
+        r = mas::slice_solid_part(shape, axis, dp, params, d, p);
         part_volume = shape.info().volume_mm3;
     });
     bp::dict out = sliced_to_py(r);
@@ -1399,10 +1433,13 @@ void bind_slice() {
                 .c_str());
     bp::def(
         "slice_solid_part", &slice_solid_part,
-        (bp::arg("shape"), bp::arg("axis"), bp::arg("params"), bp::arg("progress") = bp::object()),
-        (std::string("Decomposes a solid along its centroidal axis `axis` (decompose()'s "
-                     "defaults, min_component_height at min_layer, max_tilt the layers') and "
-                     "slices it; where some layers would meet what is deposited before them, "
+        (bp::arg("shape"), bp::arg("axis"), bp::arg("decompose_params"), bp::arg("params"),
+         bp::arg("progress") = bp::object()),
+        (std::string("Decomposes a solid along its centroidal axis `axis` (with "
+                     "`decompose_params`, a dict of decompose()'s keyword arguments: face_angle, "
+                     "concave_angle, projection_tolerance, section_plane_fallback, "
+                     "min_component_height, max_tilt, keep_branches) and slices it; where some "
+                     "layers would meet what is deposited before them, "
                      "their components' branches are kept in their fathers and it is done "
                      "again (unless avoid_collisions is false; SlicePart.hpp). The result "
                      "also holds `decomposition`, the one sliced, as decompose() returns "

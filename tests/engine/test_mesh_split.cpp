@@ -280,22 +280,22 @@ TEST(SliceSolidPart, ABranchTheNozzleCannotReachStaysInItsFatherAsForAMesh) {
     const mas::Shape l = mas::test::l_block();
     const auto axis = mas::centroidal_axis(mesh_of(l));
     mas::SlicePartParams p = params();
+    mas::DecomposeParams dp;
+    dp.min_component_height_mm = p.layers.min_layer_mm;
     // The default nozzle reaches the arm's layers: the decomposition's split, nothing kept.
     mas::Decomposition d;
-    const mas::SlicedPart plain = mas::slice_solid_part(l, axis, {}, p, d);
+    const mas::SlicedPart plain = mas::slice_solid_part(l, axis, dp, p, d);
     ASSERT_EQ(d.components.size(), 2u);
     EXPECT_TRUE(d.kept_branches.empty());
     EXPECT_TRUE(plain.notes.empty());
     EXPECT_EQ(plain.stats.colliding_layers, 0);
-    mas::DecomposeParams dp;
-    dp.min_component_height_mm = p.layers.min_layer_mm;
     EXPECT_EQ(plain.layers.size(),
               mas::slice_part(l, axis, mas::decompose(l, axis, dp), p).layers.size());
     // A coaxial 100 mm nozzle would meet the plate at every arm layer: the arm stays in the
     // column, which the decomposition names and decompose() keeping it gives again.
     p.nozzle.body_diameter_mm = 100.0;
     p.nozzle.max_lean_deg = 0.0;
-    const mas::SlicedPart kept = mas::slice_solid_part(l, axis, {}, p, d);
+    const mas::SlicedPart kept = mas::slice_solid_part(l, axis, dp, p, d);
     ASSERT_EQ(d.components.size(), 1u);
     EXPECT_EQ(kept.stats.colliding_layers, 0);
     EXPECT_EQ(d.kept_branches, std::vector<int>{1});
@@ -305,14 +305,15 @@ TEST(SliceSolidPart, ABranchTheNozzleCannotReachStaysInItsFatherAsForAMesh) {
     EXPECT_EQ(kept.notes, std::vector<std::string>{"decomposition: " + why});
     EXPECT_EQ(d.notes, std::vector<std::string>{why});
     for (const mas::Layer& layer : kept.layers) EXPECT_EQ(layer.plane.normal, Vector3d::UnitZ());
-    dp.keep_branches = {{1, "asked"}};
-    const mas::SlicedPart again = mas::slice_part(l, axis, mas::decompose(l, axis, dp), p);
+    mas::DecomposeParams keep = dp;
+    keep.keep_branches = {{1, "asked"}};
+    const mas::SlicedPart again = mas::slice_part(l, axis, mas::decompose(l, axis, keep), p);
     ASSERT_EQ(again.layers.size(), kept.layers.size());
     for (std::size_t i = 0; i < kept.layers.size(); ++i)
         EXPECT_EQ(again.layers[i].plane.origin, kept.layers[i].plane.origin);
     // Kept as first split, the arm's layers collide, all of them.
     p.avoid_collisions = false;
-    const mas::SlicedPart split = mas::slice_solid_part(l, axis, {}, p, d);
+    const mas::SlicedPart split = mas::slice_solid_part(l, axis, dp, p, d);
     ASSERT_EQ(d.components.size(), 2u);
     EXPECT_GT(split.components[1].layer_count, 0);
     EXPECT_EQ(split.stats.colliding_layers, split.components[1].layer_count);

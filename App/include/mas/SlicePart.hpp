@@ -197,10 +197,12 @@ SlicedPart slice_clear_of_collisions(
     const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
     const Progress& progress, bool* took_whole = nullptr);
 
-// A solid decomposed (decompose(): `decompose_params`, with the layers' min_layer_mm as the least
-// component height and their max_tilt_deg; the first fifth of each round) and sliced
-// (slice_part), in the rounds of slice_clear_of_collisions: what the command line's and the Python
-// API's slice do with a solid. Sliced as one component, it is decomposed with every branch kept.
+// A solid decomposed (decompose() with `decompose_params`, its kept branches among those kept;
+// the first fifth of each round) and sliced (slice_part), in the rounds of
+// slice_clear_of_collisions: what the command line's and the Python API's slice do with a solid
+// (with the layers' min_layer_mm as the least component height and their max_tilt_deg, so that
+// every component fits a layer and the machine's reach). Sliced as one component, it is
+// decomposed with every branch kept.
 // `decomposition` receives the decomposition sliced (decompose() with its kept_branches gives it
 // again); its notes are the result's "decomposition: ..." ones. Throws as decompose() and
 // slice_part().

@@ -109,9 +109,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                             const DecomposeParams& decompose_params, const SlicePartParams& params,
                             Decomposition& decomposition, const Progress& progress) {
     const Shape part = solid.single_solid("slice");
-    DecomposeParams dp = decompose_params;  // no component thinner than a layer, none past reach
-    dp.min_component_height_mm = params.layers.min_layer_mm;
-    dp.max_tilt_deg = params.layers.max_tilt_deg;
+    const DecomposeParams& dp = decompose_params;
     const auto run = [&](const std::vector<KeptBranch>& keep, const Progress& round,
                          Decomposition& into) {
         DecomposeParams p = dp;

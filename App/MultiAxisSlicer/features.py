@@ -29,7 +29,7 @@ import Part
 
 import MultiAxisSlicer as mas
 from MultiAxisSlicer import progress as _progress
-from MultiAxisSlicer.decompose import _angle, _max_tilt
+from MultiAxisSlicer.decompose import _angle, _branch_list, _checked_params, _max_tilt
 from MultiAxisSlicer.gcode import _machine_params
 
 # Bad input the user can fix (a face instead of a solid, an open mesh, Step = 0, no Source), or a
@@ -438,7 +438,8 @@ class DecompositionFeature(_EngineFeature):
     when set, the axis is computed with its Step, DistanceThreshold, Epsilon, BreakAngle and
     Deflection, and its Source is used when Source is empty), Step (mm, 0 = derived; used without
     Axis), Deflection (mm, 0 = automatic; used without Axis), FaceAngle, ConcaveAngle,
-    SectionPlaneFallback. Outputs: Shape (a compound of the component solids in tree order: a
+    SectionPlaneFallback, MinComponentHeight, MaxTilt, KeepBranches (axis branches left in their
+    fathers: the Slice command sets those whose own layers the nozzle could not reach). Outputs: Shape (a compound of the component solids in tree order: a
     father before its children, the root first), ComponentCount, and per component, in the same
     order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
     Rules ("root", "planar_face", "section_plane"), Volumes (mm³); PartVolume, UsedStep.
@@ -453,7 +454,7 @@ class DecompositionFeature(_EngineFeature):
     PROPERTY_NAMES = _AXIS_NAMES + _names(
         ("face_angle", "FaceAngle"), ("concave_angle", "ConcaveAngle"),
         ("min_component_height", "MinComponentHeight"), ("max_tilt", "MaxTilt"),
-        ("section_plane_fallback", "SectionPlaneFallback"))
+        ("section_plane_fallback", "SectionPlaneFallback"), ("keep_branches", "KeepBranches"))
     PARAMETERS = (("Decomposition",
                    ("Step", "Deflection", "FaceAngle", "ConcaveAngle", "SectionPlaneFallback",
                     "MinComponentHeight", "MaxTilt")),)
@@ -489,6 +490,9 @@ class DecompositionFeature(_EngineFeature):
                           "-100 to 50: 100). Nothing is built straight down", 100.0) and
                 "ComponentCount" in obj.PropertiesList):
             obj.MaxTilt = 180.0
+        _add_property(obj, "App::PropertyIntegerList", "KeepBranches", group,
+                      "Axis branches left in their fathers' components, each with a note (the "
+                      "Slice command sets those whose own layers the nozzle cannot reach)")
         result = "Result"
         _add_property(obj, "App::PropertyInteger", "ComponentCount", result,
                       "Number of sub-components", 0, _OUTPUT)
@@ -561,7 +565,7 @@ def decomposition_inputs(obj):
     params.update(face_angle=obj.FaceAngle.Value, concave_angle=obj.ConcaveAngle.Value,
                   section_plane_fallback=bool(obj.SectionPlaneFallback),
                   min_component_height=obj.MinComponentHeight.Value,
-                  max_tilt=obj.MaxTilt.Value)
+                  max_tilt=obj.MaxTilt.Value, keep_branches=tuple(obj.KeepBranches))
     return source, params
 
 
@@ -692,15 +696,16 @@ def sync_components(decomposition):
 
 def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
                        deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0,
-                       max_tilt=100.0):
+                       max_tilt=100.0, keep_branches=()):
     """Adds a ``Decomposition`` object splitting ``source`` to ``doc`` (default: the source's,
     else the axis object's document), computes it and adds its Component objects; returns the
     Decomposition object. ``axis``: an optional ``CentroidalAxis`` object whose parameters (and
     Source, when ``source`` is None) are used. ``face_angle`` in degrees, ``deflection`` in mm (0 =
     automatic; used without ``axis``), ``min_component_height`` in mm (the least a sub-component
     reaches past its cut, besides one axis step), ``max_tilt`` in degrees (no sub-component is
-    built further from +Z: the machine's reach, 90 to 180). A failing computation leaves the
-    object marked invalid with the message, without components. The source is not changed.
+    built further from +Z: the machine's reach, 90 to 180), ``keep_branches`` axis branches to
+    leave in their fathers (KeepBranches). A failing computation leaves the object marked invalid
+    with the message, without components. The source is not changed.
 
     In the GUI the objects get their view providers (one distinct colour per component)."""
     _check_source(source, "make_decomposition")
@@ -717,6 +722,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     min_component_height = mas._length(min_component_height, "min_component_height",
                                        allow_zero=True)
     max_tilt = _max_tilt(max_tilt)
+    keep_branches = _branch_list(keep_branches)
     obj = doc.addObject("Part::FeaturePython", name)
     DecompositionFeature(obj)
     obj.Source = source
@@ -726,6 +732,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     obj.Deflection = deflection
     obj.MinComponentHeight = min_component_height
     obj.MaxTilt = max_tilt
+    obj.KeepBranches = list(keep_branches)
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, DecompositionFeature.VIEW_PROVIDER)
     obj.recompute(True)  # with what it depends on: the count decides the Component objects
@@ -759,6 +766,10 @@ _SLICE_PROPERTIES = (
     ("SplitMesh", "Layers", "split_mesh", "App::PropertyBool",
      "A mesh (Source) is split at section planes where its axis turns or branches, each piece "
      "built along its own direction (off: sliced as one component)"),
+    ("AvoidCollisions", "Layers", "avoid_collisions", "App::PropertyBool",
+     "A mesh's piece some of whose layers the nozzle cannot reach is built in its father, the "
+     "mesh split again (off: the first split is kept, those layers reported). A Decomposition is "
+     "sliced as it is: its KeepBranches (set by the Slice command) do this for a solid"),
     ("VolumeSamples", "Layers", "volume_samples", "App::PropertyInteger",
      "Sections per layer for integrating its volumetric difference"),
     ("Strict", "Layers", "strict", "App::PropertyBool",
@@ -921,6 +932,57 @@ def slice_result(obj):
     return result
 
 
+def keep_unreachable_branches(layers):
+    """Where some layers of a Layers object slicing a Decomposition object would meet the plate or
+    what is deposited before them (its CollidingLayers), keeps their components' branches in
+    their fathers, as ``MultiAxisSlicer.slice()`` does when it decomposes a solid itself: the part
+    is decomposed (with the Decomposition's parameters) and sliced (with the Layers') again, up to
+    five rounds, and as one component if that leaves fewer such layers. The branches kept go to
+    the Decomposition's KeepBranches; both objects are recomputed from that result (remembered,
+    not computed once more) and the Component objects follow. Returns the branches added: [] when
+    no layer collides or keeping branches clears none, and nothing is changed then. Raises
+    TypeError for a Layers object slicing a mesh (AvoidCollisions does this for a mesh) and as
+    ``slice()`` (``Cancelled`` too). Call it outside a recompute."""
+    decomposition_obj, _mesh, params, deflection = slice_inputs(layers)
+    if decomposition_obj is None:
+        raise TypeError("keep_unreachable_branches(): '{}' slices a mesh, which its "
+                        "AvoidCollisions keeps clear of collisions".format(layers.Label))
+    result = slice_result(layers)
+    if not result.collisions:
+        return []
+    decomposition = decomposition_result(decomposition_obj)
+    source, values = decomposition_inputs(decomposition_obj)
+    names = ("face_angle", "concave_angle", "section_plane_fallback", "min_component_height",
+             "max_tilt", "keep_branches")
+    checked = _checked_params(**{k: values[k] for k in names})
+    p = mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))
+    if deflection is not None:
+        p["deflection"] = deflection
+    _, part, what = mas._model(source)
+    with _progress.reporting("Keeping unreachable branches of '{}'".format(
+            decomposition_obj.Label)) as progress:
+        again = mas.slicing._slice_decomposing(part.single_solid(what), decomposition.axis,
+                                               checked, p, progress)
+    kept = again.decomposition.kept_branches
+    added = sorted(set(kept) - set(decomposition_obj.KeepBranches))
+    if not added:
+        return []
+    decomposition_obj.KeepBranches = kept
+    # Both remember the result, as their recompute would key it.
+    key = _shape_key(source)
+    if key is not None:
+        _, values = decomposition_inputs(decomposition_obj)
+        decomposition_obj.Proxy._result = ((key, tuple(sorted(values.items()))),
+                                           again.decomposition)
+        layers.Proxy._result = ((id(again.decomposition), tuple(sorted(params.items())),
+                                 deflection), again)
+    doc = layers.Document
+    doc.recompute([decomposition_obj, layers] + layers.InListRecursive)  # the Toolpath too
+    if failure(decomposition_obj) is None:
+        sync_components(decomposition_obj)
+    return added
+
+
 def _polyline(points, closed=False):
     """A Part wire through `points` (consecutive repeats dropped); closed: back to the first point.
     None when too few distinct points are left."""
@@ -994,7 +1056,9 @@ class LayersFeature(_EngineFeature):
     section planes as ``MultiAxisSlicer.slice`` splits a mesh, or sliced as one component with
     SplitMesh off) and/or Axis (a CentroidalAxis object over that mesh, whose parameters the axis
     then takes; without it they are derived), the layer parameters (MinLayer, MaxLayer,
-    MaxVolumeDifference, EpsAngle, OverhangAngle, MaxTilt, SplitMesh, VolumeSamples, Strict,
+    MaxVolumeDifference, EpsAngle, OverhangAngle, MaxTilt, SplitMesh, AvoidCollisions (a
+    mesh's: its pieces whose layers the nozzle cannot reach stay in their fathers; a
+    Decomposition is sliced as it is, see keep_unreachable_branches), VolumeSamples, Strict,
     FillHoles), the path parameters
     (BeadWidth, Overlap, ContourCount, Infill, RasterAngle, RasterAngleStep, MinFeature,
     MeasureCoverage), the nozzle's (NozzleStandoff, NozzleTipDiameter, NozzleConeAngle, NozzleBodyDiameter,
@@ -1136,11 +1200,11 @@ class LayersFeature(_EngineFeature):
 
     @staticmethod
     def not_applicable(obj):
-        """The parameters that do not apply to `obj` as it is: a Decomposition's part is a solid
-        (SplitMesh is a mesh's); a mesh is not tessellated (Deflection) and has no BREP holes to
-        fill (FillHoles)."""
+        """The parameters that do not apply to `obj` as it is: a Decomposition's part is a solid,
+        sliced as decomposed (SplitMesh and AvoidCollisions are a mesh's); a mesh is not
+        tessellated (Deflection) and has no BREP holes to fill (FillHoles)."""
         if getattr(obj, "Source", None) is None and getattr(obj, "Axis", None) is None:
-            return ("SplitMesh",)
+            return ("SplitMesh", "AvoidCollisions")
         return ("Deflection", "FillHoles")
 
     @staticmethod
@@ -1202,6 +1266,16 @@ class LayersFeature(_EngineFeature):
                             c.layer, "the build plate" if c.obstacle_layer < 0 else
                             "layer {}".format(c.obstacle_layer), *c.obstacle) for c in shown),
                     "; ..." if len(collisions) > len(shown) else ""))
+            branches = sorted({result.decomposition[layers[c.layer].component].branch
+                               for c in collisions if layers[c.layer].component > 0}
+                              if result.decomposition is not None else ())
+            if branches:
+                FreeCAD.Console.PrintWarning(
+                    "{}: those layers' components are axis branch(es) {} of '{}': added to its "
+                    "KeepBranches, they are built in their fathers (features."
+                    "keep_unreachable_branches does so, as the Slice command does for a solid it "
+                    "decomposes)\n".format(obj.Label, ", ".join(str(b) for b in branches),
+                                            obj.Decomposition.Label))
         FreeCAD.Console.PrintMessage(
             "{}: {} layers in {} component(s), started in the order {}; worst unsupported area "
             "{:.3g} mm^2{}\n".format(

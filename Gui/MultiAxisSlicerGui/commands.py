@@ -357,12 +357,15 @@ class SliceCommand(_PartCommand):
         """Makes and computes the command's objects in the open transaction; returns what failed,
         or None. `mesh`: the mesh object `source` is or is the axis of, else None. A mesh is split
         as it is sliced (Layers' SplitMesh); a solid is decomposed first, into a Decomposition
-        object."""
+        object, and where some layers would meet the plate or what is deposited before them, the
+        branches of their components are kept in their fathers (its KeepBranches), as slice()
+        does. A Decomposition object selected is sliced as it is."""
         import MultiAxisSlicer.features as features
 
+        decomposed_here = False
         if mesh is not None:
             busy.stage("Slicing the mesh '{}'...".format(mesh.Label))
-            sliced, part, components = source, mesh, []
+            sliced, part = source, mesh
         else:
             if features.is_decomposition(source):
                 decomposition = source
@@ -374,13 +377,22 @@ class SliceCommand(_PartCommand):
                 # No sub-component thinner than the layers (the default MinLayer).
                 decomposition = DecomposeCommand().make(source, doc,
                                                         mas.SLICE_DEFAULTS["min_layer"])
+                decomposed_here = True
             if features.failure(decomposition) is not None:  # a cancelled one too
                 return features.failure(decomposition)
             busy.stage("Slicing '{}' into layers...".format(source.Label))
             sliced, part = decomposition, features.decomposition_inputs(decomposition)[0]
-            components = features.components_of(decomposition)
         layers, toolpath = features.make_slice(sliced, doc=doc)
         doc.recompute([layers])  # one stage at a time, for the feedback
+        if decomposed_here and features.failure(layers) is None and layers.CollidingLayers:
+            # As slice() does: the branches whose own layers the nozzle cannot reach are built
+            # in their fathers (the decomposition's KeepBranches), the part split again.
+            busy.stage("Building in their fathers the branches the nozzle cannot reach...")
+            try:
+                features.keep_unreachable_branches(layers)
+            except mas.Cancelled:
+                return None  # the command is undone
+        components = features.components_of(decomposition) if mesh is None else []
         if features.failure(layers) is None:
             busy.stage("Drawing the bead paths...")
             doc.recompute([toolpath])

@@ -30,6 +30,16 @@ def l_block():
     return Part.makeBox(20, 20, 60).fuse(Part.makeBox(50, 20, 20, V(20, 0, 40))).removeSplitter()
 
 
+def rod_under_bar():
+    """A 16 x 16 x 48 column with a round rod (radius 7, 40 long) reaching +X at z = 20 and a
+    6 x 6 bar 52 long reaching +X above it at z = 39 to 45. Built sideways on its own (the
+    default nozzle), the rod leaves the nozzle no way between the plate and the bar: 4 of its
+    layers collide whatever the order or lean."""
+    column = Part.makeBox(16, 16, 48, V(-8, -8, 0))
+    return column.fuse([Part.makeCylinder(7, 40, V(0, 0, 20), V(1, 0, 0)),
+                        Part.makeBox(52, 6, 6, V(0, -3, 39))]).removeSplitter()
+
+
 def pipe_tee():
     """A pipe of radius 10 with a bore of 8, 60 tall along Z, and a branch of the same pipe
     reaching +Y from its axis at z = 35, 35 long (the engine's test_parts.hpp)."""

@@ -1221,6 +1221,42 @@ class TestSliceCommand(unittest.TestCase):
         process_events()
         self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
 
+    def test_command_on_a_solid_builds_a_branch_the_nozzle_cannot_reach_in_its_father(self):
+        # The rod under the bar, built sideways on its own, has layers no order or lean clears:
+        # the command keeps it in the column (KeepBranches), as slice() would, in one undo step.
+        import MultiAxisSlicer.features as features
+
+        self.part.Shape = MultiAxisSlicerTestSupport.rod_under_bar()
+        self.doc.recompute()
+        layers, toolpath = self.run_command(self.part)
+        self.assertEqual(error_boxes(), [])
+        decomposition = layers.Decomposition
+        for obj in (decomposition, layers, toolpath):
+            self.assertIsNone(features.failure(obj))
+        self.assertEqual(list(decomposition.KeepBranches), [1])
+        self.assertEqual(decomposition.ComponentCount, 2)  # the column with the rod, the bar
+        components = features.components_of(decomposition)
+        self.assertEqual(len(components), 2)
+        self.assertEqual([c.ViewObject.Visibility for c in components], [False, False])
+        self.assertEqual(layers.CollidingLayers, 0)
+        expected = mas.slice(self.part.Shape)
+        self.assertEqual(expected.decomposition.kept_branches, [1])
+        self.assertEqual(layers.LayerCount, len(expected.layers))
+        self.assertIsNone(QtGui.QApplication.overrideCursor())
+        self.doc.undo()
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+        self.assertTrue(self.part.ViewObject.Visibility)
+        # Cancelled while it splits the part again, the command is undone.
+        undo = self.doc.UndoCount
+        with Canceller(self, "Keeping unreachable branches") as canceller:
+            self.run_command(self.part)
+        self.assertEqual(canceller.clicks, 1)
+        self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
+        self.assertEqual(self.doc.UndoCount, undo)
+        self.assertEqual(error_boxes(), [])
+        self.assertTrue(self.part.ViewObject.Visibility)
+
     def test_command_on_a_face_shows_the_engine_message(self):
         self.part.Shape = Part.makePlane(10, 10)
         self.doc.recompute()
@@ -1607,8 +1643,8 @@ class TestParameterPanel(unittest.TestCase):
         self.assertEqual(self.gui_doc.getInEdit().Object, self.layers)
 
     def test_the_layers_of_a_mesh_offer_no_deflection_nor_holes_to_fill(self):
-        # A mesh is not tessellated and has no BREP holes: the two would only fail. SplitMesh is
-        # a mesh's only.
+        # A mesh is not tessellated and has no BREP holes: the two would only fail. SplitMesh and
+        # AvoidCollisions are a mesh's only (a Decomposition is sliced as it is).
         import Mesh
 
         scan = self.doc.addObject("Mesh::Feature", "Scan")
@@ -1620,9 +1656,11 @@ class TestParameterPanel(unittest.TestCase):
         props = [f.prop for f in panel.fields]
         of_solid = [p for _, group in self.features.parameters(self.layers) for p in group]
         self.assertNotIn("SplitMesh", of_solid)
+        self.assertNotIn("AvoidCollisions", of_solid)
         want = [p for p in of_solid if p not in ("Deflection", "FillHoles")]
-        self.assertEqual([p for p in props if p != "SplitMesh"], want)
+        self.assertEqual([p for p in props if p not in ("SplitMesh", "AvoidCollisions")], want)
         self.assertIn("SplitMesh", props)
+        self.assertIn("AvoidCollisions", props)
         self.assertIn("MaxLayer", props)
         count = layers.LayerCount
         self.set_field(panel, "MaxLayer", layers.MaxLayer.Value / 2)

@@ -821,6 +821,88 @@ class SliceObjectTest(SliceTest):
                                delta=1e-6 * toolpath.PathLength.Value)
 
 
+class TestKeepingUnreachableBranches(SliceObjectTest):
+    """A Decomposition's KeepBranches, and keep_unreachable_branches() setting them where the
+    Layers' nozzle cannot reach some layers."""
+
+    def test_kept_branches_stay_in_their_fathers_and_are_saved(self):
+        part = self.doc.addObject("Part::Feature", "L")
+        part.Shape = l_block()
+        decomposition = mas.make_decomposition(part, keep_branches=[1])
+        self.assertEqual(list(decomposition.KeepBranches), [1])
+        self.assertEqual(decomposition.ComponentCount, 1)
+        self.assertEqual(len(features.components_of(decomposition)), 1)
+        self.assertEqual(list(decomposition.Notes), [
+            "branch 1 (along 1,0,0): kept in its father, as asked (keep_branches); its "
+            "material stays in component 0"])
+        decomposition.KeepBranches = []
+        self.doc.recompute()
+        self.assertEqual(decomposition.ComponentCount, 2)
+        decomposition.KeepBranches = [7]
+        self.doc.recompute()
+        self.assertIn("there is no branch 7 to keep in its father", features.failure(decomposition))
+        names = [o.Name for o in self.doc.Objects]
+        for bad in ("1", [1.5], [True]):
+            with self.assertRaisesRegex(TypeError, "keep_branches"):
+                mas.make_decomposition(part, keep_branches=bad)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        decomposition.KeepBranches = [1]
+        self.doc.recompute()
+        self.reopened("kept.FCStd")
+        self.assertEqual(list(self.doc.getObject("Decomposition").KeepBranches), [1])
+
+    def test_the_arm_the_nozzle_cannot_reach_goes_into_the_column(self):
+        decomposition, layers, toolpath = self.make_coaxial_wide_l()
+        arm = list(layers.ComponentLayerCounts)[1]
+        self.assertEqual(layers.CollidingLayers, arm)
+        # The slicing that keeps the arm is done once, in keep_unreachable_branches: the objects
+        # take its result without decomposing or slicing again.
+        calls = []
+        for name in ("decompose", "slice"):
+            original = getattr(features.mas, name)
+            self.addCleanup(setattr, features.mas, name, original)
+            setattr(features.mas, name,
+                    lambda *a, _f=original, _n=name, **k: calls.append(_n) or _f(*a, **k))
+        self.assertEqual(features.keep_unreachable_branches(layers), [1])
+        self.assertEqual(calls, [])
+        self.assertEqual(list(decomposition.KeepBranches), [1])
+        self.assertEqual(decomposition.ComponentCount, 1)
+        self.assertEqual(len(features.components_of(decomposition)), 1)
+        self.assertIn("built on its own, its layers would meet the plate", decomposition.Notes[0])
+        for obj in (decomposition, layers, toolpath):
+            self.assertIsNone(features.failure(obj))
+        self.assertEqual(layers.CollidingLayers, 0)
+        self.assertEqual(list(layers.ComponentLayerCounts), [layers.LayerCount])
+        # What slice() gives when it decomposes the L itself.
+        expected = mas.slice(l_block(), nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
+        self.assertEqual(list(layers.LayerOrigins), [v.origin for v in expected.layers])
+        # Nothing more to keep.
+        self.assertEqual(features.keep_unreachable_branches(layers), [])
+        self.assertEqual(list(decomposition.KeepBranches), [1])
+        # Reopened and recomputed from its properties, the same.
+        origins = list(layers.LayerOrigins)
+        del calls[:]
+        layers = self.reopened("kept_arm.FCStd")
+        decomposition = self.doc.getObject("Decomposition")
+        decomposition.touch()
+        self.doc.recompute()
+        self.assertEqual(calls, ["decompose", "slice"])
+        self.assertIsNone(features.failure(layers))
+        self.assertEqual(list(layers.LayerOrigins), origins)
+        self.assertEqual(layers.CollidingLayers, 0)
+
+    def test_nothing_changes_where_the_nozzle_reaches_every_layer(self):
+        decomposition, layers, _ = self.make()
+        self.assertEqual(features.keep_unreachable_branches(layers), [])
+        self.assertEqual(list(decomposition.KeepBranches), [])
+        mesh = self.doc.addObject("Mesh::Feature", "Scan")
+        mesh.Mesh = fc_mesh(box_20_10_21())
+        mesh_layers, _ = mas.make_slice(mesh, name="MeshLayers", toolpath_name="MeshToolpath")
+        self.doc.recompute()
+        with self.assertRaisesRegex(TypeError, "slices a mesh"):
+            features.keep_unreachable_branches(mesh_layers)
+
+
 class TestLayersOfAMesh(SliceObjectTest):
     """A Layers object over a mesh object (Source in place of Decomposition): the mesh sliced as
     one component, as ``mas.slice`` slices a mesh."""
@@ -880,6 +962,18 @@ class TestLayersOfAMesh(SliceObjectTest):
         self.assertEqual(layers.WorstUnsupportedArea.Value,
                          whole.stats["worst_unsupported_area_mm2"])
         self.assertGreater(layers.WorstUnsupportedArea.Value, 100.0)
+
+    def test_avoid_collisions_keeps_a_piece_the_nozzle_cannot_reach_in_its_father(self):
+        # A coaxial nozzle 100 mm across would meet the plate at each of the arm's layers.
+        scan = self.add_mesh(l_block())
+        layers, _ = mas.make_slice(scan, nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
+        self.doc.recompute()
+        self.assertTrue(layers.AvoidCollisions)
+        self.assertEqual((layers.CollidingLayers, len(layers.ComponentLayerCounts)), (0, 1))
+        layers.AvoidCollisions = False
+        self.doc.recompute()
+        column, arm = layers.ComponentLayerCounts
+        self.assertEqual(list(layers.CollisionLayers), list(range(column, column + arm)))
 
     def test_the_layers_follow_the_mesh(self):
         import Mesh

@@ -39,7 +39,8 @@ const char* kUsage =
     "                                  [--json [OUT.json]]\n"
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG]\n"
     "                                       [--concave-angle DEG] [--no-fallback]\n"
-    "                                       [--min-height MM] [--max-tilt DEG] [--step-dir DIR]\n"
+    "                                       [--min-height MM] [--max-tilt DEG]\n"
+    "                                       [--keep-branches B[,B...]] [--step-dir DIR]\n"
     "                                       [--stl-dir DIR] [--progress]\n"
     "                                       [--json [OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
@@ -68,7 +69,8 @@ const char* kUsage =
     "           DIR/component_NNN.stl; the face options do not apply. A child\n"
     "           reaches at least --min-height (default 0) and one axis step past its cut, and\n"
     "           is built no more than --max-tilt (default 100) degrees from +Z, the machine's\n"
-    "           reach: nothing is built straight down.\n"
+    "           reach: nothing is built straight down. --keep-branches leaves those axis\n"
+    "           branches in their fathers (slice keeps so those the nozzle cannot reach).\n"
     "slice      adaptive multi-axis layers of every sub-component (Sec. 4.2) and the bead paths\n"
     "           in every layer: per layer its plane, thickness range, volumetric difference and\n"
     "           unsupported area; --json adds its regions, its unsupported regions (on the\n"
@@ -233,6 +235,20 @@ struct Args {
         if (v != std::floor(v) || std::abs(v) > 1e9)
             throw UsageError(name + " must be a whole number, got '" + options.at(name) + "'");
         return int(v);
+    }
+    // Whole numbers separated by commas ("1,3"); none when the option is not given.
+    std::vector<int> integers(const std::string& name) const {
+        std::vector<int> out;
+        if (!has(name)) return out;
+        std::istringstream in(options.at(name));
+        for (std::string item; std::getline(in, item, ',');) {
+            const double v = parse_number(item, name);
+            if (v != std::floor(v) || std::abs(v) > 1e9)
+                throw UsageError(name + " must be whole numbers separated by commas, got '" +
+                                 options.at(name) + "'");
+            out.push_back(int(v));
+        }
+        return out;
     }
 };
 
@@ -611,6 +627,7 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
     mas::MeshDecomposeParams mp;
     mp.min_component_height_mm = dp.min_component_height_mm;
     mp.max_tilt_deg = dp.max_tilt_deg;
+    mp.keep_branches = dp.keep_branches;
     const mas::MeshDecomposition d =
         mas::decompose_mesh(part.mesh, axis, mp, report ? stderr_progress() : mas::Progress());
     const std::vector<std::string> files = write_components(
@@ -638,7 +655,7 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
 int run_decompose(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
     allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--max-tilt", "--step-dir",
-                    "--stl-dir"});
+                    "--stl-dir", "--keep-branches"});
     // --no-fallback takes no value: take it out before the common parser sees it.
     std::vector<std::string> rest;
     bool fallback = true, report = false;
@@ -658,6 +675,8 @@ int run_decompose(const std::vector<std::string>& args) {
     dp.min_component_height_mm = a.number("--min-height", dp.min_component_height_mm);
     dp.max_tilt_deg = a.number("--max-tilt", dp.max_tilt_deg);
     dp.section_plane_fallback = fallback;
+    for (const int b : a.integers("--keep-branches"))
+        dp.keep_branches.push_back({b, "kept in its father, as asked (--keep-branches)"});
     const Part part = load_part(a);
     if (part.model.kind != mas::Model::Kind::Solid)
         return decompose_mesh_part(a, part, ap, dp, !fallback, report);

@@ -433,6 +433,25 @@ class CliSections(unittest.TestCase):
         self.assertIn("branch 1 (along 1,0,0)", notes[0])
         self.assertIn("stays in component 0", notes[0])
 
+    def test_decompose_keeps_the_branches_asked_in_their_fathers(self):
+        for path in (os.path.join(DATA, "l_block.brep"), self.write("l.stl", l_prism_stl())):
+            r = run("decompose", path, "--keep-branches", "1", "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            doc = json.loads(r.stdout)
+            self.assertEqual(len(doc["components"]), 1, path)
+            self.assertAlmostEqual(doc["components"][0]["volume_mm3"], doc["part_volume_mm3"],
+                                   delta=1e-9 * doc["part_volume_mm3"])
+            self.assertEqual(len(doc["notes"]), 1, doc["notes"])
+            self.assertIn("branch 1 (", doc["notes"][0])
+            self.assertIn("kept in its father, as asked (--keep-branches)", doc["notes"][0])
+        brep = os.path.join(DATA, "l_block.brep")
+        self.expect_error(["decompose", brep, "--keep-branches", "0"], 1, "invalid_argument",
+                          "branch 0 is the axis' root")
+        self.expect_error(["decompose", brep, "--keep-branches", "1,5"], 1, "invalid_argument",
+                          "there is no branch 5 to keep")
+        self.expect_error(["decompose", brep, "--keep-branches", "1.5"], 2,
+                          "--keep-branches must be whole numbers")
+
     def test_decompose_splits_a_mesh_at_section_planes_and_writes_its_pieces(self):
         # The L as a mesh: the arm cut off at the column's face plus the axis' clearance, the two
         # pieces written as STL files that read back closed and of their volumes.

@@ -439,7 +439,8 @@ class DecompositionFeature(_EngineFeature):
     Deflection, and its Source is used when Source is empty), Step (mm, 0 = derived; used without
     Axis), Deflection (mm, 0 = automatic; used without Axis), FaceAngle, ConcaveAngle,
     SectionPlaneFallback, MinComponentHeight, MaxTilt, KeepBranches (axis branches left in their
-    fathers: the Slice command sets those whose own layers the nozzle could not reach). Outputs: Shape (a compound of the component solids in tree order: a
+    fathers: the Slice command sets those whose own layers the nozzle could not reach).
+    Outputs: Shape (a compound of the component solids in tree order: a
     father before its children, the root first), ComponentCount, and per component, in the same
     order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
     Rules ("root", "planar_face", "section_plane"), Volumes (mm³); PartVolume, UsedStep.

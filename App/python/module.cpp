@@ -971,6 +971,18 @@ bp::dict decomposition_to_py(const mas::Decomposition& d, double part_volume) {
     return result;
 }
 
+// Calls take(name, value) for every item of a dict of `what` parameters, whose names must be
+// strings.
+void for_each_param(const bp::dict& d, const std::string& what,
+                    const std::function<void(const std::string&, const bp::object&)>& take) {
+    const bp::list keys = d.keys();
+    for (bp::ssize_t i = 0; i < bp::len(keys); ++i) {
+        const bp::extract<std::string> name(keys[i]);
+        if (!name.check()) invalid_argument(what + " parameter names must be strings");
+        take(name(), d[keys[i]]);
+    }
+}
+
 // Branches to keep in their fathers (a sequence of ints), each "kept in its father, as asked".
 std::vector<mas::KeptBranch> kept_branches_from_py(const bp::object& value) {
     std::vector<mas::KeptBranch> kept;
@@ -991,12 +1003,7 @@ std::vector<mas::KeptBranch> kept_branches_from_py(const bp::object& value) {
 // missing ones take the engine's defaults, unknown names are errors.
 mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
     mas::DecomposeParams p;
-    const bp::list keys = d.keys();
-    for (bp::ssize_t i = 0; i < bp::len(keys); ++i) {
-        const bp::extract<std::string> name(keys[i]);
-        if (!name.check()) invalid_argument("decomposition parameter names must be strings");
-        const std::string key = name();
-        const bp::object value = d[keys[i]];
+    for_each_param(d, "decomposition", [&](const std::string& key, const bp::object& value) {
         const auto number = [&] { return finite_number(bp::extract<double>(value)(), key); };
         if (key == "face_angle")
             p.face_angle_deg = number();
@@ -1014,7 +1021,7 @@ mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
             p.keep_branches = kept_branches_from_py(value);
         else
             invalid_argument("unknown decomposition parameter '" + key + "'");
-    }
+    });
     return p;
 }
 
@@ -1022,14 +1029,15 @@ bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double fa
                    double concave_angle, double projection_tolerance, bool section_plane_fallback,
                    double min_component_height, double max_tilt, const bp::object& keep_branches,
                    const bp::object& progress) {
-    mas::DecomposeParams params;
-    params.face_angle_deg = finite_number(face_angle, "face_angle");
-    params.concave_angle_deg = finite_number(concave_angle, "concave_angle");
-    params.projection_tolerance_mm = finite_number(projection_tolerance, "projection_tolerance");
-    params.section_plane_fallback = section_plane_fallback;
-    params.min_component_height_mm = finite_number(min_component_height, "min_component_height");
-    params.max_tilt_deg = finite_number(max_tilt, "max_tilt");
-    params.keep_branches = kept_branches_from_py(keep_branches);
+    bp::dict given;
+    given["face_angle"] = face_angle;
+    given["concave_angle"] = concave_angle;
+    given["projection_tolerance"] = projection_tolerance;
+    given["section_plane_fallback"] = section_plane_fallback;
+    given["min_component_height"] = min_component_height;
+    given["max_tilt"] = max_tilt;
+    given["keep_branches"] = keep_branches;
+    const mas::DecomposeParams params = decompose_params_from_py(given);
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     mas::Decomposition d;
     double part_volume = 0.0;
@@ -1072,12 +1080,7 @@ void bind_decompose() {
 // Layer and path parameters from a dict of the names slice() documents; unknown names are errors.
 mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
     mas::SlicePartParams p;
-    const bp::list keys = d.keys();
-    for (bp::ssize_t i = 0; i < bp::len(keys); ++i) {
-        const bp::extract<std::string> key_text(keys[i]);
-        if (!key_text.check()) invalid_argument("slicing parameter names must be strings");
-        const std::string key = key_text();
-        const bp::object value = d[keys[i]];
+    for_each_param(d, "slicing", [&](const std::string& key, const bp::object& value) {
         auto number = [&]() {
             const double x = PyFloat_AsDouble(value.ptr());
             if (x == -1.0 && PyErr_Occurred()) {
@@ -1169,7 +1172,7 @@ mas::SlicePartParams slice_params_from_py(const bp::dict& d) {
             p.nozzle.max_lean_deg = number();
         else
             invalid_argument("unknown slicing parameter '" + key + "'");
-    }
+    });
     mas::validate(p.layers);
     mas::validate(p.paths);
     mas::validate(p.nozzle);
@@ -1575,12 +1578,7 @@ std::vector<mas::GcodeLayer> gcode_layers_from_py(const bp::object& value, bool 
 
 mas::MachineParams machine_from_py(const bp::dict& d) {
     mas::MachineParams m;
-    const bp::list keys = d.keys();
-    for (bp::ssize_t i = 0; i < bp::len(keys); ++i) {
-        const bp::extract<std::string> key_text(keys[i]);
-        if (!key_text.check()) invalid_argument("machine parameter names must be strings");
-        const std::string key = key_text();
-        const bp::object value = d[keys[i]];
+    for_each_param(d, "machine", [&](const std::string& key, const bp::object& value) {
         if (PyBool_Check(value.ptr()))
             invalid_argument("machine parameter " + key + " must be a number, not a bool");
         const double x = PyFloat_AsDouble(value.ptr());
@@ -1615,7 +1613,7 @@ mas::MachineParams machine_from_py(const bp::dict& d) {
             m.deposit_output = int(x);
         } else
             invalid_argument("unknown machine parameter '" + key + "'");
-    }
+    });
     return m;
 }
 

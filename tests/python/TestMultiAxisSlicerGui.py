@@ -1243,6 +1243,8 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual(expected.decomposition.kept_branches, [1])
         self.assertEqual(layers.LayerCount, len(expected.layers))
         self.assertIsNone(QtGui.QApplication.overrideCursor())
+        toolpath.ViewObject.Visibility = False
+        save_screenshot(self, self.doc, "slice_rod_under_bar_layers.png", see_through=False)
         self.doc.undo()
         process_events()
         self.assertEqual([o.Name for o in self.doc.Objects], ["L"])

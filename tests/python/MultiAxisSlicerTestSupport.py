@@ -32,9 +32,9 @@ def l_block():
 
 def rod_under_bar():
     """A 16 x 16 x 48 column with a round rod (radius 7, 40 long) reaching +X at z = 20 and a
-    6 x 6 bar 52 long reaching +X above it at z = 39 to 45. Built sideways on its own (the
-    default nozzle), the rod leaves the nozzle no way between the plate and the bar: 4 of its
-    layers collide whatever the order or lean."""
+    6 x 6 bar 52 long reaching +X above it at z = 39 to 45. Built sideways (the default nozzle),
+    the rod's nozzle meets the plate unless leaned up, and leaned up it meets the bar unless the
+    rod comes first."""
     column = Part.makeBox(16, 16, 48, V(-8, -8, 0))
     return column.fuse([Part.makeCylinder(7, 40, V(0, 0, 20), V(1, 0, 0)),
                         Part.makeBox(52, 6, 6, V(0, -3, 39))]).removeSplitter()

@@ -1222,29 +1222,33 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual([o.Name for o in self.doc.Objects], ["L"])
 
     def test_command_on_a_solid_builds_a_branch_the_nozzle_cannot_reach_in_its_father(self):
-        # The rod under the bar, built sideways on its own, has layers no order or lean clears:
-        # the command keeps it in the column (KeepBranches), as slice() would, in one undo step.
+        # A machine whose nozzle is 100 mm across and never leans: built sideways on its own, the
+        # L's arm would have it meet the plate at every layer. The command keeps the arm in the
+        # column (KeepBranches), as slice() would, in one undo step.
         import MultiAxisSlicer.features as features
 
-        self.part.Shape = MultiAxisSlicerTestSupport.rod_under_bar()
-        self.doc.recompute()
+        nozzle = dict(nozzle_body_diameter=100.0, nozzle_max_lean=0.0)
+        for name, value in nozzle.items():
+            self.addCleanup(mas.SLICE_DEFAULTS.__setitem__, name, mas.SLICE_DEFAULTS[name])
+            mas.SLICE_DEFAULTS[name] = value
         layers, toolpath = self.run_command(self.part)
         self.assertEqual(error_boxes(), [])
         decomposition = layers.Decomposition
         for obj in (decomposition, layers, toolpath):
             self.assertIsNone(features.failure(obj))
+        self.assertEqual(layers.NozzleBodyDiameter.Value, 100.0)
         self.assertEqual(list(decomposition.KeepBranches), [1])
-        self.assertEqual(decomposition.ComponentCount, 2)  # the column with the rod, the bar
+        self.assertEqual(decomposition.ComponentCount, 1)
         components = features.components_of(decomposition)
-        self.assertEqual(len(components), 2)
-        self.assertEqual([c.ViewObject.Visibility for c in components], [False, False])
+        self.assertEqual(len(components), 1)
+        self.assertEqual([c.ViewObject.Visibility for c in components], [False])
         self.assertEqual(layers.CollidingLayers, 0)
-        expected = mas.slice(self.part.Shape)
+        expected = mas.slice(self.part.Shape, **nozzle)
         self.assertEqual(expected.decomposition.kept_branches, [1])
-        self.assertEqual(layers.LayerCount, len(expected.layers))
+        self.assertEqual(list(layers.LayerOrigins), [layer.origin for layer in expected.layers])
         self.assertIsNone(QtGui.QApplication.overrideCursor())
         toolpath.ViewObject.Visibility = False
-        save_screenshot(self, self.doc, "slice_rod_under_bar_layers.png", see_through=False)
+        save_screenshot(self, self.doc, "slice_l_block_arm_kept.png", see_through=False)
         self.doc.undo()
         process_events()
         self.assertEqual([o.Name for o in self.doc.Objects], ["L"])

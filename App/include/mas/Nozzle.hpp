@@ -67,6 +67,13 @@
 //   check: a later layer's nozzle meets this one's prism, whatever its axis. Where no lean clears,
 //   the layer keeps its normal and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the
 //   paper's.
+// - The order is found with coaxial nozzles, and the leans after it; it can leave a lean no way (a
+//   rod built sideways under a bar: leaned up off the plate, the rod's nozzle meets the bar where
+//   the bar's layers came first). Where layers still collide, the layers are ordered again (the
+//   same rules) without the pairs "x before y" that x's nozzle would clear leaned towards the
+//   plate's normal (by any of the leans above that also keeps it off the plate; y's own rule
+//   stands), the leans tried again on that order, and that sequence is kept when fewer layers
+//   collide.
 // - Travel (not in the paper, which checks the deposit moves only): the post-processor's moves off
 //   the paths (Gcode.hpp: retracts, moves between paths and layers, the routes round the part) are
 //   checked against the same nozzle by TravelCheck: along every move the nozzle keeps margin_mm

@@ -642,7 +642,6 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     std::vector<std::optional<Conflict>> plate(count);    // where x's nozzle meets the plate
     std::vector<std::vector<int>> unavoidable_of(count);  // x -> the layers y met whatever
     std::vector<std::vector<int>> blocks(count);          // x -> the layers y to come after it
-    std::vector<int> pending(count, 0);                   // y: layers x to come before it, left
     const Progress pairs = progress.span(0.0, 0.9, "checking the nozzle against the layers");
     for (std::size_t x = 0; x < count; ++x) {
         pairs(double(x) / double(std::max<std::size_t>(count, 1)));
@@ -678,104 +677,10 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
                 unavoidable_of[x].push_back(int(y));
             } else {
                 blocks[x].push_back(int(y));
-                ++pending[y];
             }
         }
     }
 
-    // The sequence.
-    BuildSequence out;
-    out.layers.reserve(count);
-    std::vector<std::size_t> next(comps, 0);  // per component: its layers taken
-    std::vector<char> left(comps, 0);         // left unfinished for another
-    std::vector<int> position(count, -1);
-    auto complete = [&](std::size_t c) { return next[c] >= of[c].size(); };
-    // Per component: the components whose layers it waits for that are not yet deposited.
-    std::vector<int> waiting(comps, 0);
-    for (std::size_t p = 0; p < comps; ++p)
-        for (std::size_t c = 0; c < comps; ++c) waiting[c] += need[p][c] > 0;
-    std::vector<int> open;  // may go on: every layer waited for deposited, layers left
-    for (std::size_t c = 0; c < comps; ++c)
-        if (waiting[c] == 0 && !complete(c)) open.push_back(int(c));
-    int current = -1;
-    const Progress order = progress.span(0.9, 0.95, "ordering the layers");
-    while (out.layers.size() < count) {
-        order(double(out.layers.size()) / double(count));
-        if (open.empty()) bad("the components' waits form a cycle");
-        // How many layers still to come component c's next layer would block.
-        auto blocking = [&](int c) {
-            return pending[std::size_t(of[std::size_t(c)][next[std::size_t(c)]])];
-        };
-        int pick = -1;
-        auto better = [&](int a, int b) {  // b is better than a, among ready ones
-            return a < 0 || rank[std::size_t(b)] < rank[std::size_t(a)];
-        };
-        if (current >= 0 && !complete(std::size_t(current)) && blocking(current) == 0)
-            pick = current;
-        if (pick < 0)
-            for (int c : open)
-                if (blocking(c) == 0 && better(pick, c)) pick = c;
-        if (pick < 0)  // a cycle: the layer that blocks the fewest still to come
-            for (int c : open)
-                if (pick < 0 || blocking(c) < blocking(pick) ||
-                    (blocking(c) == blocking(pick) && better(pick, c)))
-                    pick = c;
-        const std::size_t c = std::size_t(pick);
-        if (current >= 0 && current != pick) {
-            ++out.component_switches;
-            if (!complete(std::size_t(current))) left[std::size_t(current)] = 1;
-        }
-        current = pick;
-        const int x = of[c][next[c]++];
-        position[std::size_t(x)] = int(out.layers.size());
-        out.layers.push_back(x);
-        for (int y : blocks[std::size_t(x)]) --pending[std::size_t(y)];
-        if (complete(c)) open.erase(std::find(open.begin(), open.end(), pick));
-        for (std::size_t d = 0; d < comps; ++d)
-            if (need[c][d] == int(next[c]) && --waiting[d] == 0 && !complete(d))
-                open.push_back(int(d));
-    }
-    for (std::size_t c = 0; c < comps; ++c) out.interrupted_components += left[c];
-
-    // The collisions: per layer, the plate, else of the layers it meets (whatever the order, or
-    // put before it all the same) the one that comes deepest into its nozzle.
-    std::vector<std::optional<Conflict>> worst = plate;
-    for (std::size_t x = 0; x < count; ++x) {
-        if (worst[x]) continue;
-        std::vector<int> met = unavoidable_of[x];
-        for (int y : blocks[x])
-            if (position[std::size_t(y)] < position[x]) met.push_back(y);
-        if (met.empty()) continue;
-        std::sort(met.begin(), met.end());
-        const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
-        worst[x] = deepest(sweep, x, met);
-    }
-
-    // Leaning the nozzle where it collides (see Nozzle.hpp): whether the nozzle along x's moves
-    // with tool axis `axis` keeps clear of the plate and of every layer deposited before x.
-    auto clears = [&](std::size_t x, const Vector3d& axis) {
-        const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
-        if (params.check_plate && plate_meets(sweep, x)) return false;
-        const Plane& top = layers[x].plane;
-        const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
-        for (std::size_t y = 0; y < count; ++y) {
-            if (position[y] >= position[x] || bounds[y].corners.empty() ||
-                !bounds[y].box.intersects(reachable))
-                continue;
-            const LayerBounds& b = bounds[y];
-            if (std::all_of(b.corners.begin(), b.corners.end(), [&](const Vector3d& c) {
-                    return top.normal.dot(c - top.origin) <= 0.0;
-                }))
-                continue;  // wholly under x's plane, which the nozzle keeps the margin above
-            const double centre = axis.dot(b.centre);
-            if (centre + b.radius - sweep.lowest() < shape.standoff - shape.grow ||
-                centre - b.radius - sweep.highest() > shape.top + shape.grow)
-                continue;
-            for (const Vector3d& q : samples.of(y))
-                if (sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) return false;
-        }
-        return true;
-    };
     // The leans tried: 5, 10, ... degrees and the greatest, each keeping the whole nozzle the
     // margin above the layer's plane.
     std::vector<double> leans;
@@ -790,48 +695,185 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         leans.push_back(theta);
         if (theta >= params.max_lean_deg) break;
     }
-    out.tool_axes.resize(count);
-    for (std::size_t x = 0; x < count; ++x) out.tool_axes[x] = (*in.toolpaths)[x].tool_axis;
-    order(1.0);
-    const Progress leaning = progress.span(0.95, 1.0, "leaning the nozzle where it collides");
-    for (std::size_t x = 0; x < count && !leans.empty(); ++x) {
-        if (!worst[x]) continue;
-        leaning(double(x) / double(count));
-        const Vector3d n = out.tool_axes[x].normalized();
+    // The axes x's nozzle may lean to, in the order tried: by each lean from its layer's normal n,
+    // towards the plate's normal, then across n towards `away` (from an obstacle to the nozzle);
+    // none further from the plate's normal than n is, past the horizontal: the machine may not
+    // reach it where it reached the normal.
+    auto lean_axes = [&](std::size_t x, const std::optional<Vector3d>& away) {
+        const Vector3d n = (*in.toolpaths)[x].tool_axis.normalized();
         std::vector<Vector3d> towards;  // across n
-        for (const Vector3d& v : {Vector3d(up), Vector3d(worst[x]->at - worst[x]->obstacle)}) {
+        std::vector<Vector3d> from = {up};
+        if (away) from.push_back(*away);
+        for (const Vector3d& v : from) {
             const Vector3d across = v - n.dot(v) * n;
             if (across.norm() < 1e-9) continue;
             const Vector3d d = across.normalized();
             if (towards.empty() || towards.front().dot(d) < 1.0 - 1e-9) towards.push_back(d);
         }
-        // No lean turns the nozzle further from the plate's normal than the layer's normal is,
-        // past the horizontal: the machine may not reach it where it reached the normal.
         const double steepest = std::max(std::acos(std::clamp(n.dot(up), -1.0, 1.0)), kPi / 2.0);
-        bool leaned = false;
+        std::vector<Vector3d> axes;
         for (double theta : leans) {
             const double t = theta * kPi / 180.0;
             for (const Vector3d& d : towards) {
                 const Vector3d axis = (std::cos(t) * n + std::sin(t) * d).normalized();
-                if (axis == n ||
-                    std::acos(std::clamp(axis.dot(up), -1.0, 1.0)) > steepest + 1e-12 ||
-                    !clears(x, axis))
+                if (axis != n && std::acos(std::clamp(axis.dot(up), -1.0, 1.0)) <= steepest + 1e-12)
+                    axes.push_back(axis);
+            }
+        }
+        return axes;
+    };
+    // The sequence, given which layers must come after which: the order, the collisions it leaves
+    // and the leans that clear them.
+    const auto sequence = [&](const std::vector<std::vector<int>>& blocks) {
+        std::vector<int> pending(count, 0);  // y: layers x to come before it, left
+        for (const std::vector<int>& ys : blocks)
+            for (int y : ys) ++pending[std::size_t(y)];
+        BuildSequence out;
+        out.layers.reserve(count);
+        std::vector<std::size_t> next(comps, 0);  // per component: its layers taken
+        std::vector<char> left(comps, 0);         // left unfinished for another
+        std::vector<int> position(count, -1);
+        auto complete = [&](std::size_t c) { return next[c] >= of[c].size(); };
+        // Per component: the components whose layers it waits for that are not yet deposited.
+        std::vector<int> waiting(comps, 0);
+        for (std::size_t p = 0; p < comps; ++p)
+            for (std::size_t c = 0; c < comps; ++c) waiting[c] += need[p][c] > 0;
+        std::vector<int> open;  // may go on: every layer waited for deposited, layers left
+        for (std::size_t c = 0; c < comps; ++c)
+            if (waiting[c] == 0 && !complete(c)) open.push_back(int(c));
+        int current = -1;
+        const Progress order = progress.span(0.9, 0.95, "ordering the layers");
+        while (out.layers.size() < count) {
+            order(double(out.layers.size()) / double(count));
+            if (open.empty()) bad("the components' waits form a cycle");
+            // How many layers still to come component c's next layer would block.
+            auto blocking = [&](int c) {
+                return pending[std::size_t(of[std::size_t(c)][next[std::size_t(c)]])];
+            };
+            int pick = -1;
+            auto better = [&](int a, int b) {  // b is better than a, among ready ones
+                return a < 0 || rank[std::size_t(b)] < rank[std::size_t(a)];
+            };
+            if (current >= 0 && !complete(std::size_t(current)) && blocking(current) == 0)
+                pick = current;
+            if (pick < 0)
+                for (int c : open)
+                    if (blocking(c) == 0 && better(pick, c)) pick = c;
+            if (pick < 0)  // a cycle: the layer that blocks the fewest still to come
+                for (int c : open)
+                    if (pick < 0 || blocking(c) < blocking(pick) ||
+                        (blocking(c) == blocking(pick) && better(pick, c)))
+                        pick = c;
+            const std::size_t c = std::size_t(pick);
+            if (current >= 0 && current != pick) {
+                ++out.component_switches;
+                if (!complete(std::size_t(current))) left[std::size_t(current)] = 1;
+            }
+            current = pick;
+            const int x = of[c][next[c]++];
+            position[std::size_t(x)] = int(out.layers.size());
+            out.layers.push_back(x);
+            for (int y : blocks[std::size_t(x)]) --pending[std::size_t(y)];
+            if (complete(c)) open.erase(std::find(open.begin(), open.end(), pick));
+            for (std::size_t d = 0; d < comps; ++d)
+                if (need[c][d] == int(next[c]) && --waiting[d] == 0 && !complete(d))
+                    open.push_back(int(d));
+        }
+        for (std::size_t c = 0; c < comps; ++c) out.interrupted_components += left[c];
+
+        // The collisions: per layer, the plate, else of the layers it meets (whatever the order, or
+        // put before it all the same) the one that comes deepest into its nozzle.
+        std::vector<std::optional<Conflict>> worst = plate;
+        for (std::size_t x = 0; x < count; ++x) {
+            if (worst[x]) continue;
+            std::vector<int> met = unavoidable_of[x];
+            for (int y : blocks[x])
+                if (position[std::size_t(y)] < position[x]) met.push_back(y);
+            if (met.empty()) continue;
+            std::sort(met.begin(), met.end());
+            const Sweep sweep((*in.toolpaths)[x], layers[x], reach);
+            worst[x] = deepest(sweep, x, met);
+        }
+
+        // Leaning the nozzle where it collides (see Nozzle.hpp): whether the nozzle along x's moves
+        // with tool axis `axis` keeps clear of the plate and of every layer deposited before x.
+        auto clears = [&](std::size_t x, const Vector3d& axis) {
+            const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
+            if (params.check_plate && plate_meets(sweep, x)) return false;
+            const Plane& top = layers[x].plane;
+            const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
+            for (std::size_t y = 0; y < count; ++y) {
+                if (position[y] >= position[x] || bounds[y].corners.empty() ||
+                    !bounds[y].box.intersects(reachable))
                     continue;
+                const LayerBounds& b = bounds[y];
+                if (std::all_of(b.corners.begin(), b.corners.end(), [&](const Vector3d& c) {
+                        return top.normal.dot(c - top.origin) <= 0.0;
+                    }))
+                    continue;  // wholly under x's plane, which the nozzle keeps the margin above
+                const double centre = axis.dot(b.centre);
+                if (centre + b.radius - sweep.lowest() < shape.standoff - shape.grow ||
+                    centre - b.radius - sweep.highest() > shape.top + shape.grow)
+                    continue;
+                for (const Vector3d& q : samples.of(y))
+                    if (sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) return false;
+            }
+            return true;
+        };
+        out.tool_axes.resize(count);
+        for (std::size_t x = 0; x < count; ++x) out.tool_axes[x] = (*in.toolpaths)[x].tool_axis;
+        order(1.0);
+        const Progress leaning = progress.span(0.95, 1.0, "leaning the nozzle where it collides");
+        for (std::size_t x = 0; x < count && !leans.empty(); ++x) {
+            if (!worst[x]) continue;
+            leaning(double(x) / double(count));
+            for (const Vector3d& axis : lean_axes(x, worst[x]->at - worst[x]->obstacle)) {
+                if (!clears(x, axis)) continue;
                 out.tool_axes[x] = axis;
                 worst[x].reset();
                 ++out.leaned_layers;
-                leaned = true;
                 break;
             }
-            if (leaned) break;
+        }
+
+        for (int x : out.layers)
+            if (worst[std::size_t(x)]) {
+                const Conflict& k = *worst[std::size_t(x)];
+                out.collisions.push_back({k.x, k.y, k.at, k.obstacle});
+            }
+        return out;
+    };
+    BuildSequence out = sequence(blocks);
+    // Where layers still collide, the order may be what left them no lean (a rod built sideways
+    // under a bar: the bar's layers came first, and the rod's nozzle, leaned up off the plate, met
+    // them). Ordered again without the pairs x's nozzle clears leaned towards the plate's normal
+    // (by a lean that keeps it off the plate too), it is kept when fewer layers collide.
+    if (!out.collisions.empty() && !leans.empty()) {
+        std::vector<std::vector<int>> relaxed(count);
+        bool changed = false;
+        for (std::size_t x = 0; x < count; ++x) {
+            if (blocks[x].empty()) continue;
+            std::vector<Sweep> leaned;  // x's nozzle at each lean that keeps off the plate
+            for (const Vector3d& axis : lean_axes(x, std::nullopt)) {
+                Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
+                if (!params.check_plate || !plate_meets(sweep, x))
+                    leaned.push_back(std::move(sweep));
+            }
+            for (int y : blocks[x]) {
+                const bool avoided = std::any_of(leaned.begin(), leaned.end(), [&](const Sweep& s) {
+                    return !meets(s, x, std::size_t(y));
+                });
+                if (avoided)
+                    changed = true;
+                else
+                    relaxed[x].push_back(y);
+            }
+        }
+        if (changed) {
+            BuildSequence again = sequence(relaxed);
+            if (again.collisions.size() < out.collisions.size()) out = std::move(again);
         }
     }
-
-    for (int x : out.layers)
-        if (worst[std::size_t(x)]) {
-            const Conflict& k = *worst[std::size_t(x)];
-            out.collisions.push_back({k.x, k.y, k.at, k.obstacle});
-        }
     progress(1.0);
     return out;
 }

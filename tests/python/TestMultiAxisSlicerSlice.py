@@ -540,21 +540,31 @@ class TestSliceSequence(SliceTest):
         # The rod under the bar, both built sideways along +X: coaxial, the rod's nozzle meets the
         # plate; leaned 20 degrees up it clears it, but meets the bar where the bar is deposited
         # first, which the order taken without leans did (4 of the rod's layers collided). Ordered
-        # again without the pairs a lean clears, the rod goes first, leaned, and the bar after it.
+        # again without the pairs a lean clears, the rod goes first, leaned, and the bar after it,
+        # leaned too where its coaxial nozzle would reach down to the rod (its layers nearest the
+        # column).
         result = mas.slice(support.rod_under_bar())
         self.assertEqual(result.notes, [])
         self.assertEqual(result.collisions, [])
         self.assertEqual(len(result.decomposition), 3)
         column, rod, bar = ([i for i, layer in enumerate(result.layers) if layer.component == c]
                             for c in range(3))
-        self.assertEqual(result.leaned_layers(), rod)
+        leaned = result.leaned_layers()
+        self.assertEqual(leaned[:len(rod)], rod)
+        self.assertGreater(len(leaned), len(rod))
+        self.assertEqual(leaned[len(rod):], bar[:len(leaned) - len(rod)])
+        for i in leaned:
+            self.assertGreater(result.tool_axis(i).z, 0.0)
         for i in rod:
             self.assertAlmostEqual(math.degrees(result.tool_axis(i).getAngle(
                 result.layers[i].normal)), 20.0, places=9)
-            self.assertGreater(result.tool_axis(i).z, 0.0)
         self.assertLess(max(result.sequence.index(i) for i in rod),
                         min(result.sequence.index(i) for i in bar))
         self.assertEqual(result.stats["worst_unsupported_area_mm2"], 0.0)
+        # The program's travel, checked on its own against the same nozzle, meets nothing either.
+        program = result.gcode()
+        self.assertEqual(program.stats["travel_collisions"], [])
+        self.assertGreater(program.stats["checked_routes"], 0)
 
     def test_the_nozzle_leans_clear_of_the_plate(self):
         # Allowed to lean (30 degrees by default), the 100 mm body clears the plate at every arm

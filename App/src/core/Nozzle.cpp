@@ -722,11 +722,12 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         }
         return axes;
     };
-    // The sequence, given which layers must come after which: the order, the collisions it leaves
-    // and the leans that clear them.
-    const auto sequence = [&](const std::vector<std::vector<int>>& blocks) {
+    // The sequence, ordered by `order_by` (x -> the layers y to come after it: `blocks`, or some
+    // of them): the order, the collisions it leaves (every layer of `blocks[x]` put before x) and
+    // the leans that clear them.
+    const auto sequence = [&](const std::vector<std::vector<int>>& order_by) {
         std::vector<int> pending(count, 0);  // y: layers x to come before it, left
-        for (const std::vector<int>& ys : blocks)
+        for (const std::vector<int>& ys : order_by)
             for (int y : ys) ++pending[std::size_t(y)];
         BuildSequence out;
         out.layers.reserve(count);
@@ -773,7 +774,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             const int x = of[c][next[c]++];
             position[std::size_t(x)] = int(out.layers.size());
             out.layers.push_back(x);
-            for (int y : blocks[std::size_t(x)]) --pending[std::size_t(y)];
+            for (int y : order_by[std::size_t(x)]) --pending[std::size_t(y)];
             if (complete(c)) open.erase(std::find(open.begin(), open.end(), pick));
             for (std::size_t d = 0; d < comps; ++d)
                 if (need[c][d] == int(next[c]) && --waiting[d] == 0 && !complete(d))

@@ -392,6 +392,10 @@ class SliceCommand(_PartCommand):
                 features.keep_unreachable_branches(layers)
             except mas.Cancelled:
                 return None  # the command is undone
+            except mas.EngineError as error:  # the first split stays, its collisions reported
+                FreeCAD.Console.PrintWarning(
+                    "{}: the branches the nozzle cannot reach could not be kept in their fathers: "
+                    "{}\n".format(layers.Label, error))
         components = features.components_of(decomposition) if mesh is None else []
         if features.failure(layers) is None:
             busy.stage("Drawing the bead paths...")

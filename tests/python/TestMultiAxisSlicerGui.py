@@ -1262,6 +1262,19 @@ class TestSliceCommand(unittest.TestCase):
         self.assertEqual(self.doc.UndoCount, undo)
         self.assertEqual(error_boxes(), [])
         self.assertTrue(self.part.ViewObject.Visibility)
+        # Where splitting it again fails, the first split stays, its collisions reported.
+        def fails(layers):
+            raise mas.EngineError("decompose: OCCT could not split the part")
+
+        self.addCleanup(setattr, features, "keep_unreachable_branches",
+                        features.keep_unreachable_branches)
+        features.keep_unreachable_branches = fails
+        layers, toolpath = self.run_command(self.part)
+        self.assertEqual(error_boxes(), [])
+        self.assertEqual(list(layers.Decomposition.KeepBranches), [])
+        self.assertEqual(layers.Decomposition.ComponentCount, 2)
+        self.assertGreater(layers.CollidingLayers, 0)
+        self.assertIsNone(features.failure(toolpath))
 
     def test_command_on_a_face_shows_the_engine_message(self):
         self.part.Shape = Part.makePlane(10, 10)

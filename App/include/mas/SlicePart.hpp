@@ -189,13 +189,17 @@ struct SplitSliced {
 // (no order or lean clears them, Nozzle.hpp), the branches of their components (not the root's)
 // are kept too, each saying so, and the part is split and sliced again, up to five times in all
 // (the next 20 %); with layers still in the way, `whole` slices it as one component (the last
-// 10 %), kept when fewer of its layers are (`took_whole` says whether it was, and a note). The
-// decomposition's notes come first in the result's, each "decomposition: ...".
+// 10 %), kept when fewer of its layers are, with a note. The decomposition's notes come first in
+// the result's, each "decomposition: ...".
+struct SplitOutcome {
+    bool took_whole = false;         // the part sliced as one component was kept
+    std::vector<std::string> notes;  // the decomposition's notes, without the "decomposition: "
+};
 SlicedPart slice_clear_of_collisions(
     const std::function<SplitSliced(const std::vector<KeptBranch>& keep, const Progress& progress)>&
         split,
     const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
-    const Progress& progress, bool* took_whole = nullptr);
+    const Progress& progress, SplitOutcome* outcome = nullptr);
 
 // A solid decomposed (decompose() with `decompose_params`, its kept branches among those kept;
 // the first fifth of each round) and sliced (slice_part), in the rounds of

@@ -41,7 +41,7 @@ SlicedPart slice_clear_of_collisions(
     const std::function<SplitSliced(const std::vector<KeptBranch>& keep, const Progress& progress)>&
         split,
     const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
-    const Progress& progress, bool* took_whole) {
+    const Progress& progress, SplitOutcome* outcome) {
     const int rounds = avoid_collisions ? 5 : 1;
     std::vector<KeptBranch> keep;
     SplitSliced parts;
@@ -66,7 +66,6 @@ SlicedPart slice_clear_of_collisions(
                             "deposited before them"});
     }
     SlicedPart sliced = std::move(parts.sliced);
-    if (took_whole) *took_whole = false;
     if (avoid_collisions && parts.branches.size() > 1 && sliced.stats.colliding_layers > 0) {
         SlicedPart one = whole(progress.span(0.9, 1.0));
         if (one.stats.colliding_layers < sliced.stats.colliding_layers) {
@@ -77,11 +76,13 @@ SlicedPart slice_clear_of_collisions(
                  << one.stats.colliding_layers << " so";
             parts.notes.push_back(note.str());
             sliced = std::move(one);
-            if (took_whole) *took_whole = true;
+            if (outcome) outcome->took_whole = true;
         }
     }
-    for (std::string& note : parts.notes) note = "decomposition: " + note;
-    sliced.notes.insert(sliced.notes.begin(), parts.notes.begin(), parts.notes.end());
+    std::vector<std::string> notes;
+    for (const std::string& note : parts.notes) notes.push_back("decomposition: " + note);
+    sliced.notes.insert(sliced.notes.begin(), notes.begin(), notes.end());
+    if (outcome) outcome->notes = std::move(parts.notes);
     progress.span(0.0, 1.0, "slicing")(1.0);
     return sliced;
 }

@@ -131,16 +131,12 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
             all.push_back({int(b), "the part is sliced as one component"});
         return run(all, p, whole_one);
     };
-    bool took_whole = false;
+    SplitOutcome outcome;
     SlicedPart out =
-        slice_clear_of_collisions(split, whole, params.avoid_collisions, progress, &took_whole);
-    decomposition = took_whole ? std::move(whole_one) : std::move(split_one);
+        slice_clear_of_collisions(split, whole, params.avoid_collisions, progress, &outcome);
+    decomposition = outcome.took_whole ? std::move(whole_one) : std::move(split_one);
     // The notes said with the result's (the split's, and why the part is sliced whole).
-    decomposition.notes.clear();
-    const std::string prefix = "decomposition: ";
-    for (const std::string& note : out.notes)
-        if (note.compare(0, prefix.size(), prefix) == 0)
-            decomposition.notes.push_back(note.substr(prefix.size()));
+    decomposition.notes = std::move(outcome.notes);
     return out;
 }
 

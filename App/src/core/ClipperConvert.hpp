@@ -61,4 +61,9 @@ inline Polygon2 from_path(const ClipperLib::Path& path) {
     return polygon;
 }
 
+// The regions of a Boolean's or an offset's closed result (PolygonBoolean.cpp): each outer loop
+// with its holes, islands inside holes regions of their own; nested again by containment where
+// Clipper nested them wrongly (a hole larger than its outer loop).
+Regions2 regions_of(const ClipperLib::PolyTree& tree);
+
 }  // namespace mas::clipper_convert

@@ -89,18 +89,20 @@ struct Piece {
 };
 using Pieces = std::vector<Piece>;
 
-void split(const ClipperLib::PolyNode& node, Pieces& out) {
-    for (const ClipperLib::PolyNode* child : node.Childs) {
-        if (child->IsOpen()) continue;
+// A closed result's pieces, nested as mas::difference's regions are (clipper_convert::regions_of:
+// again by containment where Clipper nested them wrongly). Its coordinates go through
+// millimetres and back unchanged (the grid's integers, well inside double's exact range).
+Pieces pieces_of(const ClipperLib::PolyTree& tree) {
+    Pieces out;
+    for (const Region2& region : clipper_convert::regions_of(tree)) {
+        if (region.outer.points.size() < 3) continue;
         Piece piece;
-        if (child->Contour.size() >= 3) piece.loops.push_back(child->Contour);
-        for (const ClipperLib::PolyNode* hole : child->Childs) {
-            if (!piece.loops.empty() && hole->Contour.size() >= 3)
-                piece.loops.push_back(hole->Contour);
-            split(*hole, out);  // islands inside the hole
-        }
-        if (!piece.loops.empty()) out.push_back(std::move(piece));
+        piece.loops.push_back(clipper_convert::to_path(region.outer));
+        for (const auto& hole : region.holes)
+            if (hole.points.size() >= 3) piece.loops.push_back(clipper_convert::to_path(hole));
+        out.push_back(std::move(piece));
     }
+    return out;
 }
 
 Paths loops_of(const Pieces& pieces) {
@@ -116,9 +118,7 @@ Pieces offset_pieces(const Paths& loops, double delta_mm, double arc_units) {
     off.AddPaths(loops, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
     ClipperLib::PolyTree tree;
     off.Execute(tree, delta_mm * kScale);
-    Pieces out;
-    split(tree, out);
-    return out;
+    return pieces_of(tree);
 }
 
 // True when some loop encloses area (Clipper's Execute fails on input with none).
@@ -136,9 +136,7 @@ Pieces boolean(ClipperLib::ClipType type, const Paths& a, const Paths& b) {
     ClipperLib::PolyTree tree;
     if (!clipper.Execute(type, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero))
         throw Error(ErrorCode::GeometryFailure, "polygon Boolean operation failed");
-    Pieces out;
-    split(tree, out);
-    return out;
+    return pieces_of(tree);
 }
 
 double area_mm2(const Paths& loops) {

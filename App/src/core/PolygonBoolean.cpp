@@ -1,7 +1,9 @@
 // Polygon Booleans and offsets through Clipper (Debian libpolyclipping, Clipper 6.4). Coordinates
 // are snapped to an integer grid of kScale units per mm; results come back as regions with holes.
+#include <algorithm>
 #include <clipper.hpp>
 #include <cmath>
+#include <numeric>
 
 #include "ClipperConvert.hpp"
 #include "mas/Error.hpp"
@@ -29,6 +31,14 @@ void collect(const ClipperLib::PolyNode& node, Regions2& out) {
     }
 }
 
+// Every contour under `node`.
+void gather(const ClipperLib::PolyNode& node, std::vector<Polygon2>& loops) {
+    for (const ClipperLib::PolyNode* child : node.Childs) {
+        loops.push_back(from_path(child->Contour));
+        gather(*child, loops);
+    }
+}
+
 Regions2 run(ClipperLib::ClipType type, const Regions2& a, const Regions2& b) {
     // One Clipper per thread, cleared before each use: its internal lists keep their memory,
     // which saves many allocations on the axis' thousands of small Booleans. (A Clipper's
@@ -40,12 +50,74 @@ Regions2 run(ClipperLib::ClipType type, const Regions2& a, const Regions2& b) {
     ClipperLib::PolyTree tree;
     if (!clipper.Execute(type, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero))
         throw Error(ErrorCode::GeometryFailure, "polygon Boolean operation failed");
-    Regions2 out;
-    collect(tree, out);
-    return out;
+    return clipper_convert::regions_of(tree);
 }
 
 }  // namespace
+
+// Clipper 6.4 can nest its result wrongly on near-degenerate input: a difference leaving a
+// hairline of 4e-6 mm^2 beside a 299 mm^2 region came back as that hairline, an outer loop,
+// holding the region as its hole (the region's area then negative: the axis' march over a hub
+// with twisted blades ended there, a quarter of the part unsearched). The tree is then nested
+// again by containment: a loop inside an even number of larger loops is an outer loop (made
+// counter-clockwise), inside an odd number a hole (clockwise) of the smallest of them. A loop
+// is inside another when most of up to 9 of its vertices, spread along it, are (a vertex on the
+// other's outline may go either way).
+Regions2 clipper_convert::regions_of(const ClipperLib::PolyTree& tree) {
+    Regions2 out;
+    collect(tree, out);
+    const bool nested_right = std::all_of(out.begin(), out.end(), [](const Region2& r) {
+        const double outer = std::abs(signed_area(r.outer));
+        return std::all_of(r.holes.begin(), r.holes.end(),
+                           [&](const Polygon2& h) { return std::abs(signed_area(h)) <= outer; });
+    });
+    if (nested_right) return out;
+    std::vector<Polygon2> loops;
+    gather(tree, loops);
+    const std::size_t n = loops.size();
+    std::vector<double> size(n);
+    std::vector<Eigen::AlignedBox2d> box(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        size[i] = std::abs(signed_area(loops[i]));
+        for (const auto& p : loops[i].points) box[i].extend(p);
+    }
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return size[a] > size[b]; });
+    const auto within = [&](std::size_t inner, std::size_t outer) {
+        if (!box[outer].contains(box[inner])) return false;
+        const auto& pts = loops[inner].points;
+        const std::size_t samples = std::min<std::size_t>(pts.size(), 9);
+        const Region2 holder{loops[outer], {}};
+        std::size_t in = 0;
+        for (std::size_t s = 0; s < samples; ++s)
+            in += contains(holder, pts[s * pts.size() / samples]);
+        return 2 * in > samples;
+    };
+    std::vector<int> depth(n, 0), region(n, -1);
+    std::vector<std::size_t> parent(n, n);
+    for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t m = k; m-- > 0;)  // the smallest larger loop holding it
+            if (within(order[k], order[m])) {
+                parent[order[k]] = order[m];
+                depth[order[k]] = depth[order[m]] + 1;
+                break;
+            }
+    out.clear();
+    for (const std::size_t i : order) {  // a loop's parent before it
+        Polygon2 loop = std::move(loops[i]);
+        const bool hole = depth[i] % 2 == 1;
+        if ((signed_area(loop) < 0.0) != hole) std::reverse(loop.points.begin(), loop.points.end());
+        if (hole) {
+            out[std::size_t(region[parent[i]])].holes.push_back(std::move(loop));
+        } else {
+            region[i] = int(out.size());
+            out.push_back(Region2{std::move(loop), {}});
+        }
+    }
+    return out;
+}
 
 Regions2 intersection(const Regions2& a, const Regions2& b) {
     if (a.empty() || b.empty()) return {};
@@ -71,9 +143,7 @@ Regions2 offset(const Regions2& regions, double delta_mm, JoinType join, double 
     off.AddPaths(to_paths(regions), jt, ClipperLib::etClosedPolygon);
     ClipperLib::PolyTree tree;
     off.Execute(tree, delta_mm * kScale);
-    Regions2 out;
-    collect(tree, out);
-    return out;
+    return clipper_convert::regions_of(tree);
 }
 
 }  // namespace mas

@@ -39,7 +39,7 @@ def _multi_axis_slicer_init():
     if has_tests:
         FreeCAD.__unit_test__ += ["TestMultiAxisSlicerApi", "TestMultiAxisSlicerAxis",
                                   "TestMultiAxisSlicerDecompose", "TestMultiAxisSlicerSlice",
-                                  "TestMultiAxisSlicerGcode"]
+                                  "TestMultiAxisSlicerGcode", "TestMultiAxisSlicerSurvey"]
 
 
 _multi_axis_slicer_init()

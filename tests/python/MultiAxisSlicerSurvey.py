@@ -1,0 +1,186 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Parts nobody tuned for: five families of the parts a deposition shop builds (pipe bends, hubs
+with blades, lugs and clevises, angle brackets, branches leaning off columns), each part drawn at
+random from its family's ranges, and a survey slicing them as a user would (defaults, G-code).
+
+``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
+drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers
+the nozzle meets, travel routes meeting anything, and the unsupported area (tools/survey.py
+prints it; TestMultiAxisSlicerSurvey asserts it)."""
+
+import math
+import random
+
+import FreeCAD
+import Part
+
+import MultiAxisSlicer as mas
+
+V = FreeCAD.Vector
+
+
+def _bore(radius, rise, bend_radius, run, z0):
+    """A round channel up from below the plate, round a 90-degree bend and along +X."""
+    up = Part.makeCylinder(radius, rise + 1, V(0, 0, z0 - 1))
+    disc = Part.Face(Part.Wire(Part.makeCircle(radius, V(0, 0, z0 + rise), V(0, 0, 1))))
+    bend = disc.revolve(V(bend_radius, 0, z0 + rise), V(0, 1, 0), 90)
+    along = Part.makeCylinder(radius, run + 1, V(bend_radius, 0, z0 + rise + bend_radius),
+                              V(1, 0, 0))
+    return up.fuse([bend, along])
+
+
+def pipe_bend(rng):
+    """A flange on the plate, a riser, a 90-degree bend into the horizontal and a straight run;
+    hollow (a bore through all of it) or solid."""
+    r = rng.uniform(6, 12)
+    bore = r - rng.uniform(2, 4)
+    rise, run = rng.uniform(10, 40), rng.uniform(10, 40)
+    bend_radius = rng.uniform(r + 4, 3 * r)
+    flange = rng.uniform(4, 10)
+    hollow = rng.random() < 0.5
+    solid = Part.makeCylinder(r + flange, 4).fuse(_bore(r, rise, bend_radius, run, 4))
+    if hollow:
+        solid = solid.cut(_bore(bore, rise, bend_radius, run, 4))
+    return solid, {"radius": r, "bore": bore if hollow else 0.0, "bend_radius": bend_radius}
+
+
+def hub_with_blades(rng):
+    """A round hub standing on the plate with 2 to 6 flat blades round it, square to the plate
+    or twisted 15 or 30 degrees about their length; a bore through the hub or not."""
+    hub, height, count = rng.uniform(8, 15), rng.uniform(20, 40), rng.randint(2, 6)
+    length, thickness = rng.uniform(15, 35), rng.uniform(3, 6)
+    width = rng.uniform(0.4, 0.8) * height
+    twist = rng.choice([0, 0, 15, 30])
+    solid = Part.makeCylinder(hub, height)
+    for i in range(count):
+        blade = Part.makeBox(length + hub / 2, thickness, width,
+                             V(hub / 2, -thickness / 2, (height - width) / 2))
+        blade.rotate(V(0, 0, height / 2), V(1, 0, 0), twist)
+        blade.rotate(V(0, 0, 0), V(0, 0, 1), 360.0 * i / count + rng.uniform(0, 10))
+        solid = solid.fuse(blade)
+    if rng.random() < 0.5:
+        solid = solid.cut(Part.makeCylinder(hub / 3, height + 2, V(0, 0, -1)))
+    return solid, {"blades": count, "twist_deg": twist}
+
+
+def lug(rng):
+    """A base plate with one upright lug, or two (a clevis), each with a round top and a pin
+    hole through it along Y."""
+    width, depth, plate = rng.uniform(30, 60), rng.uniform(20, 40), rng.uniform(5, 10)
+    thickness, height = rng.uniform(5, 10), rng.uniform(15, 35)
+    lug_width = rng.uniform(15, min(width, 30))
+    ys = [0.0] if rng.random() < 0.5 else [-depth / 4, depth / 4]
+    solid = Part.makeBox(width, depth, plate, V(-width / 2, -depth / 2, 0))
+    for y in ys:
+        upright = Part.makeBox(lug_width, thickness, height,
+                               V(-lug_width / 2, y - thickness / 2, plate))
+        upright = upright.fuse(Part.makeCylinder(lug_width / 2, thickness,
+                                                 V(0, y - thickness / 2, plate + height),
+                                                 V(0, 1, 0)))
+        upright = upright.cut(Part.makeCylinder(lug_width / 4, thickness + 2,
+                                                V(0, y - thickness / 2 - 1, plate + height),
+                                                V(0, 1, 0)))
+        solid = solid.fuse(upright)
+    return solid, {"lugs": len(ys), "hole_diameter": lug_width / 2}
+
+
+def angle_bracket(rng):
+    """An angle: a foot on the plate and a wall at its end, a triangular web between them or not,
+    an arm off the wall's top reaching the other way or not."""
+    length, width = rng.uniform(30, 60), rng.uniform(20, 40)
+    thickness, height = rng.uniform(4, 8), rng.uniform(25, 50)
+    solid = Part.makeBox(length, width, thickness).fuse(Part.makeBox(thickness, width, height))
+    web = rng.random() < 0.5
+    if web:
+        y = width / 2 - 2
+        outline = Part.makePolygon([V(thickness, y, thickness),
+                                    V(thickness + 0.6 * length, y, thickness),
+                                    V(thickness, y, thickness + 0.6 * height),
+                                    V(thickness, y, thickness)])
+        solid = solid.fuse(Part.Face(outline).extrude(V(0, 4, 0)))
+    arm = rng.random() < 0.5
+    if arm:
+        reach = rng.uniform(10, 30)
+        solid = solid.fuse(Part.makeBox(reach + thickness, thickness, thickness,
+                                        V(-reach, width / 2 - thickness / 2, height - thickness)))
+    return solid, {"web": web, "arm": arm}
+
+
+def leaning_branch(rng):
+    """A round column with a round branch leaving its side at 20 to 70 degrees from the vertical,
+    the column going on above it."""
+    height, r = rng.uniform(40, 70), rng.uniform(6, 12)
+    lean = rng.uniform(20, 70)
+    z = rng.uniform(0.3, 0.6) * height
+    d = V(math.sin(math.radians(lean)), 0, math.cos(math.radians(lean)))
+    solid = Part.makeCylinder(r, height).fuse(
+        Part.makeCylinder(r * rng.uniform(0.5, 1.0), rng.uniform(20, 40), V(0, 0, z), d))
+    # whatever of the branch's end dips under the plate is cut off
+    solid = solid.common(Part.makeBox(400, 400, 400, V(-200, -200, 0)))
+    return solid, {"lean_deg": lean}
+
+
+FAMILIES = {
+    "pipe bend": pipe_bend,
+    "hub with blades": hub_with_blades,
+    "lug": lug,
+    "angle bracket": angle_bracket,
+    "leaning branch": leaning_branch,
+}
+
+
+def part(family, index, seed=39):
+    """(solid, description) of part `index` of `family` (a key of FAMILIES) for `seed`: one
+    valid closed solid standing on the plate (z = 0), the same for the same arguments."""
+    rng = random.Random("{}/{}/{}".format(seed, family, index))
+    solid, description = FAMILIES[family](rng)
+    solid = solid.removeSplitter()
+    if not solid.isValid() or len(solid.Solids) != 1:
+        raise RuntimeError("{} {} (seed {}) is not one valid solid".format(family, index, seed))
+    solid.translate(V(0, 0, -solid.BoundBox.ZMin))
+    return solid, dict(description, family=family, index=index, seed=seed)
+
+
+def support_tolerance(layer, deflection):
+    """The unsupported area (mm²) that a layer's mesh sections can show on a part with none: a
+    strip as wide as the deflection along its outlines."""
+    length = 0.0
+    for loop in layer.loops():
+        length += sum((loop[i] - loop[i - 1]).Length for i in range(len(loop)))
+    return length * deflection
+
+
+def survey_part(solid, description, fill_holes=0.0):
+    """Slices `solid` at the defaults (holes up to `fill_holes` mm deposited solid), writes its
+    G-code, and reports: components, layers, seconds, the axis' step, worst and summed
+    unsupported area, layers
+    over their tolerance (support_tolerance), colliding layers, travel routes meeting something,
+    thickness range and notes."""
+    import time
+
+    start = time.perf_counter()
+    result = mas.slice(solid, fill_holes=fill_holes)
+    program = result.gcode()
+    seconds = time.perf_counter() - start
+    deflection = mas.deflection(solid)
+    layers = result.layers
+    over = [i for i, layer in enumerate(layers)
+            if layer.unsupported_area > support_tolerance(layer, deflection)]
+    return dict(description, components=len(result.components), layers=len(layers),
+                seconds=seconds, step=result.axis.params["step_mm"],
+                worst_unsupported=max(l.unsupported_area for l in layers),
+                total_unsupported=sum(l.unsupported_area for l in layers),
+                unsupported_layers=over, colliding_layers=result.stats["colliding_layers"],
+                travel_collisions=len(program.stats["travel_collisions"]),
+                min_thickness=result.stats["min_thickness_mm"],
+                max_thickness=result.stats["max_thickness_mm"],
+                filled_holes=len(result.filled_holes), notes=list(result.notes))
+
+
+def survey(per_family, seed=39, fill_holes=16.0, families=None):
+    """survey_part() of `per_family` parts of each family (all of FAMILIES unless `families`):
+    yields each report as it is made."""
+    for family in families or FAMILIES:
+        for index in range(per_family):
+            solid, description = part(family, index, seed)
+            yield survey_part(solid, description, fill_holes)

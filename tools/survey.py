@@ -33,18 +33,19 @@ def main():
                          for k, v in r.items() if k not in (
                              "family", "index", "seed", "components", "layers", "seconds", "step",
                              "worst_unsupported", "total_unsupported", "unsupported_layers",
-                             "colliding_layers", "travel_collisions", "min_thickness",
-                             "max_thickness", "notes", "filled_holes"))
+                             "colliding_layers", "travel_collisions", "layers_out_of_bounds",
+                             "notes", "filled_holes"))
         print("\n%-16s %3d %5d %6d %7.2f %6.3f %9.2f %9.1f %5d %6d %6d  %s" % (
             r["family"], r["index"], r["components"], r["layers"], r["seconds"], r["step"],
             r["worst_unsupported"], r["total_unsupported"], len(r["unsupported_layers"]),
             r["colliding_layers"], r["travel_collisions"], what), end="")
     print("\n\nsurvey: %d parts in %.1f s; %d with layers in the nozzle's way, %d with travel "
-          "meeting something; unsupported area %.1f mm2 in all (worst %.2f), %d parts over the "
-          "deflection's tolerance" % (
+          "meeting something, %d with layers out of the thickness bounds; unsupported area %.1f "
+          "mm2 in all (worst %.2f), %d parts over the deflection's tolerance" % (
               len(reports), sum(r["seconds"] for r in reports),
               sum(1 for r in reports if r["colliding_layers"]),
               sum(1 for r in reports if r["travel_collisions"]),
+              sum(1 for r in reports if r["layers_out_of_bounds"]),
               sum(r["total_unsupported"] for r in reports),
               max(r["worst_unsupported"] for r in reports),
               sum(1 for r in reports if r["unsupported_layers"])))

@@ -101,3 +101,14 @@ bend = bend.fuse(stem).fuse(bend_face.revolve(V(30, 0, 28), V(0, 1, 0), 135)).So
 bend.rotate(V(0, 0, 0), V(1, 0, 0), 90)
 bend.translate(V(0, 0, -bend.BoundBox.ZMin))
 bend.exportStep(os.path.join(here, "bend_on_side.step"))
+
+# hub_twisted_blades.brep  the survey's hub with blades 6 (tests/python/MultiAxisSlicerSurvey.py,
+# seed 39): a hub of radius 9.37 mm, 32.3 tall, with six blades 3.06 mm thick and 13.74 wide
+# twisted 30 degrees; a plane grazing one blade's tip made its derived step 0.056 mm
+import sys  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.getcwd(), "tests", "python"))
+import MultiAxisSlicerSurvey  # noqa: E402
+
+hub, _ = MultiAxisSlicerSurvey.part("hub with blades", 6, 39)
+hub.exportBrep(os.path.join(here, "hub_twisted_blades.brep"))

@@ -923,6 +923,29 @@ TEST(CentroidalAxis, DerivedStepIsHalfTheThinnestWallWithinClamps) {
     EXPECT_NO_THROW(mas::centroidal_axis(lying));
 }
 
+TEST(CentroidalAxis, DerivedStepIsNotTakenFromAPlaneGrazingAnEdge) {
+    // tests/data/hub_twisted_blades.brep: six blades 3.06 mm thick and 13.74 wide, twisted 30
+    // degrees, round a hub. A plane across a blade cuts a strip about 2A/P = 2.5 mm wide; one of
+    // the X planes grazes another blade's tip face, nearly along it, and cuts a 0.05 mm strip.
+    // Taken for the thinnest wall, that made the step diagonal / 2000 (0.056 mm) and the axis
+    // 3600 nodes. The step is half a wall as thick as the blades, give or take the half again a
+    // strip that goes on may thicken by.
+    const mas::Model model =
+        mas::read_model(std::string(MAS_TEST_DATA) + "/hub_twisted_blades.brep");
+    mas::TessellationParams tp;
+    tp.deflection_mm = mas::effective_deflection(model.shape, tp);
+    const auto mesh = mas::tessellate(model.shape, tp);
+    const double t = 3.063852014180396, w = 13.73836330961673;
+    const double blade = 2.0 * t * w / (2.0 * (t + w));
+    const double step = mas::derive_axis_step(mesh);
+    EXPECT_LE(step, blade / 2.0);
+    EXPECT_GE(step, blade / 2.0 / 1.5);
+    const auto a = mas::centroidal_axis(mesh);
+    EXPECT_DOUBLE_EQ(a.params.step_mm, step);
+    EXPECT_LT(a.nodes.size(), 400u);
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     const auto mesh = mas::test::box_mesh(0, 0, 5, 10, 10, 10);
     auto expect_error_on = [&](const mas::TriangleMesh& m, const std::string& word,

@@ -1035,13 +1035,14 @@ TEST(Decompose, PartsStandingOnATipAreDecomposed) {
 namespace {
 
 // tests/data/`name` decomposed as slicing does it by default: on the axis of its tessellation at
-// the part's own deflection, which slicing also meshes every component with.
+// the part's own deflection, which slicing also meshes every component with; the axis' step
+// derived, unless `step_mm` is given.
 struct AsSlicingDecomposes {
-    explicit AsSlicingDecomposes(const std::string& name)
+    explicit AsSlicingDecomposes(const std::string& name, double step_mm = 0.0)
         : model(mas::read_model(std::string(MAS_TEST_DATA) + "/" + name)) {
         tp.deflection_mm = mas::effective_deflection(model.shape, mas::TessellationParams{});
         mas::AxisParams ap;
-        ap.step_mm = 0.0;  // derived, as by default
+        ap.step_mm = step_mm;
         mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(model.shape, tp), ap);
         axis.deflection_mm = tp.deflection_mm;
         d = mas::decompose(model.shape, axis);
@@ -1062,8 +1063,11 @@ TEST(Decompose, APartWithCurvesOffItsFacesIsSplitOnlyWherePiecesMeshClosed) {
     // edges have curves off their faces (OCCT's curve-on-surface check). One split of it (the
     // column above the level pin, cut for the rising pin's branch) passed the shape check and
     // meshed with an edge shared by three triangles at the part's deflection, so slicing stopped
-    // there. Such a split is now refused, with a note, and every component meshes closed.
-    const AsSlicingDecomposes run("pins_on_column.step");
+    // there. Such a split is now refused, with a note, and every component meshes closed. That
+    // split came at the step derived until grazes were told from walls (CentroidalAxis.hpp),
+    // half the 0.339 mm strip a plane grazing the rising pin's end cuts: given here (at 0.169 mm
+    // the split falls elsewhere).
+    const AsSlicingDecomposes run("pins_on_column.step", 0.1695825);
     const mas::Shape& part = run.model.shape;
     const mas::Decomposition& d = run.d;
     // The level pin is still cut off; the column above it (branch 2), whose piece meshed with
@@ -1078,6 +1082,13 @@ TEST(Decompose, APartWithCurvesOffItsFacesIsSplitOnlyWherePiecesMeshClosed) {
     EXPECT_EQ(d.notes[1].rfind("branch 3 ", 0), 0u) << d.notes[1];
     EXPECT_NE(d.notes[1].find("mostly other branches' material"), std::string::npos) << d.notes[1];
     expect_invariants(d, part);
+    // At the derived step (1.72 mm), both pins and the column above the level pin are cut off,
+    // and every piece meshes closed.
+    const AsSlicingDecomposes derived("pins_on_column.step");
+    EXPECT_EQ(derived.d.components.size(), 4u);
+    EXPECT_TRUE(derived.d.notes.empty());
+    derived.expect_components_mesh_closed();
+    expect_invariants(derived.d, part);
 }
 
 TEST(Decompose, ASplitOfASoundPartThatLeavesAPieceWithCurvesOffItsFacesMustMeshClosed) {

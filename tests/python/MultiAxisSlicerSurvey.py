@@ -166,14 +166,23 @@ def survey_part(solid, description, fill_holes=0.0):
     layers = result.layers
     over = [i for i, layer in enumerate(layers)
             if layer.unsupported_area > support_tolerance(layer, deflection)]
+    # Thickness bounds as the engine keeps them: everywhere on a layer at most max_layer and
+    # more than 0 (planes never cross in the part); at least min_layer but on the last layer of
+    # a component, which is thinner where less than that was left.
+    lp = result.params
+    last = {i for i, layer in enumerate(layers)
+            if i + 1 == len(layers) or layers[i + 1].component != layer.component}
+    out_of_bounds = [i for i, layer in enumerate(layers)
+                     if layer.max_thickness > lp["max_layer"] + 1e-9
+                     or layer.min_thickness <= 0.0
+                     or (i not in last and layer.min_thickness < lp["min_layer"] - 1e-9)]
     return dict(description, components=len(result.components), layers=len(layers),
                 seconds=seconds, step=result.axis.params["step_mm"],
                 worst_unsupported=max(l.unsupported_area for l in layers),
                 total_unsupported=sum(l.unsupported_area for l in layers),
                 unsupported_layers=over, colliding_layers=result.stats["colliding_layers"],
                 travel_collisions=len(program.stats["travel_collisions"]),
-                min_thickness=result.stats["min_thickness_mm"],
-                max_thickness=result.stats["max_thickness_mm"],
+                layers_out_of_bounds=out_of_bounds,
                 filled_holes=len(result.filled_holes), notes=list(result.notes))
 
 

@@ -247,8 +247,12 @@ struct CentroidalAxis {
 // 2 x area / perimeter (the width of a long strip) of the elongated regions (P^2 / A >= 21, about
 // 3:1 and thinner) among sections along X, Y and Z (16 planes each); compact regions count only
 // when no section has an elongated one, since a plane grazing a rounded tip cuts a tiny disc that
-// says nothing about wall thickness. Clamped to [diagonal / 2000, diagonal / 20], then at most half
-// the part's height (z extent), which the march's step must stay under.
+// says nothing about wall thickness. Nor does a plane grazing an edge along it (two surfaces that
+// meet): the thinnest strip confirmed as a wall (the planes its width, at least diagonal / 200,
+// either side cut a region no more than 1.5 times as thick where it lies) sets how thin a strip
+// may be and count, an eighth of it, and the thinnest strip that counts is the wall. Clamped to
+// [diagonal / 2000, diagonal / 20], then at most half the part's height (z extent), which the
+// march's step must stay under.
 double derive_axis_step(const TriangleMesh& mesh);
 
 // Throws mas::Error: InvalidArgument for bad parameters (a step that is not positive and finite,

@@ -10,6 +10,7 @@ prints it; TestMultiAxisSlicerSurvey asserts it)."""
 
 import math
 import random
+import time
 
 import FreeCAD
 import Part
@@ -153,11 +154,8 @@ def support_tolerance(layer, deflection):
 def survey_part(solid, description, fill_holes=0.0):
     """Slices `solid` at the defaults (holes up to `fill_holes` mm deposited solid), writes its
     G-code, and reports: components, layers, seconds, the axis' step, worst and summed
-    unsupported area, layers
-    over their tolerance (support_tolerance), colliding layers, travel routes meeting something,
-    thickness range and notes."""
-    import time
-
+    unsupported area, layers over their tolerance (support_tolerance), colliding layers, travel
+    routes meeting something, layers out of the thickness bounds, holes filled and notes."""
     start = time.perf_counter()
     result = mas.slice(solid, fill_holes=fill_holes)
     program = result.gcode()

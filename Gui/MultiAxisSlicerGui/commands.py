@@ -37,6 +37,36 @@ def _part_problem(source, split=False):
     if kind in _RESULTS:
         return "'{}' is {}, not a part: select the solid or mesh it was made from.".format(
             source.Label, _RESULTS[kind])
+    with _Checking(source):
+        return _model_problem(source, split)
+
+
+class _Checking:
+    """A wait cursor and a status-bar message while a selected part is checked: a scanned mesh
+    of a million facets takes seconds to reach the engine and be checked closed."""
+
+    def __init__(self, source):
+        self.label = source.Label
+
+    def __enter__(self):
+        from PySide import QtCore, QtGui
+
+        QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
+        FreeCADGui.getMainWindow().statusBar().showMessage(
+            "Multi-Axis Slicer: checking '{}'...".format(self.label))
+        FreeCADGui.updateGui()
+        return self
+
+    def __exit__(self, *exc):
+        from PySide import QtGui
+
+        FreeCADGui.getMainWindow().statusBar().clearMessage()
+        QtGui.QApplication.restoreOverrideCursor()
+        return False
+
+
+def _model_problem(source, split):
+    """_part_problem() past its check for this workbench's results."""
     if "Touched" in source.State or "Invalid" in source.State:
         source.recompute(True)  # checked as it will be used (a new Part::Box has no shape yet)
         if "Invalid" in source.State:

@@ -1084,7 +1084,25 @@ class TestSliceCommand(unittest.TestCase):
         self.doc.recompute()
         undo = self.doc.UndoCount
         names = [o.Name for o in self.doc.Objects]
-        layers, toolpath = self.run_command(scan)
+        # While the mesh reaches the engine and is checked (seconds for a million-facet scan), a
+        # wait cursor and the status bar say so; neither is left when the message comes up.
+        from unittest import mock
+
+        seen, model = [], mas._model
+
+        def checked(*args, **kwargs):
+            cursor = QtGui.QApplication.overrideCursor()
+            seen.append((cursor.shape() if cursor is not None else None,
+                         FreeCADGui.getMainWindow().statusBar().currentMessage()))
+            return model(*args, **kwargs)
+
+        with mock.patch.object(mas, "_model", checked):
+            layers, toolpath = self.run_command(scan)
+        self.assertTrue(seen)  # (_model takes a Mesh::Feature's Mesh by calling itself)
+        self.assertEqual(set(seen),
+                         {(QtCore.Qt.WaitCursor, "Multi-Axis Slicer: checking 'Scan'...")})
+        self.assertIsNone(QtGui.QApplication.overrideCursor())
+        self.assertNotIn("checking", FreeCADGui.getMainWindow().statusBar().currentMessage())
         self.assertIsNone(layers)  # refused before anything is made
         self.assertEqual([o.Name for o in self.doc.Objects], names)
         self.assertEqual(self.doc.UndoCount, undo)

@@ -1604,9 +1604,9 @@ double derive_axis_step(const TriangleMesh& mesh) {
     // strips are tried in turn, up to 32, until one is a wall; those thinner than an eighth of it
     // are grazes, and the thinnest of the others is taken (a strip that does not go on yet comes
     // within that, as a round shaft's cut near its side, still counts). Without a wall among them,
-    // the thinnest strip is taken. (A hub's blades twisted 30 degrees: a 0.11 mm graze made the
-    // step diagonal / 2000, 0.056 mm, where its blades' 2.5 mm strips make it 1.2 mm; its axis had
-    // 3600 nodes.)
+    // the thinnest strip is taken. (A hub's blades twisted 30 degrees: a 0.05 mm graze made the
+    // step diagonal / 2000, 0.056 mm, and its axis 3600 nodes; a 2.0 mm strip across a blade makes
+    // it 1.0 mm.)
     std::sort(strips.begin(), strips.end(),
               [](const Strip& a, const Strip& b) { return a.width < b.width; });
     const auto goes_on = [&](const Strip& s) {

@@ -37,32 +37,11 @@ def _part_problem(source, split=False):
     if kind in _RESULTS:
         return "'{}' is {}, not a part: select the solid or mesh it was made from.".format(
             source.Label, _RESULTS[kind])
-    with _Checking(source):
+    # A wait cursor and the status bar while it is checked: a scanned mesh of a million facets
+    # takes seconds to reach the engine and be checked closed.
+    with _Busy() as busy:
+        busy.stage("Multi-Axis Slicer: checking '{}'...".format(source.Label))
         return _model_problem(source, split)
-
-
-class _Checking:
-    """A wait cursor and a status-bar message while a selected part is checked: a scanned mesh
-    of a million facets takes seconds to reach the engine and be checked closed."""
-
-    def __init__(self, source):
-        self.label = source.Label
-
-    def __enter__(self):
-        from PySide import QtCore, QtGui
-
-        QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
-        FreeCADGui.getMainWindow().statusBar().showMessage(
-            "Multi-Axis Slicer: checking '{}'...".format(self.label))
-        FreeCADGui.updateGui()
-        return self
-
-    def __exit__(self, *exc):
-        from PySide import QtGui
-
-        FreeCADGui.getMainWindow().statusBar().clearMessage()
-        QtGui.QApplication.restoreOverrideCursor()
-        return False
 
 
 def _model_problem(source, split):

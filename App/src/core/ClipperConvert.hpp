@@ -61,9 +61,13 @@ inline Polygon2 from_path(const ClipperLib::Path& path) {
     return polygon;
 }
 
+// Whether Clipper nested a closed result as its loops lie: no hole larger than its outer loop
+// (PolygonBoolean.cpp).
+bool nested_right(const ClipperLib::PolyNode& node);
+
 // The regions of a Boolean's or an offset's closed result (PolygonBoolean.cpp): each outer loop
 // with its holes, islands inside holes regions of their own; nested again by containment where
-// Clipper nested them wrongly (a hole larger than its outer loop).
+// Clipper nested them wrongly (not nested_right).
 Regions2 regions_of(const ClipperLib::PolyTree& tree);
 
 }  // namespace mas::clipper_convert

@@ -89,11 +89,30 @@ struct Piece {
 };
 using Pieces = std::vector<Piece>;
 
-// A closed result's pieces, nested as mas::difference's regions are (clipper_convert::regions_of:
-// again by containment where Clipper nested them wrongly). Its coordinates go through
-// millimetres and back unchanged (the grid's integers, well inside double's exact range).
+void split(const ClipperLib::PolyNode& node, Pieces& out) {
+    for (const ClipperLib::PolyNode* child : node.Childs) {
+        if (child->IsOpen()) continue;
+        Piece piece;
+        if (child->Contour.size() >= 3) piece.loops.push_back(child->Contour);
+        for (const ClipperLib::PolyNode* hole : child->Childs) {
+            if (!piece.loops.empty() && hole->Contour.size() >= 3)
+                piece.loops.push_back(hole->Contour);
+            split(*hole, out);  // islands inside the hole
+        }
+        if (!piece.loops.empty()) out.push_back(std::move(piece));
+    }
+}
+
+// A closed result's pieces, as Clipper nested them; where it nested them wrongly, nested again
+// by containment as mas::difference's regions are (clipper_convert::regions_of), their
+// coordinates through millimetres and back unchanged (the grid's integers, well inside double's
+// exact range).
 Pieces pieces_of(const ClipperLib::PolyTree& tree) {
     Pieces out;
+    if (clipper_convert::nested_right(tree)) {
+        split(tree, out);
+        return out;
+    }
     for (const Region2& region : clipper_convert::regions_of(tree)) {
         if (region.outer.points.size() < 3) continue;
         Piece piece;

@@ -63,15 +63,23 @@ Regions2 run(ClipperLib::ClipType type, const Regions2& a, const Regions2& b) {
 // counter-clockwise), inside an odd number a hole (clockwise) of the smallest of them. A loop
 // is inside another when most of up to 9 of its vertices, spread along it, are (a vertex on the
 // other's outline may go either way).
+bool clipper_convert::nested_right(const ClipperLib::PolyNode& node) {
+    for (const ClipperLib::PolyNode* child : node.Childs) {
+        if (child->IsHole()) continue;
+        const double outer = std::abs(ClipperLib::Area(child->Contour));
+        for (const ClipperLib::PolyNode* hole : child->Childs)
+            if (std::abs(ClipperLib::Area(hole->Contour)) > outer || !nested_right(*hole))
+                return false;
+    }
+    return true;
+}
+
 Regions2 clipper_convert::regions_of(const ClipperLib::PolyTree& tree) {
     Regions2 out;
-    collect(tree, out);
-    const bool nested_right = std::all_of(out.begin(), out.end(), [](const Region2& r) {
-        const double outer = std::abs(signed_area(r.outer));
-        return std::all_of(r.holes.begin(), r.holes.end(),
-                           [&](const Polygon2& h) { return std::abs(signed_area(h)) <= outer; });
-    });
-    if (nested_right) return out;
+    if (nested_right(tree)) {
+        collect(tree, out);
+        return out;
+    }
     std::vector<Polygon2> loops;
     gather(tree, loops);
     const std::size_t n = loops.size();

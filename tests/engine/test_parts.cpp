@@ -5,6 +5,7 @@
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
+#include <gp_Trsf.hxx>
 #include <sstream>
 
 #include "mas/Polygon2.hpp"
@@ -96,6 +98,12 @@ Shape cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double 
 
 Shape l_block() {
     return from_occt(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(20, 0, 40, 50, 20, 20)));
+}
+
+Shape turned_about_z(const Shape& shape, double degrees) {
+    gp_Trsf turn;
+    turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees * M_PI / 180.0);
+    return from_occt(BRepBuilderAPI_Transform(to_occt(shape), turn, Standard_True).Shape());
 }
 
 Shape plate_with_hole() {

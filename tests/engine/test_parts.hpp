@@ -22,6 +22,9 @@ Shape cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double 
 // Paper Fig. 7: a 20 x 20 x 60 column on z = 0 with a 50 x 20 x 20 arm on its top reaching +X:
 // column [0,20]x[0,20]x[0,60], arm [20,70]x[0,20]x[40,60].
 Shape l_block();
+// `shape` turned by `degrees` about the +Z axis through the origin (a part placed turned on the
+// plate).
+Shape turned_about_z(const Shape& shape, double degrees);
 // The L-block's column 80 tall with the arm at its top, a gusset under the arm: column
 // [0,20]x[0,20]x[0,80], arm [20,70]x[0,20]x[60,80], web 4 thick ([8,12] in y), its triangle
 // (x, z) = (20, 60), (43, 60), (20, 37) against the column's face and the arm's underside.

@@ -2,6 +2,14 @@
 // part from its base, turning among +-X, +-Y, +-Z where the part turns, with branch topology.
 //
 // Readings of the paper chosen here (each tested in tests/engine/test_axis.cpp):
+// - The six directions are the part's frame's (AxisParams::frame_deg): +-Z, and +-X and +-Y turned
+//   about Z to line up with the part's sides (derive_axis_frame). The paper's are the document's,
+//   and a part placed turned on the plate then turns between them: the L-block turned 30 degrees
+//   had its arm marched along neither, split in two components beside the column's, and 75 mm^2
+//   overhung in one layer (a mesh of it sliced at the defaults; 0 in its frame). The part is
+//   turned into its frame, marched there as below, and its axis turned back (turned_about_z);
+//   for a part square to the document's axes, or round, the frame is 0 and nothing changes. The
+//   decomposition works in the axis' frame too (Decompose.hpp).
 // - Every outer loop of a section is its own node (Sec. 3.1). A section region continues the
 //   track of the lower region it overlaps most, projected along the march direction (Eq. 2).
 //   A lower region overlapped by several upper regions splits: each becomes a new branch in the
@@ -175,7 +183,11 @@ struct AxisParams {
     // lowest point is above this plane (by more than eps) does not touch it: an error.
     double base_z_mm = std::numeric_limits<double>::quiet_NaN();
     double min_region_area_mm2 = 1e-6;  // smaller section regions are slivers, ignored
-    std::size_t max_nodes = 200000;     // guard against runaway searches
+    // The part's frame: the turn about +Z of the directions +-X and +-Y the march takes, degrees,
+    // read modulo 90 into (-45, 45]. NaN: derived from the part (derive_axis_frame); 0: the
+    // document's own X and Y, as the paper's.
+    double frame_deg = std::numeric_limits<double>::quiet_NaN();
+    std::size_t max_nodes = 200000;  // guard against runaway searches
 };
 
 struct AxisNode {
@@ -252,8 +264,38 @@ struct CentroidalAxis {
 // either side cut a region no more than 1.5 times as thick where it lies) sets how thin a strip
 // may be and count, an eighth of it, and the thinnest strip that counts is the wall. Clamped to
 // [diagonal / 2000, diagonal / 20], then at most half the part's height (z extent), which the
-// march's step must stay under.
+// march's step must stay under. centroidal_axis() derives it on the part turned into its frame
+// (AxisParams::frame_deg), where the sections along X and Y cut its walls square.
 double derive_axis_step(const TriangleMesh& mesh);
+
+// The turn about +Z (degrees, in (-45, 45]) that lines the march's directions up with the part's
+// sides: Sec. 3.2.1 turns among +-X, +-Y, +-Z, which are the document's, and a bracket placed 30
+// degrees round on the plate has its arm leave the column between +X and +Y, marched along
+// neither (its decomposition's cut and build direction 30 degrees off the arm, its underside
+// overhanging). Each facet votes for its normal's azimuth modulo 90 degrees, weighted by its area
+// times the square of its normal's horizontal part (a flat side square to the plate counts
+// whole, a floor nothing); the votes are binned by half a degree and the 2 degrees holding the
+// most weight are the sides' (their weighted mean, read on the circle). It is the frame when it
+// holds at least kAxisFrameAgreement of all the weight (a round part's facets spread evenly, a
+// fiftieth in any 2 degrees) and at least twice what any other 2 degrees apart from them hold
+// (those round 0, or a second set of sides: a web tapering symmetrically about X has one at +-6
+// degrees, and either frame would turn the march off the other side), and it turns by at least
+// kAxisFrameMinDeg; otherwise 0, the document's frame (the paper's, and what a part drawn square
+// to its axes keeps exactly).
+inline constexpr double kAxisFrameAgreement = 0.1;
+inline constexpr double kAxisFrameMinDeg = 1.0;
+double derive_axis_frame(const TriangleMesh& mesh);
+
+// `axis` turned by `degrees` about the +Z axis through the origin (nodes, their regions, normals
+// and material points, branch directions; params.frame_deg turned too): what centroidal_axis()
+// gives for a part turned so. Directions within 1e-12 of an axis are put on it.
+CentroidalAxis turned_about_z(const CentroidalAxis& axis, double degrees);
+
+// The frame `axis` was marched in (params.frame_deg is not needed): the turn about +Z, modulo 90
+// degrees into (-45, 45], of its horizontal branch directions; 0 when it has none. Throws
+// InvalidArgument ("<caller>: ...") when they are not one frame's (an axis no centroidal_axis()
+// gives).
+double axis_frame_deg(const CentroidalAxis& axis, const std::string& caller);
 
 // Throws mas::Error: InvalidArgument for bad parameters (a step that is not positive and finite,
 // or not smaller than the part's height, or so small that more than max_nodes sections would cross

@@ -346,6 +346,62 @@ TEST(Decompose, LBlockArmIsAChildBuiltAlongPlusXFromTheColumnSide) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, AnLBlockTurnedOnThePlateIsCutAsTheLBlockTurned) {
+    // The L-block placed 30 degrees round: its axis is marched in the frame of its sides (the
+    // arm's branch along (cos 30, sin 30, 0)), and the decomposition is the L-block's, turned:
+    // the arm cut at the column's face and built along itself.
+    const double turn = 30.0;
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(turn * M_PI / 180.0, Vector3d::UnitZ()).matrix();
+    const auto part = mas::test::turned_about_z(mas::test::l_block(), turn);
+    const auto axis = axis_of(part, 2.5);
+    ASSERT_NEAR(axis.params.frame_deg, turn, 1e-9);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& root = d.components[0];
+    const auto& arm = d.components[1];
+    EXPECT_NEAR(root.volume_mm3, 24000.0, 24000.0 * 1e-6);
+    EXPECT_NEAR(arm.volume_mm3, 20000.0, 20000.0 * 1e-6);
+    EXPECT_EQ(arm.parent, 0);
+    EXPECT_EQ(arm.rule, Rule::PlanarFace);
+    EXPECT_EQ(arm.branch, 1);
+    EXPECT_TRUE(arm.build_direction.isApprox(r * Vector3d::UnitX(), 1e-12))
+        << arm.build_direction.transpose();
+    EXPECT_TRUE(arm.base_normal.isApprox(-(r * Vector3d::UnitX()), 1e-12));
+    EXPECT_NEAR((arm.base_origin - r * Vector3d(20, 10, 50)).norm(), 0.0, 1e-9);
+    EXPECT_TRUE(root.build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+    // Where they lie: their centres of mass, the column's and the arm's turned; the base face's
+    // corners on the column's face turned.
+    const auto centre = [](const mas::Shape& s) {
+        GProp_GProps props;
+        BRepGProp::VolumeProperties(to_occt(s), props);
+        const gp_Pnt c = props.CentreOfMass();
+        return Vector3d(c.X(), c.Y(), c.Z());
+    };
+    EXPECT_NEAR((centre(root.solid) - r * Vector3d(10, 10, 30)).norm(), 0.0, 1e-6);
+    EXPECT_NEAR((centre(arm.solid) - r * Vector3d(45, 10, 50)).norm(), 0.0, 1e-6);
+    const Vector3d near = r * Vector3d(20, 0, 0), far = r * Vector3d(20, 20, 0);
+    EXPECT_TRUE(
+        near_box(arm.base_face, Vector3d(far.x(), near.y(), 40), Vector3d(near.x(), far.y(), 60)));
+    // The root's base stays the centre of its box's bottom.
+    const auto box = bounds(root.solid);
+    EXPECT_NEAR(
+        (root.base_origin - Vector3d(box.center().x(), box.center().y(), box.min().z())).norm(),
+        0.0, 1e-9);
+    expect_invariants(d, part);
+
+    // Marched in the document's frame (the paper's), the arm leaves the column between +X and +Y:
+    // no component is built along it.
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    mas::AxisParams ap;
+    ap.step_mm = 2.5;
+    ap.frame_deg = 0.0;
+    auto document = mas::centroidal_axis(mas::tessellate(part, tp), ap);
+    document.deflection_mm = kDeflection;
+    for (const auto& c : mas::decompose(part, document).components)
+        EXPECT_FALSE(c.build_direction.isApprox(r * Vector3d::UnitX(), 1e-3));
+}
+
 TEST(Decompose, AKeptBranchStaysInItsFatherSayingWhyAndIsListed) {
     const auto part = mas::test::l_block();
     const auto axis = axis_of(part, 2.5);

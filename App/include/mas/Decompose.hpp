@@ -147,6 +147,12 @@
 // - Branches of one direction that split around a hole and merge again beyond it (AxisBranch::
 //   merged_into) make no cut: a wall with a hole through it is one sub-component.
 // - Several roots (a part on several feet) share the one root component.
+// - An axis marched in a frame turned about Z (AxisParams::frame_deg: a part placed turned on the
+//   plate) is decomposed in that frame, where its directions are +-X, +-Y and +-Z as read above
+//   (and Eq. 5's projections and the boxes exact): the part and the axis are turned into it, and
+//   the components (solids, base faces, directions) turned back; the root's base_origin is the
+//   centre of the bottom of its box as it lies. The frame is read off the axis' branch directions
+//   (axis_frame_deg); an axis whose directions are of no one frame is an InvalidArgument.
 #pragma once
 
 #include <Eigen/Core>

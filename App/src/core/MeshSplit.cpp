@@ -440,11 +440,15 @@ bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vecto
 
 namespace {
 
+// "+X" for an axis' direction; "0.866,0.5,0" for one of a turned frame's (AxisParams::frame_deg).
 std::string direction_name(const Vec3& d) {
     const char* names[] = {"X", "Y", "Z"};
     int k = 0;
     d.cwiseAbs().maxCoeff(&k);
-    return std::string(d[k] < 0 ? "-" : "+") + names[k];
+    if (std::abs(std::abs(d[k]) - 1.0) <= 1e-9) return std::string(d[k] < 0 ? "-" : "+") + names[k];
+    std::ostringstream text;
+    text << std::setprecision(3) << d.x() << "," << d.y() << "," << d.z();
+    return text.str();
 }
 
 double lowest_along(const TriangleMesh& mesh, const Vec3& n) {

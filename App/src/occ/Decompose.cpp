@@ -10,6 +10,7 @@
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepClass_FaceClassifier.hxx>
@@ -33,8 +34,11 @@
 #include <TopoDS_Wire.hxx>
 #include <algorithm>
 #include <cmath>
+#include <gp_Ax1.hxx>
+#include <gp_Trsf.hxx>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -880,14 +884,33 @@ private:
     double cos_face_, min_concave_;
 };
 
+// `shape` turned by `degrees` about the +Z axis through the origin, its geometry moved (no
+// location left on it).
+TopoDS_Shape turned_about_z(const TopoDS_Shape& shape, double degrees) {
+    gp_Trsf turn;
+    turn.SetRotation(gp_Ax1(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, 0.0, 1.0)),
+                     degrees * 3.14159265358979323846 / 180.0);
+    return BRepBuilderAPI_Transform(shape, turn, Standard_True).Shape();
+}
+
 }  // namespace
 
-Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
+// An axis marched in a frame turned about Z (AxisParams::frame_deg) is decomposed in that frame:
+// the part and the axis are turned into it, where the branches' directions are +-X, +-Y and +-Z
+// as the reading above has them (Eq. 5's projections and the boxes are exact along those), and
+// the components turned back.
+Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                         const DecomposeParams& params, const Progress& caller) {
     const Progress progress = caller.span(0.0, 1.0, "decomposing");
     check_params(params);
     const Shape checked = input.single_solid("decompose");
-    check_kept_branches(params.keep_branches, axis, "decompose");
+    check_kept_branches(params.keep_branches, world_axis, "decompose");
+    const double frame = axis_frame_deg(world_axis, "decompose");
+    std::optional<CentroidalAxis> turned_axis;
+    if (frame != 0.0) turned_axis = turned_about_z(world_axis, -frame);
+    const CentroidalAxis& axis = turned_axis ? *turned_axis : world_axis;
+    const Eigen::Matrix3d to_world =
+        Eigen::AngleAxisd(frame * 3.14159265358979323846 / 180.0, Vector3d::UnitZ()).matrix();
     const KeptQueries keep;
     // The part, checked once for every pass. Work on a copy: OCCT's algorithms must never touch
     // the caller's shape (and each split works on a copy of its father: a pass leaves it as it
@@ -897,7 +920,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     double default_deflection = 0.0;
     MeshCheck mesh;
     try {
-        solid = BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
+        solid = frame != 0.0 ? turned_about_z(occ::occt(checked), -frame)
+                             : BRepBuilderAPI_Copy(occ::occt(checked)).Shape();
         box = bounds_of(solid);
         check_axis_belongs(axis, box, occ::volume_of(solid), "decompose");
         // The part's default deflection: what slicing tessellates with unless told otherwise.
@@ -1005,7 +1029,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
             };
 
             const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
-                const Vector3d& d = axis.branches[b].direction;
+                const Vector3d d = to_world * axis.branches[b].direction;
                 std::ostringstream line;
                 line << "branch " << b << " (along " << d.x() << "," << d.y() << "," << d.z()
                      << "): " << why << "; its material stays in component " << kept_in;
@@ -1257,6 +1281,19 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& axis,
     Decomposition out;
     try {
         for (auto& w : work) {
+            if (frame != 0.0) {
+                w.solid = turned_about_z(w.solid, frame);
+                w.c.build_direction = to_world * w.c.build_direction;
+                w.c.base_normal = to_world * w.c.base_normal;
+                if (w.c.has_base_face) {
+                    w.c.base_face = occ::wrap(turned_about_z(occ::occt(w.c.base_face), frame));
+                    w.c.base_origin = to_world * w.c.base_origin;
+                } else {
+                    const Eigen::AlignedBox3d root_box = bounds_of(w.solid);
+                    w.c.base_origin =
+                        Vector3d(root_box.center().x(), root_box.center().y(), root_box.min().z());
+                }
+            }
             w.c.solid = occ::wrap(w.solid);
             w.c.volume_mm3 = occ::volume_of(w.solid);
             out.components.push_back(w.c);

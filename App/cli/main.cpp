@@ -35,8 +35,8 @@ const char* kUsage =
     "usage: multiaxis-slicer sections FILE [--normal X,Y,Z] [--step MM] [--deflection MM]\n"
     "                                      [--json [OUT.json]]\n"
     "       multiaxis-slicer axis FILE [--step MM] [--distance-threshold MM] [--eps MM]\n"
-    "                                  [--break-angle DEG] [--base-z MM] [--deflection MM]\n"
-    "                                  [--json [OUT.json]]\n"
+    "                                  [--break-angle DEG] [--base-z MM] [--frame DEG]\n"
+    "                                  [--deflection MM] [--json [OUT.json]]\n"
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG]\n"
     "                                       [--concave-angle DEG] [--no-fallback]\n"
     "                                       [--min-height MM] [--max-tilt DEG]\n"
@@ -61,7 +61,9 @@ const char* kUsage =
     "           region count and centroid.\n"
     "axis       the part's centroidal axis (Ruan et al. Sec. 3): nodes, links and branches.\n"
     "           --step and --distance-threshold default to values derived from the part (0),\n"
-    "           --eps to 0.001 mm, --break-angle to 30 degrees, --base-z to the part's lowest z.\n"
+    "           --eps to 0.001 mm, --break-angle to 30 degrees, --base-z to the part's lowest z,\n"
+    "           --frame (the turn about Z of the +-X and +-Y it marches along, degrees) to the\n"
+    "           one lining them up with the part's sides, 0 when they do not agree on one.\n"
     "decompose  split the part into sub-components at its axis' turns and branches (Sec. 4.1):\n"
     "           the tree, each component's build direction, base face and volume; --step-dir\n"
     "           writes every component as DIR/component_NNN.step. A mesh is split at section\n"
@@ -434,7 +436,8 @@ const char* link_kind(mas::AxisLink::Kind k) {
 }
 
 const std::set<std::string> kAxisOptions = {
-    "--step", "--distance-threshold", "--eps", "--break-angle", "--base-z", "--deflection"};
+    "--step",  "--distance-threshold", "--eps", "--break-angle", "--base-z",
+    "--frame", "--deflection"};
 
 mas::AxisParams axis_params(const Args& a) {
     mas::AxisParams p;
@@ -443,6 +446,7 @@ mas::AxisParams axis_params(const Args& a) {
     p.eps_mm = a.number("--eps", p.eps_mm);
     p.break_angle_deg = a.number("--break-angle", p.break_angle_deg);
     p.base_z_mm = a.number("--base-z", p.base_z_mm);
+    p.frame_deg = a.number("--frame", p.frame_deg);
     if (p.step_mm < 0.0)
         out_of_range("--step must be positive (or 0 for derived), got " +
                      mas::format_number(p.step_mm));
@@ -475,7 +479,8 @@ int run_axis(const std::vector<std::string>& args) {
             << ", \"distance_threshold_mm\": " << num(used.distance_threshold_mm)
             << ", \"eps_mm\": " << num(used.eps_mm)
             << ", \"break_angle_deg\": " << num(used.break_angle_deg)
-            << ", \"base_z_mm\": " << num(used.base_z_mm) << "}"
+            << ", \"base_z_mm\": " << num(used.base_z_mm)
+            << ", \"frame_deg\": " << num(used.frame_deg) << "}"
             << ",\n  \"searched_volume_mm3\": " << num(axis.searched_volume_mm3)
             << ",\n  \"nodes\": [";
         for (std::size_t i = 0; i < axis.nodes.size(); ++i) {
@@ -510,8 +515,9 @@ int run_axis(const std::vector<std::string>& args) {
         for (const auto& l : axis.links) breaks += l.is_break;
         out << "# " << a.file << ": " << part.kind() << ", " << part.mesh.triangles.size()
             << " triangles\n# step " << num(used.step_mm) << " mm, distance threshold "
-            << num(used.distance_threshold_mm) << " mm: " << axis.nodes.size() << " nodes, "
-            << axis.links.size() << " links (" << breaks << " breaks), " << axis.branches.size()
+            << num(used.distance_threshold_mm) << " mm, frame " << num(used.frame_deg)
+            << " degrees about Z: " << axis.nodes.size() << " nodes, " << axis.links.size()
+            << " links (" << breaks << " breaks), " << axis.branches.size()
             << " branches\n# branch parent parent_node direction nodes first_node last_node\n";
         for (std::size_t i = 0; i < axis.branches.size(); ++i) {
             const auto& b = axis.branches[i];

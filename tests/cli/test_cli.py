@@ -69,9 +69,10 @@ def box_stl(x, y, z, drop_last=False, nan=False, at=(0, 0, 0)):
     return "\n".join(lines) + "\n"
 
 
-def l_prism_stl():
+def l_prism_stl(turn_deg=0.0):
     """ASCII STL of the L of the tests (a 20 x 20 x 60 column, a 50 mm arm 20 x 20 at its top,
-    along +X), as the prism of its profile in XZ swept 20 mm along Y."""
+    along +X), as the prism of its profile in XZ swept 20 mm along Y; turned `turn_deg` about +Z
+    (placed turned on the plate)."""
     profile = [(0, 0), (20, 0), (20, 40), (70, 40), (70, 60), (0, 60)]  # clockwise seen from -Y
     caps = [(0, 1, 2), (0, 2, 5), (2, 3, 4), (2, 4, 5)]
     facets = []
@@ -83,10 +84,11 @@ def l_prism_stl():
         a, b = (p[0], 0, p[1]), (q[0], 0, q[1])
         c, d = (q[0], 20, q[1]), (p[0], 20, p[1])
         facets += [[a, d, c], [a, c, b]]
+    c, s = math.cos(math.radians(turn_deg)), math.sin(math.radians(turn_deg))
     lines = ["solid l"]
     for f in facets:
         lines.append(" facet normal 0 0 0\n  outer loop")
-        lines += ["   vertex %s %s %s" % v for v in f]
+        lines += ["   vertex %r %r %r" % (c * x - s * y, s * x + c * y, z) for x, y, z in f]
         lines.append("  endloop\n endfacet")
     return "\n".join(lines + ["endsolid l"]) + "\n"
 
@@ -344,6 +346,42 @@ class CliSections(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         with open(out) as f:
             self.assertEqual(json.load(f), doc)
+
+    def test_axis_marches_in_the_frame_of_the_parts_sides(self):
+        # The L placed 30 degrees round on the plate: its arm's branch marches along the arm,
+        # (cos 30, sin 30, 0), in the frame derived from its sides; --frame 0 is the document's
+        # (the arm leaves the column between +X and +Y, no branch along it); --frame is read
+        # modulo 90 degrees; not a number is a usage error.
+        stl = self.write("l30.stl", l_prism_stl(30.0))
+        along = [math.cos(math.radians(30)), math.sin(math.radians(30)), 0.0]
+        r = run("axis", stl, "--step", "2.5", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertAlmostEqual(doc["params"]["frame_deg"], 30.0, places=9)
+        self.assertEqual(len(doc["branches"]), 2)
+        for got, want in zip(doc["branches"][1]["direction"], along):
+            self.assertAlmostEqual(got, want, places=12)
+        self.assertEqual([len(b["nodes"]) for b in doc["branches"]], [24, 20])
+        r = run("axis", stl, "--step", "2.5", "--json", "--frame", "0")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(doc["params"]["frame_deg"], 0)
+        for b in doc["branches"]:
+            self.assertGreater(max(abs(g - w) for g, w in zip(b["direction"], along)), 1e-3)
+        r = run("axis", stl, "--step", "2.5", "--json", "--frame", "120")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertAlmostEqual(json.loads(r.stdout)["params"]["frame_deg"], 30.0, places=9)
+        r = run("axis", stl, "--step", "2.5")
+        self.assertIn("frame 30 degrees about Z", r.stdout)
+        self.expect_error(["axis", stl, "--frame", "x"], 2, "--frame must be a number")
+        self.expect_error(["axis", stl, "--frame", "inf"], 2, "--frame must be finite")
+        # decompose and slice take it among the axis options: the arm built along itself.
+        r = run("decompose", stl, "--step", "2.5", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(len(doc["components"]), 2)
+        for got, want in zip(doc["components"][1]["build_direction"], along):
+            self.assertAlmostEqual(got, want, places=9)
 
     def test_axis_text_summary_lists_branches(self):
         r = run("axis", os.path.join(DATA, "box_10x20x30.step"), "--step", "2")

@@ -585,16 +585,17 @@ def make_sections(source, normal=(0, 0, 1), step=5.0, deflection=0.0, name="Sect
 
 
 def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, break_angle=30.0,
-                         deflection=0.0, name="CentroidalAxis", doc=None):
+                         deflection=0.0, frame="Part", name="CentroidalAxis", doc=None):
     """Adds a parametric ``CentroidalAxis`` object (FreeCAD only) over the document object
     ``source`` and returns it; recompute the document to compute it. 0 for ``step``,
-    ``distance_threshold`` or ``deflection`` means derived from the part. See
-    ``MultiAxisSlicer.features``."""
+    ``distance_threshold`` or ``deflection`` means derived from the part; ``frame`` "Part" lines
+    the +-X and +-Y it marches along up with the part's sides, "Document" keeps the document's.
+    See ``MultiAxisSlicer.features``."""
     from . import features
 
     return features.make_centroidal_axis(source, step=step, distance_threshold=distance_threshold,
                                          eps=eps, break_angle=break_angle, deflection=deflection,
-                                         name=name, doc=doc)
+                                         frame=frame, name=name, doc=doc)
 
 
 def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,

@@ -51,6 +51,16 @@ def _base_z(value):
     return z
 
 
+def _frame(value):
+    """None -> NaN: the engine derives the frame from the part."""
+    if value is None:
+        return float("nan")
+    angle = _number(value, "frame", "degrees")
+    if not math.isfinite(angle):
+        raise ValueError("frame must be a finite number of degrees, got {}".format(angle))
+    return angle
+
+
 # ---- results -------------------------------------------------------------------------------------
 
 
@@ -197,7 +207,8 @@ class CentroidalAxis:
     Attributes: ``nodes`` (list of ``AxisNode``), ``links`` (list of ``AxisLink``), ``branches``
     (list of ``AxisBranch``, every father before its children), ``params`` (dict of the values
     used, derived ones filled in: ``step_mm``, ``distance_threshold_mm``, ``eps_mm``,
-    ``break_angle_deg``, ``base_z_mm``, ``deflection_mm``: the chordal deflection a solid was
+    ``break_angle_deg``, ``base_z_mm``, ``frame_deg``: the turn about Z of the +-X and +-Y the
+    axis marched along, ``deflection_mm``: the chordal deflection a solid was
     tessellated with, 0.0 for a mesh used as it is), ``searched_volume`` (mm³, the volume of the
     slabs the nodes swept, section area times slab thickness; every region is searched once, so
     it is the part's volume for prisms along the march and near it otherwise), ``sections_cut``
@@ -216,6 +227,7 @@ class CentroidalAxis:
             "eps_mm": p["eps_mm"],
             "break_angle_deg": p["break_angle_deg"],
             "base_z_mm": p["base_z_mm"],
+            "frame_deg": p["frame_deg"],
             "deflection_mm": deflection_mm,
         }
         self.searched_volume = data["searched_volume_mm3"]
@@ -230,7 +242,8 @@ class CentroidalAxis:
     def to_dict(self):
         """JSON-ready plain data in the layout of ``multiaxis-slicer axis FILE --json`` (without
         its "file"): kind, triangles, deflection_mm, params (step_mm, distance_threshold_mm,
-        eps_mm, break_angle_deg, base_z_mm), searched_volume_mm3, nodes, links, branches."""
+        eps_mm, break_angle_deg, base_z_mm, frame_deg), searched_volume_mm3, nodes, links,
+        branches."""
         return {
             "kind": self.kind,
             "triangles": self.triangles,
@@ -238,7 +251,7 @@ class CentroidalAxis:
             "params": {
                 key: self.params[key]
                 for key in ("step_mm", "distance_threshold_mm", "eps_mm", "break_angle_deg",
-                            "base_z_mm")
+                            "base_z_mm", "frame_deg")
             },
             "searched_volume_mm3": self.searched_volume,
             "nodes": [n.to_dict() for n in self.nodes],
@@ -264,7 +277,8 @@ class CentroidalAxis:
                           "merged_into": b.merged_into} for b in self.branches],
             "params": {key: self.params[key] for key in ("step_mm", "distance_threshold_mm",
                                                          "eps_mm", "break_angle_deg",
-                                                         "base_z_mm", "deflection_mm")},
+                                                         "base_z_mm", "frame_deg",
+                                                         "deflection_mm")},
             "searched_volume_mm3": self.searched_volume,
         }
 
@@ -278,7 +292,7 @@ class CentroidalAxis:
 
 
 def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_angle=30.0,
-                    base_z=None, deflection=None, progress=None):
+                    base_z=None, deflection=None, frame=None, progress=None):
     """The centroidal axis of one solid or closed mesh standing on the plane z = ``base_z``.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a closed ``Mesh.Mesh``, a document
@@ -300,6 +314,10 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
         lowest point is not on this plane (within eps) is an error.
       * ``deflection``: chordal deflection for tessellating a solid (None: derived from its size,
         see ``deflection()``); a mesh is used as it is.
+      * ``frame``: the turn about Z (degrees, read modulo 90) of the +-X and +-Y directions the
+        axis marches along. None: derived from the part, the turn that lines them up with its
+        sides (a bracket placed 30 degrees round on the plate: 30), 0 when its sides do not agree
+        on one (round parts); 0 gives the document's X and Y, as the paper's.
       * ``progress``: None or ``progress(fraction, stage)``, reported as the march goes (at most
         every 10 ms, and at the end), with the volume swept so far over the part's, under the
         stage "centroidal axis"; an exception it raises
@@ -321,6 +339,7 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
     eps_mm = _length(eps, "eps")
     angle_deg = _break_angle(break_angle)
     base_z_mm = _base_z(base_z)
+    frame_deg = _frame(frame)
     d = _deflection_mm(deflection)
     _progress.check(progress)
     eng = _require_engine()
@@ -333,5 +352,6 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
         deflection_mm = 0.0
         mesh = eng.make_closed(part, what)
     data = eng.centroidal_axis(mesh, step=step_mm, distance_threshold=threshold_mm, eps=eps_mm,
-                               break_angle=angle_deg, base_z=base_z_mm, progress=progress)
+                               break_angle=angle_deg, base_z=base_z_mm, frame=frame_deg,
+                               progress=progress)
     return CentroidalAxis(data, kind, mesh.triangle_count(), deflection_mm)

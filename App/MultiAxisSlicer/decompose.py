@@ -23,7 +23,7 @@ __all__ = ["Component", "Decomposition", "decompose"]
 
 # Axis parameters of decompose() and their defaults: with a given axis, none may be set.
 _AXIS_DEFAULTS = {"step": None, "distance_threshold": None, "eps": 0.001, "break_angle": 30.0,
-                  "base_z": None, "deflection": None}
+                  "base_z": None, "deflection": None, "frame": None}
 
 
 def _part_shape(brep):
@@ -260,7 +260,7 @@ class Decomposition:
 def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
               deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
               eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0,
-              max_tilt=100.0, keep_branches=(), progress=None):
+              max_tilt=100.0, keep_branches=(), frame=None, progress=None):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
@@ -270,8 +270,11 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
 
     ``axis``: the ``CentroidalAxis`` of this very shape (``centroidal_axis(shape, ...)``, also of a
     mesh of it). None: computed here with ``step``, ``distance_threshold``, ``eps``,
-    ``break_angle``, ``base_z`` and ``deflection``, which mean what they mean for
-    ``centroidal_axis()``; with an axis given they must stay unset (ValueError otherwise).
+    ``break_angle``, ``base_z``, ``deflection`` and ``frame``, which mean what they mean for
+    ``centroidal_axis()``; with an axis given they must stay unset (ValueError otherwise). An axis
+    marched in a turned frame is decomposed in that frame (the part turned into it, the
+    components turned back): its branches' directions, its cuts and its children's build
+    directions are the frame's.
 
     Decomposition parameters (angles in degrees, lengths in mm; FreeCAD Quantities accepted):
       * ``face_angle``: a splitting face's normal is within this of the branch's direction
@@ -306,7 +309,8 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
                              section_plane_fallback, min_component_height, max_tilt, keep_branches)
     _progress.check(progress)
     axis_params = {"step": step, "distance_threshold": distance_threshold, "eps": eps,
-                   "break_angle": break_angle, "base_z": base_z, "deflection": deflection}
+                   "break_angle": break_angle, "base_z": base_z, "deflection": deflection,
+                   "frame": frame}
     if axis is not None:
         if not isinstance(axis, CentroidalAxis):
             raise TypeError("axis must be a CentroidalAxis (from centroidal_axis()) or None, got "

@@ -49,6 +49,15 @@ _AXIS_NAMES = _names(("step", "Step"), ("distance_threshold", "DistanceThreshold
                      ("eps", "Epsilon"), ("break_angle", "BreakAngle"),
                      ("break angle", "BreakAngle"), ("deflection", "Deflection"))
 
+# CentroidalAxis.Frame: the frame the axis marches in (MultiAxisSlicer.centroidal_axis's frame).
+AXIS_FRAMES = ["Part", "Document"]
+
+
+def axis_frame(axis_obj):
+    """centroidal_axis()'s ``frame`` for a CentroidalAxis object: None (derived from the part's
+    sides) for "Part", 0 (the document's X and Y) for "Document"."""
+    return 0.0 if axis_obj.Frame == "Document" else None
+
 
 # Output properties: read-only in the property editor (1), and setting them does not touch the
 # object again (8, App::Prop_Output).
@@ -307,18 +316,21 @@ class CentroidalAxisFeature(_EngineFeature):
 
     Inputs: Source (a solid or closed mesh standing on its lowest point), Step (mm between
     sections, 0 = derived from the part), DistanceThreshold (mm, 0 = twice the step, at most a
-    sixth of a section's size), Epsilon (mm), BreakAngle (degrees), Deflection (mm chordal
-    deflection for tessellating a solid, 0 = automatic). Outputs: Shape (a compound of one vertex
-    per node, then one line segment per link: first the ordinary links, then the C1 breaks from
-    edge index BreakEdgeStart on, so that the view provider can colour them), NodeCount,
-    BranchCount, BreakCount, UsedStep, UsedDistanceThreshold, SearchedVolume.
+    sixth of a section's size), Epsilon (mm), BreakAngle (degrees), Frame ("Part": the +-X and
+    +-Y it marches along turned about Z to line up with the part's sides, when they agree on a
+    turn; "Document": the document's own), Deflection (mm chordal deflection for tessellating a
+    solid, 0 = automatic). Outputs: Shape (a compound of one vertex per node, then one line
+    segment per link: first the ordinary links, then the C1 breaks from edge index
+    BreakEdgeStart on, so that the view provider can colour them), NodeCount, BranchCount,
+    BreakCount, UsedStep, UsedDistanceThreshold, UsedFrame, SearchedVolume.
     """
 
     TYPE = "MultiAxisSlicer::CentroidalAxis"
     VIEW_PROVIDER = "ViewProviderCentroidalAxis"
     PROPERTY_NAMES = _AXIS_NAMES
     PARAMETERS = (("Centroidal axis",
-                   ("Step", "DistanceThreshold", "Epsilon", "BreakAngle", "Deflection")),)
+                   ("Step", "DistanceThreshold", "Epsilon", "BreakAngle", "Frame",
+                    "Deflection")),)
 
     @staticmethod
     def ensure_properties(obj):
@@ -335,6 +347,12 @@ class CentroidalAxisFeature(_EngineFeature):
                       "Distance of a march's first section inside the part", 0.001)
         _add_property(obj, "App::PropertyAngle", "BreakAngle", group,
                       "Links turning more than this from the previous link are C1 breaks", 30.0)
+        if _add_property(obj, "App::PropertyEnumeration", "Frame", group,
+                         "The +-X and +-Y directions the axis marches along: 'Part' turns them "
+                         "about Z to line up with the part's sides (a part placed turned on the "
+                         "plate), when they agree on a turn; 'Document' keeps the document's"):
+            obj.Frame = AXIS_FRAMES
+            obj.Frame = "Part"
         _add_property(obj, "App::PropertyLength", "Deflection", group,
                       "Chordal deflection for tessellating a solid (0 = automatic)", 0.0)
         result = "Result"
@@ -351,6 +369,8 @@ class CentroidalAxisFeature(_EngineFeature):
                       "The step used (Step, or the one derived from the part)", 0.0, _OUTPUT)
         _add_property(obj, "App::PropertyLength", "UsedDistanceThreshold", result,
                       "The distance threshold used", 0.0, _OUTPUT)
+        _add_property(obj, "App::PropertyAngle", "UsedFrame", result,
+                      "The turn about Z of the +-X and +-Y the axis marched along", 0.0, _OUTPUT)
         _add_property(obj, "App::PropertyVolume", "SearchedVolume", result,
                       "Volume swept by the nodes' slabs (section area x slab thickness): near "
                       "the part's, as every region is searched once", 0.0, _OUTPUT)
@@ -368,6 +388,7 @@ class CentroidalAxisFeature(_EngineFeature):
                 eps=obj.Epsilon.Value,
                 break_angle=obj.BreakAngle.Value,
                 deflection=obj.Deflection.Value or None,
+                frame=axis_frame(obj),
                 progress=_progress.span(progress, 0, 0.8),
             )
             shape, break_edge_start = axis_shape(axis, _progress.span(progress, 0.8, 1.0))
@@ -379,6 +400,7 @@ class CentroidalAxisFeature(_EngineFeature):
         obj.BreakCount = len(axis.break_links())
         obj.UsedStep = axis.params["step_mm"]
         obj.UsedDistanceThreshold = axis.params["distance_threshold_mm"]
+        obj.UsedFrame = axis.params["frame_deg"]
         obj.SearchedVolume = axis.searched_volume
 
 
@@ -401,11 +423,12 @@ def axis_shape(axis, progress=None):
 
 
 def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, break_angle=30.0,
-                         deflection=0.0, name="CentroidalAxis", doc=None):
+                         deflection=0.0, frame="Part", name="CentroidalAxis", doc=None):
     """Adds a ``CentroidalAxis`` object over ``source`` to ``doc`` (default: the source's document)
     and returns it; recompute the document to compute it. Lengths in mm, ``break_angle`` in
-    degrees; 0 for ``step``, ``distance_threshold`` or ``deflection`` means derived from the part.
-    The source is not changed.
+    degrees; 0 for ``step``, ``distance_threshold`` or ``deflection`` means derived from the part;
+    ``frame`` is "Part" (the frame lined up with the part's sides) or "Document" (see
+    ``CentroidalAxisFeature``). The source is not changed.
 
     In the GUI it gets its view provider (icon, nodes as points, links as lines, breaks in red)."""
     _check_source(source, "make_centroidal_axis")
@@ -418,6 +441,8 @@ def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, br
     eps = mas._length(eps, "eps")
     break_angle = mas.axis._break_angle(break_angle)
     deflection = mas._length(deflection, "deflection", allow_zero=True)
+    if frame not in AXIS_FRAMES:
+        raise ValueError("frame must be one of {}, got {!r}".format(", ".join(AXIS_FRAMES), frame))
     obj = doc.addObject("Part::FeaturePython", name)
     CentroidalAxisFeature(obj)
     obj.Source = source
@@ -425,6 +450,7 @@ def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, br
     obj.DistanceThreshold = distance_threshold
     obj.Epsilon = eps
     obj.BreakAngle = break_angle
+    obj.Frame = frame
     obj.Deflection = deflection
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, CentroidalAxisFeature.VIEW_PROVIDER)
@@ -560,7 +586,7 @@ def decomposition_inputs(obj):
         params = dict(step=axis_obj.Step.Value or None,
                       distance_threshold=axis_obj.DistanceThreshold.Value or None,
                       eps=axis_obj.Epsilon.Value, break_angle=axis_obj.BreakAngle.Value,
-                      deflection=axis_obj.Deflection.Value or None)
+                      deflection=axis_obj.Deflection.Value or None, frame=axis_frame(axis_obj))
     else:
         params = dict(step=obj.Step.Value or None, deflection=obj.Deflection.Value or None)
     params.update(face_angle=obj.FaceAngle.Value, concave_angle=obj.ConcaveAngle.Value,
@@ -886,7 +912,8 @@ def slice_inputs(obj):
     if axis is not None:
         params.update(step=axis.Step.Value or None,
                       distance_threshold=axis.DistanceThreshold.Value or None,
-                      eps=axis.Epsilon.Value, break_angle=axis.BreakAngle.Value)
+                      eps=axis.Epsilon.Value, break_angle=axis.BreakAngle.Value,
+                      frame=axis_frame(axis))
     return decomposition, mesh, params, obj.Deflection.Value or None
 
 

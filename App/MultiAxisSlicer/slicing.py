@@ -56,7 +56,7 @@ SLICE_DEFAULTS = {
     "nozzle_max_lean": 30.0,
 }
 
-_AXIS_KEYS = ("step", "distance_threshold", "eps", "break_angle", "base_z")
+_AXIS_KEYS = ("step", "distance_threshold", "eps", "break_angle", "base_z", "frame")
 
 
 class ToolPath:
@@ -468,8 +468,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     the branches so kept).
 
     ``axis``: the part's ``CentroidalAxis``; None: computed here (with ``step``,
-    ``distance_threshold``, ``eps``, ``break_angle``, ``base_z`` from ``params`` when given; with
-    an axis or components given they must stay unset, ValueError otherwise).
+    ``distance_threshold``, ``eps``, ``break_angle``, ``base_z``, ``frame`` from ``params`` when
+    given; with an axis or components given they must stay unset, ValueError otherwise).
     ``components``: the part's ``Decomposition`` (from ``decompose(shape, axis)``); None: computed
     here with the axis. ``deflection``: chordal deflection for tessellating the components (mm;
     None: derived from the part's size).

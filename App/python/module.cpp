@@ -737,6 +737,7 @@ bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
     params["break_angle_deg"] = axis.params.break_angle_deg;
     params["base_z_mm"] = axis.params.base_z_mm;
     params["min_region_area_mm2"] = axis.params.min_region_area_mm2;
+    params["frame_deg"] = axis.params.frame_deg;
     bp::dict out;
     out["nodes"] = nodes;
     out["links"] = links;
@@ -749,7 +750,7 @@ bp::dict axis_to_py(const mas::CentroidalAxis& axis) {
 
 bp::dict centroidal_axis(const mas::TriangleMesh& mesh, double step, double distance_threshold,
                          double eps, double break_angle, double base_z, double min_region_area,
-                         const bp::object& progress) {
+                         double frame, const bp::object& progress) {
     mas::AxisParams params;
     params.step_mm = finite_number(step, "step");  // <= 0: derived from the part
     params.distance_threshold_mm = finite_number(distance_threshold, "distance_threshold");
@@ -759,6 +760,9 @@ bp::dict centroidal_axis(const mas::TriangleMesh& mesh, double step, double dist
         invalid_argument("base_z must be a finite number (or NaN: the part's lowest point)");
     params.base_z_mm = base_z;
     params.min_region_area_mm2 = finite_number(min_region_area, "min_region_area");
+    if (std::isinf(frame))
+        invalid_argument("frame must be a finite angle in degrees (or NaN: derived from the part)");
+    params.frame_deg = frame;
     mas::CentroidalAxis axis;
     run_reporting(progress,
                   [&](const mas::Progress& p) { axis = mas::centroidal_axis(mesh, params, p); });
@@ -770,22 +774,30 @@ double derive_axis_step(const mas::TriangleMesh& mesh) {
     return mas::derive_axis_step(mesh);
 }
 
+double derive_axis_frame(const mas::TriangleMesh& mesh) {
+    GilRelease nogil;
+    return mas::derive_axis_frame(mesh);
+}
+
 void bind_axis() {
     bp::def(
         "centroidal_axis", &centroidal_axis,
         (bp::arg("mesh"), bp::arg("step") = 0.0, bp::arg("distance_threshold") = 0.0,
          bp::arg("eps") = 0.001, bp::arg("break_angle") = 30.0,
          bp::arg("base_z") = std::numeric_limits<double>::quiet_NaN(),
-         bp::arg("min_region_area") = 1e-6, bp::arg("progress") = bp::object()),
+         bp::arg("min_region_area") = 1e-6,
+         bp::arg("frame") = std::numeric_limits<double>::quiet_NaN(),
+         bp::arg("progress") = bp::object()),
         "The centroidal axis of a closed mesh (make_closed() or tessellate() give one), lengths "
         "in mm, angles in degrees: step <= 0 is derived from the part, distance_threshold <= 0 "
         "is twice the step (at most a sixth of a section's size), base_z NaN is the part's lowest "
-        "point. Returns a dict: nodes "
+        "point, frame (the turn about Z of the +-X and +-Y it marches along) NaN is derived from "
+        "the part (derive_axis_frame()). Returns a dict: nodes "
         "[{position, normal, area, offset, thickness, slab_start, branch, incoming_link, "
         "interior}], links [{start, end, kind ('step' | 'connecting'), is_break, turn_deg}], "
         "branches [{parent, direction, nodes, parent_node, first_link, depth, merged_into}], "
         "params (the values used: step_mm, distance_threshold_mm, eps_mm, break_angle_deg, "
-        "base_z_mm, min_region_area_mm2), "
+        "base_z_mm, min_region_area_mm2, frame_deg), "
         "searched_volume_mm3, sections_cut. EngineError invalid_argument on NaN or out-of-range "
         "parameters, a step not smaller than the part's height, or a part that does not stand "
         "on base_z; empty_input for an empty mesh. `progress`: None or progress(fraction, stage), "
@@ -793,7 +805,12 @@ void bind_axis() {
         "exception it raises stops the search and is raised again here.");
     bp::def("derive_axis_step", &derive_axis_step, bp::arg("mesh"),
             "The step (mm) centroidal_axis() derives when none is given: half the part's thinnest "
-            "wall, within [diagonal / 2000, diagonal / 20], at most half the part's height.");
+            "wall, within [diagonal / 2000, diagonal / 20], at most half the part's height. "
+            "(centroidal_axis() derives it on the part turned into its frame.)");
+    bp::def("derive_axis_frame", &derive_axis_frame, bp::arg("mesh"),
+            "The frame (degrees about Z, in (-45, 45]) centroidal_axis() derives when none is "
+            "given: the turn lining +-X and +-Y up with the part's sides, 0 when they do not "
+            "agree on one.");
 }
 
 // ---- stage: decomposition into sub-components
@@ -930,6 +947,9 @@ mas::CentroidalAxis axis_from_py(const bp::object& value) {
         number_of(params, "distance_threshold_mm", "axis['params']");
     axis.params.break_angle_deg = number_of(params, "break_angle_deg", "axis['params']");
     axis.params.base_z_mm = number_of(params, "base_z_mm", "axis['params']");
+    // Optional: the frame it was marched in (decompose() reads it off the branches' directions).
+    if (PyDict_GetItemString(params.ptr(), "frame_deg"))
+        axis.params.frame_deg = number_of(params, "frame_deg", "axis['params']");
     // Optional: the deflection of the tessellation the axis was cut from (0: not known).
     if (PyDict_GetItemString(params.ptr(), "deflection_mm")) {
         axis.deflection_mm = number_of(params, "deflection_mm", "axis['params']");

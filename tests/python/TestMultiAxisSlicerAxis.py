@@ -132,11 +132,19 @@ class TestAxisOfABox(AxisTest):
 
     def test_explicit_parameters_are_used(self):
         axis = mas.centroidal_axis(box_10_20_30(), step=5.0, distance_threshold=7.0, eps=0.01,
-                                   break_angle=45.0, base_z=3.0, deflection=0.05)
-        self.assertEqual(axis.params, {"step_mm": 5.0, "distance_threshold_mm": 7.0,
-                                       "eps_mm": 0.01, "break_angle_deg": 45.0, "base_z_mm": 3.0,
-                                       "deflection_mm": 0.05})
+                                   break_angle=45.0, base_z=3.0, deflection=0.05, frame=100.0)
+        # frame is read modulo 90 degrees: 100 is 10
+        self.assertEqual(set(axis.params), {"step_mm", "distance_threshold_mm", "eps_mm",
+                                            "break_angle_deg", "base_z_mm", "frame_deg",
+                                            "deflection_mm"})
+        self.assertEqual({k: v for k, v in axis.params.items() if k != "frame_deg"},
+                         {"step_mm": 5.0, "distance_threshold_mm": 7.0, "eps_mm": 0.01,
+                          "break_angle_deg": 45.0, "base_z_mm": 3.0, "deflection_mm": 0.05})
+        self.assertAlmostEqual(axis.params["frame_deg"], 10.0, places=12)
         self.assertAlmostEqual(axis.nodes[0].position.z, 3.01, places=9)
+        for node in axis.nodes:  # marched in the turned frame and turned back: the centre line
+            self.assertAlmostEqual(node.position.x, 6.0, places=9)
+            self.assertAlmostEqual(node.position.y, 12.0, places=9)
         self.assertEqual(len(axis.nodes), 6)
 
     def test_quantities_are_accepted(self):
@@ -201,7 +209,7 @@ class TestAxisOfAnLBlock(AxisTest):
         self.assertEqual(set(d), {"kind", "triangles", "deflection_mm", "params",
                                   "searched_volume_mm3", "nodes", "links", "branches"})
         self.assertEqual(set(d["params"]), {"step_mm", "distance_threshold_mm", "eps_mm",
-                                            "break_angle_deg", "base_z_mm"})
+                                            "break_angle_deg", "base_z_mm", "frame_deg"})
         self.assertEqual(d["params"]["step_mm"], 2.5)
         self.assertEqual(d["deflection_mm"], axis.params["deflection_mm"])
         self.assertEqual(d["searched_volume_mm3"], axis.searched_volume)
@@ -458,6 +466,42 @@ class TestCentroidalAxisObject(AxisTest):
         doc.recompute()
         self.assertEqual(obj.NodeCount, 12 + 10)  # column z < 60, arm x in (20, 70)
         doc.save()  # saving a restored proxy works too
+
+    def test_the_frame_is_the_parts_unless_the_documents_is_asked_for(self):
+        # The L placed 30 degrees round: "Part" (the default) marches its arm along itself,
+        # "Document" along the document's X and Y (the arm leaves between them). Both survive
+        # saving; a document saved before the property existed gets "Part".
+        turned = self.doc.addObject("Part::Feature", "Turned")
+        shape = l_block()
+        shape.rotate(V(0, 0, 0), V(0, 0, 1), 30)
+        turned.Shape = shape
+        obj = mas.make_centroidal_axis(turned, step=2.5)
+        self.assertEqual(obj.Frame, "Part")
+        self.assertEqual(obj.getEnumerationsOfProperty("Frame"), ["Part", "Document"])
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertAlmostEqual(obj.UsedFrame.Value, 30.0, places=9)
+        self.assertEqual((obj.BranchCount, obj.NodeCount), (2, 44))
+        other = mas.make_centroidal_axis(turned, step=2.5, frame="Document")
+        self.doc.recompute()
+        self.assertTrue(other.isValid(), other.getStatusString())
+        self.assertEqual(other.UsedFrame.Value, 0.0)
+        self.assertNotEqual((other.BranchCount, other.NodeCount), (2, 44))
+        with self.assertRaises(ValueError):
+            mas.make_centroidal_axis(turned, frame="Sideways")
+        other.removeProperty("Frame")  # as a document saved before it existed
+        names = obj.Name, other.Name
+        path = os.path.join(self.folder, "frame.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        doc = FreeCAD.openDocument(path)
+        self.assertEqual(doc.getObject(names[0]).Frame, "Part")
+        restored = doc.getObject(names[1])
+        self.assertEqual(restored.Frame, "Part")
+        restored.Frame = "Document"
+        doc.recompute()
+        self.assertTrue(restored.isValid(), restored.getStatusString())
+        self.assertEqual(restored.UsedFrame.Value, 0.0)
 
     def test_undo_removes_the_object(self):
         self.doc.UndoMode = 1

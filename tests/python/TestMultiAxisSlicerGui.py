@@ -1816,7 +1816,8 @@ class TestParameterPanel(unittest.TestCase):
         sections = mas.make_sections(self.part)
         self.doc.recompute()
         for obj, props, figure in (
-                (axis, ["Step", "DistanceThreshold", "Epsilon", "BreakAngle", "Deflection"],
+                (axis, ["Step", "DistanceThreshold", "Epsilon", "BreakAngle", "Frame",
+                        "Deflection"],
                  "nodes"),
                 (sections, ["Normal", "Step", "Deflection"], "sections"),
                 (self.decomposition, ["Step", "Deflection", "FaceAngle", "ConcaveAngle",

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: five families of the parts a deposition shop builds (pipe bends, hubs
-with blades, lugs and clevises, angle brackets, branches leaning off columns), each part drawn at
-random from its family's ranges, and a survey slicing them as a user would (defaults, G-code).
+"""Parts nobody tuned for: six families of the parts a deposition shop builds (pipe bends, hubs
+with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
+leaning off columns), each part drawn at random from its family's ranges, and a survey slicing
+them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
 drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers
@@ -107,6 +108,15 @@ def angle_bracket(rng):
     return solid, {"web": web, "arm": arm}
 
 
+def turned_angle_bracket(rng):
+    """An angle bracket placed turned on the plate, 5 to 85 degrees about Z: its wall and arm lie
+    between the document's X and Y."""
+    solid, description = angle_bracket(rng)
+    turn = rng.uniform(5, 85)
+    solid.rotate(V(0, 0, 0), V(0, 0, 1), turn)
+    return solid, dict(description, turn_deg=turn)
+
+
 def leaning_branch(rng):
     """A round column with a round branch leaving its side at 20 to 70 degrees from the vertical,
     the column going on above it."""
@@ -126,6 +136,7 @@ FAMILIES = {
     "hub with blades": hub_with_blades,
     "lug": lug,
     "angle bracket": angle_bracket,
+    "turned angle bracket": turned_angle_bracket,
     "leaning branch": leaning_branch,
 }
 

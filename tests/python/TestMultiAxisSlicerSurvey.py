@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for (MultiAxisSlicerSurvey): 12 random parts of each of five families,
+"""Parts nobody tuned for (MultiAxisSlicerSurvey): 12 random parts of each of six families,
 sliced as a user would (defaults, holes up to 16 mm deposited solid, G-code), in freecadcmd.
 
 What the product claims for any part is asserted on every one: no layer the nozzle cannot reach,
@@ -54,6 +54,18 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
         # A web under the wall narrows upwards; an arm off the wall's top is built sideways.
         for r in self.parts("angle bracket"):
             with self.subTest(part=self.name(r)):
+                self.assert_supported(r)
+
+    def test_an_angle_bracket_placed_turned_on_the_plate_needs_no_support(self):
+        # The axis marches along +-X and +-Y turned to line up with the bracket's sides
+        # (derive_axis_frame): its arm is cut off the wall and built along itself, as when it is
+        # not turned. (In the document's frame, the paper's, the 7 of these 12 with an arm
+        # overhang 4.5 to 27 mm^2: the arm leaves the wall between +X and +Y.)
+        claimed = self.parts("turned angle bracket")
+        self.assertGreater(sum(1 for r in claimed if r["arm"]), 0)
+        for r in claimed:
+            with self.subTest(part=self.name(r)):
+                self.assertGreaterEqual(r["turn_deg"], 5.0)
                 self.assert_supported(r)
 
     def test_a_lug_whose_pin_holes_are_deposited_solid_needs_no_support(self):

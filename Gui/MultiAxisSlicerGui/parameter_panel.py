@@ -82,8 +82,9 @@ def _summary(obj):
     if kind == "MultiAxisSlicer::Sections":
         return "{} sections, {:.6g} mm² in all.".format(obj.SectionCount, obj.TotalArea.Value)
     if kind == "MultiAxisSlicer::CentroidalAxis":
-        return "{} nodes in {} branch(es), {} C1 break(s); step {:.4g} mm.".format(
-            obj.NodeCount, obj.BranchCount, obj.BreakCount, obj.UsedStep.Value)
+        return "{} nodes in {} branch(es), {} C1 break(s); step {:.4g} mm, frame {:.4g}°.".format(
+            obj.NodeCount, obj.BranchCount, obj.BreakCount, obj.UsedStep.Value,
+            obj.UsedFrame.Value)
     if kind == "MultiAxisSlicer::Decomposition":
         return "{} sub-component(s); step {:.4g} mm.".format(obj.ComponentCount,
                                                              obj.UsedStep.Value)

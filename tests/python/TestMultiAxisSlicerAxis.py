@@ -489,6 +489,16 @@ class TestCentroidalAxisObject(AxisTest):
         self.assertNotEqual((other.BranchCount, other.NodeCount), (2, 44))
         with self.assertRaises(ValueError):
             mas.make_centroidal_axis(turned, frame="Sideways")
+        # A Decomposition made with either axis object decomposes in its frame: the arm cut off
+        # and built along itself, or not.
+        for axis_obj, arm_along_itself in ((obj, True), (other, False)):
+            parts = mas.make_decomposition(turned, axis=axis_obj)
+            self.doc.recompute()
+            self.assertTrue(parts.isValid(), parts.getStatusString())
+            along = V(math.cos(math.radians(30)), math.sin(math.radians(30)), 0)
+            built = parts.BuildDirections
+            self.assertEqual(any(d.isEqual(along, 1e-9) for d in built), arm_along_itself,
+                             built)
         other.removeProperty("Frame")  # as a document saved before it existed
         names = obj.Name, other.Name
         path = os.path.join(self.folder, "frame.FCStd")

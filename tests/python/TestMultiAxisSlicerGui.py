@@ -1818,7 +1818,7 @@ class TestParameterPanel(unittest.TestCase):
         for obj, props, figure in (
                 (axis, ["Step", "DistanceThreshold", "Epsilon", "BreakAngle", "Frame",
                         "Deflection"],
-                 "nodes"),
+                 "frame 0°."),
                 (sections, ["Normal", "Step", "Deflection"], "sections"),
                 (self.decomposition, ["Step", "Deflection", "FaceAngle", "ConcaveAngle",
                                       "SectionPlaneFallback", "MinComponentHeight", "MaxTilt"],

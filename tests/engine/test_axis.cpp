@@ -303,6 +303,9 @@ TEST(CentroidalAxis, TheFrameLinesUpWithThePartsSidesWhenTheyAgreeOnOne) {
     EXPECT_NEAR(mas::derive_axis_frame(turned_mesh(box, 30.0)), 30.0, 1e-9);
     EXPECT_NEAR(mas::derive_axis_frame(turned_mesh(box, 60.0)), -30.0, 1e-9);
     EXPECT_NEAR(mas::derive_axis_frame(turned_mesh(box, -100.0)), -10.0, 1e-9);
+    // Half way between, the votes straddle the ends of (-45, 45]: either end is the one frame.
+    EXPECT_NEAR(std::abs(mas::derive_axis_frame(turned_mesh(box, 45.0))), 45.0, 1e-9);
+    EXPECT_NEAR(std::abs(mas::derive_axis_frame(turned_mesh(box, -45.0))), 45.0, 1e-9);
     // Under kAxisFrameMinDeg: the document's frame.
     EXPECT_EQ(mas::derive_axis_frame(turned_mesh(box, 0.5)), 0.0);
     EXPECT_NEAR(mas::derive_axis_frame(turned_mesh(box, 1.5)), 1.5, 1e-9);

@@ -41,24 +41,24 @@ def _break_angle(value):
     return angle
 
 
-def _base_z(value):
-    """None -> NaN: the engine takes the part's lowest point."""
+def _finite_or_derived(value, name, unit):
+    """None -> NaN, which the engine derives from the part; otherwise a finite number."""
     if value is None:
         return float("nan")
-    z = _number(value, "base_z", "millimetres")
-    if not math.isfinite(z):
-        raise ValueError("base_z must be a finite number of millimetres, got {}".format(z))
-    return z
+    number = _number(value, name, unit)
+    if not math.isfinite(number):
+        raise ValueError("{} must be a finite number of {}, got {}".format(name, unit, number))
+    return number
+
+
+def _base_z(value):
+    """None -> NaN: the engine takes the part's lowest point."""
+    return _finite_or_derived(value, "base_z", "millimetres")
 
 
 def _frame(value):
-    """None -> NaN: the engine derives the frame from the part."""
-    if value is None:
-        return float("nan")
-    angle = _number(value, "frame", "degrees")
-    if not math.isfinite(angle):
-        raise ValueError("frame must be a finite number of degrees, got {}".format(angle))
-    return angle
+    """None -> NaN: the engine derives the frame from the part's sides."""
+    return _finite_or_derived(value, "frame", "degrees")
 
 
 # ---- results -------------------------------------------------------------------------------------

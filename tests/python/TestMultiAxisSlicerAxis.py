@@ -286,6 +286,7 @@ class TestAxisBadInput(AxisTest):
                  ("break_angle", dict(break_angle=nan)), ("break_angle", dict(break_angle=200.0)),
                  ("break_angle", dict(break_angle=-1.0)),
                  ("base_z", dict(base_z=nan)), ("base_z", dict(base_z=float("-inf"))),
+                 ("frame", dict(frame=nan)), ("frame", dict(frame=float("inf"))),
                  ("deflection", dict(deflection=-0.1))]
         for name, kwargs in cases:
             with self.assertRaisesRegex(ValueError, name, msg=str(kwargs)):
@@ -306,6 +307,9 @@ class TestAxisBadInput(AxisTest):
             self.assertIn(name, str(e))
         self.assertRaisesEngineError("invalid_argument", mas._engine.centroidal_axis, mesh,
                                      base_z=float("inf"))
+        e = self.assertRaisesEngineError("invalid_argument", mas._engine.centroidal_axis, mesh,
+                                         frame=float("-inf"))
+        self.assertIn("frame must be a finite angle", str(e))
         self.assertRaisesEngineError("invalid_argument", mas._engine.centroidal_axis, mesh,
                                      eps=-1.0)
 

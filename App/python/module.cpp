@@ -760,9 +760,7 @@ bp::dict centroidal_axis(const mas::TriangleMesh& mesh, double step, double dist
         invalid_argument("base_z must be a finite number (or NaN: the part's lowest point)");
     params.base_z_mm = base_z;
     params.min_region_area_mm2 = finite_number(min_region_area, "min_region_area");
-    if (std::isinf(frame))
-        invalid_argument("frame must be a finite angle in degrees (or NaN: derived from the part)");
-    params.frame_deg = frame;
+    params.frame_deg = frame;  // NaN: derived from the part; infinite: the engine refuses it
     mas::CentroidalAxis axis;
     run_reporting(progress,
                   [&](const mas::Progress& p) { axis = mas::centroidal_axis(mesh, params, p); });

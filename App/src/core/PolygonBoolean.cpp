@@ -58,11 +58,8 @@ Regions2 run(ClipperLib::ClipType type, const Regions2& a, const Regions2& b) {
 // Clipper 6.4 can nest its result wrongly on near-degenerate input: a difference leaving a
 // hairline of 4e-6 mm^2 beside a 299 mm^2 region came back as that hairline, an outer loop,
 // holding the region as its hole (the region's area then negative: the axis' march over a hub
-// with twisted blades ended there, a quarter of the part unsearched). The tree is then nested
-// again by containment: a loop inside an even number of larger loops is an outer loop (made
-// counter-clockwise), inside an odd number a hole (clockwise) of the smallest of them. A loop
-// is inside another when most of up to 9 of its vertices, spread along it, are (a vertex on the
-// other's outline may go either way).
+// with twisted blades ended there, a quarter of the part unsearched). Nested right: no hole
+// larger than its outer loop, at any depth (read on the tree's integer areas).
 bool clipper_convert::nested_right(const ClipperLib::PolyNode& node) {
     for (const ClipperLib::PolyNode* child : node.Childs) {
         if (child->IsHole()) continue;
@@ -74,6 +71,10 @@ bool clipper_convert::nested_right(const ClipperLib::PolyNode& node) {
     return true;
 }
 
+// Otherwise the tree is nested again by containment: a loop inside an even number of larger
+// loops is an outer loop (made counter-clockwise), inside an odd number a hole (clockwise) of
+// the smallest of them. A loop is inside another when most of up to 9 of its vertices, spread
+// along it, are (a vertex on the other's outline may go either way).
 Regions2 clipper_convert::regions_of(const ClipperLib::PolyTree& tree) {
     Regions2 out;
     if (nested_right(tree)) {

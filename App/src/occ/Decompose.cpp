@@ -888,8 +888,7 @@ private:
 // location left on it).
 TopoDS_Shape turned_about_z(const TopoDS_Shape& shape, double degrees) {
     gp_Trsf turn;
-    turn.SetRotation(gp_Ax1(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, 0.0, 1.0)),
-                     degrees * 3.14159265358979323846 / 180.0);
+    turn.SetRotation(gp_Ax1(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, 0.0, 1.0)), degrees * kPi / 180.0);
     return BRepBuilderAPI_Transform(shape, turn, Standard_True).Shape();
 }
 
@@ -910,7 +909,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
     if (frame != 0.0) turned_axis = turned_about_z(world_axis, -frame);
     const CentroidalAxis& axis = turned_axis ? *turned_axis : world_axis;
     const Eigen::Matrix3d to_world =
-        Eigen::AngleAxisd(frame * 3.14159265358979323846 / 180.0, Vector3d::UnitZ()).matrix();
+        Eigen::AngleAxisd(frame * kPi / 180.0, Vector3d::UnitZ()).matrix();
     const KeptQueries keep;
     // The part, checked once for every pass. Work on a copy: OCCT's algorithms must never touch
     // the caller's shape (and each split works on a copy of its father: a pass leaves it as it

@@ -813,7 +813,7 @@ _SLICE_PROPERTIES = (
     ("Infill", "Paths", "infill", "App::PropertyEnumeration",
      "Filling inside the contours: raster lines, more contours, or none"),
     ("RasterAngle", "Paths", "raster_angle", "App::PropertyAngle",
-     "Direction of the first layer's raster lines"),
+     "Direction of the first layer's raster lines, in the part's frame (its axis' UsedFrame)"),
     ("RasterAngleStep", "Paths", "raster_angle_step", "App::PropertyAngle",
      "Added to the raster direction from one layer to the next"),
     ("MinFeature", "Paths", "min_feature", "App::PropertyLength",

@@ -487,10 +487,11 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         limit). Where the axis turns further (a return bend's far leg), the layers stop there.
       * ``volume_samples``: sections per layer integrating VolDiff (4).
       * ``bead_width`` (1.0), ``overlap`` (fraction of a bead shared with its neighbour, 0.15),
-        ``contour_count`` (2), ``infill`` ("raster", "contour" or "none"), ``raster_angle`` (0)
-        and ``raster_angle_step`` (90, added every layer), ``min_feature`` (centre lines shorter
-        than this are reported, not run; 0: half a bead), ``measure_coverage`` (also measure the
-        area each layer's beads leave uncovered; False).
+        ``contour_count`` (2), ``infill`` ("raster", "contour" or "none"), ``raster_angle`` (0;
+        in the part's frame, the axis' ``frame``: a layer square to Z rasters at this angle to
+        the part's turned X) and ``raster_angle_step`` (90, added every layer), ``min_feature``
+        (centre lines shorter than this are reported, not run; 0: half a bead),
+        ``measure_coverage`` (also measure the area each layer's beads leave uncovered; False).
       * ``split_mesh``: a mesh is split as above (True); False slices it as one component, along
         its axis' first branch. A solid is always decomposed (``components`` gives the split).
       * ``avoid_collisions``: branches whose own layers the nozzle cannot reach stay in their

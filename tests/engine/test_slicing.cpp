@@ -922,6 +922,66 @@ TEST(Slicing, LBlockArmIsSlicedAlongItsLengthAndTheColumnAlongZ) {
     expect_invariants(s, params, "L-block");
 }
 
+// The paths are planned in the part's frame: the L-block placed turned 30 degrees on the plate
+// gets the square L-block's layers and bead paths, turned (rasters along its sides, not along the
+// document's X and Y). In the document's frame its rasters cross its sides at 30 and 120 degrees.
+TEST(Slicing, ATurnedPartsPathsAreTheSquarePartsPathsTurned) {
+    const double turn = 30.0;
+    const auto params = default_params();
+    const auto square = slice(mas::test::l_block(), 2.5, params);
+    const auto turned = slice(mas::test::turned_about_z(mas::test::l_block(), turn), 2.5, params);
+    ASSERT_NEAR(turned.axis.params.frame_deg, turn, 1e-9);
+    const Eigen::AngleAxisd R(turn * kPi / 180.0, Vector3d::UnitZ());
+    // Within 10 units of the Booleans' grid (1e-5 mm), the turned regions snapped to it.
+    const double tol = 1e-4;
+    ASSERT_EQ(turned.result.layers.size(), square.result.layers.size());
+    ASSERT_EQ(turned.result.layers.size(), 55u);
+    double farthest = 0.0;
+    int infill_layers = 0;
+    for (std::size_t i = 0; i < square.result.layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        EXPECT_TRUE((R * square.result.layers[i].plane.normal)
+                        .isApprox(turned.result.layers[i].plane.normal, 1e-9));
+        const auto& a = square.result.toolpaths[i].paths;
+        const auto& b = turned.result.toolpaths[i].paths;
+        ASSERT_EQ(b.size(), a.size());
+        bool infill = false;
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            ASSERT_EQ(b[k].kind, a[k].kind);
+            ASSERT_EQ(b[k].points.size(), a[k].points.size());
+            for (std::size_t j = 0; j < a[k].points.size(); ++j)
+                farthest = std::max(farthest, (R * a[k].points[j] - b[k].points[j]).norm());
+            if (a[k].kind != mas::ToolPath::Kind::Infill) continue;
+            infill = true;
+            // The square part's rasters run along X or Y, or across its vertical layers along
+            // Z: square to its sides, as the turned part's are to its own.
+            const Vector3d d = (a[k].points.back() - a[k].points.front()).normalized();
+            EXPECT_NEAR(d.cwiseAbs().maxCoeff(), 1.0, 1e-9) << d.transpose();
+        }
+        infill_layers += infill;
+    }
+    EXPECT_LT(farthest, tol);
+    EXPECT_EQ(infill_layers, 55);
+    expect_invariants(turned, params, "turned L-block");
+
+    // In the document's frame the turned part's rasters in its column's layers lie along X and
+    // Y: 30 degrees off its sides.
+    auto column = turned.result.layers.front();
+    const auto plain = mas::plan_toolpaths(column, 0, params.paths);
+    const auto framed = mas::plan_toolpaths(column, 0, params.paths, std::nullopt, {}, turn);
+    const auto first_raster = [](const mas::LayerToolpaths& t) {
+        for (const auto& p : t.paths)
+            if (p.kind == mas::ToolPath::Kind::Infill)
+                return Vector3d((p.points.back() - p.points.front()).normalized());
+        return Vector3d(Vector3d::Zero());
+    };
+    EXPECT_NEAR(std::abs(first_raster(plain).x()), 1.0, 1e-9);
+    EXPECT_NEAR(std::abs(first_raster(framed).dot(R * Vector3d::UnitX())), 1.0, 1e-9);
+    EXPECT_THROW(mas::plan_toolpaths(column, 0, params.paths, std::nullopt, {},
+                                     std::numeric_limits<double>::quiet_NaN()),
+                 mas::Error);
+}
+
 TEST(Slicing, AColumnCutFromAnArmOverAGussetIsSlicedSquareWithEveryLayerSupported) {
     // The column's axis nodes beside the arm lie at x = 21.4, where the whole part's sections
     // (column, arm out to the web's tip) have their centroid; cut at the column's face, the

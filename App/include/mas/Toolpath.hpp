@@ -41,8 +41,13 @@ struct LayerToolpaths {
 // The paths of `layer`; `layer_index` counts layers over the whole build (raster angle, seam).
 // `from` is where the head is (the previous layer's last point): the first travel starts there;
 // without it the layer starts at its first deposit path. `progress`: as plan_layer_paths'.
+// `frame_deg` is the part's frame (CentroidalAxis::params.frame_deg, axis_frame_deg()): the paths
+// are planned in the layer's plane frame (PlaneFrame) of the part turned by -frame_deg about Z,
+// and turned back, so that rasters and seams keep their angles to the part's sides, and the paths
+// of a part placed turned on the plate are its paths turned (0: the document's frame, the layer's
+// own). Throws mas::Error(InvalidArgument) for a frame that is not finite.
 LayerToolpaths plan_toolpaths(const Layer& layer, int layer_index, const PathParams& params,
                               const std::optional<Eigen::Vector3d>& from = std::nullopt,
-                              const Progress& progress = {});
+                              const Progress& progress = {}, double frame_deg = 0.0);
 
 }  // namespace mas

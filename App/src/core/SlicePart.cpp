@@ -330,6 +330,8 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     bool has_head = false;
     out.toolpaths.reserve(out.layers.size());
     const Progress paths_progress = progress.span(0.85, 0.9, "planning the bead paths");
+    // Rasters and seams at their angles to the part's sides, in the frame its axis marched in.
+    const double part_frame = axis_frame_deg(axis, "slice");
     for (std::size_t i = 0; i < out.layers.size(); ++i) {
         paths_progress(double(i) / double(out.layers.size()));
         const Layer& l = out.layers[i];
@@ -345,7 +347,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         }
         LayerToolpaths paths = plan_toolpaths(
             l, int(i), params.paths, has_head ? std::optional<Eigen::Vector3d>(head) : std::nullopt,
-            paths_progress);
+            paths_progress, part_frame);
         for (auto it = paths.paths.rbegin(); it != paths.paths.rend(); ++it)
             if (!it->points.empty()) {
                 head = it->points.back();

@@ -22,6 +22,7 @@
 #include <TopoDS_Solid.hxx>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -680,6 +681,29 @@ TEST_F(OccReadModel, StlWithANanCoordinateIsNonFinite) {
     const std::string file = write_text("nan.stl", cube_stl(-1, "nan"));
 
     EXPECT_TRUE(throws_error([&] { read_model(file); }, ErrorCode::NonFiniteCoordinate, "NaN"));
+}
+
+// Some exporters write the keywords in capitals ("SOLID", "FACET NORMAL", "ENDSOLID"): the same
+// cube, as its lower-case file reads (a NaN in capitals named as one too).
+TEST_F(OccReadModel, StlKeywordsAreReadInAnyCase) {
+    const auto upper = [](std::string text) {
+        for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        return text;
+    };
+    const Model lower = read_model(write_text("lower.stl", cube_stl(-1)));
+    const Model capitals = read_model(write_text("capitals.stl", upper(cube_stl(-1))));
+    ASSERT_EQ(capitals.kind, Model::Kind::Mesh);
+    ASSERT_EQ(capitals.mesh.triangles.size(), 12u);
+    EXPECT_EQ(capitals.mesh.vertices, lower.mesh.vertices);
+    EXPECT_EQ(capitals.mesh.triangles, lower.mesh.triangles);
+    EXPECT_NEAR(mesh_volume(model_mesh(capitals)), 1.0, 1e-12);
+    EXPECT_TRUE(throws_error([&] { read_model(write_text("nan.stl", upper(cube_stl(-1, "nan")))); },
+                             ErrorCode::NonFiniteCoordinate, "NaN"));
+    // Cut before ENDSOLID: still truncated.
+    std::string cut = upper(cube_stl(-1));
+    cut.resize(cut.rfind("ENDSOLID"));
+    EXPECT_TRUE(throws_error([&] { read_model(write_text("cut.stl", cut)); }, ErrorCode::ReadFailed,
+                             "no 'endsolid'"));
 }
 
 TEST_F(OccReadModel, StlWithAMissingTriangleIsAnOpenMesh) {

@@ -31,11 +31,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string lower_extension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
+std::string lowercase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
+    return text;
+}
+
+std::string lower_extension(const std::string& path) {
+    return lowercase(fs::path(path).extension().string());
 }
 
 int count_of(const TopoDS_Shape& s, TopAbs_ShapeEnum type) {
@@ -145,19 +148,22 @@ StlKind stl_kind(const std::string& path) {
         // and it is 25 GB long.)
         if (bytes.size() == 84 + 50 * facets) return StlKind::Binary;
     }
+    // Keywords are read whatever their case, as RWStl's ASCII parser reads them: some exporters
+    // write "SOLID ... FACET NORMAL ... ENDSOLID".
+    const auto holds = [](const std::string& text, const std::string& word) {
+        return std::search(text.begin(), text.end(), word.begin(), word.end(), [](char a, char b) {
+                   return std::tolower(static_cast<unsigned char>(a)) == b;
+               }) != text.end();
+    };
     const auto first = bytes.find_first_not_of(" \t\r\n");
-    if (first != std::string::npos && bytes.compare(first, 5, "solid") == 0) {
+    if (first != std::string::npos && lowercase(bytes.substr(first, 5)) == "solid") {
         const auto last = bytes.find_last_not_of(" \t\r\n");
         const auto line = bytes.rfind('\n', last);
         const std::string tail = bytes.substr(line == std::string::npos ? 0 : line + 1);
-        if (tail.find("endsolid") == std::string::npos)
+        if (!holds(tail, "endsolid"))
             throw Error(ErrorCode::ReadFailed, path + ": truncated ASCII STL file (no 'endsolid')");
-        const auto holds = [&](const char* word) {  // case-insensitively
-            return std::search(bytes.begin(), bytes.end(), word, word + 3, [](char a, char b) {
-                       return std::tolower(static_cast<unsigned char>(a)) == b;
-                   }) != bytes.end();
-        };
-        return holds("nan") || holds("inf") ? StlKind::AsciiNamingNanOrInf : StlKind::Ascii;
+        return holds(bytes, "nan") || holds(bytes, "inf") ? StlKind::AsciiNamingNanOrInf
+                                                          : StlKind::Ascii;
     }
     throw Error(ErrorCode::ReadFailed,
                 path + ": truncated or not an STL file (its size does not match its facet count)");
@@ -169,7 +175,7 @@ StlKind stl_kind(const std::string& path) {
 bool ascii_stl_has_non_finite(const std::string& path) {
     std::ifstream in(path);
     for (std::string word; in >> word;) {
-        if (word != "vertex") continue;
+        if (lowercase(word) != "vertex") continue;
         for (int k = 0; k < 3; ++k) {
             std::string number;
             if (!(in >> number)) return false;

@@ -283,6 +283,42 @@ std::string message_of(const std::string& text) {
     return error_of([&] { mas::read_off(temp_file("bad.off", text)); });
 }
 
+// Geomview's variants carry more per vertex on its line: colours (COFF, as CGAL's and MeshLab's
+// files with colours), normals (NOFF), texture coordinates (ST...): the same mesh as plain OFF.
+TEST(ReadOff, VerticesWithColoursNormalsOrTextureCoordinatesReadAsPlainOff) {
+    const std::string faces = "3 0 1 2 255 0 0\n3 0 3 1\n3 1 3 2\n3 2 3 0\n";
+    const auto plain =
+        mas::read_off(temp_file("plain.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" + faces));
+    const std::vector<std::pair<std::string, std::string>> variants = {
+        {"COFF", "0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n0 0 1 9 9 9 9\n"},
+        {"COFF", "0 0 0 1.0 0.5 0.0 1.0\n1 0 0 0 1 0 1\n0 1 0 0 0 1 1\n0 0 1 .2 .2 .2 1\n"},
+        {"NOFF", "0 0 0 -1 -1 -1\n1 0 0 1 0 0\n0 1 0 0 1 0\n0 0 1 0 0 1\n"},
+        {"CNOFF",
+         "0 0 0 -1 -1 -1 1 0 0 1\n1 0 0 1 0 0 1 0 0 1\n0 1 0 0 1 0 1 0 0 1\n"
+         "0 0 1 0 0 1 1 0 0 1\n"},
+        {"STCOFF",
+         "0 0 0 0.5 0.5 1 0 0 1\n1 0 0 1 0 1 0 0 1\n0 1 0 0 1 1 0 0 1\n"
+         "0 0 1 1 1 1 0 0 1\n"},
+    };
+    for (const auto& [header, vertices] : variants) {
+        SCOPED_TRACE(header);
+        const auto m =
+            mas::read_off(temp_file("variant.off", header + "\n4 4 0\n" + vertices + faces));
+        EXPECT_EQ(m.vertices, plain.vertices);
+        EXPECT_EQ(m.triangles, plain.triangles);
+    }
+    const std::string path = ::testing::TempDir() + "bad.off";
+    EXPECT_EQ(message_of("4OFF\n4 4 0\n"),
+              "read_failed: " + path +
+                  ": not an OFF file (header '4OFF': vertices of other than three coordinates)");
+    EXPECT_EQ(message_of("OFF BINARY\n"),
+              "read_failed: " + path +
+                  ": a binary OFF file: only OFF as text is read (save it as ASCII)");
+    EXPECT_EQ(message_of("NCOFF\n4 4 0\n"),
+              "read_failed: " + path + ": not an OFF file (header 'NCOFF')");
+    EXPECT_EQ(message_of("PLY\n"), "read_failed: " + path + ": not an OFF file (header 'PLY')");
+}
+
 TEST(ReadOff, CountsTheFileCannotHoldAreRefusedBeforeAnythingIsAllocated) {
     // A file of a few bytes announcing 10^11 vertices or faces, or a face of 2 x 10^9 corners,
     // used to reserve them: std::bad_alloc, or 8 GB zeroed for the corners. Every vertex takes

@@ -94,9 +94,10 @@ Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh);
 void range_along(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& direction, double& lo,
                  double& hi);
 
-// Geomview OFF reader (the CGAL data sets used by the benchmarks). Polygons with more than three
-// corners are fanned into triangles. Throws mas::Error(ReadFailed / EmptyInput /
-// NonFiniteCoordinate).
+// Geomview OFF reader (the CGAL data sets used by the benchmarks): OFF, and [ST][C][N]OFF, whose
+// texture coordinates, colours and normals after each vertex's three coordinates on its line are
+// ignored; not binary OFF, nor [4][n]OFF. Polygons with more than three corners are fanned into
+// triangles. Throws mas::Error(ReadFailed / EmptyInput / NonFiniteCoordinate).
 TriangleMesh read_off(const std::string& path);
 
 // Writes the mesh as a binary STL (coordinates rounded to float, zero facet normals, which

@@ -435,9 +435,27 @@ TriangleMesh read_off(const std::string& path) {
     OffText text(in, path);
     std::string header;
     if (!text.next(header)) throw Error(ErrorCode::EmptyInput, path + ": the file is empty");
-    if (header != "OFF")
-        throw Error(ErrorCode::ReadFailed, path + ": not an OFF file (header '" + header + "')");
-    const auto nv = text.integer(), nf = text.integer(), ne = text.integer();
+    // Geomview's [ST][C][N]OFF: texture coordinates, colours and normals follow each vertex's
+    // three coordinates on its line (CGAL's and MeshLab's COFF, with colours); the 4-D and n-D
+    // variants ([4][n]OFF) and binary OFF are not read.
+    const std::size_t off = header.size() >= 3 ? header.size() - 3 : 0;
+    std::string prefix = header.substr(0, off);
+    if (prefix.compare(0, 2, "ST") == 0) prefix.erase(0, 2);
+    if (!prefix.empty() && prefix.front() == 'C') prefix.erase(0, 1);
+    if (!prefix.empty() && prefix.front() == 'N') prefix.erase(0, 1);
+    if (header.compare(off, std::string::npos, "OFF") != 0 || !prefix.empty()) {
+        const bool dimension = header.compare(off, std::string::npos, "OFF") == 0 &&
+                               (prefix == "4" || prefix == "n" || prefix == "4n");
+        throw Error(ErrorCode::ReadFailed,
+                    path + ": not an OFF file (header '" + header + "'" +
+                        (dimension ? ": vertices of other than three coordinates)" : ")"));
+    }
+    const bool more_per_vertex = off > 0;
+    const auto nv = text.integer();
+    if (!nv && text.last() == "BINARY")
+        throw Error(ErrorCode::ReadFailed,
+                    path + ": a binary OFF file: only OFF as text is read (save it as ASCII)");
+    const auto nf = text.integer(), ne = text.integer();
     if (!nv || !nf || !ne || *nv < 0 || *nf < 0)
         throw Error(ErrorCode::ReadFailed, path + ": bad OFF counts line");
     const auto truncated = [&](const std::string& what) {
@@ -453,6 +471,7 @@ TriangleMesh read_off(const std::string& path) {
     mesh.vertices.reserve(static_cast<std::size_t>(*nv));
     for (long long i = 0; i < *nv; ++i) {
         const double x = text.coordinate(), y = text.coordinate(), z = text.coordinate();
+        if (more_per_vertex) text.skip_line();
         mesh.vertices.emplace_back(x, y, z);
         if (!mesh.vertices.back().allFinite())
             throw Error(ErrorCode::NonFiniteCoordinate,

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: six families of the parts a deposition shop builds (pipe bends, hubs
+"""Parts nobody tuned for: seven families of the parts a deposition shop builds (pipe bends, hubs
 with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
-leaning off columns), each part drawn at random from its family's ranges, and a survey slicing
+leaning off columns, Z brackets), each part drawn at random from its family's ranges, and a survey slicing
 them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
@@ -131,6 +131,23 @@ def leaning_branch(rng):
     return solid, {"lean_deg": lean}
 
 
+def z_bracket(rng):
+    """A Z: a foot on the plate, a wall at its end and a flange off the wall's top reaching the
+    other way; a bolt hole through the foot and one through the flange, or none."""
+    length, width = rng.uniform(25, 45), rng.uniform(20, 40)
+    thickness, height, reach = rng.uniform(3, 6), rng.uniform(25, 50), rng.uniform(15, 35)
+    solid = Part.makeBox(length, width, thickness).fuse(Part.makeBox(thickness, width, height))
+    solid = solid.fuse(Part.makeBox(reach + thickness, width, thickness,
+                                    V(-reach, 0, height - thickness)))
+    holes = rng.random() < 0.5
+    if holes:
+        radius = rng.uniform(2, 4)
+        for x, z in ((thickness + 0.6 * (length - thickness), -1),
+                     (-0.5 * reach, height - thickness - 1)):
+            solid = solid.cut(Part.makeCylinder(radius, thickness + 2, V(x, width / 2, z)))
+    return solid, {"reach": reach, "holes": holes}
+
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -138,6 +155,7 @@ FAMILIES = {
     "angle bracket": angle_bracket,
     "turned angle bracket": turned_angle_bracket,
     "leaning branch": leaning_branch,
+    "z bracket": z_bracket,
 }
 
 

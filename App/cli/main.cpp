@@ -1071,9 +1071,12 @@ int run_slice(const std::vector<std::string>& args) {
     } else {
         out << "# " << a.file << ": " << r.components.size() << " components, " << st.layer_count
             << " layers, thickness " << num(st.min_thickness_mm) << " to "
-            << num(st.max_thickness_mm) << " mm\n# deposited " << num(st.deposited_volume_mm3)
-            << " of " << num(st.part_volume_mm3) << " mm3; worst volume difference "
-            << num(st.max_volume_difference) << " (" << st.layers_over_volume_difference
+            << num(st.max_thickness_mm) << " mm\n# axis: step " << num(axis.params.step_mm)
+            << " mm, frame " << num(axis.params.frame_deg)
+            << " degrees about Z (build directions and rasters line up with it)\n# deposited "
+            << num(st.deposited_volume_mm3) << " of " << num(st.part_volume_mm3)
+            << " mm3; worst volume difference " << num(st.max_volume_difference) << " ("
+            << st.layers_over_volume_difference
             << " layers over the bound); worst unsupported area "
             << num(st.worst_unsupported_area_mm2) << " mm2\n# paths: " << num(st.deposit_length_mm)
             << " mm deposit, " << num(st.travel_length_mm) << " mm travel, "

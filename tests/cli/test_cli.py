@@ -382,6 +382,12 @@ class CliSections(unittest.TestCase):
         self.assertEqual(len(doc["components"]), 2)
         for got, want in zip(doc["components"][1]["build_direction"], along):
             self.assertAlmostEqual(got, want, places=9)
+        # slice names the frame its layers and rasters follow.
+        r = run("slice", stl, "--step", "2.5")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("\n# axis: step 2.5 mm, frame 30 degrees about Z", r.stdout)
+        r = run("slice", stl, "--step", "2.5", "--frame", "0")
+        self.assertIn("\n# axis: step 2.5 mm, frame 0 degrees about Z", r.stdout)
 
     def test_axis_text_summary_lists_branches(self):
         r = run("axis", os.path.join(DATA, "box_10x20x30.step"), "--step", "2")

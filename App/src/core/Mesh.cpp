@@ -438,19 +438,18 @@ TriangleMesh read_off(const std::string& path) {
     // Geomview's [ST][C][N]OFF: texture coordinates, colours and normals follow each vertex's
     // three coordinates on its line (CGAL's and MeshLab's COFF, with colours); the 4-D and n-D
     // variants ([4][n]OFF) and binary OFF are not read.
-    const std::size_t off = header.size() >= 3 ? header.size() - 3 : 0;
-    std::string prefix = header.substr(0, off);
+    const bool ends_off = header.size() >= 3 && header.compare(header.size() - 3, 3, "OFF") == 0;
+    std::string prefix = ends_off ? header.substr(0, header.size() - 3) : header;
+    const bool more_per_vertex = ends_off && !prefix.empty();
     if (prefix.compare(0, 2, "ST") == 0) prefix.erase(0, 2);
     if (!prefix.empty() && prefix.front() == 'C') prefix.erase(0, 1);
     if (!prefix.empty() && prefix.front() == 'N') prefix.erase(0, 1);
-    if (header.compare(off, std::string::npos, "OFF") != 0 || !prefix.empty()) {
-        const bool dimension = header.compare(off, std::string::npos, "OFF") == 0 &&
-                               (prefix == "4" || prefix == "n" || prefix == "4n");
+    if (!ends_off || !prefix.empty()) {
+        const bool dimension = ends_off && (prefix == "4" || prefix == "n" || prefix == "4n");
         throw Error(ErrorCode::ReadFailed,
                     path + ": not an OFF file (header '" + header + "'" +
                         (dimension ? ": vertices of other than three coordinates)" : ")"));
     }
-    const bool more_per_vertex = off > 0;
     const auto nv = text.integer();
     if (!nv && text.last() == "BINARY")
         throw Error(ErrorCode::ReadFailed,

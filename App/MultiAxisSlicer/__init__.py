@@ -290,16 +290,17 @@ def to_engine_mesh(obj, deflection=None):
     """The closed triangle mesh (an engine ``Mesh``) the section kernel cuts for ``obj``.
 
     ``obj`` may be a ``Part.Shape`` holding exactly one closed solid (a compound of one solid is
-    fine), a closed ``Mesh.Mesh``, a FreeCAD document object with such a ``Shape`` or ``Mesh``, a
-    file path (.step/.stp, .iges/.igs, .brep/.brp, .stl, .off), or an engine ``Shape``/``Mesh``.
+    fine; solids sharing material, as a CompSolid, are fused into the one body they make), a closed
+    ``Mesh.Mesh``, a FreeCAD document object with such a ``Shape`` or ``Mesh``, a file path
+    (.step/.stp, .iges/.igs, .brep/.brp, .stl, .off), or an engine ``Shape``/``Mesh``.
     Solids are tessellated with chordal ``deflection`` mm (None or 0: derived from the part's size,
     see ``deflection()``). Meshes are checked and copied: an inside-out mesh is flipped in the copy,
     and the copy's vertices are sorted by their coordinates and its triangles by their vertices, so
     that the same surface given in any order (another exporter, a shuffled STL) slices the same.
 
-    Raises EngineError (not_a_solid for a face, shell or wire; multiple_solids; open_mesh;
-    non_finite_coordinate; empty_input; read_failed; unsupported_format), TypeError for anything
-    else, ValueError for a negative or NaN deflection.
+    Raises EngineError (not_a_solid for a face, shell or wire; multiple_solids for solids apart;
+    open_mesh; non_finite_coordinate; empty_input; read_failed; unsupported_format), TypeError for
+    anything else, ValueError for a negative or NaN deflection.
     """
     d = _deflection_mm(deflection)
     kind, part, what = _model(obj)

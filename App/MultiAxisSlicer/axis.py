@@ -297,8 +297,11 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid, a closed ``Mesh.Mesh``, a document
     object with such a Shape or Mesh, a file path (.step/.stp, .iges/.igs, .brep/.brp, .stl, .off)
-    or an engine Shape/Mesh. A shape with several solids is rejected (EngineError multiple_solids):
-    compute one axis per solid, e.g. ``[centroidal_axis(s) for s in shape.Solids]``.
+    or an engine Shape/Mesh. Several solids that share material (a CompSolid, as Part's
+    BooleanFragments leaves them; a compound of a plate and a post standing on it) are fused into
+    the one body they make. Solids apart, or meeting only along an edge or at a point, are rejected
+    (EngineError multiple_solids): compute one axis per solid, e.g.
+    ``[centroidal_axis(s) for s in shape.Solids]``.
 
     Parameters (lengths in mm, angles in degrees; FreeCAD Quantities are accepted):
       * ``step``: distance between consecutive sections. None: derived from the part, half its

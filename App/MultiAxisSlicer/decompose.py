@@ -263,9 +263,10 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
               max_tilt=100.0, keep_branches=(), frame=None, progress=None):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
-    ``shape``: a ``Part.Shape`` holding exactly one closed solid, a document object with such a
-    Shape, a .step/.stp, .iges/.igs or .brep/.brp file, or an engine Shape. A mesh cannot be
-    split into solids: ``Mesh.Mesh``, mesh objects and .stl/.off files raise TypeError
+    ``shape``: a ``Part.Shape`` holding exactly one closed solid (or solids sharing material, fused
+    into one: see ``centroidal_axis``), a document object with such a Shape, a .step/.stp,
+    .iges/.igs or .brep/.brp file, or an engine Shape. A mesh cannot be split into solids:
+    ``Mesh.Mesh``, mesh objects and .stl/.off files raise TypeError
     (``slice()`` splits a mesh into mesh pieces as it slices it, see the README's "Meshes").
 
     ``axis``: the ``CentroidalAxis`` of this very shape (``centroidal_axis(shape, ...)``, also of a

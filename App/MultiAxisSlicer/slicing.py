@@ -454,8 +454,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
           **params):
     """Slices a part into adaptive multi-axis "3-D" layers and plans the paths in every layer.
 
-    ``shape``: a ``Part.Shape`` holding one closed solid, a document object with one, a file path
-    (.step/.stp, .iges/.igs, .brep/.brp; .stl/.off too) or a closed ``Mesh.Mesh``. A mesh, which
+    ``shape``: a ``Part.Shape`` holding one closed solid (or solids sharing material, fused into
+    one: see ``centroidal_axis``), a document object with one, a file path (.step/.stp,
+    .iges/.igs, .brep/.brp; .stl/.off too) or a closed ``Mesh.Mesh``. A mesh, which
     has no faces to split at, stands on its lowest point and is split at section planes where its
     axis turns or branches (the engine's decompose_mesh, SlicePart.hpp), each piece closed with a
     cap. A solid is decomposed (``decompose()``) unless ``components`` are given. A mesh's piece,

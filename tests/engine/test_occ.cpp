@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <BRepAlgoAPI_BuilderAlgo.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepGProp.hxx>
@@ -16,7 +17,9 @@
 #include <Standard_Failure.hxx>
 #include <StlAPI_Writer.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_CompSolid.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Solid.hxx>
@@ -137,11 +140,90 @@ TEST(OccShape, SingleSolidRejectsAFace) {
                              "part: not a solid (1 face, 0 solids)"));
 }
 
-TEST(OccShape, SingleSolidRejectsTwoSolids) {
-    const Shape boxes = test::two_boxes();
+TEST(OccShape, SingleSolidRejectsTwoSolidsApart) {
+    const Shape boxes = test::two_boxes();  // 10 mm between them
 
     EXPECT_TRUE(throws_error([&] { boxes.single_solid("part"); }, ErrorCode::MultipleSolids,
                              "part: 2 solids where one is expected"));
+    EXPECT_TRUE(throws_error([&] { boxes.single_solid("part"); }, ErrorCode::MultipleSolids,
+                             "these make 2 bodies apart"));
+}
+
+TopoDS_Compound compound_of(const std::vector<TopoDS_Shape>& shapes) {
+    BRep_Builder b;
+    TopoDS_Compound c;
+    b.MakeCompound(c);
+    for (const auto& s : shapes) b.Add(c, s);
+    return c;
+}
+
+int count_of(const TopoDS_Shape& s, TopAbs_ShapeEnum type) {
+    int n = 0;
+    for (TopExp_Explorer x(s, type); x.More(); x.Next()) ++n;
+    return n;
+}
+
+TEST(OccShape, SingleSolidFusesSolidsThatShareMaterial) {
+    // A plate with a post standing on it and a post sunk 3 mm into it, given as a compound (Part's
+    // Compound where Union was meant): one body, the union, its faces merged where coplanar.
+    const Shape compound = test::from_occt(
+        compound_of({test::occ_box(0, 0, 0, 40, 30, 5), test::occ_box(5, 5, 5, 10, 10, 20),
+                     test::occ_box(25, 10, 2, 8, 8, 13)}));
+    ASSERT_EQ(compound.info().solids, 3);
+    const Shape fused = compound.single_solid("part");
+    EXPECT_EQ(fused.info().solids, 1);
+    EXPECT_NEAR(fused.info().volume_mm3, 40 * 30 * 5 + 10 * 10 * 20 + 8 * 8 * 10, 1e-6);
+    // The plate's 6 faces, each post's 4 sides and top.
+    EXPECT_EQ(fused.info().faces, 6 + 5 + 5);
+    EXPECT_TRUE(fused.info().bounds.isApprox(
+        Eigen::AlignedBox3d(Vector3d(0, 0, 0), Vector3d(40, 30, 25)), 1e-9));
+    // The source is not changed.
+    EXPECT_EQ(compound.info().solids, 3);
+    EXPECT_NEAR(compound.info().volume_mm3, 6000 + 2000 + 8 * 8 * 13, 1e-6);
+}
+
+TEST(OccShape, SingleSolidFusesACompSolidIntoTheSolidItBounds) {
+    // Two boxes stacked, split by the General Fuse into solids sharing the face between them and
+    // kept as a CompSolid (FreeCAD's BooleanFragments in CompSolid mode): one 10 x 10 x 20 box.
+    BRepAlgoAPI_BuilderAlgo fragments;
+    TopTools_ListOfShape arguments;
+    arguments.Append(test::occ_box(0, 0, 0, 10, 10, 10));
+    arguments.Append(test::occ_box(0, 0, 10, 10, 10, 10));
+    fragments.SetArguments(arguments);
+    fragments.Build();
+    ASSERT_TRUE(fragments.IsDone());
+    BRep_Builder b;
+    TopoDS_CompSolid cs;
+    b.MakeCompSolid(cs);
+    for (TopExp_Explorer x(fragments.Shape(), TopAbs_SOLID); x.More(); x.Next())
+        b.Add(cs, x.Current());
+    ASSERT_EQ(count_of(cs, TopAbs_SOLID), 2);
+    ASSERT_EQ(count_of(cs, TopAbs_FACE), 12);  // the shared face twice, once in each solid
+
+    const Shape fused = test::from_occt(cs).single_solid("part");
+    EXPECT_EQ(fused.info().solids, 1);
+    EXPECT_EQ(fused.info().faces, 6);
+    EXPECT_NEAR(fused.info().volume_mm3, 2000.0, 1e-9);
+}
+
+TEST(OccShape, SingleSolidRejectsSolidsMeetingAlongAnEdgeOnly) {
+    // Two cubes sharing an edge hold no material in common: two bodies, not a part.
+    const Shape edge_to_edge = test::from_occt(
+        compound_of({test::occ_box(0, 0, 0, 10, 10, 10), test::occ_box(10, 0, 10, 10, 10, 10)}));
+
+    EXPECT_TRUE(throws_error([&] { edge_to_edge.single_solid("part"); }, ErrorCode::MultipleSolids,
+                             "part: 2 solids where one is expected; solids that share material are "
+                             "fused into one, and these make 2 bodies apart (or meeting only along "
+                             "an edge or at a point)"));
+}
+
+TEST(OccShape, SingleSolidNamesFacesBesideSeveralSolids) {
+    const Shape shape = test::from_occt(
+        compound_of({test::occ_box(0, 0, 0, 10, 10, 10), test::occ_box(0, 0, 10, 10, 10, 10),
+                     test::to_occt(test::single_face())}));
+
+    EXPECT_TRUE(throws_error([&] { shape.single_solid("part"); }, ErrorCode::NotASolid,
+                             "part: 2 solids and 1 face outside them"));
 }
 
 TEST(OccShape, SingleSolidRejectsFacesBesideTheSolidAndLeavesOutLooseEdges) {

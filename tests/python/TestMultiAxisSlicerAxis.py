@@ -243,6 +243,13 @@ class TestAxisOfAnLBlock(AxisTest):
         self.assertEqual(cli.pop("file"), path)
         self.assertSameJson(cli, ours, "axis")
 
+    def test_solids_sharing_material_give_their_unions_axis(self):
+        # The L as its column and its arm sunk 5 mm into it, given as one compound.
+        two = Part.makeCompound([Part.makeBox(20, 20, 60), Part.makeBox(55, 20, 20, V(15, 0, 40))])
+        axis = mas.centroidal_axis(two, step=2.5)
+        self.check_l_block_axis(axis)
+        self.assertEqual(axis.to_dict(), mas.centroidal_axis(l_block(), step=2.5).to_dict())
+
 
 class TestAxisBadInput(AxisTest):
     def test_none_and_unsupported_types_are_type_errors(self):
@@ -256,10 +263,11 @@ class TestAxisBadInput(AxisTest):
                                          Part.makePlane(10, 10))
         self.assertIn("Face", str(e))
 
-    def test_two_solids_are_rejected(self):
+    def test_two_solids_apart_are_rejected(self):
         two = Part.makeCompound([box_10_20_30(), Part.makeBox(5, 5, 5, V(50, 0, 0))])
         e = self.assertRaisesEngineError("multiple_solids", mas.centroidal_axis, two)
         self.assertIn("2 solids", str(e))
+        self.assertIn("2 bodies apart", str(e))
 
     def test_open_mesh_is_rejected(self):
         e = self.assertRaisesEngineError("open_mesh", mas.centroidal_axis, open_box_mesh())

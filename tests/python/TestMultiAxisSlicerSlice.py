@@ -253,6 +253,27 @@ class TestSliceApi(SliceTest):
         cli.pop("file")
         self.assertSameJson(cli, ours, "slice")
 
+    def test_solids_sharing_material_are_sliced_as_their_union(self):
+        # The L given as its column and its arm: a Compound where a Union was meant, and the
+        # CompSolid of Part's BooleanFragments. Each is sliced as the L-block, and left as it was.
+        column, arm = Part.makeBox(20, 20, 60), Part.makeBox(50, 20, 20, V(20, 0, 40))
+        fragments = Part.CompSolid(column.generalFuse([arm])[0].Solids)
+        want = mas.slice(l_block())
+        for shape in (Part.makeCompound([column, arm]), fragments):
+            before = shape.exportBrepToString()
+            result = mas.slice(shape)
+            self.assertEqual(shape.exportBrepToString(), before)
+            self.assertEqual(len(shape.Solids), 2)
+            self.assertEqual([c["layer_count"] for c in result.components],
+                             [c["layer_count"] for c in want.components])
+            self.assertEqual(len(result.layers), len(want.layers))
+            for got, layer in zip(result.layers, want.layers):
+                self.assertVectorAlmostEqual(got.normal, layer.normal)
+                self.assertVectorAlmostEqual(got.origin, layer.origin)
+                self.assertAlmostEqual(got.area, layer.area, delta=layer.area * REL)
+            self.assertAlmostEqual(result.stats["part_volume_mm3"], 20 * 20 * 60 + 50 * 20 * 20,
+                                   delta=44000 * REL)
+
     def test_the_source_is_not_modified(self):
         shape = l_block()
         shape.Placement = FreeCAD.Placement(V(1, 2, 3), FreeCAD.Rotation())

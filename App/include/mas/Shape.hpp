@@ -44,8 +44,11 @@ public:
     // Throws Error(NotASolid / MultipleSolids / EmptyInput) unless the shape holds exactly one
     // closed solid; `what` names the input in the message. Returns that solid. A lone closed shell
     // (some exporters write solids so) counts as the solid it bounds; an inside-out solid comes
-    // back turned right side out. Faces outside the solid are an error (NotASolid: they may be
-    // material meant for the part); loose edges and vertices are left out.
+    // back turned right side out. Several solids that share material (a CompSolid, a compound of a
+    // plate and a post standing on it) are one body to deposit: their union comes back, coplanar
+    // faces merged; solids apart, or meeting only along an edge or at a point, are MultipleSolids
+    // (GeometryFailure if OCCT's fuse fails). Faces outside the solids are an error (NotASolid:
+    // they may be material meant for the part); loose edges and vertices are left out.
     Shape single_solid(const std::string& what) const;
 
     struct Impl;

@@ -1,5 +1,6 @@
 // mas::Shape over an OCCT TopoDS_Shape: BREP text in and out, what a shape is made of, and the
 // "exactly one closed solid" check every later stage relies on.
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -16,6 +17,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
@@ -211,6 +213,38 @@ std::string open_shell_message(const std::string& what, const TopoDS_Shape& shel
     return what + ": an open shell, not a closed solid (" + why + ")";
 }
 
+// Several solids that share material (a CompSolid, as Part's BooleanFragments makes; a compound of
+// a plate and a post standing on it or sunk into it) are one body to deposit: their union, its
+// coplanar faces merged so that it reads as if modelled in one piece. Solids apart, or meeting only
+// along an edge or at a point, stay several bodies: which part was meant cannot be guessed.
+TopoDS_Solid fused_solids(const std::string& what, const TopTools_IndexedMapOfShape& solids) {
+    const std::string several =
+        what + ": " + std::to_string(solids.Extent()) + " solids where one is expected";
+    TopTools_ListOfShape arguments, tools;
+    arguments.Append(solids(1));
+    for (int i = 2; i <= solids.Extent(); ++i) tools.Append(solids(i));
+    BRepAlgoAPI_Fuse fuse;
+    fuse.SetArguments(arguments);
+    fuse.SetTools(tools);
+    fuse.SetRunParallel(Standard_False);
+    occ::catching_signals([&] { fuse.Build(); });
+    if (!fuse.IsDone() || fuse.HasErrors())
+        throw Error(ErrorCode::GeometryFailure,
+                    several +
+                        ", and OCCT's Boolean fuse fails on them (fuse them in FreeCAD "
+                        "and give the result)");
+    const TopoDS_Shape united = occ::unify(fuse.Shape());
+    TopTools_IndexedMapOfShape bodies;
+    TopExp::MapShapes(united, TopAbs_SOLID, bodies);
+    if (bodies.Extent() != 1)
+        throw Error(ErrorCode::MultipleSolids,
+                    several + "; solids that share material are fused into one, and these make " +
+                        std::to_string(bodies.Extent()) +
+                        " bodies apart (or meeting only along an edge or at a point): give each "
+                        "on its own");
+    return TopoDS::Solid(bodies(1));
+}
+
 }  // namespace
 
 Shape::Shape() : impl_(null_impl()) {}
@@ -270,25 +304,28 @@ Shape Shape::single_solid(const std::string& what) const {
         TopExp::MapShapes(s, TopAbs_SOLID, solids);
         TopExp::MapShapes(s, TopAbs_SHELL, shells);
         const int faces = extent(s, TopAbs_FACE);
-        if (solids.Extent() > 1)
-            throw Error(ErrorCode::MultipleSolids, what + ": " + std::to_string(solids.Extent()) +
-                                                       " solids where one is expected");
-
         TopoDS_Solid solid;
-        if (solids.Extent() == 1) {
-            solid = TopoDS::Solid(solids(1));
-            for (TopExp_Explorer x(solid, TopAbs_SHELL); x.More(); x.Next())
-                if (!BRep_Tool::IsClosed(x.Current()))
-                    throw Error(ErrorCode::NotASolid, open_shell_message(what, x.Current()));
+        if (solids.Extent() >= 1) {
+            for (int i = 1; i <= solids.Extent(); ++i)
+                for (TopExp_Explorer x(solids(i), TopAbs_SHELL); x.More(); x.Next())
+                    if (!BRep_Tool::IsClosed(x.Current()))
+                        throw Error(ErrorCode::NotASolid, open_shell_message(what, x.Current()));
             // A face beside the solid may be material the part is meant to have (a wall left as
             // a surface, a lid not yet fused): building the solid without it would be a guess.
             // Loose edges and vertices (axes, sketches) hold no material and are left out.
             const int loose = free_count(s, TopAbs_FACE, TopAbs_SOLID);
-            if (loose > 0)
+            if (loose > 0 && solids.Extent() == 1)
                 throw Error(ErrorCode::NotASolid,
                             what + ": one solid and " + counted(loose, "face", "faces") +
                                 " outside it; give the solid alone, or fuse the faces' "
                                 "material into it");
+            if (loose > 0)
+                throw Error(ErrorCode::NotASolid,
+                            what + ": " + std::to_string(solids.Extent()) + " solids and " +
+                                counted(loose, "face", "faces") +
+                                " outside them; give the solids alone, or fuse the faces' "
+                                "material into them");
+            solid = solids.Extent() == 1 ? TopoDS::Solid(solids(1)) : fused_solids(what, solids);
         } else if (faces == 0) {
             if (extent(s, TopAbs_EDGE) == 0 && extent(s, TopAbs_VERTEX) == 0)
                 throw Error(ErrorCode::EmptyInput, what + ": the shape has nothing in it");

@@ -21,7 +21,7 @@ import Part
 import MultiAxisSlicer as mas
 import MultiAxisSlicer.features as features
 import MultiAxisSlicerTestSupport as support
-from MultiAxisSlicerTestSupport import V, fc_mesh, l_block
+from MultiAxisSlicerTestSupport import V, fc_mesh, l_block, rod_under_bar
 
 REL = 1e-6  # relative volume tolerance
 TOL = 1e-9  # mm: thicknesses of planar layers
@@ -273,6 +273,36 @@ class TestSliceApi(SliceTest):
                 self.assertAlmostEqual(got.area, layer.area, delta=layer.area * REL)
             self.assertAlmostEqual(result.stats["part_volume_mm3"], 20 * 20 * 60 + 50 * 20 * 20,
                                    delta=44000 * REL)
+
+    def test_a_part_moved_on_the_plate_is_planned_the_same_moved(self):
+        # No threshold may depend on where the part stands: the L (planar, exactly) and the column
+        # with a rod and a bar (a curved face, its sideways components leaned and ordered round
+        # the nozzle), moved 400 mm along X and -250 along Y, give the same plan moved.
+        shift = V(400, -250, 0)
+        for shape in (l_block(), rod_under_bar()):
+            moved = shape.copy()
+            moved.translate(shift)
+            here, there = mas.slice(shape), mas.slice(moved)
+            d = mas.deflection(shape)
+            self.assertEqual(mas.deflection(moved), d)
+            self.assertEqual([c["layer_count"] for c in there.components],
+                             [c["layer_count"] for c in here.components])
+            self.assertEqual(there.sequence, here.sequence)
+            self.assertEqual(there.stats["colliding_layers"], 0)
+            self.assertEqual(there.stats["leaned_layers"], here.stats["leaned_layers"])
+            for i, (a, b) in enumerate(zip(here.layers, there.layers)):
+                msg = "layer {}".format(i)
+                self.assertEqual(b.component, a.component, msg)
+                self.assertVectorAlmostEqual(b.normal, a.normal, places=9)
+                self.assertLessEqual((b.origin - shift - a.origin).Length, d, msg)
+                self.assertAlmostEqual(b.min_thickness, a.min_thickness, delta=d, msg=msg)
+                self.assertAlmostEqual(b.max_thickness, a.max_thickness, delta=d, msg=msg)
+                # Sections of the two tessellations differ by at most about d x perimeter.
+                perimeter = sum((q - loop[k - 1]).Length
+                                for loop in a.loops() for k, q in enumerate(loop))
+                self.assertAlmostEqual(b.area, a.area, delta=d * perimeter, msg=msg)
+                self.assertAlmostEqual(b.unsupported_area, a.unsupported_area,
+                                       delta=d * perimeter, msg=msg)
 
     def test_the_source_is_not_modified(self):
         shape = l_block()

@@ -384,6 +384,33 @@ class TestCentroidalAxisCommand(unittest.TestCase):
         self.assertIn("'Sections' is a Sections object (cross-sections), not a part: select the "
                       "solid or mesh it was made from", boxes[0].text())
 
+    def test_command_takes_solids_sharing_material_as_one_part_and_refuses_solids_apart(self):
+        # The L drawn as its column and its arm in one compound (a Union was meant): its axis.
+        column, arm = Part.makeBox(20, 20, 60), Part.makeBox(50, 20, 20, FreeCAD.Vector(20, 0, 40))
+        self.part.Shape = Part.makeCompound([column, arm])
+        self.doc.recompute()
+        obj = self.run_command()
+        self.assertIsNotNone(obj, "the command made no CentroidalAxis object")
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.BranchCount, 2)
+        self.assertEqual(obj.NodeCount, len(mas.centroidal_axis(l_block()).nodes))
+        self.assertEqual(len(self.part.Shape.Solids), 2)  # the source stays as it was drawn
+        self.doc.removeObject(obj.Name)
+        # Two boxes 10 mm apart are two parts: refused before anything is made.
+        self.part.Shape = Part.makeCompound([Part.makeBox(10, 10, 10),
+                                             Part.makeBox(10, 10, 10, FreeCAD.Vector(20, 0, 0))])
+        self.doc.recompute()
+        FreeCADGui.Selection.clearSelection()
+        undo = self.doc.UndoCount
+        self.assertIsNone(self.run_command())
+        self.assertEqual(self.doc.UndoCount, undo)
+        boxes = error_boxes()
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("Centroidal axis: 'L': 2 solids where one is expected", boxes[0].text())
+        self.assertIn("2 bodies apart", boxes[0].text())
+        for box in boxes:
+            box.close()
+
     def axis_pixels(self):
         """Pixels of the 3D view (front view, fitted, white background) in the axis' LineColor."""
         view = FreeCADGui.getDocument(self.doc.Name).ActiveView

@@ -30,9 +30,9 @@ _RESULTS = {
 def _part_problem(source, split=False):
     """None when the selected `source` can be the part a command works on; else why not, naming
     what to select. `split`: the command decomposes, which needs a BREP solid. A selection that
-    can never work (a sketch, a lone face, two solids apart, a mesh to split, one of this workbench's
-    results) is so refused before anything is made: the command used to leave an object failing
-    for good."""
+    can never work (a sketch, a lone face, two solids apart, a mesh to split, one of this
+    workbench's results) is so refused before anything is made: the command used to leave an
+    object failing for good."""
     kind = getattr(getattr(source, "Proxy", None), "Type", None)
     if kind in _RESULTS:
         return "'{}' is {}, not a part: select the solid or mesh it was made from.".format(

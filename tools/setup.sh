@@ -75,6 +75,8 @@ case "$mode" in
     "$build/bench/mas_bench_axis" "$build/bench-data" | tee "$root/out/bench_axis.txt"
     "$build/bench/mas_bench_decompose" | tee "$root/out/bench_decompose.txt"
     "$build/bench/mas_bench_slice" "$root/examples/bracket.step" | tee "$root/out/bench_slice.txt"
+    MAS_APP="$build/Mod/MultiAxisSlicer/App" MAS_BENCH_DATA="$build/bench-data" \
+      freecadcmd "$root/tools/bench_mesh_input.py" 2>&1 | tee "$root/out/bench_mesh_input.txt"
     ;;
   *) echo "usage: tools/setup.sh [install|demo|test|bench|build]" >&2; exit 2 ;;
 esac

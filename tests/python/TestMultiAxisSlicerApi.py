@@ -209,6 +209,48 @@ class TestInputs(support.EngineTestCase):
         s = mas.section(Part.makeCompound([box_10_20_30()]), (0, 0, 10), (0, 0, 1))
         self.assertAlmostEqual(s.area, 200.0, places=9)
 
+    def test_a_mesh_reaches_the_engine_point_for_point(self):
+        # Its Topology (placement applied) read point by point: as vectors, tuples, lists or
+        # anything with x, y and z, the same vertices and triangles as the flat arrays give.
+        mesh = fc_mesh(Part.makeCylinder(5, 20))
+        mesh.Placement = FreeCAD.Placement(V(3, -4, 1), FreeCAD.Rotation(V(0, 0, 1), 30))
+        points, facets = mesh.Topology
+        flat = mas._engine.Mesh.from_arrays([c for p in points for c in (p.x, p.y, p.z)],
+                                            [i for f in facets for i in f])
+        self.assertEqual(mas.to_engine_mesh(mesh).vertices(),
+                         mas._engine.make_closed(flat).vertices())
+
+        class Point:
+            def __init__(self, p):
+                self.x, self.y, self.z = p.x, p.y, p.z
+
+        for given in (points, [tuple(p) for p in points], [list(p) for p in points],
+                      [Point(p) for p in points]):
+            got = mas._engine.Mesh.from_topology(given, [list(f) for f in facets])
+            self.assertEqual(got.vertices(), flat.vertices())
+            self.assertEqual(got.triangles(), flat.triangles())
+
+    def test_a_meshs_topology_is_read_once(self):
+        # Reading Mesh.Topology makes a Python object of every point and facet: telling a mesh
+        # from other input once read it all for nothing, doubling what a mesh took to arrive.
+        points, facets = fc_mesh(box_10_20_30()).Topology
+
+        class CountingMesh:
+            reads = 0
+            CountFacets = len(facets)
+
+            @property
+            def Topology(self):
+                CountingMesh.reads += 1
+                return points, facets
+
+        mesh = mas.to_engine_mesh(CountingMesh())
+        self.assertEqual(CountingMesh.reads, 1)
+        self.assertEqual(mesh.triangle_count(), 12)
+        s = mas.section(CountingMesh(), (0, 0, 10), (0, 0, 1))
+        self.assertAlmostEqual(s.area, 200.0, places=9)
+        self.assertEqual(CountingMesh.reads, 2)
+
     def test_inside_out_mesh_is_flipped_in_a_copy(self):
         mesh = fc_mesh(box_10_20_30())
         mesh.flipNormals()
@@ -281,6 +323,28 @@ class TestBadInput(support.EngineTestCase):
         self.assertRaisesEngineError("invalid_argument", make, [0, 0, 0], [0, 0])
         self.assertRaisesEngineError("invalid_argument", make, [0, 0, 0], [0, 0, 5])
         self.assertRaisesEngineError("invalid_argument", make, ["x", 0, 0], [])
+
+    def test_malformed_topology_is_named(self):
+        make = mas._engine.Mesh.from_topology
+        nan = float("nan")
+        points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+        for bad, word in (([(0, 0, 0), (1, 0)], "points[1] is not 3 numbers"),
+                          ([(0, 0, 0), "abc"], "points[1] is not 3 numbers"),
+                          ([(0, 0, 0), object()], "but 'object'"),
+                          ([(0, 0, 0), (1, "y", 0)], "points[1] is not 3 numbers"),
+                          (42, "points must be a sequence")):
+            e = self.assertRaisesEngineError("invalid_argument", make, bad, [])
+            self.assertIn(word, str(e))
+        for bad, word in (([(0, 1)], "facets[0] is not 3 vertex indices"),
+                          ([(0, 1, 2), 7], "facets[1] is not 3 vertex indices"),
+                          ([(0, 1, 3)], "facets[0][2] = 3 is not a vertex index (there are 3"),
+                          ([(0, -1, 2)], "facets[0][1] = -1"),
+                          ([(0, 1.5, 2)], "facets[0][1] is not an integer but 'float'")):
+            e = self.assertRaisesEngineError("invalid_argument", make, points, bad)
+            self.assertIn(word, str(e))
+        e = self.assertRaisesEngineError("non_finite_coordinate", make,
+                                         points + [V(0, nan, 0)], [(0, 1, 3)])
+        self.assertIn("vertex 3", str(e))
 
     def test_bad_step_is_a_value_error(self):
         for step in (0, -1.0, float("nan"), float("inf")):

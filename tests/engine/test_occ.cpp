@@ -228,13 +228,9 @@ TEST(OccShape, SingleSolidNamesFacesBesideSeveralSolids) {
 
 TEST(OccShape, SingleSolidRejectsFacesBesideTheSolidAndLeavesOutLooseEdges) {
     // A compound of a box and things beside it: once the faces were dropped without a word.
-    const auto compound = [](const std::vector<TopoDS_Shape>& extra) {
-        BRep_Builder b;
-        TopoDS_Compound c;
-        b.MakeCompound(c);
-        b.Add(c, test::to_occt(test::box(0, 0, 0, 10, 10, 10)));
-        for (const auto& s : extra) b.Add(c, s);
-        return test::from_occt(c);
+    const auto compound = [](std::vector<TopoDS_Shape> extra) {
+        extra.insert(extra.begin(), test::to_occt(test::box(0, 0, 0, 10, 10, 10)));
+        return test::from_occt(compound_of(extra));
     };
     const TopoDS_Shape face = test::to_occt(test::single_face());
     const TopoDS_Shape edge = BRepBuilderAPI_MakeEdge(gp_Pnt(20, 0, 0), gp_Pnt(30, 0, 0)).Edge();

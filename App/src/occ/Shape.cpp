@@ -314,17 +314,18 @@ Shape Shape::single_solid(const std::string& what) const {
             // a surface, a lid not yet fused): building the solid without it would be a guess.
             // Loose edges and vertices (axes, sketches) hold no material and are left out.
             const int loose = free_count(s, TopAbs_FACE, TopAbs_SOLID);
-            if (loose > 0 && solids.Extent() == 1)
-                throw Error(ErrorCode::NotASolid,
-                            what + ": one solid and " + counted(loose, "face", "faces") +
-                                " outside it; give the solid alone, or fuse the faces' "
-                                "material into it");
-            if (loose > 0)
-                throw Error(ErrorCode::NotASolid,
-                            what + ": " + std::to_string(solids.Extent()) + " solids and " +
-                                counted(loose, "face", "faces") +
-                                " outside them; give the solids alone, or fuse the faces' "
-                                "material into them");
+            if (loose > 0) {
+                const bool one = solids.Extent() == 1;
+                throw Error(
+                    ErrorCode::NotASolid,
+                    what + ": " +
+                        (one ? std::string("one solid") : counted(solids.Extent(), "", "solids")) +
+                        " and " + counted(loose, "face", "faces") +
+                        (one ? " outside it; give the solid alone, or fuse the faces' "
+                               "material into it"
+                             : " outside them; give the solids alone, or fuse the faces' "
+                               "material into them"));
+            }
             solid = solids.Extent() == 1 ? TopoDS::Solid(solids(1)) : fused_solids(what, solids);
         } else if (faces == 0) {
             if (extent(s, TopAbs_EDGE) == 0 && extent(s, TopAbs_VERTEX) == 0)

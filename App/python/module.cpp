@@ -354,6 +354,31 @@ void bind_shape() {
 // ---- stage: triangle meshes
 // ------------------------------------------------------------------------
 
+// The next vertex of a mesh read from Python values, refused when not finite.
+void push_vertex(mas::TriangleMesh& mesh, const Eigen::Vector3d& p) {
+    if (!p.allFinite())
+        throw mas::Error(
+            mas::ErrorCode::NonFiniteCoordinate,
+            "vertex " + std::to_string(mesh.vertices.size()) + " has a NaN or infinite coordinate");
+    mesh.vertices.push_back(p);
+}
+
+// A vertex index read from a Python value, refused unless an integer in [0, vertex_count);
+// name() says where it stands ("triangles[4]"), called only for the message.
+template <class Name>
+int vertex_index(PyObject* item, long long vertex_count, const Name& name) {
+    const long long index = PyLong_AsLongLong(item);
+    if (index == -1 && PyErr_Occurred()) {
+        PyErr_Clear();
+        invalid_argument(name() + " is not an integer but '" + Py_TYPE(item)->tp_name + "'");
+    }
+    if (index < 0 || index >= vertex_count)
+        invalid_argument(name() + " = " + std::to_string(index) +
+                         " is not a vertex index (there are " + std::to_string(vertex_count) +
+                         " vertices)");
+    return int(index);
+}
+
 // A mesh from flat arrays [x0, y0, z0, x1, ...] and [a0, b0, c0, a1, ...]: every value is checked
 // here, so the engine never sees a NaN vertex or an index out of range.
 mas::TriangleMesh mesh_from_arrays(const bp::object& vertices, const bp::object& triangles) {
@@ -367,14 +392,9 @@ mas::TriangleMesh mesh_from_arrays(const bp::object& vertices, const bp::object&
         PyObject** items = PySequence_Fast_ITEMS(seq.get());
         mesh.vertices.reserve(std::size_t(n / 3));
         for (Py_ssize_t i = 0; i < n; i += 3) {
-            const Eigen::Vector3d p(number_at(items[i], "vertices", i),
-                                    number_at(items[i + 1], "vertices", i + 1),
-                                    number_at(items[i + 2], "vertices", i + 2));
-            if (!p.allFinite())
-                throw mas::Error(
-                    mas::ErrorCode::NonFiniteCoordinate,
-                    "vertex " + std::to_string(i / 3) + " has a NaN or infinite coordinate");
-            mesh.vertices.push_back(p);
+            push_vertex(mesh, Eigen::Vector3d(number_at(items[i], "vertices", i),
+                                              number_at(items[i + 1], "vertices", i + 1),
+                                              number_at(items[i + 2], "vertices", i + 2)));
         }
     }
     {
@@ -390,17 +410,8 @@ mas::TriangleMesh mesh_from_arrays(const bp::object& vertices, const bp::object&
         mesh.triangles.reserve(std::size_t(n / 3));
         Eigen::Vector3i t;
         for (Py_ssize_t i = 0; i < n; ++i) {
-            const long long index = PyLong_AsLongLong(items[i]);
-            if (index == -1 && PyErr_Occurred()) {
-                PyErr_Clear();
-                invalid_argument("triangles[" + std::to_string(i) + "] is not an integer but '" +
-                                 Py_TYPE(items[i])->tp_name + "'");
-            }
-            if (index < 0 || index >= vertex_count)
-                invalid_argument("triangles[" + std::to_string(i) + "] = " + std::to_string(index) +
-                                 " is not a vertex index (there are " +
-                                 std::to_string(vertex_count) + " vertices)");
-            t[int(i % 3)] = int(index);
+            t[int(i % 3)] = vertex_index(items[i], vertex_count,
+                                         [i] { return "triangles[" + std::to_string(i) + "]"; });
             if (i % 3 == 2) mesh.triangles.push_back(t);
         }
     }
@@ -451,11 +462,7 @@ mas::TriangleMesh mesh_from_topology(const bp::object& points, const bp::object&
                     if (p[k] == -1.0 && PyErr_Occurred()) bad_point(i, item);
                 }
             }
-            if (!p.allFinite())
-                throw mas::Error(
-                    mas::ErrorCode::NonFiniteCoordinate,
-                    "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
-            mesh.vertices.push_back(p);
+            push_vertex(mesh, p);
         }
     }
     {
@@ -472,20 +479,10 @@ mas::TriangleMesh mesh_from_topology(const bp::object& points, const bp::object&
                                  Py_TYPE(item)->tp_name + "'");
             PyObject** abc = PySequence_Fast_ITEMS(item);
             Eigen::Vector3i t;
-            for (int k = 0; k < 3; ++k) {
-                const long long index = PyLong_AsLongLong(abc[k]);
-                if (index == -1 && PyErr_Occurred()) {
-                    PyErr_Clear();
-                    invalid_argument("facets[" + std::to_string(i) + "][" + std::to_string(k) +
-                                     "] is not an integer but '" + Py_TYPE(abc[k])->tp_name + "'");
-                }
-                if (index < 0 || index >= vertex_count)
-                    invalid_argument("facets[" + std::to_string(i) + "][" + std::to_string(k) +
-                                     "] = " + std::to_string(index) +
-                                     " is not a vertex index (there are " +
-                                     std::to_string(vertex_count) + " points)");
-                t[k] = int(index);
-            }
+            for (int k = 0; k < 3; ++k)
+                t[k] = vertex_index(abc[k], vertex_count, [i, k] {
+                    return "facets[" + std::to_string(i) + "][" + std::to_string(k) + "]";
+                });
             mesh.triangles.push_back(t);
         }
     }

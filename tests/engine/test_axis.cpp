@@ -692,6 +692,81 @@ TEST(CentroidalAxis, ALugOnASlopingUndersideIsNoLedge) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, ARoundBossOnAWallTurnsThoughItsUndersideAppearsGradually) {
+    // The 30 mm column above with a round boss instead of the lug, faceted as an octagon so that
+    // its sections are exact: circumradius 4, a vertex at its lowest line z = 17, axis y = 15,
+    // z = 21, along +X from inside the column out to x = 39 (9 mm past its face). With a 4 mm
+    // step the first plane through the boss is z = 20.001, 3 mm over its lowest line, where its
+    // section (a strip 7.17 mm wide) is centred 4.5 mm outside the column, within the derived
+    // d = 5 mm. Half a step down, on z = 18.001, 68 % of that strip is there (4.84 mm wide): the
+    // underside appears gradually, no flat ledge. But that narrower strip already reaches the
+    // boss' end, 9 mm out, as a flat underside would (a side sloping out reaches about half as
+    // far there: the sloping lug above), and the strip's centre is more than a third of that
+    // out: a ledge, which turns +X from the column's face. Its sections on x = 32.001 and 36.001
+    // are the boss' octagons (2 sqrt(2) r^2), on its axis. (Kept in the column, its first layer
+    // hangs.)
+    std::vector<Vector3d> octagon;
+    for (int i = 0; i < 8; ++i) {
+        const double t = (-90.0 + 45.0 * i) * M_PI / 180.0;
+        octagon.emplace_back(29.0, 15.0 + 4.0 * std::cos(t), 21.0 + 4.0 * std::sin(t));
+    }
+    const auto mesh = mesh_of(
+        from_occt(fuse(occ_box(0, 0, 0, 30, 30, 60), mas::test::occ_prism(octagon, {10, 0, 0}))));
+    mas::AxisParams p;
+    p.step_mm = 4.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 2u);
+    ASSERT_EQ(a.branches[0].nodes.size(), 15u);  // z = 0.001 ... 56.001
+    for (int n : a.branches[0].nodes) {
+        const auto& node = a.nodes[std::size_t(n)];
+        EXPECT_NEAR(node.area, 900.0, 1e-6) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.x(), 15.0, kGrid) << "z = " << node.offset;
+        EXPECT_NEAR(node.position.y(), 15.0, kGrid) << "z = " << node.offset;
+    }
+    const auto& boss = a.branches[1];
+    EXPECT_EQ(boss.parent, 0);
+    EXPECT_TRUE(boss.direction.isApprox(Vector3d::UnitX(), 1e-12)) << boss.direction.transpose();
+    ASSERT_EQ(boss.nodes.size(), 2u);
+    EXPECT_NEAR(a.nodes[std::size_t(boss.nodes.front())].slab_start, 30.0, 1e-9);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const auto& node = a.nodes[std::size_t(boss.nodes[i])];
+        EXPECT_NEAR(node.offset, 32.001 + 4.0 * double(i), 1e-9);
+        EXPECT_NEAR(node.area, 2.0 * std::sqrt(2.0) * 16.0, 1e-6);
+        EXPECT_NEAR(node.position.y(), 15.0, kGrid);
+        EXPECT_NEAR(node.position.z(), 21.0, kGrid);
+    }
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, AShortLugOnAThickBlockTurnsWhereLayersCannotLayIt) {
+    // A 60 mm block with a lug [60,66]x[26,34]x[20,28] (flat underside), step 2 mm given. On
+    // z = 20.001 the lug appears at once, centred 3 mm out, within the derived d = min(4, 60 / 6)
+    // = 4 mm, and reaches 6 mm past the block: less than the bump distance (an eighth of the
+    // section's size, 7.5 mm), but three times what layers at slicing's defaults lay (2 mm thick at
+    // 45 degrees: 2 mm). Its first layer would hang 4 mm past that: a ledge, turned +X from the
+    // block's face, its 8 x 8 sections on its centre line.
+    const auto mesh =
+        mesh_of(from_occt(fuse(occ_box(0, 0, 0, 60, 60, 60), occ_box(60, 26, 20, 6, 8, 8))));
+    mas::AxisParams p;
+    p.step_mm = 2.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 2u);
+    const auto& lug = a.branches[1];
+    EXPECT_EQ(lug.parent, 0);
+    EXPECT_TRUE(lug.direction.isApprox(Vector3d::UnitX(), 1e-12)) << lug.direction.transpose();
+    ASSERT_FALSE(lug.nodes.empty());
+    EXPECT_NEAR(a.nodes[std::size_t(lug.nodes.front())].slab_start, 60.0, 1e-9);
+    for (int n : lug.nodes) {
+        const auto& node = a.nodes[std::size_t(n)];
+        EXPECT_NEAR(node.area, 64.0, 1e-6) << "x = " << node.offset;
+        EXPECT_NEAR(node.position.y(), 30.0, kGrid);
+        EXPECT_NEAR(node.position.z(), 24.0, kGrid);
+    }
+    for (int n : a.branches[0].nodes)
+        EXPECT_NEAR(a.nodes[std::size_t(n)].area, 3600.0, 1e-6) << a.nodes[std::size_t(n)].offset;
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, ACorniceOnTheFarPierOfAPortalIsMarchedFromThatPiersFace) {
     // Piers A [0,20] and B [30,40] (x) under a deck [0,46] x [0,30] x [20,30]: the deck's 6 mm
     // cornice [40,46] overhangs B's outer face. Where the piers' tracks merge into the deck, the

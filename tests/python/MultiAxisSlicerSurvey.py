@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: seven families of the parts a deposition shop builds (pipe bends, hubs
+"""Parts nobody tuned for: eight families of the parts a deposition shop builds (pipe bends, hubs
 with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
-leaning off columns, Z brackets), each part drawn at random from its family's ranges, and a
+leaning off columns, Z brackets, manifold blocks with ports), each part drawn at random from its family's ranges, and a
 survey slicing them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
@@ -148,6 +148,28 @@ def z_bracket(rng):
     return solid, {"reach": reach, "holes": holes}
 
 
+def manifold(rng):
+    """A block standing on the plate with 1 to 4 round bosses (ports) sticking out of its sides,
+    each at its own height and place along its side, bored along its axis or not."""
+    w, d, h = rng.uniform(30, 60), rng.uniform(30, 60), rng.uniform(30, 60)
+    solid = Part.makeBox(w, d, h, V(-w / 2, -d / 2, 0))
+    sides = rng.sample([(1, 0), (-1, 0), (0, 1), (0, -1)], rng.randint(1, 4))
+    bored = 0
+    for sx, sy in sides:
+        r, reach = rng.uniform(4, 10), rng.uniform(5, 20)
+        z = rng.uniform(r + 2, h - r - 2)
+        half, width = (w / 2, d) if sx else (d / 2, w)
+        along = rng.uniform(-(width / 2 - r - 1), width / 2 - r - 1)
+        out = V(sx, sy, 0)
+        root = out * (half - 1) + (V(0, along, z) if sx else V(along, 0, z))
+        solid = solid.fuse(Part.makeCylinder(r, reach + 1, root, out))
+        if rng.random() < 0.5:
+            bored += 1
+            solid = solid.cut(Part.makeCylinder(r / 2, reach + half, root + out * (reach + 2),
+                                                out * -1))
+    return solid, {"bosses": len(sides), "bored": bored}
+
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -156,6 +178,7 @@ FAMILIES = {
     "turned angle bracket": turned_angle_bracket,
     "leaning branch": leaning_branch,
     "z bracket": z_bracket,
+    "manifold": manifold,
 }
 
 

@@ -304,6 +304,24 @@ class TestSliceApi(SliceTest):
                 self.assertAlmostEqual(b.unsupported_area, a.unsupported_area,
                                        delta=d * perimeter, msg=msg)
 
+    def test_a_round_boss_on_a_block_is_built_sideways_with_nothing_unsupported(self):
+        # A 41 x 31 x 56 block with a boss of radius 7.77 sticking out 6.69 mm from its -X side,
+        # its axis 11.98 mm over the plate (a manifold's port). Its section on the first plane
+        # through it is centred within the distance threshold of the block, and its round
+        # underside appears gradually between the planes; but what of it the plane half way
+        # between holds already reaches the boss' end: a ledge, cut off at the block's face and
+        # built along -X (CentroidalAxis.hpp). Kept in the block's layers, the first one through
+        # it overhung 27 mm^2.
+        part = Part.makeBox(41.0, 31.0, 56.0, V(-20.5, -15.5, 0)).fuse(
+            Part.makeCylinder(7.77, 7.69, V(-19.5, 0, 11.98), V(-1, 0, 0)))
+        result = mas.slice(part)
+        self.assertEqual(len(result.components), 2)
+        boss = result.decomposition.components[1]
+        self.assertVectorAlmostEqual(boss.build_direction, (-1, 0, 0))
+        self.assertAlmostEqual(boss.base_origin.x, -20.5, places=6)
+        self.assertEqual(result.stats["colliding_layers"], 0)
+        self.assertEqual(result.stats["worst_unsupported_area_mm2"], 0.0)
+
     def test_the_source_is_not_modified(self):
         shape = l_block()
         shape.Placement = FreeCAD.Placement(V(1, 2, 3), FreeCAD.Rotation())

@@ -738,6 +738,47 @@ TEST(CentroidalAxis, ARoundBossOnAWallTurnsThoughItsUndersideAppearsGradually) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, AWideRoundBossOnARoundBodyTurns) {
+    // A round body (radius 24) with a boss of radius 12.3 along +Y, its axis at z = 21.3, ending
+    // at y = 28.4 (4.4 mm past the body). Step 2.6 mm: the first plane through the boss, z =
+    // 10.401, is 1.4 mm over its lowest line; its section there (11.4 mm wide) reaches out of the
+    // body's 4.97 mm at its corners, where the body curves away, and is centred 2.3 mm out, within
+    // the derived d = 5.2 mm. Half a step down, 0.1 mm over the lowest line, the boss' section is
+    // a strip 3.2 mm wide reaching out 4.44 mm: 0.89 of the whole, the corners nearer the body.
+    // The boss turns +Y from the body's extent; its sections on y = 25.401 and 28.001 are its
+    // discs, on its axis. (Kept in the body's layers, its first layer hangs.)
+    const auto mesh = mesh_of(
+        from_occt(fuse(mas::test::occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 24, 45),
+                       mas::test::occ_cylinder({0, 20, 21.3}, Vector3d::UnitY(), 12.3, 8.4))));
+    mas::AxisParams p;
+    p.step_mm = 2.6;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 2u);
+    EXPECT_EQ(a.branches[0].nodes.size(), 18u);  // z = 0.001 ... 44.201
+    const auto& boss = a.branches[1];
+    EXPECT_EQ(boss.parent, 0);
+    EXPECT_TRUE(boss.direction.isApprox(Vector3d::UnitY(), 1e-12)) << boss.direction.transpose();
+    ASSERT_EQ(boss.nodes.size(), 2u);
+    // T is the tessellated body's extent along +Y: the circle's, less at most the deflection.
+    const auto& first = a.nodes[std::size_t(boss.nodes.front())];
+    EXPECT_LE(first.slab_start, 24.0);
+    EXPECT_GE(first.slab_start, 24.0 - kDeflection);
+    EXPECT_GT(first.offset, first.slab_start);
+    EXPECT_LE(first.offset, first.slab_start + p.eps_mm + p.step_mm);
+    // Each section is the boss' disc, short of the circle by at most its perimeter times the
+    // deflection and the simplification (step / 100), centred on its axis.
+    const double r = 12.3, disc = M_PI * r * r;
+    for (std::size_t i = 0; i < 2; ++i) {
+        const auto& node = a.nodes[std::size_t(boss.nodes[i])];
+        EXPECT_NEAR(node.offset, first.offset + p.step_mm * double(i), 1e-9);
+        EXPECT_LE(node.area, disc);
+        EXPECT_GE(node.area, disc - 2.0 * M_PI * r * (kDeflection + p.step_mm / 100.0));
+        EXPECT_NEAR(node.position.x(), 0.0, kDeflection);
+        EXPECT_NEAR(node.position.z(), 21.3, kDeflection);
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, AShortLugOnAThickBlockTurnsWhereLayersCannotLayIt) {
     // A 60 mm block with a lug [60,66]x[26,34]x[20,28] (flat underside), step 2 mm given. On
     // z = 20.001 the lug appears at once, centred 3 mm out, within the derived d = min(4, 60 / 6)

@@ -53,21 +53,21 @@
 //   spanning a gap, as a bore's ceiling closing a ring does), reaching out past L by more than a
 //   step (an overhang steeper than 45 degrees over the step) and than a bump or what layers at
 //   slicing's defaults lay (below), whichever is less (a 6 mm lug on a 60 mm block, within its
-//   7.5 mm bump, hung 4 mm past what its first layer laid), and appearing at once:
-//   under 10 % of its area in the lower plane's whole section and, half a step up, over 90 % or
-//   under 10 % (a flat underside, or one tangent to the planes, below or above that plane; a side
-//   sloping out over the whole step, however steeply, shows about half, and so is no ledge; a
-//   chamfer or fillet under a ledge may show either, by where the planes fall). A round underside
-//   across the march (a boss on a wall, its axis square to the march) shows between a tenth and
-//   nine tenths wherever the planes fall but near its lowest line, yet what of it the half plane
-//   holds already reaches out three quarters as far as the stick-out does or more, as a flat one
-//   would (a side sloping out reaches about half as far there): it appears at once too, when new
-//   (under 10 % in the lower plane) and centred at least a third of its reach out of L, as a prism
+//   7.5 mm bump, hung 4 mm past what its first layer laid), and appearing at once: under 10 % of
+//   its area in the lower plane's whole section and, half a step up, over 90 % or under 10 % (a
+//   flat underside, or one tangent to the planes, below or above that plane; a side sloping out
+//   over the whole step, however steeply, shows about half, and so is no ledge; a chamfer or
+//   fillet under a ledge may show either, by where the planes fall). A round underside across
+//   the march (a boss on a wall, its axis square to the march) shows between a tenth and nine
+//   tenths wherever the planes fall but near its lowest line, yet what of it the half plane holds
+//   already reaches out three quarters as far as the stick-out does or more, as a flat one would
+//   (a side sloping out reaches about half as far there): it appears at once too, when new (under
+//   10 % in the lower plane) and centred at least a third of its reach out of L, as a prism
 //   sticking out is (at half). (A 13 mm boss sticking out 6.7 mm from a 41 x 31 mm block stayed
 //   in the block's layers: 28 mm^2 overhung in one layer. The third keeps stick-outs hugging L,
 //   as an organic body's bulges do, even where a point of one reaches out: turned, CGAL's
-//   armadillo grew 21 branches, 62 to 83, in 45 % more time.) Its first layer
-//   in the march would hang in the air, and Eq. 3 by its centre (and G_k - E plus the step,
+//   armadillo grew 21 branches, 62 to 83, in 45 % more time.) Its first layer in the march would
+//   hang in the air, and Eq. 3 by its centre (and G_k - E plus the step,
 //   mostly along the march while the centre is within a step) kept a staircase's 5 mm steps in
 //   the march at the derived step, 2.84 mm. It turns the closest of the four sides to G_k - E, or
 //   to G_k - C when G_k lies inside L (an arm's underside wrapping round the web under it), C the

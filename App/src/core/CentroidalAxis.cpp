@@ -1377,9 +1377,9 @@ private:
             // A ledge: material that appears at once between the planes (on an underside flat
             // along the march, or tangent to its planes), reaching out past the lower section by
             // more than the ledge's limit (above; a step: steeper than 45 degrees over it), not
-            // round it. Near
-            // or not, the march cannot lay it (its first layer would hang in the air), so it
-            // turns the way it leaves the lower section, without Eq. 3's test of its centre.
+            // round it. Near or not, the march cannot lay it (its first layer would hang in the
+            // air), so it turns the way it leaves the lower section, without Eq. 3's test of its
+            // centre.
             // Only with a derived threshold: one given is used as given. (Kept in the march, a
             // staircase's 5 mm steps left 88 mm^2 and a cube's 6 mm lip 142 mm^2 unsupported.)
             // Material spanning a gap is a bridge, as above.
@@ -1389,12 +1389,12 @@ private:
             // as the stick-out does (three quarters of it at least), as a flat underside does,
             // while a side sloping out over the step reaches out there about half as far. (A boss
             // 25 mm across on a round body 48 mm across reaches out farther at the corners of
-            // wider sections: 0.89 of it, half a step up from near its lowest line.) Its
-            // first layer hangs all the same. (A 13 mm boss sticking out 6.7 mm from a 41 x 31 mm
-            // block stayed in the block's layers: 28 mm^2 overhung in one layer.) Only centred a
-            // third of its reach out of L or more, as a prism sticking out is (at half): a
-            // stick-out hugging L, as an organic body's bulges do, stays even where a point of it
-            // reaches out (turned, CGAL's armadillo grew 21 branches, 62 to 83, in 45 % more time).
+            // wider sections: 0.89 of it, half a step up from near its lowest line.) Its first
+            // layer hangs all the same. (A 13 mm boss sticking out 6.7 mm from a 41 x 31 mm block
+            // stayed in the block's layers: 28 mm^2 overhung in one layer.) Only centred a third
+            // of its reach out of L or more, as a prism sticking out is (at half): a stick-out
+            // hugging L, as an organic body's bulges do, stays even where a point of it reaches
+            // out (turned, CGAL's armadillo grew 21 branches, 62 to 83, in 45 % more time).
             const auto reaches_out_at_once = [&] {
                 return dist >= out_of_lower / 3.0 && emerged().is_new &&
                        reaches(emerged().half, 0.75 * out_of_lower);

@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Parts nobody tuned for: eight families of the parts a deposition shop builds (pipe bends, hubs
 with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
-leaning off columns, Z brackets, manifold blocks with ports), each part drawn at random from its family's ranges, and a
-survey slicing them as a user would (defaults, G-code).
+leaning off columns, Z brackets, manifold blocks with ports), each part drawn at random from its
+family's ranges, and a survey slicing them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
 drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers

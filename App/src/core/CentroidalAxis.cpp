@@ -478,7 +478,7 @@ private:
         std::vector<std::atomic<int>> chunk_state;
         std::vector<char> chunk_used;
         std::unique_ptr<SectionGrid> sections;  // the mesh prepared for cutting these planes
-        // For appears_at_once, on the search's thread only: the section half a step above each
+        // For half_plane(), on the search's thread only: the section half a step above each
         // plane, once cut (empty until a ledge is first looked for).
         std::vector<std::unique_ptr<Regions2>> half_regions;
         bool ready = false;

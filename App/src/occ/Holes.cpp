@@ -346,7 +346,11 @@ double volume_of_cut(const TopoDS_Shape& shape, const TopTools_ListOfShape& tool
 
 // Whether `after` holds all of `before` and adds material only within the holes' cylinders
 // (open-ended: a face rebuilt across a hole's mouth in a curved face bulges past its rim): what
-// OCCT's defeaturing did is closing the holes over, nothing else.
+// OCCT's defeaturing did is closing the holes over, nothing else. Both are measured as what is
+// left of one solid cut by the other (and the cylinders), a volume as small as what it
+// measures, not as the difference of two volumes of the whole part, whose integration errors
+// (1e-7 of it) exceed the tolerance: a bored valve body of 10034 mm^3 showed 0.0042 mm^3
+// "outside" a radial bore that the direct cut finds none of.
 bool only_closes_over(const TopoDS_Shape& before, const TopoDS_Shape& after,
                       const std::vector<Hole>& holes, double volume, std::string& why) {
     double most = 0.0;
@@ -357,10 +361,10 @@ bool only_closes_over(const TopoDS_Shape& before, const TopoDS_Shape& after,
     TopTools_ListOfShape result;
     result.Append(after);
     const double lost = volume_of_cut(before, result);
-    const TopTools_ListOfShape tools = cylinders(holes, 1e-4, std::sqrt(box.SquareExtent()) + 1.0);
-    const double outside_after = volume_of_cut(after, tools);
-    const double outside_before = volume_of_cut(before, tools);
-    if (lost < 0.0 || outside_after < 0.0 || outside_before < 0.0) {
+    TopTools_ListOfShape around = cylinders(holes, 1e-4, std::sqrt(box.SquareExtent()) + 1.0);
+    around.Append(before);
+    const double added_outside = volume_of_cut(after, around);
+    if (lost < 0.0 || added_outside < 0.0) {
         why = "OCCT could not compare the part before and after closing it over";
         return false;
     }
@@ -368,9 +372,8 @@ bool only_closes_over(const TopoDS_Shape& before, const TopoDS_Shape& after,
         why = "closing it over took " + format_number(lost) + " mm^3 off the part";
         return false;
     }
-    if (outside_after - outside_before > tol) {
-        why = "closing it over added " + format_number(outside_after - outside_before) +
-              " mm^3 outside it";
+    if (added_outside > tol) {
+        why = "closing it over added " + format_number(added_outside) + " mm^3 outside it";
         return false;
     }
     return true;

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: eight families of the parts a deposition shop builds (pipe bends, hubs
+"""Parts nobody tuned for: nine families of the parts a deposition shop builds (pipe bends, hubs
 with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
-leaning off columns, Z brackets, manifold blocks with ports), each part drawn at random from its
-family's ranges, and a survey slicing them as a user would (defaults, G-code).
+leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports),
+each part drawn at random from its family's ranges, and a survey slicing them as a user would
+(defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
 drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers
@@ -170,6 +171,26 @@ def manifold(rng):
     return solid, {"bosses": len(sides), "bored": bored}
 
 
+def valve_body(rng):
+    """A round body standing on the plate with 1 to 4 round bosses (ports) sticking out of it
+    along +-X and +-Y, each at its own height; bored (a blind bore down the body, and one along
+    each boss into it) or solid."""
+    radius, height = rng.uniform(12, 25), rng.uniform(40, 70)
+    solid = Part.makeCylinder(radius, height)
+    sides = rng.sample([(1, 0), (-1, 0), (0, 1), (0, -1)], rng.randint(1, 4))
+    bored = rng.random() < 0.5
+    bores = [Part.makeCylinder(radius / 2, height - 4, V(0, 0, 4))]
+    for sx, sy in sides:
+        r, reach = rng.uniform(5, min(10, radius - 2)), rng.uniform(5, 20)
+        z = rng.uniform(r + 2, height - r - 2)
+        out = V(sx, sy, 0)
+        solid = solid.fuse(Part.makeCylinder(r, radius + reach, V(0, 0, z), out))
+        bores.append(Part.makeCylinder(r / 2, radius + reach + 1, V(0, 0, z), out))
+    if bored:
+        solid = solid.cut(bores[0].fuse(bores[1:]))
+    return solid, {"bosses": len(sides), "bored": bored}
+
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -179,6 +200,7 @@ FAMILIES = {
     "leaning branch": leaning_branch,
     "z bracket": z_bracket,
     "manifold": manifold,
+    "valve body": valve_body,
 }
 
 

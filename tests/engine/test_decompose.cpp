@@ -1234,6 +1234,85 @@ TEST(Decompose, TracksRejoiningAroundAHoleAreNeverCutWithASibling) {
     expect_invariants(d, part);
 }
 
+// A valve body of the survey's (MultiAxisSlicerSurvey.valve_body): a round body standing on the
+// plate, a blind bore down it from z = 4 half its radius, and round ports along `out` (+-X, +-Y)
+// at height z reaching `reach` past its side, each bored into it at half its radius.
+struct Port {
+    Vector3d out;
+    double radius, reach, z;
+};
+mas::Shape bored_valve_body(double radius, double height, const std::vector<Port>& ports) {
+    TopoDS_Shape body = occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), radius, height);
+    TopoDS_Shape bores = occ_cylinder(Vector3d(0, 0, 4), Vector3d::UnitZ(), radius / 2, height - 4);
+    for (const Port& p : ports) {
+        body = fuse(body, occ_cylinder(Vector3d(0, 0, p.z), p.out, p.radius, radius + p.reach));
+        bores = fuse(bores,
+                     occ_cylinder(Vector3d(0, 0, p.z), p.out, p.radius / 2, radius + p.reach + 1));
+    }
+    return from_occt(BRepAlgoAPI_Cut(body, bores).Shape());
+}
+
+// Decomposed with the axis slicing gives it by default (the part's own deflection and step).
+mas::Decomposition decompose_as_slicing_does(const mas::Shape& part) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = mas::effective_deflection(part, mas::TessellationParams{});
+    mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), mas::AxisParams{});
+    axis.deflection_mm = tp.deflection_mm;
+    return mas::decompose(part, axis);
+}
+
+// The body is the root, whole from the plate to its top, and each port a child of it built
+// sideways along the port.
+void expect_a_body_and_its_ports(const mas::Decomposition& d, double height,
+                                 const std::vector<Port>& ports) {
+    ASSERT_EQ(d.components.size(), ports.size() + 1);
+    const auto root = bounds(d.components[0].solid);
+    EXPECT_NEAR(root.min().z(), 0.0, 1e-6);
+    EXPECT_NEAR(root.max().z(), height, 1e-6);
+    for (const Port& p : ports) {
+        int along = 0;
+        for (std::size_t i = 1; i < d.components.size(); ++i)
+            if (d.components[i].build_direction.isApprox(p.out, 1e-9)) {
+                ++along;
+                EXPECT_EQ(d.components[i].parent, 0);
+            }
+        EXPECT_EQ(along, 1) << "port along " << p.out.transpose();
+    }
+}
+
+TEST(Decompose, TracksThatSplitAgainBeforeTheyRejoinAreOneComponent) {
+    // A valve body drawn at random (the survey's, seed 44, 2): three ports' bores into the
+    // central one break the body's ring into two tracks at z = 12.76, one of which a third
+    // bore breaks into two more at z = 14.03; all three join above. No branch merged into the
+    // one that went on (its child did): it was cut off at z = 12.76, and neither half of the
+    // body held the lower two bores whole, to be deposited solid (5.8 mm^2 under their ceilings).
+    const double radius = 12.733402002719357, height = 40.47687456363066;
+    const std::vector<Port> ports{
+        {-Vector3d::UnitY(), 5.118019116592789, 18.54138671998311, 14.28576659735294},
+        {Vector3d::UnitY(), 9.361050822457926, 17.75910751014773, 18.591670945151595},
+        {-Vector3d::UnitX(), 9.222047330533757, 6.430422215651301, 17.047264395745707}};
+    const auto part = bored_valve_body(radius, height, ports);
+    const auto d = decompose_as_slicing_does(part);
+    expect_a_body_and_its_ports(d, height, ports);
+    expect_invariants(d, part);
+}
+
+TEST(Decompose, ATrackBesideASliverIsItsFathersMarchGoingOn) {
+    // A valve body drawn at random (the survey's, seed 44, 4): at z = 20 the body's section
+    // splits into its ring and a sliver of the -Y port's far end, which the port's branch
+    // leaves behind (one node; refused as a component: its piece holds mostly the port). The
+    // ring's track was cut off there as a fork's arm would be, through the -Y port's bore
+    // (z = 14.3 to 23.9), which neither half then held whole (16.5 mm^2 under its ceiling).
+    const double radius = 24.00333841248489, height = 47.20393033224486;
+    const std::vector<Port> ports{
+        {-Vector3d::UnitY(), 9.520574328071719, 18.83899239650789, 19.11256685294195},
+        {Vector3d::UnitX(), 7.28941783082178, 10.513350401490369, 9.638761562378875}};
+    const auto part = bored_valve_body(radius, height, ports);
+    const auto d = decompose_as_slicing_does(part);
+    expect_a_body_and_its_ports(d, height, ports);
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, SourceShapeIsUnchanged) {
     const auto part = t_block();
     const std::string before = part.to_brep_string();

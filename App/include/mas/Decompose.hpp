@@ -145,7 +145,16 @@
 //   the branch's material stays in its father, as it was (each split works on a copy: a failed
 //   one can alter the solid it is given), and a note says so.
 // - Branches of one direction that split around a hole and merge again beyond it (AxisBranch::
-//   merged_into) make no cut: a wall with a hole through it is one sub-component.
+//   merged_into) make no cut: a wall with a hole through it is one sub-component. So do those
+//   that split again before they merge (a merge between a branch's line, it and the branches it
+//   split into in its direction, and another line split off its father's): a valve body's ring
+//   broken by three ports' bores at three heights. Cut where the first two tracks parted, the
+//   body's halves each held part of a bore, and neither could deposit it solid (fill_holes).
+// - Nor does a branch in its father's direction where the father's section split and every
+//   other branch of that split ended on the plane it began on (one node, no sub-branches): a
+//   sliver beside it, thinner than a step (the far end of a port another branch took, left under
+//   the march's plane; a leaning branch's tip), not a fork's arm. The branch is the father's
+//   march going on.
 // - Several roots (a part on several feet) share the one root component.
 // - An axis marched in a frame turned about Z (AxisParams::frame_deg: a part placed turned on the
 //   plate) is decomposed in that frame, where its directions are +-X, +-Y and +-Z as read above

@@ -1001,17 +1001,69 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 return -1;
             };
 
+            // Whether branch x is b or comes of it through branches marching as their fathers do
+            // (the tracks b's split into where holes broke its sections again).
+            const auto in_line = [&](int x, int b) {
+                while (x >= 0) {
+                    if (x == b) return true;
+                    const AxisBranch& bx = axis.branches[std::size_t(x)];
+                    if (bx.parent < 0 ||
+                        !bx.direction.isApprox(axis.branches[std::size_t(bx.parent)].direction))
+                        return false;
+                    x = bx.parent;
+                }
+                return false;
+            };
             // Tracks that split around a hole and join again beyond it (the axis records the merge)
             // are one feature with a hole in it, not sub-components: they stay in their father.
+            // So are tracks that split again before they join: a merge between b's line and
+            // another split off b's father's (a valve body's ring, broken by two ports' bores
+            // into two tracks, one of them by a third into two more, all joining above: cut
+            // where the first two parted, the body's upper half lost its bores' lower halves to
+            // its lower one, and neither held them whole to be deposited solid).
             const auto rejoins = [&](std::size_t b) {
                 const AxisBranch& br = axis.branches[b];
                 if (br.parent < 0 ||
                     !br.direction.isApprox(axis.branches[std::size_t(br.parent)].direction))
                     return false;
                 if (br.merged_into >= 0) return true;
-                for (const auto& other : axis.branches)
-                    if (other.merged_into == int(b)) return true;
+                for (std::size_t o = 0; o < axis.branches.size(); ++o) {
+                    const int into = axis.branches[o].merged_into;
+                    if (into < 0) continue;
+                    if (into == int(b)) return true;
+                    const bool from_line = in_line(int(o), int(b));
+                    if (from_line == in_line(into, int(b))) continue;
+                    if (in_line(from_line ? into : int(o), br.parent)) return true;
+                }
                 return false;
+            };
+
+            // A track the father's march goes on in, where its section split and every other track
+            // of the split ended on the plane it began on (one node, no sub-branches): a sliver
+            // the march found on one plane (a boss' far end an earlier branch took, a leaning
+            // branch's tip, under the plane), thinner than a step, not a fork's arm. It stays in
+            // its father: cut off where the sliver parted, a valve body's upper half took the
+            // upper half of a port's bore, and neither half held the bore whole to be deposited
+            // solid (16.5 mm^2 unsupported under its ceiling).
+            std::vector<int> sub_branches(nb, 0);
+            for (const auto& br : axis.branches)
+                if (br.parent >= 0) ++sub_branches[std::size_t(br.parent)];
+            const auto goes_on = [&](std::size_t b) {
+                const AxisBranch& br = axis.branches[b];
+                if (br.parent < 0 ||
+                    !br.direction.isApprox(axis.branches[std::size_t(br.parent)].direction))
+                    return false;
+                bool beside = false;
+                for (std::size_t o = 0; o < nb; ++o) {
+                    const AxisBranch& other = axis.branches[o];
+                    if (o == b || other.parent != br.parent ||
+                        other.parent_node != br.parent_node ||
+                        !other.direction.isApprox(br.direction))
+                        continue;
+                    if (other.nodes.size() != 1 || sub_branches[o] != 0) return false;
+                    beside = true;
+                }
+                return beside;
             };
 
             // A child built along b's direction would tilt past the machine's reach (straight down,
@@ -1071,7 +1123,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     holder[b] = 0;
                     continue;
                 }
-                if (rejoins(b)) {
+                if (rejoins(b) || goes_on(b)) {
                     holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
                     continue;
                 }
@@ -1118,8 +1170,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 for (std::size_t c = b + 1; c < nb; ++c) {
                     // Each sibling classifies a point in the father and scans its faces.
                     at.check();
-                    if (holder[c] >= 0 || !splits(c) || rejoins(c) || asked_to_keep(c) ||
-                        beyond_reach(c))
+                    if (holder[c] >= 0 || !splits(c) || rejoins(c) || goes_on(c) ||
+                        asked_to_keep(c) || beyond_reach(c))
                         continue;
                     const int cp = axis.branches[c].parent;
                     if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch

@@ -3,10 +3,17 @@
 // layer supported.
 #include <gtest/gtest.h>
 
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepFilletAPI_MakeChamfer.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <Eigen/Geometry>
+#include <TopExp.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
 #include <cmath>
 #include <string>
 
@@ -79,6 +86,53 @@ TEST(Holes, AHorizontalPinHoleIsFilledAndAVerticalOneAndALargerOneStayOpen) {
     EXPECT_TRUE(both.notes.empty());
     expect_volume(both.added_volume_mm3, kPi * (16.0 + 36.0) * 8.0, before);
     expect_volume(volume(both.solid), before + both.added_volume_mm3, before);
+}
+
+TEST(Holes, AHoleWithFilletedOrChamferedMouthsIsFilledMouthsAndAll) {
+    // The clevis ear's pin hole (radius 4, through the ear's faces y = 6 and y = 14) with the
+    // edges of its two mouths rounded (radius 1) or chamfered (1 mm): the blends go with the hole,
+    // and closing it over extends the ear's faces across, leaving the ear as if never drilled
+    // (4000 + 7200 mm^3). Defeaturing the wall alone extended nothing: the hole stayed open, after
+    // 39 s on a filleted lug.
+    const TopoDS_Shape ear = clevis_ear(false, false);
+    const double solid_ear = 40.0 * 20.0 * 5.0 + 20.0 * 8.0 * 45.0;
+    for (const bool chamfer : {false, true}) {
+        SCOPED_TRACE(chamfer ? "chamfered" : "filleted");
+        std::vector<TopoDS_Edge> mouths;
+        TopTools_IndexedMapOfShape edges;
+        TopExp::MapShapes(ear, TopAbs_EDGE, edges);
+        for (int i = 1; i <= edges.Extent(); ++i) {
+            const BRepAdaptor_Curve c(TopoDS::Edge(edges(i)));
+            if (c.GetType() == GeomAbs_Circle && std::abs(c.Circle().Radius() - 4.0) < 1e-9)
+                mouths.push_back(TopoDS::Edge(edges(i)));
+        }
+        ASSERT_EQ(mouths.size(), 2u);
+        TopoDS_Shape blended;
+        if (chamfer) {
+            TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+            TopExp::MapShapesAndAncestors(ear, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+            BRepFilletAPI_MakeChamfer mk(ear);
+            for (const TopoDS_Edge& m : mouths)
+                for (const TopoDS_Shape& f : edge_faces.FindFromKey(m))
+                    if (BRepAdaptor_Surface(TopoDS::Face(f)).GetType() == GeomAbs_Plane)
+                        mk.Add(1.0, 1.0, m, TopoDS::Face(f));
+            blended = mk.Shape();
+        } else {
+            BRepFilletAPI_MakeFillet mk(ear);
+            for (const TopoDS_Edge& m : mouths) mk.Add(1.0, m);
+            blended = mk.Shape();
+        }
+        const mas::Shape part = from_occt(blended);
+        const double before = volume(part);
+        EXPECT_LT(before, solid_ear - kPi * 16.0 * 8.0);
+        const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 10.0, 45.0);
+        for (const std::string& n : f.notes) ADD_FAILURE() << n;
+        ASSERT_EQ(f.holes.size(), 1u);
+        EXPECT_NEAR(f.holes[0].diameter_mm, 8.0, 1e-9);
+        EXPECT_NEAR(f.holes[0].length_mm, 8.0, 1e-9);
+        expect_volume(volume(f.solid), solid_ear, solid_ear);
+        expect_volume(f.added_volume_mm3, solid_ear - before, solid_ear);
+    }
 }
 
 TEST(Holes, ABlindHoleIsFilledWithItsBottom) {

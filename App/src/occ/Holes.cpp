@@ -59,8 +59,8 @@ struct Hole {
     std::vector<Blend> blends;
 
     Vector3d centre() const { return point + 0.5 * (lo + hi) * axis; }
-    // The volume of its cylinder over its extent, and of its mouths' blends' cylinders beyond
-    // it: at least what filling it adds.
+    // The volume of its cylinder over its extent, and of the rings round it out to its mouths'
+    // blends' radii over theirs: at least what filling it adds.
     double cylinder_volume() const {
         double v = kPi * radius * radius * (hi - lo);
         for (const Blend& b : blends)
@@ -385,7 +385,8 @@ TopoDS_Shape single_valid_solid(const TopoDS_Shape& shape) {
     return result;
 }
 
-// The holes' cylinders grown by `grow` all round and `far` past both ends, as Boolean tools.
+// The holes' cylinders grown by `grow` all round and `far` past both ends, and their mouths'
+// blends' cylinders grown by `grow` (their widest radius, over their extent), as Boolean tools.
 TopTools_ListOfShape cylinders(const std::vector<Hole>& holes, double grow, double far) {
     TopTools_ListOfShape out;
     for (const Hole& h : holes) {

@@ -5,6 +5,7 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepFilletAPI_MakeChamfer.hxx>
 #include <BRepOffsetAPI_ThruSections.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
@@ -13,6 +14,9 @@
 #include <BRepTools.hxx>
 #include <Eigen/Geometry>
 #include <StlAPI_Writer.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -734,6 +738,42 @@ TEST(CentroidalAxis, ARoundBossOnAWallTurnsThoughItsUndersideAppearsGradually) {
         EXPECT_NEAR(node.area, 2.0 * std::sqrt(2.0) * 16.0, 1e-6);
         EXPECT_NEAR(node.position.y(), 15.0, kGrid);
         EXPECT_NEAR(node.position.z(), 21.0, kGrid);
+    }
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, AChamferedRoundBossTurnsThoughTheHalfPlaneHoldsItsChamfers) {
+    // A manifold block of the survey's (seed 40, 4), 58.8 x 42.7 x 41.2, with its +X boss (radius
+    // 5.88, its axis at z = 28.49, sticking out 5.65 mm), every edge chamfered 1 mm. At the step
+    // its whole part derives (1.081 mm), the first plane through the boss, z = 22.70, is 0.09 mm
+    // over its lowest line; half a step down lie only the chamfers round its root and its end,
+    // 15 % of the stick-out (none without them): no more than a quarter of it is "nearly none",
+    // as a flat or round underside over the half plane gives. The boss turns +X. (At a tenth, it
+    // stayed in the block's layers: 15 mm^2 overhung in one.)
+    const double w = 58.76818614554969, d = 42.74319908081503, h = 41.167231600854734;
+    const double r = 5.876777609993383, reach = 5.64505685172693, z = 28.48529065076532,
+                 along = -2.971411621274493;
+    const TopoDS_Shape block =
+        fuse(mas::test::occ_box(-w / 2, -d / 2, 0, w, d, h),
+             mas::test::occ_cylinder({w / 2 - 1, along, z}, Vector3d::UnitX(), r, reach + 1));
+    BRepFilletAPI_MakeChamfer chamfer(block);
+    TopTools_IndexedMapOfShape edges;
+    TopExp::MapShapes(block, TopAbs_EDGE, edges);
+    for (int i = 1; i <= edges.Extent(); ++i) chamfer.Add(1.0, TopoDS::Edge(edges(i)));
+    const auto mesh = mesh_of(from_occt(chamfer.Shape()));
+    mas::AxisParams p;
+    p.step_mm = 1.0808622874318918;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 2u);
+    const auto& boss = a.branches[1];
+    EXPECT_EQ(boss.parent, 0);
+    EXPECT_TRUE(boss.direction.isApprox(Vector3d::UnitX(), 1e-12)) << boss.direction.transpose();
+    ASSERT_GE(boss.nodes.size(), 2u);
+    for (const int i : boss.nodes) {
+        const auto& node = a.nodes[std::size_t(i)];
+        EXPECT_GT(node.offset, w / 2);
+        EXPECT_NEAR(node.position.y(), along, 0.05);
+        EXPECT_NEAR(node.position.z(), z, 0.05);
     }
     expect_invariants(a, mesh);
 }

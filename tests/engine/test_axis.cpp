@@ -772,8 +772,8 @@ TEST(CentroidalAxis, AChamferedRoundBossTurnsThoughTheHalfPlaneHoldsItsChamfers)
     for (const int i : boss.nodes) {
         const auto& node = a.nodes[std::size_t(i)];
         EXPECT_GT(node.offset, w / 2);
-        EXPECT_NEAR(node.position.y(), along, 0.05);
-        EXPECT_NEAR(node.position.z(), z, 0.05);
+        EXPECT_NEAR(node.position.y(), along, kDeflection);
+        EXPECT_NEAR(node.position.z(), z, kDeflection);
     }
     expect_invariants(a, mesh);
 }

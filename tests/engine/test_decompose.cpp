@@ -1234,6 +1234,8 @@ TEST(Decompose, TracksRejoiningAroundAHoleAreNeverCutWithASibling) {
     expect_invariants(d, part);
 }
 
+namespace {
+
 // A valve body of the survey's (MultiAxisSlicerSurvey.valve_body): a round body standing on the
 // plate, a blind bore down it from z = 4 half its radius, and round ports along `out` (+-X, +-Y)
 // at height z reaching `reach` past its side, each bored into it at half its radius.
@@ -1279,6 +1281,8 @@ void expect_a_body_and_its_ports(const mas::Decomposition& d, double height,
         EXPECT_EQ(along, 1) << "port along " << p.out.transpose();
     }
 }
+
+}  // namespace
 
 TEST(Decompose, TracksThatSplitAgainBeforeTheyRejoinAreOneComponent) {
     // A valve body drawn at random (the survey's, seed 44, 2): three ports' bores into the

@@ -42,6 +42,8 @@ using mas::test::occ_box;
 using mas::test::occ_cylinder;
 using mas::test::occ_prism;
 using mas::test::to_occt;
+using mas::test::ValveBody;
+using mas::test::ValvePort;
 using Rule = mas::Component::SplitRule;
 
 namespace {
@@ -1236,24 +1238,6 @@ TEST(Decompose, TracksRejoiningAroundAHoleAreNeverCutWithASibling) {
 
 namespace {
 
-// A valve body of the survey's (MultiAxisSlicerSurvey.valve_body): a round body standing on the
-// plate, a blind bore down it from z = 4 half its radius, and round ports along `out` (+-X, +-Y)
-// at height z reaching `reach` past its side, each bored into it at half its radius.
-struct Port {
-    Vector3d out;
-    double radius, reach, z;
-};
-mas::Shape bored_valve_body(double radius, double height, const std::vector<Port>& ports) {
-    TopoDS_Shape body = occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), radius, height);
-    TopoDS_Shape bores = occ_cylinder(Vector3d(0, 0, 4), Vector3d::UnitZ(), radius / 2, height - 4);
-    for (const Port& p : ports) {
-        body = fuse(body, occ_cylinder(Vector3d(0, 0, p.z), p.out, p.radius, radius + p.reach));
-        bores = fuse(bores,
-                     occ_cylinder(Vector3d(0, 0, p.z), p.out, p.radius / 2, radius + p.reach + 1));
-    }
-    return from_occt(BRepAlgoAPI_Cut(body, bores).Shape());
-}
-
 // Decomposed with the axis slicing gives it by default (the part's own deflection and step).
 mas::Decomposition decompose_as_slicing_does(const mas::Shape& part) {
     mas::TessellationParams tp;
@@ -1265,13 +1249,12 @@ mas::Decomposition decompose_as_slicing_does(const mas::Shape& part) {
 
 // The body is the root, whole from the plate to its top, and each port a child of it built
 // sideways along the port.
-void expect_a_body_and_its_ports(const mas::Decomposition& d, double height,
-                                 const std::vector<Port>& ports) {
-    ASSERT_EQ(d.components.size(), ports.size() + 1);
+void expect_a_body_and_its_ports(const mas::Decomposition& d, const ValveBody& body) {
+    ASSERT_EQ(d.components.size(), body.ports.size() + 1);
     const auto root = bounds(d.components[0].solid);
     EXPECT_NEAR(root.min().z(), 0.0, 1e-6);
-    EXPECT_NEAR(root.max().z(), height, 1e-6);
-    for (const Port& p : ports) {
+    EXPECT_NEAR(root.max().z(), body.height, 1e-6);
+    for (const ValvePort& p : body.ports) {
         int along = 0;
         for (std::size_t i = 1; i < d.components.size(); ++i)
             if (d.components[i].build_direction.isApprox(p.out, 1e-9)) {
@@ -1290,14 +1273,10 @@ TEST(Decompose, TracksThatSplitAgainBeforeTheyRejoinAreOneComponent) {
     // bore breaks into two more at z = 14.03; all three join above. No branch merged into the
     // one that went on (its child did): it was cut off at z = 12.76, and neither half of the
     // body held the lower two bores whole, to be deposited solid (5.8 mm^2 under their ceilings).
-    const double radius = 12.733402002719357, height = 40.47687456363066;
-    const std::vector<Port> ports{
-        {-Vector3d::UnitY(), 5.118019116592789, 18.54138671998311, 14.28576659735294},
-        {Vector3d::UnitY(), 9.361050822457926, 17.75910751014773, 18.591670945151595},
-        {-Vector3d::UnitX(), 9.222047330533757, 6.430422215651301, 17.047264395745707}};
-    const auto part = bored_valve_body(radius, height, ports);
+    const ValveBody body = mas::test::survey_valve_body_44_2();
+    const auto part = from_occt(body.shape());
     const auto d = decompose_as_slicing_does(part);
-    expect_a_body_and_its_ports(d, height, ports);
+    expect_a_body_and_its_ports(d, body);
     expect_invariants(d, part);
 }
 
@@ -1307,13 +1286,14 @@ TEST(Decompose, ATrackBesideASliverIsItsFathersMarchGoingOn) {
     // leaves behind (one node; refused as a component: its piece holds mostly the port). The
     // ring's track was cut off there as a fork's arm would be, through the -Y port's bore
     // (z = 14.3 to 23.9), which neither half then held whole (16.5 mm^2 under its ceiling).
-    const double radius = 24.00333841248489, height = 47.20393033224486;
-    const std::vector<Port> ports{
-        {-Vector3d::UnitY(), 9.520574328071719, 18.83899239650789, 19.11256685294195},
-        {Vector3d::UnitX(), 7.28941783082178, 10.513350401490369, 9.638761562378875}};
-    const auto part = bored_valve_body(radius, height, ports);
+    const ValveBody body{
+        24.00333841248489,
+        47.20393033224486,
+        {{-Vector3d::UnitY(), 9.520574328071719, 18.83899239650789, 19.11256685294195},
+         {Vector3d::UnitX(), 7.28941783082178, 10.513350401490369, 9.638761562378875}}};
+    const auto part = from_occt(body.shape());
     const auto d = decompose_as_slicing_does(part);
-    expect_a_body_and_its_ports(d, height, ports);
+    expect_a_body_and_its_ports(d, body);
     expect_invariants(d, part);
 }
 

@@ -374,23 +374,7 @@ TEST(Holes, ABoreIntoABoreIsFilledHoweverLargeThePartItIsMeasuredIn) {
     // nothing outside the hole's cylinder; measured as the difference of the part's volume
     // outside the cylinder after and before (10033 mm^3 each, integrated to about 1e-7 of that),
     // it added 0.0038 mm^3, over the tolerance, and the hole stayed open.
-    const double radius = 12.733402002719357, height = 40.47687456363066;
-    struct Port {
-        Vector3d out;
-        double r, reach, z;
-    };
-    const Port ports[] = {
-        {-Vector3d::UnitY(), 5.118019116592789, 18.54138671998311, 14.28576659735294},
-        {Vector3d::UnitY(), 9.361050822457926, 17.75910751014773, 18.591670945151595},
-        {-Vector3d::UnitX(), 9.222047330533757, 6.430422215651301, 17.047264395745707}};
-    TopoDS_Shape body = occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), radius, height);
-    TopoDS_Shape bores = occ_cylinder(Vector3d(0, 0, 4), Vector3d::UnitZ(), radius / 2, height - 4);
-    for (const Port& p : ports) {
-        body = fuse(body, occ_cylinder(Vector3d(0, 0, p.z), p.out, p.r, radius + p.reach));
-        bores =
-            fuse(bores, occ_cylinder(Vector3d(0, 0, p.z), p.out, p.r / 2, radius + p.reach + 1));
-    }
-    const TopoDS_Shape whole = cut(body, bores);
+    const TopoDS_Shape whole = mas::test::survey_valve_body_44_2().shape();
     const double x0 = -12.7753, y0 = -12.7817, y1 = 12.7837, z0 = 12.7553;
     BRepAlgoAPI_Common upper(whole, occ_box(x0, y0, z0, 100, y1 - y0, 100));
     ASSERT_TRUE(upper.IsDone());

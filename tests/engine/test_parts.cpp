@@ -61,6 +61,29 @@ TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b) {
     return f.Shape();
 }
 
+TopoDS_Shape ValveBody::shape() const {
+    TopoDS_Shape body =
+        occ_cylinder(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), radius, height);
+    TopoDS_Shape bores =
+        occ_cylinder(Eigen::Vector3d(0, 0, 4), Eigen::Vector3d::UnitZ(), radius / 2, height - 4);
+    for (const ValvePort& p : ports) {
+        body =
+            fuse(body, occ_cylinder(Eigen::Vector3d(0, 0, p.z), p.out, p.radius, radius + p.reach));
+        bores = fuse(bores, occ_cylinder(Eigen::Vector3d(0, 0, p.z), p.out, p.radius / 2,
+                                         radius + p.reach + 1));
+    }
+    return BRepAlgoAPI_Cut(body, bores).Shape();
+}
+
+ValveBody survey_valve_body_44_2() {
+    return {
+        12.733402002719357,
+        40.47687456363066,
+        {{-Eigen::Vector3d::UnitY(), 5.118019116592789, 18.54138671998311, 14.28576659735294},
+         {Eigen::Vector3d::UnitY(), 9.361050822457926, 17.75910751014773, 18.591670945151595},
+         {-Eigen::Vector3d::UnitX(), 9.222047330533757, 6.430422215651301, 17.047264395745707}}};
+}
+
 TopoDS_Shape occ_prism(const std::vector<Eigen::Vector3d>& outline,
                        const Eigen::Vector3d& extrusion) {
     BRepBuilderAPI_MakePolygon polygon;

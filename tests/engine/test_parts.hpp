@@ -85,4 +85,20 @@ TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b);
 TopoDS_Shape occ_prism(const std::vector<Eigen::Vector3d>& outline,
                        const Eigen::Vector3d& extrusion);
 
+// A bored valve body of the survey's (MultiAxisSlicerSurvey.valve_body): a round body standing on
+// the plate, a blind bore down it from z = 4 at half its radius, and round ports along `out`
+// (+-X, +-Y) at height `z` reaching `reach` past its side, each bored into it at half its radius.
+struct ValvePort {
+    Eigen::Vector3d out;
+    double radius, reach, z;
+};
+struct ValveBody {
+    double radius, height;
+    std::vector<ValvePort> ports;
+    TopoDS_Shape shape() const;
+};
+// The survey's valve body 2 at seed 44: three ports whose bores into the central one break the
+// body's ring at three heights.
+ValveBody survey_valve_body_44_2();
+
 }  // namespace mas::test

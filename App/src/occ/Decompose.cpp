@@ -1001,18 +1001,18 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 return -1;
             };
 
+            // Whether branch x has a father and marches as it does.
+            const auto marches_as_father = [&](int x) {
+                const AxisBranch& bx = axis.branches[std::size_t(x)];
+                return bx.parent >= 0 &&
+                       bx.direction.isApprox(axis.branches[std::size_t(bx.parent)].direction);
+            };
             // Whether branch x is b or comes of it through branches marching as their fathers do
             // (the tracks b's split into where holes broke its sections again).
             const auto in_line = [&](int x, int b) {
-                while (x >= 0) {
-                    if (x == b) return true;
-                    const AxisBranch& bx = axis.branches[std::size_t(x)];
-                    if (bx.parent < 0 ||
-                        !bx.direction.isApprox(axis.branches[std::size_t(bx.parent)].direction))
-                        return false;
-                    x = bx.parent;
-                }
-                return false;
+                for (; x != b; x = axis.branches[std::size_t(x)].parent)
+                    if (!marches_as_father(x)) return false;
+                return true;
             };
             // Tracks that split around a hole and join again beyond it (the axis records the merge)
             // are one feature with a hole in it, not sub-components: they stay in their father.
@@ -1023,9 +1023,6 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             // its lower one, and neither held them whole to be deposited solid).
             const auto rejoins = [&](std::size_t b) {
                 const AxisBranch& br = axis.branches[b];
-                if (br.parent < 0 ||
-                    !br.direction.isApprox(axis.branches[std::size_t(br.parent)].direction))
-                    return false;
                 if (br.merged_into >= 0) return true;
                 for (std::size_t o = 0; o < axis.branches.size(); ++o) {
                     const int into = axis.branches[o].merged_into;
@@ -1050,9 +1047,6 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (br.parent >= 0) ++sub_branches[std::size_t(br.parent)];
             const auto goes_on = [&](std::size_t b) {
                 const AxisBranch& br = axis.branches[b];
-                if (br.parent < 0 ||
-                    !br.direction.isApprox(axis.branches[std::size_t(br.parent)].direction))
-                    return false;
                 bool beside = false;
                 for (std::size_t o = 0; o < nb; ++o) {
                     const AxisBranch& other = axis.branches[o];
@@ -1065,6 +1059,12 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 }
                 return beside;
             };
+            // Each branch that is its father going on (either of the above): no cut. Worked out
+            // once, as it depends on the axis alone (each branch and each sibling grouped with it
+            // asks).
+            std::vector<char> father_goes_on(nb, 0);
+            for (std::size_t b = 0; b < nb; ++b)
+                father_goes_on[b] = marches_as_father(int(b)) && (rejoins(b) || goes_on(b));
 
             // A child built along b's direction would tilt past the machine's reach (straight down,
             // -Z, at the default): b is not cut, its material stays in its father.
@@ -1123,7 +1123,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     holder[b] = 0;
                     continue;
                 }
-                if (rejoins(b) || goes_on(b)) {
+                if (father_goes_on[b]) {
                     holder[b] = std::max(holder[std::size_t(axis.branches[b].parent)], 0);
                     continue;
                 }
@@ -1170,8 +1170,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 for (std::size_t c = b + 1; c < nb; ++c) {
                     // Each sibling classifies a point in the father and scans its faces.
                     at.check();
-                    if (holder[c] >= 0 || !splits(c) || rejoins(c) || goes_on(c) ||
-                        asked_to_keep(c) || beyond_reach(c))
+                    if (holder[c] >= 0 || !splits(c) || father_goes_on[c] || asked_to_keep(c) ||
+                        beyond_reach(c))
                         continue;
                     const int cp = axis.branches[c].parent;
                     if (holder[std::size_t(cp)] < 0) continue;  // a child of an unhandled branch

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "bench_util.hpp"
+#include "mas/Angles.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Gcode.hpp"
@@ -37,12 +38,11 @@
 namespace {
 
 using Eigen::Vector3d;
+using mas::kPi;
 using mas::bench::box;
 using mas::bench::from_occt;
 using mas::bench::fuse;
 using mas::bench::time_ms;
-
-constexpr double kPi = 3.14159265358979323846;
 
 TopoDS_Shape cylinder(const Vector3d& base, const Vector3d& axis, double r, double h) {
     return BRepPrimAPI_MakeCylinder(

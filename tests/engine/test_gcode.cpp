@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Gcode.hpp"
 #include "mas/SlicePart.hpp"
@@ -19,8 +20,8 @@
 namespace {
 
 using Eigen::Vector3d;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+using mas::kPi;
+constexpr double kDeg = mas::kDegree;
 // The program writes X Y Z A C with 4 decimals: a read-back value is within half a unit of that.
 constexpr double kWord = 0.5e-4 + 1e-12;
 

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <string>
 
+#include "mas/Angles.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
@@ -25,14 +26,13 @@
 #include "test_parts.hpp"
 
 using Eigen::Vector3d;
+using mas::kPi;
 using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
 using mas::test::occ_cylinder;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b) {
     BRepAlgoAPI_Cut c(a, b);

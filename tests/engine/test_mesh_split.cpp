@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mas/Angles.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Error.hpp"
 #include "mas/Mesh.hpp"
@@ -18,12 +19,11 @@
 #include "test_parts.hpp"
 
 using Eigen::Vector3d;
+using mas::kPi;
 using mas::test::fuse;
 using mas::test::occ_box;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 mas::TriangleMesh mesh_of(const mas::Shape& shape) {
     mas::TessellationParams tp;

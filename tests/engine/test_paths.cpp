@@ -6,12 +6,13 @@
 #include <iostream>
 #include <set>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Paths.hpp"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using mas::kPi;
 
 mas::Polygon2 rect(double x0, double y0, double x1, double y1) {
     return {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "mas/Angles.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
@@ -28,6 +29,7 @@
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
+using mas::kPi;
 using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
@@ -38,7 +40,6 @@ using mas::test::to_occt;
 namespace {
 
 constexpr double kDeflection = 0.02;  // mm: tessellation of the test parts (axis and layers)
-constexpr double kPi = 3.14159265358979323846;
 
 // A frustum on z = 0: radius 20 at the bottom, 8 at the top, 30 tall (side 21.8 degrees from Z).
 mas::Shape frustum() { return from_occt(BRepPrimAPI_MakeCone(20.0, 8.0, 30.0).Shape()); }

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "SectionGrid.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Progress.hpp"
 #include "mas/Section.hpp"
@@ -1571,7 +1572,7 @@ private:
                 nodes_[std::size_t(l.end)].position - nodes_[std::size_t(l.start)].position;
             if (a.norm() == 0.0 || b.norm() == 0.0) continue;
             const double cosang = std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0);
-            l.turn_deg = std::acos(cosang) * 180.0 / M_PI;
+            l.turn_deg = std::acos(cosang) * 180.0 / kPi;
             // A link right after a break only turns back from the connector between two
             // sections' centroids (a split's lower node to a post's first node, say): one break.
             l.is_break = l.turn_deg > limit && !p.is_break;
@@ -1680,8 +1681,6 @@ double derive_axis_step(const TriangleMesh& mesh) {
 
 namespace {
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
-
 // `degrees` modulo 90 into (-45, 45].
 double frame_angle(double degrees) {
     double a = std::fmod(degrees, 90.0);
@@ -1707,7 +1706,7 @@ double quick_atan2_deg(double y, double x) {
     const double a = std::min(ax, ay) / big, s = a * a;
     double r = (((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s + 1.0) * a;
     if (ay > ax) r = 1.5707963267948966 - r;
-    if (x < 0.0) r = 3.141592653589793 - r;
+    if (x < 0.0) r = kPi - r;
     return (y < 0.0 ? -r : r) / kDegree;
 }
 

@@ -11,13 +11,12 @@
 #include <optional>
 #include <sstream>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 
 namespace mas {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegree = kPi / 180.0;
 // rad: a tool axis this close to +Z or -Z keeps C (finer than the 1e-4 degree of an A word).
 constexpr double kPoleTilt = 1e-7;
 constexpr double kThicknessStep = 0.05;  // pieces of a deposit move: t changes by this ratio - 1

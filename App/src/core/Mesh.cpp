@@ -16,6 +16,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 
 namespace mas {
@@ -48,7 +49,7 @@ double winding(const TriangleMesh& mesh, const std::vector<std::size_t>& tris,
         total += 2.0 * std::atan2(a.dot(b.cross(c)),
                                   la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
     }
-    return total / (4.0 * 3.14159265358979323846);
+    return total / (4.0 * kPi);
 }
 
 }  // namespace

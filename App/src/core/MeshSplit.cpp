@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/SlicePart.hpp"
@@ -500,7 +501,7 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
     for (std::size_t b = nb; b-- > 1;)
         if (axis.branches[b].parent >= 0) swept[axis.branches[b].parent] += swept[b];
     std::vector<int> component_of(nb, 0);  // where each branch's material went
-    const double cos_tilt = std::cos(params.max_tilt_deg * 3.14159265358979323846 / 180.0);
+    const double cos_tilt = std::cos(params.max_tilt_deg * kPi / 180.0);
     for (std::size_t b = 0; b < nb; ++b) {
         progress(double(b) / double(nb));
         const AxisBranch& branch = axis.branches[b];

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Polygon2.hpp"
 
@@ -18,7 +19,6 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-constexpr double kPi = 3.14159265358979323846;
 // The travel check's step along a move where it measures a near sample's clearance, in margins.
 constexpr double kTravelStep = 0.05;
 

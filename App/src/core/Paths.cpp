@@ -52,6 +52,7 @@
 #include <unordered_map>
 
 #include "ClipperConvert.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 
 namespace mas {
@@ -66,7 +67,6 @@ using ClipperLib::IntPoint;
 using ClipperLib::Path;
 using ClipperLib::Paths;
 
-constexpr double kPi = 3.14159265358979323846;
 // As mas::offset: a mitre reaches at most 2 x the offset (corners sharper than 60 degrees are
 // squared off).
 constexpr double kMiterLimit = 2.0;

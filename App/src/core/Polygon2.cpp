@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mas/Angles.hpp"
+
 namespace mas {
 
 double signed_area(const Polygon2& polygon) {
@@ -170,7 +172,7 @@ Polygon2 simplify(const Polygon2& polygon, double tolerance_mm) {
     const std::size_t n = p.size();
     if (n <= 3 || !(tolerance_mm > 0.0)) return polygon;
     // Start at a corner (the sharpest turn), so the walk never begins inside a run to drop.
-    const double cos_limit = std::cos(15.0 * M_PI / 180.0);
+    const double cos_limit = std::cos(15.0 * kPi / 180.0);
     auto turn_cos = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                         const Eigen::Vector2d& c) {
         const Eigen::Vector2d u = b - a, v = c - b;

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 
 namespace mas {
@@ -28,7 +29,7 @@ bool inside_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& point) {
         if (std::abs(numerator) <= 1e-12 * la * lb * lc && denominator < 0.0) return true;
         total += 2.0 * std::atan2(numerator, denominator);
     }
-    return total / (4.0 * 3.14159265358979323846) > 0.5;
+    return total / (4.0 * kPi) > 0.5;
 }
 
 Plane build_plate(const TriangleMesh& mesh) {

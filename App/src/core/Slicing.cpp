@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 
 namespace mas {
@@ -18,7 +19,6 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLengthTolerance = 1e-9;  // mm: slack on the thickness bounds (rounding only)
 
 [[noreturn]] void invalid(const std::string& message) {

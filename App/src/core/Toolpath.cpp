@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 
 namespace mas {
@@ -30,8 +31,6 @@ ToolPath travel_move(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
 }
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The in-plane angle (radians, from frame.u towards frame.v) of the u axis that frame.normal's
 // plane frame has in the part's frame: PlaneFrame of the normal turned by -frame_deg about Z, its

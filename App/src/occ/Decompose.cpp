@@ -44,6 +44,7 @@
 #include <string>
 
 #include "ShapeImpl.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Mesh.hpp"
 #include "mas/Section.hpp"
 #include "mas/Slicing.hpp"
@@ -51,8 +52,6 @@
 namespace mas {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 using Eigen::Vector3d;
 

@@ -29,6 +29,7 @@
 #include <sstream>
 
 #include "ShapeImpl.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Mesh.hpp"
 
 namespace mas {
@@ -36,8 +37,6 @@ namespace mas {
 namespace {
 
 using Eigen::Vector3d;
-
-constexpr double kPi = 3.14159265358979323846;
 
 Vector3d vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Vector3d vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }

@@ -65,6 +65,12 @@ double precise_volume(const TopoDS_Shape& s) {
     return p.Mass();
 }
 
+// The largest tolerance of a shape's vertices and edges, mm.
+double max_tolerance(const TopoDS_Shape& s) {
+    return std::max(BRep_Tool::MaxTolerance(s, TopAbs_VERTEX),
+                    BRep_Tool::MaxTolerance(s, TopAbs_EDGE));
+}
+
 Eigen::AlignedBox3d bounds(const mas::Shape& s) { return s.info().bounds; }
 
 bool near_box(const mas::Shape& s, const Vector3d& lo, const Vector3d& hi, double tol = 1e-6) {
@@ -174,6 +180,9 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
         EXPECT_NO_THROW(c.solid.single_solid("component"));
         EXPECT_NEAR(volume(s), c.volume_mm3, 1e-9 * part_volume);
         EXPECT_GT(c.volume_mm3, 0.0);
+        // Its vertices and edges as tight as the part's, or a tenth of a micron: a vertex OCCT's
+        // seam removal widened to 27 mm had every point near it classified as on the solid.
+        EXPECT_LE(max_tolerance(s), std::max(1e-4, 10.0 * max_tolerance(to_occt(part))));
         sum += precise_volume(s);
         EXPECT_NEAR(c.build_direction.norm(), 1.0, 1e-12);
         EXPECT_TRUE(c.build_direction.isApprox(-c.base_normal, 1e-12));
@@ -847,6 +856,42 @@ TEST(Decompose, ABoltsHeadIsCutClearOfItsRoundShank) {
             EXPECT_GE(at, 10.0);
             EXPECT_LE(at,
                       10.0 + 2.0 * axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
+        }
+        EXPECT_EQ(sides, (std::set<std::pair<int, int>>{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}));
+        expect_invariants(d, part);
+    }
+}
+
+TEST(Decompose, ABallOnAPedestalIsSharedOutToItsFourSides) {
+    // A ball of radius 15 centred 22 over the plate on a round pedestal of radius 3 and height 12:
+    // the ball overhangs the pedestal all round, and the axis shares it out to +-X and +-Y from
+    // planes at the pedestal's extent. The first split (+X) cuts the sphere round a circle across
+    // its seam, and OCCT's seam removal on the child merged that circle's two halves into one
+    // edge, widening the vertex it kept to span the gap (the circle's diameter, 30 mm), in place:
+    // on the vertex the father shares. The other three sides' first nodes then classified as on
+    // the father, not in it, and their material stayed in the root ("its first node lies in no
+    // component"), overhanging. Each side is its own component now, all of them as tight as the
+    // part (expect_invariants).
+    const auto part = from_occt(fuse(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 22), 15.0).Shape(),
+                                     occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 3, 12)));
+    for (const double deflection : {kDeflection, mas::effective_deflection(part, {})}) {
+        SCOPED_TRACE("deflection " + std::to_string(deflection));
+        const auto d = mas::decompose(part, axis_of(part, 0.0, deflection));
+        EXPECT_TRUE(d.notes.empty()) << d.notes.front();
+        ASSERT_EQ(d.components.size(), 5u);
+        std::set<std::pair<int, int>> sides;
+        for (std::size_t c = 1; c < 5; ++c) {
+            const auto& piece = d.components[c];
+            SCOPED_TRACE("component " + std::to_string(c));
+            EXPECT_EQ(piece.parent, 0);
+            const Vector3d D = piece.build_direction;
+            EXPECT_NEAR(D.z(), 0.0, 1e-12);
+            sides.insert({int(std::lround(D.x())), int(std::lround(D.y()))});
+            // Cut at the pedestal's extent or past it, within the ball.
+            const Eigen::AlignedBox3d base = bounds(piece.base_face);
+            const double at = std::min(D.dot(base.min()), D.dot(base.max()));
+            EXPECT_GE(at, 3.0);
+            EXPECT_LT(at, 15.0);
         }
         EXPECT_EQ(sides, (std::set<std::pair<int, int>>{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}));
         expect_invariants(d, part);

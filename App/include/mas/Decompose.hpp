@@ -155,6 +155,11 @@
 //   sliver beside it, thinner than a step (the far end of a port another branch took, left under
 //   the march's plane; a leaning branch's tip), not a fork's arm. The branch is the father's
 //   march going on.
+// - A piece's seams between faces on one surface are removed on a copy of it, and kept where
+//   removing them widens a tolerance: cutting a ball on a pedestal round a circle across the
+//   sphere's seam, OCCT 7.6 merged the circle's halves into one edge and widened the vertex it
+//   kept to the circle's diameter, in place, on the vertex the father shared; the ball's other
+//   sides' first nodes then classified as on the father, not in it, and stayed in the root.
 // - Several roots (a part on several feet) share the one root component.
 // - An axis marched in a frame turned about Z (AxisParams::frame_deg: a part placed turned on the
 //   plate) is decomposed in that frame, where its directions are +-X, +-Y and +-Z as read above

@@ -308,7 +308,9 @@ bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, const MeshCheck& 
         TopoDS_Shape s = piece;
         if (attempt == 0) s = unified.IsNull() ? occ::unify(piece) : unified;
         if (attempt == 2) {
-            ShapeFix_Shape fix(piece);
+            // On a copy: ShapeFix mends tolerances in place, on what the piece shares with the
+            // other pieces of the split.
+            ShapeFix_Shape fix(BRepBuilderAPI_Copy(piece).Shape());
             fix.Perform();
             s = fix.Shape();
         }

@@ -551,7 +551,16 @@ TopoDS_Shape plug(const TopoDS_Shape& solid, double volume, const std::vector<Ho
             why = "OCCT could not fuse their plugs in";
             return {};
         }
-        const TopoDS_Shape result = single_valid_solid(occ::unify(fuse.Shape()));
+        // In place: the holes left, found on `solid`, are closed over in the result by their
+        // faces, which OCCT's defeaturing takes as they are (fill_all).
+        const double before = occ::max_tolerance(fuse.Shape());
+        const TopoDS_Shape unified = occ::unify_in_place(fuse.Shape());
+        if (occ::widened(unified, before)) {
+            why = "removing the seams round their plugs widened a tolerance past " +
+                  format_number(occ::kUnifiedToleranceMm) + " mm";
+            return {};
+        }
+        const TopoDS_Shape result = single_valid_solid(unified);
         if (result.IsNull()) {
             why = "fusing their plugs in left no single valid solid";
             return {};

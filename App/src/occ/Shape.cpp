@@ -2,6 +2,7 @@
 // "exactly one closed solid" check every later stage relies on.
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
@@ -40,10 +41,24 @@ double volume_of(const TopoDS_Shape& shape) {
     return props.Mass();
 }
 
-TopoDS_Shape unify(const TopoDS_Shape& shape) {
+double max_tolerance(const TopoDS_Shape& shape) {
+    return std::max(BRep_Tool::MaxTolerance(shape, TopAbs_VERTEX),
+                    BRep_Tool::MaxTolerance(shape, TopAbs_EDGE));
+}
+
+bool widened(const TopoDS_Shape& unified, double before) {
+    return max_tolerance(unified) > std::max(kUnifiedToleranceMm, 10.0 * before);
+}
+
+TopoDS_Shape unify_in_place(const TopoDS_Shape& shape) {
     ShapeUpgrade_UnifySameDomain u(shape, Standard_True, Standard_True, Standard_False);
     u.Build();
     return u.Shape();
+}
+
+TopoDS_Shape unify(const TopoDS_Shape& shape) {
+    const TopoDS_Shape out = unify_in_place(BRepBuilderAPI_Copy(shape).Shape());
+    return widened(out, max_tolerance(shape)) ? shape : out;
 }
 
 Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape) {

@@ -40,8 +40,28 @@ Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape);
 // The volume of a shape's solids, mm^3 (BRepGProp).
 double volume_of(const TopoDS_Shape& shape);
 
-// `shape` with the seams between faces (and edges) on one surface (curve) removed.
+// The largest tolerance of `shape`'s vertices and edges, mm.
+double max_tolerance(const TopoDS_Shape& shape);
+
+// How far removing seams may widen a tolerance (unless the shape's own was over a tenth of it),
+// mm. Merging the two halves of the circle a plane cuts round a sphere (across its seam) into one
+// edge, OCCT 7.6's unifier left the one vertex it kept as wide as the circle (27 mm on a 15 mm
+// ball), and every point near it classified as on the solid, not in it.
+constexpr double kUnifiedToleranceMm = 1e-4;
+
+// Whether `unified`, made from a shape whose largest tolerance was `before`, has one wider than
+// kUnifiedToleranceMm and ten times `before`.
+bool widened(const TopoDS_Shape& unified, double before);
+
+// `shape` with the seams between faces (and edges) on one surface (curve) removed (OCCT's
+// ShapeUpgrade_UnifySameDomain). Made on a copy: the unifier widens in place the tolerance of the
+// vertices it keeps, which `shape` may share with other shapes (the other pieces of a split).
+// `shape` itself where the result is widened().
 TopoDS_Shape unify(const TopoDS_Shape& shape);
+
+// The same made on `shape` itself, with no check: the faces it leaves untouched are `shape`'s,
+// for a caller that looks up in the result faces it found on `shape`.
+TopoDS_Shape unify_in_place(const TopoDS_Shape& shape);
 
 // While any is alive (on any thread), OCCT's handlers for the fatal signals (SIGSEGV, SIGBUS,
 // SIGFPE, SIGILL; OSD::SetSignal) replace the process's; every other signal keeps its handler

@@ -22,6 +22,7 @@
 #include <TopoDS.hxx>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 #include <set>
@@ -72,6 +73,26 @@ double max_tolerance(const TopoDS_Shape& s) {
 }
 
 Eigen::AlignedBox3d bounds(const mas::Shape& s) { return s.info().bounds; }
+
+using Sides = std::set<std::pair<int, int>>;  // +-X and +-Y as (x, y)
+const Sides kFourSides{{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+
+// The sides components 1 to 4 of `d` are built towards, none of them along Z; `check` is also
+// given each component and how far along its build direction its base face lies.
+Sides sides_built(const mas::Decomposition& d,
+                  const std::function<void(const mas::Component&, double)>& check) {
+    Sides sides;
+    for (std::size_t c = 1; c < 5 && c < d.components.size(); ++c) {
+        const auto& piece = d.components[c];
+        SCOPED_TRACE("component " + std::to_string(c));
+        const Vector3d D = piece.build_direction;
+        EXPECT_NEAR(D.z(), 0.0, 1e-12);
+        sides.insert({int(std::lround(D.x())), int(std::lround(D.y()))});
+        const Eigen::AlignedBox3d base = bounds(piece.base_face);
+        check(piece, std::min(D.dot(base.min()), D.dot(base.max())));
+    }
+    return sides;
+}
 
 bool near_box(const mas::Shape& s, const Vector3d& lo, const Vector3d& hi, double tol = 1e-6) {
     const auto b = bounds(s);
@@ -843,21 +864,14 @@ TEST(Decompose, ABoltsHeadIsCutClearOfItsRoundShank) {
         const auto d = mas::decompose(part, axis);
         EXPECT_TRUE(d.notes.empty()) << d.notes.front();
         ASSERT_EQ(d.components.size(), 5u);
-        std::set<std::pair<int, int>> sides;
-        for (std::size_t c = 1; c < 5; ++c) {
-            const auto& piece = d.components[c];
-            SCOPED_TRACE("component " + std::to_string(c));
+        const auto sides = sides_built(d, [&](const mas::Component& piece, double at) {
             EXPECT_EQ(piece.rule, Rule::SectionPlane);
-            const Vector3d D = piece.build_direction;
-            sides.insert({int(std::lround(D.x())), int(std::lround(D.y()))});
             EXPECT_NEAR(bounds(piece.solid).min().z(), 80.0, 1e-6);
-            const Eigen::AlignedBox3d base = bounds(piece.base_face);
-            const double at = std::min(D.dot(base.min()), D.dot(base.max()));
             EXPECT_GE(at, 10.0);
             EXPECT_LE(at,
                       10.0 + 2.0 * axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
-        }
-        EXPECT_EQ(sides, (std::set<std::pair<int, int>>{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}));
+        });
+        EXPECT_EQ(sides, kFourSides);
         expect_invariants(d, part);
     }
 }
@@ -879,21 +893,13 @@ TEST(Decompose, ABallOnAPedestalIsSharedOutToItsFourSides) {
         const auto d = mas::decompose(part, axis_of(part, 0.0, deflection));
         EXPECT_TRUE(d.notes.empty()) << d.notes.front();
         ASSERT_EQ(d.components.size(), 5u);
-        std::set<std::pair<int, int>> sides;
-        for (std::size_t c = 1; c < 5; ++c) {
-            const auto& piece = d.components[c];
-            SCOPED_TRACE("component " + std::to_string(c));
+        const auto sides = sides_built(d, [&](const mas::Component& piece, double at) {
             EXPECT_EQ(piece.parent, 0);
-            const Vector3d D = piece.build_direction;
-            EXPECT_NEAR(D.z(), 0.0, 1e-12);
-            sides.insert({int(std::lround(D.x())), int(std::lround(D.y()))});
             // Cut at the pedestal's extent or past it, within the ball.
-            const Eigen::AlignedBox3d base = bounds(piece.base_face);
-            const double at = std::min(D.dot(base.min()), D.dot(base.max()));
             EXPECT_GE(at, 3.0);
             EXPECT_LT(at, 15.0);
-        }
-        EXPECT_EQ(sides, (std::set<std::pair<int, int>>{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}));
+        });
+        EXPECT_EQ(sides, kFourSides);
         expect_invariants(d, part);
     }
 }

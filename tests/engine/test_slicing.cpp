@@ -1294,6 +1294,39 @@ TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {
 // ring, rests on the pipe. (With the Booleans' hairlines kept as regions, the pipe's march split
 // at the junction, the decomposition cut the pipe above it, and the branch, half its ring on that,
 // had to wait for it.)
+TEST(Slicing, AnEyeBoltsRingIsCutOffItsStemAndSliced) {
+    // A stem of radius 4 and height 30 with a ring on it standing up: a torus of radii 10 and 3
+    // about Y centred 41 over the plate, its bottom in the stem. The axis parts round the ring's
+    // eye at its lowest point (z = 34), and the ring is cut off the stem there and again across
+    // its top. Cut across the torus, a piece's seam removal threw ("TopoDS_Vertex hasn't
+    // gp_Pnt"), which failed the split: the ring stayed in the stem's layers. Cut, OCCT's default
+    // quadrature put the pieces at 3233.74 mm^3 for the part's 3229.87 (4e-3 off on one of them),
+    // and slicing refused the decomposition as another part's.
+    const auto part = mas::test::from_occt(
+        fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 4, 30),
+             BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 41), gp_Dir(0, 1, 0)), 10, 3).Shape()));
+    // At the part's own deflection, as slicing a part takes it (at 0.02 mm the axis marches
+    // through the ring).
+    Sliced s;
+    s.axis = mas::centroidal_axis(mas::tessellate(part, {}), {});
+    s.decomposition = mas::decompose(part, s.axis);
+    s.result = mas::slice_part(part, s.axis, s.decomposition, default_params());
+    const auto& comps = s.decomposition.components;
+    ASSERT_GE(comps.size(), 2u);
+    const auto& ring = comps[1];
+    EXPECT_EQ(ring.parent, 0);
+    EXPECT_TRUE(ring.build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+    // Cut at the eye's lowest point, within a step over it.
+    EXPECT_GE(ring.base_origin.z(), 34.0);
+    EXPECT_LE(ring.base_origin.z(), 34.0 + s.axis.params.step_mm);
+    for (const auto& note : s.decomposition.notes)
+        EXPECT_EQ(note.find("branch 1 "), std::string::npos) << note;
+    // Every component sliced.
+    std::set<int> sliced;
+    for (const auto& layer : s.result.layers) sliced.insert(layer.component);
+    EXPECT_EQ(sliced.size(), comps.size());
+}
+
 TEST(Slicing, ATeesBranchIsCutAtThePipesSideAndRestsOnTheWholePipe) {
     // The pipe is laid in wedges through the saddle, where the default 4 sections per layer put
     // the material 0.62 % over the part's volume (as in the bend below); with 16 it comes within

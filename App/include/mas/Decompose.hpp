@@ -159,7 +159,9 @@
 //   removing them widens a tolerance: cutting a ball on a pedestal round a circle across the
 //   sphere's seam, OCCT 7.6 merged the circle's halves into one edge and widened the vertex it
 //   kept to the circle's diameter, in place, on the vertex the father shared; the ball's other
-//   sides' first nodes then classified as on the father, not in it, and stayed in the root.
+//   sides' first nodes then classified as on the father, not in it, and stayed in the root. A
+//   piece on which the seam removal throws (a piece of a torus: an eye bolt's ring, a hollow pipe
+//   cross's side arms) is taken as the split left it.
 // - Several roots (a part on several feet) share the one root component.
 // - An axis marched in a frame turned about Z (AxisParams::frame_deg: a part placed turned on the
 //   plate) is decomposed in that frame, where its directions are +-X, +-Y and +-Z as read above

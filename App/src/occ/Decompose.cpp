@@ -305,20 +305,24 @@ bool valid_solid(const TopoDS_Shape& piece, TopoDS_Shape& out, const MeshCheck& 
                  const Progress& progress, const TopoDS_Shape& unified = TopoDS_Shape()) {
     for (int attempt = 0; attempt < 3; ++attempt) {
         progress.check();
-        TopoDS_Shape s = piece;
-        if (attempt == 0) s = unified.IsNull() ? occ::unify(piece) : unified;
-        if (attempt == 2) {
-            // On a copy: ShapeFix mends tolerances in place, on what the piece shares with the
-            // other pieces of the split.
-            ShapeFix_Shape fix(BRepBuilderAPI_Copy(piece).Shape());
-            fix.Perform();
-            s = fix.Shape();
-        }
-        const auto solids = solids_of(s);
-        if (solids.size() == 1 && BRepCheck_Analyzer(solids.front()).IsValid() &&
-            meshes_as_needed(solids.front(), mesh)) {
-            out = solids.front();
-            return true;
+        try {
+            TopoDS_Shape s = piece;
+            if (attempt == 0) s = unified.IsNull() ? occ::unify(piece) : unified;
+            if (attempt == 2) {
+                // On a copy: ShapeFix mends tolerances in place, on what the piece shares with
+                // the other pieces of the split.
+                ShapeFix_Shape fix(BRepBuilderAPI_Copy(piece).Shape());
+                fix.Perform();
+                s = fix.Shape();
+            }
+            const auto solids = solids_of(s);
+            if (solids.size() == 1 && BRepCheck_Analyzer(solids.front()).IsValid() &&
+                meshes_as_needed(solids.front(), mesh)) {
+                out = solids.front();
+                return true;
+            }
+        } catch (const Standard_Failure&) {
+            // No solid OCCT can check; the next attempt may be one.
         }
     }
     return false;

@@ -41,6 +41,12 @@ double volume_of(const TopoDS_Shape& shape) {
     return props.Mass();
 }
 
+double precise_volume_of(const TopoDS_Shape& shape, double relative) {
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(shape, props, relative);
+    return props.Mass();
+}
+
 double max_tolerance(const TopoDS_Shape& shape) {
     return std::max(BRep_Tool::MaxTolerance(shape, TopAbs_VERTEX),
                     BRep_Tool::MaxTolerance(shape, TopAbs_EDGE));
@@ -57,8 +63,12 @@ TopoDS_Shape unify_in_place(const TopoDS_Shape& shape) {
 }
 
 TopoDS_Shape unify(const TopoDS_Shape& shape) {
-    const TopoDS_Shape out = unify_in_place(BRepBuilderAPI_Copy(shape).Shape());
-    return widened(out, max_tolerance(shape)) ? shape : out;
+    try {
+        const TopoDS_Shape out = unify_in_place(BRepBuilderAPI_Copy(shape).Shape());
+        return widened(out, max_tolerance(shape)) ? shape : out;
+    } catch (const Standard_Failure&) {
+        return shape;  // a piece of an eye bolt's ring: "TopoDS_Vertex hasn't gp_Pnt"
+    }
 }
 
 Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape) {

@@ -40,6 +40,10 @@ Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape);
 // The volume of a shape's solids, mm^3 (BRepGProp).
 double volume_of(const TopoDS_Shape& shape);
 
+// The same integrated adaptively to within `relative` of it (slower). OCCT's default quadrature is
+// off by up to 4e-3 on pieces of a torus.
+double precise_volume_of(const TopoDS_Shape& shape, double relative);
+
 // The largest tolerance of `shape`'s vertices and edges, mm.
 double max_tolerance(const TopoDS_Shape& shape);
 
@@ -56,7 +60,7 @@ bool widened(const TopoDS_Shape& unified, double before);
 // `shape` with the seams between faces (and edges) on one surface (curve) removed (OCCT's
 // ShapeUpgrade_UnifySameDomain). Made on a copy: the unifier widens in place the tolerance of the
 // vertices it keeps, which `shape` may share with other shapes (the other pieces of a split).
-// `shape` itself where the result is widened().
+// `shape` itself where the result is widened() or OCCT fails.
 TopoDS_Shape unify(const TopoDS_Shape& shape);
 
 // The same made on `shape` itself, with no check: the faces it leaves untouched are `shape`'s,

@@ -1319,8 +1319,17 @@ TEST(Slicing, AnEyeBoltsRingIsCutOffItsStemAndSliced) {
     // Cut at the eye's lowest point, within a step over it.
     EXPECT_GE(ring.base_origin.z(), 34.0);
     EXPECT_LE(ring.base_origin.z(), 34.0 + s.axis.params.step_mm);
-    for (const auto& note : s.decomposition.notes)
+    // The ring's other arm (branch 2) went with that piece: no plane at the eye cuts it off
+    // again, which is no OCCT failure.
+    bool whole = false;
+    for (const auto& note : s.decomposition.notes) {
         EXPECT_EQ(note.find("branch 1 "), std::string::npos) << note;
+        EXPECT_EQ(note.find("OCCT could not"), std::string::npos) << note;
+        whole =
+            whole || (note.rfind("branch 2 ", 0) == 0 &&
+                      note.find("the chosen plane leaves its father whole") != std::string::npos);
+    }
+    EXPECT_TRUE(whole);
     // Every component sliced.
     std::set<int> sliced;
     for (const auto& layer : s.result.layers) sliced.insert(layer.component);

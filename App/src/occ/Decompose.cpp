@@ -431,6 +431,7 @@ enum class SplitOutcome {
     Failed,   // OCCT failed
     Apart,    // the rest of the father would not be one solid
     Invalid,  // the rest of the father would be no valid solid
+    Uncut,    // the plane leaves the father whole (it bounds it, or misses it)
 };
 
 // Splits `father` by the plane (point, normal n) and takes as children the pieces containing the
@@ -468,7 +469,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
         splitter.Build();
         if (!splitter.IsDone() || splitter.HasErrors()) return SplitOutcome::Failed;
         const auto pieces = solids_of(splitter.Shape());
-        if (pieces.size() < 2) return SplitOutcome::Failed;
+        if (pieces.size() < 2) return SplitOutcome::Uncut;
 
         std::vector<bool> taken(pieces.size(), false);
         // Whether each piece holds some of the father's footing, worked out when first asked.
@@ -1245,6 +1246,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                               "height)"
                         : outcome == SplitOutcome::Failed
                             ? "OCCT could not split its father at the chosen plane"
+                        : outcome == SplitOutcome::Uncut
+                            ? "the chosen plane leaves its father whole (as where a closed "
+                              "loop's other branch took its piece)"
                         : outcome == SplitOutcome::Apart
                             ? "the split at the chosen plane would leave its father in pieces"
                             : "the split at the chosen plane would leave its father no valid solid "

@@ -1289,11 +1289,6 @@ TEST(Slicing, BendTurnsTheLayersGraduallyWithBoundedThickness) {
     expect_invariants(s, params, "bent bar");
 }
 
-// A pipe tee (test_parts.hpp). The pipe's march goes on whole through the junction, the branch
-// turning +Y at its side; the branch is cut at the pipe's side, and its first layer, a whole
-// ring, rests on the pipe. (With the Booleans' hairlines kept as regions, the pipe's march split
-// at the junction, the decomposition cut the pipe above it, and the branch, half its ring on that,
-// had to wait for it.)
 TEST(Slicing, AnEyeBoltsRingIsCutOffItsStemAndSliced) {
     // A stem of radius 4 and height 30 with a ring on it standing up: a torus of radii 10 and 3
     // about Y centred 41 over the plate, its bottom in the stem. The axis parts round the ring's
@@ -1336,6 +1331,11 @@ TEST(Slicing, AnEyeBoltsRingIsCutOffItsStemAndSliced) {
     EXPECT_EQ(sliced.size(), comps.size());
 }
 
+// A pipe tee (test_parts.hpp). The pipe's march goes on whole through the junction, the branch
+// turning +Y at its side; the branch is cut at the pipe's side, and its first layer, a whole
+// ring, rests on the pipe. (With the Booleans' hairlines kept as regions, the pipe's march split
+// at the junction, the decomposition cut the pipe above it, and the branch, half its ring on that,
+// had to wait for it.)
 TEST(Slicing, ATeesBranchIsCutAtThePipesSideAndRestsOnTheWholePipe) {
     // The pipe is laid in wedges through the saddle, where the default 4 sections per layer put
     // the material 0.62 % over the part's volume (as in the bend below); with 16 it comes within

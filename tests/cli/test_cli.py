@@ -853,9 +853,10 @@ class CliSections(unittest.TestCase):
         brep = os.path.join(DATA, "l_block.brep")
         for command, stages in (
                 ("decompose", ["checking edges against their faces", "splitting at branch 0 of 2",
-                               "splitting at branch 1 of 2"]),
+                               "splitting at branch 1 of 2",
+                               "meshing the components to check them"]),
                 ("slice", ["checking edges against their faces", "splitting at branch 0 of 2",
-                           "splitting at branch 1 of 2",
+                           "splitting at branch 1 of 2", "meshing the components to check them",
                            "decomposing", "tessellating the components",
                            "ordering the components", "slicing component 0 (1 of 2)",
                            "slicing component 1 (2 of 2)", "planning the bead paths",

@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "mas/Angles.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
@@ -1148,7 +1149,10 @@ namespace {
 // derived, unless `step_mm` is given.
 struct AsSlicingDecomposes {
     explicit AsSlicingDecomposes(const std::string& name, double step_mm = 0.0)
-        : model(mas::read_model(std::string(MAS_TEST_DATA) + "/" + name)) {
+        : AsSlicingDecomposes(mas::read_model(std::string(MAS_TEST_DATA) + "/" + name), step_mm) {}
+    explicit AsSlicingDecomposes(const mas::Shape& part)
+        : AsSlicingDecomposes(mas::Model{mas::Model::Kind::Solid, part, {}, "part"}, 0.0) {}
+    AsSlicingDecomposes(mas::Model read, double step_mm) : model(std::move(read)) {
         tp.deflection_mm = mas::effective_deflection(model.shape, mas::TessellationParams{});
         mas::AxisParams ap;
         ap.step_mm = step_mm;
@@ -1216,6 +1220,41 @@ TEST(Decompose, ASplitOfASoundPartThatLeavesAPieceWithCurvesOffItsFacesMustMeshC
     });
     EXPECT_GE(refused, 1) << "the split across the bend is refused, with a note";
     expect_invariants(d, part);
+}
+
+TEST(Decompose, AChildThatDoesNotMeshClosedStaysInItsFather) {
+    // A fork (the survey's pipe fittings, seed 39): two pipes 7.6 in radius leaning 53.8 degrees
+    // each way off a riser 11.3 in radius, from z = 18.5. Where the riser's march leaves the
+    // pipes' roots, a slab of riser and both roots is cut off (branch 1), and from it the riser
+    // above and one pipe. The slab's bottom plane meets the other pipe's side just where it
+    // touches the riser's: a 0.27 mm edge there, which OCCT's shape check passed and the mesh
+    // shared among four triangles at the part's deflection, so slicing stopped at that
+    // component. It is now kept in its father, with a note, and the pass done again: the riser
+    // above and that pipe are cut off the root instead.
+    const double riser = 11.301444664107532, height = 41.406888587136926;
+    const double pipe = 7.629225086845377, length = 27.43987465714024, z = 18.47291004179275;
+    const double lean = 53.80989210757657 * mas::kDegree;
+    const Vector3d root(0, 0, z);
+    const TopoDS_Shape fork =
+        fuse(fuse(occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), riser, height),
+                  occ_cylinder(root, Vector3d(std::sin(lean), 0, std::cos(lean)), pipe, length)),
+             occ_cylinder(root, Vector3d(-std::sin(lean), 0, std::cos(lean)), pipe, length));
+    const AsSlicingDecomposes run(from_occt(fork));
+    const mas::Decomposition& d = run.d;
+    run.expect_components_mesh_closed();
+    ASSERT_FALSE(d.notes.empty());
+    EXPECT_EQ(d.notes[0].rfind("branch 1 ", 0), 0u) << d.notes[0];
+    EXPECT_NE(d.notes[0].find("its component does not mesh into a closed surface at the part's "
+                              "deflection"),
+              std::string::npos)
+        << d.notes[0];
+    EXPECT_TRUE(d.kept_branches.empty()) << "kept by the decomposition, not asked";
+    ASSERT_EQ(d.components.size(), 3u);
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        EXPECT_EQ(d.components[i].parent, 0);
+        EXPECT_NE(d.components[i].branch, 1);
+    }
+    expect_invariants(d, run.model.shape);
 }
 
 TEST(Decompose, AHollowPipeCrossIsCutAtItsSideArms) {

@@ -51,7 +51,12 @@
 //   default deflection (what slicing uses). So must a piece of a sound part that the split itself
 //   left with such an edge or face (a pipe bend lying on its side, cut across the bend: a C0 edge
 //   off its face, which the shape check passed and the mesh shared among three triangles).
-//   (Meshing every piece of every part would add a quarter to the time of slicing some.)
+//   (Meshing every piece of every part would add a quarter to the time of slicing some.) Once
+//   every branch is handled, every child must mesh closed there too, whatever the part: a sound
+//   part's split can still leave one that does not (a fork of two pipes off a riser, cut just
+//   where one pipe's side touches the riser's: a 0.27 mm edge the mesh shared among four
+//   triangles). Its branch is then kept in its father, with a note, and the pass done again.
+//   (The children are meshed side by side: 15 % more time on a plate with 36 posts.)
 //   The child's base face is its face on the plane under Pos_end (the largest one when none is:
 //   a plane cuts a half ring standing on its rim in two faces, one at each end); build_direction
 //   = minus its outward normal (Sec. 4.2.1), i.e. D for an exactly perpendicular face. The

@@ -23,6 +23,7 @@
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <NCollection_DataMap.hxx>
+#include <OSD_Parallel.hxx>
 #include <ShapeFix_Shape.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -264,10 +265,10 @@ bool has_invalid_curve_on_surface(const TopoDS_Shape& s, const Progress& progres
 // true for `deflection` 0 (no check asked).
 bool meshes_closed(const TopoDS_Shape& solid, double deflection) {
     if (deflection <= 0.0) return true;
-    TessellationParams tp;
-    tp.deflection_mm = deflection;
     try {
-        occ::tessellate(occ::wrap(solid), tp, "piece");
+        // A piece valid_solid() passed: no shape check again.
+        occ::tessellate_solid(solid, deflection, TessellationParams{}.angular_deflection_rad,
+                              "piece");
         return true;
     } catch (const Error&) {
         return false;
@@ -947,6 +948,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
     // One pass over the branches. With `join_orphans`, a split's pieces cut off on the father's
     // side but joined only to a child go with that child (split_by_plane), counted in `joins`.
     std::set<int> kept_asked;  // the branches keep_branches kept, this pass
+    // Branches whose component did not mesh closed at the part's deflection in an earlier pass
+    // (below): kept in their fathers.
+    std::vector<KeptBranch> unmeshed;
     const auto pass = [&](bool join_orphans, std::vector<Work>& work,
                           std::vector<std::string>& notes, int& joins) {
         try {
@@ -1079,8 +1083,15 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             };
 
             // Asked to stay in its father (DecomposeParams::keep_branches): why, else null.
-            const auto asked_to_keep = [&](std::size_t b) -> const KeptBranch* {
+            const auto kept_by_caller = [&](std::size_t b) -> const KeptBranch* {
                 for (const KeptBranch& k : params.keep_branches)
+                    if (k.branch == int(b)) return &k;
+                return nullptr;
+            };
+            // That, or kept because its component did not mesh closed in an earlier pass.
+            const auto asked_to_keep = [&](std::size_t b) -> const KeptBranch* {
+                if (const KeptBranch* k = kept_by_caller(b)) return k;
+                for (const KeptBranch& k : unmeshed)
                     if (k.branch == int(b)) return &k;
                 return nullptr;
             };
@@ -1141,7 +1152,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 }
                 holder[b] = father;
                 if (const KeptBranch* k = asked_to_keep(b)) {
-                    kept_asked.insert(int(b));
+                    if (kept_by_caller(b)) kept_asked.insert(int(b));
                     note(b, k->why, father);
                     continue;
                 }
@@ -1309,33 +1320,62 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
     };
     std::vector<Work> work;
     std::vector<std::string> notes;  // branches that asked for a cut and got none
-    int joins = 0;
-    pass(true, work, notes, joins);
-    // A piece that went with a child must end in a component that builds it. Without joining
-    // every component lies in front of its base (each split's pieces lie on their side of the
-    // plane, and later splits only take from them); with it, that is checked (on the solids'
-    // boxes: exact along the axis-aligned directions, else erring on the side of "behind"). If
-    // one reaches behind its base, the pass is done again without joining: those splits are
-    // refused as leaving their father in pieces.
-    bool in_front = true;
-    try {
-        for (const auto& w : work) {
-            if (joins == 0) break;
-            if (!w.c.has_base_face) continue;
-            double lo, hi;
-            range_along(bounds_of(w.solid), w.c.build_direction, lo, hi);
-            const double tol = 1e-6 * (1.0 + (hi - lo));
-            if (lo < w.c.build_direction.dot(w.c.base_origin) - tol) in_front = false;
-        }
-    } catch (const Standard_Failure& e) {
-        throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
-    }
-    if (!in_front) {
+    for (;;) {
         work.clear();
         notes.clear();
         kept_asked.clear();
-        joins = 0;
-        pass(false, work, notes, joins);
+        int joins = 0;
+        pass(true, work, notes, joins);
+        // A piece that went with a child must end in a component that builds it. Without joining
+        // every component lies in front of its base (each split's pieces lie on their side of the
+        // plane, and later splits only take from them); with it, that is checked (on the solids'
+        // boxes: exact along the axis-aligned directions, else erring on the side of "behind").
+        // If one reaches behind its base, the pass is done again without joining: those splits
+        // are refused as leaving their father in pieces.
+        bool in_front = true;
+        try {
+            for (const auto& w : work) {
+                if (joins == 0) break;
+                if (!w.c.has_base_face) continue;
+                double lo, hi;
+                range_along(bounds_of(w.solid), w.c.build_direction, lo, hi);
+                const double tol = 1e-6 * (1.0 + (hi - lo));
+                if (lo < w.c.build_direction.dot(w.c.base_origin) - tol) in_front = false;
+            }
+        } catch (const Standard_Failure& e) {
+            throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
+        }
+        if (!in_front) {
+            work.clear();
+            notes.clear();
+            kept_asked.clear();
+            joins = 0;
+            pass(false, work, notes, joins);
+        }
+        // Every child must mesh closed at the part's deflection, which slicing tessellates it at:
+        // a sound part's split can leave one that passes OCCT's shape check and still does not (a
+        // fork of two pipes leaning 54 degrees off a riser, cut just where one pipe's side
+        // touches the riser's: a 0.27 mm edge the mesh shared among four triangles, and slicing
+        // stopped there). Its branch is then kept in its father, and the pass done again. (The
+        // root, which every split leaves, is slicing's to report.)
+        // The components are meshed side by side (each meshing a copy of its own solid), the
+        // check for a cancel before and after.
+        const Progress meshing = progress.span(1.0, 1.0, "meshing the components to check them");
+        meshing.check();
+        std::vector<char> closed(work.size(), 1);
+        OSD_Parallel::For(1, int(work.size()), [&](int i) {
+            closed[std::size_t(i)] = meshes_closed(work[std::size_t(i)].solid, mesh.deflection);
+        });
+        meshing.check();
+        const std::size_t before = unmeshed.size();
+        for (std::size_t i = 1; i < work.size(); ++i)
+            if (!closed[i])
+                unmeshed.push_back({work[i].c.branch,
+                                    "its component does not mesh into a closed surface at the "
+                                    "part's deflection (" +
+                                        format_number(mesh.deflection) +
+                                        " mm), which slicing tessellates it at"});
+        if (unmeshed.size() == before) break;
     }
 
     Decomposition out;

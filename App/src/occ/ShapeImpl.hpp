@@ -105,5 +105,10 @@ TopoDS_Shape read_brep(std::istream& in, const std::string& what);
 TriangleMesh tessellate(const Shape& shape, const TessellationParams& params,
                         const std::string& what);
 
+// The same for a solid known to be one valid closed solid (single_solid() passed it: no check
+// again), at `deflection` mm and `angle` radians as given.
+TriangleMesh tessellate_solid(const TopoDS_Shape& solid, double deflection, double angle,
+                              const std::string& what);
+
 }  // namespace occ
 }  // namespace mas

@@ -192,13 +192,17 @@ TriangleMesh occ::tessellate(const Shape& shape, const TessellationParams& param
         throw Error(ErrorCode::InvalidArgument,
                     "tessellation angular deflection must be a positive number of radians");
     const Shape solid = shape.single_solid(what);
-    const double deflection = effective_deflection(solid, params);
+    return tessellate_solid(occ::occt(solid), effective_deflection(solid, params), angle, what);
+}
+
+TriangleMesh occ::tessellate_solid(const TopoDS_Shape& solid, double deflection, double angle,
+                                   const std::string& what) {
     TriangleMesh mesh;
     try {
         // Meshing stores triangulations in the faces it meshes: work on a copy (without any mesh
         // the shape already carries), so that Shape stays immutable and an old, coarser mesh is
         // never reused.
-        BRepBuilderAPI_Copy copy(occ::occt(solid), Standard_True, Standard_False);
+        BRepBuilderAPI_Copy copy(solid, Standard_True, Standard_False);
         const TopoDS_Shape work = copy.Shape();
         IMeshTools_Parameters mp;
         mp.Deflection = deflection;

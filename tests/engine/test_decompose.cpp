@@ -1158,7 +1158,11 @@ struct AsSlicingDecomposes {
         ap.step_mm = step_mm;
         mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(model.shape, tp), ap);
         axis.deflection_mm = tp.deflection_mm;
-        d = mas::decompose(model.shape, axis);
+        d = mas::decompose(model.shape, axis, {},
+                           mas::Progress([this](double, const std::string& stage) {
+                               if (stages.empty() || stages.back() != stage)
+                                   stages.push_back(stage);
+                           }));
     }
     void expect_components_mesh_closed() const {
         for (std::size_t i = 0; i < d.components.size(); ++i)
@@ -1167,6 +1171,7 @@ struct AsSlicingDecomposes {
     mas::Model model;
     mas::TessellationParams tp;
     mas::Decomposition d;
+    std::vector<std::string> stages;  // the stages decompose() reported, in order
 };
 
 }  // namespace
@@ -1249,6 +1254,18 @@ TEST(Decompose, AChildThatDoesNotMeshClosedStaysInItsFather) {
               std::string::npos)
         << d.notes[0];
     EXPECT_TRUE(d.kept_branches.empty()) << "kept by the decomposition, not asked";
+    // The pass done again says so.
+    const auto again = std::find_if(run.stages.begin(), run.stages.end(), [](const auto& s) {
+        return s.rfind(
+                   "again, keeping in their fathers the branches whose components do not mesh "
+                   "closed: splitting at branch ",
+                   0) == 0;
+    });
+    ASSERT_NE(again, run.stages.end());
+    EXPECT_NE(std::find(run.stages.begin(), again, "meshing the components to check them"), again);
+    ASSERT_GE(run.stages.size(), 2u);
+    EXPECT_EQ(run.stages[run.stages.size() - 2], "meshing the components to check them");
+    EXPECT_EQ(run.stages.back(), "decomposing");
     ASSERT_EQ(d.components.size(), 3u);
     for (std::size_t i = 1; i < d.components.size(); ++i) {
         EXPECT_EQ(d.components[i].parent, 0);

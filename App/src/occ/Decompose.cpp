@@ -1128,12 +1128,15 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             };
             for (std::size_t b = 0; b < nb; ++b) {
                 if (holder[b] >= 0) continue;  // cut with an earlier sibling
-                // Done again without joining, the pass says so: its fractions stay where the first
-                // pass left them (a report never goes back), while its branches start over.
+                // Done again (without joining, or keeping the branches whose components did not
+                // mesh closed), the pass says so: its fractions stay where the first pass left
+                // them (a report never goes back), while its branches start over.
                 const Progress at = progress.span(
                     double(b) / double(nb), double(b + 1) / double(nb),
-                    std::string(join_orphans ? ""
-                                             : "again, leaving cut-off tails in their fathers: ") +
+                    std::string(unmeshed.empty() ? ""
+                                                 : "again, keeping in their fathers the branches "
+                                                   "whose components do not mesh closed: ") +
+                        (join_orphans ? "" : "again, leaving cut-off tails in their fathers: ") +
                         "splitting at branch " + std::to_string(b) + " of " + std::to_string(nb));
                 at(0.0);
                 if (!splits(b)) {

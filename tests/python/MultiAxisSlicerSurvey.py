@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: nine families of the parts a deposition shop builds (pipe bends, hubs
+"""Parts nobody tuned for: ten families of the parts a deposition shop builds (pipe bends, hubs
 with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
-leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports),
-each part drawn at random from its family's ranges, and a survey slicing them as a user would
-(defaults, G-code).
+leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports, wye
+fittings), each part drawn at random from its family's ranges, and a survey slicing them as a user
+would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
 drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers
@@ -191,6 +191,30 @@ def valve_body(rng):
     return solid, {"bosses": len(sides), "bored": bored}
 
 
+def wye_fitting(rng):
+    """A pipe fitting: a riser standing on the plate with one lateral leaving its side at 30 to 60
+    degrees from the vertical, or two leaving opposite sides, the riser going on past their ends;
+    hollow (the laterals' bores opening into the riser's, the riser open at both ends) or solid."""
+    r, lean = rng.uniform(6, 12), rng.uniform(30, 60)
+    lateral_r = r * rng.uniform(0.6, 1.0)
+    length, z = rng.uniform(20, 40), rng.uniform(10, 25)
+    a = math.radians(lean)
+    height = z + length * math.cos(a) + lateral_r * math.sin(a) + rng.uniform(5, 15)
+    fork = rng.random() < 0.5
+    hollow = rng.random() < 0.5
+    wall = rng.uniform(2, 3)
+    sides = [V(math.sin(a), 0, math.cos(a))] + ([V(-math.sin(a), 0, math.cos(a))] if fork else [])
+    solid = Part.makeCylinder(r, height)
+    for d in sides:
+        solid = solid.fuse(Part.makeCylinder(lateral_r, length, V(0, 0, z), d))
+    if hollow:
+        bore = Part.makeCylinder(r - wall, height + 2, V(0, 0, -1))
+        for d in sides:
+            bore = bore.fuse(Part.makeCylinder(lateral_r - wall, length + 1, V(0, 0, z), d))
+        solid = solid.cut(bore)
+    return solid, {"lean_deg": lean, "laterals": len(sides), "hollow": hollow}
+
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -201,6 +225,7 @@ FAMILIES = {
     "z bracket": z_bracket,
     "manifold": manifold,
     "valve body": valve_body,
+    "wye fitting": wye_fitting,
 }
 
 

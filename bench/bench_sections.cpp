@@ -28,8 +28,11 @@
 #include <vector>
 
 #include "bench_util.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
+
+using mas::kPi;
 
 namespace {
 
@@ -42,7 +45,7 @@ mas::TriangleMesh torus_mesh(double R, double r, int nu, int nv) {
     m.vertices.reserve(std::size_t(nu) * nv);
     for (int i = 0; i < nu; ++i)
         for (int j = 0; j < nv; ++j) {
-            const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+            const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
             m.vertices.emplace_back((R + r * std::cos(v)) * std::cos(u),
                                     (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
         }

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "mas/Angles.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
@@ -1127,7 +1128,7 @@ int run_slice(const std::vector<std::string>& args) {
             if (axis == l.plane.normal) continue;
             out << "\n#   layer " << i << " (component " << l.component << ") leans "
                 << num(std::round(std::acos(std::clamp(axis.dot(l.plane.normal), -1.0, 1.0)) *
-                                  180.0 / 3.14159265358979323846 * 1e6) /
+                                  180.0 / mas::kPi * 1e6) /
                        1e6)
                 << " degrees: tool axis " << num(axis.x()) << "," << num(axis.y()) << ","
                 << num(axis.z());

@@ -24,12 +24,14 @@
 #include <set>
 #include <sstream>
 
+#include "mas/Angles.hpp"
 #include "mas/CentroidalAxis.hpp"
 #include "mas/Error.hpp"
 #include "mas/Shape.hpp"
 #include "test_parts.hpp"
 
 using Eigen::Vector3d;
+using mas::kPi;
 
 namespace {
 
@@ -257,7 +259,7 @@ TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {
     for (const auto& node : a.nodes) {
         const double r = node.offset / 2.0;
         EXPECT_NEAR(node.position.head<2>().norm(), 0.0, kDeflection);
-        EXPECT_NEAR(node.area, M_PI * r * r, 2.0 * M_PI * r * kDeflection);
+        EXPECT_NEAR(node.area, kPi * r * r, 2.0 * kPi * r * kDeflection);
     }
     expect_invariants(a, mesh);
 }
@@ -296,7 +298,7 @@ TEST(CentroidalAxis, LBlockRisesThenTurnsIntoTheArm) {
     EXPECT_TRUE(tie.is_break);
     // 90 degrees, but for eps: the arm's first plane is 0.001 mm past the column, the column's
     // node 0.001 mm above z = 50.
-    EXPECT_NEAR(tie.turn_deg, 90.0 + std::atan2(0.001, 10.001) * 180.0 / M_PI, 1e-9);
+    EXPECT_NEAR(tie.turn_deg, 90.0 + std::atan2(0.001, 10.001) * 180.0 / kPi, 1e-9);
     EXPECT_NEAR(a.nodes[tie.start].position.z(), 50.001, 1e-9);
     int breaks = 0;
     for (const auto& l : a.links) breaks += l.is_break;
@@ -306,7 +308,7 @@ TEST(CentroidalAxis, LBlockRisesThenTurnsIntoTheArm) {
 
 // The mesh's vertices turned by `degrees` about +Z (exactly what the turned part tessellates to).
 mas::TriangleMesh turned_mesh(mas::TriangleMesh mesh, double degrees) {
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(degrees * M_PI / 180.0, Vector3d::UnitZ()).matrix();
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(degrees * kPi / 180.0, Vector3d::UnitZ()).matrix();
     for (auto& v : mesh.vertices) v = r * v;
     return mesh;
 }
@@ -331,8 +333,8 @@ TEST(CentroidalAxis, TheFrameLinesUpWithThePartsSidesWhenTheyAgreeOnOne) {
     // Two sets of sides (a wedge tapering 6 degrees either side of X, turned 20 degrees): no one
     // frame lines both up, and either would turn the march off the other.
     const TopoDS_Shape wedge = mas::test::occ_prism({{0, -10, 0},
-                                                     {60, -10 + 60 * std::tan(6 * M_PI / 180), 0},
-                                                     {60, 10 - 60 * std::tan(6 * M_PI / 180), 0},
+                                                     {60, -10 + 60 * std::tan(6 * kPi / 180), 0},
+                                                     {60, 10 - 60 * std::tan(6 * kPi / 180), 0},
                                                      {0, 10, 0}},
                                                     {0, 0, 30});
     EXPECT_EQ(mas::derive_axis_frame(turned_mesh(mesh_of(from_occt(wedge)), 20.0)), 0.0);
@@ -359,7 +361,7 @@ TEST(CentroidalAxis, AnLBlockTurnedOnThePlateGivesTheLBlocksAxisTurned) {
     ASSERT_EQ(a.branches.size(), 2u);
     ASSERT_EQ(a.nodes.size(), expected.nodes.size());
     ASSERT_EQ(a.links.size(), expected.links.size());
-    const Vector3d along(std::cos(M_PI / 6), std::sin(M_PI / 6), 0.0);
+    const Vector3d along(std::cos(kPi / 6), std::sin(kPi / 6), 0.0);
     EXPECT_TRUE(a.branches[1].direction.isApprox(along, 1e-12)) << a.branches[1].direction;
     EXPECT_TRUE(a.branches[0].direction.isApprox(Vector3d::UnitZ(), 1e-12));
     for (std::size_t i = 0; i < a.nodes.size(); ++i) {
@@ -378,7 +380,7 @@ TEST(CentroidalAxis, AnLBlockTurnedOnThePlateGivesTheLBlocksAxisTurned) {
                     0.0, 1e-6);
     }
     // The arm's nodes lie on its centre line, turned: (x, 10, 50) for x past the column.
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(M_PI / 6, Vector3d::UnitZ()).matrix();
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(kPi / 6, Vector3d::UnitZ()).matrix();
     for (int n : a.branches[1].nodes) {
         const Vector3d back = r.transpose() * a.nodes[std::size_t(n)].position;
         EXPECT_NEAR(back.y(), 10.0, 1e-6);
@@ -723,7 +725,7 @@ TEST(CentroidalAxis, ARoundBossOnAWallTurnsThoughItsUndersideAppearsGradually) {
     // hangs.)
     std::vector<Vector3d> octagon;
     for (int i = 0; i < 8; ++i) {
-        const double t = (-90.0 + 45.0 * i) * M_PI / 180.0;
+        const double t = (-90.0 + 45.0 * i) * kPi / 180.0;
         octagon.emplace_back(29.0, 15.0 + 4.0 * std::cos(t), 21.0 + 4.0 * std::sin(t));
     }
     const auto mesh = mesh_of(
@@ -815,12 +817,12 @@ TEST(CentroidalAxis, AWideRoundBossOnARoundBodyTurns) {
     EXPECT_LE(first.offset, first.slab_start + p.eps_mm + p.step_mm);
     // Each section is the boss' disc, short of the circle by at most its perimeter times the
     // deflection and the simplification (step / 100), centred on its axis.
-    const double r = 12.3, disc = M_PI * r * r;
+    const double r = 12.3, disc = kPi * r * r;
     for (std::size_t i = 0; i < 2; ++i) {
         const auto& node = a.nodes[std::size_t(boss.nodes[i])];
         EXPECT_NEAR(node.offset, first.offset + p.step_mm * double(i), 1e-9);
         EXPECT_LE(node.area, disc);
-        EXPECT_GE(node.area, disc - 2.0 * M_PI * r * (kDeflection + p.step_mm / 100.0));
+        EXPECT_GE(node.area, disc - 2.0 * kPi * r * (kDeflection + p.step_mm / 100.0));
         EXPECT_NEAR(node.position.x(), 0.0, kDeflection);
         EXPECT_NEAR(node.position.z(), 21.3, kDeflection);
     }
@@ -1117,7 +1119,7 @@ TEST(CentroidalAxis, ASplitIsOneC1BreakNotTwo) {
     mas::AxisParams p;
     p.step_mm = 1.0;
     const auto a = mas::centroidal_axis(mesh, p);
-    const double connector_turn = std::atan(15.0) * 180.0 / M_PI;
+    const double connector_turn = std::atan(15.0) * 180.0 / kPi;
     int breaks = 0;
     for (const auto& l : a.links) breaks += l.is_break;
     EXPECT_EQ(breaks, 2);
@@ -1368,7 +1370,7 @@ TEST(CentroidalAxis, TwistedBladeLeavingAHubTurnsIntoItsLength) {
     // the hub's size) of the lower section. It reaches far past it, though: an overhang, and a
     // turn. (Taken for bumps, the whole blade was built upwards, unsupported.)
     auto end_section = [](double x, double degrees) {
-        const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
+        const double c = std::cos(degrees * kPi / 180.0), s = std::sin(degrees * kPi / 180.0);
         BRepBuilderAPI_MakePolygon poly;
         for (const auto& [y, z] : {std::pair{-1.5, -15.0}, {1.5, -15.0}, {1.5, 15.0}, {-1.5, 15.0}})
             poly.Add(gp_Pnt(x, y * c - z * s, 20.0 + y * s + z * c));
@@ -1454,8 +1456,8 @@ TEST(CentroidalAxis, InwardLipOfATubeStaysWithItsMarch) {
     for (const auto& node : a.nodes) {
         const double r_in = node.position.z() < 30.0 ? 25.0 : 10.0;
         // Inscribed polygons: each circle's area is short by at most its perimeter x deflection.
-        const double exact = M_PI * (30.0 * 30.0 - r_in * r_in);
-        EXPECT_NEAR(node.area, exact, 2.0 * M_PI * (30.0 + r_in) * kDeflection)
+        const double exact = kPi * (30.0 * 30.0 - r_in * r_in);
+        EXPECT_NEAR(node.area, exact, 2.0 * kPi * (30.0 + r_in) * kDeflection)
             << "z = " << node.position.z();
         EXPECT_NEAR(node.position.x(), 0.0, kDeflection);
         EXPECT_NEAR(node.position.y(), 0.0, kDeflection);

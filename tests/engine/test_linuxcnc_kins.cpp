@@ -14,6 +14,7 @@
 #include <random>
 #include <string>
 
+#include "mas/Angles.hpp"
 #include "mas/Gcode.hpp"
 
 #ifndef MAS_LINUXCNC_KINS
@@ -43,6 +44,8 @@ void rtapi_print(const char*, ...) {}
 void rtapi_print_msg(int, const char*, ...) {}
 }
 
+using mas::kPi;
+
 namespace {
 
 // LinuxCNC's EmcPose: tran (x, y, z), a, b, c, u, v, w.
@@ -62,7 +65,7 @@ TEST(LinuxCncKinematics, TheTableAnglesTurnEveryLayersAxisUpToTheNozzle) {
     ASSERT_NE(inverse, nullptr);
     ASSERT_EQ(main(), 0);
 
-    const double degree = 3.14159265358979323846 / 180.0;
+    const double degree = kPi / 180.0;
     std::mt19937 random(11);
     std::uniform_real_distribution<double> tilt(0.0, 100.0), turn(-180.0, 180.0);
     const mas::MachineParams machine;  // A -100 to 50

@@ -13,17 +13,20 @@
 #include <string>
 #include <vector>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Gcode.hpp"
 #include "mas/Nozzle.hpp"
 #include "mas/SlicePart.hpp"
 #include "test_parts.hpp"
 
+using mas::kPi;
+
 namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-const double kTan30 = std::tan(3.14159265358979323846 / 6.0);
+const double kTan30 = std::tan(kPi / 6.0);
 
 // A layer of component `c`: the rectangle with corners `a`, `b` (3-D, on a plane of normal `n`
 // through them), deposited down to the plane `thickness` below; one deposit path of `path`'s
@@ -576,7 +579,7 @@ double lowest_above(const mas::NozzleParams& n, const Vector3d& p, const Vector3
                                std::pair{cone_end, 0.5 * n.body_diameter_mm},
                                std::pair{cone_end + n.body_length_mm, 0.5 * n.body_diameter_mm}})
         for (int k = 0; k < 36000; ++k) {
-            const double a = k * 3.14159265358979323846 / 18000.0;
+            const double a = k * kPi / 18000.0;
             lowest =
                 std::min(lowest, up.dot(p + h * axis + r * (std::cos(a) * u + std::sin(a) * v)));
         }
@@ -585,7 +588,7 @@ double lowest_above(const mas::NozzleParams& n, const Vector3d& p, const Vector3
 
 // Leaned by `degrees` from unit `n` towards `towards` (across n).
 Vector3d leaned(const Vector3d& n, const Vector3d& towards, double degrees) {
-    const double t = degrees * 3.14159265358979323846 / 180.0;
+    const double t = degrees * kPi / 180.0;
     const Vector3d d = (towards - n.dot(towards) * n).normalized();
     return std::cos(t) * n + std::sin(t) * d;
 }
@@ -788,10 +791,10 @@ TEST(Nozzle, ANozzleLeansAwayFromTheLayerItMeets) {
     EXPECT_EQ(s.leaned_layers, 1);
     EXPECT_EQ(s.tool_axes[0], Vector3d::UnitZ());
     const Vector3d axis = s.tool_axes[1], at(5, 5, 2);
-    const double lean = std::acos(axis.z()) * 180.0 / 3.14159265358979323846;
+    const double lean = std::acos(axis.z()) * 180.0 / kPi;
     EXPECT_NEAR(std::remainder(lean, 5.0), 0.0, 1e-9) << lean;
     EXPECT_GT(lean, 1.0);
-    EXPECT_LT(axis.x(), -0.9 * std::sin(lean * 3.14159265358979323846 / 180.0));  // away: -X
+    EXPECT_LT(axis.x(), -0.9 * std::sin(lean * kPi / 180.0));  // away: -X
     auto least = [&](const Vector3d& a) {
         double c = INFINITY;
         for (double x = 12; x <= 22 + 1e-9; x += 0.1)
@@ -937,7 +940,7 @@ TEST(TravelCheck, TheSurfaceBetweenSamplesCounts) {
     const mas::NozzleParams p = coaxial(false);
     mas::TravelCheck check(b.layers, p, {Vector3d::Zero(), Vector3d::UnitZ()});
     check.deposited(0);
-    const double t = 3.14159265358979323846 / 6.0;
+    const double t = kPi / 6.0;
     const Vector3d axis(0.0, -std::sin(t), std::cos(t));
     // The tip's face: its centre 10 mm up the axis, its rim 5 mm round it; the lowest rim point
     // lies across the axis straight down, 5 sin 30 mm under the centre.

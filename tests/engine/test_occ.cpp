@@ -37,6 +37,7 @@
 #include <string>
 #include <thread>
 
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
@@ -129,7 +130,7 @@ TEST(OccShape, SingleSolidReturnsTheSolidOfACompound) {
 
     const Shape one = solid.single_solid("cylinder");
 
-    EXPECT_NEAR(one.info().volume_mm3, M_PI * 25 * 10, 1e-9 * M_PI * 250);
+    EXPECT_NEAR(one.info().volume_mm3, kPi * 25 * 10, 1e-9 * kPi * 250);
     EXPECT_EQ(one.info().solids, 1);
 }
 
@@ -454,9 +455,9 @@ TEST(OccTessellate, CylinderVolumeLossIsBoundedByTheDeflection) {
 
         const TriangleMesh mesh = tessellate(cylinder, params);
 
-        const double loss = M_PI * r * r * h - mesh_volume(mesh);
+        const double loss = kPi * r * r * h - mesh_volume(mesh);
         EXPECT_GT(loss, 0.0);
-        EXPECT_LE(loss, 2.0 * M_PI * r * d * h);
+        EXPECT_LE(loss, 2.0 * kPi * r * d * h);
     }
 }
 
@@ -546,7 +547,7 @@ TEST_F(OccReadModel, ReadsAnIgesFileWrittenAsSurfacesOrAsASolid) {
 
         EXPECT_EQ(model.kind, Model::Kind::Solid);
         const double v = model.shape.single_solid(model.name).info().volume_mm3;
-        EXPECT_NEAR(v, M_PI * 25 * 10, 1e-6 * M_PI * 250);
+        EXPECT_NEAR(v, kPi * 25 * 10, 1e-6 * kPi * 250);
     }
 }
 
@@ -833,7 +834,7 @@ TEST(OccExactSection, PlateSectionHasItsHoleClockwise) {
     const Section s =
         exact_sections(plate, {make_plane(Vector3d(0, 0, 5), Vector3d::UnitZ())}, 0.001)[0];
 
-    const double expected = 60.0 * 40.0 - M_PI * 64.0;
+    const double expected = 60.0 * 40.0 - kPi * 64.0;
     ASSERT_EQ(s.regions.size(), 1u);
     ASSERT_EQ(s.regions[0].shape.holes.size(), 1u);
     EXPECT_NEAR(s.area, expected, 1e-9 * expected);
@@ -841,8 +842,8 @@ TEST(OccExactSection, PlateSectionHasItsHoleClockwise) {
     EXPECT_LT(signed_area(s.regions[0].shape.holes[0]), 0.0);
     // The discretised hole is inscribed in the circle, within the loop deflection of it.
     const double hole = -signed_area(s.regions[0].shape.holes[0]);
-    EXPECT_LT(hole, M_PI * 64.0);
-    EXPECT_GT(hole, M_PI * 64.0 - 2 * M_PI * 8 * 0.001);
+    EXPECT_LT(hole, kPi * 64.0);
+    EXPECT_GT(hole, kPi * 64.0 - 2 * kPi * 8 * 0.001);
 }
 
 TEST(OccExactSection, TwoPostsGiveTwoRegionsLargestFirst) {
@@ -874,13 +875,13 @@ TEST(OccExactSection, PlaneOnAFaceGivesOneRegionWithTheCutBesideIt) {
 }
 
 TEST(OccExactSection, ObliquePlaneCutsACylinderInAnEllipse) {
-    const double r = 5.0, tilt = 30.0 * M_PI / 180.0;
+    const double r = 5.0, tilt = 30.0 * kPi / 180.0;
     const Shape cylinder = test::cylinder(Vector3d::Zero(), Vector3d::UnitZ(), r, 40);
     const Vector3d normal(std::sin(tilt), 0.0, std::cos(tilt));
 
     const Section s = exact_sections(cylinder, {make_plane(Vector3d(0, 0, 20), normal)})[0];
 
-    const double expected = M_PI * r * r / std::cos(tilt);
+    const double expected = kPi * r * r / std::cos(tilt);
     ASSERT_EQ(s.regions.size(), 1u);
     EXPECT_NEAR(s.area, expected, 1e-9 * expected);
     EXPECT_LE((s.centroid - Vector3d(0, 0, 20)).norm(), 1e-9);
@@ -902,12 +903,12 @@ TEST(OccExactSection, PlaneAcrossATorusTubeOffItsAxisHasTheIntegratedAreaAndCent
         const int n = 20000;
         double area = 0.0;
         for (int i = 0; i < n; ++i) {
-            const double t = -M_PI / 2 + (i + 0.5) * M_PI / n;
+            const double t = -kPi / 2 + (i + 0.5) * kPi / n;
             const double rho = major + minor * std::sin(t);
             area += 2.0 * minor * minor * std::cos(t) * std::cos(t) * rho /
-                    std::sqrt(rho * rho - c * c) * (M_PI / n);
+                    std::sqrt(rho * rho - c * c) * (kPi / n);
         }
-        const double y = M_PI * minor * minor * major / area;
+        const double y = kPi * minor * minor * major / area;
 
         const Section s = exact_sections(torus, {make_plane(Vector3d(c, 0, 0), Vector3d::UnitX())},
                                          deflection)[0];
@@ -1024,7 +1025,7 @@ TEST(OccExactSection, MeshSectionsOfACylinderAgreeWithinTheDeflection) {
     const Shape cylinder = test::cylinder(Vector3d(3, -2, 0), Vector3d::UnitZ(), r, 30);
     std::vector<Expectation> cases;
     for (const double z : {0.7, 7.5, 15.0, 29.3})
-        cases.push_back({make_plane(Vector3d(0, 0, z), Vector3d::UnitZ()), 2 * M_PI * r, true});
+        cases.push_back({make_plane(Vector3d(0, 0, z), Vector3d::UnitZ()), 2 * kPi * r, true});
 
     for (const double d : {0.1, 0.01}) {
         SCOPED_TRACE(d);
@@ -1038,9 +1039,9 @@ TEST(OccExactSection, MeshSectionsOfATorusAgreeWithinTheDeflection) {
     // Both planes meet the surface at right angles: the equator plane cuts an annulus (outer
     // circle convex, inner one concave), planes through the axis cut two discs.
     const std::vector<Expectation> cases = {
-        {make_plane(Vector3d::Zero(), Vector3d::UnitZ()), 4 * M_PI * major, false},
-        {make_plane(Vector3d::Zero(), Vector3d::UnitX()), 4 * M_PI * minor, true},
-        {make_plane(Vector3d::Zero(), Vector3d(1, 2, 0)), 4 * M_PI * minor, true},
+        {make_plane(Vector3d::Zero(), Vector3d::UnitZ()), 4 * kPi * major, false},
+        {make_plane(Vector3d::Zero(), Vector3d::UnitX()), 4 * kPi * minor, true},
+        {make_plane(Vector3d::Zero(), Vector3d(1, 2, 0)), 4 * kPi * minor, true},
     };
 
     for (const double d : {0.1, 0.01}) {

@@ -25,6 +25,7 @@
 #include <gp_Trsf.hxx>
 #include <sstream>
 
+#include "mas/Angles.hpp"
 #include "mas/Polygon2.hpp"
 
 namespace mas::test {
@@ -125,7 +126,7 @@ Shape l_block() {
 
 Shape turned_about_z(const Shape& shape, double degrees) {
     gp_Trsf turn;
-    turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees * M_PI / 180.0);
+    turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees * kPi / 180.0);
     return from_occt(BRepBuilderAPI_Transform(to_occt(shape), turn, Standard_True).Shape());
 }
 

@@ -6,7 +6,10 @@
 #include <string>
 
 #include "ClipperConvert.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Polygon2.hpp"
+
+using mas::kPi;
 
 namespace {
 
@@ -209,9 +212,9 @@ TEST(PolygonOffset, SquareGrowsByRoundedCorners) {
     const auto grown = mas::offset(region(rect(0, 0, 10, 10)), r, mas::JoinType::Round, tol);
     ASSERT_EQ(grown.size(), 1u);
     // Exact: 100 + 4*10*r + pi r^2; the arcs are polygons within `tol` inside the true arcs.
-    const double exact = 100.0 + 40.0 * r + M_PI * r * r;
+    const double exact = 100.0 + 40.0 * r + kPi * r * r;
     EXPECT_LE(mas::area(grown), exact + 1e-9);
-    EXPECT_GE(mas::area(grown), exact - 2.0 * M_PI * r * tol - 1e-9);
+    EXPECT_GE(mas::area(grown), exact - 2.0 * kPi * r * tol - 1e-9);
 }
 
 TEST(PolygonOffset, ShrinkingPastHalfWidthLeavesNothing) {
@@ -233,14 +236,13 @@ TEST(PolygonSimplify, FacetedCircleLosesPointsWithinTolerance) {
     mas::Polygon2 circle;
     const int n = 2000;
     for (int i = 0; i < n; ++i)
-        circle.points.emplace_back(10 * std::cos(2 * M_PI * i / n),
-                                   10 * std::sin(2 * M_PI * i / n));
+        circle.points.emplace_back(10 * std::cos(2 * kPi * i / n), 10 * std::sin(2 * kPi * i / n));
     const double tol = 0.01;
     const auto s = mas::simplify(circle, tol);
     EXPECT_LT(s.points.size(), 200u);
     EXPECT_GT(mas::signed_area(s), 0.0);
     // Every dropped point lies within tol of the simplified outline: the area loss is at most
     // perimeter x tol.
-    EXPECT_LE(mas::signed_area(circle) - mas::signed_area(s), 2 * M_PI * 10 * tol);
+    EXPECT_LE(mas::signed_area(circle) - mas::signed_area(s), 2 * kPi * 10 * tol);
     EXPECT_GE(mas::signed_area(circle) - mas::signed_area(s), 0.0);
 }

@@ -4,12 +4,14 @@
 #include <limits>
 
 #include "SectionGrid.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
 #include "test_parts.hpp"
 
 using Eigen::Vector3d;
+using mas::kPi;
 
 namespace {
 
@@ -64,7 +66,7 @@ TEST(SectionExactMesh, TiltedPlaneThroughBoxCentre) {
     // Tilted 30 degrees about X: the section is a 10 x (20 / cos 30) rectangle as long as it
     // stays between the top and bottom faces (10 tan 30 = 5.8 < 15).
     const auto m = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
-    const double a = M_PI / 6;
+    const double a = kPi / 6;
     const auto s = mas::slice_mesh(m, plane(5, 10, 15, 0, std::sin(a), std::cos(a)));
     ASSERT_EQ(s.regions.size(), 1u);
     EXPECT_NEAR(s.area, 10.0 * 20.0 / std::cos(a), 1e-9);
@@ -268,13 +270,13 @@ TEST(SectionParts, PlateWithHoleHasOneOuterLoopAndOneHole) {
     EXPECT_LT(mas::signed_area(s.regions[0].shape.holes[0]), 0.0);
     // The hole is an inscribed polygon of the r = 8 circle, at most `deflection` inside it:
     // the plate's area is exact minus up to perimeter x deflection, never more than exact.
-    const double r = 8.0, exact = 60.0 * 40.0 - M_PI * r * r;
+    const double r = 8.0, exact = 60.0 * 40.0 - kPi * r * r;
     EXPECT_GE(s.area, exact - 1e-9);
-    EXPECT_LE(s.area, exact + 2 * M_PI * r * part.deflection);
+    EXPECT_LE(s.area, exact + 2 * kPi * r * part.deflection);
     const double hole_area = -mas::signed_area(s.regions[0].shape.holes[0]);
     const Eigen::Vector2d hole_c = mas::centroid(s.regions[0].shape.holes[0]);
     EXPECT_LE((hole_c - Eigen::Vector2d(30, 20)).norm(), part.deflection);
-    EXPECT_GE(hole_area, M_PI * r * r - 2 * M_PI * r * part.deflection);
+    EXPECT_GE(hole_area, kPi * r * r - 2 * kPi * r * part.deflection);
 }
 
 TEST(SectionParts, TwoPostsGiveTwoRegions) {
@@ -299,17 +301,17 @@ TEST(SectionParts, CylinderAcrossAndTiltedWithinDeflection) {
     const auto s = mas::slice_mesh(part.mesh, plane(0, 0, 20, 0, 0, 1));
     ASSERT_EQ(s.regions.size(), 1u);
     // Inscribed polygon: never larger than the disc, smaller by at most perimeter x deflection.
-    EXPECT_LE(s.area, M_PI * r * r + 1e-9);
-    EXPECT_GE(s.area, M_PI * r * r - 2 * M_PI * r * d);
+    EXPECT_LE(s.area, kPi * r * r + 1e-9);
+    EXPECT_GE(s.area, kPi * r * r - 2 * kPi * r * d);
     expect_near(s.centroid, {0, 0, 20}, d);
     // Tilted 40 degrees: an ellipse with semi-axes r and r / cos a; along the major axis the
     // facets' radial error d shows up as d / cos a in the plane.
-    const double a = 40.0 * M_PI / 180.0;
+    const double a = 40.0 * kPi / 180.0;
     const auto t = mas::slice_mesh(part.mesh, plane(0, 0, 20, std::sin(a), 0, std::cos(a)));
     ASSERT_EQ(t.regions.size(), 1u);
-    const double major = r / std::cos(a), exact = M_PI * r * major;
+    const double major = r / std::cos(a), exact = kPi * r * major;
     EXPECT_LE(t.area, exact + 1e-9);
-    EXPECT_GE(t.area, exact - 2 * M_PI * major * d / std::cos(a));
+    EXPECT_GE(t.area, exact - 2 * kPi * major * d / std::cos(a));
     expect_near(t.centroid, {0, 0, 20}, d / std::cos(a));
 }
 
@@ -320,11 +322,11 @@ TEST(SectionParts, TorusThroughItsHoleGivesAnAnnulusAndAcrossTwoDiscs) {
     const auto mid = mas::slice_mesh(part.mesh, plane(0, 0, 0.0001, 0, 0, 1));
     ASSERT_EQ(mid.regions.size(), 1u);
     ASSERT_EQ(mid.regions[0].shape.holes.size(), 1u);
-    const double annulus = M_PI * ((R + r) * (R + r) - (R - r) * (R - r));
-    EXPECT_NEAR(mid.area, annulus, 2 * M_PI * (2 * R) * d + 1e-3);
+    const double annulus = kPi * ((R + r) * (R + r) - (R - r) * (R - r));
+    EXPECT_NEAR(mid.area, annulus, 2 * kPi * (2 * R) * d + 1e-3);
     const auto across = mas::slice_mesh(part.mesh, plane(0, 0, 0, 0, 1, 0));
     ASSERT_EQ(across.regions.size(), 2u);
-    EXPECT_LE(across.area, 2 * M_PI * r * r + 1e-9);
-    EXPECT_GE(across.area, 2 * M_PI * r * r - 2 * 2 * M_PI * r * d);
+    EXPECT_LE(across.area, 2 * kPi * r * r + 1e-9);
+    EXPECT_GE(across.area, 2 * kPi * r * r - 2 * 2 * kPi * r * d);
     expect_near(across.centroid, {0, 0, 0}, d);
 }

@@ -38,6 +38,7 @@
 #include "test_parts.hpp"
 
 using Eigen::Vector3d;
+using mas::kPi;
 using mas::test::from_occt;
 using mas::test::fuse;
 using mas::test::occ_box;
@@ -152,7 +153,7 @@ mas::Shape lying_rotor() {
     s = fuse(s, occ_cylinder({-20, 0, 30}, Vector3d::UnitX(), 8, 40));
     for (int k = 0; k < 6; ++k) {
         gp_Trsf lean, move;
-        lean.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), (60.0 * k + 30.0) * M_PI / 180);
+        lean.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), (60.0 * k + 30.0) * kPi / 180);
         move.SetTranslation(gp_Vec(10, 0, 30));
         s = fuse(s,
                  BRepBuilderAPI_Transform(occ_box(-2, -1, 6, 4, 2, 25), move * lean, true).Shape());
@@ -384,7 +385,7 @@ TEST(Decompose, AnLBlockTurnedOnThePlateIsCutAsTheLBlockTurned) {
     // arm's branch along (cos 30, sin 30, 0)), and the decomposition is the L-block's, turned:
     // the arm cut at the column's face and built along itself.
     const double turn = 30.0;
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(turn * M_PI / 180.0, Vector3d::UnitZ()).matrix();
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(turn * kPi / 180.0, Vector3d::UnitZ()).matrix();
     const auto part = mas::test::turned_about_z(mas::test::l_block(), turn);
     const auto axis = axis_of(part, 2.5);
     ASSERT_NEAR(axis.params.frame_deg, turn, 1e-9);
@@ -606,7 +607,7 @@ TEST(Decompose, HorizontalBossIsSeparatedAtTheBlockFaceAndBuiltPlusX) {
     EXPECT_TRUE(near_box(boss.solid, {40, 12, 12}, {70, 28, 28}, 1e-5));
     EXPECT_TRUE(near_box(boss.base_face, {40, 12, 12}, {40, 28, 28}, 1e-5));
     EXPECT_NEAR((boss.base_origin - Vector3d(40, 20, 20)).norm(), 0.0, 1e-6);
-    const double boss_volume = M_PI * 64.0 * 30.0;
+    const double boss_volume = kPi * 64.0 * 30.0;
     EXPECT_NEAR(boss.volume_mm3, boss_volume, boss_volume * 1e-6);
     EXPECT_NEAR(d.components[0].volume_mm3, 64000.0, 64000.0 * 1e-6);
     expect_invariants(d, part);
@@ -620,7 +621,7 @@ TEST(Decompose, HingeLugsAndBossesAreBuiltSidewaysInOppositeDirections) {
     EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {80, 10, 40}));
     EXPECT_NEAR(d.components[0].volume_mm3, 32000.0, 32000.0 * 1e-6);
     int lugs = 0, bosses = 0;
-    const double boss_volume = M_PI * 36.0 * 15.0;
+    const double boss_volume = kPi * 36.0 * 15.0;
     for (std::size_t i = 1; i < d.components.size(); ++i) {
         const auto& c = d.components[i];
         EXPECT_EQ(c.parent, 0);
@@ -654,7 +655,7 @@ TEST(Decompose, BladesOnAHubAreCutOffOverThemselvesNotThroughTheHub) {
     for (double degrees : {0.0, 60.0}) {
         TopoDS_Shape blade = occ_box(10, -2, 5, 40, 4, 20);
         gp_Trsf turn;
-        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees * M_PI / 180.0);
+        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), degrees * kPi / 180.0);
         hub = fuse(hub, BRepBuilderAPI_Transform(blade, turn, true).Shape());
     }
     const auto part = from_occt(hub);
@@ -692,7 +693,7 @@ TEST(Decompose, ADraftedFaceAtTheJunctionSplitsWhenOneEndOfItMeetsTheSpan) {
     // 20 - 20 tan 5 at z = 60: the arm takes that wedge, 20 deep, 4000 tan 5 mm^3, and is built
     // along the face's normal. (Requiring both ends in the interval, it fell back to the section
     // plane, 0.26 mm past x = 20, and left a sliver of the arm on the column.)
-    const double draft = 5.0 * M_PI / 180.0;
+    const double draft = 5.0 * kPi / 180.0;
     const TopoDS_Shape column = occ_prism(
         {{0, 0, 0}, {20.0 + 40.0 * std::tan(draft), 0, 0}, {20, 0, 40}, {20, 0, 60}, {0, 0, 60}},
         {0, 20, 0});
@@ -786,7 +787,7 @@ TEST(Decompose, AFaceWhoseChildWouldTiltPastTheReachIsNoSplittingFace) {
     // (cos 5, 0, -sin 5): 95 degrees from +Z. Within a max_tilt of 100 (the default) that is the
     // cut, the arm past it 10 x (400 - 350 tan 5) mm^3; a machine reaching 94 degrees could not
     // build it, and the section plane, normal to +X, cuts instead.
-    const double draft = 5.0 * M_PI / 180.0;
+    const double draft = 5.0 * kPi / 180.0;
     const TopoDS_Shape column = occ_prism(
         {{-10, -10, 0}, {10, -10, 0}, {10.0 + 60.0 * std::tan(draft), -10, 60}, {-10, -10, 60}},
         {0, 20, 0});
@@ -838,7 +839,7 @@ TEST(Decompose, RoundBossOnACylinderFallsBackToTheSectionPlaneAtTheCylindersExte
         EXPECT_NEAR(bounds(boss.base_face).min().x(), cut, 1e-7);
         EXPECT_NEAR(bounds(boss.base_face).max().x(), cut, 1e-7);
         EXPECT_TRUE(near_box(boss.solid, {cut, -6, 14}, {40, 6, 26}, 1e-5));
-        const double boss_volume = M_PI * 36.0 * (40.0 - cut);
+        const double boss_volume = kPi * 36.0 * (40.0 - cut);
         EXPECT_NEAR(boss.volume_mm3, boss_volume, boss_volume * 1e-6);
         expect_invariants(d, part);
     }
@@ -855,7 +856,7 @@ TEST(Decompose, ABoltsHeadIsCutClearOfItsRoundShank) {
     // clears the shank (|x| or |y| >= 10), and no piece holds any of it.
     std::vector<Vector3d> hex;
     for (int k = 0; k < 6; ++k)
-        hex.emplace_back(22 * std::cos(k * M_PI / 3), 22 * std::sin(k * M_PI / 3), 80);
+        hex.emplace_back(22 * std::cos(k * kPi / 3), 22 * std::sin(k * kPi / 3), 80);
     const auto part = from_occt(
         fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10, 80), occ_prism(hex, {0, 0, 14})));
     const double deflection = 0.05;
@@ -1063,7 +1064,7 @@ TEST(Decompose, APipeTeesBranchIsBuiltAlongItself) {
         const double y0 = bounds(c.solid).min().y();
         EXPECT_LT(y0, 15.0);
         EXPECT_TRUE(near_box(c.solid, {-10, y0, 25}, {10, 35, 45}));
-        const double ring = M_PI * (100.0 - 64.0) * (35.0 - y0);
+        const double ring = kPi * (100.0 - 64.0) * (35.0 - y0);
         EXPECT_NEAR(c.volume_mm3, ring, 1e-6 * ring);
     }
     EXPECT_EQ(branch_pipe, 1);
@@ -1119,9 +1120,9 @@ TEST(Decompose, PartsStandingOnATipAreDecomposed) {
     // a given one.
     gp_Trsf corner;  // the 10 mm cube on its corner, tilted 30, 40, 50 degrees
     gp_Trsf y, z;
-    corner.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 30.0 * M_PI / 180.0);
-    y.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), 40.0 * M_PI / 180.0);
-    z.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 50.0 * M_PI / 180.0);
+    corner.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 30.0 * kPi / 180.0);
+    y.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), 40.0 * kPi / 180.0);
+    z.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 50.0 * kPi / 180.0);
     corner.PreMultiply(y);
     corner.PreMultiply(z);
     const auto cube =
@@ -1144,9 +1145,10 @@ TEST(Decompose, PartsStandingOnATipAreDecomposed) {
 
 namespace {
 
-// tests/data/`name` decomposed as slicing does it by default: on the axis of its tessellation at
-// the part's own deflection, which slicing also meshes every component with; the axis' step
-// derived, unless `step_mm` is given.
+// tests/data/`name` (or a part given) decomposed as slicing does it by default: on the axis of
+// its tessellation at the part's own deflection, which slicing also meshes every component with;
+// the axis' step derived, unless `step_mm` is given. The stages the decomposition reported are
+// kept.
 struct AsSlicingDecomposes {
     explicit AsSlicingDecomposes(const std::string& name, double step_mm = 0.0)
         : AsSlicingDecomposes(mas::read_model(std::string(MAS_TEST_DATA) + "/" + name), step_mm) {}
@@ -1228,9 +1230,9 @@ TEST(Decompose, ASplitOfASoundPartThatLeavesAPieceWithCurvesOffItsFacesMustMeshC
 }
 
 TEST(Decompose, AChildThatDoesNotMeshClosedStaysInItsFather) {
-    // A fork (the survey's pipe fittings, seed 39): two pipes 7.6 in radius leaning 53.8 degrees
-    // each way off a riser 11.3 in radius, from z = 18.5. Where the riser's march leaves the
-    // pipes' roots, a slab of riser and both roots is cut off (branch 1), and from it the riser
+    // A Y fitting a random survey of pipe fittings drew: two pipes 7.6 in radius leaning 53.8
+    // degrees each way off a riser 11.3 in radius, from z = 18.5. Where the riser's march leaves
+    // the pipes' roots, a slab of riser and both roots is cut off (branch 1), and from it the riser
     // above and one pipe. The slab's bottom plane meets the other pipe's side just where it
     // touches the riser's: a 0.27 mm edge there, which OCCT's shape check passed and the mesh
     // shared among four triangles at the part's deflection, so slicing stopped at that

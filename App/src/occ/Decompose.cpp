@@ -1323,12 +1323,16 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
     };
     std::vector<Work> work;
     std::vector<std::string> notes;  // branches that asked for a cut and got none
-    for (;;) {
+    int joins = 0;
+    const auto fresh_pass = [&](bool join_orphans) {
         work.clear();
         notes.clear();
         kept_asked.clear();
-        int joins = 0;
-        pass(true, work, notes, joins);
+        joins = 0;
+        pass(join_orphans, work, notes, joins);
+    };
+    for (;;) {
+        fresh_pass(true);
         // A piece that went with a child must end in a component that builds it. Without joining
         // every component lies in front of its base (each split's pieces lie on their side of the
         // plane, and later splits only take from them); with it, that is checked (on the solids'
@@ -1348,13 +1352,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
         } catch (const Standard_Failure& e) {
             throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
         }
-        if (!in_front) {
-            work.clear();
-            notes.clear();
-            kept_asked.clear();
-            joins = 0;
-            pass(false, work, notes, joins);
-        }
+        if (!in_front) fresh_pass(false);
         // Every child must mesh closed at the part's deflection, which slicing tessellates it at:
         // a sound part's split can leave one that passes OCCT's shape check and still does not (a
         // fork of two pipes leaning 54 degrees off a riser, cut just where one pipe's side

@@ -1360,7 +1360,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
         // stopped there). Its branch is then kept in its father, and the pass done again. (The
         // root, which every split leaves, is slicing's to report.)
         // The components are meshed side by side (each meshing a copy of its own solid), the
-        // check for a cancel before and after.
+        // check for a cancel before and after. On a part whose every piece was meshed
+        // (MeshCheck::every_piece), each child already passed this very check in valid_solid().
+        if (mesh.every_piece) break;
         const Progress meshing = progress.span(1.0, 1.0, "meshing the components to check them");
         meshing.check();
         std::vector<char> closed(work.size(), 1);

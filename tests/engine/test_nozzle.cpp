@@ -670,14 +670,15 @@ TEST(Nozzle, ASidewaysLayerNearThePlateLeansUpJustEnough) {
 
 // A lean is refused where the leaned nozzle would meet a layer deposited before: a slab 40 mm up
 // over the sideways layer's nozzle, clear of the coaxial body (its top 31 mm up) but in the way
-// of any nozzle leaned up. The layer keeps its normal and its collision with the plate.
+// of any nozzle leaned up; the slab is the layer's father, deposited before it whatever the
+// order. The layer keeps its normal and its collision with the plate.
 TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
     Built b;
     add_square(b, 0, 40, -20, 120, 30, 41.0);
     add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
               {{5, 5, 6}});
     const mas::NozzleParams p;
-    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, -1}, {0, 1}), p);
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0}, {0, 1}), p);
     EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
     ASSERT_EQ(s.collisions.size(), 1u);
     EXPECT_EQ(s.collisions[0].layer, 1);
@@ -697,6 +698,41 @@ TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
     b.paths.erase(b.paths.begin());
     b.layers[0].component = 0;
     EXPECT_EQ(mas::plan_build_sequence(input(b, {-1}, {0}), p).leaned_layers, 1);
+}
+
+// The order leaves a layer that meets the plate the lean that clears it: the slab and the sideways
+// layer above, neither waiting for the other, the slab first in the start order. Coaxial, the
+// layer's nozzle misses the slab, so the first order puts the slab first, and the lean that
+// clears the plate (25 degrees) meets it. Ordered again with the layer before what that lean
+// meets, the layer goes first, leaned, and nothing collides (the slab's nozzle points away).
+TEST(Nozzle, ALayerThatMustLeanOffThePlateGoesBeforeWhatItsLeanedNozzleMeets) {
+    Built b;
+    add_square(b, 0, 40, -20, 120, 30, 41.0);
+    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
+              {{5, 5, 6}});
+    const mas::NozzleParams p;
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), at(5, 5, 6);
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, -1}, {0, 1}), p);
+    EXPECT_EQ(s.layers, (std::vector<int>{1, 0}));
+    EXPECT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.leaned_layers, 1);
+    EXPECT_NEAR((s.tool_axes[1] - leaned(n, up, 25.0)).norm(), 0.0, 1e-12);
+    EXPECT_EQ(s.tool_axes[0], up);
+    // Why: coaxial, the layer's nozzle meets the plate and not the slab; leaned 25 degrees it
+    // clears the plate and meets the slab; the slab's nozzle, pointing up from 41 mm, meets
+    // nothing.
+    EXPECT_LT(lowest_above(p, at, n, up), p.margin_mm);
+    EXPECT_GE(lowest_above(p, at, leaned(n, up, 25.0), up), p.margin_mm);
+    EXPECT_LT(mas::test::nozzle_clearance(p, at, leaned(n, up, 25.0), Vector3d(60, 5, 40.5)), 0.0);
+    for (double x = 40; x <= 120; x += 1)
+        for (double y = -20; y <= 30; y += 1)
+            EXPECT_GT(mas::test::nozzle_clearance(p, at, n, Vector3d(x, y, 40)), p.margin_mm);
+    // The paper's coaxial nozzle never leans: the start order stands, and the plate is met.
+    const mas::BuildSequence c = mas::plan_build_sequence(input(b, {-1, -1}, {0, 1}), coaxial());
+    EXPECT_EQ(c.layers, (std::vector<int>{0, 1}));
+    ASSERT_EQ(c.collisions.size(), 1u);
+    EXPECT_EQ(c.collisions[0].layer, 1);
+    EXPECT_EQ(c.collisions[0].obstacle_layer, -1);
 }
 
 // The deposit moves are checked all along, leaned too: a sideways layer whose path runs from 6 to

@@ -40,6 +40,18 @@ def rod_under_bar():
                         Part.makeBox(52, 6, 6, V(0, -3, 39))]).removeSplitter()
 
 
+def hub_with_six_blades():
+    """A round hub (radius 8.5, 30 tall) with six flat blades 60 degrees apart, the first along +X,
+    each 5 thick and 22 tall (z = 4 to 26), reaching 30 past the hub: low over the plate, so that
+    a nozzle building a blade sideways must lean up off the plate."""
+    solid = Part.makeCylinder(8.5, 30)
+    for i in range(6):
+        blade = Part.makeBox(34.25, 5, 22, V(4.25, -2.5, 4))
+        blade.rotate(V(0, 0, 0), V(0, 0, 1), 60.0 * i)
+        solid = solid.fuse(blade)
+    return solid.removeSplitter()
+
+
 def pipe_tee():
     """A pipe of radius 10 with a bore of 8, 60 tall along Z, and a branch of the same pipe
     reaching +Y from its axis at z = 35, 35 long (the engine's test_parts.hpp)."""

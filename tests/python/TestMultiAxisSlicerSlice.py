@@ -20,6 +20,7 @@ import Part
 
 import MultiAxisSlicer as mas
 import MultiAxisSlicer.features as features
+import MultiAxisSlicerSurvey as survey
 import MultiAxisSlicerTestSupport as support
 from MultiAxisSlicerTestSupport import V, fc_mesh, l_block, rod_under_bar
 
@@ -634,6 +635,44 @@ class TestSliceSequence(SliceTest):
         program = result.gcode()
         self.assertEqual(program.stats["travel_collisions"], [])
         self.assertGreater(program.stats["checked_routes"], 0)
+
+    def test_blades_low_over_the_plate_are_each_built_sideways_leaned_off_it(self):
+        # Six blades round a hub, 4 mm over the plate: each blade's layers must lean up off the
+        # plate, and the first layer of the second blade marched along +Y (the blades at 60 and
+        # 120 degrees both are, their roots 10 mm apart) met the first blade's layers leaned,
+        # where coaxial it missed them: the order put the first blade first, and collision rounds
+        # then kept the four blades marched along +-Y in the hub (579 mm^2 unsupported under
+        # them). Ordered with each such layer before what its leaned nozzle meets, every blade is
+        # built on its own.
+        hub = support.hub_with_six_blades()
+        result = mas.slice(hub)
+        self.assertEqual(result.notes, [])
+        self.assertEqual(len(result.components), 7)
+        self.assertEqual([c.parent for c in result.decomposition], [-1, 0, 0, 0, 0, 0, 0])
+        self.assertEqual(result.collisions, [])
+        self.assertEqual(result.gcode().stats["travel_collisions"], [])
+        # Every layer rests on the one below (within the strip the mesh's deflection leaves).
+        deflection = mas.deflection(hub)
+        for i, layer in enumerate(result.layers):
+            self.assertLessEqual(layer.unsupported_area,
+                                 survey.support_tolerance(layer, deflection), i)
+        # Every blade layer leans 30 degrees up: leaned t degrees from its horizontal normal, the
+        # rim where the cone meets the body (25 mm out, 10 + 20 / tan 30 along the axis) is
+        # 4 + that sin t - 25 cos t over the plate at the blade's foot, under the 2 mm margin at
+        # 25 degrees (0.21 mm), over it at 30 (4.67).
+        cone_end = 10.0 + 20.0 / math.tan(math.radians(30.0))
+        rim = {t: 4.0 + cone_end * math.sin(math.radians(t)) - 25.0 * math.cos(math.radians(t))
+               for t in (25.0, 30.0)}
+        self.assertLess(rim[25.0], 2.0)
+        self.assertGreaterEqual(rim[30.0], 2.0)
+        for i, layer in enumerate(result.layers):
+            if layer.component == 0:
+                self.assertEqual(result.tool_axis(i), layer.normal)
+                continue
+            self.assertAlmostEqual(layer.normal.z, 0.0, places=6)
+            self.assertAlmostEqual(math.degrees(result.tool_axis(i).getAngle(layer.normal)),
+                                   30.0, places=6)
+            self.assertGreater(result.tool_axis(i).z, 0.49)
 
     def test_the_nozzle_leans_clear_of_the_plate(self):
         # Allowed to lean (30 degrees by default), the 100 mm body clears the plate at every arm

@@ -73,7 +73,15 @@
 //   same rules) without the pairs "x before y" that x's nozzle would clear leaned towards the
 //   plate's normal (by any of the leans above that also keeps it off the plate; y's own rule
 //   stands), the leans tried again on that order, and that sequence is kept when fewer layers
-//   collide.
+//   collide. The order can also be what leaves a layer no lean the other way: two blades built
+//   sideways off a hub, 10 mm apart at their roots, both low over the plate, so that every layer
+//   must lean up off it; coaxial, the second blade's first layer missed the first blade, whose
+//   layers then came first, and leaned it met them (a collision round then kept both blades in
+//   the hub, 602 mm^2 unsupported under them). Where layers still collide, they are ordered again
+//   with, for each layer x whose coaxial nozzle meets the plate, the pairs "x before y" for the
+//   layers y (of other components, not before or after x whatever the order) that x's nozzle
+//   meets at the lean keeping it off the plate that meets fewest (the least lean among equals),
+//   the leans tried again, and that sequence is kept when fewer layers collide.
 // - Travel (not in the paper, which checks the deposit moves only): the post-processor's moves off
 //   the paths (Gcode.hpp: retracts, moves between paths and layers, the routes round the part) are
 //   checked against the same nozzle by TravelCheck: along every move the nozzle keeps margin_mm

@@ -722,6 +722,25 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         }
         return axes;
     };
+    // Whether x's nozzle leaned (`sweep`, with its tool axis; `reachable`, its reach_box) may come
+    // within the margin of layer y's prism.
+    auto leaned_meets = [&](const Sweep& sweep, const Eigen::AlignedBox3d& reachable, std::size_t x,
+                            std::size_t y) {
+        const LayerBounds& b = bounds[y];
+        if (b.corners.empty() || !b.box.intersects(reachable)) return false;
+        const Plane& top = layers[x].plane;
+        if (std::all_of(b.corners.begin(), b.corners.end(),
+                        [&](const Vector3d& c) { return top.normal.dot(c - top.origin) <= 0.0; }))
+            return false;  // wholly under x's plane, which the nozzle keeps the margin above
+        const Vector3d& axis = sweep.frame().normal;
+        const double centre = axis.dot(b.centre);
+        if (centre + b.radius - sweep.lowest() < shape.standoff - shape.grow ||
+            centre - b.radius - sweep.highest() > shape.top + shape.grow)
+            return false;
+        for (const Vector3d& q : samples.of(y))
+            if (sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) return true;
+        return false;
+    };
     // The sequence, ordered by `order_by` (x -> the layers y to come after it: `blocks`, or some
     // of them): the order, the collisions it leaves (every layer of `blocks[x]` put before x) and
     // the leans that clear them.
@@ -801,24 +820,9 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         auto clears = [&](std::size_t x, const Vector3d& axis) {
             const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
             if (params.check_plate && plate_meets(sweep, x)) return false;
-            const Plane& top = layers[x].plane;
             const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
-            for (std::size_t y = 0; y < count; ++y) {
-                if (position[y] >= position[x] || bounds[y].corners.empty() ||
-                    !bounds[y].box.intersects(reachable))
-                    continue;
-                const LayerBounds& b = bounds[y];
-                if (std::all_of(b.corners.begin(), b.corners.end(), [&](const Vector3d& c) {
-                        return top.normal.dot(c - top.origin) <= 0.0;
-                    }))
-                    continue;  // wholly under x's plane, which the nozzle keeps the margin above
-                const double centre = axis.dot(b.centre);
-                if (centre + b.radius - sweep.lowest() < shape.standoff - shape.grow ||
-                    centre - b.radius - sweep.highest() > shape.top + shape.grow)
-                    continue;
-                for (const Vector3d& q : samples.of(y))
-                    if (sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) return false;
-            }
+            for (std::size_t y = 0; y < count; ++y)
+                if (position[y] < position[x] && leaned_meets(sweep, reachable, x, y)) return false;
             return true;
         };
         out.tool_axes.resize(count);
@@ -845,6 +849,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         return out;
     };
     BuildSequence out = sequence(blocks);
+    std::vector<std::vector<int>> basis = blocks;  // what ordered `out`
     // Where layers still collide, the order may be what left them no lean (a rod built sideways
     // under a bar: the bar's layers came first, and the rod's nozzle, leaned up off the plate, met
     // them). Ordered again without the pairs x's nozzle clears leaned towards the plate's normal
@@ -872,6 +877,50 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         }
         if (changed) {
             BuildSequence again = sequence(relaxed);
+            if (again.collisions.size() < out.collisions.size()) {
+                out = std::move(again);
+                basis = std::move(relaxed);
+            }
+        }
+    }
+    // Where layers still collide, the order may be what left a layer that meets the plate no lean
+    // (two blades built sideways off a hub, 10 mm apart at their roots: the first blade's layers
+    // came first, and the second's first layer, leaned up off the plate, met them, where coaxial
+    // it missed them). Ordered again with the pairs "x before y" for the layers y that such a
+    // layer x's nozzle would meet at the lean that keeps it off the plate and meets fewest
+    // (the least lean among equals), it is kept when fewer layers collide.
+    if (!out.collisions.empty() && !leans.empty()) {
+        std::vector<std::vector<int>> tightened = std::move(basis);
+        bool changed = false;
+        for (std::size_t x = 0; x < count; ++x) {
+            if (!plate[x]) continue;
+            const int cx = layers[x].component;
+            std::optional<std::vector<int>> fewest;
+            for (const Vector3d& axis : lean_axes(x, std::nullopt)) {
+                const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
+                if (params.check_plate && plate_meets(sweep, x)) continue;
+                const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
+                std::vector<int> met;
+                for (std::size_t y = 0; y < count; ++y) {
+                    const int cy = layers[y].component;
+                    if (cy == cx || index[y] < need[std::size_t(cy)][std::size_t(cx)] ||
+                        index[x] < need[std::size_t(cx)][std::size_t(cy)])
+                        continue;  // its own, or before or after x whatever the order
+                    if (leaned_meets(sweep, reachable, x, y)) met.push_back(int(y));
+                }
+                if (!fewest || met.size() < fewest->size()) fewest = std::move(met);
+                if (fewest->empty()) break;
+            }
+            if (!fewest) continue;
+            std::vector<int>& after = tightened[x];
+            for (int y : *fewest)
+                if (std::find(after.begin(), after.end(), y) == after.end()) {
+                    after.push_back(y);
+                    changed = true;
+                }
+        }
+        if (changed) {
+            BuildSequence again = sequence(tightened);
             if (again.collisions.size() < out.collisions.size()) out = std::move(again);
         }
     }

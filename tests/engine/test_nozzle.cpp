@@ -700,6 +700,64 @@ TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
     EXPECT_EQ(mas::plan_build_sequence(input(b, {-1}, {0}), p).leaned_layers, 1);
 }
 
+// A lean is refused only where the leaned nozzle itself comes near a deposited layer, not wherever
+// the nozzle grown by two margins might: a block 0.5 mm across beside the tip of the sideways
+// layer's nozzle leaned 25 degrees (the least that clears the plate), 7 mm along its axis and
+// 8.7 mm off it, lies in the grown nozzle (from 2 margins under the tip's face, the tip's radius
+// plus 2 margins / cos 30 across) but more than (2 + 0.05) margins from the nozzle (4.76 mm from
+// the tip's rim at its centre): the layer leans 25 degrees. Moved 1 mm nearer the rim, it
+// refuses 25 (and 30, which brings the rim nearer still), and the layer keeps its collision.
+TEST(Nozzle, ALeanIsRefusedOnlyWhereTheNozzleItselfComesNear) {
+    const mas::NozzleParams p;
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), at(5, 5, 6);
+    const Vector3d axis = leaned(n, up, 25.0), off = leaned(up, -n, 25.0);  // across the axis
+    ASSERT_NEAR(axis.dot(off), 0.0, 1e-12);
+    auto with_block = [&](double across) {
+        const Vector3d c = at + 7.0 * axis + across * off;
+        Built b;
+        add_layer(b, 0, up,
+                  {{c.x() - 0.25, 4.75, c.z() + 0.25},
+                   {c.x() + 0.25, 4.75, c.z() + 0.25},
+                   {c.x() + 0.25, 5.25, c.z() + 0.25},
+                   {c.x() - 0.25, 5.25, c.z() + 0.25}},
+                  0.5, {{c.x(), 5, c.z() + 0.25}});
+        add_layer(b, 1, n, {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0, {at});
+        return b;
+    };
+    // The least clearance of the block's prism from the nozzle at `a`, on a 0.05 mm grid.
+    auto least = [&](const Vector3d& c, const Vector3d& a) {
+        double best = INFINITY;
+        for (double dx = -0.25; dx <= 0.25 + 1e-9; dx += 0.05)
+            for (double dy = -0.25; dy <= 0.25 + 1e-9; dy += 0.05)
+                for (double dz = -0.25; dz <= 0.25 + 1e-9; dz += 0.05)
+                    best = std::min(
+                        best, mas::test::nozzle_clearance(p, at, a, c + Vector3d(dx, dy, dz)));
+        return best;
+    };
+    const double tip = 5.0, grown_tip = tip + 2.0 * p.margin_mm / std::cos(kPi / 6.0);
+    const Vector3d far = at + 7.0 * axis + 8.7 * off;
+    EXPECT_GE(7.0, p.standoff_mm - 2.0 * p.margin_mm);
+    EXPECT_LE(8.7, grown_tip);
+    EXPECT_NEAR(mas::test::nozzle_clearance(p, at, axis, far), std::hypot(3.7, 3.0), 1e-9);
+    EXPECT_GT(least(far, axis), 2.05 * p.margin_mm);
+    const mas::BuildSequence s =
+        mas::plan_build_sequence(input(with_block(8.7), {-1, 0}, {0, 1}), p);
+    EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
+    EXPECT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.leaned_layers, 1);
+    EXPECT_NEAR((s.tool_axes[1] - axis).norm(), 0.0, 1e-12);
+    // 1 mm nearer: within 4.1 mm of the rim at 25 degrees, and at 30.
+    const Vector3d near = at + 7.0 * axis + 7.7 * off;
+    EXPECT_LT(least(near, axis), 2.05 * p.margin_mm);
+    EXPECT_LT(least(near, leaned(n, up, 30.0)), 2.05 * p.margin_mm);
+    const mas::BuildSequence t =
+        mas::plan_build_sequence(input(with_block(7.7), {-1, 0}, {0, 1}), p);
+    ASSERT_EQ(t.collisions.size(), 1u);
+    EXPECT_EQ(t.collisions[0].layer, 1);
+    EXPECT_EQ(t.collisions[0].obstacle_layer, -1);
+    EXPECT_EQ(t.tool_axes[1], n);
+}
+
 // The order leaves a layer that meets the plate the lean that clears it: the slab and the sideways
 // layer above, neither waiting for the other, the slab first in the start order. Coaxial, the
 // layer's nozzle misses the slab, so the first order puts the slab first, and the lean that
@@ -816,7 +874,8 @@ TEST(Nozzle, ALeanAwayNeverTurnsTheNozzleFurtherUnderTheHorizontal) {
 // A layer whose nozzle meets one of its own component's layers above it, 7 mm across: the nozzle
 // leans away from it, just enough. The leaned nozzle keeps the margin from that layer's prism
 // (checked with the nozzle's own shape at 0.1 mm over its surface); 5 degrees less would come
-// within the near miss of it, the most a refused lean may come.
+// within (2 + 0.05) margins of it, the most a refused lean may come (plus the 0.1 mm grid's
+// reach).
 TEST(Nozzle, ANozzleLeansAwayFromTheLayerItMeets) {
     Built b;
     add_square(b, 0, 12, 0, 22, 10, 31.0);
@@ -846,8 +905,8 @@ TEST(Nozzle, ANozzleLeansAwayFromTheLayerItMeets) {
     };
     EXPECT_GE(least(axis), p.margin_mm);
     const Vector3d across = Vector3d(axis.x(), axis.y(), 0).normalized();
-    const double slack = p.margin_mm * (1.0 + kTan30);
-    EXPECT_LT(least(leaned(Vector3d::UnitZ(), across, lean - 5.0)), mas::near_miss_mm(p) + slack);
+    EXPECT_LT(least(leaned(Vector3d::UnitZ(), across, lean - 5.0)), 2.05 * p.margin_mm + 0.1)
+        << lean;
 }
 
 // A sideways arm 20 mm thick, 8 mm over the plate, on a column, sliced: every arm layer leans

@@ -61,9 +61,13 @@
 //   leans keeping the whole nozzle margin_mm above that plane are tried (standoff cos theta - tip
 //   sin theta >= margin, and theta + cone_angle < 90 degrees, so that the cone's lower side still
 //   rises); the others are tested as above, with the deposit moves cut into pieces whose heights
-//   along a differ by at most margin_mm and each piece given the grown radius at its lowest point
-//   (so no lean is taken that comes within the margin; a lean is refused only when it comes within
-//   near_miss_mm + margin_mm (1 + tan cone_angle) of the nozzle). A lean changes no other layer's
+//   along a differ by at most margin_mm and each piece given the grown radius at its lowest point,
+//   and, as the travel check below, a sample the grown nozzle may hold counts only when the nozzle
+//   itself, its tip taken every 0.05 margin_mm along the moves, comes within 2.05 margin_mm of it
+//   (so no lean is taken that comes within the margin, and one is refused only when it comes
+//   within 2.05 margin_mm: the grown nozzle alone reached 9.3 mm at the defaults, beside the tip,
+//   where a blade's first layer leaned off the plate refused every lean beside a neighbouring
+//   blade's root and was kept in the hub). A lean changes no other layer's
 //   check: a later layer's nozzle meets this one's prism, whatever its axis. Where no lean clears,
 //   the layer keeps its normal and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the
 //   paper's.

@@ -198,6 +198,13 @@ public:
     const Eigen::AlignedBox2d& box() const { return box_; }
     const Eigen::AlignedBox3d& box3() const { return box3_; }  // of the deposit points
     const std::vector<Segment>& segments() const { return segments_; }
+    // The moves as cut, in 3-D.
+    std::vector<std::pair<Vector3d, Vector3d>> moves() const {
+        std::vector<std::pair<Vector3d, Vector3d>> out;
+        out.reserve(segments_.size());
+        for (const Segment& s : segments_) out.emplace_back(s.a3, s.b3);
+        return out;
+    }
 
     // A deposit point within `r` of `q` (2-D), in 3-D, and its distance: the first found, or
     // with `nearest` the nearest; nullopt when none is.
@@ -352,6 +359,52 @@ LayerBounds layer_bounds(const Layer& layer) {
 // of it: the hull of the grown nozzle's rims at its lowest height, where the cone meets the body
 // and at its top holds the nozzle grown (both are convex, and at each of those heights the rims
 // are the wider).
+// The least clearance (Shape::clearance) of `q` from the nozzle `shape` (its real outline) along
+// `moves` (one tool axis, the table still), the tip taken every kTravelStep margins along each:
+// within half that step of the least over the whole moves, since the nozzle moves rigidly. Only
+// the stretches of the moves whose tip lies within the body's radius and `below` of q across the
+// axis are walked (the least is sought under `below`); the walk stops once it finds one under
+// `enough`. `at`: the tip where the least was found.
+double least_clearance(const Shape& shape, double margin,
+                       const std::vector<std::pair<Vector3d, Vector3d>>& moves,
+                       const Vector3d& axis, const Vector3d& q, double below, Vector3d& at,
+                       double enough = -std::numeric_limits<double>::infinity()) {
+    double best = std::numeric_limits<double>::infinity();
+    const double step = kTravelStep * margin;
+    const double r = shape.body + below;
+    auto across = [&](const Vector3d& v) { return Vector3d(v - axis.dot(v) * axis); };
+    for (const auto& [a, b] : moves) {
+        // |across(a + t (b - a) - q)|^2 <= r^2: t within [t0, t1].
+        const Vector3d p = across(a - q), d = across(b - a);
+        const double dd = d.squaredNorm(), pd = p.dot(d), pp = p.squaredNorm() - r * r;
+        double t0 = 0.0, t1 = 1.0;
+        if (dd > 1e-18) {
+            const double disc = pd * pd - dd * pp;
+            if (disc < 0.0) continue;
+            const double root = std::sqrt(disc);
+            t0 = std::max(0.0, (-pd - root) / dd);
+            t1 = std::min(1.0, (-pd + root) / dd);
+            if (t0 > t1) continue;
+        } else if (pp > 0.0) {
+            continue;
+        }
+        const Vector3d from = a + t0 * (b - a), to = a + t1 * (b - a);
+        const int pieces = std::max(1, int(std::ceil((to - from).norm() / step)));
+        for (int i = 0; i <= pieces; ++i) {
+            const Vector3d tip = from + (to - from) * (double(i) / pieces);
+            const Vector3d d = q - tip;
+            const double h = axis.dot(d);
+            const double c = shape.clearance((d - h * axis).norm(), h);
+            if (c < best) {
+                best = c;
+                at = tip;
+                if (best < enough) return best;
+            }
+        }
+    }
+    return best;
+}
+
 Eigen::AlignedBox3d reach_box(const Sweep& sweep, const Shape& shape) {
     const Vector3d n = sweep.frame().normal;
     const Vector3d across = (Vector3d::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();
@@ -722,9 +775,12 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         }
         return axes;
     };
-    // Whether x's nozzle leaned (`sweep`, with its tool axis; `reachable`, its reach_box) may come
-    // within the margin of layer y's prism.
-    auto leaned_meets = [&](const Sweep& sweep, const Eigen::AlignedBox3d& reachable, std::size_t x,
+    // Whether x's nozzle leaned (`sweep`, with its tool axis; `reachable`, its reach_box; `moves`,
+    // its deposit moves) may come within the margin of layer y's prism: as TravelCheck's, a sample
+    // the grown nozzle may hold counts only when the nozzle, its tip taken every kTravelStep
+    // margins along the moves, comes within (2 + kTravelStep) margins of it.
+    auto leaned_meets = [&](const Sweep& sweep, const Eigen::AlignedBox3d& reachable,
+                            const std::vector<std::pair<Vector3d, Vector3d>>& moves, std::size_t x,
                             std::size_t y) {
         const LayerBounds& b = bounds[y];
         if (b.corners.empty() || !b.box.intersects(reachable)) return false;
@@ -737,8 +793,12 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         if (centre + b.radius - sweep.lowest() < shape.standoff - shape.grow ||
             centre - b.radius - sweep.highest() > shape.top + shape.grow)
             return false;
-        for (const Vector3d& q : samples.of(y))
-            if (sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) return true;
+        const double counts = (2.0 + kTravelStep) * m;
+        for (const Vector3d& q : samples.of(y)) {
+            if (!sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) continue;
+            Vector3d at = Vector3d::Zero();
+            if (least_clearance(shape, m, moves, axis, q, counts, at, counts) < counts) return true;
+        }
         return false;
     };
     // The sequence, ordered by `order_by` (x -> the layers y to come after it: `blocks`, or some
@@ -821,8 +881,10 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
             if (params.check_plate && plate_meets(sweep, x)) return false;
             const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
+            const auto moves = sweep.moves();
             for (std::size_t y = 0; y < count; ++y)
-                if (position[y] < position[x] && leaned_meets(sweep, reachable, x, y)) return false;
+                if (position[y] < position[x] && leaned_meets(sweep, reachable, moves, x, y))
+                    return false;
             return true;
         };
         out.tool_axes.resize(count);
@@ -900,13 +962,14 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
                 const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
                 if (params.check_plate && plate_meets(sweep, x)) continue;
                 const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);
+                const auto moves = sweep.moves();
                 std::vector<int> met;
                 for (std::size_t y = 0; y < count; ++y) {
                     const int cy = layers[y].component;
                     if (cy == cx || index[y] < need[std::size_t(cy)][std::size_t(cx)] ||
                         index[x] < need[std::size_t(cx)][std::size_t(cy)])
                         continue;  // its own, or before or after x whatever the order
-                    if (leaned_meets(sweep, reachable, x, y)) met.push_back(int(y));
+                    if (leaned_meets(sweep, reachable, moves, x, y)) met.push_back(int(y));
                 }
                 if (!fewest || met.size() < fewest->size()) fewest = std::move(met);
                 if (fewest->empty()) break;
@@ -950,48 +1013,6 @@ struct TravelCheck::Impl {
     double length() const { return std::hypot(shape.top, shape.body); }
     double max_turn() const { return params.margin_mm / length(); }
 
-    // The least clearance (Shape::clearance) of `q` from the nozzle along `moves` (one tool axis,
-    // the table still), the tip taken every kTravelStep margins along each: within that of the
-    // least over the whole move. Where it is under `below`: only the stretches of the moves whose
-    // tip lies within the body's radius and `below` of q across the axis are walked.
-    double least_clearance(const std::vector<std::pair<Vector3d, Vector3d>>& moves,
-                           const Vector3d& axis, const Vector3d& q, double below,
-                           Vector3d& at) const {
-        double best = std::numeric_limits<double>::infinity();
-        const double step = kTravelStep * params.margin_mm;
-        const double r = shape.body + below;
-        auto across = [&](const Vector3d& v) { return Vector3d(v - axis.dot(v) * axis); };
-        for (const auto& [a, b] : moves) {
-            // |across(a + t (b - a) - q)|^2 <= r^2: t within [t0, t1].
-            const Vector3d p = across(a - q), d = across(b - a);
-            const double dd = d.squaredNorm(), pd = p.dot(d), pp = p.squaredNorm() - r * r;
-            double t0 = 0.0, t1 = 1.0;
-            if (dd > 1e-18) {
-                const double disc = pd * pd - dd * pp;
-                if (disc < 0.0) continue;
-                const double root = std::sqrt(disc);
-                t0 = std::max(0.0, (-pd - root) / dd);
-                t1 = std::min(1.0, (-pd + root) / dd);
-                if (t0 > t1) continue;
-            } else if (pp > 0.0) {
-                continue;
-            }
-            const Vector3d from = a + t0 * (b - a), to = a + t1 * (b - a);
-            const int pieces = std::max(1, int(std::ceil((to - from).norm() / step)));
-            for (int i = 0; i <= pieces; ++i) {
-                const Vector3d tip = from + (to - from) * (double(i) / pieces);
-                const Vector3d d = q - tip;
-                const double h = axis.dot(d);
-                const double c = shape.clearance((d - h * axis).norm(), h);
-                if (c < best) {
-                    best = c;
-                    at = tip;
-                }
-            }
-        }
-        return best;
-    }
-
     // What the nozzle along the sweep's `moves` (its tool axis, that of their first point where
     // it turns by up to `allowance` / length()) meets: the plate within the margin and
     // the allowance, or a sample of a deposited layer in the nozzle grown by 2 margins and the
@@ -1031,7 +1052,7 @@ struct TravelCheck::Impl {
                 const Vector2d q2 = sweep.frame().to_2d(q);
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
                 Vector3d at = Vector3d::Zero();
-                if (least_clearance(moves, a, q, counts, at) < counts) {
+                if (least_clearance(shape, m, moves, a, q, counts, at) < counts) {
                     found = TravelHit{yi, at, q};
                     return true;
                 }

@@ -668,15 +668,22 @@ TEST(Nozzle, ASidewaysLayerNearThePlateLeansUpJustEnough) {
     EXPECT_EQ(h.tool_axes[0], n);
 }
 
+// A slab [40, 120] x [-20, 30] x [40, 41] (component 0) and a sideways layer on x = 5, 10 x 10 mm
+// from 1 mm over the plate (component 1, along +X, deposited at (5, 5, 6)).
+Built slab_over_sideways_layer() {
+    Built b;
+    add_square(b, 0, 40, -20, 120, 30, 41.0);
+    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
+              {{5, 5, 6}});
+    return b;
+}
+
 // A lean is refused where the leaned nozzle would meet a layer deposited before: a slab 40 mm up
 // over the sideways layer's nozzle, clear of the coaxial body (its top 31 mm up) but in the way
 // of any nozzle leaned up; the slab is the layer's father, deposited before it whatever the
 // order. The layer keeps its normal and its collision with the plate.
 TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
-    Built b;
-    add_square(b, 0, 40, -20, 120, 30, 41.0);
-    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
-              {{5, 5, 6}});
+    Built b = slab_over_sideways_layer();
     const mas::NozzleParams p;
     const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0}, {0, 1}), p);
     EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
@@ -764,10 +771,7 @@ TEST(Nozzle, ALeanIsRefusedOnlyWhereTheNozzleItselfComesNear) {
 // clears the plate (25 degrees) meets it. Ordered again with the layer before what that lean
 // meets, the layer goes first, leaned, and nothing collides (the slab's nozzle points away).
 TEST(Nozzle, ALayerThatMustLeanOffThePlateGoesBeforeWhatItsLeanedNozzleMeets) {
-    Built b;
-    add_square(b, 0, 40, -20, 120, 30, 41.0);
-    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 1}, {5, 10, 1}, {5, 10, 11}, {5, 0, 11}}, 1.0,
-              {{5, 5, 6}});
+    const Built b = slab_over_sideways_layer();
     const mas::NozzleParams p;
     const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), at(5, 5, 6);
     const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, -1}, {0, 1}), p);

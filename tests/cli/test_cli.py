@@ -530,6 +530,16 @@ class CliSections(unittest.TestCase):
             self.expect_error([command, elbow], 1, "geometry_failure", "tessellation of the solid",
                               "open edges", "Check geometry")
 
+    def test_a_solid_that_meshes_off_its_surfaces_is_named_as_such(self):
+        # A valid cylinder whose side OCCT meshes into about a third of its volume: every command
+        # that cuts its mesh stops, saying both volumes, rather than cut wrong sections.
+        cylinder = os.path.join(DATA, "cylinder_meshed_off.brep")
+        for command in ("sections", "axis", "decompose", "slice"):
+            self.expect_error([command, cylinder], 1, "geometry_failure",
+                              "tessellation of the solid encloses",
+                              "mm^3 where the solid holds 4021.24 mm^3",
+                              "faces mesh off their surfaces")
+
     def expect_components_mesh_closed(self, name):
         """Decomposes DATA/name into STEP files and meshes each at the part's deflection."""
         part = os.path.join(DATA, name)

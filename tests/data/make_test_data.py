@@ -112,3 +112,12 @@ import MultiAxisSlicerSurvey  # noqa: E402
 
 hub, _ = MultiAxisSlicerSurvey.part("hub with blades", 6, 39)
 hub.exportBrep(os.path.join(here, "hub_twisted_blades.brep"))
+
+# cylinder_meshed_off.brep  a cylinder of radius 8, 20 tall, as Part's Refine shape left it after
+# fusing it with a 45-degree revolve of its top disc about a line beside it (which adds nothing):
+# one valid solid (OCCT's shape check passes) whose side, seamed by a B-spline, with its top and
+# bottom circles split at different places, OCCT meshes into about a third of its 4021 mm^3, at
+# any deflection
+disc = Part.Face(Part.Wire(Part.makeCircle(8, V(0, 0, 20))))
+odd = Part.makeCylinder(8, 20).fuse(disc.revolve(V(30, 0, 20), V(0, 1, 0), -45)).removeSplitter()
+odd.exportBrep(os.path.join(here, "cylinder_meshed_off.brep"))

@@ -673,6 +673,32 @@ TEST_F(OccReadModel, DamagedFilesAreErrorsNotCrashes) {
                              "zero_direction.brep: an invalid solid"));
 }
 
+// A valid solid whose faces OCCT meshes far off their surfaces (tests/data/make_test_data.py: a
+// cylinder whose side meshed into about a third of its volume) is named, not cut into wrong
+// sections.
+TEST_F(OccReadModel, ASolidWhoseFacesMeshOffTheirSurfacesIsNamed) {
+    const std::string file = std::string(MAS_TEST_DATA) + "/cylinder_meshed_off.brep";
+    const Model model = read_model(file);
+    const Shape solid = model.shape.single_solid("test");
+    EXPECT_NEAR(solid.info().volume_mm3, kPi * 8 * 8 * 20, 1e-6);
+    EXPECT_TRUE(
+        throws_error([&] { model_mesh(model); }, ErrorCode::GeometryFailure,
+                     "cylinder_meshed_off.brep: OCCT's tessellation of the solid encloses "));
+    EXPECT_TRUE(throws_error([&] { model_mesh(model); }, ErrorCode::GeometryFailure,
+                             " mm^3 where the solid holds 4021.24 mm^3"));
+    // At any deflection.
+    for (const double d : {0.005, 0.1, 1.0}) {
+        TessellationParams params;
+        params.deflection_mm = d;
+        EXPECT_TRUE(throws_error([&] { tessellate(solid, params); }, ErrorCode::GeometryFailure,
+                                 "some of its faces mesh off their surfaces"))
+            << d;
+    }
+    // A cylinder of the same size meshes within its bound
+    // (CylinderVolumeLossIsBoundedByTheDeflection).
+    EXPECT_NO_THROW(tessellate(test::cylinder(Vector3d::Zero(), Vector3d::UnitZ(), 8, 20)));
+}
+
 // Catching OCCT's signals borrows the process's handlers of the fatal signals only while a read
 // runs, on any thread: Ctrl-C's handler is never taken, and every handler is back afterwards,
 // however the reads on several threads interleave. (OCCT's STEP parser keeps global state: reads

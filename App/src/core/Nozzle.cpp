@@ -355,10 +355,6 @@ LayerBounds layer_bounds(const Layer& layer) {
     return b;
 }
 
-// The box holding the nozzle anywhere along the sweep's moves, and everything within `shape.grow`
-// of it: the hull of the grown nozzle's rims at its lowest height, where the cone meets the body
-// and at its top holds the nozzle grown (both are convex, and at each of those heights the rims
-// are the wider).
 // The least clearance (Shape::clearance) of `q` from the nozzle `shape` (its real outline) along
 // `moves` (one tool axis, the table still), the tip taken every kTravelStep margins along each:
 // within half that step of the least over the whole moves, since the nozzle moves rigidly. Only
@@ -405,6 +401,10 @@ double least_clearance(const Shape& shape, double margin,
     return best;
 }
 
+// The box holding the nozzle anywhere along the sweep's moves, and everything within `shape.grow`
+// of it: the hull of the grown nozzle's rims at its lowest height, where the cone meets the body
+// and at its top holds the nozzle grown (both are convex, and at each of those heights the rims
+// are the wider).
 Eigen::AlignedBox3d reach_box(const Sweep& sweep, const Shape& shape) {
     const Vector3d n = sweep.frame().normal;
     const Vector3d across = (Vector3d::Ones() - n.cwiseProduct(n)).cwiseMax(0.0).cwiseSqrt();

@@ -7,8 +7,9 @@ line segments (links). ``Decomposition``: the part's sub-components, as a compou
 tree order, with one ``Component`` object per solid (labelled Component001, ...) for the tree and
 the 3D view. ``Layers``: a decomposition's (or a mesh's) adaptive multi-axis layers, as a compound
 of their outlines; ``Toolpath``: the bead paths planned in them, as a compound of polylines;
-``MachineProgram``: the 5-axis G-code that deposits them, its travel moves as polylines. Thin like
-FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
+``MachineProgram``: the 5-axis G-code that deposits them, its travel moves as polylines;
+``BuildPreview``: the build after a step of the deposition sequence, the nozzle at the step's
+layer. Thin like FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
 
     import MultiAxisSlicer.features as features
     obj = features.make_sections(doc.Box, normal=(0, 0, 1), step=2.0)
@@ -17,11 +18,13 @@ FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
     layers, toolpath = features.make_slice(parts, max_layer=1.5, bead_width=1.2)
     scan_layers, scan_paths = features.make_slice(doc.Scan)      # a closed Mesh::Feature
     program = features.make_machine_program(layers, feed=900)
+    preview = features.make_build_preview(layers, step=12)     # the 12th layer deposited
     doc.recompute()
     features.export_gcode(program, "/tmp/part.ngc")
 """
 
 import functools
+import math
 import re
 
 import FreeCAD
@@ -1390,6 +1393,231 @@ def is_layers(obj):
 
 def is_toolpath(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == ToolpathFeature.TYPE
+
+
+# ---- the build preview: BuildPreview ----------------------------------------------------------
+
+
+def nozzle_solids(standoff, tip_diameter, cone_angle, body_diameter, body_length, point, axis):
+    """The nozzle the build sequence is checked against (``Nozzle.hpp``, Eq. 10), as Part solids
+    standing on the deposit point `point` along the tool axis `axis` (FreeCAD vectors; mm and
+    degrees): nothing for the first `standoff` (the stream and the beam or arc), then the tip, a
+    cone frustum `tip_diameter` across at its face widening at `cone_angle` (half-angle) until it
+    is `body_diameter` across, then the body, a cylinder of that diameter `body_length` long.
+    Returns [tip, body] ([body] when the tip is as wide as the body). Raises ValueError for a
+    zero axis or a cone that would not close (an angle outside 0 to 90 degrees)."""
+    axis = FreeCAD.Vector(axis)
+    if axis.Length <= 0.0:
+        raise ValueError("nozzle_solids(): the tool axis is a zero vector")
+    axis.normalize()
+    if body_diameter > tip_diameter and not 0.0 < cone_angle < 90.0:
+        raise ValueError("nozzle_solids(): the cone angle must be between 0 and 90 degrees, "
+                         "got {}".format(cone_angle))
+    face = FreeCAD.Vector(point) + axis * standoff
+    tip_radius, body_radius = tip_diameter / 2.0, body_diameter / 2.0
+    solids = []
+    cone_length = 0.0
+    if body_radius > tip_radius:
+        cone_length = (body_radius - tip_radius) / math.tan(math.radians(cone_angle))
+        solids.append(Part.makeCone(tip_radius, body_radius, cone_length, face, axis))
+    solids.append(Part.makeCylinder(body_radius, body_length, face + axis * cone_length, axis))
+    return solids
+
+
+def layer_prism(layer):
+    """A deposited layer as the build preview draws it: each region's face on the layer's plane
+    swept back along its normal by the layer's greatest thickness (a layer between planes that are
+    not parallel reaches that far only at its thick side: drawn so, no gap shows over the layer
+    below). A region OCCT cannot make a face of is drawn as its outline. A compound."""
+    back = FreeCAD.Vector(layer.normal) * -layer.max_thickness
+    pieces = []
+    for region in layer.regions:
+        face = _region_face(region)
+        if face is None:
+            continue
+        pieces.append(face.extrude(back) if isinstance(face, Part.Face) else face)
+    return Part.makeCompound(pieces)
+
+
+def shape_triangles(shape, tolerance=0.1):
+    """(points, triangles) covering the faces of `shape`: [(x, y, z)] and [(i, j, k)] indices
+    into points, the triangles of each face in its own orientation. What the build preview draws:
+    a convex planar face of four edges (a prism's side) is split into two triangles along a
+    diagonal, any other face is tessellated by OCCT within `tolerance` mm (a planar polygon's
+    triangles do not depend on it)."""
+    points, triangles = [], []
+    for face in shape.Faces:
+        wires = face.Wires
+        corners = wires[0].OrderedVertexes if len(wires) == 1 else []
+        if len(corners) == 4 and isinstance(face.Surface, Part.Plane) and len(face.Edges) == 4:
+            p = [v.Point for v in corners]
+            turns = [(p[(i + 1) % 4] - p[i]).cross(p[(i + 2) % 4] - p[(i + 1) % 4])
+                     for i in range(4)]
+            if all(t.dot(turns[0]) > 0.0 for t in turns):  # convex
+                base = len(points)
+                points += [(q.x, q.y, q.z) for q in p]
+                if face.Orientation == "Reversed":
+                    triangles += [(base, base + 2, base + 1), (base, base + 3, base + 2)]
+                else:
+                    triangles += [(base, base + 1, base + 2), (base, base + 2, base + 3)]
+                continue
+        face_points, face_triangles = face.tessellate(tolerance)
+        base = len(points)
+        points += [(q.x, q.y, q.z) for q in face_points]
+        triangles += [(base + a, base + b, base + c) for a, b, c in face_triangles]
+    return points, triangles
+
+
+class BuildPreviewFeature(_EngineFeature):
+    """Proxy of an ``App::FeaturePython`` with a Shape, showing a ``Layers`` object's build as
+    it stands after one step of its deposition sequence, with the nozzle at that step's layer.
+    (Not a ``Part::FeaturePython``: its view provider draws the Shape itself, each layer's
+    triangles made once, where Part's took seconds a step on a part of a thousand layers.)
+
+    Inputs: Layers (the Layers object), Step (1 to the number of layers: the layers of its
+    Sequence deposited so far, the last of them the one being deposited; 0: the last step, the
+    whole build), ShowNozzle. Outputs: Shape (a compound of three: the layers deposited before the
+    step's, in deposition order, each a compound of its regions swept back along its normal by its
+    greatest thickness; the step's layer so; the nozzle, its tip and body solids, standing on the
+    deposit point along the layer's tool axis, at the point where it meets what is deposited when
+    the layer collides, else at the start of the layer's first deposit path; an empty compound
+    without ShowNozzle), StepCount, ShownStep, Layer, Component, ToolAxis, Lean (its angle from
+    the layer's normal), NozzlePoint, Collides, CollisionObstacle (the layer it meets, -1 the
+    build plate; -2 when it collides with nothing), ShownComponents (the component of each layer
+    shown, in the Shape's order). The nozzle is the Layers object's (NozzleStandoff, ...)."""
+
+    TYPE = "MultiAxisSlicer::BuildPreview"
+    VIEW_PROVIDER = "ViewProviderBuildPreview"
+    PROPERTY_NAMES = _names(("step", "Step"))
+    PARAMETERS = (("Build preview", ("Step", "ShowNozzle")),)
+
+    @staticmethod
+    def ensure_properties(obj):
+        group = "Build preview"
+        _add_property(obj, "App::PropertyLink", "Layers", group,
+                      "Layers object whose build is shown")
+        _add_property(obj, "App::PropertyInteger", "Step", group,
+                      "Step of the deposition sequence shown (1 to the number of layers): the "
+                      "layers deposited so far, the last the one being deposited; 0: the last", 0)
+        _add_property(obj, "App::PropertyBool", "ShowNozzle", group,
+                      "Show the nozzle at the step's layer, along its tool axis", True)
+        _add_property(obj, "Part::PropertyPartShape", "Shape", "Base",
+                      "The layers deposited so far, the step's layer and the nozzle", None,
+                      _OUTPUT)
+        result = "Result"
+        for type_id, prop, doc, default in (
+                ("App::PropertyInteger", "StepCount", "Number of steps (layers) in the sequence",
+                 0),
+                ("App::PropertyInteger", "ShownStep", "The step shown (Step, or the last for 0)",
+                 0),
+                ("App::PropertyInteger", "Layer", "Index of the step's layer (the Layers "
+                 "object's order)", -1),
+                ("App::PropertyInteger", "Component", "Component of the step's layer", -1),
+                ("App::PropertyVector", "ToolAxis", "The nozzle's axis at the step's layer", None),
+                ("App::PropertyAngle", "Lean", "Angle of the tool axis from the layer's normal",
+                 0.0),
+                ("App::PropertyVector", "NozzlePoint",
+                 "Deposit point the nozzle is shown at", None),
+                ("App::PropertyBool", "Collides",
+                 "Whether the step's layer is one whose nozzle meets what is deposited", False),
+                ("App::PropertyInteger", "CollisionObstacle",
+                 "What the step's nozzle meets: a layer's index, -1 the build plate, -2 nothing",
+                 -2),
+                ("App::PropertyIntegerList", "ShownComponents",
+                 "Component of each layer shown, deposited first to the step's", None)):
+            _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
+
+    def recompute(self, obj):
+        """The Layers object's result at Step -> Shape and the result properties. Raises on bad
+        input (no Layers, a Step past the sequence)."""
+        layers_obj = _check_link(obj, "Layers", is_layers, "Layers")
+        result = slice_result(layers_obj)
+        sequence = list(result.sequence)
+        count = len(sequence)
+        if count == 0:
+            raise ValueError("{}: '{}' has no layers to deposit".format(obj.Label,
+                                                                         layers_obj.Label))
+        if not 0 <= obj.Step <= count:
+            raise ValueError("{}: Step must be 0 (the last) to {} (the layers of '{}'), got "
+                             "{}".format(obj.Label, count, layers_obj.Label, obj.Step))
+        step = obj.Step or count
+        index = sequence[step - 1]
+        layer = result.layers[index]
+        # The prisms are kept per slicing result: a step's preview reuses those drawn before.
+        cache = getattr(self, "_prisms", None)
+        if cache is None or cache[0] is not result:
+            cache = (result, {})
+            self._prisms = cache
+        prisms = cache[1]
+
+        def prism(i):
+            if i not in prisms:
+                prisms[i] = layer_prism(result.layers[i])
+            return prisms[i]
+
+        axis = FreeCAD.Vector(result.tool_axis(index))
+        collision = next((c for c in result.collisions if c.layer == index), None)
+        if collision is not None:
+            point = FreeCAD.Vector(collision.nozzle_at)
+        else:
+            point = FreeCAD.Vector(layer.origin)
+            for path in result.paths(index):
+                if path.deposit and path.points:
+                    point = FreeCAD.Vector(path.points[0])
+                    break
+        nozzle = []
+        if obj.ShowNozzle:
+            nozzle = nozzle_solids(
+                layers_obj.NozzleStandoff.Value, layers_obj.NozzleTipDiameter.Value,
+                layers_obj.NozzleConeAngle.Value, layers_obj.NozzleBodyDiameter.Value,
+                layers_obj.NozzleBodyLength.Value, point, axis)
+        normal = FreeCAD.Vector(layer.normal)
+        obj.StepCount = count
+        obj.ShownStep = step
+        obj.Layer = index
+        obj.Component = layer.component
+        obj.ToolAxis = axis
+        obj.Lean = math.degrees(axis.getAngle(normal)) if axis.Length > 0 else 0.0
+        obj.NozzlePoint = point
+        obj.Collides = collision is not None
+        obj.CollisionObstacle = collision.obstacle_layer if collision is not None else -2
+        # ShownComponents before Shape: the view provider draws the layers when Shape changes.
+        obj.ShownComponents = [result.layers[i].component for i in sequence[:step]]
+        obj.Shape = Part.makeCompound([
+            Part.makeCompound([prism(i) for i in sequence[:step - 1]]), prism(index),
+            Part.makeCompound(nozzle)])
+
+
+def is_build_preview(obj):
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == BuildPreviewFeature.TYPE
+
+
+def make_build_preview(layers, step=0, show_nozzle=True, name="BuildPreview", doc=None):
+    """Adds a ``BuildPreview`` object showing the build of the ``Layers`` object ``layers`` (a
+    ``Toolpath`` object stands for its Layers) after ``step`` steps of its sequence (0: all), the
+    nozzle at that step's layer, to ``doc`` (default: the layers' document) and returns it;
+    recompute the document to compute it. Nothing is changed on the layers."""
+    if is_toolpath(layers):
+        if layers.Layers is None:
+            raise ValueError("make_build_preview(): the Toolpath '{}' has no Layers".format(
+                layers.Label))
+        layers = layers.Layers
+    if not is_layers(layers):
+        raise TypeError("make_build_preview() needs a Layers or Toolpath object, got {}".format(
+            getattr(layers, "TypeId", type(layers).__name__)))
+    if isinstance(step, bool) or not isinstance(step, int) or step < 0:
+        raise ValueError("make_build_preview(): step must be a whole number, 0 (the last) or "
+                         "more, got {!r}".format(step))
+    if doc is None:
+        doc = layers.Document
+    obj = doc.addObject("App::FeaturePython", name)
+    BuildPreviewFeature(obj)
+    obj.Layers = layers
+    obj.Step = step
+    obj.ShowNozzle = bool(show_nozzle)
+    if FreeCAD.GuiUp:
+        _attach_view_provider(obj, BuildPreviewFeature.VIEW_PROVIDER)
+    return obj
 
 
 def _check_angles(values, parameters):

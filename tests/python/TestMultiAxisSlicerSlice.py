@@ -1667,5 +1667,200 @@ class TestLayersObject(SliceObjectTest):
         self.assertNotIn("Traceback", output)
 
 
+class TestBuildPreviewObject(SliceObjectTest):
+    """The BuildPreview object: the build after a step of the Layers' sequence, the nozzle at the
+    step's layer along its tool axis."""
+
+    def make_preview(self, shape, step=0, **params):
+        part = self.doc.addObject("Part::Feature", "Part")
+        part.Shape = shape
+        self.doc.recompute()
+        _decomposition, layers, toolpath = self.make(part, **params)
+        preview = mas.make_build_preview(layers, step=step)
+        self.doc.recompute()
+        self.assertTrue(preview.isValid(), preview.getStatusString())
+        return layers, toolpath, preview
+
+    def check_nozzle(self, solids, point, axis, layers):
+        """The nozzle's tip (a cone frustum) and body (a cylinder) from the Layers' nozzle,
+        standing `standoff` off `point` along `axis` (unit)."""
+        standoff, tip_r = layers.NozzleStandoff.Value, layers.NozzleTipDiameter.Value / 2
+        body_r, body_l = layers.NozzleBodyDiameter.Value / 2, layers.NozzleBodyLength.Value
+        cone_l = (body_r - tip_r) / math.tan(math.radians(layers.NozzleConeAngle.Value))
+        self.assertEqual(len(solids), 2)
+        tip, body = solids
+        volumes = (math.pi * cone_l * (tip_r ** 2 + tip_r * body_r + body_r ** 2) / 3,
+                   math.pi * body_r ** 2 * body_l)
+        for solid, volume, centre in ((tip, volumes[0], None),
+                                      (body, volumes[1], standoff + cone_l + body_l / 2)):
+            self.assertAlmostEqual(solid.Volume, volume, delta=volume * REL)
+            com = solid.CenterOfMass - point
+            along = com.dot(axis)
+            self.assertLess((com - axis * along).Length, 1e-6)  # on the tool axis
+            if centre is not None:
+                self.assertAlmostEqual(along, centre, places=6)
+        # The tip's face standoff along the axis, the body from where the cone ends.
+        rims = [(e.Curve.Center - point).dot(axis) for e in tip.Edges
+                if isinstance(e.Curve, Part.Circle)]
+        self.assertAlmostEqual(min(rims), standoff, places=6)
+        self.assertAlmostEqual(max(rims), standoff + cone_l, places=6)
+
+    def test_each_step_shows_the_layers_deposited_so_far_and_the_nozzle_on_its_layer(self):
+        layers, _toolpath, preview = self.make_preview(l_block(), step=1)
+        result = features.slice_result(layers)
+        sequence = list(result.sequence)
+        self.assertEqual(preview.Proxy.Type, "MultiAxisSlicer::BuildPreview")
+        self.assertEqual(preview.StepCount, len(sequence))
+        for step in (1, 2, len(sequence) // 2, len(sequence), 0):
+            preview.Step = step
+            self.doc.recompute()
+            self.assertTrue(preview.isValid(), preview.getStatusString())
+            shown = step or len(sequence)
+            index = sequence[shown - 1]
+            layer = result.layers[index]
+            self.assertEqual(preview.ShownStep, shown)
+            self.assertEqual((preview.Layer, preview.Component), (index, layer.component))
+            self.assertEqual(list(preview.ShownComponents),
+                             [result.layers[i].component for i in sequence[:shown]])
+            deposited, current, nozzle = preview.Shape.childShapes()
+            self.assertEqual(len(deposited.childShapes()), shown - 1)
+            # Each layer a prism: its regions on its plane swept back along its normal by its
+            # thickness (the L's layers are parallel: exact).
+            for i, prism in zip(sequence[:shown - 1], deposited.childShapes()):
+                area = sum(Part.Face(Part.makePolygon(r["outer"] + r["outer"][:1])).Area
+                           for r in result.layers[i].regions)
+                self.assertAlmostEqual(prism.Volume, area * result.layers[i].max_thickness,
+                                       delta=area * REL)
+            heights = [(v.Point - layer.origin).dot(layer.normal) for v in current.Vertexes]
+            self.assertAlmostEqual(max(heights), 0.0, places=6)  # its top on its plane
+            self.assertAlmostEqual(min(heights), -layer.max_thickness, places=6)
+            first = next(p for p in result.paths(index) if p.deposit)
+            self.assertVectorAlmostEqual(preview.NozzlePoint, first.points[0])
+            self.assertVectorAlmostEqual(preview.ToolAxis, result.tool_axis(index))
+            self.assertFalse(preview.Collides)
+            self.assertEqual(preview.CollisionObstacle, -2)
+            self.check_nozzle(nozzle.Solids, preview.NozzlePoint, preview.ToolAxis, layers)
+        # ShowNozzle off: the layers only.
+        preview.ShowNozzle = False
+        self.doc.recompute()
+        self.assertEqual(preview.Shape.childShapes()[2].Solids, [])
+        self.assertEqual(len(preview.Shape.Solids), len(sequence))
+        # The layers are read, never changed; their result is reused, not computed again.
+        self.assertNotIn("Touched", layers.State)
+        self.assertIs(features.slice_result(layers), result)
+
+    def test_a_leaned_layer_shows_its_nozzle_along_the_tool_axis(self):
+        layers, _toolpath, preview = self.make_preview(rod_under_bar())
+        result = features.slice_result(layers)
+        leaned = result.leaned_layers()
+        self.assertTrue(leaned)  # the rod's nozzle is leaned up off the plate
+        index = leaned[0]
+        preview.Step = list(result.sequence).index(index) + 1
+        self.doc.recompute()
+        layer = result.layers[index]
+        axis = FreeCAD.Vector(result.tool_axis(index))
+        self.assertEqual(preview.Layer, index)
+        self.assertVectorAlmostEqual(preview.ToolAxis, axis)
+        self.assertAlmostEqual(preview.Lean.Value,
+                               math.degrees(axis.getAngle(FreeCAD.Vector(layer.normal))),
+                               places=6)
+        self.assertGreater(preview.Lean.Value, 1.0)
+        self.check_nozzle(preview.Shape.childShapes()[2].Solids, preview.NozzlePoint, axis,
+                          layers)
+
+    def test_a_colliding_layer_shows_its_nozzle_where_it_meets_what_is_deposited(self):
+        _decomposition, layers, _toolpath = self.make_coaxial_wide_l()
+        result = features.slice_result(layers)
+        collision = result.collisions[0]
+        preview = mas.make_build_preview(layers, step=list(result.sequence).index(
+            collision.layer) + 1)
+        self.doc.recompute()
+        self.assertTrue(preview.isValid(), preview.getStatusString())
+        self.assertTrue(preview.Collides)
+        self.assertEqual(preview.CollisionObstacle, collision.obstacle_layer)
+        self.assertEqual(preview.CollisionObstacle, -1)  # the plate
+        self.assertVectorAlmostEqual(preview.NozzlePoint, collision.nozzle_at)
+        nozzle = preview.Shape.childShapes()[2]
+        self.check_nozzle(nozzle.Solids, preview.NozzlePoint, preview.ToolAxis, layers)
+        # The body, 100 mm across and horizontal along the arm, reaches under the plate.
+        self.assertLess(nozzle.BoundBox.ZMin, 0.0)
+
+    def test_a_step_past_the_sequence_is_named_until_fixed(self):
+        layers, _toolpath, preview = self.make_preview(box_20_10_21())
+        preview.Step = 12
+        self.doc.recompute()
+        self.assertIn("Invalid", preview.State)
+        self.assertIn("Step must be 0 (the last) to 11 (the layers of 'Layers'), got 12",
+                      preview.getStatusString())
+        preview.Step = -1
+        self.doc.recompute()
+        self.assertIn("got -1", preview.getStatusString())
+        preview.Step = 11
+        self.doc.recompute()
+        self.assertTrue(preview.isValid(), preview.getStatusString())
+        self.assertEqual(preview.ShownStep, 11)
+        # Layers changed under it: fewer steps; a Step within them is shown.
+        layers.MaxLayer = 3.0
+        self.doc.recompute()
+        self.assertIn("Invalid", preview.State)
+        self.assertIn("to 7 (the layers", preview.getStatusString())
+        preview.Step = 0
+        self.doc.recompute()
+        self.assertTrue(preview.isValid(), preview.getStatusString())
+        self.assertEqual((preview.StepCount, preview.ShownStep), (7, 7))
+
+    def test_survives_save_and_reopen_and_undo_removes_it(self):
+        self.doc.UndoMode = 1
+        layers, _toolpath, _first = self.make_preview(l_block(), step=5)
+        self.doc.openTransaction("Build preview")
+        preview = mas.make_build_preview(layers, step=7, name="Second")
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        solids = len(preview.Shape.Solids)
+        self.assertEqual(solids, 7 + 2)
+        self.reopened("preview.FCStd")
+        preview = self.doc.getObject("Second")
+        self.assertIsInstance(preview.Proxy, features.BuildPreviewFeature)
+        self.assertIs(preview.Layers, self.doc.getObject("Layers"))
+        self.assertEqual((preview.Step, preview.ShownStep), (7, 7))
+        self.assertEqual(len(preview.Shape.Solids), solids)  # saved with the document
+        preview.Step = 8
+        self.doc.recompute()  # the slicing redone on demand
+        self.assertTrue(preview.isValid(), preview.getStatusString())
+        self.assertEqual(len(preview.Shape.Solids), 8 + 2)
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("Build preview")
+        mas.make_build_preview(self.doc.getObject("Layers"), name="Third")
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        self.doc.undo()
+        self.assertIsNone(self.doc.getObject("Third"))
+        self.assertIsNotNone(self.doc.getObject("Second"))
+
+    def test_bad_arguments(self):
+        _decomposition, layers, toolpath = self.make()
+        with self.assertRaisesRegex(TypeError, "needs a Layers or Toolpath object"):
+            mas.make_build_preview(self.part)
+        for step in (-1, 1.5, True, "3"):
+            with self.assertRaisesRegex(ValueError, "step must be a whole number"):
+                mas.make_build_preview(layers, step=step)
+        self.assertIs(mas.make_build_preview(toolpath).Layers, layers)  # a Toolpath stands in
+        toolpath.Layers = None
+        with self.assertRaisesRegex(ValueError, "the Toolpath 'Toolpath' has no Layers"):
+            mas.make_build_preview(toolpath)
+        with self.assertRaisesRegex(ValueError, "zero vector"):
+            features.nozzle_solids(10, 10, 30, 50, 200, V(0, 0, 0), V(0, 0, 0))
+        with self.assertRaisesRegex(ValueError, "cone angle must be between 0 and 90"):
+            features.nozzle_solids(10, 10, 0, 50, 200, V(0, 0, 0), V(0, 0, 1))
+        body = features.nozzle_solids(10, 20, 0, 20, 50, V(0, 0, 0), V(0, 0, 2))  # no cone
+        self.assertEqual(len(body), 1)
+        self.assertAlmostEqual(body[0].Volume, math.pi * 100 * 50, delta=1e-6)
+        self.assertAlmostEqual(body[0].BoundBox.ZMin, 10.0, places=9)
+        preview = self.doc.getObject("BuildPreview")
+        preview.Layers = None
+        self.doc.recompute()
+        self.assertIn("Layers is not set", preview.getStatusString())
+
+
 if __name__ == "__main__":
     unittest.main()

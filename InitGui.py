@@ -24,7 +24,8 @@ class MultiAxisSlicerWorkbench(Workbench):  # noqa: F821 (Workbench comes from F
 
         names = [commands.SectionsCommand.NAME, commands.CentroidalAxisCommand.NAME,
                  commands.DecomposeCommand.NAME, commands.SliceCommand.NAME,
-                 commands.MachineProgramCommand.NAME, commands.ExportGcodeCommand.NAME]
+                 commands.BuildPreviewCommand.NAME, commands.MachineProgramCommand.NAME,
+                 commands.ExportGcodeCommand.NAME]
         self.appendToolbar("Multi-Axis Slicer", names)
         self.appendMenu("Multi-Axis Slicer", names)
 

@@ -24,6 +24,7 @@ _RESULTS = {
     "MultiAxisSlicer::Layers": "a Layers object",
     "MultiAxisSlicer::Toolpath": "a Toolpath object",
     "MultiAxisSlicer::MachineProgram": "a MachineProgram object (G-code)",
+    "MultiAxisSlicer::BuildPreview": "a BuildPreview object",
 }
 
 
@@ -194,6 +195,11 @@ class _PartCommand:
         message = features.failure(obj)
         if message is not None:  # the object stays so that its parameters (or input) can be fixed
             MultiAxisSlicerGui.show_error(message)
+            return
+        self.made(obj)
+
+    def made(self, obj):
+        """After the object is made and computed (not when it failed)."""
 
 
 class SectionsCommand(_PartCommand):
@@ -448,6 +454,34 @@ class MachineProgramCommand(_PartCommand):
         return features.make_machine_program(source, doc=doc)
 
 
+class BuildPreviewCommand(MachineProgramCommand):
+    """The build of a selected Layers (or Toolpath) object step by step in its deposition order,
+    as a parametric BuildPreview object (the layers deposited so far and the nozzle at the step's
+    layer), in one transaction; its panel opens on it to step through the build."""
+
+    NAME = "MultiAxisSlicer_BuildPreview"
+    TRANSACTION = "Build preview"
+    ICON = "BuildPreview.svg"
+    TOOLTIP = ("Step through the build of the selected Layers (or Toolpath) in its deposition "
+               "order: the layers deposited so far and the nozzle at the step's layer, along its "
+               "tool axis (a parametric BuildPreview object)")
+
+    def make(self, source, doc):
+        import MultiAxisSlicer.features as features
+
+        preview = features.make_build_preview(source, doc=doc)
+        # The preview takes the place of the layers and paths in the view.
+        for o in [preview.Layers] + preview.Layers.InList:
+            if (features.is_layers(o) or features.is_toolpath(o)) and o.ViewObject is not None:
+                o.ViewObject.Visibility = False
+        return preview
+
+    def made(self, obj):
+        from MultiAxisSlicerGui import build_preview
+
+        build_preview.edit(obj)
+
+
 class ExportGcodeCommand:
     """Writes the program of a selected MachineProgram object to a file the user names (.ngc),
     after recomputing it if it or its layers changed since. Adds nothing to the document."""
@@ -506,3 +540,4 @@ FreeCADGui.addCommand(DecomposeCommand.NAME, DecomposeCommand())
 FreeCADGui.addCommand(SliceCommand.NAME, SliceCommand())
 FreeCADGui.addCommand(MachineProgramCommand.NAME, MachineProgramCommand())
 FreeCADGui.addCommand(ExportGcodeCommand.NAME, ExportGcodeCommand())
+FreeCADGui.addCommand(BuildPreviewCommand.NAME, BuildPreviewCommand())

@@ -707,3 +707,228 @@ class ViewProviderMachineProgram(_Editable, _LineStyled):
     LINE_WIDTH = PROGRAM_LINE_WIDTH
     ICON = "MachineProgram.svg"
     DRAW_STYLE = "Dashed"
+
+
+# BuildPreview: the layers deposited in their component's colour, every other layer of a component
+# a shade darker so that the layers show as bands, the step's layer in a yellow no component
+# gets, the nozzle in a light grey, or in CollisionColor's magenta where it meets what is
+# deposited.
+BUILD_PREVIEW_COLOURS = {
+    "CurrentLayerColor": ((1.0, 0.85, 0.0), "Colour of the layer being deposited at the step"),
+    "NozzleColor": ((0.75, 0.75, 0.78), "Colour of the nozzle"),
+    "CollisionColor": (COLLISION_COLOUR,
+                       "Colour of the nozzle where it meets what is deposited (a layer no order "
+                       "or lean clears)"),
+}
+BUILD_PREVIEW_BAND_SHADE = 0.8
+# More layers than this to draw anew show the wait cursor.
+BUILD_PREVIEW_QUIET_LAYERS = 100
+
+
+class _WaitCursor:
+    """The wait cursor while a block runs, if `shown`."""
+
+    def __init__(self, shown):
+        self.shown = shown
+
+    def __enter__(self):
+        if self.shown:
+            from PySide import QtCore, QtGui
+
+            QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
+        return self
+
+    def __exit__(self, *exc):
+        if self.shown:
+            from PySide import QtGui
+
+            QtGui.QApplication.restoreOverrideCursor()
+        return False
+
+
+def build_preview_layer_colours(components, current, shade=BUILD_PREVIEW_BAND_SHADE):
+    """The colour of each layer a BuildPreview shows, from its ShownComponents (deposition order,
+    the step's layer last): each in its component's colour, every second layer of a component
+    (counted in that order) `shade` times as bright; the step's layer `current`."""
+    seen = {}
+    colours = []
+    for component in components[:-1]:
+        count = seen.get(component, 0)
+        seen[component] = count + 1
+        colour = component_colour(component)
+        colours.append(colour if count % 2 == 0 else tuple(x * shade for x in colour))
+    return colours + [tuple(current)] if components else []
+
+
+class ViewProviderBuildPreview(_Stateless):
+    """Tree icon and drawing of a ``BuildPreview`` object (an App::FeaturePython with a Shape):
+    its Shape drawn here, shaded, each layer's triangles made once (``shape_triangles``) and
+    kept while its prism is, so that a step redraws only what changed (Part's view provider
+    tessellated every face of the Shape anew at each step: seconds on a part of a thousand
+    layers). Colours: ``build_preview_layer_colours`` and the view properties CurrentLayerColor,
+    NozzleColor and CollisionColor. Double-click (or "Step through the build..." in the context
+    menu) opens its panel (build_preview.py): a slider over the sequence's steps, with play."""
+
+    COLOUR_PROPERTIES = tuple(BUILD_PREVIEW_COLOURS)
+
+    def __init__(self, vobj):
+        for prop, (colour, doc) in BUILD_PREVIEW_COLOURS.items():
+            vobj.addProperty("App::PropertyColor", prop, "Object Style", doc)
+            setattr(vobj, prop, colour)
+        vobj.Proxy = self  # calls attach()
+
+    def attach(self, vobj):
+        from pivy import coin
+
+        self.Object = vobj.Object
+        self.geometries = {}  # a prism's hashCode() -> its triangles' node
+        self.materials = {}  # colour -> SoMaterial
+        self.shown = []  # the colours drawn: each layer's, then the nozzle's (if shown)
+        self.root = coin.SoSeparator()
+        hints = coin.SoShapeHints()
+        hints.vertexOrdering = coin.SoShapeHints.UNKNOWN_ORDERING  # lit on both sides
+        hints.creaseAngle = 0.0  # flat: a prism's walls and faces keep their edges
+        self.root.addChild(hints)
+        self.layer_nodes = coin.SoSeparator()
+        self.nozzle_node = coin.SoSeparator()
+        self.root.addChild(self.layer_nodes)
+        self.root.addChild(self.nozzle_node)
+        vobj.addDisplayMode(self.root, "Shaded")
+        self.update(vobj)
+
+    def getDisplayModes(self, vobj):
+        return ["Shaded"]
+
+    def getDefaultDisplayMode(self):
+        return "Shaded"
+
+    def setDisplayMode(self, mode):
+        return mode
+
+    def updateData(self, obj, prop):
+        if prop == "Shape" and obj.ViewObject is not None:
+            self.update(obj.ViewObject)
+
+    def onChanged(self, vobj, prop):
+        if prop in self.COLOUR_PROPERTIES:
+            self.update(vobj)
+
+    def _material(self, colour):
+        from pivy import coin
+
+        node = self.materials.get(colour)
+        if node is None:
+            node = self.materials[colour] = coin.SoMaterial()
+            node.diffuseColor.setValue(*colour)
+        return node
+
+    @staticmethod
+    def _triangles(shape):
+        """A node drawing `shape`'s faces as triangles."""
+        from pivy import coin
+
+        import MultiAxisSlicer.features as features
+
+        points, triangles = features.shape_triangles(shape)
+        node = coin.SoSeparator()
+        coordinates = coin.SoCoordinate3()
+        faces = coin.SoIndexedFaceSet()
+        if points:
+            coordinates.point.setValues(0, len(points), points)
+            index = [i for t in triangles for i in (t[0], t[1], t[2], -1)]
+            faces.coordIndex.setValues(0, len(index), index)
+        node.addChild(coordinates)
+        node.addChild(faces)
+        return node
+
+    def update(self, vobj):
+        """The drawing from the object's Shape, ShownComponents and Collides and the colours."""
+        obj = vobj.Object
+        if (getattr(self, "layer_nodes", None) is None or obj is None
+                or "ShownComponents" not in obj.PropertiesList
+                or not all(p in vobj.PropertiesList for p in BUILD_PREVIEW_COLOURS)):
+            return  # still being set up or restored
+        self.layer_nodes.removeAllChildren()
+        self.nozzle_node.removeAllChildren()
+        self.shown = []
+        shape = obj.Shape
+        parts = shape.childShapes() if not shape.isNull() and shape.ShapeType == "Compound" else []
+        components = list(obj.ShownComponents)
+        if len(parts) != 3 or len(parts[0].childShapes()) != len(components) - 1:
+            return  # not computed (or failed before its Shape was made)
+        colour = {p: tuple(getattr(vobj, p))[:3] for p in BUILD_PREVIEW_COLOURS}
+        prisms = parts[0].childShapes() + [parts[1]]
+        keys = [prism.hashCode() for prism in prisms]
+        new = [(key, prism) for key, prism in zip(keys, prisms) if key not in self.geometries]
+        # A thousand layers take a few seconds the first time (about 70 microseconds a face):
+        # the wait cursor says so.
+        with _WaitCursor(len(new) > BUILD_PREVIEW_QUIET_LAYERS):
+            for key, prism in new:
+                self.geometries[key] = self._triangles(prism)
+        used = set(keys)
+        for key, layer_colour in zip(keys, build_preview_layer_colours(
+                components, colour["CurrentLayerColor"])):
+            self.layer_nodes.addChild(self._material(layer_colour))
+            self.layer_nodes.addChild(self.geometries[key])
+            self.shown.append(layer_colour)
+        # The layers of a slicing done since, or of steps no longer shown after many: dropped.
+        if len(self.geometries) > 2 * max(obj.StepCount, len(used)):
+            self.geometries = {k: v for k, v in self.geometries.items() if k in used}
+        if parts[2].Faces:
+            nozzle_colour = colour["CollisionColor" if obj.Collides else "NozzleColor"]
+            self.nozzle_node.addChild(self._material(nozzle_colour))
+            self.nozzle_node.addChild(self._triangles(parts[2]))
+            self.shown.append(nozzle_colour)
+
+    def onDelete(self, vobj, subelements):
+        """The Layers object and its Toolpaths, hidden by the Build preview command, are shown
+        again when no other preview of them is left."""
+        import MultiAxisSlicer.features as features
+
+        obj = vobj.Object
+        layers = getattr(obj, "Layers", None)
+        if layers is None or any(features.is_build_preview(o) and o is not obj
+                                 for o in layers.InList):
+            return True
+        for o in [layers] + layers.InList:
+            if (features.is_layers(o) or features.is_toolpath(o)) and o.ViewObject is not None:
+                o.ViewObject.Visibility = True
+        return True
+
+    def doubleClicked(self, vobj):
+        from MultiAxisSlicerGui import build_preview
+
+        return build_preview.edit(vobj.Object)
+
+    def setupContextMenu(self, vobj, menu):
+        import FreeCAD
+
+        action = menu.addAction("Step through the build...")
+        name, doc = vobj.Object.Name, vobj.Object.Document.Name
+
+        def edit():
+            from MultiAxisSlicerGui import build_preview
+
+            obj = FreeCAD.getDocument(doc).getObject(name)
+            if obj is not None:
+                build_preview.edit(obj)
+
+        action.triggered.connect(edit)
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None  # FreeCAD's own
+        from MultiAxisSlicerGui import build_preview
+
+        return build_preview.open_panel(vobj.Object)
+
+    def unsetEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        from MultiAxisSlicerGui import build_preview
+
+        build_preview.close_panel()
+        return True
+
+    def getIcon(self):
+        return MultiAxisSlicerGui.icon_path("BuildPreview.svg")

@@ -31,6 +31,7 @@ DECOMPOSE_COMMAND = "MultiAxisSlicer_Decompose"
 SLICE_COMMAND = "MultiAxisSlicer_Slice"
 PROGRAM_COMMAND = "MultiAxisSlicer_MachineProgram"
 EXPORT_COMMAND = "MultiAxisSlicer_ExportGcode"
+PREVIEW_COMMAND = "MultiAxisSlicer_BuildPreview"
 TOOLBAR = "Multi-Axis Slicer"
 
 
@@ -1627,6 +1628,195 @@ def task_buttons():
                 buttons["apply"] = panel.form.apply
             return buttons
     return {}
+
+
+class TestBuildPreviewCommand(unittest.TestCase):
+    def setUp(self):
+        FreeCADGui.activateWorkbench(WORKBENCH)
+        (self.doc, self.part, self.decomposition, self.layers,
+         self.toolpath) = MultiAxisSlicerTestSupport.sliced_l_block_document("MasGuiPreview")
+        FreeCADGui.Selection.clearSelection()
+        process_events()
+
+    def tearDown(self):
+        from MultiAxisSlicerGui import build_preview
+
+        panel = build_preview.active_panel()
+        if panel is not None:
+            panel.reject()
+        FreeCADGui.Selection.clearSelection()
+        close_error_boxes()
+        FreeCAD.closeDocument(self.doc.Name)
+        process_events()
+
+    @staticmethod
+    def colours_of(preview):
+        """The colours the view draws, rounded: each layer's, then the nozzle's."""
+        return [tuple(round(x, 2) for x in c) for c in preview.ViewObject.Proxy.shown]
+
+    def drawn_triangles(self, preview):
+        """The triangles the view draws (its layers', then the nozzle's)."""
+        from pivy import coin
+
+        proxy = preview.ViewObject.Proxy
+        count = 0
+        for group in (proxy.layer_nodes, proxy.nozzle_node):
+            for i in range(group.getNumChildren()):
+                node = group.getChild(i)
+                if isinstance(node, coin.SoSeparator):
+                    count += node.getChild(1).coordIndex.getNum() // 4
+        return count
+
+    def test_the_command_makes_a_preview_and_its_panel_steps_through_the_build(self):
+        import MultiAxisSlicer.features as features
+        from MultiAxisSlicerGui import build_preview
+
+        self.doc.UndoMode = 1
+        names = [o.Name for o in self.doc.Objects]
+        toolbar = FreeCADGui.getMainWindow().findChild(QtGui.QToolBar, TOOLBAR)
+        texts = [a.text() for a in toolbar.actions()]
+        # After Slice, before the machine program: what one looks at before writing G-code.
+        self.assertEqual(texts.index("Build preview"), texts.index("Slice") + 1)
+        self.assertEqual(texts.index("Machine program"), texts.index("Build preview") + 1)
+        action = toolbar.actions()[texts.index("Build preview")]
+        self.assertFalse(action.icon().isNull())
+        menu = [m for m in FreeCADGui.getMainWindow().menuBar().actions() if m.text() == TOOLBAR]
+        self.assertIn("Build preview", [a.text() for a in menu[0].menu().actions()])
+        self.assertFalse(FreeCADGui.Command.get(PREVIEW_COMMAND).isActive())
+        FreeCADGui.Selection.addSelection(self.toolpath)  # a Toolpath stands for its Layers
+        self.assertTrue(FreeCADGui.Command.get(PREVIEW_COMMAND).isActive())
+        FreeCADGui.runCommand(PREVIEW_COMMAND)
+        process_events()
+        preview = self.doc.getObject("BuildPreview")
+        self.assertIsNotNone(preview, "the command made no BuildPreview object")
+        self.assertEqual(error_boxes(), [])
+        self.assertTrue(preview.isValid(), preview.getStatusString())
+        self.assertIs(preview.Layers, self.layers)
+        # It takes the place of the layers and the paths in the view.
+        self.assertFalse(self.layers.ViewObject.Visibility)
+        self.assertFalse(self.toolpath.ViewObject.Visibility)
+        self.assertTrue(preview.ViewObject.Proxy.getIcon().endswith("BuildPreview.svg"))
+        self.assertTrue(os.path.isfile(preview.ViewObject.Proxy.getIcon()))
+        result = features.slice_result(self.layers)
+        count = len(result.sequence)
+        # The whole build, and its panel open on it.
+        self.assertEqual((preview.StepCount, preview.ShownStep), (count, count))
+        panel = build_preview.active_panel()
+        self.assertIsNotNone(panel, "the panel did not open")
+        self.assertIs(panel.obj, preview)
+        self.assertEqual((panel.slider.minimum(), panel.slider.maximum()), (1, count))
+        self.assertEqual(panel.spin.value(), count)
+        self.assertTrue(panel.nozzle.isChecked())
+
+        # A step of the arm's: the layers so far in their components' colours, the step's
+        # yellow, the nozzle grey.
+        arm = [i for i in result.sequence if result.layers[i].component == 1]
+        step = list(result.sequence).index(arm[2]) + 1
+        panel.spin.setValue(step)
+        self.assertEqual((preview.Step, preview.ShownStep, preview.Layer), (step, step, arm[2]))
+        self.assertEqual(panel.slider.value(), step)
+        self.assertIn("Step {} of {}: layer {} of component 1".format(step, count, arm[2]),
+                      panel.info.text())
+        # Drawn: every layer in its component's colour, every second one of a component a shade
+        # darker, the step's yellow, the nozzle grey; the triangles of every face.
+        self.assertEqual(preview.ViewObject.TypeId, "Gui::ViewProviderPythonFeature")
+        components = list(preview.ShownComponents)
+        want, seen = [], {}
+        for component in components[:-1]:
+            colour = view_providers.component_colour(component)
+            seen[component] = seen.get(component, -1) + 1
+            want.append(colour if seen[component] % 2 == 0 else tuple(0.8 * x for x in colour))
+        want += [(1.0, 0.85, 0.0), (0.75, 0.75, 0.78)]
+        self.assertEqual(self.colours_of(preview), [tuple(round(x, 2) for x in c) for c in want])
+        self.assertEqual(self.drawn_triangles(preview),
+                         len(features.shape_triangles(preview.Shape)[1]))
+        self.assertGreaterEqual(self.drawn_triangles(preview), 2 * len(preview.Shape.Faces))
+        save_screenshot(self, self.doc, "build_preview_l_block.png", see_through=False)
+
+        # Play walks on a step at a time and stops at the last.
+        panel.slider.setValue(count - 1)
+        self.assertEqual(preview.ShownStep, count - 1)
+        panel.play.setChecked(True)
+        self.assertTrue(panel.timer.isActive())
+        panel.advance()
+        self.assertEqual((preview.ShownStep, panel.spin.value()), (count, count))
+        panel.advance()
+        self.assertFalse(panel.play.isChecked())
+        self.assertFalse(panel.timer.isActive())
+        # The nozzle hidden: it is not drawn.
+        panel.nozzle.setChecked(False)
+        self.assertFalse(preview.ShowNozzle)
+        self.assertEqual(preview.Shape.childShapes()[2].Faces, [])
+        self.assertEqual(len(self.colours_of(preview)), count)
+        self.assertEqual(preview.ViewObject.Proxy.nozzle_node.getNumChildren(), 0)
+        # Stepping is not recorded for Undo: one step, the command's.
+        self.assertEqual(self.doc.UndoNames[0], "Build preview")
+        panel.reject()
+        process_events()
+        self.assertIsNone(build_preview.active_panel())
+        self.assertIsNone(FreeCADGui.Control.activeDialog() or None)
+        # Double-click opens it again.
+        preview.ViewObject.Proxy.doubleClicked(preview.ViewObject)
+        process_events()
+        self.assertIsNotNone(build_preview.active_panel())
+        self.assertEqual(build_preview.active_panel().spin.value(), count)
+        # Undo removes the object, which ends its edit: the panel closes.
+        panel = build_preview.active_panel()
+        self.doc.undo()
+        process_events()
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        self.assertIsNone(build_preview.active_panel())
+        self.assertIsNone(FreeCADGui.Control.activeDialog() or None)
+        self.assertFalse(panel.go(1))  # a step asked of it then does nothing
+        self.assertTrue(self.layers.ViewObject.Visibility)  # in view again
+        self.assertTrue(self.toolpath.ViewObject.Visibility)
+
+    def test_a_reopened_preview_is_drawn_as_saved(self):
+        import MultiAxisSlicer.features as features
+
+        folder = tempfile.mkdtemp(prefix="mas_gui_preview_")
+        self.addCleanup(shutil.rmtree, folder)
+        preview = mas.make_build_preview(self.layers, step=5)
+        self.doc.recompute()
+        drawn = self.colours_of(preview)
+        self.assertEqual(len(drawn), 5 + 1)  # five layers and the nozzle
+        path = os.path.join(folder, "preview.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        process_events()
+        preview = self.doc.getObject("BuildPreview")
+        self.assertEqual(preview.ViewObject.TypeId, "Gui::ViewProviderPythonFeature")
+        self.assertNotIn("Touched", preview.State)  # drawn from its saved Shape, nothing redone
+        self.assertEqual(self.colours_of(preview), drawn)
+        self.assertEqual(self.drawn_triangles(preview),
+                         len(features.shape_triangles(preview.Shape)[1]))
+
+    def test_a_colliding_layer_shows_its_nozzle_in_the_collision_colour(self):
+        self.layers.NozzleBodyDiameter = 100.0
+        self.layers.NozzleMaxLean = 0.0
+        self.doc.recompute()
+        self.assertGreater(self.layers.CollidingLayers, 0)
+        layer = self.layers.CollisionLayers[0]
+        preview = mas.make_build_preview(
+            self.layers, step=list(self.layers.Sequence).index(layer) + 1)
+        self.doc.recompute()
+        self.assertTrue(preview.Collides)
+        self.assertEqual(self.colours_of(preview)[-1], view_providers.COLLISION_COLOUR)
+        preview.ViewObject.CollisionColor = (0.0, 1.0, 0.0)
+        self.assertEqual(self.colours_of(preview)[-1], (0.0, 1.0, 0.0))
+        from MultiAxisSlicerGui import build_preview
+
+        self.assertTrue(build_preview.summary(preview).endswith("its nozzle meets the build "
+                                                                "plate."))
+        # Deleting the last preview of the layers shows them again; one of two, not yet.
+        second = mas.make_build_preview(self.layers, name="Second")
+        self.doc.recompute()
+        self.layers.ViewObject.Visibility = False
+        for obj in (preview, second):
+            self.assertTrue(obj.ViewObject.Proxy.onDelete(obj.ViewObject, []))
+            self.assertEqual(self.layers.ViewObject.Visibility, obj is second)
+            self.doc.removeObject(obj.Name)
 
 
 class TestParameterPanel(unittest.TestCase):

@@ -77,6 +77,11 @@ case "$mode" in
     "$build/bench/mas_bench_slice" "$root/examples/bracket.step" | tee "$root/out/bench_slice.txt"
     MAS_APP="$build/Mod/MultiAxisSlicer/App" MAS_BENCH_DATA="$build/bench-data" \
       freecadcmd "$root/tools/bench_mesh_input.py" 2>&1 | tee "$root/out/bench_mesh_input.txt"
+    bench_home=$(mktemp -d)  # the FreeCAD GUI writes its settings there, not the user's
+    HOME="$bench_home" QTWEBENGINE_DISABLE_SANDBOX=1 MAS_MOD="$build/Mod/MultiAxisSlicer" \
+      xvfb-run -a -s "-screen 0 1280x1024x24" freecad "$root/tools/bench_build_preview.py" 2>&1 |
+      tee "$root/out/bench_build_preview.txt"
+    rm -rf "$bench_home"
     ;;
   *) echo "usage: tools/setup.sh [install|demo|test|bench|build]" >&2; exit 2 ;;
 esac

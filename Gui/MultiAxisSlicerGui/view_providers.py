@@ -496,11 +496,29 @@ def drill_polylines(centres, axes, diameters, lengths, segments=DRILL_CIRCLE_SEG
     return out
 
 
-def _overlay(vobj, colour_property, default, doc, line_width, point_size=None):
+def _overlay_switch(vobj):
+    """A switch added to an object's root node for its overlays (below), on while the object is
+    shown: FreeCAD hides an object by the switch of its display modes only, and what else its root
+    node holds was drawn still (a hidden Layers object's holes to drill and collisions)."""
+    from pivy import coin
+
+    switch = coin.SoSwitch()
+    _show_overlays(switch, vobj.Visibility)
+    vobj.RootNode.addChild(switch)
+    return switch
+
+
+def _show_overlays(switch, shown):
+    from pivy import coin
+
+    switch.whichChild = coin.SO_SWITCH_ALL if shown else coin.SO_SWITCH_NONE
+
+
+def _overlay(vobj, colour_property, default, doc, line_width, point_size=None, parent=None):
     """Lines drawn over an object's Shape in one colour, whatever the lights and the display mode:
-    (separator, SoBaseColor, SoCoordinate3, SoLineSet), added to its root node. The colour is
-    the view property `colour_property`, added with `default` if the object lacks it (new, or
-    from a document saved before it)."""
+    (separator, SoBaseColor, SoCoordinate3, SoLineSet), added to `parent` (an _overlay_switch()),
+    else to its root node. The colour is the view property `colour_property`, added with `default`
+    if the object lacks it (new, or from a document saved before it)."""
     from pivy import coin
 
     if colour_property not in vobj.PropertiesList:
@@ -518,7 +536,7 @@ def _overlay(vobj, colour_property, default, doc, line_width, point_size=None):
     lines = coin.SoLineSet()
     for node in (light, colour, style, points, lines):
         separator.addChild(node)
-    vobj.RootNode.addChild(separator)
+    (vobj.RootNode if parent is None else parent).addChild(separator)
     return separator, colour, points, lines
 
 
@@ -553,16 +571,17 @@ class ViewProviderLayers(_Editable, _EdgeColoured):
         from pivy import coin
 
         super().attach(vobj)
+        self.overlays = _overlay_switch(vobj)
         (self.drills, self.drill_colour, self.drill_points,
          self.drill_lines) = _overlay(vobj, "DrillColor", DRILL_COLOUR,
                                       "Colour of the holes deposited solid, to drill afterwards",
-                                      DRILL_LINE_WIDTH)
+                                      DRILL_LINE_WIDTH, parent=self.overlays)
         self.update_drills(vobj)
         (self.collisions, self.collision_colour, self.collision_points,
          self.collision_lines) = _overlay(vobj, "CollisionColor", COLLISION_COLOUR,
                                           "Colour of the collisions: from where the nozzle stands "
                                           "to what it meets", COLLISION_LINE_WIDTH,
-                                          COLLISION_POINT_SIZE)
+                                          COLLISION_POINT_SIZE, parent=self.overlays)
         self.collision_marks = coin.SoPointSet()  # the obstacles' points
         self.collisions.addChild(self.collision_marks)
         self.update_collisions(vobj)
@@ -618,6 +637,8 @@ class ViewProviderLayers(_Editable, _EdgeColoured):
 
     def onChanged(self, vobj, prop):
         super().onChanged(vobj, prop)
+        if prop == "Visibility" and getattr(self, "overlays", None) is not None:
+            _show_overlays(self.overlays, vobj.Visibility)
         if prop == "DrillColor":
             self.update_drills(vobj)
         if prop == "CollisionColor":

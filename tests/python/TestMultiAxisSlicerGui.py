@@ -52,6 +52,16 @@ def close_error_boxes():
         box.close()
 
 
+def drawn_box(obj):
+    """The bounding box of what the 3D view draws of `obj` (Coin's, over its root node): empty
+    when nothing of it is drawn."""
+    from pivy import coin
+
+    action = coin.SoGetBoundingBoxAction(coin.SbViewportRegion(100, 100))
+    action.apply(obj.ViewObject.RootNode)
+    return action.getBoundingBox()
+
+
 def wait_for_components(decomposition, count, seconds=5.0):
     """Processes events until the decomposition has `count` component objects, or the time is up:
     they are synchronised after the recompute ends, by a timer that waits 50 ms while it runs."""
@@ -1193,6 +1203,14 @@ class TestSliceCommand(unittest.TestCase):
         layers.ViewObject.DrillColor = (0.0, 0.8, 0.0)
         process_events()
         self.assertTrue(same_colour(proxy.drill_colour.rgb[0].getValue(), (0.0, 0.8, 0.0)))
+        # Hidden, the layers draw nothing, their holes to drill neither (they were drawn still).
+        self.assertFalse(drawn_box(layers).isEmpty())
+        layers.ViewObject.Visibility = False
+        process_events()
+        self.assertTrue(drawn_box(layers).isEmpty())
+        layers.ViewObject.Visibility = True
+        process_events()
+        self.assertFalse(drawn_box(layers).isEmpty())
         toolpath.ViewObject.Visibility = False
         save_screenshot(self, self.doc, "slice_holes_to_drill.png", see_through=False)
         layers.FillHoles = 0.0

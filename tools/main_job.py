@@ -123,7 +123,8 @@ def main():
     gcode_seconds = time.perf_counter() - start
     program.write(os.path.join(out, "bracket.ngc"))
     # The same as a FreeCAD document: the part with parametric Sections, CentroidalAxis,
-    # Decomposition (and its Component objects), Layers, Toolpath and MachineProgram objects.
+    # Decomposition (and its Component objects), Layers, Toolpath, MachineProgram and
+    # BuildPreview (the whole build, the nozzle on the last layer) objects.
     doc = FreeCAD.newDocument("MainJob")
     part = doc.addObject("Part::Feature", "Bracket")
     part.Shape = shape
@@ -134,7 +135,8 @@ def main():
     objects.append(decomposition_object)
     layers_object, toolpath_object = mas.make_slice(decomposition_object, doc=doc,
                                                     fill_holes=FILL_HOLES)
-    objects += [layers_object, toolpath_object, mas.make_machine_program(layers_object, doc=doc)]
+    objects += [layers_object, toolpath_object, mas.make_machine_program(layers_object, doc=doc),
+                mas.make_build_preview(layers_object, doc=doc)]
     doc.recompute()
     for obj in objects:
         if obj.State and "Invalid" in obj.State:

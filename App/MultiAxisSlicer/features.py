@@ -196,9 +196,19 @@ class _EngineFeature:
         self.Type = self.TYPE
         self.ensure_properties(obj)
         # A document made without the GUI (freecadcmd, a script) saved no view provider: give it
-        # one when the GUI opens it, so the object gets its icon and colours.
+        # one when the GUI opens it, so the object gets its icon and colours. FreeCAD 0.20 also
+        # opens every object of such a document hidden (its issue 28555, fixed in 1.1): each of
+        # this workbench's is shown as its commands would have left it (shown_on_open).
         if FreeCAD.GuiUp and obj.ViewObject is not None and obj.ViewObject.Proxy is None:
             _attach_view_provider(obj, self.VIEW_PROVIDER)
+            obj.ViewObject.Visibility = self.shown_on_open(obj)
+
+    @staticmethod
+    def shown_on_open(obj):
+        """Whether the GUI shows `obj` when it opens a document made without it (see
+        onDocumentRestored): as its command leaves it, unless what is made from it takes its
+        place in the view."""
+        return True
 
     # Nothing to save: every parameter lives in a property. 0.20.2 calls __getstate__ and
     # __setstate__, 0.21.2 and later dumps and loads.
@@ -490,6 +500,10 @@ class DecompositionFeature(_EngineFeature):
                     "MinComponentHeight", "MaxTilt")),)
 
     @staticmethod
+    def shown_on_open(obj):
+        return False  # its Component objects show it
+
+    @staticmethod
     def ensure_properties(obj):
         group = "Decomposition"
         _add_property(obj, "App::PropertyLink", "Source", group,
@@ -644,6 +658,12 @@ class ComponentFeature(_EngineFeature):
 
     TYPE = "MultiAxisSlicer::Component"
     VIEW_PROVIDER = "ViewProviderComponent"
+
+    @staticmethod
+    def shown_on_open(obj):
+        # Layers sliced from its decomposition take its place, as the Slice command leaves them.
+        decomposition = getattr(obj, "Decomposition", None)
+        return decomposition is None or not any(is_layers(o) for o in decomposition.InList)
 
     @staticmethod
     def ensure_properties(obj):
@@ -1125,6 +1145,11 @@ class LayersFeature(_EngineFeature):
                           [("Deflection", "Layers")])
 
     @staticmethod
+    def shown_on_open(obj):
+        # A build preview of them takes their place, as the Build preview command leaves it.
+        return not any(is_build_preview(o) for o in obj.InList)
+
+    @staticmethod
     def ensure_properties(obj):
         _add_property(obj, "App::PropertyLink", "Decomposition", "Layers",
                       "Decomposition object whose part is sliced, component by component")
@@ -1339,6 +1364,11 @@ class ToolpathFeature(_EngineFeature):
 
     TYPE = "MultiAxisSlicer::Toolpath"
     VIEW_PROVIDER = "ViewProviderToolpath"
+
+    @staticmethod
+    def shown_on_open(obj):
+        layers = getattr(obj, "Layers", None)
+        return layers is None or LayersFeature.shown_on_open(layers)
 
     @staticmethod
     def ensure_properties(obj):

@@ -1810,6 +1810,44 @@ class TestBuildPreviewCommand(unittest.TestCase):
         self.assertEqual(self.drawn_triangles(preview),
                          len(features.shape_triangles(preview.Shape)[1]))
 
+    def test_a_document_made_without_the_gui_opens_as_the_commands_leave_it(self):
+        """FreeCAD 0.20 opens every object of a document saved by freecadcmd hidden: the main
+        job's document opened empty. Each of the workbench's objects is shown as its command
+        leaves it: the preview, the program, the axis and the sections; not the layers and paths
+        the preview shows, nor the components the layers show, nor the decomposition."""
+        folder = tempfile.mkdtemp(prefix="mas_gui_headless_")
+        self.addCleanup(shutil.rmtree, folder)
+        path = os.path.join(folder, "headless.FCStd")
+        script = os.path.join(folder, "make.py")
+        with open(script, "w") as f:
+            f.write(textwrap.dedent("""
+                import FreeCAD
+                import MultiAxisSlicer as mas
+                import MultiAxisSlicerTestSupport as support
+                doc, part, decomposition, layers, toolpath = support.sliced_l_block_document(
+                    "Headless")
+                mas.make_sections(part, doc=doc)
+                mas.make_centroidal_axis(part, doc=doc)
+                mas.make_machine_program(layers, doc=doc)
+                mas.make_build_preview(layers, step=20, doc=doc)
+                doc.recompute()
+                doc.saveAs({!r})
+            """.format(path)))
+        result = subprocess.run(["freecadcmd", script], capture_output=True, text=True,
+                                timeout=300)
+        self.assertTrue(os.path.isfile(path), result.stdout + result.stderr)
+        doc = FreeCAD.openDocument(path)
+        self.addCleanup(FreeCAD.closeDocument, doc.Name)
+        process_events()
+        shown = {o.Name: o.ViewObject.Visibility for o in doc.Objects}
+        self.assertEqual(shown, {
+            "L": False, "Decomposition": False, "Component": False, "Component001": False,
+            "Layers": False, "Toolpath": False, "Sections": True, "CentroidalAxis": True,
+            "MachineProgram": True, "BuildPreview": True})
+        preview = doc.getObject("BuildPreview")
+        self.assertEqual(len(self.colours_of(preview)), 20 + 1)  # drawn from its saved Shape
+        self.assertFalse(drawn_box(preview).isEmpty())
+
     def test_a_colliding_layer_shows_its_nozzle_in_the_collision_colour(self):
         self.layers.NozzleBodyDiameter = 100.0
         self.layers.NozzleMaxLean = 0.0

@@ -802,7 +802,7 @@ class ViewProviderBuildPreview(_Stateless):
         from pivy import coin
 
         self.Object = vobj.Object
-        self.geometries = {}  # a prism's hashCode() -> its triangles' node
+        self.geometries = {}  # a prism's hashCode() -> (the prism, its triangles' node)
         self.materials = {}  # colour -> SoMaterial
         self.shown = []  # the colours drawn: each layer's, then the nozzle's (if shown)
         self.root = coin.SoSeparator()
@@ -880,17 +880,18 @@ class ViewProviderBuildPreview(_Stateless):
         colour = {p: tuple(getattr(vobj, p))[:3] for p in BUILD_PREVIEW_COLOURS}
         prisms = parts[0].childShapes() + [parts[1]]
         keys = [prism.hashCode() for prism in prisms]
-        new = [(key, prism) for key, prism in zip(keys, prisms) if key not in self.geometries]
+        new = [(key, prism) for key, prism in zip(keys, prisms)
+               if key not in self.geometries or not self.geometries[key][0].isSame(prism)]
         # A thousand layers take a few seconds the first time (about 70 microseconds a face):
         # the wait cursor says so.
         with _WaitCursor(len(new) > BUILD_PREVIEW_QUIET_LAYERS):
             for key, prism in new:
-                self.geometries[key] = self._triangles(prism)
+                self.geometries[key] = (prism, self._triangles(prism))
         used = set(keys)
         for key, layer_colour in zip(keys, build_preview_layer_colours(
                 components, colour["CurrentLayerColor"])):
             self.layer_nodes.addChild(self._material(layer_colour))
-            self.layer_nodes.addChild(self.geometries[key])
+            self.layer_nodes.addChild(self.geometries[key][1])
             self.shown.append(layer_colour)
         # The layers of a slicing done since, or of steps no longer shown after many: dropped.
         if len(self.geometries) > 2 * max(obj.StepCount, len(used)):

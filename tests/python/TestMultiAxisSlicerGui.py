@@ -1848,6 +1848,26 @@ class TestBuildPreviewCommand(unittest.TestCase):
         self.assertEqual(len(self.colours_of(preview)), 20 + 1)  # drawn from its saved Shape
         self.assertFalse(drawn_box(preview).isEmpty())
 
+    def test_every_object_draws_something_shown_and_nothing_hidden(self):
+        """FreeCAD hides an object by its display modes' switch: whatever else a view provider
+        hangs in its root node (overlays) must follow (a hidden Layers object drew its holes to
+        drill and its collisions)."""
+        mas.make_sections(self.part, doc=self.doc)
+        mas.make_centroidal_axis(self.part, doc=self.doc)
+        mas.make_machine_program(self.layers, doc=self.doc)
+        mas.make_build_preview(self.layers, step=10, doc=self.doc)
+        self.layers.NozzleBodyDiameter = 100.0  # collisions to draw: a wide coaxial nozzle
+        self.layers.NozzleMaxLean = 0.0
+        self.doc.recompute()
+        self.assertGreater(self.layers.CollidingLayers, 0)
+        for obj in self.doc.Objects:
+            obj.ViewObject.Visibility = True
+            process_events()
+            self.assertFalse(drawn_box(obj).isEmpty(), obj.Name)
+            obj.ViewObject.Visibility = False
+            process_events()
+            self.assertTrue(drawn_box(obj).isEmpty(), obj.Name)
+
     def test_a_colliding_layer_shows_its_nozzle_in_the_collision_colour(self):
         self.layers.NozzleBodyDiameter = 100.0
         self.layers.NozzleMaxLean = 0.0

@@ -1506,12 +1506,13 @@ class BuildPreviewFeature(_EngineFeature):
 
     Inputs: Layers (the Layers object), Step (1 to the number of layers: the layers of its
     Sequence deposited so far, the last of them the one being deposited; 0: the last step, the
-    whole build), ShowNozzle. Outputs: Shape (a compound of three: the layers deposited before the
-    step's, in deposition order, each a compound of its regions swept back along its normal by its
-    greatest thickness; the step's layer so; the nozzle, its tip and body solids, standing on the
-    deposit point along the layer's tool axis, at the point where it meets what is deposited when
-    the layer collides, else at the start of the layer's first deposit path; an empty compound
-    without ShowNozzle), StepCount, ShownStep, Layer, Component, ToolAxis, Lean (its angle from
+    whole build), ShowNozzle, ShowPaths. Outputs: Shape (a compound of four: the layers deposited
+    before the step's, in deposition order, each a compound of its regions swept back along its
+    normal by its greatest thickness; the step's layer so; the nozzle, its tip and body solids,
+    standing on the deposit point along the layer's tool axis, at the point where it meets what is
+    deposited when the layer collides, else at the start of the layer's first deposit path; the
+    step's deposit paths, a polyline each, in the order the nozzle follows them; an empty compound
+    for the nozzle without ShowNozzle, for the paths without ShowPaths), StepCount, ShownStep, Layer, Component, ToolAxis, Lean (its angle from
     the layer's normal), NozzlePoint, Collides, CollisionObstacle (the layer it meets, -1 the
     build plate; -2 when it collides with nothing), ShownComponents (the component of each layer
     shown, in the Shape's order). The nozzle is the Layers object's (NozzleStandoff, ...)."""
@@ -1519,7 +1520,7 @@ class BuildPreviewFeature(_EngineFeature):
     TYPE = "MultiAxisSlicer::BuildPreview"
     VIEW_PROVIDER = "ViewProviderBuildPreview"
     PROPERTY_NAMES = _names(("step", "Step"))
-    PARAMETERS = (("Build preview", ("Step", "ShowNozzle")),)
+    PARAMETERS = (("Build preview", ("Step", "ShowNozzle", "ShowPaths")),)
 
     @staticmethod
     def ensure_properties(obj):
@@ -1531,6 +1532,8 @@ class BuildPreviewFeature(_EngineFeature):
                       "layers deposited so far, the last the one being deposited; 0: the last", 0)
         _add_property(obj, "App::PropertyBool", "ShowNozzle", group,
                       "Show the nozzle at the step's layer, along its tool axis", True)
+        _add_property(obj, "App::PropertyBool", "ShowPaths", group,
+                      "Show the step's deposit paths (bead centre lines) on its layer", True)
         _add_property(obj, "Part::PropertyPartShape", "Shape", "Base",
                       "The layers deposited so far, the step's layer and the nozzle", None,
                       _OUTPUT)
@@ -1601,6 +1604,10 @@ class BuildPreviewFeature(_EngineFeature):
                 layers_obj.NozzleStandoff.Value, layers_obj.NozzleTipDiameter.Value,
                 layers_obj.NozzleConeAngle.Value, layers_obj.NozzleBodyDiameter.Value,
                 layers_obj.NozzleBodyLength.Value, point, axis)
+        paths = []
+        if obj.ShowPaths:
+            wires = (_polyline(p.points) for p in result.paths(index) if p.deposit)
+            paths = [w for w in wires if w is not None]
         normal = FreeCAD.Vector(layer.normal)
         obj.StepCount = count
         obj.ShownStep = step
@@ -1615,17 +1622,18 @@ class BuildPreviewFeature(_EngineFeature):
         obj.ShownComponents = [result.layers[i].component for i in sequence[:step]]
         obj.Shape = Part.makeCompound([
             Part.makeCompound([prism(i) for i in sequence[:step - 1]]), prism(index),
-            Part.makeCompound(nozzle)])
+            Part.makeCompound(nozzle), Part.makeCompound(paths)])
 
 
 def is_build_preview(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == BuildPreviewFeature.TYPE
 
 
-def make_build_preview(layers, step=0, show_nozzle=True, name="BuildPreview", doc=None):
+def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, name="BuildPreview",
+                       doc=None):
     """Adds a ``BuildPreview`` object showing the build of the ``Layers`` object ``layers`` (a
     ``Toolpath`` object stands for its Layers) after ``step`` steps of its sequence (0: all), the
-    nozzle at that step's layer, to ``doc`` (default: the layers' document) and returns it;
+    nozzle at that step's layer and its deposit paths, to ``doc`` (default: the layers' document) and returns it;
     recompute the document to compute it. Nothing is changed on the layers."""
     if is_toolpath(layers):
         if layers.Layers is None:
@@ -1645,6 +1653,7 @@ def make_build_preview(layers, step=0, show_nozzle=True, name="BuildPreview", do
     obj.Layers = layers
     obj.Step = step
     obj.ShowNozzle = bool(show_nozzle)
+    obj.ShowPaths = bool(show_paths)
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, BuildPreviewFeature.VIEW_PROVIDER)
     return obj

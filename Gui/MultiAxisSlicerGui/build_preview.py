@@ -7,11 +7,12 @@ CollisionColor where it meets what is deposited).
 Double-clicking the object (or "Step through the build..." in its context menu) opens it; the
 Build preview command opens it on the object it makes. A slider and a spin box choose the step
 (the slider moves the preview when it is let go, or by the keyboard a step at a time), Play walks
-through the steps to the last, and Show nozzle shows or hides the nozzle. Each step is the
-object's Step property written and the object recomputed: the slicing is the Layers object's,
-kept in memory, and each layer's solid is made once, so a step costs the drawing. Stepping is not
-recorded for Undo (a walk through a few hundred layers would bury the undo steps before it); the
-property editor's Step is."""
+through the steps to the last, Show nozzle and Show paths show or hide the nozzle and the step's
+deposit paths. Each step is the object's Step property written and the object recomputed: the
+slicing is the Layers object's, kept in memory, and each layer's solid and triangles are made
+once, so a step costs little more than the drawing. Stepping is not recorded for Undo (a walk
+through a few hundred layers would bury the undo steps before it); the property editor's Step
+is."""
 
 import FreeCADGui
 
@@ -82,8 +83,12 @@ class BuildPreviewPanel:
         self.play.setToolTip("Walk through the steps to the last")
         self.nozzle = QtGui.QCheckBox("Show nozzle")
         self.nozzle.setObjectName("nozzle")
+        self.paths = QtGui.QCheckBox("Show paths")
+        self.paths.setObjectName("paths")
+        self.paths.setToolTip("The step's deposit paths on its layer")
         row.addWidget(self.play)
         row.addWidget(self.nozzle)
+        row.addWidget(self.paths)
         row.addStretch(1)
         layout.addLayout(row)
         layout.addStretch(1)
@@ -96,6 +101,7 @@ class BuildPreviewPanel:
         self.spin.valueChanged.connect(self.go)
         self.play.toggled.connect(self.toggle_play)
         self.nozzle.toggled.connect(self.show_nozzle)
+        self.paths.toggled.connect(self.show_paths)
 
     def alive(self):
         """Whether the object is still in its document (an Undo of its creation removes it)."""
@@ -115,9 +121,10 @@ class BuildPreviewPanel:
             widget.setValue(self.obj.ShownStep)
             widget.setEnabled(count > 0)
             widget.blockSignals(False)
-        self.nozzle.blockSignals(True)
-        self.nozzle.setChecked(self.obj.ShowNozzle)
-        self.nozzle.blockSignals(False)
+        for box, shown in ((self.nozzle, self.obj.ShowNozzle), (self.paths, self.obj.ShowPaths)):
+            box.blockSignals(True)
+            box.setChecked(shown)
+            box.blockSignals(False)
         self.play.setEnabled(count > 1)
         self.info.setText(summary(self.obj))
         self.info.setStyleSheet("" if features.failure(self.obj) is None else "color: #c00000")
@@ -144,6 +151,9 @@ class BuildPreviewPanel:
 
     def show_nozzle(self, shown):
         return self._set("ShowNozzle", bool(shown))
+
+    def show_paths(self, shown):
+        return self._set("ShowPaths", bool(shown))
 
     def toggle_play(self, playing):
         if not playing:

@@ -740,8 +740,10 @@ BUILD_PREVIEW_COLOURS = {
     "CollisionColor": (COLLISION_COLOUR,
                        "Colour of the nozzle where it meets what is deposited (a layer no order "
                        "or lean clears)"),
+    "PathColor": ((0.1, 0.1, 0.1), "Colour of the step's deposit paths"),
 }
 BUILD_PREVIEW_BAND_SHADE = 0.8
+BUILD_PREVIEW_PATH_WIDTH = 1.5
 # More layers than this to draw anew show the wait cursor.
 BUILD_PREVIEW_QUIET_LAYERS = 100
 
@@ -786,21 +788,29 @@ class ViewProviderBuildPreview(_Stateless):
     its Shape drawn here, shaded, each layer's triangles made once (``shape_triangles``) and
     kept while its prism is, so that a step redraws only what changed (Part's view provider
     tessellated every face of the Shape anew at each step: seconds on a part of a thousand
-    layers). Colours: ``build_preview_layer_colours`` and the view properties CurrentLayerColor,
-    NozzleColor and CollisionColor. Double-click (or "Step through the build..." in the context
+    layers), and the step's deposit paths as lines over its layer. Colours:
+    ``build_preview_layer_colours`` and the view properties CurrentLayerColor, NozzleColor,
+    CollisionColor and PathColor. Double-click (or "Step through the build..." in the context
     menu) opens its panel (build_preview.py): a slider over the sequence's steps, with play."""
 
     COLOUR_PROPERTIES = tuple(BUILD_PREVIEW_COLOURS)
 
     def __init__(self, vobj):
-        for prop, (colour, doc) in BUILD_PREVIEW_COLOURS.items():
-            vobj.addProperty("App::PropertyColor", prop, "Object Style", doc)
-            setattr(vobj, prop, colour)
+        self._add_colours(vobj)
         vobj.Proxy = self  # calls attach()
+
+    @staticmethod
+    def _add_colours(vobj):
+        """The colour properties the view provider lacks (new, or saved before one was added)."""
+        for prop, (colour, doc) in BUILD_PREVIEW_COLOURS.items():
+            if prop not in vobj.PropertiesList:
+                vobj.addProperty("App::PropertyColor", prop, "Object Style", doc)
+                setattr(vobj, prop, colour)
 
     def attach(self, vobj):
         from pivy import coin
 
+        self._add_colours(vobj)
         self.Object = vobj.Object
         self.geometries = {}  # a prism's hashCode() -> (the prism, its triangles' node)
         self.materials = {}  # colour -> SoMaterial
@@ -810,10 +820,23 @@ class ViewProviderBuildPreview(_Stateless):
         hints.vertexOrdering = coin.SoShapeHints.UNKNOWN_ORDERING  # lit on both sides
         hints.creaseAngle = 0.0  # flat: a prism's walls and faces keep their edges
         self.root.addChild(hints)
+        offset = coin.SoPolygonOffset()  # the faces a little back: the paths on them show
+        self.root.addChild(offset)
         self.layer_nodes = coin.SoSeparator()
         self.nozzle_node = coin.SoSeparator()
         self.root.addChild(self.layer_nodes)
         self.root.addChild(self.nozzle_node)
+        paths = coin.SoSeparator()
+        light = coin.SoLightModel()
+        light.model = coin.SoLightModel.BASE_COLOR
+        style = coin.SoDrawStyle()
+        style.lineWidth = BUILD_PREVIEW_PATH_WIDTH
+        self.path_colour = coin.SoBaseColor()
+        self.path_points = coin.SoCoordinate3()
+        self.path_lines = coin.SoLineSet()
+        for node in (light, style, self.path_colour, self.path_points, self.path_lines):
+            paths.addChild(node)
+        self.root.addChild(paths)
         vobj.addDisplayMode(self.root, "Shaded")
         self.update(vobj)
 
@@ -871,11 +894,13 @@ class ViewProviderBuildPreview(_Stateless):
             return  # still being set up or restored
         self.layer_nodes.removeAllChildren()
         self.nozzle_node.removeAllChildren()
+        self.path_lines.numVertices.setNum(0)
+        self.path_points.point.setNum(0)
         self.shown = []
         shape = obj.Shape
         parts = shape.childShapes() if not shape.isNull() and shape.ShapeType == "Compound" else []
         components = list(obj.ShownComponents)
-        if len(parts) != 3 or len(parts[0].childShapes()) != len(components) - 1:
+        if len(parts) != 4 or len(parts[0].childShapes()) != len(components) - 1:
             return  # not computed (or failed before its Shape was made)
         colour = {p: tuple(getattr(vobj, p))[:3] for p in BUILD_PREVIEW_COLOURS}
         prisms = parts[0].childShapes() + [parts[1]]
@@ -901,6 +926,17 @@ class ViewProviderBuildPreview(_Stateless):
             self.nozzle_node.addChild(self._material(nozzle_colour))
             self.nozzle_node.addChild(self._triangles(parts[2]))
             self.shown.append(nozzle_colour)
+        lines = []
+        for wire in parts[3].Wires:
+            points = [v.Point for v in wire.OrderedVertexes]
+            if wire.isClosed():
+                points.append(points[0])
+            lines.append([(p.x, p.y, p.z) for p in points])
+        self.path_colour.rgb.setValue(*colour["PathColor"])
+        if lines:
+            points = [p for line in lines for p in line]
+            self.path_points.point.setValues(0, len(points), points)
+            self.path_lines.numVertices.setValues(0, len(lines), [len(line) for line in lines])
 
     def onDelete(self, vobj, subelements):
         """The Layers object and its Toolpaths, hidden by the Build preview command, are shown

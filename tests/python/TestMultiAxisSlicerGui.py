@@ -1749,6 +1749,19 @@ class TestBuildPreviewCommand(unittest.TestCase):
         self.assertEqual(self.drawn_triangles(preview),
                          len(features.shape_triangles(preview.Shape)[1]))
         self.assertGreaterEqual(self.drawn_triangles(preview), 2 * len(preview.Shape.Faces))
+        # The step's deposit paths, a line each, over its layer.
+        proxy = preview.ViewObject.Proxy
+        wires = preview.Shape.childShapes()[3].Wires
+        self.assertGreater(len(wires), 0)
+        self.assertEqual(proxy.path_lines.numVertices.getNum(), len(wires))
+        self.assertEqual(sum(proxy.path_lines.numVertices[i] for i in range(len(wires))),
+                         sum(len(w.OrderedVertexes) + w.isClosed() for w in wires))
+        self.assertTrue(panel.paths.isChecked())
+        panel.paths.setChecked(False)
+        self.assertFalse(preview.ShowPaths)
+        self.assertEqual(proxy.path_lines.numVertices.getNum(), 0)
+        panel.paths.setChecked(True)
+        self.assertEqual(proxy.path_lines.numVertices.getNum(), len(wires))
         save_screenshot(self, self.doc, "build_preview_l_block.png", see_through=False)
 
         # Play walks on a step at a time and stops at the last.

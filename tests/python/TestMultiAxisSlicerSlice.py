@@ -1722,7 +1722,7 @@ class TestBuildPreviewObject(SliceObjectTest):
             self.assertEqual((preview.Layer, preview.Component), (index, layer.component))
             self.assertEqual(list(preview.ShownComponents),
                              [result.layers[i].component for i in sequence[:shown]])
-            deposited, current, nozzle = preview.Shape.childShapes()
+            deposited, current, nozzle, paths = preview.Shape.childShapes()
             self.assertEqual(len(deposited.childShapes()), shown - 1)
             # Each layer a prism: its regions on its plane swept back along its normal by its
             # thickness (the L's layers are parallel: exact).
@@ -1740,10 +1740,23 @@ class TestBuildPreviewObject(SliceObjectTest):
             self.assertFalse(preview.Collides)
             self.assertEqual(preview.CollisionObstacle, -2)
             self.check_nozzle(nozzle.Solids, preview.NozzlePoint, preview.ToolAxis, layers)
-        # ShowNozzle off: the layers only.
+            # The step's deposit paths, one polyline each, in the nozzle's order, on its plane.
+            deposits = [p for p in result.paths(index) if p.deposit]
+            wires = paths.Wires
+            self.assertEqual(len(wires), len(deposits))
+            for wire, path in zip(wires, deposits):
+                self.assertVectorAlmostEqual(wire.OrderedVertexes[0].Point, path.points[0])
+                length = sum((b - a).Length for a, b in zip(path.points, path.points[1:]))
+                self.assertAlmostEqual(wire.Length, length, delta=1e-9 * max(1.0, length))
+            for v in paths.Vertexes:
+                self.assertAlmostEqual((v.Point - layer.origin).dot(layer.normal), 0.0,
+                                       places=6)
+        # ShowNozzle and ShowPaths off: the layers only.
         preview.ShowNozzle = False
+        preview.ShowPaths = False
         self.doc.recompute()
         self.assertEqual(preview.Shape.childShapes()[2].Solids, [])
+        self.assertEqual(preview.Shape.childShapes()[3].Edges, [])
         self.assertEqual(len(preview.Shape.Solids), len(sequence))
         # The layers are read, never changed; their result is reused, not computed again.
         self.assertNotIn("Touched", layers.State)

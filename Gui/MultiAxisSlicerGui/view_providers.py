@@ -30,43 +30,45 @@ class _Stateless:
 
 
 class _Editable:
-    """Double-click (or "Edit parameters..." in the context menu) opens the object's parameter
-    panel (parameter_panel.py) in the task view; the other edit modes (Transform, colours) stay
-    FreeCAD's."""
+    """Double-click (or EDIT_MENU_TEXT in the context menu) opens the object's panel in the task
+    view: the module PANEL_MODULE of this package (edit(), open_panel(), close_panel()), by
+    default its parameter panel (parameter_panel.py); the other edit modes (Transform, colours)
+    stay FreeCAD's."""
+
+    EDIT_MENU_TEXT = "Edit parameters..."
+    PANEL_MODULE = "parameter_panel"
+
+    def _panels(self):
+        import importlib
+
+        return importlib.import_module("MultiAxisSlicerGui." + self.PANEL_MODULE)
 
     def doubleClicked(self, vobj):
-        from MultiAxisSlicerGui import parameter_panel
-
-        return parameter_panel.edit(vobj.Object)
+        return self._panels().edit(vobj.Object)
 
     def setupContextMenu(self, vobj, menu):
         import FreeCAD
 
-        action = menu.addAction("Edit parameters...")
+        action = menu.addAction(self.EDIT_MENU_TEXT)
         name, doc = vobj.Object.Name, vobj.Object.Document.Name
+        panels = self._panels()
 
         def edit():
-            from MultiAxisSlicerGui import parameter_panel
-
             obj = FreeCAD.getDocument(doc).getObject(name)
             if obj is not None:
-                parameter_panel.edit(obj)
+                panels.edit(obj)
 
         action.triggered.connect(edit)
 
     def setEdit(self, vobj, mode=0):
         if mode != 0:
             return None  # FreeCAD's own
-        from MultiAxisSlicerGui import parameter_panel
-
-        return parameter_panel.open_panel(vobj.Object)
+        return self._panels().open_panel(vobj.Object)
 
     def unsetEdit(self, vobj, mode=0):
         if mode != 0:
             return None
-        from MultiAxisSlicerGui import parameter_panel
-
-        parameter_panel.close_panel()
+        self._panels().close_panel()
         return True
 
 
@@ -783,7 +785,7 @@ def build_preview_layer_colours(components, current, shade=BUILD_PREVIEW_BAND_SH
     return colours + [tuple(current)] if components else []
 
 
-class ViewProviderBuildPreview(_Stateless):
+class ViewProviderBuildPreview(_Editable, _Stateless):
     """Tree icon and drawing of a ``BuildPreview`` object (an App::FeaturePython with a Shape):
     its Shape drawn here, shaded, each layer's triangles made once (``shape_triangles``) and
     kept while its prism is, so that a step redraws only what changed (Part's view provider
@@ -794,6 +796,8 @@ class ViewProviderBuildPreview(_Stateless):
     menu) opens its panel (build_preview.py): a slider over the sequence's steps, with play."""
 
     COLOUR_PROPERTIES = tuple(BUILD_PREVIEW_COLOURS)
+    EDIT_MENU_TEXT = "Step through the build..."
+    PANEL_MODULE = "build_preview"
 
     def __init__(self, vobj):
         self._add_colours(vobj)
@@ -951,41 +955,6 @@ class ViewProviderBuildPreview(_Stateless):
         for o in [layers] + layers.InList:
             if (features.is_layers(o) or features.is_toolpath(o)) and o.ViewObject is not None:
                 o.ViewObject.Visibility = True
-        return True
-
-    def doubleClicked(self, vobj):
-        from MultiAxisSlicerGui import build_preview
-
-        return build_preview.edit(vobj.Object)
-
-    def setupContextMenu(self, vobj, menu):
-        import FreeCAD
-
-        action = menu.addAction("Step through the build...")
-        name, doc = vobj.Object.Name, vobj.Object.Document.Name
-
-        def edit():
-            from MultiAxisSlicerGui import build_preview
-
-            obj = FreeCAD.getDocument(doc).getObject(name)
-            if obj is not None:
-                build_preview.edit(obj)
-
-        action.triggered.connect(edit)
-
-    def setEdit(self, vobj, mode=0):
-        if mode != 0:
-            return None  # FreeCAD's own
-        from MultiAxisSlicerGui import build_preview
-
-        return build_preview.open_panel(vobj.Object)
-
-    def unsetEdit(self, vobj, mode=0):
-        if mode != 0:
-            return None
-        from MultiAxisSlicerGui import build_preview
-
-        build_preview.close_panel()
         return True
 
     def getIcon(self):

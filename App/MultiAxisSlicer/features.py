@@ -1515,7 +1515,9 @@ class BuildPreviewFeature(_EngineFeature):
     for the nozzle without ShowNozzle, for the paths without ShowPaths), StepCount, ShownStep, Layer, Component, ToolAxis, Lean (its angle from
     the layer's normal), NozzlePoint, Collides, CollisionObstacle (the layer it meets, -1 the
     build plate; -2 when it collides with nothing), ShownComponents (the component of each layer
-    shown, in the Shape's order). The nozzle is the Layers object's (NozzleStandoff, ...)."""
+    shown, in the Shape's order), UnsupportedArea (the step's layer's, mm²), FlaggedSteps (the
+    steps whose layer is leaned for or collides), WorstStep (the step whose layer stands most on
+    nothing, 0 when none does). The nozzle is the Layers object's (NozzleStandoff, ...)."""
 
     TYPE = "MultiAxisSlicer::BuildPreview"
     VIEW_PROVIDER = "ViewProviderBuildPreview"
@@ -1557,7 +1559,14 @@ class BuildPreviewFeature(_EngineFeature):
                  "What the step's nozzle meets: a layer's index, -1 the build plate, -2 nothing",
                  -2),
                 ("App::PropertyIntegerList", "ShownComponents",
-                 "Component of each layer shown, deposited first to the step's", None)):
+                 "Component of each layer shown, deposited first to the step's", None),
+                ("App::PropertyArea", "UnsupportedArea",
+                 "Area of the step's layer that stands on nothing", 0.0),
+                ("App::PropertyIntegerList", "FlaggedSteps",
+                 "The steps whose layer the nozzle leans for or collides at", None),
+                ("App::PropertyInteger", "WorstStep",
+                 "The step whose layer stands most on nothing (0: every layer rests on the one "
+                 "below)", 0)):
             _add_property(obj, type_id, prop, result, doc, default, _OUTPUT)
 
     def recompute(self, obj):
@@ -1618,6 +1627,11 @@ class BuildPreviewFeature(_EngineFeature):
         obj.NozzlePoint = point
         obj.Collides = collision is not None
         obj.CollisionObstacle = collision.obstacle_layer if collision is not None else -2
+        obj.UnsupportedArea = layer.unsupported_area
+        flagged = set(result.leaned_layers()) | {c.layer for c in result.collisions}
+        obj.FlaggedSteps = [k + 1 for k, i in enumerate(sequence) if i in flagged]
+        worst = max(range(count), key=lambda k: result.layers[sequence[k]].unsupported_area)
+        obj.WorstStep = worst + 1 if result.layers[sequence[worst]].unsupported_area > 0.0 else 0
         # ShownComponents before Shape: the view provider draws the layers when Shape changes.
         obj.ShownComponents = [result.layers[i].component for i in sequence[:step]]
         obj.Shape = Part.makeCompound([

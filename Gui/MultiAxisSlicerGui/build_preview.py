@@ -8,7 +8,8 @@ Double-clicking the object (or "Step through the build..." in its context menu) 
 Build preview command opens it on the object it makes. A slider and a spin box choose the step
 (the slider moves the preview when it is let go, or by the keyboard a step at a time), Play walks
 through the steps to the last, Show nozzle and Show paths show or hide the nozzle and the step's
-deposit paths. Each step is the object's Step property written and the object recomputed: the
+deposit paths, and three buttons go to the step before or after whose layer the nozzle leans for
+or collides at, and to the layer that stands most on nothing. Each step is the object's Step property written and the object recomputed: the
 slicing is the Layers object's, kept in memory, and each layer's solid and triangles are made
 once, so a step costs little more than the drawing. Stepping is not recorded for Undo (a walk
 through a few hundred layers would bury the undo steps before it); the property editor's Step
@@ -45,6 +46,8 @@ def summary(obj):
         text += "; its nozzle meets {}".format(
             "the build plate" if obj.CollisionObstacle == -1
             else "layer {}".format(obj.CollisionObstacle))
+    if obj.UnsupportedArea.Value >= 0.005:
+        text += "; {:.2f} mm² of it stands on nothing".format(obj.UnsupportedArea.Value)
     return text + "."
 
 
@@ -76,21 +79,37 @@ class BuildPreviewPanel:
         row.addWidget(self.slider, 1)
         row.addWidget(self.spin)
         layout.addLayout(row)
-        row = QtGui.QHBoxLayout()
+        # Two buttons a row at most: FreeCAD's task view is narrow, and a wider row pushed the
+        # panel past it.
         self.play = QtGui.QPushButton("Play")
         self.play.setObjectName("play")
         self.play.setCheckable(True)
         self.play.setToolTip("Walk through the steps to the last")
+        self.worst = QtGui.QPushButton("Max overhang")
+        self.worst.setObjectName("worst")
+        self.worst.setToolTip("The step whose layer stands most on nothing")
+        self.previous = QtGui.QPushButton("< Previous")
+        self.previous.setObjectName("previous_flagged")
+        self.previous.setToolTip("The step before this one whose layer the nozzle leans for or "
+                                 "collides at")
+        self.next = QtGui.QPushButton("Next >")
+        self.next.setObjectName("next_flagged")
+        self.next.setToolTip("The step after this one whose layer the nozzle leans for or "
+                             "collides at")
         self.nozzle = QtGui.QCheckBox("Show nozzle")
         self.nozzle.setObjectName("nozzle")
         self.paths = QtGui.QCheckBox("Show paths")
         self.paths.setObjectName("paths")
         self.paths.setToolTip("The step's deposit paths on its layer")
-        row.addWidget(self.play)
-        row.addWidget(self.nozzle)
-        row.addWidget(self.paths)
-        row.addStretch(1)
-        layout.addLayout(row)
+        grid = QtGui.QGridLayout()
+        grid.addWidget(self.play, 0, 0)
+        grid.addWidget(self.worst, 0, 1)
+        grid.addWidget(QtGui.QLabel("Leaned or colliding layer:"), 1, 0, 1, 2)
+        grid.addWidget(self.previous, 2, 0)
+        grid.addWidget(self.next, 2, 1)
+        grid.addWidget(self.nozzle, 3, 0)
+        grid.addWidget(self.paths, 3, 1)
+        layout.addLayout(grid)
         layout.addStretch(1)
         self.timer = QtCore.QTimer(self.form)
         self.timer.setInterval(PLAY_INTERVAL_MS)
@@ -102,6 +121,9 @@ class BuildPreviewPanel:
         self.play.toggled.connect(self.toggle_play)
         self.nozzle.toggled.connect(self.show_nozzle)
         self.paths.toggled.connect(self.show_paths)
+        self.previous.clicked.connect(lambda: self.go_flagged(-1))
+        self.next.clicked.connect(lambda: self.go_flagged(1))
+        self.worst.clicked.connect(self.go_worst)
 
     def alive(self):
         """Whether the object is still in its document (an Undo of its creation removes it)."""
@@ -126,6 +148,11 @@ class BuildPreviewPanel:
             box.setChecked(shown)
             box.blockSignals(False)
         self.play.setEnabled(count > 1)
+        step = self.obj.ShownStep
+        flagged = list(self.obj.FlaggedSteps)
+        self.previous.setEnabled(any(k < step for k in flagged))
+        self.next.setEnabled(any(k > step for k in flagged))
+        self.worst.setEnabled(self.obj.WorstStep > 0)
         self.info.setText(summary(self.obj))
         self.info.setStyleSheet("" if features.failure(self.obj) is None else "color: #c00000")
 
@@ -148,6 +175,26 @@ class BuildPreviewPanel:
     def go(self, step):
         """Shows step `step` (1 to StepCount)."""
         return self._set("Step", int(step))
+
+    def go_flagged(self, direction):
+        """Shows the nearest step before (direction -1) or after (1) the one shown whose layer
+        the nozzle leans for or collides at; False when there is none."""
+        if not self.alive():
+            self.close()
+            return False
+        step = self.obj.ShownStep
+        steps = [k for k in self.obj.FlaggedSteps if (k - step) * direction > 0]
+        if not steps:
+            return False
+        return self.go(max(steps) if direction < 0 else min(steps))
+
+    def go_worst(self):
+        """Shows the step whose layer stands most on nothing; False when every layer rests on the
+        one below."""
+        if not self.alive():
+            self.close()
+            return False
+        return self.obj.WorstStep > 0 and self.go(self.obj.WorstStep)
 
     def show_nozzle(self, shown):
         return self._set("ShowNozzle", bool(shown))

@@ -1898,6 +1898,28 @@ class TestBuildPreviewCommand(unittest.TestCase):
 
         self.assertTrue(build_preview.summary(preview).endswith("its nozzle meets the build "
                                                                 "plate."))
+        # The panel's buttons go from one colliding layer's step to the next; no layer
+        # overhangs, so there is no worst one to go to.
+        flagged = [k + 1 for k, i in enumerate(self.layers.Sequence)
+                   if i in self.layers.CollisionLayers]
+        self.assertEqual(list(preview.FlaggedSteps), flagged)
+        build_preview.edit(preview)
+        process_events()
+        panel = build_preview.active_panel()
+        panel.go(1)
+        self.assertFalse(panel.previous.isEnabled())
+        self.assertFalse(panel.worst.isEnabled())
+        self.assertFalse(panel.go_worst())
+        for want in flagged:
+            self.assertTrue(panel.next.isEnabled())
+            panel.next.click()
+            self.assertEqual(preview.ShownStep, want)
+            self.assertTrue(preview.Collides)
+        self.assertFalse(panel.next.isEnabled())
+        panel.previous.click()
+        self.assertEqual(preview.ShownStep, flagged[-2])
+        panel.reject()
+        process_events()
         # Deleting the last preview of the layers shows them again; one of two, not yet.
         second = mas.make_build_preview(self.layers, name="Second")
         self.doc.recompute()

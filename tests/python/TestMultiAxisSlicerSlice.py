@@ -1751,6 +1751,9 @@ class TestBuildPreviewObject(SliceObjectTest):
             for v in paths.Vertexes:
                 self.assertAlmostEqual((v.Point - layer.origin).dot(layer.normal), 0.0,
                                        places=6)
+        # Nothing leaned or colliding, every layer resting on the one below.
+        self.assertEqual(list(preview.FlaggedSteps), [])
+        self.assertEqual((preview.WorstStep, preview.UnsupportedArea.Value), (0, 0.0))
         # ShowNozzle and ShowPaths off: the layers only.
         preview.ShowNozzle = False
         preview.ShowPaths = False
@@ -1778,6 +1781,9 @@ class TestBuildPreviewObject(SliceObjectTest):
                                math.degrees(axis.getAngle(FreeCAD.Vector(layer.normal))),
                                places=6)
         self.assertGreater(preview.Lean.Value, 1.0)
+        self.assertEqual(list(preview.FlaggedSteps),  # the steps of the leaned layers
+                         [k + 1 for k, i in enumerate(result.sequence) if i in leaned])
+        self.assertIn(preview.ShownStep, preview.FlaggedSteps)
         self.check_nozzle(preview.Shape.childShapes()[2].Solids, preview.NozzlePoint, axis,
                           layers)
 
@@ -1793,10 +1799,26 @@ class TestBuildPreviewObject(SliceObjectTest):
         self.assertEqual(preview.CollisionObstacle, collision.obstacle_layer)
         self.assertEqual(preview.CollisionObstacle, -1)  # the plate
         self.assertVectorAlmostEqual(preview.NozzlePoint, collision.nozzle_at)
+        colliding = {c.layer for c in result.collisions}
+        self.assertEqual(list(preview.FlaggedSteps),
+                         [k + 1 for k, i in enumerate(result.sequence) if i in colliding])
         nozzle = preview.Shape.childShapes()[2]
         self.check_nozzle(nozzle.Solids, preview.NozzlePoint, preview.ToolAxis, layers)
         # The body, 100 mm across and horizontal along the arm, reaches under the plate.
         self.assertLess(nozzle.BoundBox.ZMin, 0.0)
+
+    def test_the_worst_overhang_is_the_step_whose_layer_stands_most_on_nothing(self):
+        # A cone widening 60 degrees from the vertical: every layer overhangs the one below,
+        # more as it widens.
+        layers, _toolpath, preview = self.make_preview(Part.makeCone(5, 5 + 10 * math.sqrt(3), 10))
+        result = features.slice_result(layers)
+        areas = [result.layers[i].unsupported_area for i in result.sequence]
+        self.assertGreater(max(areas), 0.0)
+        self.assertEqual(preview.WorstStep, areas.index(max(areas)) + 1)
+        preview.Step = preview.WorstStep
+        self.doc.recompute()
+        self.assertEqual(preview.UnsupportedArea.Value, max(areas))
+        self.assertEqual(preview.UnsupportedArea.Value, layers.WorstUnsupportedArea.Value)
 
     def test_a_step_past_the_sequence_is_named_until_fixed(self):
         layers, _toolpath, preview = self.make_preview(box_20_10_21())

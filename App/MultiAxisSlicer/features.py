@@ -1504,20 +1504,22 @@ class BuildPreviewFeature(_EngineFeature):
     (Not a ``Part::FeaturePython``: its view provider draws the Shape itself, each layer's
     triangles made once, where Part's took seconds a step on a part of a thousand layers.)
 
-    Inputs: Layers (the Layers object), Step (1 to the number of layers: the layers of its
-    Sequence deposited so far, the last of them the one being deposited; 0: the last step, the
-    whole build), ShowNozzle, ShowPaths. Outputs: Shape (a compound of four: the layers deposited
-    before the step's, in deposition order, each a compound of its regions swept back along its
-    normal by its greatest thickness; the step's layer so; the nozzle, its tip and body solids,
-    standing on the deposit point along the layer's tool axis, at the point where it meets what is
-    deposited when the layer collides, else at the start of the layer's first deposit path; the
-    step's deposit paths, a polyline each, in the order the nozzle follows them; an empty compound
-    for the nozzle without ShowNozzle, for the paths without ShowPaths), StepCount, ShownStep, Layer, Component, ToolAxis, Lean (its angle from
-    the layer's normal), NozzlePoint, Collides, CollisionObstacle (the layer it meets, -1 the
-    build plate; -2 when it collides with nothing), ShownComponents (the component of each layer
-    shown, in the Shape's order), UnsupportedArea (the step's layer's, mm²), FlaggedSteps (the
-    steps whose layer is leaned for or collides), WorstStep (the step whose layer stands most on
-    nothing, 0 when none does). The nozzle is the Layers object's (NozzleStandoff, ...)."""
+    Inputs: Layers (the Layers object), Step (1 to the number of layers: the layers of its Sequence
+    deposited so far, the last of them the one being deposited; 0: the last step, the whole build),
+    ShowNozzle, ShowPaths. Outputs: Shape (a compound of five: the layers deposited before the
+    step's, in deposition order, each a compound of its regions swept back along its normal by its
+    greatest thickness; the step's layer so; the nozzle, its tip and body solids, standing on the
+    deposit point along the layer's tool axis, at the point where it meets what is deposited when
+    the layer collides, else at the start of the layer's first deposit path; the step's deposit
+    paths, a polyline each, in the order the nozzle follows them; the step's layer's unsupported
+    regions, a face each on the plane below it, where it stands on nothing; the nozzle's and the
+    paths' compounds empty without ShowNozzle and ShowPaths), StepCount, ShownStep, Layer,
+    Component, ToolAxis, Lean (its angle from the layer's normal), NozzlePoint, Collides,
+    CollisionObstacle (the layer it meets, -1 the build plate; -2 when it collides with nothing),
+    ShownComponents (the component of each layer shown, in the Shape's order), UnsupportedArea (the
+    step's layer's, mm²), FlaggedSteps (the steps whose layer is leaned for or collides), WorstStep
+    (the step whose layer stands most on nothing, 0 when none does). The nozzle is the Layers
+    object's (NozzleStandoff, ...)."""
 
     TYPE = "MultiAxisSlicer::BuildPreview"
     VIEW_PROVIDER = "ViewProviderBuildPreview"
@@ -1617,6 +1619,8 @@ class BuildPreviewFeature(_EngineFeature):
         if obj.ShowPaths:
             wires = (_polyline(p.points) for p in result.paths(index) if p.deposit)
             paths = [w for w in wires if w is not None]
+        unsupported = [f for f in (_region_face(r) for r in layer.unsupported_regions)
+                       if f is not None]
         normal = FreeCAD.Vector(layer.normal)
         obj.StepCount = count
         obj.ShownStep = step
@@ -1636,7 +1640,8 @@ class BuildPreviewFeature(_EngineFeature):
         obj.ShownComponents = [result.layers[i].component for i in sequence[:step]]
         obj.Shape = Part.makeCompound([
             Part.makeCompound([prism(i) for i in sequence[:step - 1]]), prism(index),
-            Part.makeCompound(nozzle), Part.makeCompound(paths)])
+            Part.makeCompound(nozzle), Part.makeCompound(paths),
+            Part.makeCompound(unsupported)])
 
 
 def is_build_preview(obj):

@@ -743,8 +743,13 @@ BUILD_PREVIEW_COLOURS = {
                        "Colour of the nozzle where it meets what is deposited (a layer no order "
                        "or lean clears)"),
     "PathColor": ((0.1, 0.1, 0.1), "Colour of the step's deposit paths"),
+    "UnsupportedColor": (UNSUPPORTED_COLOUR,
+                         "Colour of where the step's layer stands on nothing (seen through it)"),
 }
 BUILD_PREVIEW_BAND_SHADE = 0.8
+# The step's layer is drawn this transparent: what it stands on, and where it stands on nothing,
+# show through it.
+BUILD_PREVIEW_CURRENT_TRANSPARENCY = 0.4
 BUILD_PREVIEW_PATH_WIDTH = 1.5
 # More layers than this to draw anew show the wait cursor.
 BUILD_PREVIEW_QUIET_LAYERS = 100
@@ -790,9 +795,9 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
     its Shape drawn here, shaded, each layer's triangles made once (``shape_triangles``) and
     kept while its prism is, so that a step redraws only what changed (Part's view provider
     tessellated every face of the Shape anew at each step: seconds on a part of a thousand
-    layers), and the step's deposit paths as lines over its layer. Colours:
-    ``build_preview_layer_colours`` and the view properties CurrentLayerColor, NozzleColor,
-    CollisionColor and PathColor. Double-click (or "Step through the build..." in the context
+    layers), the step's layer see-through, the step's deposit paths as lines over it, and where
+    it stands on nothing under it. Colours: ``build_preview_layer_colours`` and the view
+    properties CurrentLayerColor, NozzleColor, CollisionColor, PathColor and UnsupportedColor. Double-click (or "Step through the build..." in the context
     menu) opens its panel (build_preview.py): a slider over the sequence's steps, with play."""
 
     COLOUR_PROPERTIES = tuple(BUILD_PREVIEW_COLOURS)
@@ -830,6 +835,17 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         self.nozzle_node = coin.SoSeparator()
         self.root.addChild(self.layer_nodes)
         self.root.addChild(self.nozzle_node)
+        # Where the step's layer stands on nothing: faces on the plane below it, drawn in front of
+        # the layer's bottom face there.
+        self.unsupported_node = coin.SoSeparator()
+        front = coin.SoPolygonOffset()
+        front.factor = -1.0
+        front.units = -1.0
+        self.unsupported_colour = coin.SoMaterial()
+        self.unsupported_faces = coin.SoSeparator()
+        for node in (front, self.unsupported_colour, self.unsupported_faces):
+            self.unsupported_node.addChild(node)
+        self.root.addChild(self.unsupported_node)
         paths = coin.SoSeparator()
         light = coin.SoLightModel()
         light.model = coin.SoLightModel.BASE_COLOR
@@ -861,13 +877,14 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         if prop in self.COLOUR_PROPERTIES:
             self.update(vobj)
 
-    def _material(self, colour):
+    def _material(self, colour, transparency=0.0):
         from pivy import coin
 
-        node = self.materials.get(colour)
+        node = self.materials.get((colour, transparency))
         if node is None:
-            node = self.materials[colour] = coin.SoMaterial()
+            node = self.materials[(colour, transparency)] = coin.SoMaterial()
             node.diffuseColor.setValue(*colour)
+            node.transparency.setValue(transparency)
         return node
 
     @staticmethod
@@ -898,13 +915,14 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
             return  # still being set up or restored
         self.layer_nodes.removeAllChildren()
         self.nozzle_node.removeAllChildren()
+        self.unsupported_faces.removeAllChildren()
         self.path_lines.numVertices.setNum(0)
         self.path_points.point.setNum(0)
         self.shown = []
         shape = obj.Shape
         parts = shape.childShapes() if not shape.isNull() and shape.ShapeType == "Compound" else []
         components = list(obj.ShownComponents)
-        if len(parts) != 4 or len(parts[0].childShapes()) != len(components) - 1:
+        if len(parts) != 5 or len(parts[0].childShapes()) != len(components) - 1:
             return  # not computed (or failed before its Shape was made)
         colour = {p: tuple(getattr(vobj, p))[:3] for p in BUILD_PREVIEW_COLOURS}
         prisms = parts[0].childShapes() + [parts[1]]
@@ -917,9 +935,10 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
             for key, prism in new:
                 self.geometries[key] = (prism, self._triangles(prism))
         used = set(keys)
-        for key, layer_colour in zip(keys, build_preview_layer_colours(
-                components, colour["CurrentLayerColor"])):
-            self.layer_nodes.addChild(self._material(layer_colour))
+        colours = build_preview_layer_colours(components, colour["CurrentLayerColor"])
+        for k, (key, layer_colour) in enumerate(zip(keys, colours)):
+            self.layer_nodes.addChild(self._material(
+                layer_colour, BUILD_PREVIEW_CURRENT_TRANSPARENCY if k == len(keys) - 1 else 0.0))
             self.layer_nodes.addChild(self.geometries[key][1])
             self.shown.append(layer_colour)
         # The layers of a slicing done since, or of steps no longer shown after many: dropped.
@@ -930,6 +949,9 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
             self.nozzle_node.addChild(self._material(nozzle_colour))
             self.nozzle_node.addChild(self._triangles(parts[2]))
             self.shown.append(nozzle_colour)
+        self.unsupported_colour.diffuseColor.setValue(*colour["UnsupportedColor"])
+        if parts[4].Faces:
+            self.unsupported_faces.addChild(self._triangles(parts[4]))
         lines = []
         for wire in parts[3].Wires:
             points = [v.Point for v in wire.OrderedVertexes]

@@ -1881,6 +1881,36 @@ class TestBuildPreviewCommand(unittest.TestCase):
             process_events()
             self.assertTrue(drawn_box(obj).isEmpty(), obj.Name)
 
+    def test_where_the_step_stands_on_nothing_shows_through_it(self):
+        import MultiAxisSlicer.features as features
+
+        # A cone widening 60 degrees from the vertical: its layers overhang.
+        cone = self.doc.addObject("Part::Feature", "Cone")
+        cone.Shape = Part.makeCone(5, 5 + 10 * math.sqrt(3), 10)
+        self.doc.recompute()
+        layers, _toolpath = mas.make_slice(mas.make_decomposition(cone), name="ConeLayers",
+                                           toolpath_name="ConePaths")
+        preview = mas.make_build_preview(layers)
+        self.doc.recompute()
+        self.assertGreater(preview.WorstStep, 0)
+        preview.Step = preview.WorstStep
+        self.doc.recompute()
+        proxy = preview.ViewObject.Proxy
+        self.assertEqual(proxy.unsupported_faces.getNumChildren(), 1)
+        faces = proxy.unsupported_faces.getChild(0).getChild(1)
+        self.assertEqual(faces.coordIndex.getNum() // 4,
+                         len(features.shape_triangles(preview.Shape.childShapes()[4])[1]))
+        self.assertEqual(tuple(round(x, 2) for x in proxy.unsupported_colour.diffuseColor[0]
+                               .getValue()), view_providers.UNSUPPORTED_COLOUR)
+        # The step's layer is see-through, the others not.
+        materials = [proxy.layer_nodes.getChild(i) for i in range(
+            0, proxy.layer_nodes.getNumChildren(), 2)]
+        self.assertEqual([round(m.transparency[0], 2) for m in materials],
+                         [0.0] * (len(materials) - 1) + [0.4])
+        preview.Step = 1  # resting on the plate: nothing to show
+        self.doc.recompute()
+        self.assertEqual(proxy.unsupported_faces.getNumChildren(), 0)
+
     def test_a_colliding_layer_shows_its_nozzle_in_the_collision_colour(self):
         self.layers.NozzleBodyDiameter = 100.0
         self.layers.NozzleMaxLean = 0.0

@@ -1722,7 +1722,8 @@ class TestBuildPreviewObject(SliceObjectTest):
             self.assertEqual((preview.Layer, preview.Component), (index, layer.component))
             self.assertEqual(list(preview.ShownComponents),
                              [result.layers[i].component for i in sequence[:shown]])
-            deposited, current, nozzle, paths = preview.Shape.childShapes()
+            deposited, current, nozzle, paths, unsupported = preview.Shape.childShapes()
+            self.assertEqual(unsupported.Faces, [])  # the L's layers all rest on the layer below
             self.assertEqual(len(deposited.childShapes()), shown - 1)
             # Each layer a prism: its regions on its plane swept back along its normal by its
             # thickness (the L's layers are parallel: exact).
@@ -1819,6 +1820,14 @@ class TestBuildPreviewObject(SliceObjectTest):
         self.doc.recompute()
         self.assertEqual(preview.UnsupportedArea.Value, max(areas))
         self.assertEqual(preview.UnsupportedArea.Value, layers.WorstUnsupportedArea.Value)
+        # Where it stands on nothing, faces on the plane below it (the cone's are parallel).
+        layer = result.layers[preview.Layer]
+        faces = preview.Shape.childShapes()[4].Faces
+        self.assertGreater(len(faces), 0)
+        self.assertAlmostEqual(sum(f.Area for f in faces), max(areas), delta=1e-6 * max(areas))
+        for v in preview.Shape.childShapes()[4].Vertexes:
+            self.assertAlmostEqual((v.Point - layer.origin).dot(layer.normal),
+                                   -layer.max_thickness, places=6)
 
     def test_a_step_past_the_sequence_is_named_until_fixed(self):
         layers, _toolpath, preview = self.make_preview(box_20_10_21())

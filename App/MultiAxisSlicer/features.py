@@ -1587,10 +1587,15 @@ class BuildPreviewFeature(_EngineFeature):
         step = obj.Step or count
         index = sequence[step - 1]
         layer = result.layers[index]
-        # The prisms are kept per slicing result: a step's preview reuses those drawn before.
+        # Kept per slicing result: the prisms made so far (a step reuses those drawn before),
+        # the steps leaned or colliding and the step standing most on nothing.
         cache = getattr(self, "_prisms", None)
         if cache is None or cache[0] is not result:
-            cache = (result, {})
+            flagged = set(result.leaned_layers()) | {c.layer for c in result.collisions}
+            areas = [result.layers[i].unsupported_area for i in sequence]
+            worst = max(range(count), key=areas.__getitem__)
+            cache = (result, {}, [k + 1 for k, i in enumerate(sequence) if i in flagged],
+                     worst + 1 if areas[worst] > 0.0 else 0)
             self._prisms = cache
         prisms = cache[1]
 
@@ -1601,14 +1606,11 @@ class BuildPreviewFeature(_EngineFeature):
 
         axis = FreeCAD.Vector(result.tool_axis(index))
         collision = next((c for c in result.collisions if c.layer == index), None)
-        if collision is not None:
+        deposits = [p for p in result.paths(index) if p.deposit and p.points]
+        if collision is not None:  # where it meets what is deposited
             point = FreeCAD.Vector(collision.nozzle_at)
-        else:
-            point = FreeCAD.Vector(layer.origin)
-            for path in result.paths(index):
-                if path.deposit and path.points:
-                    point = FreeCAD.Vector(path.points[0])
-                    break
+        else:  # where the layer starts
+            point = FreeCAD.Vector(deposits[0].points[0] if deposits else layer.origin)
         nozzle = []
         if obj.ShowNozzle:
             nozzle = nozzle_solids(
@@ -1617,8 +1619,7 @@ class BuildPreviewFeature(_EngineFeature):
                 layers_obj.NozzleBodyLength.Value, point, axis)
         paths = []
         if obj.ShowPaths:
-            wires = (_polyline(p.points) for p in result.paths(index) if p.deposit)
-            paths = [w for w in wires if w is not None]
+            paths = [w for w in (_polyline(p.points) for p in deposits) if w is not None]
         unsupported = [f for f in (_region_face(r) for r in layer.unsupported_regions)
                        if f is not None]
         normal = FreeCAD.Vector(layer.normal)
@@ -1632,10 +1633,8 @@ class BuildPreviewFeature(_EngineFeature):
         obj.Collides = collision is not None
         obj.CollisionObstacle = collision.obstacle_layer if collision is not None else -2
         obj.UnsupportedArea = layer.unsupported_area
-        flagged = set(result.leaned_layers()) | {c.layer for c in result.collisions}
-        obj.FlaggedSteps = [k + 1 for k, i in enumerate(sequence) if i in flagged]
-        worst = max(range(count), key=lambda k: result.layers[sequence[k]].unsupported_area)
-        obj.WorstStep = worst + 1 if result.layers[sequence[worst]].unsupported_area > 0.0 else 0
+        obj.FlaggedSteps = cache[2]
+        obj.WorstStep = cache[3]
         # ShownComponents before Shape: the view provider draws the layers when Shape changes.
         obj.ShownComponents = [result.layers[i].component for i in sequence[:step]]
         obj.Shape = Part.makeCompound([

@@ -26,6 +26,7 @@ layer. Thin like FreeCAD's own features: properties -> MultiAxisSlicer -> Shape.
 import functools
 import math
 import re
+import types
 
 import FreeCAD
 import Part
@@ -1589,15 +1590,16 @@ class BuildPreviewFeature(_EngineFeature):
         layer = result.layers[index]
         # Kept per slicing result: the prisms made so far (a step reuses those drawn before),
         # the steps leaned or colliding and the step standing most on nothing.
-        cache = getattr(self, "_prisms", None)
-        if cache is None or cache[0] is not result:
+        cache = getattr(self, "_cache", None)
+        if cache is None or cache.result is not result:
             flagged = set(result.leaned_layers()) | {c.layer for c in result.collisions}
             areas = [result.layers[i].unsupported_area for i in sequence]
             worst = max(range(count), key=areas.__getitem__)
-            cache = (result, {}, [k + 1 for k, i in enumerate(sequence) if i in flagged],
-                     worst + 1 if areas[worst] > 0.0 else 0)
-            self._prisms = cache
-        prisms = cache[1]
+            cache = self._cache = types.SimpleNamespace(
+                result=result, prisms={},
+                flagged=[k + 1 for k, i in enumerate(sequence) if i in flagged],
+                worst=worst + 1 if areas[worst] > 0.0 else 0)
+        prisms = cache.prisms
 
         def prism(i):
             if i not in prisms:
@@ -1633,8 +1635,8 @@ class BuildPreviewFeature(_EngineFeature):
         obj.Collides = collision is not None
         obj.CollisionObstacle = collision.obstacle_layer if collision is not None else -2
         obj.UnsupportedArea = layer.unsupported_area
-        obj.FlaggedSteps = cache[2]
-        obj.WorstStep = cache[3]
+        obj.FlaggedSteps = cache.flagged
+        obj.WorstStep = cache.worst
         # ShownComponents before Shape: the view provider draws the layers when Shape changes.
         obj.ShownComponents = [result.layers[i].component for i in sequence[:step]]
         obj.Shape = Part.makeCompound([
@@ -1647,12 +1649,19 @@ def is_build_preview(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == BuildPreviewFeature.TYPE
 
 
+def layers_and_toolpaths(layers):
+    """The Layers object `layers` and the Toolpath objects showing its paths: what a build
+    preview of it takes the place of in the view."""
+    return [layers] + [o for o in layers.InList if is_toolpath(o)]
+
+
 def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, name="BuildPreview",
                        doc=None):
     """Adds a ``BuildPreview`` object showing the build of the ``Layers`` object ``layers`` (a
     ``Toolpath`` object stands for its Layers) after ``step`` steps of its sequence (0: all), the
-    nozzle at that step's layer and its deposit paths, to ``doc`` (default: the layers' document) and returns it;
-    recompute the document to compute it. Nothing is changed on the layers."""
+    nozzle at that step's layer and its deposit paths, to ``doc`` (default: the layers'
+    document) and returns it; recompute the document to compute it. Nothing is changed on the
+    layers."""
     if is_toolpath(layers):
         if layers.Layers is None:
             raise ValueError("make_build_preview(): the Toolpath '{}' has no Layers".format(

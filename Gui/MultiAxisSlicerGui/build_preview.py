@@ -9,11 +9,11 @@ Build preview command opens it on the object it makes. A slider and a spin box c
 (the slider moves the preview when it is let go, or by the keyboard a step at a time), Play walks
 through the steps to the last, Show nozzle and Show paths show or hide the nozzle and the step's
 deposit paths, and three buttons go to the step before or after whose layer the nozzle leans for
-or collides at, and to the layer that stands most on nothing. Each step is the object's Step property written and the object recomputed: the
-slicing is the Layers object's, kept in memory, and each layer's solid and triangles are made
-once, so a step costs little more than the drawing. Stepping is not recorded for Undo (a walk
-through a few hundred layers would bury the undo steps before it); the property editor's Step
-is."""
+or collides at, and to the layer that stands most on nothing. Each step is the object's Step
+property written and the object recomputed: the slicing is the Layers object's, kept in memory,
+and each layer's solid and triangles are made once, so a step costs little more than the drawing.
+Stepping is not recorded for Undo (a walk through a few hundred layers would bury the undo steps
+before it); the property editor's Step is."""
 
 import FreeCADGui
 
@@ -31,12 +31,7 @@ def active_panel():
 
 
 def summary(obj):
-    """What the BuildPreview object `obj` shows, in words (its failure when it has none)."""
-    import MultiAxisSlicer.features as features
-
-    problem = features.failure(obj)
-    if problem is not None:
-        return problem
+    """What the computed BuildPreview object `obj` shows, in words."""
     text = "Step {} of {}: layer {} of component {}".format(
         obj.ShownStep, obj.StepCount, obj.Layer, obj.Component)
     lean = obj.Lean.Value
@@ -132,6 +127,13 @@ class BuildPreviewPanel:
         except Exception:
             return False
 
+    def _gone(self):
+        """True, the panel closed, when its object is no longer in its document."""
+        if self.alive():
+            return False
+        self.close()
+        return True
+
     def load(self):
         """The controls as the object stands: its steps, the step shown, its summary."""
         import MultiAxisSlicer.features as features
@@ -153,8 +155,9 @@ class BuildPreviewPanel:
         self.previous.setEnabled(any(k < step for k in flagged))
         self.next.setEnabled(any(k > step for k in flagged))
         self.worst.setEnabled(self.obj.WorstStep > 0)
-        self.info.setText(summary(self.obj))
-        self.info.setStyleSheet("" if features.failure(self.obj) is None else "color: #c00000")
+        problem = features.failure(self.obj)
+        self.info.setText(summary(self.obj) if problem is None else problem)
+        self.info.setStyleSheet("" if problem is None else "color: #c00000")
 
     def _show_number(self, step):
         self.spin.blockSignals(True)
@@ -163,8 +166,7 @@ class BuildPreviewPanel:
 
     def _set(self, prop, value):
         """Writes a property and recomputes the object; closes the panel if the object is gone."""
-        if not self.alive():
-            self.close()
+        if self._gone():
             return False
         if getattr(self.obj, prop) != value or "Touched" in self.obj.State:
             setattr(self.obj, prop, value)
@@ -179,8 +181,7 @@ class BuildPreviewPanel:
     def go_flagged(self, direction):
         """Shows the nearest step before (direction -1) or after (1) the one shown whose layer
         the nozzle leans for or collides at; False when there is none."""
-        if not self.alive():
-            self.close()
+        if self._gone():
             return False
         step = self.obj.ShownStep
         steps = [k for k in self.obj.FlaggedSteps if (k - step) * direction > 0]
@@ -191,8 +192,7 @@ class BuildPreviewPanel:
     def go_worst(self):
         """Shows the step whose layer stands most on nothing; False when every layer rests on the
         one below."""
-        if not self.alive():
-            self.close()
+        if self._gone():
             return False
         return self.obj.WorstStep > 0 and self.go(self.obj.WorstStep)
 
@@ -212,10 +212,12 @@ class BuildPreviewPanel:
 
     def advance(self):
         """Play: the next step; stops at the last."""
-        if not self.alive() or self.obj.ShownStep >= self.obj.StepCount:
+        if self._gone():
+            return  # closed, its timer stopped
+        if self.obj.ShownStep >= self.obj.StepCount:
             self.play.setChecked(False)
             return
-        if not self.go(self.obj.ShownStep + 1) or "Invalid" in self.obj.State:
+        if self.go(self.obj.ShownStep + 1) and "Invalid" in self.obj.State:
             self.play.setChecked(False)
 
     def getStandardButtons(self):

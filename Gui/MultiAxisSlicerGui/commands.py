@@ -426,7 +426,21 @@ class SliceCommand(_PartCommand):
         return failed
 
 
-class MachineProgramCommand(_PartCommand):
+class _LayersCommand(_PartCommand):
+    """A command making one object over a selected Layers (or Toolpath) object."""
+
+    NO_SELECTION = "Select one Layers or Toolpath object first."
+
+    def select(self):
+        import MultiAxisSlicer.features as features
+
+        return _selected_one(lambda o: features.is_layers(o) or features.is_toolpath(o))
+
+    def input_problem(self, source):
+        return None  # any Layers or Toolpath: a failing one marks the new object with its message
+
+
+class MachineProgramCommand(_LayersCommand):
     """The 5-axis G-code of a selected Layers (or Toolpath) object, as a parametric
     MachineProgram object (the machine's limits, feed and clearance as properties), in one
     transaction. A program the machine cannot run (a layer whose tool axis the table cannot turn
@@ -438,15 +452,6 @@ class MachineProgramCommand(_PartCommand):
     TOOLTIP = ("Write the 5-axis G-code that deposits the selected Layers (or Toolpath) on a "
                "tilting rotary table (LinuxCNC, XYZAC): a parametric MachineProgram object; set "
                "AMin, AMax, Feed, Clearance, ..., then Export G-code")
-    NO_SELECTION = "Select one Layers or Toolpath object first."
-
-    def select(self):
-        import MultiAxisSlicer.features as features
-
-        return _selected_one(lambda o: features.is_layers(o) or features.is_toolpath(o))
-
-    def input_problem(self, source):
-        return None  # any Layers or Toolpath: a failing one marks the new object with its message
 
     def make(self, source, doc):
         import MultiAxisSlicer.features as features
@@ -454,7 +459,7 @@ class MachineProgramCommand(_PartCommand):
         return features.make_machine_program(source, doc=doc)
 
 
-class BuildPreviewCommand(MachineProgramCommand):
+class BuildPreviewCommand(_LayersCommand):
     """The build of a selected Layers (or Toolpath) object step by step in its deposition order,
     as a parametric BuildPreview object (the layers deposited so far and the nozzle at the step's
     layer), in one transaction; its panel opens on it to step through the build."""
@@ -471,8 +476,8 @@ class BuildPreviewCommand(MachineProgramCommand):
 
         preview = features.make_build_preview(source, doc=doc)
         # The preview takes the place of the layers and paths in the view.
-        for o in [preview.Layers] + preview.Layers.InList:
-            if (features.is_layers(o) or features.is_toolpath(o)) and o.ViewObject is not None:
+        for o in features.layers_and_toolpaths(preview.Layers):
+            if o.ViewObject is not None:
                 o.ViewObject.Visibility = False
         return preview
 

@@ -516,11 +516,11 @@ def _show_overlays(switch, shown):
     switch.whichChild = coin.SO_SWITCH_ALL if shown else coin.SO_SWITCH_NONE
 
 
-def _overlay(vobj, colour_property, default, doc, line_width, point_size=None, parent=None):
+def _overlay(vobj, switch, colour_property, default, doc, line_width, point_size=None):
     """Lines drawn over an object's Shape in one colour, whatever the lights and the display mode:
-    (separator, SoBaseColor, SoCoordinate3, SoLineSet), added to `parent` (an _overlay_switch()),
-    else to its root node. The colour is the view property `colour_property`, added with `default`
-    if the object lacks it (new, or from a document saved before it)."""
+    (separator, SoBaseColor, SoCoordinate3, SoLineSet), added to `switch` (its _overlay_switch(),
+    so that they hide with it). The colour is the view property `colour_property`, added with
+    `default` if the object lacks it (new, or from a document saved before it)."""
     from pivy import coin
 
     if colour_property not in vobj.PropertiesList:
@@ -538,7 +538,7 @@ def _overlay(vobj, colour_property, default, doc, line_width, point_size=None, p
     lines = coin.SoLineSet()
     for node in (light, colour, style, points, lines):
         separator.addChild(node)
-    (vobj.RootNode if parent is None else parent).addChild(separator)
+    switch.addChild(separator)
     return separator, colour, points, lines
 
 
@@ -575,15 +575,15 @@ class ViewProviderLayers(_Editable, _EdgeColoured):
         super().attach(vobj)
         self.overlays = _overlay_switch(vobj)
         (self.drills, self.drill_colour, self.drill_points,
-         self.drill_lines) = _overlay(vobj, "DrillColor", DRILL_COLOUR,
+         self.drill_lines) = _overlay(vobj, self.overlays, "DrillColor", DRILL_COLOUR,
                                       "Colour of the holes deposited solid, to drill afterwards",
-                                      DRILL_LINE_WIDTH, parent=self.overlays)
+                                      DRILL_LINE_WIDTH)
         self.update_drills(vobj)
         (self.collisions, self.collision_colour, self.collision_points,
-         self.collision_lines) = _overlay(vobj, "CollisionColor", COLLISION_COLOUR,
+         self.collision_lines) = _overlay(vobj, self.overlays, "CollisionColor", COLLISION_COLOUR,
                                           "Colour of the collisions: from where the nozzle stands "
                                           "to what it meets", COLLISION_LINE_WIDTH,
-                                          COLLISION_POINT_SIZE, parent=self.overlays)
+                                          COLLISION_POINT_SIZE)
         self.collision_marks = coin.SoPointSet()  # the obstacles' points
         self.collisions.addChild(self.collision_marks)
         self.update_collisions(vobj)
@@ -797,8 +797,9 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
     tessellated every face of the Shape anew at each step: seconds on a part of a thousand
     layers), the step's layer see-through, the step's deposit paths as lines over it, and where
     it stands on nothing under it. Colours: ``build_preview_layer_colours`` and the view
-    properties CurrentLayerColor, NozzleColor, CollisionColor, PathColor and UnsupportedColor. Double-click (or "Step through the build..." in the context
-    menu) opens its panel (build_preview.py): a slider over the sequence's steps, with play."""
+    properties CurrentLayerColor, NozzleColor, CollisionColor, PathColor and UnsupportedColor.
+    Double-click (or "Step through the build..." in the context menu) opens its panel
+    (build_preview.py): a slider over the sequence's steps, with play."""
 
     COLOUR_PROPERTIES = tuple(BUILD_PREVIEW_COLOURS)
     EDIT_MENU_TEXT = "Step through the build..."
@@ -974,8 +975,8 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         if layers is None or any(features.is_build_preview(o) and o is not obj
                                  for o in layers.InList):
             return True
-        for o in [layers] + layers.InList:
-            if (features.is_layers(o) or features.is_toolpath(o)) and o.ViewObject is not None:
+        for o in features.layers_and_toolpaths(layers):
+            if o.ViewObject is not None:
                 o.ViewObject.Visibility = True
         return True
 

@@ -646,17 +646,18 @@ def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
     return features.make_machine_program(layers, name=name, doc=doc, **machine)
 
 
-def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, name="BuildPreview",
-                       doc=None):
+def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, show_plate=True,
+                       name="BuildPreview", doc=None):
     """Adds a parametric ``BuildPreview`` object (FreeCAD only) showing the build of a ``Layers``
     (or ``Toolpath``) object after ``step`` steps of its deposition sequence (0: all of them): the
-    layers deposited so far, the step's in its own colour with its deposit paths, and the nozzle
-    at the step's layer along its tool axis; returns it. Recompute the document to compute it; set
-    its ``Step`` and recompute to step through the build. See ``MultiAxisSlicer.features``."""
+    layers deposited so far, the step's in its own colour with its deposit paths, the nozzle at
+    the step's layer along its tool axis, and the build plate; returns it. Recompute the document
+    to compute it; set its ``Step`` and recompute to step through the build. See ``MultiAxisSlicer.features``."""
     from . import features
 
     return features.make_build_preview(layers, step=step, show_nozzle=show_nozzle,
-                                       show_paths=show_paths, name=name, doc=doc)
+                                       show_paths=show_paths, show_plate=show_plate, name=name,
+                                       doc=doc)
 
 
 # The centroidal axis, the decomposition and the slicing (after the helpers above, which they use).

@@ -1470,6 +1470,34 @@ def layer_prism(layer):
     return Part.makeCompound(pieces)
 
 
+def build_plate_face(result):
+    """The build plate under a slicing result's part, as the build preview draws it: a rectangle
+    on the plate's plane (``result.plate``) covering every layer's outlines seen along its normal,
+    grown all round by a tenth of its longer side or 5 mm, whichever is more, its sides along the
+    plate's projections of X and Y (X and Y themselves for a plate facing +Z). A face."""
+    origin, normal = result.plate
+    normal = FreeCAD.Vector(normal).normalize()
+    u = FreeCAD.Vector(1, 0, 0)
+    u = u - normal * normal.dot(u)
+    if u.Length < 1e-6:  # a plate facing X
+        u = FreeCAD.Vector(0, 1, 0) - normal * normal.y
+    u.normalize()
+    v = normal.cross(u)
+    us, vs = [], []
+    for layer in result.layers:
+        for loop in layer.loops():
+            for p in loop:
+                d = p - origin
+                us.append(d.dot(u))
+                vs.append(d.dot(v))
+    if not us:
+        us = vs = [0.0]
+    grow = max(5.0, 0.1 * max(max(us) - min(us), max(vs) - min(vs)))
+    u0, u1, v0, v1 = min(us) - grow, max(us) + grow, min(vs) - grow, max(vs) + grow
+    corners = [origin + u * a + v * b for a, b in ((u0, v0), (u1, v0), (u1, v1), (u0, v1))]
+    return Part.Face(Part.makePolygon(corners + corners[:1]))
+
+
 def shape_triangles(shape, tolerance=0.1):
     """(points, triangles) covering the faces of `shape`: [(x, y, z)] and [(i, j, k)] indices
     into points, the triangles of each face in its own orientation. What the build preview draws:
@@ -1507,25 +1535,25 @@ class BuildPreviewFeature(_EngineFeature):
 
     Inputs: Layers (the Layers object), Step (1 to the number of layers: the layers of its Sequence
     deposited so far, the last of them the one being deposited; 0: the last step, the whole build),
-    ShowNozzle, ShowPaths. Outputs: Shape (a compound of five: the layers deposited before the
-    step's, in deposition order, each a compound of its regions swept back along its normal by its
-    greatest thickness; the step's layer so; the nozzle, its tip and body solids, standing on the
-    deposit point along the layer's tool axis, at the point where it meets what is deposited when
-    the layer collides, else at the start of the layer's first deposit path; the step's deposit
+    ShowNozzle, ShowPaths, ShowPlate. Outputs: Shape (a compound of six: the layers deposited before
+    the step's, in deposition order, each a compound of its regions swept back along its normal by
+    its greatest thickness; the step's layer so; the nozzle, its tip and body solids, standing on
+    the deposit point along the layer's tool axis, at the point where it meets what is deposited
+    when the layer collides, else at the start of the layer's first deposit path; the step's deposit
     paths, a polyline each, in the order the nozzle follows them; the step's layer's unsupported
-    regions, a face each on the plane below it, where it stands on nothing; the nozzle's and the
-    paths' compounds empty without ShowNozzle and ShowPaths), StepCount, ShownStep, Layer,
-    Component, ToolAxis, Lean (its angle from the layer's normal), NozzlePoint, Collides,
-    CollisionObstacle (the layer it meets, -1 the build plate; -2 when it collides with nothing),
-    ShownComponents (the component of each layer shown, in the Shape's order), UnsupportedArea (the
-    step's layer's, mm²), FlaggedSteps (the steps whose layer is leaned for or collides), WorstStep
-    (the step whose layer stands most on nothing, 0 when none does). The nozzle is the Layers
-    object's (NozzleStandoff, ...)."""
+    regions, a face each on the plane below it, where it stands on nothing; the build plate,
+    ``build_plate_face``; the nozzle's, the paths' and the plate's compounds empty without
+    ShowNozzle, ShowPaths and ShowPlate), StepCount, ShownStep, Layer, Component, ToolAxis, Lean
+    (its angle from the layer's normal), NozzlePoint, Collides, CollisionObstacle (the layer it
+    meets, -1 the build plate; -2 when it collides with nothing), ShownComponents (the component of
+    each layer shown, in the Shape's order), UnsupportedArea (the step's layer's, mm²), FlaggedSteps
+    (the steps whose layer is leaned for or collides), WorstStep (the step whose layer stands most
+    on nothing, 0 when none does). The nozzle is the Layers object's (NozzleStandoff, ...)."""
 
     TYPE = "MultiAxisSlicer::BuildPreview"
     VIEW_PROVIDER = "ViewProviderBuildPreview"
     PROPERTY_NAMES = _names(("step", "Step"))
-    PARAMETERS = (("Build preview", ("Step", "ShowNozzle", "ShowPaths")),)
+    PARAMETERS = (("Build preview", ("Step", "ShowNozzle", "ShowPaths", "ShowPlate")),)
 
     @staticmethod
     def ensure_properties(obj):
@@ -1539,8 +1567,12 @@ class BuildPreviewFeature(_EngineFeature):
                       "Show the nozzle at the step's layer, along its tool axis", True)
         _add_property(obj, "App::PropertyBool", "ShowPaths", group,
                       "Show the step's deposit paths (bead centre lines) on its layer", True)
+        _add_property(obj, "App::PropertyBool", "ShowPlate", group,
+                      "Show the build plate the part stands on (an obstacle to the nozzle too)",
+                      True)
         _add_property(obj, "Part::PropertyPartShape", "Shape", "Base",
-                      "The layers deposited so far, the step's layer and the nozzle", None,
+                      "The layers deposited so far, the step's layer, the nozzle and the plate",
+                      None,
                       _OUTPUT)
         result = "Result"
         for type_id, prop, doc, default in (
@@ -1589,7 +1621,7 @@ class BuildPreviewFeature(_EngineFeature):
         index = sequence[step - 1]
         layer = result.layers[index]
         # Kept per slicing result: the prisms made so far (a step reuses those drawn before),
-        # the steps leaned or colliding and the step standing most on nothing.
+        # the steps leaned or colliding, the step standing most on nothing and the plate.
         cache = getattr(self, "_cache", None)
         if cache is None or cache.result is not result:
             flagged = set(result.leaned_layers()) | {c.layer for c in result.collisions}
@@ -1598,7 +1630,7 @@ class BuildPreviewFeature(_EngineFeature):
             cache = self._cache = types.SimpleNamespace(
                 result=result, prisms={},
                 flagged=[k + 1 for k, i in enumerate(sequence) if i in flagged],
-                worst=worst + 1 if areas[worst] > 0.0 else 0)
+                worst=worst + 1 if areas[worst] > 0.0 else 0, plate=build_plate_face(result))
         prisms = cache.prisms
 
         def prism(i):
@@ -1642,7 +1674,8 @@ class BuildPreviewFeature(_EngineFeature):
         obj.Shape = Part.makeCompound([
             Part.makeCompound([prism(i) for i in sequence[:step - 1]]), prism(index),
             Part.makeCompound(nozzle), Part.makeCompound(paths),
-            Part.makeCompound(unsupported)])
+            Part.makeCompound(unsupported),
+            Part.makeCompound([cache.plate] if obj.ShowPlate else [])])
 
 
 def is_build_preview(obj):
@@ -1655,13 +1688,13 @@ def layers_and_toolpaths(layers):
     return [layers] + [o for o in layers.InList if is_toolpath(o)]
 
 
-def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, name="BuildPreview",
-                       doc=None):
+def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, show_plate=True,
+                       name="BuildPreview", doc=None):
     """Adds a ``BuildPreview`` object showing the build of the ``Layers`` object ``layers`` (a
     ``Toolpath`` object stands for its Layers) after ``step`` steps of its sequence (0: all), the
-    nozzle at that step's layer and its deposit paths, to ``doc`` (default: the layers'
-    document) and returns it; recompute the document to compute it. Nothing is changed on the
-    layers."""
+    nozzle at that step's layer and its deposit paths, and the build plate, to ``doc`` (default:
+    the layers' document) and returns it; recompute the document to compute it. Nothing is
+    changed on the layers."""
     if is_toolpath(layers):
         if layers.Layers is None:
             raise ValueError("make_build_preview(): the Toolpath '{}' has no Layers".format(
@@ -1681,6 +1714,7 @@ def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, name="
     obj.Step = step
     obj.ShowNozzle = bool(show_nozzle)
     obj.ShowPaths = bool(show_paths)
+    obj.ShowPlate = bool(show_plate)
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, BuildPreviewFeature.VIEW_PROVIDER)
     return obj

@@ -270,7 +270,9 @@ class SliceResult:
     decomposition's notes first, each "decomposition: ...", saying which branches got no
     component of their own and why; then one string per hole that qualified for filling and
     stayed open, saying why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
-    ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh").
+    ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh"),
+    ``plate`` (the build plate the part stands on and the nozzle was checked against: (origin,
+    normal) as ``FreeCAD.Vector``, the normal up).
     """
 
     def __init__(self, data, params, axis, decomposition, kind):
@@ -287,6 +289,7 @@ class SliceResult:
         self.axis = axis
         self.decomposition = decomposition
         self.kind = kind
+        self.plate = (_as_vector(data["plate_origin"]), _as_vector(data["plate_normal"]))
 
     def __len__(self):
         return len(self.layers)

@@ -7,9 +7,9 @@ CollisionColor where it meets what is deposited).
 Double-clicking the object (or "Step through the build..." in its context menu) opens it; the
 Build preview command opens it on the object it makes. A slider and a spin box choose the step
 (the slider moves the preview when it is let go, or by the keyboard a step at a time), Play walks
-through the steps to the last, Show nozzle and Show paths show or hide the nozzle and the step's
-deposit paths, and three buttons go to the step before or after whose layer the nozzle leans for
-or collides at, and to the layer that stands most on nothing. Each step is the object's Step
+through the steps to the last, Show nozzle, Show paths and Show plate show or hide the nozzle, the
+step's deposit paths and the build plate, and three buttons go to the step before or after whose
+layer the nozzle leans for or collides at, and to the layer that stands most on nothing. Each step is the object's Step
 property written and the object recomputed: the slicing is the Layers object's, kept in memory,
 and each layer's solid and triangles are made once, so a step costs little more than the drawing.
 Stepping is not recorded for Undo (a walk through a few hundred layers would bury the undo steps
@@ -96,6 +96,9 @@ class BuildPreviewPanel:
         self.paths = QtGui.QCheckBox("Show paths")
         self.paths.setObjectName("paths")
         self.paths.setToolTip("The step's deposit paths on its layer")
+        self.plate = QtGui.QCheckBox("Show plate")
+        self.plate.setObjectName("plate")
+        self.plate.setToolTip("The build plate the part stands on")
         grid = QtGui.QGridLayout()
         grid.addWidget(self.play, 0, 0)
         grid.addWidget(self.worst, 0, 1)
@@ -104,6 +107,7 @@ class BuildPreviewPanel:
         grid.addWidget(self.next, 2, 1)
         grid.addWidget(self.nozzle, 3, 0)
         grid.addWidget(self.paths, 3, 1)
+        grid.addWidget(self.plate, 4, 0)
         layout.addLayout(grid)
         layout.addStretch(1)
         self.timer = QtCore.QTimer(self.form)
@@ -116,6 +120,7 @@ class BuildPreviewPanel:
         self.play.toggled.connect(self.toggle_play)
         self.nozzle.toggled.connect(self.show_nozzle)
         self.paths.toggled.connect(self.show_paths)
+        self.plate.toggled.connect(self.show_plate)
         self.previous.clicked.connect(lambda: self.go_flagged(-1))
         self.next.clicked.connect(lambda: self.go_flagged(1))
         self.worst.clicked.connect(self.go_worst)
@@ -145,7 +150,8 @@ class BuildPreviewPanel:
             widget.setValue(self.obj.ShownStep)
             widget.setEnabled(count > 0)
             widget.blockSignals(False)
-        for box, shown in ((self.nozzle, self.obj.ShowNozzle), (self.paths, self.obj.ShowPaths)):
+        for box, shown in ((self.nozzle, self.obj.ShowNozzle), (self.paths, self.obj.ShowPaths),
+                           (self.plate, self.obj.ShowPlate)):
             box.blockSignals(True)
             box.setChecked(shown)
             box.blockSignals(False)
@@ -201,6 +207,9 @@ class BuildPreviewPanel:
 
     def show_paths(self, shown):
         return self._set("ShowPaths", bool(shown))
+
+    def show_plate(self, shown):
+        return self._set("ShowPlate", bool(shown))
 
     def toggle_play(self, playing):
         if not playing:

@@ -745,11 +745,14 @@ BUILD_PREVIEW_COLOURS = {
     "PathColor": ((0.1, 0.1, 0.1), "Colour of the step's deposit paths"),
     "UnsupportedColor": (UNSUPPORTED_COLOUR,
                          "Colour of where the step's layer stands on nothing (seen through it)"),
+    "PlateColor": ((0.45, 0.47, 0.5), "Colour of the build plate (see-through)"),
 }
 BUILD_PREVIEW_BAND_SHADE = 0.8
 # The step's layer is drawn this transparent: what it stands on, and where it stands on nothing,
 # show through it.
 BUILD_PREVIEW_CURRENT_TRANSPARENCY = 0.4
+# The plate so: the part's underside shows through it from below.
+BUILD_PREVIEW_PLATE_TRANSPARENCY = 0.6
 BUILD_PREVIEW_PATH_WIDTH = 1.5
 # More layers than this to draw anew show the wait cursor.
 BUILD_PREVIEW_QUIET_LAYERS = 100
@@ -796,8 +799,9 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
     kept while its prism is, so that a step redraws only what changed (Part's view provider
     tessellated every face of the Shape anew at each step: seconds on a part of a thousand
     layers), the step's layer see-through, the step's deposit paths as lines over it, and where
-    it stands on nothing under it. Colours: ``build_preview_layer_colours`` and the view
-    properties CurrentLayerColor, NozzleColor, CollisionColor, PathColor and UnsupportedColor.
+    it stands on nothing under it, and the build plate see-through, behind the first layer's
+    underside on it. Colours: ``build_preview_layer_colours`` and the view properties
+    CurrentLayerColor, NozzleColor, CollisionColor, PathColor, UnsupportedColor and PlateColor.
     Double-click (or "Step through the build..." in the context menu) opens its panel
     (build_preview.py): a slider over the sequence's steps, with play."""
 
@@ -847,6 +851,17 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         for node in (front, self.unsupported_colour, self.unsupported_faces):
             self.unsupported_node.addChild(node)
         self.root.addChild(self.unsupported_node)
+        # The plate: drawn further back than the layers, whose first ones lie on it.
+        self.plate_node = coin.SoSeparator()
+        back = coin.SoPolygonOffset()
+        back.factor = 2.0
+        back.units = 2.0
+        self.plate_colour = coin.SoMaterial()
+        self.plate_colour.transparency.setValue(BUILD_PREVIEW_PLATE_TRANSPARENCY)
+        self.plate_faces = coin.SoSeparator()
+        for node in (back, self.plate_colour, self.plate_faces):
+            self.plate_node.addChild(node)
+        self.root.addChild(self.plate_node)
         paths = coin.SoSeparator()
         light = coin.SoLightModel()
         light.model = coin.SoLightModel.BASE_COLOR
@@ -917,13 +932,15 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         self.layer_nodes.removeAllChildren()
         self.nozzle_node.removeAllChildren()
         self.unsupported_faces.removeAllChildren()
+        self.plate_faces.removeAllChildren()
         self.path_lines.numVertices.setNum(0)
         self.path_points.point.setNum(0)
         self.shown = []
         shape = obj.Shape
         parts = shape.childShapes() if not shape.isNull() and shape.ShapeType == "Compound" else []
         components = list(obj.ShownComponents)
-        if len(parts) != 5 or len(parts[0].childShapes()) != len(components) - 1:
+        # (Five parts: saved before the plate was; it is drawn from the next recompute.)
+        if len(parts) not in (5, 6) or len(parts[0].childShapes()) != len(components) - 1:
             return  # not computed (or failed before its Shape was made)
         colour = {p: tuple(getattr(vobj, p))[:3] for p in BUILD_PREVIEW_COLOURS}
         prisms = parts[0].childShapes() + [parts[1]]
@@ -953,6 +970,9 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         self.unsupported_colour.diffuseColor.setValue(*colour["UnsupportedColor"])
         if parts[4].Faces:
             self.unsupported_faces.addChild(self._triangles(parts[4]))
+        self.plate_colour.diffuseColor.setValue(*colour["PlateColor"])
+        if len(parts) > 5 and parts[5].Faces:
+            self.plate_faces.addChild(self._triangles(parts[5]))
         lines = []
         for wire in parts[3].Wires:
             points = [v.Point for v in wire.OrderedVertexes]

@@ -1673,12 +1673,12 @@ class TestBuildPreviewCommand(unittest.TestCase):
         return [tuple(round(x, 2) for x in c) for c in preview.ViewObject.Proxy.shown]
 
     def drawn_triangles(self, preview):
-        """The triangles the view draws (its layers', then the nozzle's)."""
+        """The triangles the view draws (its layers', the nozzle's and the plate's)."""
         from pivy import coin
 
         proxy = preview.ViewObject.Proxy
         count = 0
-        for group in (proxy.layer_nodes, proxy.nozzle_node):
+        for group in (proxy.layer_nodes, proxy.nozzle_node, proxy.plate_faces):
             for i in range(group.getNumChildren()):
                 node = group.getChild(i)
                 if isinstance(node, coin.SoSeparator):
@@ -1762,6 +1762,26 @@ class TestBuildPreviewCommand(unittest.TestCase):
         self.assertEqual(proxy.path_lines.numVertices.getNum(), 0)
         panel.paths.setChecked(True)
         self.assertEqual(proxy.path_lines.numVertices.getNum(), len(wires))
+        # The build plate under it, see-through, in PlateColor: two triangles, on z = 0.
+        plate = preview.Shape.childShapes()[5].Faces
+        self.assertEqual(len(plate), 1)
+        self.assertEqual(proxy.plate_faces.getNumChildren(), 1)
+        drawn = proxy.plate_faces.getChild(0)
+        self.assertEqual(drawn.getChild(1).coordIndex.getNum(), 2 * 4)
+        corners = [drawn.getChild(0).point[i].getValue() for i in range(4)]
+        self.assertEqual({round(c[2], 9) for c in corners}, {0.0})
+        self.assertAlmostEqual(min(c[0] for c in corners), plate[0].BoundBox.XMin, places=4)
+        self.assertAlmostEqual(max(c[1] for c in corners), plate[0].BoundBox.YMax, places=4)
+        self.assertEqual(tuple(round(x, 2) for x in proxy.plate_colour.diffuseColor[0].getValue()),
+                         tuple(round(x, 2) for x in preview.ViewObject.PlateColor[:3]))
+        self.assertAlmostEqual(proxy.plate_colour.transparency[0],
+                               view_providers.BUILD_PREVIEW_PLATE_TRANSPARENCY, places=6)
+        self.assertTrue(panel.plate.isChecked())
+        panel.plate.setChecked(False)
+        self.assertFalse(preview.ShowPlate)
+        self.assertEqual(proxy.plate_faces.getNumChildren(), 0)
+        panel.plate.setChecked(True)
+        self.assertEqual(proxy.plate_faces.getNumChildren(), 1)
         save_screenshot(self, self.doc, "build_preview_l_block.png", see_through=False)
 
         # Play walks on a step at a time and stops at the last.

@@ -1722,7 +1722,7 @@ class TestBuildPreviewObject(SliceObjectTest):
             self.assertEqual((preview.Layer, preview.Component), (index, layer.component))
             self.assertEqual(list(preview.ShownComponents),
                              [result.layers[i].component for i in sequence[:shown]])
-            deposited, current, nozzle, paths, unsupported = preview.Shape.childShapes()
+            deposited, current, nozzle, paths, unsupported, _plate = preview.Shape.childShapes()
             self.assertEqual(unsupported.Faces, [])  # the L's layers all rest on the layer below
             self.assertEqual(len(deposited.childShapes()), shown - 1)
             # Each layer a prism: its regions on its plane swept back along its normal by its
@@ -1828,6 +1828,61 @@ class TestBuildPreviewObject(SliceObjectTest):
         for v in preview.Shape.childShapes()[4].Vertexes:
             self.assertAlmostEqual((v.Point - layer.origin).dot(layer.normal),
                                    -layer.max_thickness, places=6)
+
+    def test_the_plate_lies_under_the_whole_build_on_the_plane_the_part_stands_on(self):
+        # The L turned 30 degrees about Z and standing 7 mm up: the plate at z = 7, square to
+        # the document's X and Y, covering every layer's outline with a margin all round.
+        l_turned = l_block()
+        l_turned.rotate(V(0, 0, 0), V(0, 0, 1), 30.0)
+        l_turned.translate(V(3, -4, 7))
+        layers, _toolpath, preview = self.make_preview(l_turned, step=1)
+        result = features.slice_result(layers)
+        self.assertAlmostEqual(result.plate[0].z, 7.0, places=9)
+        self.assertVectorAlmostEqual(result.plate[1], V(0, 0, 1))
+        outline = [p for layer in result.layers for loop in layer.loops() for p in loop]
+        lo = V(min(p.x for p in outline), min(p.y for p in outline), 0)
+        hi = V(max(p.x for p in outline), max(p.y for p in outline), 0)
+        # The L's outline: its box, turned (the layers' loops are the mesh's sections).
+        box = l_turned.BoundBox
+        deflection = layers.Deflection.Value or mas.deflection(l_turned)
+        for got, want in ((lo.x, box.XMin), (lo.y, box.YMin), (hi.x, box.XMax), (hi.y, box.YMax)):
+            self.assertAlmostEqual(got, want, delta=deflection)
+        grow = max(5.0, 0.1 * max(hi.x - lo.x, hi.y - lo.y))
+        self.assertGreater(grow, 5.0)  # a tenth of the L's 55 mm or so
+        for step in (1, 0):  # the same plate at every step
+            preview.Step = step
+            self.doc.recompute()
+            plate = preview.Shape.childShapes()[5]
+            self.assertEqual(len(plate.Faces), 1)
+            face = plate.Faces[0]
+            self.assertEqual(len(face.Vertexes), 4)
+            b = face.BoundBox
+            self.assertAlmostEqual(b.ZMin, 7.0, places=9)
+            self.assertAlmostEqual(b.ZMax, 7.0, places=9)
+            for got, want in ((b.XMin, lo.x - grow), (b.YMin, lo.y - grow),
+                              (b.XMax, hi.x + grow), (b.YMax, hi.y + grow)):
+                self.assertAlmostEqual(got, want, places=6)
+            self.assertAlmostEqual(face.Area, (hi.x - lo.x + 2 * grow) * (hi.y - lo.y + 2 * grow),
+                                   places=6)
+        # ShowPlate off: no plate; the rest as it was.
+        solids = len(preview.Shape.Solids)
+        preview.ShowPlate = False
+        self.doc.recompute()
+        self.assertEqual(preview.Shape.childShapes()[5].Faces, [])
+        self.assertEqual(len(preview.Shape.Solids), solids)
+        self.assertFalse(mas.make_build_preview(layers, show_plate=False).ShowPlate)
+
+    def test_a_small_part_gets_a_plate_5_mm_wider_all_round(self):
+        layers, _toolpath, preview = self.make_preview(Part.makeBox(10, 8, 4))
+        face = preview.Shape.childShapes()[5].Faces[0]
+        b = face.BoundBox
+        result = features.slice_result(layers)
+        outline = [p for layer in result.layers for loop in layer.loops() for p in loop]
+        self.assertAlmostEqual(b.XMin, min(p.x for p in outline) - 5.0, places=9)
+        self.assertAlmostEqual(b.XMax, max(p.x for p in outline) + 5.0, places=9)
+        self.assertAlmostEqual(b.YMin, min(p.y for p in outline) - 5.0, places=9)
+        self.assertAlmostEqual(b.YMax, max(p.y for p in outline) + 5.0, places=9)
+        self.assertAlmostEqual(b.ZMax, 0.0, places=9)
 
     def test_a_step_past_the_sequence_is_named_until_fixed(self):
         layers, _toolpath, preview = self.make_preview(box_20_10_21())

@@ -9,6 +9,7 @@
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
 #include "mas/SlicePart.hpp"
+#include "mas/Triangulate.hpp"
 
 // Boost 1.74's Boost.Python still includes deprecated Boost headers; keep the build output quiet.
 #define BOOST_BIND_GLOBAL_PLACEHOLDERS
@@ -1797,6 +1798,53 @@ void bind_gcode() {
             "layer the table cannot turn to the nozzle. `progress` as slice_part()'s.");
 }
 
+// ---- drawing
+// ---------------------------------------------------------------------------------------------
+
+// The build preview's drawing of a layer: prism_mesh() of its regions.
+bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
+                        const bp::object& normal, double depth) {
+    const mas::Plane plane = mas::make_plane(vector3(origin, "origin"), vector3(normal, "normal"));
+    if (!(depth > 0.0 && std::isfinite(depth)))
+        invalid_argument("depth must be a positive number of mm, got " + std::to_string(depth));
+    const mas::PlaneFrame frame(plane.normal);
+    const auto loop = [&](const bp::object& points, const std::string& what) {
+        mas::Polygon2 out;
+        for (const Eigen::Vector3d& q : points_from(points, what))
+            out.points.push_back(frame.to_2d(q));
+        return out;
+    };
+    bp::handle<> seq = fast_sequence(regions_py, "regions");
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    mas::Regions2 regions;
+    for (Py_ssize_t r = 0; r < n; ++r) {
+        const bp::object item(bp::handle<>(bp::borrowed(items[r])));
+        const std::string what = "regions[" + std::to_string(r) + "]";
+        mas::Region2 region;
+        region.outer = loop(required(item, "outer", what), what + "['outer']");
+        const std::vector<bp::object> holes = items_of(item, "holes", what);
+        for (std::size_t h = 0; h < holes.size(); ++h)
+            region.holes.push_back(loop(holes[h], what + "['holes'][" + std::to_string(h) + "]"));
+        regions.push_back(std::move(region));
+    }
+    const mas::TriangleMesh mesh = mas::prism_mesh(regions, plane, depth);
+    return bp::make_tuple(mesh_vertices(mesh), mesh_triangles(mesh));
+}
+
+void bind_drawing() {
+    bp::def(
+        "prism_mesh", &prism_mesh_py,
+        (bp::arg("regions"), bp::arg("origin"), bp::arg("normal"), bp::arg("depth")),
+        "(points [(x, y, z)], triangles [(i, j, k)]): the closed surface of `regions` ([{outer, "
+        "holes}], loops of points on the plane (origin, normal)) swept back along -normal by "
+        "`depth` mm, every triangle counter-clockwise seen from outside: each region's face "
+        "(ear clipping, its holes bridged to its outline), the same face below, and a wall "
+        "along each edge. Points: per region, its points on the plane (outer loop first, "
+        "then each hole), then the same points below. What the build preview draws a layer "
+        "with. EngineError invalid_argument for a bad plane or depth.");
+}
+
 }  // namespace
 
 BOOST_PYTHON_MODULE(_engine) {
@@ -1835,4 +1883,5 @@ BOOST_PYTHON_MODULE(_engine) {
     bind_decompose();
     bind_slice();
     bind_gcode();
+    bind_drawing();
 }

@@ -272,7 +272,7 @@ class SliceResult:
     stayed open, saying why), ``params`` (the slicing parameters used), ``axis`` (the ``CentroidalAxis``),
     ``decomposition`` (the ``Decomposition``, None for a mesh), ``kind`` ("solid" or "mesh"),
     ``plate`` (the build plate the part stands on and the nozzle was checked against: (origin,
-    normal) as ``FreeCAD.Vector``, the normal up).
+    normal) as ``FreeCAD.Vector``, the normal up; None for a result made without it).
     """
 
     def __init__(self, data, params, axis, decomposition, kind):
@@ -289,7 +289,8 @@ class SliceResult:
         self.axis = axis
         self.decomposition = decomposition
         self.kind = kind
-        self.plate = (_as_vector(data["plate_origin"]), _as_vector(data["plate_normal"]))
+        self.plate = ((_as_vector(data["plate_origin"]), _as_vector(data["plate_normal"]))
+                      if "plate_origin" in data else None)
 
     def __len__(self):
         return len(self.layers)

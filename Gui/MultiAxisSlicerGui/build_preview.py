@@ -4,16 +4,16 @@ sequence, so that a process engineer can watch the part grow layer by layer in t
 deposited, the nozzle at each layer along its tool axis (leaned where the sequence leans it, in
 CollisionColor where it meets what is deposited).
 
-Double-clicking the object (or "Step through the build..." in its context menu) opens it; the
-Build preview command opens it on the object it makes. A slider and a spin box choose the step
-(the slider moves the preview when it is let go, or by the keyboard a step at a time), Play walks
-through the steps to the last, Show nozzle, Show paths and Show plate show or hide the nozzle, the
-step's deposit paths and the build plate, and three buttons go to the step before or after whose
-layer the nozzle leans for or collides at, and to the layer that stands most on nothing. Each step is the object's Step
-property written and the object recomputed: the slicing is the Layers object's, kept in memory,
-and each layer's solid and triangles are made once, so a step costs little more than the drawing.
-Stepping is not recorded for Undo (a walk through a few hundred layers would bury the undo steps
-before it); the property editor's Step is."""
+Double-clicking the object (or "Step through the build..." in its context menu) opens it; the Build
+preview command opens it on the object it makes. A slider and a spin box choose the step (the slider
+moves the preview when it is let go, or by the keyboard a step at a time), Play walks through the
+steps to the last, Show nozzle, Show paths and Show plate show or hide the nozzle, the step's
+deposit paths and the build plate, and three buttons go to the step before or after whose layer the
+nozzle leans for or collides at, and to the layer that stands most on nothing. Each step is the
+object's Step property written and the object recomputed: the slicing is the Layers object's, kept
+in memory, and each layer's solid and triangles are made once, so a step costs little more than the
+drawing. Stepping is not recorded for Undo (a walk through a few hundred layers would bury the undo
+steps before it); the property editor's Step is."""
 
 import FreeCADGui
 

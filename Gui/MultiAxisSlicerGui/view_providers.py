@@ -795,8 +795,9 @@ def build_preview_layer_colours(components, current, shade=BUILD_PREVIEW_BAND_SH
 
 class ViewProviderBuildPreview(_Editable, _Stateless):
     """Tree icon and drawing of a ``BuildPreview`` object (an App::FeaturePython with a Shape):
-    its Shape drawn here, shaded, each layer's triangles made once (``shape_triangles``) and
-    kept while its prism is, so that a step redraws only what changed (Part's view provider
+    its Shape drawn here, shaded, each layer's triangles made once (by the object from the layer's
+    regions, ``layer_triangles``; for a Shape read from a file, ``shape_triangles``) and kept
+    while its prism is, so that a step redraws only what changed (Part's view provider
     tessellated every face of the Shape anew at each step: seconds on a part of a thousand
     layers), the step's layer see-through, the step's deposit paths as lines over it, and where
     it stands on nothing under it, and the build plate see-through, behind the first layer's
@@ -904,13 +905,14 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         return node
 
     @staticmethod
-    def _triangles(shape):
-        """A node drawing `shape`'s faces as triangles."""
+    def _triangles(shape, mesh=None):
+        """A node drawing `shape`'s faces as triangles: `mesh` ((points, triangles)) when given,
+        else ``shape_triangles(shape)``."""
         from pivy import coin
 
         import MultiAxisSlicer.features as features
 
-        points, triangles = features.shape_triangles(shape)
+        points, triangles = mesh or features.shape_triangles(shape)
         node = coin.SoSeparator()
         coordinates = coin.SoCoordinate3()
         faces = coin.SoIndexedFaceSet()
@@ -947,11 +949,13 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         keys = [prism.hashCode() for prism in prisms]
         new = [(key, prism) for key, prism in zip(keys, prisms)
                if key not in self.geometries or not self.geometries[key][0].isSame(prism)]
-        # A thousand layers take a few seconds the first time (about 70 microseconds a face):
-        # the wait cursor says so.
+        # Each layer's triangles as the object made them from its regions (the engine's), or, for
+        # a Shape restored from a file, from its faces (a thousand layers take a few seconds so,
+        # about 70 microseconds a face: the wait cursor says so).
+        made = getattr(getattr(obj, "Proxy", None), "prism_triangles", None)
         with _WaitCursor(len(new) > BUILD_PREVIEW_QUIET_LAYERS):
             for key, prism in new:
-                self.geometries[key] = (prism, self._triangles(prism))
+                self.geometries[key] = (prism, self._triangles(prism, made and made(prism)))
         used = set(keys)
         colours = build_preview_layer_colours(components, colour["CurrentLayerColor"])
         for k, (key, layer_colour) in enumerate(zip(keys, colours)):

@@ -255,6 +255,7 @@ class TestTravelCheck(GcodeTest):
         data = dict(self.result._data)
         del data["plate_origin"], data["plate_normal"]
         old = mas.SliceResult(data, self.result.params, self.result.axis, None, "solid")
+        self.assertIsNone(old.plate)
         self.assertEqual(mas.gcode(old).stats["checked_routes"], 0)
         self.assertEqual(mas.gcode(old).text, without_plate_line(program.text))
 

@@ -1884,6 +1884,90 @@ class TestBuildPreviewObject(SliceObjectTest):
         self.assertAlmostEqual(b.YMax, max(p.y for p in outline) + 5.0, places=9)
         self.assertAlmostEqual(b.ZMax, 0.0, places=9)
 
+    def check_layer_triangles(self, result, indices):
+        """layer_triangles() of each layer in `indices` against layer_prism(): a closed surface
+        (each edge once each way) round the same volume, its points on the layer's plane or its
+        greatest thickness below, as many triangles as OCCT's tessellation of the prism."""
+        for i in indices:
+            layer = result.layers[i]
+            points, triangles = features.layer_triangles(layer)
+            prism = features.layer_prism(layer)
+            pts = [V(*p) for p in points]
+            volume = sum(pts[a].dot(pts[b].cross(pts[c])) for a, b, c in triangles) / 6.0
+            self.assertAlmostEqual(volume, prism.Volume, delta=1e-9 * prism.Volume)
+            edges = [(t[k], t[(k + 1) % 3]) for t in triangles for k in range(3)]
+            self.assertEqual(len(set(edges)), len(edges))
+            self.assertEqual(set(edges), {(b, a) for a, b in edges})
+            used = {k for t in triangles for k in t}
+            for k in used:
+                height = (pts[k] - layer.origin).dot(layer.normal)
+                self.assertTrue(abs(height) < 1e-9 or abs(height + layer.max_thickness) < 1e-9,
+                                height)
+            self.assertEqual(len(triangles), len(features.shape_triangles(prism)[1]))
+
+    def test_the_engine_draws_each_layer_as_its_prism(self):
+        # A ring (a hole in every layer) and the L turned 30 degrees (its arm's layers on
+        # planes square to the arm).
+        ring = Part.makeCylinder(10, 12).cut(Part.makeCylinder(6, 14, V(0, 0, -1)))
+        result = mas.slice(ring)
+        self.assertTrue(all(r["holes"] for layer in result.layers for r in layer.regions))
+        self.check_layer_triangles(result, range(len(result.layers)))
+        l_turned = l_block()
+        l_turned.rotate(V(0, 0, 0), V(0, 0, 1), 30.0)
+        result = mas.slice(l_turned)
+        arm = [i for i, layer in enumerate(result.layers) if abs(layer.normal.z) < 1e-9]
+        self.assertTrue(arm)
+        self.check_layer_triangles(result, arm[:3] + [0, len(result.layers) - 1])
+
+    def test_the_view_gets_the_engine_s_triangles_for_the_object_s_own_prisms_only(self):
+        layers, _toolpath, preview = self.make_preview(l_block(), step=3)
+        result = features.slice_result(layers)
+        deposited, current = preview.Shape.childShapes()[:2]
+        for prism, index in zip(deposited.childShapes() + [current], result.sequence[:3]):
+            self.assertEqual(preview.Proxy.prism_triangles(prism),
+                             features.layer_triangles(result.layers[index]))
+        # A prism it did not make (the same layer's, made again; one read from a file): none.
+        self.assertIsNone(preview.Proxy.prism_triangles(
+            features.layer_prism(result.layers[result.sequence[0]])))
+        self.reopened("preview_triangles.FCStd")
+        preview = self.doc.getObject("BuildPreview")
+        self.assertIsNone(preview.Proxy.prism_triangles(preview.Shape.childShapes()[1]))
+
+    def test_a_region_s_face_is_made_on_its_plane_whichever_way_its_loops_turn(self):
+        # A 10 x 10 square round a 2 x 2 hole, on a plane tilted 30 degrees about X.
+        normal = V(0, -math.sin(math.pi / 6), math.cos(math.pi / 6))
+        u, w = V(1, 0, 0), normal.cross(V(1, 0, 0))
+        origin = V(3, 4, 5)
+
+        def square(x0, y0, x1, y1):
+            return [origin + u * x + w * y for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+
+        for outer in (square(0, 0, 10, 10), square(0, 0, 10, 10)[::-1]):
+            for hole in (square(4, 4, 6, 6), square(4, 4, 6, 6)[::-1]):
+                face = features._region_face({"outer": outer, "holes": [hole]}, origin, normal)
+                self.assertIsInstance(face, Part.Face)
+                self.assertTrue(face.isValid())
+                self.assertAlmostEqual(face.Area, 96.0, places=9)
+                self.assertVectorAlmostEqual(face.normalAt(0, 0), normal)
+                prism = face.extrude(normal * -2)
+                self.assertTrue(prism.isValid())
+                self.assertAlmostEqual(prism.Volume, 192.0, places=9)
+        self.assertIsNone(features._region_face({"outer": outer[:2], "holes": []}, origin,
+                                                normal))
+
+    def test_the_engine_s_drawing_refuses_a_bad_plane_or_depth(self):
+        engine = mas._require_engine()
+        region = [{"outer": [(0, 0, 0), (1, 0, 0), (0, 1, 0)], "holes": []}]
+        points, triangles = engine.prism_mesh(region, (0, 0, 0), (0, 0, 2), 1.0)
+        self.assertEqual((len(points), len(triangles)), (6, 2 + 6))
+        for depth in (0.0, -1.0, float("nan"), float("inf")):
+            with self.assertRaisesRegex(mas.EngineError, "depth must be a positive number"):
+                engine.prism_mesh(region, (0, 0, 0), (0, 0, 1), depth)
+        with self.assertRaisesRegex(mas.EngineError, "normal"):
+            engine.prism_mesh(region, (0, 0, 0), (0, 0, 0), 1.0)
+        with self.assertRaisesRegex(mas.EngineError, "outer"):
+            engine.prism_mesh([{"holes": []}], (0, 0, 0), (0, 0, 1), 1.0)
+
     def test_a_step_past_the_sequence_is_named_until_fixed(self):
         layers, _toolpath, preview = self.make_preview(box_20_10_21())
         preview.Step = 12

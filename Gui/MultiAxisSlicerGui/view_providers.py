@@ -832,7 +832,11 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         self.shown = []  # the colours drawn: each layer's, then the nozzle's (if shown)
         self.root = coin.SoSeparator()
         hints = coin.SoShapeHints()
-        hints.vertexOrdering = coin.SoShapeHints.UNKNOWN_ORDERING  # lit on both sides
+        # Lit on both sides (Coin lights both only for a known ordering and an unknown shape
+        # type): a layer's triangles face outwards, and a face seen from behind (inside a
+        # layer, at a tie in depth along an edge; the plate from below) is not left black.
+        hints.vertexOrdering = coin.SoShapeHints.COUNTERCLOCKWISE
+        hints.shapeType = coin.SoShapeHints.UNKNOWN_SHAPE_TYPE
         hints.creaseAngle = 0.0  # flat: a prism's walls and faces keep their edges
         self.root.addChild(hints)
         offset = coin.SoPolygonOffset()  # the faces a little back: the paths on them show

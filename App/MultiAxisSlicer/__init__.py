@@ -652,7 +652,8 @@ def make_build_preview(layers, step=0, show_nozzle=True, show_paths=True, show_p
     (or ``Toolpath``) object after ``step`` steps of its deposition sequence (0: all of them): the
     layers deposited so far, the step's in its own colour with its deposit paths, the nozzle at
     the step's layer along its tool axis, and the build plate; returns it. Recompute the document
-    to compute it; set its ``Step`` and recompute to step through the build. See ``MultiAxisSlicer.features``."""
+    to compute it; set its ``Step`` and recompute to step through the build. See
+    ``MultiAxisSlicer.features``."""
     from . import features
 
     return features.make_build_preview(layers, step=step, show_nozzle=show_nozzle,

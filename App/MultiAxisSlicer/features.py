@@ -1605,8 +1605,7 @@ class BuildPreviewFeature(_EngineFeature):
                       True)
         _add_property(obj, "Part::PropertyPartShape", "Shape", "Base",
                       "The layers deposited so far, the step's layer, the nozzle and the plate",
-                      None,
-                      _OUTPUT)
+                      None, _OUTPUT)
         result = "Result"
         for type_id, prop, doc, default in (
                 ("App::PropertyInteger", "StepCount", "Number of steps (layers) in the sequence",
@@ -1712,7 +1711,6 @@ class BuildPreviewFeature(_EngineFeature):
             Part.makeCompound(nozzle), Part.makeCompound(paths),
             Part.makeCompound(unsupported),
             Part.makeCompound([cache.plate] if obj.ShowPlate and cache.plate is not None else [])])
-
 
     def prism_triangles(self, prism):
         """(points, triangles) drawing `prism`, a layer's solid in this object's Shape, made by

@@ -1806,12 +1806,14 @@ bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
                         const bp::object& normal, double depth) {
     const mas::Plane plane = mas::make_plane(vector3(origin, "origin"), vector3(normal, "normal"));
     if (!(depth > 0.0 && std::isfinite(depth)))
-        invalid_argument("depth must be a positive number of mm, got " + std::to_string(depth));
+        invalid_argument("depth must be a positive number of mm, got " + mas::format_number(depth));
     const mas::PlaneFrame frame(plane.normal);
     const auto loop = [&](const bp::object& points, const std::string& what) {
         mas::Polygon2 out;
-        for (const Eigen::Vector3d& q : points_from(points, what))
+        for (const Eigen::Vector3d& q : points_from(points, what)) {
+            if (!q.allFinite()) invalid_argument(what + " has a point that is not finite");
             out.points.push_back(frame.to_2d(q));
+        }
         return out;
     };
     bp::handle<> seq = fast_sequence(regions_py, "regions");

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "mas/Angles.hpp"
@@ -190,6 +191,12 @@ TEST(Triangulate, CrossingLoopsStillEnd) {
         EXPECT_LE(int(triangles.size()), points + 2 * int(region.holes.size()) - 2);
         for (const auto& t : triangles)
             for (int k : t) EXPECT_TRUE(k >= 0 && k < points);
+    }
+    // Nor on points no section has: not finite, or far beyond the others.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const Vector2d& odd : {Vector2d(nan, 1), Vector2d(1e300, -1e300)}) {
+        mas::Region2 region{{{{0, 0}, {10, 0}, odd, {10, 10}, {0, 10}}}, {rect(2, 2, 4, 4)}};
+        EXPECT_LE(mas::triangulate(region).size(), 9u);
     }
 }
 

@@ -1967,6 +1967,10 @@ class TestBuildPreviewObject(SliceObjectTest):
             engine.prism_mesh(region, (0, 0, 0), (0, 0, 0), 1.0)
         with self.assertRaisesRegex(mas.EngineError, "outer"):
             engine.prism_mesh([{"holes": []}], (0, 0, 0), (0, 0, 1), 1.0)
+        with self.assertRaisesRegex(mas.EngineError,
+                                    r"regions\[0\]\['outer'\] has a point that is not finite"):
+            engine.prism_mesh([{"outer": [(0, 0, 0), (1, float("nan"), 0), (0, 1, 0)],
+                                "holes": []}], (0, 0, 0), (0, 0, 1), 1.0)
 
     def test_a_step_past_the_sequence_is_named_until_fixed(self):
         layers, _toolpath, preview = self.make_preview(box_20_10_21())

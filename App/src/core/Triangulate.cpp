@@ -242,7 +242,8 @@ public:
 
 private:
     std::pair<int, int> index(const Vector2d& q) const {
-        const auto clamp = [&](double v) { return std::clamp(int(std::floor(v)), 0, side_ - 1); };
+        // (Clamped before it is made an int: a point off the box, or not finite, is at its edge.)
+        const auto clamp = [&](double v) { return v >= 1.0 ? int(std::min(v, side_ - 1.0)) : 0; };
         return {clamp((q.x() - box_.min().x()) * scale_.x()),
                 clamp((q.y() - box_.min().y()) * scale_.y())};
     }

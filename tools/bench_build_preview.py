@@ -2,7 +2,9 @@
 # its prism is) against Part's (a Part::Feature given the same Shape, every face tessellated and
 # drawn anew at each step: what the preview was first), in one run, on a 100 x 100 mm plate with
 # 100 posts (1002 layers). Times each from writing the step to the 3D view redrawn: the first
-# drawing of the whole build, then steps one at a time and jumps of 100 (medians).
+# drawing of the whole build (each layer's triangles the engine's, from its regions), the same as
+# after a reopen (from the saved Shape's faces), then steps one at a time and jumps of 100
+# (medians).
 # Run by the FreeCAD GUI (tools/setup.sh bench does, under xvfb-run; figures in
 # out/bench_build_preview.txt):
 #   MAS_MOD=build/Mod/MultiAxisSlicer xvfb-run -a freecad tools/bench_build_preview.py
@@ -45,11 +47,13 @@ def main():
     view = FreeCADGui.getDocument(doc.Name).ActiveView
     view.viewIsometric()
 
-    def ours(step, fresh=False):
+    def ours(step, fresh=False, saved=False):
         reference.ViewObject.Visibility = False
         preview.ViewObject.Visibility = True
         if fresh:
             preview.ViewObject.Proxy.geometries = {}
+        # As after a reopen: the layers drawn from the Shape's faces, not the engine's triangles.
+        preview.Proxy.prism_triangles = (lambda prism: None) if saved else made
         preview.Step = step
         start = time.perf_counter()
         doc.recompute([preview])
@@ -68,12 +72,16 @@ def main():
         drawn(view)
         return time.perf_counter() - start
 
+    made = preview.Proxy.prism_triangles
     ours(1)  # the prisms made (common to both), then drawn from nothing
     view.fitAll()
     first = (ours(0, fresh=True), parts(0))
+    saved = (ours(0, fresh=True, saved=True), parts(0))
+    ours(0, fresh=True)
     singles = list(range(count // 2, count // 2 + 9))
     jumps = [100 * k for k in range(1, 10)]
-    rows = [("first drawing, all %d layers" % count, [first[0]], [first[1]])]
+    rows = [("first drawing, all %d layers" % count, [first[0]], [first[1]]),
+            ("the same, of a saved Shape", [saved[0]], [saved[1]])]
     for name, steps in (("one step at a time", singles), ("jumps of 100 steps", jumps)):
         rows.append((name, [ours(s) for s in steps], [parts(s) for s in steps]))
     print("\nbench_build_preview: %d layers, %d faces at the last step; seconds (median)" % (

@@ -1834,7 +1834,40 @@ bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
     return bp::make_tuple(mesh_vertices(mesh), mesh_triangles(mesh));
 }
 
+// The triangles of a planar polygon with holes: triangulate() of `loops` (3-D points, outer loop
+// first) seen along `normal`.
+bp::list triangulate_py(const bp::object& loops_py, const bp::object& normal) {
+    const mas::Plane plane = mas::make_plane(Eigen::Vector3d::Zero(), vector3(normal, "normal"));
+    const mas::PlaneFrame frame(plane.normal);
+    bp::handle<> seq = fast_sequence(loops_py, "loops");
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
+    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    mas::Region2 region;
+    for (Py_ssize_t k = 0; k < n; ++k) {
+        const std::string what = "loops[" + std::to_string(k) + "]";
+        mas::Polygon2 loop;
+        for (const Eigen::Vector3d& q :
+             points_from(bp::object(bp::handle<>(bp::borrowed(items[k]))), what)) {
+            if (!q.allFinite()) invalid_argument(what + " has a point that is not finite");
+            loop.points.push_back(frame.to_2d(q));
+        }
+        if (k == 0)
+            region.outer = std::move(loop);
+        else
+            region.holes.push_back(std::move(loop));
+    }
+    bp::list out;
+    for (const auto& t : mas::triangulate(region)) out.append(bp::make_tuple(t[0], t[1], t[2]));
+    return out;
+}
+
 void bind_drawing() {
+    bp::def("triangulate", &triangulate_py, (bp::arg("loops"), bp::arg("normal")),
+            "[(i, j, k)]: triangles covering the planar polygon `loops` (lists of (x, y, z), the "
+            "outer loop first, then its holes; either way round), counter-clockwise seen from "
+            "`normal`'s side, as indices into the loops' points taken in turn. Ear clipping, the "
+            "holes bridged to the outline; no point added. EngineError invalid_argument for a "
+            "zero normal or a point that is not finite.");
     bp::def(
         "prism_mesh", &prism_mesh_py,
         (bp::arg("regions"), bp::arg("origin"), bp::arg("normal"), bp::arg("depth")),

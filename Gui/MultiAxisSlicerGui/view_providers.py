@@ -794,14 +794,14 @@ def build_preview_layer_colours(components, current, shade=BUILD_PREVIEW_BAND_SH
 
 
 class ViewProviderBuildPreview(_Editable, _Stateless):
-    """Tree icon and drawing of a ``BuildPreview`` object (an App::FeaturePython with a Shape):
-    its Shape drawn here, shaded, each layer's triangles made once (by the object from the layer's
-    regions, ``layer_triangles``; for a Shape read from a file, ``shape_triangles``) and kept
-    while its prism is, so that a step redraws only what changed (Part's view provider
-    tessellated every face of the Shape anew at each step: seconds on a part of a thousand
-    layers), the step's layer see-through, the step's deposit paths as lines over it, and where
-    it stands on nothing under it, and the build plate see-through, behind the first layer's
-    underside on it. Colours: ``build_preview_layer_colours`` and the view properties
+    """Tree icon and drawing of a ``BuildPreview`` object (an App::FeaturePython with a Shape): its
+    Shape drawn here, shaded, each layer's triangles made once (by the object from the layer's
+    regions, ``layer_triangles``; for a Shape read from a file, from its faces' corners,
+    ``shape_triangles``) and kept while its prism is, so that a step redraws only what changed
+    (Part's view provider tessellated every face of the Shape anew at each step: seconds on a part
+    of a thousand layers), the step's layer see-through, the step's deposit paths as lines over it,
+    and where it stands on nothing under it, and the build plate see-through, behind the first
+    layer's underside on it. Colours: ``build_preview_layer_colours`` and the view properties
     CurrentLayerColor, NozzleColor, CollisionColor, PathColor, UnsupportedColor and PlateColor.
     Double-click (or "Step through the build..." in the context menu) opens its panel
     (build_preview.py): a slider over the sequence's steps, with play."""
@@ -909,14 +909,14 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         return node
 
     @staticmethod
-    def _triangles(shape, mesh=None):
+    def _triangles(shape, mesh=None, polygonal=False):
         """A node drawing `shape`'s faces as triangles: `mesh` ((points, triangles)) when given,
-        else ``shape_triangles(shape)``."""
+        else ``shape_triangles(shape, polygonal=polygonal)``."""
         from pivy import coin
 
         import MultiAxisSlicer.features as features
 
-        points, triangles = mesh or features.shape_triangles(shape)
+        points, triangles = mesh or features.shape_triangles(shape, polygonal=polygonal)
         node = coin.SoSeparator()
         coordinates = coin.SoCoordinate3()
         faces = coin.SoIndexedFaceSet()
@@ -954,12 +954,13 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
         new = [(key, prism) for key, prism in zip(keys, prisms)
                if key not in self.geometries or not self.geometries[key][0].isSame(prism)]
         # Each layer's triangles as the object made them from its regions (the engine's), or, for
-        # a Shape restored from a file, from its faces (a thousand layers take a few seconds so,
-        # about 70 microseconds a face: the wait cursor says so).
+        # a Shape restored from a file, from its faces' corners (a thousand layers take a second
+        # or two so, about 30 microseconds a face: the wait cursor says so).
         made = getattr(getattr(obj, "Proxy", None), "prism_triangles", None)
         with _WaitCursor(len(new) > BUILD_PREVIEW_QUIET_LAYERS):
             for key, prism in new:
-                self.geometries[key] = (prism, self._triangles(prism, made and made(prism)))
+                self.geometries[key] = (prism, self._triangles(prism, made and made(prism),
+                                                               polygonal=True))
         used = set(keys)
         colours = build_preview_layer_colours(components, colour["CurrentLayerColor"])
         for k, (key, layer_colour) in enumerate(zip(keys, colours)):
@@ -977,10 +978,10 @@ class ViewProviderBuildPreview(_Editable, _Stateless):
             self.shown.append(nozzle_colour)
         self.unsupported_colour.diffuseColor.setValue(*colour["UnsupportedColor"])
         if parts[4].Faces:
-            self.unsupported_faces.addChild(self._triangles(parts[4]))
+            self.unsupported_faces.addChild(self._triangles(parts[4], polygonal=True))
         self.plate_colour.diffuseColor.setValue(*colour["PlateColor"])
         if len(parts) > 5 and parts[5].Faces:
-            self.plate_faces.addChild(self._triangles(parts[5]))
+            self.plate_faces.addChild(self._triangles(parts[5], polygonal=True))
         lines = []
         for wire in parts[3].Wires:
             points = [v.Point for v in wire.OrderedVertexes]

@@ -1884,17 +1884,30 @@ class TestBuildPreviewObject(SliceObjectTest):
         self.assertAlmostEqual(b.YMax, max(p.y for p in outline) + 5.0, places=9)
         self.assertAlmostEqual(b.ZMax, 0.0, places=9)
 
+    @staticmethod
+    def enclosed_volume(points, triangles):
+        """The volume triangles facing outwards enclose (divergence theorem)."""
+        pts = [V(*p) for p in points]
+        return sum(pts[a].dot(pts[b].cross(pts[c])) for a, b, c in triangles) / 6.0
+
     def check_layer_triangles(self, result, indices):
         """layer_triangles() of each layer in `indices` against layer_prism(): a closed surface
         (each edge once each way) round the same volume, its points on the layer's plane or its
-        greatest thickness below, as many triangles as OCCT's tessellation of the prism."""
+        greatest thickness below, as many triangles as OCCT's tessellation of the prism. The
+        prism's faces drawn from their corners (a Shape read from a file) and by OCCT: facing
+        outwards, round the same volume."""
         for i in indices:
             layer = result.layers[i]
             points, triangles = features.layer_triangles(layer)
             prism = features.layer_prism(layer)
             pts = [V(*p) for p in points]
-            volume = sum(pts[a].dot(pts[b].cross(pts[c])) for a, b, c in triangles) / 6.0
+            volume = self.enclosed_volume(points, triangles)
             self.assertAlmostEqual(volume, prism.Volume, delta=1e-9 * prism.Volume)
+            for polygonal in (True, False):
+                drawn = features.shape_triangles(prism, polygonal=polygonal)
+                self.assertAlmostEqual(self.enclosed_volume(*drawn), prism.Volume,
+                                       delta=1e-9 * prism.Volume)
+                self.assertEqual(len(drawn[1]), len(triangles))
             edges = [(t[k], t[(k + 1) % 3]) for t in triangles for k in range(3)]
             self.assertEqual(len(set(edges)), len(edges))
             self.assertEqual(set(edges), {(b, a) for a, b in edges})
@@ -1967,6 +1980,23 @@ class TestBuildPreviewObject(SliceObjectTest):
             engine.prism_mesh(region, (0, 0, 0), (0, 0, 0), 1.0)
         with self.assertRaisesRegex(mas.EngineError, "outer"):
             engine.prism_mesh([{"holes": []}], (0, 0, 0), (0, 0, 1), 1.0)
+        # A face's corners: a 10 x 10 square round a 2 x 2 hole on a plane tilted about X, the
+        # triangles counter-clockwise seen from the normal given.
+        normal = V(0, -0.6, 0.8)
+        u, w = V(1, 0, 0), normal.cross(V(1, 0, 0))
+        loops = [[u * x + w * y for x, y in ((0, 0), (10, 0), (10, 10), (0, 10))],
+                 [u * x + w * y for x, y in ((4, 4), (4, 6), (6, 6), (6, 4))]]
+        for n in (normal, -normal):
+            triangles = engine.triangulate(loops, n)
+            self.assertEqual(len(triangles), 8)
+            pts = loops[0] + loops[1]
+            turns = [(pts[b] - pts[a]).cross(pts[c] - pts[a]) for a, b, c in triangles]
+            self.assertAlmostEqual(sum(t.dot(n) for t in turns) / 2.0, 96.0, places=9)
+            self.assertTrue(all(t.dot(n) > 0.0 for t in turns))
+        with self.assertRaisesRegex(mas.EngineError, "normal"):
+            engine.triangulate(loops, (0, 0, 0))
+        with self.assertRaisesRegex(mas.EngineError, r"loops\[1\] has a point that is not finite"):
+            engine.triangulate([loops[0], [(float("inf"), 0, 0)] * 3], normal)
         with self.assertRaisesRegex(mas.EngineError,
                                     r"regions\[0\]\['outer'\] has a point that is not finite"):
             engine.prism_mesh([{"outer": [(0, 0, 0), (1, float("nan"), 0), (0, 1, 0)],

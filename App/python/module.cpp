@@ -1801,6 +1801,17 @@ void bind_gcode() {
 // ---- drawing
 // ---------------------------------------------------------------------------------------------
 
+// A loop of 3-D points (`what` in errors) in `frame`'s 2-D coordinates.
+mas::Polygon2 loop_in(const mas::PlaneFrame& frame, const bp::object& points,
+                      const std::string& what) {
+    mas::Polygon2 out;
+    for (const Eigen::Vector3d& q : points_from(points, what)) {
+        if (!q.allFinite()) invalid_argument(what + " has a point that is not finite");
+        out.points.push_back(frame.to_2d(q));
+    }
+    return out;
+}
+
 // The build preview's drawing of a layer: prism_mesh() of its regions.
 bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
                         const bp::object& normal, double depth) {
@@ -1808,14 +1819,6 @@ bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
     if (!(depth > 0.0 && std::isfinite(depth)))
         invalid_argument("depth must be a positive number of mm, got " + mas::format_number(depth));
     const mas::PlaneFrame frame(plane.normal);
-    const auto loop = [&](const bp::object& points, const std::string& what) {
-        mas::Polygon2 out;
-        for (const Eigen::Vector3d& q : points_from(points, what)) {
-            if (!q.allFinite()) invalid_argument(what + " has a point that is not finite");
-            out.points.push_back(frame.to_2d(q));
-        }
-        return out;
-    };
     bp::handle<> seq = fast_sequence(regions_py, "regions");
     const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
     PyObject** items = PySequence_Fast_ITEMS(seq.get());
@@ -1824,10 +1827,11 @@ bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
         const bp::object item(bp::handle<>(bp::borrowed(items[r])));
         const std::string what = "regions[" + std::to_string(r) + "]";
         mas::Region2 region;
-        region.outer = loop(required(item, "outer", what), what + "['outer']");
+        region.outer = loop_in(frame, required(item, "outer", what), what + "['outer']");
         const std::vector<bp::object> holes = items_of(item, "holes", what);
         for (std::size_t h = 0; h < holes.size(); ++h)
-            region.holes.push_back(loop(holes[h], what + "['holes'][" + std::to_string(h) + "]"));
+            region.holes.push_back(
+                loop_in(frame, holes[h], what + "['holes'][" + std::to_string(h) + "]"));
         regions.push_back(std::move(region));
     }
     const mas::TriangleMesh mesh = mas::prism_mesh(regions, plane, depth);
@@ -1844,13 +1848,8 @@ bp::list triangulate_py(const bp::object& loops_py, const bp::object& normal) {
     PyObject** items = PySequence_Fast_ITEMS(seq.get());
     mas::Region2 region;
     for (Py_ssize_t k = 0; k < n; ++k) {
-        const std::string what = "loops[" + std::to_string(k) + "]";
-        mas::Polygon2 loop;
-        for (const Eigen::Vector3d& q :
-             points_from(bp::object(bp::handle<>(bp::borrowed(items[k]))), what)) {
-            if (!q.allFinite()) invalid_argument(what + " has a point that is not finite");
-            loop.points.push_back(frame.to_2d(q));
-        }
+        mas::Polygon2 loop = loop_in(frame, bp::object(bp::handle<>(bp::borrowed(items[k]))),
+                                     "loops[" + std::to_string(k) + "]");
         if (k == 0)
             region.outer = std::move(loop);
         else

@@ -9,11 +9,14 @@
 #include <BRepAlgoAPI_Section.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Poly_Triangulation.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
@@ -31,6 +34,7 @@
 #include "mas/Angles.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
+#include "mas/Triangulate.hpp"
 
 using mas::kPi;
 
@@ -204,6 +208,47 @@ void report_exact_vs_mesh(const std::string& name, const mas::Shape& solid, int 
         mas::effective_deflection(solid, {}), t_exact, t_exact / planes.size(), t_exact / t_mesh);
 }
 
+// A wobbly circle of n points (radius r to 0.8 r when `wobble`) round c, counter-clockwise.
+mas::Polygon2 round_loop(const Eigen::Vector2d& c, double r, int n, bool wobble) {
+    mas::Polygon2 p;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2.0 * mas::kPi * i / n;
+        const double k =
+            wobble ? 0.8 + 0.2 * (0.5 + 0.5 * std::sin(37.0 * a) * std::cos(11.0 * a)) : 1.0;
+        p.points.push_back(c + k * r * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    }
+    return p;
+}
+
+// The triangles of a region as the build preview draws a layer: the engine's ear clipping against
+// OCCT making the face on its plane and meshing it (BRepMesh, what drew a layer before).
+void report_triangles(const char* name, const mas::Region2& region) {
+    std::size_t ours = 0, theirs = 0;
+    const double t_ours = time_ms(7, [&] { ours = mas::triangulate(region).size(); });
+    const auto wire = [](const mas::Polygon2& p) {
+        BRepBuilderAPI_MakePolygon poly;
+        for (const auto& q : p.points) poly.Add(gp_Pnt(q.x(), q.y(), 0.0));
+        poly.Close();
+        return poly.Wire();
+    };
+    const double t_occt = time_ms(7, [&] {
+        BRepBuilderAPI_MakeFace make(gp_Pln(gp::Origin(), gp::DZ()), wire(region.outer));
+        for (const auto& h : region.holes) {
+            mas::Polygon2 cw = h;  // a hole's wire turns the other way
+            std::reverse(cw.points.begin(), cw.points.end());
+            make.Add(wire(cw));
+        }
+        const TopoDS_Face face = make.Face();
+        BRepMesh_IncrementalMesh mesh(face, 0.1);
+        TopLoc_Location loc;
+        const Handle(Poly_Triangulation) t = BRep_Tool::Triangulation(face, loc);
+        theirs = t.IsNull() ? 0 : std::size_t(t->NbTriangles());
+    });
+    std::printf(
+        "%-28s ours %8.3f ms (%5zu triangles) | OCCT face + BRepMesh %8.3f ms (%5zu): x%.0f\n",
+        name, t_ours, ours, t_occt, theirs, t_occt / t_ours);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -244,5 +289,19 @@ int main(int argc, char** argv) {
             std::printf("%-22s skipped: %s\n", name, e.what());
         }
     }
+
+    std::printf("\n== a layer's triangles for drawing: ear clipping vs OCCT's face and mesh ==\n");
+    for (const int n : {50, 1000, 3000}) {
+        const std::string name = "circle of " + std::to_string(n);
+        report_triangles(name.c_str(), {round_loop({0, 0}, 50, n, false), {}});
+    }
+    report_triangles("wobbly circle of 3000", {round_loop({0, 0}, 50, 3000, true), {}});
+    report_triangles("ring of 3000 round 1500",
+                     {round_loop({0, 0}, 50, 3000, false), {round_loop({5, 0}, 20, 1500, false)}});
+    mas::Region2 plate{round_loop({0, 0}, 50, 400, false), {}};
+    for (int i = -2; i <= 2; ++i)
+        for (int j = -2; j <= 2; ++j)
+            plate.holes.push_back(round_loop({12.0 * i, 12.0 * j}, 4, 40, false));
+    report_triangles("disc of 400, 25 holes of 40", plate);
     return 0;
 }

@@ -11,9 +11,11 @@
 // the point tests find them; on a polygon they cannot finish (touching or crossing loops, which
 // a section does not make), points on a straight line are dropped, then the remaining convex
 // corners are clipped regardless, so that it always ends: the triangles then cover the outline
-// but may overlap. An ear test looks only at the corners that are not convex, kept in a grid: a
-// convex outline of 1000 points takes 0.02 ms, of 3000 points 0.6 ms, a ring of 3000 and 1500
-// points 6 ms (looking at every point of the ring: 1.5, 12 and 22 ms).
+// but may overlap. An ear test looks only at the corners that are not convex, kept in a grid
+// (testing every point of the ring made it quadratic). `mas_bench` times it against OCCT making
+// the face and meshing it (BRepMesh): a circle of 3000 points 0.035 ms against 306 ms, a ring of
+// 3000 points round a hole of 1500 2.1 ms against 1.9 s, a disc of 400 points with 25 holes of 40
+// 0.23 ms against 44 ms.
 #pragma once
 
 #include <array>

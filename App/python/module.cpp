@@ -934,15 +934,20 @@ int index_of(const bp::object& value, const char* key, const std::string& what) 
 }
 
 // A list of the items of value[key], a sequence.
-std::vector<bp::object> items_of(const bp::object& value, const char* key,
-                                 const std::string& what) {
-    bp::handle<> seq = fast_sequence(required(value, key, what), what + "['" + key + "']");
+// The items of the sequence `value` (`what` in errors).
+std::vector<bp::object> items_from(const bp::object& value, const std::string& what) {
+    bp::handle<> seq = fast_sequence(value, what);
     const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
     PyObject** items = PySequence_Fast_ITEMS(seq.get());
     std::vector<bp::object> out;
     out.reserve(std::size_t(n));
     for (Py_ssize_t i = 0; i < n; ++i) out.emplace_back(bp::handle<>(bp::borrowed(items[i])));
     return out;
+}
+
+std::vector<bp::object> items_of(const bp::object& value, const char* key,
+                                 const std::string& what) {
+    return items_from(required(value, key, what), what + "['" + key + "']");
 }
 
 // The engine's axis from the dict centroidal_axis() returns (node regions are optional: without
@@ -1819,12 +1824,10 @@ bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
     if (!(depth > 0.0 && std::isfinite(depth)))
         invalid_argument("depth must be a positive number of mm, got " + mas::format_number(depth));
     const mas::PlaneFrame frame(plane.normal);
-    bp::handle<> seq = fast_sequence(regions_py, "regions");
-    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
-    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    const std::vector<bp::object> items = items_from(regions_py, "regions");
     mas::Regions2 regions;
-    for (Py_ssize_t r = 0; r < n; ++r) {
-        const bp::object item(bp::handle<>(bp::borrowed(items[r])));
+    for (std::size_t r = 0; r < items.size(); ++r) {
+        const bp::object& item = items[r];
         const std::string what = "regions[" + std::to_string(r) + "]";
         mas::Region2 region;
         region.outer = loop_in(frame, required(item, "outer", what), what + "['outer']");
@@ -1843,13 +1846,10 @@ bp::tuple prism_mesh_py(const bp::object& regions_py, const bp::object& origin,
 bp::list triangulate_py(const bp::object& loops_py, const bp::object& normal) {
     const mas::Plane plane = mas::make_plane(Eigen::Vector3d::Zero(), vector3(normal, "normal"));
     const mas::PlaneFrame frame(plane.normal);
-    bp::handle<> seq = fast_sequence(loops_py, "loops");
-    const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
-    PyObject** items = PySequence_Fast_ITEMS(seq.get());
+    const std::vector<bp::object> items = items_from(loops_py, "loops");
     mas::Region2 region;
-    for (Py_ssize_t k = 0; k < n; ++k) {
-        mas::Polygon2 loop = loop_in(frame, bp::object(bp::handle<>(bp::borrowed(items[k]))),
-                                     "loops[" + std::to_string(k) + "]");
+    for (std::size_t k = 0; k < items.size(); ++k) {
+        mas::Polygon2 loop = loop_in(frame, items[k], "loops[" + std::to_string(k) + "]");
         if (k == 0)
             region.outer = std::move(loop);
         else

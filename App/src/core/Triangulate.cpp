@@ -30,14 +30,15 @@ std::vector<int> distinct_points(const Polygon2& loop) {
     return kept;
 }
 
-// Signed area (x2) of a loop's points taken in `order`.
-double twice_area(const Polygon2& loop, const std::vector<int>& order) {
-    double twice = 0.0;
-    const Vector2d& o = loop.points[std::size_t(order.front())];
-    for (std::size_t i = 1; i + 1 < order.size(); ++i)
-        twice +=
-            cross(o, loop.points[std::size_t(order[i])], loop.points[std::size_t(order[i + 1])]);
-    return twice;
+// The loop's distinct points (their indices into it) turned counter-clockwise when `ccw`, else
+// clockwise (repeated points add no area: signed_area() of the whole loop says which way it
+// turns); none when there are under three or they enclose no area.
+std::vector<int> turned_points(const Polygon2& loop, bool ccw) {
+    std::vector<int> order = distinct_points(loop);
+    const double area = order.size() < 3 ? 0.0 : signed_area(loop);
+    if (area == 0.0) return {};
+    if ((area > 0.0) != ccw) std::reverse(order.begin(), order.end());
+    return order;
 }
 
 // The region's loops as rings of points in a linked list: the outer one counter-clockwise, the
@@ -57,11 +58,8 @@ public:
     // Adds the loop whose first point is numbered `base`, turned to `ccw`; the ring's first node,
     // or -1 when the loop has under three distinct points or no area.
     int add(const Polygon2& loop, int base, bool ccw) {
-        std::vector<int> order = distinct_points(loop);
-        if (order.size() < 3) return -1;
-        const double twice = twice_area(loop, order);
-        if (twice == 0.0) return -1;
-        if ((twice > 0.0) != ccw) std::reverse(order.begin(), order.end());
+        const std::vector<int> order = turned_points(loop, ccw);
+        if (order.empty()) return -1;
         const int first = int(nodes.size());
         const int n = int(order.size());
         for (int k = 0; k < n; ++k)
@@ -360,16 +358,11 @@ TriangleMesh prism_mesh(const Regions2& regions, const Plane& plane, double dept
         int base = 0;
         for (std::size_t k = 0; k < loops.size(); ++k) {
             const Polygon2& loop = *loops[k];
-            std::vector<int> order = distinct_points(loop);
-            if (order.size() >= 3 && twice_area(loop, order) != 0.0) {
-                const bool is_outer = k == 0;
-                if ((twice_area(loop, order) > 0.0) != is_outer)
-                    std::reverse(order.begin(), order.end());
-                for (std::size_t e = 0; e < order.size(); ++e) {
-                    const int i = base + order[e], j = base + order[(e + 1) % order.size()];
-                    mesh.triangles.emplace_back(top + i, bottom + i, bottom + j);
-                    mesh.triangles.emplace_back(top + i, bottom + j, top + j);
-                }
+            const std::vector<int> order = turned_points(loop, k == 0);
+            for (std::size_t e = 0; e < order.size(); ++e) {
+                const int i = base + order[e], j = base + order[(e + 1) % order.size()];
+                mesh.triangles.emplace_back(top + i, bottom + i, bottom + j);
+                mesh.triangles.emplace_back(top + i, bottom + j, top + j);
             }
             base += int(loop.points.size());
         }

@@ -829,6 +829,46 @@ TEST(CentroidalAxis, AWideRoundBossOnARoundBodyTurns) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, ADeepStripOfABossOnARoundBodyTurnsByHowFarItGoesOut) {
+    // A valve body of the survey's (seed 54, 4) in round figures: a round body (radius 12.8) with
+    // a boss of radius 9.3 along +X, its axis at z = 41, ending at x = 18.5 (5.7 mm past the
+    // body). Step 4.46 mm: the first plane through the boss, z = 35.681, is 3.98 mm over its
+    // lowest line, where its section is a strip 15.3 mm wide; half a step down, 1.75 mm over
+    // that line, the strip is 10.9 mm wide, two thirds of the whole: it appears gradually. That
+    // narrower strip reaches the boss' end, as a flat underside would. The whole strip, centred
+    // 2.42 mm out of the body, reaches 5.7 mm past it along +X, the way it leaves it, but 7.25
+    // mm out at its corners, where the body curves away. Centred a third of 5.7 mm out or more,
+    // it turns +X; read by its corners, it stayed in the body's layers, its first layer hanging
+    // (20 mm^2 in the survey's part). Its sections are the boss' discs, on its axis.
+    const double radius = 12.8, r = 9.3, z = 41.0, end = 18.5;
+    const auto mesh = mesh_of(from_occt(
+        fuse(mas::test::occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), radius, 60),
+             mas::test::occ_cylinder({radius - 3, 0, z}, Vector3d::UnitX(), r, end - radius + 3))));
+    mas::AxisParams p;
+    p.step_mm = 4.46;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_TRUE(turns_once(a, Vector3d::UnitX()));
+    EXPECT_EQ(a.branches[0].nodes.size(), 14u);  // z = 0.001 ... 57.981
+    const auto& boss = a.branches[1];
+    ASSERT_GE(boss.nodes.size(), 1u);
+    // T is the tessellated body's extent along +X: the circle's, less at most the deflection.
+    const auto& first = a.nodes[std::size_t(boss.nodes.front())];
+    EXPECT_LE(first.slab_start, radius);
+    EXPECT_GE(first.slab_start, radius - kDeflection);
+    EXPECT_GT(first.offset, first.slab_start);
+    EXPECT_LE(first.offset, first.slab_start + p.eps_mm + p.step_mm);
+    const double disc = kPi * r * r;
+    for (const int i : boss.nodes) {
+        const auto& node = a.nodes[std::size_t(i)];
+        EXPECT_LT(node.offset, end);
+        EXPECT_LE(node.area, disc);
+        EXPECT_GE(node.area, disc - 2.0 * kPi * r * (kDeflection + p.step_mm / 100.0));
+        EXPECT_NEAR(node.position.y(), 0.0, kDeflection);
+        EXPECT_NEAR(node.position.z(), z, kDeflection);
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, AShortLugOnAThickBlockTurnsWhereLayersCannotLayIt) {
     // A 60 mm block with a lug [60,66]x[26,34]x[20,28] (flat underside), step 2 mm given. On
     // z = 20.001 the lug appears at once, centred 3 mm out, within the derived d = min(4, 60 / 6)

@@ -66,7 +66,12 @@
 //   already reaches out three quarters as far as the stick-out does or more, as a flat one would
 //   (a side sloping out reaches about half as far there): it appears at once too, when new (under
 //   10 % in the lower plane) and centred at least a third of its reach out of L, as a prism
-//   sticking out is (at half). (A 13 mm boss sticking out 6.7 mm from a 41 x 31 mm block stayed
+//   sticking out is (at half): its reach past E the way it would turn, where that is less than
+//   its farthest point's distance from L (a boss' strip on a round body reaches farther at its
+//   corners, where the body curves away: a valve body's boss, radius 9.3 on a body of 12.8,
+//   cut 4 mm over its lowest line, reaches 5.7 mm along +X and 7.25 mm at its corners, centred
+//   2.42 mm out; read by its corners, it stayed in the body's layers, 20 mm^2 overhanging).
+//   (A 13 mm boss sticking out 6.7 mm from a 41 x 31 mm block stayed
 //   in the block's layers: 28 mm^2 overhung in one layer. The third keeps stick-outs hugging L,
 //   as an organic body's bulges do, even where a point of one reaches out: turned, CGAL's
 //   armadillo grew 21 branches, 62 to 83, in 45 % more time.) Its first layer in the march would

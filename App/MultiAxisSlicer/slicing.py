@@ -505,7 +505,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
       * ``fill_holes``: round holes up to this diameter whose axis leans past ``overhang_angle``
         off their sub-component's build direction, which a drill reaches from outside the part,
         are deposited solid, to be drilled afterwards: their ceilings would overhang (0: none; a
-        solid's only). The result's ``filled_holes`` lists them, ``notes`` those left open.
+        solid's only). The result's ``filled_holes`` lists them, ``notes`` those left open. A
+        split into sub-components that would cut such a hole along its length is not made where
+        that leaves less unsupported: the branch stays in its father (README, *Holes to drill*).
       * The nozzle the build sequence keeps clear of what is deposited (the paper's Eq. 10): a
         cone tip ``nozzle_tip_diameter`` across (10) at ``nozzle_standoff`` above the deposit
         point (10), widening at ``nozzle_cone_angle`` (half-angle, 30) to a body

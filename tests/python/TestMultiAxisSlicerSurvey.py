@@ -68,15 +68,17 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
                 self.assertGreaterEqual(r["turn_deg"], 5.0)
                 self.assert_supported(r)
 
-    def test_a_lug_whose_pin_holes_are_deposited_solid_needs_no_support(self):
-        # Its round top narrows upwards; the pin hole's ceiling is what would hang. A hole that a
-        # decomposition plane cuts lengthwise is a whole hole in no component and stays open
-        # (README): such lugs are not claimed.
-        claimed = [r for r in self.parts("lug") if r["filled_holes"] == r["lugs"]]
-        self.assertGreaterEqual(len(claimed), PER_FAMILY * 3 // 4)
-        for r in claimed:
+    def test_every_lugs_pin_holes_are_deposited_solid_and_it_needs_no_support(self):
+        # Its round top narrows upwards; the pin hole's ceiling is what would hang, deposited
+        # solid. Where the axis turns sideways round a hole's ceiling, the splits that would cut
+        # the hole lengthwise (whole in no component, no component would fill it) are not made:
+        # those branches stay in their fathers (slice_solid_part). Before, lug 8 here was cut
+        # across its 14.8 mm holes and left 15.7 mm^2 unsupported. (264 lugs over seeds 39 to 60,
+        # 12 a seed: every pin hole filled, nothing unsupported.)
+        for r in self.parts("lug"):
             with self.subTest(part=self.name(r)):
                 self.assertLessEqual(r["hole_diameter"], FILL_HOLES)
+                self.assertEqual(r["filled_holes"], r["lugs"])
                 self.assert_supported(r)
 
     def test_a_hub_with_two_or_four_blades_needs_no_support(self):

@@ -84,4 +84,10 @@ HoleFill fill_holes(const Shape& solid, const Eigen::Vector3d& build_direction,
                     double max_diameter_mm, double overhang_angle_deg, const Shape& part = Shape(),
                     const Progress& progress = {});
 
+// The holes fill_holes() would fill, found and checked the same way (a drill reaches them) but
+// not filled: what it fills unless OCCT fails to. Nothing is changed. Throws as fill_holes().
+std::vector<FilledHole> holes_to_fill(const Shape& solid, const Eigen::Vector3d& build_direction,
+                                      double max_diameter_mm, double overhang_angle_deg,
+                                      const Shape& part = Shape(), const Progress& progress = {});
+
 }  // namespace mas

@@ -689,11 +689,9 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
     if (!out.holes.empty()) out.solid = occ::wrap(solid);
 }
 
-}  // namespace
-
-HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
-                    double max_diameter_mm, double overhang_angle_deg, const Shape& part,
-                    const Progress& progress) {
+// fill_holes()'s and holes_to_fill()'s checks of their arguments; the unit build direction.
+Vector3d checked_direction(const Eigen::Vector3d& build_direction, double max_diameter_mm,
+                           double overhang_angle_deg) {
     if (!(max_diameter_mm >= 0.0) || !std::isfinite(max_diameter_mm))
         throw Error(ErrorCode::InvalidArgument,
                     "the largest hole to fill must be a diameter >= 0 mm, got " +
@@ -705,7 +703,40 @@ HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
     const double length = build_direction.norm();
     if (!(length > 0.0) || !std::isfinite(length))
         throw Error(ErrorCode::InvalidArgument, "the build direction must be a non-zero vector");
-    const Vector3d direction = build_direction / length;
+    return build_direction / length;
+}
+
+}  // namespace
+
+std::vector<FilledHole> holes_to_fill(const Shape& input, const Eigen::Vector3d& build_direction,
+                                      double max_diameter_mm, double overhang_angle_deg,
+                                      const Shape& part, const Progress& progress) {
+    const Vector3d direction =
+        checked_direction(build_direction, max_diameter_mm, overhang_angle_deg);
+    std::vector<FilledHole> out;
+    if (max_diameter_mm == 0.0) return out;
+    const Shape solid = input.single_solid("the component");
+    try {
+        const std::vector<Hole> found = find_holes(occ::occt(solid), direction, max_diameter_mm,
+                                                   overhang_angle_deg * kPi / 180.0, {});
+        if (found.empty()) return out;
+        progress.check();
+        const std::vector<Access> a =
+            access(part.is_null() ? occ::occt(solid) : occ::occt(part), found);
+        for (std::size_t i = 0; i < found.size(); ++i)
+            if (a[i] == Access::Drillable) out.push_back(filled_hole(found[i], direction));
+    } catch (const Standard_Failure& f) {
+        throw Error(ErrorCode::GeometryFailure,
+                    occ::failure_message("OCCT failed finding the component's holes", f));
+    }
+    return out;
+}
+
+HoleFill fill_holes(const Shape& input, const Eigen::Vector3d& build_direction,
+                    double max_diameter_mm, double overhang_angle_deg, const Shape& part,
+                    const Progress& progress) {
+    const Vector3d direction =
+        checked_direction(build_direction, max_diameter_mm, overhang_angle_deg);
     HoleFill out;
     out.solid = input;
     if (max_diameter_mm == 0.0) return out;

@@ -1,11 +1,17 @@
 // Slicing a BREP part: its sub-components, holes filled when asked (Holes.hpp), tessellated with
 // the part's deflection, then sliced as meshes (see SlicePart.hpp).
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <algorithm>
 #include <cmath>
+#include <gp_Pnt.hxx>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "ShapeImpl.hpp"
+#include "mas/Angles.hpp"
 #include "mas/Error.hpp"
+#include "mas/Holes.hpp"
 #include "mas/SlicePart.hpp"
 
 namespace mas {
@@ -53,6 +59,84 @@ double check_components(const Shape& part, const Decomposition& decomposition) {
         throw Error(ErrorCode::InvalidArgument, msg.str());
     }
     return volume;
+}
+
+// Whether the split that made `child`, a component of `part`, cut `hole` lengthwise: at one of
+// three stations along the hole (its middle and a quarter of its length from each end), the
+// material round its wall lies on both sides of the child's base plane, and the child holds some
+// of it but not all. The hole is then whole in no component, where fill_holes() finds only whole
+// holes. Read at 16 points round each station, a fiftieth of the radius (at most 0.05 mm) outside
+// the wall; points outside the part (a mouth, a slot across the wall) count for neither.
+bool cuts_lengthwise(const Component& child, const TopoDS_Shape& part, const FilledHole& hole) {
+    const Eigen::Vector3d& a = hole.axis;
+    const Eigen::Vector3d e1 =
+        (std::abs(a.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY())
+            .cross(a)
+            .normalized();
+    const Eigen::Vector3d e2 = a.cross(e1);
+    const double radius = 0.5 * hole.diameter_mm;
+    const double ring = radius + std::min(0.02 * radius, 0.05);
+    const double tolerance = 1e-6;
+    std::optional<BRepClass3d_SolidClassifier> in_child, in_part;
+    const auto inside = [](std::optional<BRepClass3d_SolidClassifier>& c, const TopoDS_Shape& s,
+                           const Eigen::Vector3d& p) {
+        if (!c) c.emplace(s);
+        c->Perform(gp_Pnt(p.x(), p.y(), p.z()), 1e-7);
+        return c->State() == TopAbs_IN;
+    };
+    for (const double t : {-0.25, 0.0, 0.25}) {
+        const Eigen::Vector3d centre = hole.centre + a * (t * hole.length_mm);
+        std::vector<Eigen::Vector3d> points;
+        bool below = false, above = false;
+        for (int k = 0; k < 16; ++k) {
+            const double angle = 2.0 * kPi * k / 16.0;
+            points.push_back(centre + ring * (std::cos(angle) * e1 + std::sin(angle) * e2));
+            const double side = child.base_normal.dot(points.back() - child.base_origin);
+            below = below || side > tolerance;
+            above = above || side < -tolerance;
+        }
+        if (!below || !above) continue;  // the plane passes beside the hole here
+        bool held = false, elsewhere = false;
+        for (const Eigen::Vector3d& p : points) {
+            if (inside(in_child, occ::occt(child.solid), p))
+                held = true;
+            else if (inside(in_part, part, p))
+                elsewhere = true;
+            if (held && elsewhere) return true;
+        }
+    }
+    return false;
+}
+
+// "the hole D mm across at (x, y, z)".
+std::string describe(const FilledHole& h) {
+    std::ostringstream out;
+    out << "the hole " << h.diameter_mm << " mm across at (" << h.centre.x() << ", " << h.centre.y()
+        << ", " << h.centre.z() << ")";
+    return out.str();
+}
+
+// The branches of `d`'s children (the root has no split) that cut one of `holes` lengthwise
+// (cuts_lengthwise), each with the first such hole: (branch, hole index).
+std::vector<std::pair<int, std::size_t>> branches_cutting(const Decomposition& d,
+                                                          const TopoDS_Shape& part,
+                                                          const std::vector<FilledHole>& holes) {
+    std::vector<std::pair<int, std::size_t>> out;
+    for (std::size_t c = 1; c < d.components.size(); ++c)
+        for (std::size_t h = 0; h < holes.size(); ++h)
+            if (cuts_lengthwise(d.components[c], part, holes[h])) {
+                out.emplace_back(d.components[c].branch, h);
+                break;
+            }
+    return out;
+}
+
+// Whether slicing `b` leaves fewer layers in the nozzle's way than `a`, or as many and less
+// unsupported at worst (by more than a hundredth of a mm^2).
+bool sliced_better(const SlicedPart& b, const SlicedPart& a) {
+    if (b.stats.colliding_layers != a.stats.colliding_layers)
+        return b.stats.colliding_layers < a.stats.colliding_layers;
+    return b.stats.worst_unsupported_area_mm2 < a.stats.worst_unsupported_area_mm2 - 0.01;
 }
 
 }  // namespace
@@ -129,12 +213,72 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
         into = decompose(part, axis, p, round.span(0.0, 0.2));
         return slice_part(part, axis, into, params, round.span(0.2, 1.0));
     };
+    // The holes slicing would fill, read on the whole part built along +Z, as its root is. A
+    // split that cuts one lengthwise leaves it whole in no component, so that none fills it (the
+    // pin hole of a lug whose round top the axis turned sideways round: its ceiling overhung).
+    std::vector<FilledHole> holes;
+    if (params.fill_holes_up_to_mm > 0.0)
+        holes = holes_to_fill(part, Eigen::Vector3d::UnitZ(), params.fill_holes_up_to_mm,
+                              params.layers.overhang_angle_deg, part);
     Decomposition split_one, whole_one;
     const auto split = [&](const std::vector<KeptBranch>& keep, const Progress& round) {
         SplitSliced out;
-        out.sliced = run(keep, round, split_one);
+        out.sliced = run(keep, holes.empty() ? round : round.span(0.0, 0.5), split_one);
+        if (!holes.empty()) {
+            // The branches whose splits cut such a hole are kept in their fathers (and those of
+            // their sub-branches that then cut one, split from there), and that slicing is taken
+            // where it leaves fewer layers in the nozzle's way, or as many and less unsupported
+            // at worst.
+            const Progress again = round.span(0.5, 1.0);
+            std::vector<KeptBranch> more = keep;
+            std::vector<std::size_t> cut_holes;  // the hole each branch kept so cuts
+            Decomposition d;
+            const Decomposition* last = &split_one;
+            for (std::size_t r = 1; r < axis.branches.size(); ++r) {
+                const std::size_t had = more.size();
+                for (const auto& [branch, h] : branches_cutting(*last, occ::occt(part), holes)) {
+                    if (std::any_of(more.begin(), more.end(),
+                                    [&](const KeptBranch& m) { return m.branch == branch; }))
+                        continue;
+                    more.push_back({branch, "its split cuts " + describe(holes[h]) +
+                                                " along its length, which left whole is "
+                                                "deposited solid and drilled"});
+                    cut_holes.push_back(h);
+                }
+                if (more.size() == had) break;
+                DecomposeParams p = dp;
+                p.keep_branches.insert(p.keep_branches.end(), more.begin(), more.end());
+                d = decompose(part, axis, p, again.span(0.0, 0.2));
+                last = &d;
+            }
+            std::vector<std::string> open;
+            if (last != &split_one) {
+                SlicedPart kept = slice_part(part, axis, d, params, again.span(0.2, 1.0));
+                if (sliced_better(kept, out.sliced)) {
+                    out.sliced = std::move(kept);
+                    split_one = std::move(d);
+                } else {
+                    // Said of each branch whose split cuts a hole, which stays open.
+                    std::ostringstream why;
+                    why << ", which stays open: with every such branch kept in its father, "
+                        << kept.stats.colliding_layers
+                        << " layer(s) would be in the nozzle's way and "
+                        << kept.stats.worst_unsupported_area_mm2
+                        << " mm^2 unsupported at worst, against "
+                        << out.sliced.stats.colliding_layers << " and "
+                        << out.sliced.stats.worst_unsupported_area_mm2;
+                    for (std::size_t k = 0; k < cut_holes.size(); ++k)
+                        open.push_back("branch " + std::to_string(more[keep.size() + k].branch) +
+                                       ": its split cuts " + describe(holes[cut_holes[k]]) +
+                                       " along its length" + why.str());
+                }
+            }
+            out.notes = split_one.notes;
+            out.notes.insert(out.notes.end(), open.begin(), open.end());
+        } else {
+            out.notes = split_one.notes;
+        }
         for (const Component& c : split_one.components) out.branches.push_back(c.branch);
-        out.notes = split_one.notes;
         return out;
     };
     const auto whole = [&](const Progress& p) {

@@ -869,6 +869,71 @@ TEST(CentroidalAxis, ADeepStripOfABossOnARoundBodyTurnsByHowFarItGoesOut) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, ABossReachingOutLessThanAThickPartsStepTurnsWhereLayersCannotLayIt) {
+    // A manifold block of the survey's (seed 64, 7) in round figures: a block 44 x 60 x 53 with a
+    // boss along -Y, its axis at x = -3.3, z = 38, sticking out 5.6 mm, faceted as a 16-gon of
+    // circumradius 6.9 with a vertex at its lowest line (its sections exact). The block's step is
+    // large, 5.8 mm (its other bosses', which set it, left out here): the first plane through the
+    // boss, z = 34.801, is 3.7 mm over its lowest line. The boss reaches out less than a step, so
+    // it was no ledge, as a side sloping out at 45 degrees over the step would reach a step; but
+    // it appears as a round underside does, what of it the half plane holds reaching its end, and
+    // reaches far past what layers at slicing's defaults lay (2 mm): its first layer hung (23.8
+    // mm^2 in the survey's part). It turns -Y from the block's face; its section is the 16-gon
+    // (8 r^2 sin 22.5 degrees), on its axis.
+    const double r = 6.9, x = -3.3, z = 38.0, reach = 5.6;
+    std::vector<Vector3d> polygon;
+    for (int i = 0; i < 16; ++i) {
+        const double t = (-90.0 + 22.5 * i) * kPi / 180.0;
+        polygon.emplace_back(x + r * std::cos(t), -29.0, z + r * std::sin(t));
+    }
+    const auto mesh = mesh_of(from_occt(fuse(mas::test::occ_box(-22, -30, 0, 44, 60, 53),
+                                             mas::test::occ_prism(polygon, {0, -(reach + 1), 0}))));
+    mas::AxisParams p;
+    p.step_mm = 5.8;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_TRUE(turns_once(a, -Vector3d::UnitY()));
+    const auto& boss = a.branches[1];
+    ASSERT_EQ(boss.nodes.size(), 1u);
+    const auto& node = a.nodes[std::size_t(boss.nodes.front())];
+    EXPECT_NEAR(node.slab_start, 30.0, 1e-9);
+    EXPECT_GT(node.offset, 30.0);
+    EXPECT_LT(node.offset, 30.0 + reach);
+    EXPECT_NEAR(node.area, 8.0 * r * r * std::sin(kPi / 8.0), 1e-6);
+    EXPECT_NEAR(node.position.x(), x, kGrid);
+    EXPECT_NEAR(node.position.z(), z, kGrid);
+    expect_invariants(a, mesh);
+}
+
+TEST(CentroidalAxis, APinHolesCeilingIsNoLedgeUnderAThickPartsStep) {
+    // A lug of the survey's (seed 39, 6): a plate 45.1 x 29.1 x 8.3, an upright 15.1 wide and 7.7
+    // thick rising 33.5 mm into a round top round the axis along Y at z = 41.9, with a pin hole of
+    // radius 3.76. Step 3.235 mm (its part's): the tracks round the hole each grow over its
+    // ceiling towards the other, reaching out up to 3.2 mm, under a step but past what layers at
+    // slicing's defaults lay (2 mm). They lie within the box of the lower plane's whole section,
+    // closing over the hole, which the lug's layers bridge: no ledge. (Built sideways from each
+    // side of the hole, the ceiling hung 7.2 mm^2, against 6.3 in the lug's layers, at
+    // fill_holes 0.) Every branch marches +Z.
+    const double width = 45.142389711647276, depth = 29.0543419362087, plate = 8.323501312739785,
+                 thickness = 7.713077362882807, height = 33.53678896548037,
+                 lug = 15.055709692984657;
+    TopoDS_Shape s =
+        fuse(fuse(mas::test::occ_box(-width / 2, -depth / 2, 0, width, depth, plate),
+                  mas::test::occ_box(-lug / 2, -thickness / 2, plate, lug, thickness, height)),
+             mas::test::occ_cylinder({0, -thickness / 2, plate + height}, Vector3d::UnitY(),
+                                     lug / 2, thickness));
+    BRepAlgoAPI_Cut hole(s, mas::test::occ_cylinder({0, -thickness / 2 - 1, plate + height},
+                                                    Vector3d::UnitY(), lug / 4, thickness + 2));
+    ASSERT_TRUE(hole.IsDone());
+    const auto mesh = mesh_of(from_occt(hole.Shape()));
+    mas::AxisParams p;
+    p.step_mm = 3.23498939781159;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_GT(a.branches.size(), 1u);  // the tracks round the hole
+    for (const auto& b : a.branches)
+        EXPECT_TRUE(b.direction.isApprox(Vector3d::UnitZ(), 1e-12)) << b.direction.transpose();
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, AShortLugOnAThickBlockTurnsWhereLayersCannotLayIt) {
     // A 60 mm block with a lug [60,66]x[26,34]x[20,28] (flat underside), step 2 mm given. On
     // z = 20.001 the lug appears at once, centred 3 mm out, within the derived d = min(4, 60 / 6)

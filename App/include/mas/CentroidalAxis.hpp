@@ -51,9 +51,12 @@
 // - A ledge turns however near its centre (with a derived `distance_threshold` only; one given
 //   is used as given): a stick-out not wrapping round L (above), meeting L along one stretch (not
 //   spanning a gap, as a bore's ceiling closing a ring does), reaching out past L by more than a
-//   step (an overhang steeper than 45 degrees over the step) and than a bump or what layers at
-//   slicing's defaults lay (below), whichever is less (a 6 mm lug on a 60 mm block, within its
-//   7.5 mm bump, hung 4 mm past what its first layer laid), and appearing at once: under 10 % of
+//   step (an overhang steeper than 45 degrees over the step) and than a bump, or, out of the box
+//   of the lower plane's whole section, than what layers at slicing's defaults lay (below) (a
+//   6 mm lug on a 60 mm block, within its 7.5 mm bump, hung 4 mm past what its first layer laid;
+//   a manifold block's boss reaching out 5.6 mm, under the block's 5.8 mm step, half its thinnest
+//   wall, 23.8 mm^2; within the box, a pin hole's ceiling closing over the hole, built sideways
+//   from each side, hung more than in the lug's layers), and appearing at once: under 10 % of
 //   its area in the lower plane's whole section and, half a step up, over 90 % or up to 25 % (a
 //   flat underside, or one tangent to the planes, below or above that plane; a side sloping out
 //   over the whole step, however steeply, shows about half, and so is no ledge; a chamfer or

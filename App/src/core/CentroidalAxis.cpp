@@ -1364,13 +1364,26 @@ private:
             }
             // Reaching out past every lower region by more than half their size: wrapping round
             // the lower section (below). With a derived threshold, how far it reaches is read
-            // down to the ledge's limit at once: more than a step and than a bump or what layers
-            // at slicing's defaults lay (a twentieth over, for a round column's chords), whichever
-            // is less. (Past the bump alone, a 6 mm lug on a 60 mm block stayed in its layers, its
-            // first layer hanging 4 mm past what they lay.)
+            // down to the ledge's limit at once: more than a step and than a bump, or than what
+            // layers at slicing's defaults lay (a twentieth over, for a round column's chords).
+            // (Past the bump alone, a 6 mm lug on a 60 mm block stayed in its layers, its first
+            // layer hanging 4 mm past what they lay.) Out of the box of the lower plane's whole
+            // section, hanging over nothing of the part, more than a step and than a bump, or than
+            // what those layers lay: a thick part's step, half its thinnest wall, can be more than
+            // they lay (a manifold block's boss reaching out 5.6 mm, under its 5.8 mm step, stayed
+            // in the block's layers, 23.8 mm^2 hanging). Within it (a hole's ceiling closing over
+            // it), always more than a step: built sideways from each side of a lug's pin hole, its
+            // ceiling hung more than it does in the lug's layers (6.1 and 6.3 mm^2 became 11.9 and
+            // 7.2 on two lugs).
             const double wide_limit = std::max(p_.distance_threshold_mm, 4.0 * bump);
-            const double ledge_limit =
-                std::max(p_.step_mm, std::min(bump, 1.05 * laid_overhang_mm()));
+            Eigen::AlignedBox2d whole_lower;
+            for (const auto& b : planes.bounds2[k - 1]) whole_lower.extend(b);
+            whole_lower.min().array() -= p_.step_mm / 100.0;
+            whole_lower.max().array() += p_.step_mm / 100.0;
+            const double laid = 1.05 * laid_overhang_mm();
+            const double ledge_limit = whole_lower.contains(bounds(da))
+                                           ? std::max(p_.step_mm, std::min(bump, laid))
+                                           : std::min(std::max(p_.step_mm, bump), laid);
             const double out_of_lower =
                 turn ? 0.0
                      : reach({da},

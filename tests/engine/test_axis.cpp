@@ -934,6 +934,51 @@ TEST(CentroidalAxis, APinHolesCeilingIsNoLedgeUnderAThickPartsStep) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, BladesASliverOfTheHubsOutlineJoinsEachTurn) {
+    // tests/data/hub_four_blades.brep, a hub of the survey's (seed 65, hub 5): radius 13.5, 23.3
+    // tall, with four flat blades 4.78 thick and 12.4 tall reaching 24.1 mm past it, at 1.3,
+    // 98.6, 188.4 and 272.5 degrees. At the part's deflection (0.054 mm) and step (3.70 mm), the
+    // blades appear together on the plane z = 7.408; the hub's outline there, simplified within a
+    // hundredth of the step with the blades on it, differs from the one below, and U - L keeps a
+    // sliver along the quarter of it between the blades at 1.3 and 272.5 degrees, which joins
+    // them into one stick-out centred near the hub ("along the march"): neither turned, and the
+    // hub's layers left 74.6 mm^2 of their undersides hanging. Split at that neck, each blade
+    // turns its way. (On a mesh of it 0.02 mm fine, nothing joins them.)
+    const mas::Model model = mas::read_model(std::string(MAS_TEST_DATA) + "/hub_four_blades.brep");
+    mas::TessellationParams tp;
+    tp.deflection_mm = mas::effective_deflection(model.shape, tp);
+    EXPECT_NEAR(tp.deflection_mm, 0.0545, 1e-4);
+    const auto mesh = mas::tessellate(model.shape, tp);
+    const auto a = mas::centroidal_axis(mesh);
+    EXPECT_NEAR(a.params.step_mm, 3.7035, 1e-4);
+    ASSERT_EQ(a.branches.size(), 5u);
+    std::vector<Vector3d> directions;
+    for (std::size_t b = 1; b < a.branches.size(); ++b) {
+        EXPECT_EQ(a.branches[b].parent, 0);
+        directions.push_back(a.branches[b].direction);
+    }
+    for (const Vector3d& d : std::vector<Vector3d>{Vector3d(1, 0, 0), Vector3d(0, 1, 0),
+                                                   Vector3d(-1, 0, 0), Vector3d(0, -1, 0)})
+        EXPECT_EQ(std::count_if(directions.begin(), directions.end(),
+                                [&](const Vector3d& e) { return e.isApprox(d, 1e-12); }),
+                  1)
+            << d.transpose();
+    // Each blade's first section, past the hub's extent, is the blade's: 4.78 x 12.36 over the
+    // cosine of the blade's angle off the march (its faces are flat: exact up to the Booleans'
+    // grid along its outline), at the blades' middle height.
+    const double t = 4.775833226583146, w = 12.355678089042078;
+    for (std::size_t b = 1; b < a.branches.size(); ++b) {
+        const Vector3d& d = a.branches[b].direction;
+        const double off = d.x() > 0.5    ? 1.2788113058242112
+                           : d.y() > 0.5  ? 98.649263806147 - 90.0
+                           : d.x() < -0.5 ? 188.39900849153966 - 180.0
+                                          : 272.4641643706914 - 270.0;
+        const auto& node = a.nodes[std::size_t(a.branches[b].nodes.front())];
+        EXPECT_NEAR(node.area, t * w / std::cos(off * kPi / 180.0), 1e-3) << d.transpose();
+        EXPECT_NEAR(node.position.z(), 23.331406662934725 / 2, 1e-3);
+    }
+}
+
 TEST(CentroidalAxis, AShortLugOnAThickBlockTurnsWhereLayersCannotLayIt) {
     // A 60 mm block with a lug [60,66]x[26,34]x[20,28] (flat underside), step 2 mm given. On
     // z = 20.001 the lug appears at once, centred 3 mm out, within the derived d = min(4, 60 / 6)

@@ -318,6 +318,24 @@ Regions2 keep_larger(Regions2 regions, double min_area) {
     return out;
 }
 
+// `regions` with each region that joins larger pieces only through necks narrower than twice
+// `width` split there: opened (shrunk by `width`, grown back) and cut to that, where the opening
+// leaves two or more pieces of over `min_area`; other regions as they are.
+Regions2 split_at_necks(const Regions2& regions, double width, double min_area) {
+    Regions2 out;
+    for (const Region2& r : regions) {
+        Regions2 opened = keep_larger(
+            mas::offset(mas::offset({r}, -width, JoinType::Miter), width, JoinType::Miter),
+            min_area);
+        if (opened.size() < 2) {
+            out.push_back(r);
+            continue;
+        }
+        for (auto& piece : intersection({r}, opened)) out.push_back(std::move(piece));
+    }
+    return out;
+}
+
 // Ten units of the polygon Booleans' grid (PolygonBoolean.cpp snaps to 1e-5 mm): wider than
 // anything their snapping leaves between two outlines that should coincide, far narrower than any
 // feature the axis resolves.
@@ -1315,7 +1333,11 @@ private:
             return root;
         };
         Regions2 far;
-        for (const auto& da : stick_out) {
+        // A wide stick-out found along the march is split at its necks and its pieces judged
+        // each (below): they are appended here.
+        Regions2 pending = stick_out;
+        for (std::size_t next = 0; next < pending.size(); ++next) {
+            const Region2 da = pending[next];
             if (area(da) <= p_.min_region_area_mm2) continue;
             const Vector2d g = centroid(da);
             std::optional<Emergence> how;  // emergence(da), once asked
@@ -1450,8 +1472,21 @@ private:
                     ledge = out_of_lower > 2.0 * bump || out_of_lower > 1.05 * laid_overhang_mm();
                 }
             }
-            if (!turn && !ledge && (along || !wide))
-                continue;  // far but along the march; or near, or a bridge, and not wide
+            if (!turn && !ledge && (along || !wide)) {
+                // Far but along the march; or near, or a bridge, and not wide. Wide and along,
+                // its centre near L, it may be stick-outs that a sliver along L's outline joins:
+                // sections are simplified within step / 100, so two sections of one wall can
+                // differ by twice that, and U - L keeps the sliver between them (two blades a
+                // quarter turn apart round a hub, their joint centre near the hub: neither turned,
+                // 74.6 mm^2 overhanging). Split where such necks join larger pieces, each piece is
+                // judged on its own.
+                if (along && wide)
+                    for (auto& piece :
+                         split_at_necks({da}, p_.step_mm / 100.0, p_.min_region_area_mm2))
+                        if (area(piece) < area(da) - p_.min_region_area_mm2)
+                            pending.push_back(std::move(piece));
+                continue;
+            }
             // Otherwise (not a turn, yet reaching out past every lower region by more than half
             // their size) the stick-out wraps round the lower section or spans past the regions
             // it joins: a hub lying across the neck it stands on, whose two ends make one

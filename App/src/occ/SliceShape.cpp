@@ -232,6 +232,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
             const Progress again = round.span(0.5, 1.0);
             std::vector<KeptBranch> more = keep;
             std::vector<std::size_t> cut_holes;  // the hole each branch kept so cuts
+            std::size_t cutting_as_asked = 0;    // of them, those the split as asked made
             Decomposition d;
             const Decomposition* last = &split_one;
             for (std::size_t r = 1; r < axis.branches.size(); ++r) {
@@ -246,6 +247,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                     cut_holes.push_back(h);
                 }
                 if (more.size() == had) break;
+                if (last == &split_one) cutting_as_asked = cut_holes.size();
                 DecomposeParams p = dp;
                 p.keep_branches.insert(p.keep_branches.end(), more.begin(), more.end());
                 d = decompose(part, axis, p, again.span(0.0, 0.2));
@@ -258,7 +260,8 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                     out.sliced = std::move(kept);
                     split_one = std::move(d);
                 } else {
-                    // Said of each branch whose split cuts a hole, which stays open.
+                    // Said of each branch whose split, made as asked, cuts a hole, which stays
+                    // open.
                     std::ostringstream why;
                     why << ", which stays open: with every such branch kept in its father, "
                         << kept.stats.colliding_layers
@@ -267,7 +270,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                         << " mm^2 unsupported at worst, against "
                         << out.sliced.stats.colliding_layers << " and "
                         << out.sliced.stats.worst_unsupported_area_mm2;
-                    for (std::size_t k = 0; k < cut_holes.size(); ++k)
+                    for (std::size_t k = 0; k < cutting_as_asked; ++k)
                         open.push_back("branch " + std::to_string(more[keep.size() + k].branch) +
                                        ": its split cuts " + describe(holes[cut_holes[k]]) +
                                        " along its length" + why.str());

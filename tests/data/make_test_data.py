@@ -113,6 +113,12 @@ import MultiAxisSlicerSurvey  # noqa: E402
 hub, _ = MultiAxisSlicerSurvey.part("hub with blades", 6, 39)
 hub.exportBrep(os.path.join(here, "hub_twisted_blades.brep"))
 
+# hub_four_blades.brep  the survey's hub with blades 5 (seed 65): a hub of radius 13.5, 23.3 tall,
+# with four flat blades 4.78 thick and 12.4 tall at 1.3, 98.6, 188.4 and 272.5 degrees; at its
+# deflection a sliver of the hub's outline joined two of them into one stick-out
+hub4, _ = MultiAxisSlicerSurvey.part("hub with blades", 5, 65)
+hub4.exportBrep(os.path.join(here, "hub_four_blades.brep"))
+
 # cylinder_meshed_off.brep  a cylinder of radius 8, 20 tall, as Part's Refine shape left it after
 # fusing it with a 45-degree revolve of its top disc about a line beside it (which adds nothing):
 # one valid solid (OCCT's shape check passes) whose side, seamed by a B-spline, with its top and

@@ -1334,10 +1334,12 @@ private:
         };
         Regions2 far;
         // A wide stick-out found along the march is split at its necks and its pieces judged
-        // each (below): they are appended here.
-        Regions2 pending = stick_out;
-        for (std::size_t next = 0; next < pending.size(); ++next) {
-            const Region2 da = pending[next];
+        // each (below), after the stick-outs given: they are kept here.
+        Regions2 split;
+        for (std::size_t next = 0; next < stick_out.size() + split.size(); ++next) {
+            // Not used past a piece appended to `split` (which may move its regions).
+            const Region2& da =
+                next < stick_out.size() ? stick_out[next] : split[next - stick_out.size()];
             if (area(da) <= p_.min_region_area_mm2) continue;
             const Vector2d g = centroid(da);
             std::optional<Emergence> how;  // emergence(da), once asked
@@ -1480,11 +1482,13 @@ private:
                 // quarter turn apart round a hub, their joint centre near the hub: neither turned,
                 // 74.6 mm^2 overhanging). Split where such necks join larger pieces, each piece is
                 // judged on its own.
-                if (along && wide)
+                if (along && wide) {
+                    const double whole = area(da);
                     for (auto& piece :
                          split_at_necks({da}, p_.step_mm / 100.0, p_.min_region_area_mm2))
-                        if (area(piece) < area(da) - p_.min_region_area_mm2)
-                            pending.push_back(std::move(piece));
+                        if (area(piece) < whole - p_.min_region_area_mm2)
+                            split.push_back(std::move(piece));
+                }
                 continue;
             }
             // Otherwise (not a turn, yet reaching out past every lower region by more than half

@@ -853,6 +853,11 @@ class CliSections(unittest.TestCase):
                 (["--nozzle-margin", "0"], "the nozzle's margin must be > 0 mm, got 0"),
                 (["--nozzle-margin", "6"],
                  "the nozzle's margin must be at most half its standoff (10 mm), got 6"),
+                # The block is 70 x 20 x 60 mm: 5e-4 of its diagonal, sqrt(8900) mm.
+                (["--nozzle-margin", "0.04"],
+                 "the nozzle's margin 0.04 mm is too small for the part, 94.3398 mm across: the "
+                 "collision checks sample what is deposited that far apart; the least is "
+                 "0.0471699 mm"),
                 (["--nozzle-body-diameter", "8"],
                  "the nozzle's body diameter must be at least its tip diameter (10 mm), got 8")):
             r = run("slice", brep, *args)

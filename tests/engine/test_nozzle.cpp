@@ -425,6 +425,25 @@ TEST(Nozzle, WaitsAndBadInput) {
                   mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), bad);
               }),
               "the nozzle's margin must be > 0 mm, got 0");
+    // The layers' outlines span 60 x 30 x 1 mm: the margin must be at least 5e-4 of that
+    // diagonal, the spacing of the samples the checks take.
+    EXPECT_NEAR(mas::layers_size(b.layers), std::sqrt(4501.0), 1e-12);
+    bad.margin_mm = 0.0335;
+    EXPECT_EQ(error_of([&] {
+                  mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), bad);
+              }),
+              "the nozzle's margin 0.0335 mm is too small for the layers, 67.0895 mm across: the "
+              "collision checks sample what is deposited that far apart; the least is "
+              "0.0335447 mm");
+    EXPECT_EQ(error_of([&] { mas::TravelCheck(b.layers, bad, in.plate); }),
+              "the nozzle's margin 0.0335 mm is too small for the layers, 67.0895 mm across: the "
+              "collision checks sample what is deposited that far apart; the least is "
+              "0.0335447 mm");
+    bad.margin_mm = 0.034;
+    EXPECT_EQ(error_of([&] {
+                  mas::plan_build_sequence(input(b, {-1, 0, 0}, {0, 1, 2}), bad);
+              }),
+              "");
     // Cancelling.
     const mas::Progress cancel([](double, const std::string&) {
         throw mas::Error(mas::ErrorCode::Cancelled, "cancelled");

@@ -767,6 +767,11 @@ class TestSliceSequence(SliceTest):
                 (ValueError, "max_tilt", dict(max_tilt=math.nan))):
             with self.assertRaisesRegex(error, text, msg=str(kwargs)):
                 mas.slice(box, **kwargs)
+        # At least 5e-4 of the part's diagonal, sqrt(941) mm: the checks sample that far apart.
+        e = self.assertRaisesEngineError("invalid_argument", mas.slice, box, nozzle_margin=1e-6)
+        self.assertEqual(str(e), "the nozzle's margin 1e-06 mm is too small for the part, 30.6757 "
+                                 "mm across: the collision checks sample what is deposited that "
+                                 "far apart; the least is 0.0153379 mm")
         # One diameter: no cone, whatever its angle.
         result = mas.slice(box, nozzle_body_diameter=10.0, nozzle_cone_angle=0.0)
         self.assertEqual(result.collisions, [])

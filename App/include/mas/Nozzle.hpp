@@ -135,6 +135,21 @@ struct NozzleParams {
 // Throws mas::Error(InvalidArgument) naming the first parameter out of its range.
 void validate(const NozzleParams& params);
 
+// The least margin_mm for deposits `size` mm across (their bounding box's diagonal), as a fraction
+// of it. The checks sample what is deposited margin_mm apart (above), so that their work and memory
+// grow as (size / margin_mm)^2 a layer: 1e-6 mm took 6 GB in a minute in the travel check of a
+// 68 mm Z of sheet, and 1.6 GB in 30 s in the sequence of a 90 mm hub. At this least a flat layer
+// 100 mm square on a 150 mm part takes 3.6 million samples, and the default margin suits parts up
+// to 4 m across.
+inline constexpr double kMinMarginFraction = 5e-4;
+
+// validate(params), and throws mas::Error(InvalidArgument) when margin_mm is less than
+// kMinMarginFraction of `size`, with the least it may be; `what` names the deposits ("the part").
+void validate(const NozzleParams& params, double size, const std::string& what);
+
+// The diagonal of the box round the layers' regions on their planes, mm (0 for none).
+double layers_size(const std::vector<Layer>& layers);
+
 // The tip's cone length along the axis (0 when tip and body are one diameter).
 double cone_length(const NozzleParams& params);
 // The farthest a reported collision can be from a true one (see above).

@@ -485,6 +485,27 @@ void validate(const NozzleParams& p) {
         fail("the nozzle's greatest lean must lie within [0, 90) degrees", p.max_lean_deg);
 }
 
+void validate(const NozzleParams& p, double size, const std::string& what) {
+    validate(p);
+    const double least = kMinMarginFraction * size;
+    if (p.margin_mm < least)
+        throw Error(ErrorCode::InvalidArgument,
+                    "the nozzle's margin " + format_number(p.margin_mm) + " mm is too small for " +
+                        what + ", " + format_number(size) +
+                        " mm across: the collision checks sample what is deposited that far "
+                        "apart; the least is " +
+                        format_number(least) + " mm");
+}
+
+double layers_size(const std::vector<Layer>& layers) {
+    Eigen::AlignedBox3d box;
+    for (const Layer& layer : layers)
+        for (std::size_t r = 0; r < layer.regions.size(); ++r)
+            for (const auto& loop : layer.loops_3d(r))
+                for (const Vector3d& q : loop) box.extend(q);
+    return box.isEmpty() ? 0.0 : box.diagonal().norm();
+}
+
 double cone_length(const NozzleParams& p) {
     const double widening = 0.5 * (p.body_diameter_mm - p.tip_diameter_mm);
     return widening > 0.0 ? widening / std::tan(p.cone_angle_deg * kPi / 180.0) : 0.0;
@@ -508,6 +529,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     validate(params);
     if (!in.layers || !in.toolpaths || in.toolpaths->size() != in.layers->size())
         throw Error(ErrorCode::InvalidArgument, "the build sequence needs every layer's paths");
+    validate(params, layers_size(*in.layers), "the layers");
     const std::vector<Layer>& layers = *in.layers;
     const std::size_t count = layers.size(), comps = in.parent.size();
     auto bad = [](const std::string& what) { throw Error(ErrorCode::InvalidArgument, what); };
@@ -1065,7 +1087,7 @@ struct TravelCheck::Impl {
 
 TravelCheck::TravelCheck(const std::vector<Layer>& layers, const NozzleParams& params,
                          const Plane& plate) {
-    validate(params);
+    validate(params, layers_size(layers), "the layers");
     impl_ = std::make_unique<Impl>(layers, params, plate);
 }
 

@@ -256,6 +256,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
     validate(params.nozzle);
     if (components.empty()) throw Error(ErrorCode::EmptyInput, "no component to slice");
     std::vector<double> volumes(components.size(), 0.0);
+    Eigen::AlignedBox3d part_box;
     for (std::size_t c = 0; c < components.size(); ++c) {
         const ComponentMesh& comp = components[c];
         if (comp.parent >= int(c) || (c > 0 && comp.parent < 0) || (c == 0 && comp.parent != -1))
@@ -270,7 +271,9 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                                                  "sliced");
         volumes[c] = report.volume_mm3;
         validate(params.layers, comp.mesh, "component " + std::to_string(c));
+        part_box.extend(bounding_box(comp.mesh));
     }
+    validate(params.nozzle, part_box.isEmpty() ? 0.0 : part_box.diagonal().norm(), "the part");
     SlicedPart out;
     out.components.resize(components.size());
     out.build_order =

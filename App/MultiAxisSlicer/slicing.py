@@ -512,7 +512,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         cone tip ``nozzle_tip_diameter`` across (10) at ``nozzle_standoff`` above the deposit
         point (10), widening at ``nozzle_cone_angle`` (half-angle, 30) to a body
         ``nozzle_body_diameter`` across (50) and ``nozzle_body_length`` long (200), kept
-        ``nozzle_margin`` away (2, at most half the standoff); ``check_plate``: the build plate
+        ``nozzle_margin`` away (2, at most half the standoff, at least 5e-4 of the part's
+        bounding-box diagonal and a 1e-5th of the body's end's distance from the deposit point:
+        the checks sample and step by it; else an EngineError); ``check_plate``: the build plate
         is an obstacle too (True). ``nozzle_max_lean`` (30): where a layer's coaxial nozzle
         would still meet the plate or what is deposited, its tool axis may lean this far from
         the layer's normal, by the least of 5, 10, ... degrees that clears, towards the plate's

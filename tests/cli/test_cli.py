@@ -858,6 +858,11 @@ class CliSections(unittest.TestCase):
                  "the nozzle's margin 0.04 mm is too small for the part, 94.3398 mm across: the "
                  "collision checks sample what is deposited that far apart; the least is "
                  "0.0471699 mm"),
+                # A cone of 1e-6 degrees is 1.1e9 mm long: turns cut into steps moving its end a
+                # margin at most would be 1e9 steps a radian.
+                (["--nozzle-cone-angle", "1e-6"],
+                 "the nozzle's body ends 1.14592e+09 mm from its deposit point, more than 100000 "
+                 "times its margin (2 mm)"),
                 (["--nozzle-body-diameter", "8"],
                  "the nozzle's body diameter must be at least its tip diameter (10 mm), got 8")):
             r = run("slice", brep, *args)

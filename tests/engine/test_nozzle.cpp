@@ -158,6 +158,23 @@ TEST(Nozzle, BadParametersAreNamed) {
     EXPECT_EQ(message([](auto& p) { p.max_lean_deg = std::nan(""); }),
               "the nozzle's greatest lean must lie within [0, 90) degrees, got nan");
     EXPECT_EQ(message([](auto& p) { p.max_lean_deg = 0; }), "");
+    // The body's end's rim at most 1e5 margins from the deposit point: the travel check cuts the
+    // table's turns so that it moves at most a margin a step (at the defaults it lies 245.9 mm
+    // off). A 1e9 mm standoff, or a cone of 1e-6 degrees (1.1e9 mm long), cut one turn of a
+    // crank's program into 1.7 GB of steps in 8 s.
+    const std::string beyond =
+        " mm from its deposit point, more than 100000 times its margin (2 "
+        "mm): the travel check cuts the table's turns into steps that move "
+        "it at most a margin; shorten the nozzle or widen the margin";
+    EXPECT_EQ(message([](auto& p) { p.body_length_mm = 199900; }), "");  // 199944.6 mm
+    EXPECT_EQ(message([](auto& p) { p.body_length_mm = 200000; }),
+              "the nozzle's body ends 200045" + beyond);
+    EXPECT_EQ(message([](auto& p) { p.standoff_mm = 1e9; }),
+              "the nozzle's body ends 1e+09" + beyond);
+    EXPECT_EQ(message([](auto& p) { p.cone_angle_deg = 1e-6; }),
+              "the nozzle's body ends 1.14592e+09" + beyond);
+    EXPECT_EQ(message([](auto& p) { p.body_diameter_mm = 1e300; }),
+              "the nozzle's body ends 1e+300" + beyond);
 }
 
 // Two posts on a plate, 10 mm apart: built one after the other, the second post's first layer

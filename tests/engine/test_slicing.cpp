@@ -1678,14 +1678,14 @@ TEST(SlicingErrors, ANozzleMarginBelowATwoThousandthOfThePartIsRefusedAtOnce) {
     // across, so the margin must be at least sqrt(1400) x 5e-4.
     const auto part = mas::test::box(0, 0, 0, 10, 20, 30);
     auto p = default_params();
-    p.nozzle.margin_mm = 1e-6;
+    p.nozzle.margin_mm = 0.01;
     try {
         slice(part, 2.0, p);
         ADD_FAILURE() << "no error";
     } catch (const mas::Error& e) {
         EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
         EXPECT_EQ(std::string(e.what()),
-                  "the nozzle's margin 1e-06 mm is too small for the part, 37.4166 mm across: the "
+                  "the nozzle's margin 0.01 mm is too small for the part, 37.4166 mm across: the "
                   "collision checks sample what is deposited that far apart; the least is "
                   "0.0187083 mm");
     }

@@ -768,10 +768,15 @@ class TestSliceSequence(SliceTest):
             with self.assertRaisesRegex(error, text, msg=str(kwargs)):
                 mas.slice(box, **kwargs)
         # At least 5e-4 of the part's diagonal, sqrt(941) mm: the checks sample that far apart.
-        e = self.assertRaisesEngineError("invalid_argument", mas.slice, box, nozzle_margin=1e-6)
-        self.assertEqual(str(e), "the nozzle's margin 1e-06 mm is too small for the part, 30.6757 "
+        e = self.assertRaisesEngineError("invalid_argument", mas.slice, box, nozzle_margin=0.01)
+        self.assertEqual(str(e), "the nozzle's margin 0.01 mm is too small for the part, 30.6757 "
                                  "mm across: the collision checks sample what is deposited that "
                                  "far apart; the least is 0.0153379 mm")
+        # At most 1e5 margins from the deposit point to the body's end (the travel check turns the
+        # table in steps that move it a margin at most).
+        e = self.assertRaisesEngineError("invalid_argument", mas.slice, box, nozzle_standoff=1e9)
+        self.assertTrue(str(e).startswith("the nozzle's body ends 1e+09 mm from its deposit point, "
+                                          "more than 100000 times its margin (2 mm)"), str(e))
         # One diameter: no cone, whatever its angle.
         result = mas.slice(box, nozzle_body_diameter=10.0, nozzle_cone_angle=0.0)
         self.assertEqual(result.collisions, [])

@@ -132,7 +132,14 @@ struct NozzleParams {
     double max_lean_deg = 30.0;      // the most the tool axis leans from the normal; [0, 90)
 };
 
-// Throws mas::Error(InvalidArgument) naming the first parameter out of its range.
+// The farthest the nozzle may reach from its deposit point (the body's end's rim), in margins. The
+// travel check cuts the table's turns into steps that move that point at most a margin, so their
+// count grows with it: a 1e9 mm standoff, body diameter or cone (a cone angle of 1e-6 degrees)
+// made a crank's G-code take 1.7 GB in 8 s cutting one turn. At the defaults it is 123.
+inline constexpr double kMaxNozzleReachInMargins = 1e5;
+
+// Throws mas::Error(InvalidArgument) naming the first parameter out of its range (and a nozzle
+// reaching further than kMaxNozzleReachInMargins margins).
 void validate(const NozzleParams& params);
 
 // The least margin_mm for deposits `size` mm across (their bounding box's diagonal), as a fraction

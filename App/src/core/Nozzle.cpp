@@ -483,6 +483,19 @@ void validate(const NozzleParams& p) {
              p.margin_mm);
     if (!(p.max_lean_deg >= 0.0 && p.max_lean_deg < 90.0))
         fail("the nozzle's greatest lean must lie within [0, 90) degrees", p.max_lean_deg);
+    // A turn of the tool axis moves the body's end's rim, the nozzle's farthest point from its
+    // deposit point, by the turn times that distance; the travel check cuts every turn of the
+    // table into steps that move it at most the margin (TravelCheck::max_turn_rad()).
+    const double reach =
+        std::hypot(p.standoff_mm + cone_length(p) + p.body_length_mm, 0.5 * p.body_diameter_mm);
+    if (!(reach <= kMaxNozzleReachInMargins * p.margin_mm))
+        throw Error(ErrorCode::InvalidArgument,
+                    "the nozzle's body ends " + format_number(reach) +
+                        " mm from its deposit point, more than " +
+                        format_number(kMaxNozzleReachInMargins) + " times its margin (" +
+                        format_number(p.margin_mm) +
+                        " mm): the travel check cuts the table's turns into steps that move it at "
+                        "most a margin; shorten the nozzle or widen the margin");
 }
 
 void validate(const NozzleParams& p, double size, const std::string& what) {

@@ -878,6 +878,18 @@ TEST(Gcode, WhereNothingIsMetTheCheckedProgramIsTheSame) {
     bad.params.body_length_mm = 0.0;
     EXPECT_EQ(error_of([&] { mas::write_gcode(layers, mas::MachineParams(), nullptr, {}, &bad); }),
               "invalid_argument: the nozzle's body length must be > 0 mm, got 0");
+    // The clearance at most 1e4 margins (20 m at the default 2 mm) where the travel is checked:
+    // the check walks the routes in fractions of a margin (1e9 mm ran past a minute). Without a
+    // check, any.
+    mas::MachineParams far;
+    far.clearance_mm = 20000.0;
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, far, nullptr, {}, &nozzle); }), "no error");
+    far.clearance_mm = 20000.5;
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, far, nullptr, {}, &nozzle); }),
+              "invalid_argument: machine: clearance 20000.5 mm is more than 10000 times the "
+              "nozzle's margin (2 mm): the travel check walks the routes in fractions of a margin");
+    far.clearance_mm = 1e9;
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, far); }), "no error");
 }
 
 // A part modelled off the plane Z = 0 keeps its coordinates in the program, so the header says

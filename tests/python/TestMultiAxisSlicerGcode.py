@@ -169,6 +169,10 @@ class TestGcodeApi(GcodeTest):
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, feed=0)
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, a_min=10, a_max=0)
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, clearance=math.nan)
+        # The travel is checked against the slice's nozzle: at most 1e4 of its margins (2 mm).
+        e = self.assertRaisesEngineError("invalid_argument", self.result.gcode, clearance=1e9)
+        self.assertIn("clearance 1e+09 mm is more than 10000 times the nozzle's margin (2 mm)",
+                      str(e))
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, deposit_output=64)
         e = self.assertRaisesEngineError("invalid_argument", self.result.gcode,
                                          deposit_output=2**40)

@@ -156,7 +156,14 @@ struct GcodeStats {
     std::vector<TravelCollision> travel_collisions;
 };
 
-// The program. Throws InvalidArgument for bad params (the nozzle's too) or a layer without a unit
+// With a travel check, the clearance may be at most this many of the nozzle's margins: the check
+// walks the routes in steps of a twentieth of a margin where they pass near a deposited layer, and
+// the retracts and the sphere's meridians grow with the clearance (a clearance of 1e9 mm ran past
+// a minute on a hub of four blades; 1e4 mm, 5000 margins, took 2 s on a crank).
+inline constexpr double kMaxClearanceInMargins = 1e4;
+
+// The program. Throws InvalidArgument for bad params (the nozzle's too, and a clearance over
+// kMaxClearanceInMargins of its margins) or a layer without a unit
 // tool axis, EmptyInput when no layer deposits anything, Error(UnreachableOrientation) as above.
 // `progress` is reported per layer and may cancel. `nozzle`: the travel is checked against it
 // (null: not checked).

@@ -381,7 +381,16 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                         GcodeStats* stats_out, const Progress& progress,
                         const TravelNozzle* nozzle) {
     validate(params);
-    if (nozzle) validate(nozzle->params);
+    if (nozzle) {
+        validate(nozzle->params);
+        if (!(params.clearance_mm <= kMaxClearanceInMargins * nozzle->params.margin_mm))
+            throw Error(ErrorCode::InvalidArgument,
+                        "machine: clearance " + format_number(params.clearance_mm) +
+                            " mm is more than " + format_number(kMaxClearanceInMargins) +
+                            " times the nozzle's margin (" +
+                            format_number(nozzle->params.margin_mm) +
+                            " mm): the travel check walks the routes in fractions of a margin");
+    }
     // What the program deposits, and where.
     std::vector<std::size_t> used;
     std::vector<double> deepest(layers.size(), 0.0);  // how far under its plane a layer reaches

@@ -84,6 +84,21 @@ int main(int argc, char** argv) {
         const double tess = time_ms(5, [&] { mesh = mas::tessellate(shape); });
         report(name, mesh, tess, true);
     }
+    // A step set far below the derived one: the march's planes cross thousands of slabs of the
+    // marches before (the swept bands, CentroidalAxis.cpp's strips_to_regions), which once grew
+    // as the square of the planes or worse (a crank at 0.001 mm ran past 15 minutes).
+    std::printf("\n== fine steps set by hand: axis without tessellation ==\n");
+    for (const auto& [name, occ] : {parts[1], parts[3]}) {
+        const mas::TriangleMesh mesh = mas::tessellate(from_occt(occ));
+        for (const double step : {0.1, 0.02}) {
+            mas::AxisParams p;
+            p.step_mm = step;
+            mas::CentroidalAxis axis;
+            const double ms = time_ms(3, [&] { axis = mas::centroidal_axis(mesh, p); });
+            std::printf("%-18s step %5.3f mm: axis %9.2f ms, %6zu nodes, %4zu branches\n",
+                        name.c_str(), step, ms, axis.nodes.size(), axis.branches.size());
+        }
+    }
     std::printf(
         "\n== CGAL meshes: centroidal axis vs CGAL mean-curvature skeleton (target x100) ==\n");
     for (const char* name : {"bunny00", "fandisk_large", "armadillo"}) {

@@ -241,15 +241,47 @@ Regions2 strips_to_regions(std::vector<Strip> strips, const StripAxes& ax, const
         if (signed_area(poly) < 0.0) std::reverse(poly.points.begin(), poly.points.end());
         out.push_back(Region2{simplify(poly, tolerance), {}});
     };
-    std::vector<std::pair<double, double>> left, right;  // (s, t) corners of the open band
+    // A corner within `tolerance` (in t) of the line from its side's corner before it to the
+    // newest is not kept: the last corner moves on to the newest while the line's slope stays
+    // within those that pass within the tolerance of every corner so dropped (intersected as they
+    // come). Walls crossed by thousands of slabs, at a step of 0.01 mm, left runs of collinear
+    // corners that simplify() below walks once per corner: a hub's axis took 74 s, now 3.7, a
+    // crank's at 0.001 mm over 15 minutes; at the derived steps nothing changes.
+    struct Side {
+        std::vector<std::pair<double, double>> corners;  // (s, t)
+        double lo = 0.0, hi = 0.0;  // the slopes from the corner before the last that pass
+    };
+    auto extend = [tolerance](Side& side, double s, double t) {
+        auto& c = side.corners;
+        const std::size_t n = c.size();
+        if (n >= 2 && s > c[n - 2].first) {
+            const auto [as, at] = c[n - 2];
+            const double slope = (t - at) / (s - as);
+            if (slope >= side.lo && slope <= side.hi) {
+                side.lo = std::max(side.lo, (t - tolerance - at) / (s - as));
+                side.hi = std::min(side.hi, (t + tolerance - at) / (s - as));
+                c.back() = {s, t};
+                return;
+            }
+        }
+        if (n >= 1 && s > c[n - 1].first) {
+            side.lo = (t - tolerance - c[n - 1].second) / (s - c[n - 1].first);
+            side.hi = (t + tolerance - c[n - 1].second) / (s - c[n - 1].first);
+        } else {
+            side.lo = std::numeric_limits<double>::infinity();  // nothing merges into it
+            side.hi = -side.lo;
+        }
+        c.emplace_back(s, t);
+    };
+    Side left, right;  // the open band's sides
     double last_s1 = 0.0, last_l = 0.0, last_r = 0.0;
     auto close_band = [&] {
-        if (left.empty()) return;
-        left.emplace_back(last_s1, last_l);
-        right.emplace_back(last_s1, last_r);
-        emit(left, right);
-        left.clear();
-        right.clear();
+        if (left.corners.empty()) return;
+        extend(left, last_s1, last_l);
+        extend(right, last_s1, last_r);
+        emit(left.corners, right.corners);
+        left.corners.clear();
+        right.corners.clear();
     };
     for (const auto& strip : strips) {
         if (strip.t.size() != 1) {
@@ -259,11 +291,11 @@ Regions2 strips_to_regions(std::vector<Strip> strips, const StripAxes& ax, const
             continue;
         }
         const auto [l, r] = strip.t.front();
-        const bool continues =
-            !left.empty() && std::abs(strip.s0 - last_s1) <= 1e-9 && l < last_r && r > last_l;
+        const bool continues = !left.corners.empty() && std::abs(strip.s0 - last_s1) <= 1e-9 &&
+                               l < last_r && r > last_l;
         if (!continues) close_band();
-        left.emplace_back(strip.s0, l);
-        right.emplace_back(strip.s0, r);
+        extend(left, strip.s0, l);
+        extend(right, strip.s0, r);
         last_s1 = strip.s1;
         last_l = l;
         last_r = r;

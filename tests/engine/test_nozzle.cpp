@@ -163,9 +163,9 @@ TEST(Nozzle, BadParametersAreNamed) {
     // off). A 1e9 mm standoff, or a cone of 1e-6 degrees (1.1e9 mm long), cut one turn of a
     // crank's program into 1.7 GB of steps in 8 s.
     const std::string beyond =
-        " mm from its deposit point, more than 100000 times its margin (2 "
-        "mm): the travel check cuts the table's turns into steps that move "
-        "it at most a margin; shorten the nozzle or widen the margin";
+        " mm from its deposit point, more than 100000 times its margin (2 mm): the travel check "
+        "cuts the table's turns into steps that move it at most a margin; shorten the nozzle or "
+        "widen the margin";
     EXPECT_EQ(message([](auto& p) { p.body_length_mm = 199900; }), "");  // 199944.6 mm
     EXPECT_EQ(message([](auto& p) { p.body_length_mm = 200000; }),
               "the nozzle's body ends 200045" + beyond);

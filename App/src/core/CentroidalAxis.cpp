@@ -1365,6 +1365,13 @@ private:
             return root;
         };
         Regions2 far;
+        // The box of the lower plane's whole section (for the ledges' limit, below), and what
+        // layers at slicing's defaults lay (a twentieth over, for a round column's chords).
+        Eigen::AlignedBox2d whole_lower;
+        for (const auto& b : planes.bounds2[k - 1]) whole_lower.extend(b);
+        whole_lower.min().array() -= p_.step_mm / 100.0;
+        whole_lower.max().array() += p_.step_mm / 100.0;
+        const double laid = 1.05 * laid_overhang_mm();
         // A wide stick-out found along the march is split at its necks and its pieces judged
         // each (below), after the stick-outs given: they are kept here.
         Regions2 split;
@@ -1432,11 +1439,6 @@ private:
             // ceiling hung more than it does in the lug's layers (6.1 and 6.3 mm^2 became 11.9 and
             // 7.2 on two lugs).
             const double wide_limit = std::max(p_.distance_threshold_mm, 4.0 * bump);
-            Eigen::AlignedBox2d whole_lower;
-            for (const auto& b : planes.bounds2[k - 1]) whole_lower.extend(b);
-            whole_lower.min().array() -= p_.step_mm / 100.0;
-            whole_lower.max().array() += p_.step_mm / 100.0;
-            const double laid = 1.05 * laid_overhang_mm();
             const double ledge_limit = whole_lower.contains(bounds(da))
                                            ? std::max(p_.step_mm, std::min(bump, laid))
                                            : std::min(std::max(p_.step_mm, bump), laid);

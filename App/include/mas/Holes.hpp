@@ -65,6 +65,9 @@ struct FilledHole {
     double length_mm = 0.0;  // its extent along the axis
 };
 
+// "the hole D mm across at (x, y, z)": how notes name a hole.
+std::string describe(const FilledHole& hole);
+
 struct HoleFill {
     Shape solid;                     // the component with its holes filled (the input if none)
     std::vector<FilledHole> holes;   // the holes filled, in the solid's face order

@@ -110,12 +110,18 @@ struct Hole {
     }
 };
 
-std::string describe(const Hole& h) {
-    const Vector3d c = h.centre();
+// "the hole D mm across at (x, y, z)".
+std::string hole_at(double diameter, const Vector3d& c) {
     std::ostringstream s;
-    s.precision(6);
-    s << "the hole " << 2.0 * h.radius << " mm across at (" << c.x() << ", " << c.y() << ", "
-      << c.z() << ") along (" << h.axis.x() << ", " << h.axis.y() << ", " << h.axis.z() << ")";
+    s << "the hole " << diameter << " mm across at (" << c.x() << ", " << c.y() << ", " << c.z()
+      << ")";
+    return s.str();
+}
+
+std::string describe(const Hole& h) {
+    std::ostringstream s;
+    s << hole_at(2.0 * h.radius, h.centre()) << " along (" << h.axis.x() << ", " << h.axis.y()
+      << ", " << h.axis.z() << ")";
     return s.str();
 }
 
@@ -707,6 +713,8 @@ Vector3d checked_direction(const Eigen::Vector3d& build_direction, double max_di
 }
 
 }  // namespace
+
+std::string describe(const FilledHole& hole) { return hole_at(hole.diameter_mm, hole.centre); }
 
 std::vector<FilledHole> holes_to_fill(const Shape& input, const Eigen::Vector3d& build_direction,
                                       double max_diameter_mm, double overhang_angle_deg,

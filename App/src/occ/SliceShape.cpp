@@ -108,14 +108,6 @@ bool cuts_lengthwise(const Component& child, const TopoDS_Shape& part, const Fil
     return false;
 }
 
-// "the hole D mm across at (x, y, z)".
-std::string describe(const FilledHole& h) {
-    std::ostringstream out;
-    out << "the hole " << h.diameter_mm << " mm across at (" << h.centre.x() << ", " << h.centre.y()
-        << ", " << h.centre.z() << ")";
-    return out.str();
-}
-
 // The branches of `d`'s children (the root has no split) that cut one of `holes` lengthwise
 // (cuts_lengthwise), each with the first such hole: (branch, hole index).
 std::vector<std::pair<int, std::size_t>> branches_cutting(const Decomposition& d,
@@ -224,6 +216,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
     const auto split = [&](const std::vector<KeptBranch>& keep, const Progress& round) {
         SplitSliced out;
         out.sliced = run(keep, holes.empty() ? round : round.span(0.0, 0.5), split_one);
+        std::vector<std::string> open;  // the holes left open, where keeping branches is worse
         if (!holes.empty()) {
             // The branches whose splits cut such a hole are kept in their fathers (and those of
             // their sub-branches that then cut one, split from there), and that slicing is taken
@@ -253,7 +246,6 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                 d = decompose(part, axis, p, again.span(0.0, 0.2));
                 last = &d;
             }
-            std::vector<std::string> open;
             if (last != &split_one) {
                 SlicedPart kept = slice_part(part, axis, d, params, again.span(0.2, 1.0));
                 if (sliced_better(kept, out.sliced)) {
@@ -276,11 +268,9 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                                        " along its length" + why.str());
                 }
             }
-            out.notes = split_one.notes;
-            out.notes.insert(out.notes.end(), open.begin(), open.end());
-        } else {
-            out.notes = split_one.notes;
         }
+        out.notes = split_one.notes;
+        out.notes.insert(out.notes.end(), open.begin(), open.end());
         for (const Component& c : split_one.components) out.branches.push_back(c.branch);
         return out;
     };

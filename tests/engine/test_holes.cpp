@@ -521,6 +521,23 @@ TopoDS_Shape survey_clevis() {
     return s;
 }
 
+// Slicing `part` meshed at `deflection` with its holes up to 16 mm filled: its axis, the slicing
+// parameters and the decomposition's (no component lower than a layer).
+struct FillingHoles {
+    mas::CentroidalAxis axis;
+    mas::SlicePartParams params;
+    mas::DecomposeParams decompose;
+};
+
+FillingHoles filling_holes(const mas::Shape& part, double deflection) {
+    FillingHoles f;
+    f.params.tessellation.deflection_mm = deflection;
+    f.params.fill_holes_up_to_mm = 16.0;
+    f.axis = mas::centroidal_axis(mas::tessellate(part, f.params.tessellation), {});
+    f.decompose.min_component_height_mm = f.params.layers.min_layer_mm;
+    return f;
+}
+
 }  // namespace
 
 TEST(Holes, ASplitThatWouldCutAPinHoleLengthwiseIsNotMadeWhereTheHoleIsFilled) {
@@ -531,14 +548,7 @@ TEST(Holes, ASplitThatWouldCutAPinHoleLengthwiseIsNotMadeWhereTheHoleIsFilled) {
     // 10 mm^2 of a top's layer unsupported. Those splits are not made where the holes are filled:
     // each lug is one component, its hole filled, every layer supported.
     const mas::Shape part = from_occt(survey_clevis());
-    mas::TessellationParams tp;
-    tp.deflection_mm = mas::effective_deflection(part, tp);
-    const mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
-    mas::SlicePartParams params;
-    params.tessellation = tp;
-    params.fill_holes_up_to_mm = 16.0;
-    mas::DecomposeParams dp;
-    dp.min_component_height_mm = params.layers.min_layer_mm;
+    auto [axis, params, dp] = filling_holes(part, mas::effective_deflection(part, {}));
     // The decomposition the axis asks for cuts the holes.
     const mas::Decomposition asked = mas::decompose(part, axis, dp);
     EXPECT_GT(asked.components.size(), 3u);
@@ -587,14 +597,7 @@ TEST(Holes, AnArmWhoseSplitCutsAHoleIsStillCutOffWhereKeepingItWouldLeaveMoreUns
     const mas::Shape part =
         from_occt(cut(fuse(occ_box(0, 0, 0, 20, 20, 60), occ_box(20, 0, 40, 50, 20, 20)),
                       occ_cylinder({20, -1, 50}, Vector3d::UnitY(), 3.0, 22.0)));
-    mas::TessellationParams tp;
-    tp.deflection_mm = 0.02;
-    const mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
-    mas::SlicePartParams params;
-    params.tessellation = tp;
-    params.fill_holes_up_to_mm = 16.0;
-    mas::DecomposeParams dp;
-    dp.min_component_height_mm = params.layers.min_layer_mm;
+    const auto [axis, params, dp] = filling_holes(part, 0.02);
     mas::Decomposition d;
     const mas::SlicedPart sliced = mas::slice_solid_part(part, axis, dp, params, d);
     ASSERT_EQ(d.components.size(), 2u);

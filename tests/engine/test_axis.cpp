@@ -249,6 +249,22 @@ TEST(CentroidalAxis, AThinPinIsNoSpeck) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, APinThinnerThanATwentiethOfTheStepAllTheWayUpIsMarchedFromItsBase) {
+    // Every section of a 0.01 mm pin at a 1 mm step is a speck: the root used to skip them all to
+    // the last plane, one node at the top whose slab stood for the whole pin.
+    const auto mesh = mas::test::box_mesh(0, 0, 0, 0.01, 0.01, 20);
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.branches.size(), 1u);
+    ASSERT_EQ(a.nodes.size(), 20u);  // planes at 0.001, 1.001, ..., 19.001
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        EXPECT_NEAR((a.nodes[i].position - Vector3d(0.005, 0.005, 0.001 + i)).norm(), 0.0, 1e-9);
+        EXPECT_NEAR(a.nodes[i].area, 1e-4, 1e-12);
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {
     // No section at all eps above the tip (a disc 0.001 mm across is a sliver): the axis used to
     // be empty. Nodes on the cone's axis, areas pi r^2 within perimeter x deflection.

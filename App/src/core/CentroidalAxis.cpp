@@ -1121,11 +1121,23 @@ private:
             // The root. A part standing on a vertex or a tip has, eps above its base, a speck of
             // a section (or none), and the march would end a step above it, the part unsearched.
             // The root starts at the first plane with more than specks, its first slab still
-            // reaching down to the base.
+            // reaching down to the base. A part whose every section is a speck (a pin thinner
+            // than a twentieth of the step all the way up) starts at its first section all the
+            // same: on the last plane, one node's slab would stand for the whole part.
+            const auto specks = [&](const Regions2& rs) {
+                return std::all_of(rs.begin(), rs.end(),
+                                   [&](const Region2& r) { return speck(r); });
+            };
             first = unswept(g, k0, nullptr);
-            while (k0 + 1 < count && std::all_of(first.begin(), first.end(),
-                                                 [&](const Region2& r) { return speck(r); })) {
+            std::optional<std::size_t> first_met;
+            if (!first.empty()) first_met = k0;
+            while (k0 + 1 < count && specks(first)) {
                 first = unswept(g, ++k0, nullptr);
+                if (!first_met && !first.empty()) first_met = k0;
+            }
+            if (specks(first) && first_met && *first_met != k0) {
+                k0 = *first_met;
+                first = unswept(g, k0, nullptr);
             }
         }
         std::vector<Track> tracks;

@@ -1697,6 +1697,22 @@ TEST(SlicingErrors, ANozzleMarginBelowATwoThousandthOfThePartIsRefusedAtOnce) {
     EXPECT_NO_THROW(mas::validate(mas::NozzleParams{}, 4000.0, "the part"));
 }
 
+TEST(SlicingErrors, APartThinnerThanMinLayerNamesItsHeightAndTheUnit) {
+    // A 50 x 30 x 40 mm block drawn in metres comes in 0.04 mm tall: no layer fits, and the
+    // message says lengths are millimetres, not only to lower min_layer.
+    const auto part = mas::test::box(0, 0, 0, 0.05, 0.03, 0.04);
+    try {
+        slice(part, 0.004, default_params());
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_EQ(std::string(e.what()),
+                  "component 0 is only 0.04 mm tall along its build direction, less than "
+                  "min_layer (0.5 mm): no layer fits; lower min_layer (lengths are in "
+                  "millimetres: a part drawn in metres or inches is to be scaled)");
+    }
+}
+
 TEST(SlicingErrors, NoFeasibleLayerIsAnError) {
     // A 0.4 mm plate cannot hold a 0.5 mm layer.
     try {

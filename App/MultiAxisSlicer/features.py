@@ -942,14 +942,13 @@ def slice_inputs(obj):
 
 
 def _mesh_fingerprint(mesh_obj):
-    """What tells one state of a mesh object's mesh from another, cheaply (FreeCAD computes each in
-    one pass over the facets): a Layers object's remembered result is for the mesh it was sliced
-    from."""
-    mesh = mesh_obj.Mesh
-    box = mesh.BoundBox
-    return (mesh_obj.Name, mesh.CountPoints, mesh.CountFacets, mesh.Volume, mesh.Area,
-            (box.XMin, box.YMin, box.ZMin, box.XMax, box.YMax, box.ZMax),
-            tuple(mesh.Placement.toMatrix().A))
+    """What tells one state of a mesh object's mesh from another: a Layers object's remembered
+    result is for the mesh it was sliced from. Every point (placed) and facet, hashed by the engine
+    (``Mesh.digest``; the conversion costs about as much as FreeCAD's reading of the mesh's
+    points): counts, volume, area, box and placement were the same for an L turned over in its
+    own box, and the Layers object kept the old L's layers."""
+    _kind, mesh, _what = mas._model(mesh_obj)
+    return (mesh_obj.Name, mesh.digest())
 
 
 def slice_result(obj):

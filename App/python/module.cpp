@@ -17,6 +17,7 @@
 #include <boost/python.hpp>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <limits>
@@ -526,6 +527,21 @@ bp::dict mesh_check(const mas::TriangleMesh& mesh) {
 
 bp::object mesh_bounds(const mas::TriangleMesh& mesh) { return to_py(mas::bounding_box(mesh)); }
 
+// FNV-1a over the bytes of every vertex coordinate and triangle index, in order: equal for equal
+// meshes, and unequal, but for a 2^-64 chance, for any change of a coordinate or a facet.
+unsigned long long mesh_digest(const mas::TriangleMesh& mesh) {
+    std::uint64_t h = 14695981039346656037ull;
+    const auto add = [&h](const void* data, std::size_t size) {
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < size; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+    };
+    const std::uint64_t counts[2] = {mesh.vertices.size(), mesh.triangles.size()};
+    add(counts, sizeof counts);
+    for (const Eigen::Vector3d& v : mesh.vertices) add(v.data(), 3 * sizeof(double));
+    for (const Eigen::Vector3i& t : mesh.triangles) add(t.data(), 3 * sizeof(int));
+    return h;
+}
+
 std::string mesh_repr(const mas::TriangleMesh& mesh) {
     return "<MultiAxisSlicer._engine.Mesh vertices=" + std::to_string(mesh.vertices.size()) +
            " triangles=" + std::to_string(mesh.triangles.size()) + ">";
@@ -566,6 +582,9 @@ void bind_mesh() {
              "dict: vertices, triangles, non_finite_vertices, degenerate_triangles, "
              "boundary_edges, non_manifold_edges, inconsistent_edges, volume_mm3, closed.")
         .def("bounds", &mesh_bounds, "((xmin, ymin, zmin), (xmax, ymax, zmax)), None if empty.")
+        .def("digest", &mesh_digest,
+             "A 64-bit hash of every vertex coordinate and triangle index, in order: what tells "
+             "one mesh from another (equal meshes, equal digests).")
         .def("__repr__", &mesh_repr);
 
     bp::def("make_closed", &make_closed, (bp::arg("mesh"), bp::arg("what") = "mesh"),

@@ -1151,6 +1151,30 @@ class TestLayersOfAMesh(SliceObjectTest):
         self.assertEqual(layers.LayerCount, 5)
         self.assertEqual(toolpath.PathCounts[0], 2 * 5)
 
+    def test_the_layers_follow_a_mesh_turned_over_in_its_own_box(self):
+        # The L turned 180 degrees about Y and moved back into its box: as many points and facets,
+        # the same volume, area, box and placement, which was all the remembered result was keyed
+        # by, and the Layers object kept the upright L's layers.
+        scan = self.add_mesh(l_block())
+        layers, toolpath = mas.make_slice(scan)
+        self.doc.recompute()
+        upright = features.slice_result(layers).to_dict()
+        turned = scan.Mesh.copy()
+        box = turned.BoundBox
+        turned.transform(FreeCAD.Matrix(-1, 0, 0, box.XMin + box.XMax, 0, 1, 0, 0,
+                                        0, 0, -1, box.ZMin + box.ZMax, 0, 0, 0, 1))
+        self.assertEqual((turned.CountPoints, turned.CountFacets),
+                         (scan.Mesh.CountPoints, scan.Mesh.CountFacets))
+        self.assertTrue(turned.BoundBox.isInside(box) and box.isInside(turned.BoundBox))
+        scan.Mesh = turned
+        scan.touch()
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        expected = mas.slice(turned).to_dict()
+        self.assertNotEqual(expected, upright)
+        self.assertEqual(features.slice_result(layers).to_dict(), expected)
+        self.assertEqual(layers.LayerCount, len(expected["layers"]))
+
     def test_a_bad_source_marks_the_object_with_the_message(self):
         scan = self.add_mesh(box_20_10_21())
         layers, toolpath = mas.make_slice(scan)

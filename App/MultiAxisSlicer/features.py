@@ -1450,14 +1450,21 @@ def is_toolpath(obj):
 # ---- the build preview: BuildPreview ----------------------------------------------------------
 
 
+# The least length the preview draws a nozzle's tip radius or cone with (mm), well over OCCT's
+# confusion tolerance (1e-7 mm).
+_DRAWN_LENGTH_MM = 1e-4
+
+
 def nozzle_solids(standoff, tip_diameter, cone_angle, body_diameter, body_length, point, axis):
     """The nozzle the build sequence is checked against (``Nozzle.hpp``, Eq. 10), as Part solids
     standing on the deposit point `point` along the tool axis `axis` (FreeCAD vectors; mm and
     degrees): nothing for the first `standoff` (the stream and the beam or arc), then the tip, a
     cone frustum `tip_diameter` across at its face widening at `cone_angle` (half-angle) until it
     is `body_diameter` across, then the body, a cylinder of that diameter `body_length` long.
-    Returns [tip, body] ([body] when the tip is as wide as the body). Raises ValueError for a
-    zero axis or a cone that would not close (an angle outside 0 to 90 degrees)."""
+    Returns [tip, body] ([body] when the tip is as wide as the body, or the cone shorter than
+    ``_DRAWN_LENGTH_MM``: OCCT makes no cone, nor a circle, under its confusion tolerance, and
+    slicing takes a tip 1e-9 mm across, or a cone angle of 89.9999999 degrees). Raises ValueError
+    for a zero axis or a cone that would not close (an angle outside 0 to 90 degrees)."""
     axis = FreeCAD.Vector(axis)
     if axis.Length <= 0.0:
         raise ValueError("nozzle_solids(): the tool axis is a zero vector")
@@ -1467,11 +1474,16 @@ def nozzle_solids(standoff, tip_diameter, cone_angle, body_diameter, body_length
                          "got {}".format(cone_angle))
     face = FreeCAD.Vector(point) + axis * standoff
     tip_radius, body_radius = tip_diameter / 2.0, body_diameter / 2.0
+    if tip_radius < _DRAWN_LENGTH_MM:
+        tip_radius = 0.0  # a point
     solids = []
     cone_length = 0.0
     if body_radius > tip_radius:
         cone_length = (body_radius - tip_radius) / math.tan(math.radians(cone_angle))
-        solids.append(Part.makeCone(tip_radius, body_radius, cone_length, face, axis))
+        if cone_length >= _DRAWN_LENGTH_MM:
+            solids.append(Part.makeCone(tip_radius, body_radius, cone_length, face, axis))
+        else:
+            cone_length = 0.0  # a flat step from the tip to the body
     solids.append(Part.makeCylinder(body_radius, body_length, face + axis * cone_length, axis))
     return solids
 

@@ -2107,7 +2107,24 @@ class TestBuildPreviewObject(SliceObjectTest):
         self.assertEqual(len(body), 1)
         self.assertAlmostEqual(body[0].Volume, math.pi * 100 * 50, delta=1e-6)
         self.assertAlmostEqual(body[0].BoundBox.ZMin, 10.0, places=9)
+        # Nozzles slicing takes whose cone or tip OCCT cannot make (Part.OCCDomainError "creation
+        # of cone failed" in the preview's recompute): a tip 1e-9 mm across is drawn as a point, a
+        # cone 1e-7 mm long as a flat step to the body.
+        tip, body = features.nozzle_solids(10, 1e-9, 30, 50, 200, V(0, 0, 0), V(0, 0, 1))
+        cone_length = 25.0 / math.tan(math.radians(30.0))
+        self.assertAlmostEqual(tip.Volume, math.pi * 25 ** 2 * cone_length / 3.0, delta=1e-6)
+        self.assertAlmostEqual(body.BoundBox.ZMin, 10.0 + cone_length, places=9)
+        for tip_diameter, angle in ((49.9999999, 30.0), (10.0, 89.9999999)):
+            body = features.nozzle_solids(10, tip_diameter, angle, 50, 200, V(0, 0, 0),
+                                          V(0, 0, 1))
+            self.assertEqual(len(body), 1)
+            self.assertAlmostEqual(body[0].Volume, math.pi * 25 ** 2 * 200, delta=1e-6)
+            self.assertAlmostEqual(body[0].BoundBox.ZMin, 10.0, places=9)
         preview = self.doc.getObject("BuildPreview")
+        layers.NozzleTipDiameter = 1e-9
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        self.assertTrue(preview.isValid(), preview.getStatusString())
         preview.Layers = None
         self.doc.recompute()
         self.assertIn("Layers is not set", preview.getStatusString())

@@ -138,6 +138,26 @@ def restore_results(remembered):
                 delattr(proxy, key)
 
 
+def _refuse_circular_links(obj):
+    """ValueError where one of ``obj``'s links names ``obj`` itself or an object made from it (a
+    Decomposition's Source set to one of its own Component objects): FreeCAD only logs that the
+    graph is no longer acyclic, and the object would be computed from its own output."""
+    made_from_it = None
+    for prop in obj.PropertiesList:
+        if obj.getTypeIdOfProperty(prop) != "App::PropertyLink":
+            continue
+        linked = getattr(obj, prop)
+        if linked is None:
+            continue
+        if linked == obj:
+            raise ValueError("{} is this object itself: link another object".format(prop))
+        if made_from_it is None:
+            made_from_it = obj.InListRecursive  # answers on a circle too (OutListRecursive raises)
+        if linked in made_from_it:
+            raise ValueError("{} '{}' is made from this object (its links lead back here): link "
+                             "an object that does not depend on it".format(prop, linked.Label))
+
+
 class _EngineFeature:
     """What every proxy here shares: recompute errors reported by their message, nothing to save
     beyond the properties, a view provider when the GUI opens a document made without it.
@@ -172,6 +192,7 @@ class _EngineFeature:
     def _recompute(self, obj):
         """Returns None, or the exception to report for input the user can fix."""
         try:
+            _refuse_circular_links(obj)
             self.recompute(obj)
         except _USER_ERRORS as error:
             return self._in_property_names(error)
@@ -191,6 +212,7 @@ class _EngineFeature:
         return error
 
     def _recompute_raising(self, obj):
+        _refuse_circular_links(obj)
         self.recompute(obj)
 
     def onDocumentRestored(self, obj):
@@ -715,26 +737,44 @@ def components_of(decomposition):
     return sorted(found, key=lambda o: o.Index)
 
 
+def _component_label(index):
+    return "Component{:03d}".format(index + 1)
+
+
 def sync_components(decomposition):
     """Makes the Decomposition object's Component objects match its ComponentCount: one per
     component, labelled Component001, Component002, ... in tree order, each recomputed; extra
     ones are removed. Call it outside a recompute (after ``doc.recompute()``); the GUI does it
-    after every recompute that changes the count. Returns the Component objects."""
+    after every recompute that changes the count. Two for one component (a script's removal of
+    one undone after it was made anew) are one again, the one labelled so kept. An invalid
+    Decomposition gets none added. Returns the Component objects."""
     doc = decomposition.Document
     existing = components_of(decomposition)
-    count = decomposition.ComponentCount if decomposition.isValid() else len(existing)
-    keep = [c for c in existing if c.Index < count]
-    for c in existing[len(keep):]:
+    valid = decomposition.isValid()
+    count = decomposition.ComponentCount if valid else len(existing)
+    kept, extra = {}, []
+    for c in existing:
+        i = c.Index
+        if not 0 <= i < count:
+            extra.append(c)
+        elif i not in kept:
+            kept[i] = c
+        elif c.Label == _component_label(i) and kept[i].Label != _component_label(i):
+            extra.append(kept[i])
+            kept[i] = c
+        else:
+            extra.append(c)
+    for c in extra:
         doc.removeObject(c.Name)
-    have = {c.Index for c in keep}
-    for i in range(count):
-        if i in have:
+    keep = list(kept.values())
+    for i in range(count if valid else 0):
+        if i in kept:
             continue
         obj = doc.addObject("Part::FeaturePython", "Component")
         ComponentFeature(obj)
         obj.Decomposition = decomposition
         obj.Index = i
-        obj.Label = "Component{:03d}".format(i + 1)
+        obj.Label = _component_label(i)
         if FreeCAD.GuiUp:
             _attach_view_provider(obj, ComponentFeature.VIEW_PROVIDER)
         keep.append(obj)

@@ -459,6 +459,47 @@ class TestDecompositionObject(DecomposeTest):
         self.assertEqual([c.Label for c in features.components_of(obj)], ["Component001"])
         self.assertTrue(all(o.isValid() for o in self.doc.Objects))
 
+    def test_a_removed_component_made_anew_and_brought_back_by_undo_is_one_again(self):
+        # A script removes a Component object, sync_components() makes it anew, and an undo
+        # brings the removed one back: two objects for component 0, both labelled Component001.
+        self.doc.UndoMode = 1
+        obj = mas.make_decomposition(self.part)
+        self.doc.recompute()
+        root, arm = self.check_l_block_objects(obj)
+        self.doc.openTransaction("Remove")
+        self.doc.removeObject(root.Name)
+        self.doc.commitTransaction()
+        self.doc.recompute()
+        made = features.sync_components(obj)[0]
+        self.assertEqual((made.Index, made.Label), (0, "Component001"))
+        self.doc.undo()
+        self.doc.recompute()
+        self.assertEqual([c.Index for c in features.components_of(obj)], [0, 0, 1])
+        self.assertEqual(len(features.sync_components(obj)), 2)
+        self.doc.recompute()
+        self.check_l_block_objects(obj)
+
+    def test_a_link_round_in_a_circle_marks_the_object(self):
+        # A Decomposition's Source set to one of its own Component objects: FreeCAD only logs
+        # that the graph is no longer acyclic, and the Decomposition was computed, valid, from
+        # its own output.
+        obj = mas.make_decomposition(self.part)
+        self.doc.recompute()
+        root, _arm = self.check_l_block_objects(obj)
+        obj.Source = root
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertEqual(obj.getStatusString(),
+                         "Source 'Component001' is made from this object (its links lead back "
+                         "here): link an object that does not depend on it")
+        self.assertEqual(obj.ComponentCount, 2)  # the last result stands
+        obj.Source = obj
+        self.doc.recompute()
+        self.assertEqual(obj.getStatusString(), "Source is this object itself: link another object")
+        obj.Source = self.part
+        self.doc.recompute()
+        self.check_l_block_objects(obj)
+
     def test_min_component_height_keeps_a_short_child_in_its_father(self):
         obj = mas.make_decomposition(self.part)
         self.assertEqual(obj.MinComponentHeight.Value, 0.0)  # one axis step

@@ -949,6 +949,9 @@ def slice_inputs(obj):
                              obj.Label, decomposition.Label, name, other.Label))
     if decomposition is not None:
         _check_link(obj, "Decomposition", is_decomposition, "Decomposition")
+        if not obj.SplitMesh:
+            raise ValueError("{}: SplitMesh applies to a mesh (Source); a Decomposition's part is "
+                             "sliced as the Decomposition splits it".format(obj.Label))
     elif not mesh_links:
         raise ValueError("{}: neither Decomposition nor Source is set".format(obj.Label))
     if axis is not None:
@@ -2005,6 +2008,8 @@ class MachineProgramFeature(_EngineFeature):
                       (r"\breference thickness\b", "ReferenceThickness"),
                       (r"\bmax feed ratio\b", "MaxFeedRatio"),
                       (r"\bclearance must\b", "Clearance must"),
+                      (r"\bclearance (?=\S+ mm is more than)", "Clearance "),
+                      (r"\bthe nozzle's margin\b", "the Layers' NozzleMargin"),
                       (r"\bthe deposition output\b", "DepositOutput"),
                       (r"\bdeposit_output\b", "DepositOutput"))
     PARAMETERS = _grouped((prop, "Machine") for prop, _, _, _ in _MACHINE_PROPERTIES)

@@ -59,7 +59,8 @@ class GcodeProgram:
         """Writes the program to ``path`` whole or not at all: through a temporary file beside
         it, renamed over it. An existing file keeps its permissions (a new one gets the umask's);
         through a symbolic link, the file it names is replaced. IsADirectoryError for a folder,
-        OSError as the system gives it otherwise."""
+        OSError as the system gives it otherwise (FileNotFoundError for a missing folder), naming
+        ``path``."""
         import os
         import stat
         import tempfile
@@ -74,8 +75,11 @@ class GcodeProgram:
             umask = os.umask(0)
             os.umask(umask)
             mode = 0o666 & ~umask
-        fd, partial = tempfile.mkstemp(prefix=".mas-", suffix=".partial",
-                                       dir=os.path.dirname(target))
+        try:
+            fd, partial = tempfile.mkstemp(prefix=".mas-", suffix=".partial",
+                                           dir=os.path.dirname(target))
+        except OSError as error:  # named by the path asked for, not the temporary file's
+            raise type(error)(error.errno, error.strerror, path) from None
         try:
             with os.fdopen(fd, "w", newline="\n") as f:
                 os.fchmod(f.fileno(), mode)

@@ -20,8 +20,10 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <iomanip>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -1735,10 +1737,16 @@ mas::MachineParams machine_from_py(const bp::dict& d) {
             if (x != std::floor(x))
                 invalid_argument("machine parameter deposit_output must be a whole number, got " +
                                  mas::format_number(x));
-            if (!(std::abs(x) < 1e9))  // validate() names the range
+            if (!(std::abs(x) < 1e9)) {  // validate() names the range
+                std::ostringstream got;  // whole, as given: 1099511627776, not 1.09951e+12
+                if (std::abs(x) < 1e18)
+                    got << std::fixed << std::setprecision(0) << x;
+                else
+                    got << mas::format_number(x);
                 invalid_argument(
                     "machine: the deposition output must be a digital output 0 to 63, got " +
-                    mas::format_number(x));
+                    got.str());
+            }
             m.deposit_output = int(x);
         } else
             invalid_argument("unknown machine parameter '" + key + "'");

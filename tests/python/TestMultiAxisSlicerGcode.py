@@ -118,8 +118,11 @@ class TestGcodeApi(GcodeTest):
             with open(path) as f:
                 self.assertEqual(f.read(), program.text)
             self.assertEqual(os.listdir(folder), ["l.ngc"])
-            with self.assertRaises(OSError):
-                program.write(os.path.join(folder, "missing", "l.ngc"))
+            missing = os.path.join(folder, "missing", "l.ngc")
+            with self.assertRaises(FileNotFoundError) as caught:
+                program.write(missing)
+            self.assertEqual(caught.exception.filename, missing)  # not the temporary file's
+            self.assertIn("No such file or directory: '{}'".format(missing), str(caught.exception))
             self.assertEqual(os.listdir(folder), ["l.ngc"])
             # Permissions: a new file's follow the umask, an existing file keeps its own.
             umask = os.umask(0o022)
@@ -176,7 +179,7 @@ class TestGcodeApi(GcodeTest):
         self.assertRaisesEngineError("invalid_argument", self.result.gcode, deposit_output=64)
         e = self.assertRaisesEngineError("invalid_argument", self.result.gcode,
                                          deposit_output=2**40)
-        self.assertIn("digital output 0 to 63, got 1.09951e+12", str(e))
+        self.assertIn("digital output 0 to 63, got 1099511627776", str(e))
         e = self.assertRaisesEngineError("invalid_argument", self.result.gcode, feed=1e-300)
         self.assertIn("feed range", str(e))
         with self.assertRaisesRegex(TypeError, "unknown machine parameter.*fed"):
@@ -392,6 +395,11 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertIn("DepositOutput must be a digital output 0 to 63",
                       program_obj.getStatusString())
         program_obj.DepositOutput = 0
+        program_obj.Clearance = 1e9  # the margin is the Layers object's
+        self.doc.recompute()
+        self.assertIn("Clearance 1e+09 mm is more than 10000 times the Layers' NozzleMargin (2 "
+                      "mm)", program_obj.getStatusString())
+        program_obj.Clearance = 2.0
         self.doc.recompute()
         self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
         self.assertEqual(list(program_obj.ARange), [-90.0, 0.0])

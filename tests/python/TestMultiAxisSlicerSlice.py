@@ -1641,6 +1641,12 @@ class TestLayersObject(SliceObjectTest):
         self.doc.recompute()
         self.assertIn("BeadWidth must be a positive, finite number", layers.getStatusString())
         layers.BeadWidth = 1.0
+        layers.SplitMesh = False  # the property editor shows it: named for the object, not the API
+        self.doc.recompute()
+        self.assertEqual(layers.getStatusString(),
+                         "Layers: SplitMesh applies to a mesh (Source); a Decomposition's part is "
+                         "sliced as the Decomposition splits it")
+        layers.SplitMesh = True
         layers.Decomposition = None
         self.doc.recompute()
         self.assertEqual(layers.getStatusString(),

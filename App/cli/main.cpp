@@ -113,7 +113,8 @@ const char* kUsage =
     "--progress report how far decomposing and slicing are on standard error: a line at each\n"
     "           new stage and at most one a second within one, then 100 %. (Ctrl-C stops.)\n"
     "--deflection MM  chordal deflection for tessellating a solid (default: derived from its "
-    "size)\n";
+    "size);\n"
+    "           a mesh is cut as it is (slice refuses the option for one)\n";
 
 // --progress: the stage and the per cent done on standard error, a line at each new stage and at
 // most one a second within a stage (a log stays short), and a last line at 100 %.
@@ -904,6 +905,10 @@ int run_slice(const std::vector<std::string>& args) {
         mas::Decomposition d;
         r = mas::slice_solid_part(solid, axis, dp, sp, d, progress);
     } else {
+        if (a.has("--deflection"))  // as the scripting API's slice() refuses it
+            throw mas::Error(mas::ErrorCode::InvalidArgument,
+                             "--deflection tessellates a solid: a mesh is sliced as it is (" +
+                                 a.file + " is a mesh)");
         r = mas::slice_mesh_part(part.mesh, axis, sp, progress);
     }
     mas::GcodeStats gs;

@@ -909,6 +909,10 @@ class CliSections(unittest.TestCase):
         self.expect_error(["slice", brep, "--fill-holes", "nan"], 2, "fill-holes")
         self.expect_error(["slice", self.write("cube.stl", box_stl(10, 10, 10)), "--fill-holes",
                            "5"], 1, "invalid_argument", "BREP")
+        # As the scripting API's slice(): a mesh is sliced as it is, not tessellated.
+        self.expect_error(["slice", self.write("cube.stl", box_stl(10, 10, 10)), "--deflection",
+                           "0.05"], 1, "invalid_argument",
+                          "--deflection tessellates a solid: a mesh is sliced as it is (")
         self.expect_error(["slice", self.write("plate.stl", box_stl(10, 10, 0.3))], 1,
                           "invalid_argument", "min_layer")
 

@@ -323,9 +323,10 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     eng = _require_engine()
     kind, part, what = _model(shape)
     if kind != "solid":
+        mesh = "a mesh" if what in ("the mesh", "mesh") else "{}, a mesh,".format(what)
         raise TypeError("decompose() splits a BREP solid (Part.Shape, STEP, IGES or BREP file); "
-                        "{} is a mesh, which cannot be split into solids (slice() splits a mesh "
-                        "into mesh pieces as it slices it)".format(what))
+                        "{} cannot be split into solids (slice() splits a mesh into mesh pieces "
+                        "as it slices it)".format(mesh))
     solid = part.single_solid(what)
     if axis is None:
         axis = centroidal_axis(solid, **axis_params)

@@ -281,9 +281,17 @@ class TestDecomposeBadInput(DecomposeTest):
             mas.decompose(42)
 
     def test_a_mesh_cannot_be_decomposed(self):
-        with self.assertRaisesRegex(TypeError, "BREP solid.*mesh.*slice\\(\\) splits a mesh into "
-                                               "mesh pieces as it slices it"):
+        with self.assertRaises(TypeError) as caught:
             mas.decompose(Mesh.Mesh(l_block().tessellate(0.1)))
+        self.assertEqual(str(caught.exception),
+                         "decompose() splits a BREP solid (Part.Shape, STEP, IGES or BREP file); a "
+                         "mesh cannot be split into solids (slice() splits a mesh into mesh pieces "
+                         "as it slices it)")
+        with self.assertRaisesRegex(TypeError, "; box.off, a mesh, cannot be split into solids"):
+            with support.scratch_folder("mas_dec_") as folder:
+                path = os.path.join(folder, "box.off")
+                Mesh.Mesh(Part.makeBox(1, 2, 3).tessellate(0.1)).write(path)
+                mas.decompose(path)
 
     def test_face_is_not_a_solid(self):
         e = self.assertRaisesEngineError("not_a_solid", mas.decompose, Part.makePlane(10, 10))

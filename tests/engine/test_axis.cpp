@@ -190,6 +190,20 @@ void expect_invariants(const mas::CentroidalAxis& a, const mas::TriangleMesh& me
     return ::testing::AssertionSuccess();
 }
 
+// One branch up +Z of `count` nodes on the vertical through (x, y): on the planes at eps (0.001
+// mm) and every step above it, each of section area `area` (within `area_tolerance`).
+void expect_one_vertical_branch(const mas::CentroidalAxis& a, double x, double y, double step,
+                                std::size_t count, double area, double area_tolerance) {
+    ASSERT_EQ(a.branches.size(), 1u);
+    EXPECT_TRUE(a.branches[0].direction.isApprox(Vector3d::UnitZ()));
+    ASSERT_EQ(a.nodes.size(), count);
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        EXPECT_NEAR((a.nodes[i].position - Vector3d(x, y, 0.001 + step * double(i))).norm(), 0.0,
+                    1e-9);
+        EXPECT_NEAR(a.nodes[i].area, area, area_tolerance);
+    }
+}
+
 }  // namespace
 
 TEST(CentroidalAxis, BoxIsOneVerticalBranchThroughItsCentre) {
@@ -197,13 +211,8 @@ TEST(CentroidalAxis, BoxIsOneVerticalBranchThroughItsCentre) {
     mas::AxisParams p;
     p.step_mm = 2.0;
     const auto a = mas::centroidal_axis(mesh, p);
-    ASSERT_EQ(a.branches.size(), 1u);
-    EXPECT_TRUE(a.branches[0].direction.isApprox(Vector3d::UnitZ()));
-    ASSERT_EQ(a.nodes.size(), 15u);  // planes at 0.001, 2.001, ..., 28.001
-    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
-        EXPECT_NEAR((a.nodes[i].position - Vector3d(5, 10, 0.001 + 2.0 * i)).norm(), 0.0, 1e-9);
-        EXPECT_NEAR(a.nodes[i].area, 200.0, 1e-9);
-    }
+    // Planes at 0.001, 2.001, ..., 28.001.
+    expect_one_vertical_branch(a, 5, 10, 2.0, 15, 200.0, 1e-9);
     EXPECT_EQ(a.links.size(), 14u);
     for (const auto& l : a.links) EXPECT_FALSE(l.is_break);
     EXPECT_NEAR(a.searched_volume_mm3, 6000.0, 1e-9);
@@ -256,12 +265,8 @@ TEST(CentroidalAxis, APinThinnerThanATwentiethOfTheStepAllTheWayUpIsMarchedFromI
     mas::AxisParams p;
     p.step_mm = 1.0;
     const auto a = mas::centroidal_axis(mesh, p);
-    ASSERT_EQ(a.branches.size(), 1u);
-    ASSERT_EQ(a.nodes.size(), 20u);  // planes at 0.001, 1.001, ..., 19.001
-    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
-        EXPECT_NEAR((a.nodes[i].position - Vector3d(0.005, 0.005, 0.001 + i)).norm(), 0.0, 1e-9);
-        EXPECT_NEAR(a.nodes[i].area, 1e-4, 1e-12);
-    }
+    // Planes at 0.001, 1.001, ..., 19.001.
+    expect_one_vertical_branch(a, 0.005, 0.005, 1.0, 20, 1e-4, 1e-12);
     expect_invariants(a, mesh);
 }
 

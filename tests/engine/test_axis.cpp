@@ -270,6 +270,23 @@ TEST(CentroidalAxis, APinThinnerThanATwentiethOfTheStepAllTheWayUpIsMarchedFromI
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, ALeaningPinThinnerThanATwentiethOfTheStepIsOneNodeOverItsWholeHeight) {
+    // The same pin leaning 0.3 mm sideways per mm of height: its sections a step apart do not
+    // meet, and a march from its first would end at the second, most of the pin unsearched (the
+    // decomposition then refused the axis as another part's). One node on the last plane, its slab
+    // reaching down to the base, stands for it, as before upright pins were marched.
+    auto mesh = mas::test::box_mesh(0, 0, 0, 0.01, 0.01, 20);
+    for (auto& v : mesh.vertices) v.x() += 0.3 * v.z();
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_EQ(a.nodes.size(), 1u);
+    EXPECT_NEAR(a.nodes[0].offset, 19.001, 1e-12);
+    EXPECT_EQ(a.nodes[0].slab_start, 0.0);
+    EXPECT_NEAR(a.searched_volume_mm3, 0.002, 1e-12);
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {
     // No section at all eps above the tip (a disc 0.001 mm across is a sliver): the axis used to
     // be empty. Nodes on the cone's axis, areas pi r^2 within perimeter x deflection.

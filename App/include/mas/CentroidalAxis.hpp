@@ -338,6 +338,10 @@ double axis_frame_deg(const CentroidalAxis& axis, const std::string& caller);
 // the march. The root starts at the first grid plane with a section over min_region_area_mm2 and
 // at least a twentieth of a step across, its first slab reaching down to the base. (A part on an
 // edge or a line, such as a cylinder or a torus lying down, has a long section and starts at eps.)
+// A part with no such section (a pin thinner than a twentieth of the step all the way up) starts
+// at its first section at least half as large as its largest when each section from there on
+// meets the one below it (an upright pin); else (a leaning pin, whose sections a step apart do
+// not meet) one node on the last plane, its slab reaching down to the base, stands for it.
 CentroidalAxis centroidal_axis(const TriangleMesh& mesh, const AxisParams& params = {},
                                const std::function<void()>& throw_on_cancel = {});
 

@@ -1122,22 +1122,35 @@ private:
             // a section (or none), and the march would end a step above it, the part unsearched.
             // The root starts at the first plane with more than specks, its first slab still
             // reaching down to the base. A part whose every section is a speck (a pin thinner
-            // than a twentieth of the step all the way up) starts at its first section all the
-            // same: on the last plane, one node's slab would stand for the whole part.
+            // than a twentieth of the step all the way up) is marched from its first section at
+            // least half as large as its largest (not a sliver at its end) when each section from
+            // there on meets the one below it, as an upright pin's do: else (a leaning pin, whose
+            // march would end at the first section clear of the one below) one node on the last
+            // plane, its slab reaching down to the base, stands for the whole part.
             const auto specks = [&](const Regions2& rs) {
                 return std::all_of(rs.begin(), rs.end(),
                                    [&](const Region2& r) { return speck(r); });
             };
+            const std::size_t k_base = k0;
             first = unswept(g, k0, nullptr);
-            std::optional<std::size_t> first_met;
-            if (!first.empty()) first_met = k0;
+            std::vector<Regions2> seen;  // the planes' specks, from k_base on
             while (k0 + 1 < count && specks(first)) {
+                seen.push_back(std::move(first));
                 first = unswept(g, ++k0, nullptr);
-                if (!first_met && !first.empty()) first_met = k0;
             }
-            if (specks(first) && first_met && *first_met != k0) {
-                k0 = *first_met;
-                first = unswept(g, k0, nullptr);
+            if (specks(first) && !seen.empty()) {
+                seen.push_back(first);
+                double largest = 0.0;
+                for (const auto& rs : seen) largest = std::max(largest, area(rs));
+                std::size_t i = 0;
+                while (area(seen[i]) < 0.5 * largest) ++i;
+                bool stacked = true;
+                for (std::size_t j = i + 1; j < seen.size() && stacked; ++j)
+                    stacked = area(intersection(seen[j], seen[j - 1])) > p_.min_region_area_mm2;
+                if (stacked) {
+                    k0 = k_base + i;
+                    first = std::move(seen[i]);
+                }
             }
         }
         std::vector<Track> tracks;

@@ -78,13 +78,31 @@ def _add_property(obj, type_id, name, group, doc, default=None, attr=0):
     return True
 
 
+def depends_on(obj):
+    """The objects ``obj`` is computed from, directly or not, nearest first, each once: what
+    FreeCAD's OutListRecursive gives, but answering where links go round in a circle too (which
+    OutListRecursive raises on, and _refuse_circular_links marks the object for)."""
+    def key(o):
+        return o.Document.Name, o.Name
+
+    found, seen, queue = [], {key(obj)}, list(obj.OutList)
+    while queue:
+        o = queue.pop(0)
+        if key(o) in seen:
+            continue
+        seen.add(key(o))
+        found.append(o)
+        queue.extend(o.OutList)
+    return found
+
+
 def failure(obj):
     """None when ``obj`` is computed: valid and not waiting for a recompute. Otherwise what stops
     it, as "Label: message": its own error, or that of an object it depends on (FreeCAD does not
     recompute an object whose input failed: it stays touched, valid, and says nothing)."""
     if obj.isValid() and "Touched" not in obj.State:
         return None
-    for failed in [obj] + obj.OutListRecursive:
+    for failed in [obj] + depends_on(obj):
         if not failed.isValid():
             status = failed.getStatusString()
             # Messages that name their object already ("Sections: Source is not set") keep one
@@ -154,8 +172,8 @@ def _refuse_circular_links(obj):
         if made_from_it is None:
             made_from_it = obj.InListRecursive  # answers on a circle too (OutListRecursive raises)
         if linked in made_from_it:
-            raise ValueError("{} '{}' is made from this object (its links lead back here): link "
-                             "an object that does not depend on it".format(prop, linked.Label))
+            raise ValueError("{} '{}' is made from this object: the links go round in a circle "
+                             "(undo the link that closed it)".format(prop, linked.Label))
 
 
 class _EngineFeature:
@@ -2139,7 +2157,7 @@ def export_gcode(obj, path):
     if problem is None:
         # What the document shows: not a program of layers changed since (their pending
         # parameters would be sliced here).
-        changed = [o for o in obj.OutListRecursive if "Touched" in o.State]
+        changed = [o for o in depends_on(obj) if "Touched" in o.State]
         if changed:
             problem = "{}: not recomputed since '{}' changed: recompute the document".format(
                 obj.Label, changed[0].Label)

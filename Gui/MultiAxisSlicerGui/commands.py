@@ -514,7 +514,7 @@ class ExportGcodeCommand:
         if obj is None:
             MultiAxisSlicerGui.show_error("Select one MachineProgram object first.")
             return
-        if any("Touched" in o.State for o in [obj] + obj.OutListRecursive):
+        if any("Touched" in o.State for o in [obj] + features.depends_on(obj)):
             obj.recompute(True)  # changed since (the program or its layers): as it is now
         problem = features.failure(obj)
         if problem is not None:

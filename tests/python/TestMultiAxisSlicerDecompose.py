@@ -494,16 +494,25 @@ class TestDecompositionObject(DecomposeTest):
         obj = mas.make_decomposition(self.part)
         self.doc.recompute()
         root, _arm = self.check_l_block_objects(obj)
+        layers, _toolpath = mas.make_slice(obj)
+        self.doc.recompute()
+        for o in (obj, layers):  # without a circle, what FreeCAD's OutListRecursive gives
+            self.assertEqual(sorted(d.Name for d in features.depends_on(o)),
+                             sorted(d.Name for d in o.OutListRecursive))
         obj.Source = root
         self.doc.recompute()
         self.assertIn("Invalid", obj.State)
         self.assertEqual(obj.getStatusString(),
-                         "Source 'Component001' is made from this object (its links lead back "
-                         "here): link an object that does not depend on it")
+                         "Source 'Component001' is made from this object: the links go round in "
+                         "a circle (undo the link that closed it)")
         self.assertEqual(obj.ComponentCount, 2)  # the last result stands
+        # What the panels and commands read of it (FreeCAD's OutListRecursive raises on a circle).
+        self.assertEqual(features.failure(obj), "Decomposition: " + obj.getStatusString())
+        self.assertEqual(features.depends_on(obj), [root])  # and root on obj, not repeated
         obj.Source = obj
         self.doc.recompute()
         self.assertEqual(obj.getStatusString(), "Source is this object itself: link another object")
+        self.assertEqual(features.failure(obj), "Decomposition: " + obj.getStatusString())
         obj.Source = self.part
         self.doc.recompute()
         self.check_l_block_objects(obj)

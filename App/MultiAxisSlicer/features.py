@@ -1523,9 +1523,11 @@ def nozzle_solids(standoff, tip_diameter, cone_angle, body_diameter, body_length
     cone frustum `tip_diameter` across at its face widening at `cone_angle` (half-angle) until it
     is `body_diameter` across, then the body, a cylinder of that diameter `body_length` long.
     Returns [tip, body] ([body] when the tip is as wide as the body, or the cone shorter than
-    ``_DRAWN_LENGTH_MM``: OCCT makes no cone, nor a circle, under its confusion tolerance, and
-    slicing takes a tip 1e-9 mm across, or a cone angle of 89.9999999 degrees). Raises ValueError
-    for a zero axis or a cone that would not close (an angle outside 0 to 90 degrees)."""
+    ``_DRAWN_LENGTH_MM``; [] when the body is narrower or shorter than that: OCCT makes no cone,
+    nor a circle, under its confusion tolerance, and slicing takes a tip 1e-9 mm across, or a cone
+    angle of 89.9999999 degrees). A tip narrower than that is drawn as a point, the cone as long
+    as the tip given makes it. Raises ValueError for a zero axis or a cone that would not close
+    (an angle outside 0 to 90 degrees)."""
     axis = FreeCAD.Vector(axis)
     if axis.Length <= 0.0:
         raise ValueError("nozzle_solids(): the tool axis is a zero vector")
@@ -1535,17 +1537,17 @@ def nozzle_solids(standoff, tip_diameter, cone_angle, body_diameter, body_length
                          "got {}".format(cone_angle))
     face = FreeCAD.Vector(point) + axis * standoff
     tip_radius, body_radius = tip_diameter / 2.0, body_diameter / 2.0
-    if tip_radius < _DRAWN_LENGTH_MM:
-        tip_radius = 0.0  # a point
     solids = []
     cone_length = 0.0
     if body_radius > tip_radius:
         cone_length = (body_radius - tip_radius) / math.tan(math.radians(cone_angle))
-        if cone_length >= _DRAWN_LENGTH_MM:
-            solids.append(Part.makeCone(tip_radius, body_radius, cone_length, face, axis))
+        if cone_length >= _DRAWN_LENGTH_MM and body_radius >= _DRAWN_LENGTH_MM:
+            drawn_tip = tip_radius if tip_radius >= _DRAWN_LENGTH_MM else 0.0  # else a point
+            solids.append(Part.makeCone(drawn_tip, body_radius, cone_length, face, axis))
         else:
             cone_length = 0.0  # a flat step from the tip to the body
-    solids.append(Part.makeCylinder(body_radius, body_length, face + axis * cone_length, axis))
+    if body_radius >= _DRAWN_LENGTH_MM and body_length >= _DRAWN_LENGTH_MM:
+        solids.append(Part.makeCylinder(body_radius, body_length, face + axis * cone_length, axis))
     return solids
 
 

@@ -2117,9 +2117,14 @@ class TestBuildPreviewObject(SliceObjectTest):
         # of cone failed" in the preview's recompute): a tip 1e-9 mm across is drawn as a point, a
         # cone 1e-7 mm long as a flat step to the body.
         tip, body = features.nozzle_solids(10, 1e-9, 30, 50, 200, V(0, 0, 0), V(0, 0, 1))
-        cone_length = 25.0 / math.tan(math.radians(30.0))
+        cone_length = (25.0 - 0.5e-9) / math.tan(math.radians(30.0))  # the tip as given
         self.assertAlmostEqual(tip.Volume, math.pi * 25 ** 2 * cone_length / 3.0, delta=1e-6)
         self.assertAlmostEqual(body.BoundBox.ZMin, 10.0 + cone_length, places=9)
+        # As wide as the body, any angle (slicing takes one); a body narrower than can be drawn.
+        self.assertEqual(len(features.nozzle_solids(10, 1e-4, 0.0, 1e-4, 200, V(0, 0, 0),
+                                                    V(0, 0, 1))), 0)
+        self.assertEqual(len(features.nozzle_solids(10, 1e-4, 30, 1e-3, 200, V(0, 0, 0),
+                                                    V(0, 0, 1))), 2)
         for tip_diameter, angle in ((49.9999999, 30.0), (10.0, 89.9999999)):
             body = features.nozzle_solids(10, tip_diameter, angle, 50, 200, V(0, 0, 0),
                                           V(0, 0, 1))

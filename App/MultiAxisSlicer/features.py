@@ -967,9 +967,6 @@ def slice_inputs(obj):
                              obj.Label, decomposition.Label, name, other.Label))
     if decomposition is not None:
         _check_link(obj, "Decomposition", is_decomposition, "Decomposition")
-        if not obj.SplitMesh:
-            raise ValueError("{}: SplitMesh applies to a mesh (Source); a Decomposition's part is "
-                             "sliced as the Decomposition splits it".format(obj.Label))
     elif not mesh_links:
         raise ValueError("{}: neither Decomposition nor Source is set".format(obj.Label))
     if axis is not None:
@@ -993,6 +990,10 @@ def slice_inputs(obj):
         if type_id in ("App::PropertyLength", "App::PropertyAngle"):
             value = value.Value
         params[name] = value
+    if decomposition is not None:
+        # A mesh's: a Decomposition's part is sliced as the Decomposition splits it (the panel
+        # does not show it then; AvoidCollisions, a mesh's too, is passed on and does nothing).
+        del params["split_mesh"]
     mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))  # before any decomposing
     if axis is not None:
         params.update(step=axis.Step.Value or None,

@@ -84,7 +84,10 @@ class GcodeProgram:
             with os.fdopen(fd, "w", newline="\n") as f:
                 os.fchmod(f.fileno(), mode)
                 f.write(self.text)
-            os.replace(partial, target)
+            try:
+                os.replace(partial, target)
+            except OSError as error:
+                raise type(error)(error.errno, error.strerror, path) from None
         except BaseException:
             try:
                 os.unlink(partial)

@@ -888,6 +888,11 @@ int run_slice(const std::vector<std::string>& args) {
         sp.layers.max_tilt_deg =
             std::clamp(std::max(-machine.a_min_deg, machine.a_max_deg), 90.0, 180.0);
     const Part part = load_part(a);
+    if (part.model.kind == mas::Model::Kind::Mesh && a.has("--deflection"))
+        // As the scripting API's slice() refuses it, before the axis is marched.
+        throw mas::Error(mas::ErrorCode::InvalidArgument,
+                         "--deflection tessellates a solid: a mesh is sliced as it is (" + a.file +
+                             " is a mesh)");
     const mas::CentroidalAxis axis = axis_of(part, ap);
     mas::SlicedPart r;
     const mas::Progress progress = report ? stderr_progress() : mas::Progress();
@@ -905,10 +910,6 @@ int run_slice(const std::vector<std::string>& args) {
         mas::Decomposition d;
         r = mas::slice_solid_part(solid, axis, dp, sp, d, progress);
     } else {
-        if (a.has("--deflection"))  // as the scripting API's slice() refuses it
-            throw mas::Error(mas::ErrorCode::InvalidArgument,
-                             "--deflection tessellates a solid: a mesh is sliced as it is (" +
-                                 a.file + " is a mesh)");
         r = mas::slice_mesh_part(part.mesh, axis, sp, progress);
     }
     mas::GcodeStats gs;

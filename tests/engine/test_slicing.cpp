@@ -1709,7 +1709,7 @@ TEST(SlicingErrors, APartThinnerThanMinLayerNamesItsHeightAndTheUnit) {
         EXPECT_EQ(std::string(e.what()),
                   "component 0 is only 0.04 mm tall along its build direction, less than "
                   "min_layer (0.5 mm): no layer fits; lower min_layer (lengths are in "
-                  "millimetres: a part drawn in metres or inches is to be scaled)");
+                  "millimetres: scale a part drawn in metres or inches to millimetres)");
     }
 }
 

@@ -499,8 +499,8 @@ std::vector<Layer> ComponentSlicer::run() {
         invalid("component " + std::to_string(input_.component) + " is only " + mm(height) +
                 " tall along its build direction, less than min_layer (" +
                 mm(params_.min_layer_mm) +
-                "): no layer fits; lower min_layer (lengths are in millimetres: a part drawn "
-                "in metres or inches is to be scaled)");
+                "): no layer fits; lower min_layer (lengths are in millimetres: scale a part "
+                "drawn in metres or inches to millimetres)");
 
     const double base_tilt = tilt_from_plate_deg(base.normal);
     if (base_tilt > params_.max_tilt_deg + 1e-9)

@@ -485,6 +485,20 @@ class TestDecompositionObject(DecomposeTest):
         self.assertEqual([c.Index for c in features.components_of(obj)], [0, 0, 1])
         self.assertEqual(len(features.sync_components(obj)), 2)
         self.doc.recompute()
+        root, arm = self.check_l_block_objects(obj)
+        # Of two for one component, the one labelled as the component is kept, whichever comes
+        # first.
+        root.Label = "Renamed"
+        renamed = root.Name
+        twin = self.doc.addObject("Part::FeaturePython", "Component")
+        features.ComponentFeature(twin)
+        twin.Decomposition = obj
+        twin.Index = 0
+        twin.Label = "Component001"
+        self.doc.recompute()
+        self.assertEqual([c.Name for c in features.sync_components(obj)], [twin.Name, arm.Name])
+        self.assertIsNone(self.doc.getObject(renamed))
+        self.doc.recompute()
         self.check_l_block_objects(obj)
 
     def test_a_link_round_in_a_circle_marks_the_object(self):

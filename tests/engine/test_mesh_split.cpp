@@ -252,6 +252,24 @@ TEST(SliceMeshPart, TheLStandsOnItsOwnLayersAndAsOneComponentItsArmOverhangs) {
     EXPECT_NEAR(whole.stats.worst_unsupported_area_mm2, 48 * 20, 1e-6);  // the arm's underside
 }
 
+TEST(SliceMeshPart, ASurfaceCrossingItselfAtTheBaseIsNamedAsACause) {
+    // A box with its top corner pushed through its floor, 15 mm below it: closed and consistently
+    // oriented, so it is read, but just above its lowest point its surface encloses nothing.
+    auto box = mas::test::box_mesh(0, 0, 0, 10, 20, 30);
+    box.vertices[7] = Vector3d(10, 20, -15);
+    const auto axis = mas::centroidal_axis(box);
+    try {
+        mas::slice_mesh_part(box, axis, params());
+        ADD_FAILURE() << "no error";
+    } catch (const mas::Error& e) {
+        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+        EXPECT_EQ(std::string(e.what()),
+                  "component 0: no material just above its base plane (a base face that does not "
+                  "lie on the component, a build direction pointing away from it, or a mesh "
+                  "whose surface crosses itself there)");
+    }
+}
+
 TEST(SliceMeshPart, APieceTheNozzleCannotReachStaysInItsFather) {
     // A nozzle 100 mm across, kept coaxial: built along +X from the column, the arm's layers would
     // meet the plate. The arm is then built with the column, up.

@@ -493,7 +493,8 @@ std::vector<Layer> ComponentSlicer::run() {
     if (lower.empty())
         invalid("component " + std::to_string(input_.component) +
                 ": no material just above its base plane (a base face that does not lie on the "
-                "component, or a build direction pointing away from it)");
+                "component, a build direction pointing away from it, or a mesh whose surface "
+                "crosses itself there)");
     const double height = top_along(base.normal) - base.normal.dot(base.origin);
     if (height < params_.min_layer_mm - kLengthTolerance)
         invalid("component " + std::to_string(input_.component) + " is only " + mm(height) +

@@ -285,6 +285,20 @@ TEST(CentroidalAxis, ALeaningPinThinnerThanATwentiethOfTheStepIsOneNodeOverItsWh
     EXPECT_EQ(a.nodes[0].slab_start, 0.0);
     EXPECT_NEAR(a.searched_volume_mm3, 0.002, 1e-12);
     expect_invariants(a, mesh);
+    // Beside an upright pin too: the march would take the upright one and lose the leaning one.
+    auto pins = mas::test::box_mesh(-5, 0, 0, 0.01, 0.01, 20);
+    const int upright = int(pins.vertices.size());
+    pins.vertices.insert(pins.vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+    for (const auto& t : mesh.triangles)
+        pins.triangles.push_back(t + Eigen::Vector3i::Constant(upright));
+    const auto b = mas::centroidal_axis(pins, p);
+    ASSERT_EQ(b.nodes.size(), 2u);
+    for (const auto& node : b.nodes) {
+        EXPECT_NEAR(node.offset, 19.001, 1e-12);
+        EXPECT_EQ(node.slab_start, 0.0);
+    }
+    EXPECT_NEAR(b.searched_volume_mm3, 0.004, 1e-12);
+    expect_invariants(b, pins);
 }
 
 TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {

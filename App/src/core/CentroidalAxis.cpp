@@ -1123,10 +1123,11 @@ private:
             // The root starts at the first plane with more than specks, its first slab still
             // reaching down to the base. A part whose every section is a speck (a pin thinner
             // than a twentieth of the step all the way up) is marched from its first section at
-            // least half as large as its largest (not a sliver at its end) when each section from
-            // there on meets the one below it, as an upright pin's do: else (a leaning pin, whose
-            // march would end at the first section clear of the one below) one node on the last
-            // plane, its slab reaching down to the base, stands for the whole part.
+            // least half as large as its largest (not a sliver at its end) when every speck from
+            // there on meets one below it, as an upright pin's do: else (a leaning pin, whose
+            // march would end at the first section clear of the one below, beside an upright one
+            // or not) one node on the last plane, its slab reaching down to the base, stands for
+            // each speck there.
             const auto specks = [&](const Regions2& rs) {
                 return std::all_of(rs.begin(), rs.end(),
                                    [&](const Region2& r) { return speck(r); });
@@ -1144,9 +1145,13 @@ private:
                 for (const auto& rs : seen) largest = std::max(largest, area(rs));
                 std::size_t i = 0;
                 while (area(seen[i]) < 0.5 * largest) ++i;
-                bool stacked = true;
+                bool stacked = true;  // every speck meets one on the plane below
                 for (std::size_t j = i + 1; j < seen.size() && stacked; ++j)
-                    stacked = area(intersection(seen[j], seen[j - 1])) > p_.min_region_area_mm2;
+                    for (const Region2& r : seen[j])
+                        if (area(intersection({r}, seen[j - 1])) <= p_.min_region_area_mm2) {
+                            stacked = false;
+                            break;
+                        }
                 if (stacked) {
                     k0 = k_base + i;
                     first = std::move(seen[i]);

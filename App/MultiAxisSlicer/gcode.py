@@ -59,8 +59,8 @@ class GcodeProgram:
         """Writes the program to ``path`` whole or not at all: through a temporary file beside
         it, renamed over it. An existing file keeps its permissions (a new one gets the umask's);
         through a symbolic link, the file it names is replaced. IsADirectoryError for a folder,
-        OSError as the system gives it otherwise (FileNotFoundError for a missing folder), naming
-        ``path``."""
+        OSError as the system gives it otherwise (FileNotFoundError for a missing folder); one
+        naming a file names ``path``, not the temporary file."""
         import os
         import stat
         import tempfile

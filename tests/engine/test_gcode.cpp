@@ -152,14 +152,7 @@ mas::GcodeLayer side_layer(int component, double y0) {
     return l;
 }
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const mas::Error& e) {
-        return std::string(mas::to_string(e.code())) + ": " + e.what();
-    }
-    return "no error";
-}
+using mas::test::error_of;
 
 TEST(TableAngles, TurnEveryReachableAxisToTheNozzleWithinTheLimits) {
     const mas::MachineParams m;  // A -100 to 50

@@ -26,9 +26,19 @@
 #include <sstream>
 
 #include "mas/Angles.hpp"
+#include "mas/Error.hpp"
 #include "mas/Polygon2.hpp"
 
 namespace mas::test {
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return std::string(to_string(e.code())) + ": " + e.what();
+    }
+    return "no error";
+}
 
 Shape from_occt(const TopoDS_Shape& s) {
     std::ostringstream out;

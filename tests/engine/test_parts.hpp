@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <TopoDS_Shape.hxx>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "mas/Mesh.hpp"
@@ -11,6 +13,10 @@
 #include "mas/Shape.hpp"
 
 namespace mas::test {
+
+// What `f` throws as mas::Error, "code: message" ("invalid_argument: min_layer ..."), or "no
+// error".
+std::string error_of(const std::function<void()>& f);
 
 // Axis-aligned box [x0, x0 + dx] x [y0, y0 + dy] x [z0, z0 + dz].
 Shape box(double x0, double y0, double z0, double dx, double dy, double dz);

@@ -1701,16 +1701,10 @@ TEST(SlicingErrors, APartThinnerThanMinLayerNamesItsHeightAndTheUnit) {
     // A 50 x 30 x 40 mm block drawn in metres comes in 0.04 mm tall: no layer fits, and the
     // message says lengths are millimetres, not only to lower min_layer.
     const auto part = mas::test::box(0, 0, 0, 0.05, 0.03, 0.04);
-    try {
-        slice(part, 0.004, default_params());
-        ADD_FAILURE() << "no error";
-    } catch (const mas::Error& e) {
-        EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
-        EXPECT_EQ(std::string(e.what()),
-                  "component 0 is only 0.04 mm tall along its build direction, less than "
-                  "min_layer (0.5 mm): no layer fits; lower min_layer (lengths are in "
-                  "millimetres: scale a part drawn in metres or inches to millimetres)");
-    }
+    EXPECT_EQ(mas::test::error_of([&] { slice(part, 0.004, default_params()); }),
+              "invalid_argument: component 0 is only 0.04 mm tall along its build direction, "
+              "less than min_layer (0.5 mm): no layer fits; lower min_layer (lengths are in "
+              "millimetres: scale a part drawn in metres or inches to millimetres)");
 }
 
 TEST(SlicingErrors, NoFeasibleLayerIsAnError) {

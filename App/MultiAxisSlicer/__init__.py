@@ -244,9 +244,23 @@ def _engine_mesh_from_fc_mesh(mesh, what):
     return _require_engine().Mesh.from_topology(points, facets)
 
 
+class _Converted:
+    """A part already turned into the engine's type by ``_model``, with the name its messages give
+    it: what a caller that had to convert a document object (a Layers object's mesh fingerprint)
+    hands on, so that it is not converted again."""
+
+    __slots__ = ("kind", "part", "what")
+
+    def __init__(self, kind, part, what):
+        self.kind, self.part, self.what = kind, part, what
+
+
 def _model(obj, what=None):
-    """("solid", engine Shape) or ("mesh", engine Mesh) for anything the API accepts."""
+    """(kind, engine part, name): ("solid", engine Shape) or ("mesh", engine Mesh) for anything the
+    API accepts."""
     eng = _require_engine()
+    if isinstance(obj, _Converted):
+        return obj.kind, obj.part, what or obj.what
     if obj is None:
         raise TypeError(
             "expected a solid or a closed mesh (Part.Shape, Mesh.Mesh, document object or file "

@@ -1004,13 +1004,14 @@ def slice_inputs(obj):
 
 
 def _mesh_fingerprint(mesh_obj):
-    """What tells one state of a mesh object's mesh from another: a Layers object's remembered
-    result is for the mesh it was sliced from. Every point (placed) and facet, hashed by the engine
-    (``Mesh.digest``; some 40 ms on a 75000-facet mesh, the conversion's, against 1.4 for counts,
-    volume, area, box and placement, which were the same for an L turned over in its own box: the
-    Layers object kept the old L's layers)."""
-    _kind, mesh, _what = mas._model(mesh_obj)
-    return (mesh_obj.Name, mesh.digest())
+    """(what tells one state of a mesh object's mesh from another, the mesh as the engine's): a
+    Layers object's remembered result is for the mesh it was sliced from. Every point (placed) and
+    facet, hashed by the engine (``Mesh.digest``; some 40 ms on a 75000-facet mesh, the
+    conversion's, against 1.4 for counts, volume, area, box and placement, which were the same for
+    an L turned over in its own box: the Layers object kept the old L's layers). The converted
+    mesh is what is sliced, not converted again."""
+    converted = mas._Converted(*mas._model(mesh_obj))
+    return (mesh_obj.Name, converted.part.digest()), converted
 
 
 def slice_result(obj, computed=False):
@@ -1027,22 +1028,21 @@ def slice_result(obj, computed=False):
     decomposition_obj, mesh_obj, params, deflection = slice_inputs(obj)
     proxy = obj.Proxy
     cached = getattr(proxy, "_result", None)
+    settings = (tuple(sorted(params.items())), deflection)
     if mesh_obj is not None:
         decomposition = None
-        source = mesh_obj
-        settings = (tuple(sorted(params.items())), deflection)
         if (computed and cached is not None and cached[0][1:] == settings and obj.isValid()
                 and mesh_obj.isValid() and "Touched" not in obj.State
                 and "Touched" not in mesh_obj.State):
             return cached[1]
         # The mesh, not a result holding it: the fingerprint names its state.
-        part_key = _mesh_fingerprint(mesh_obj)
+        part_key, source = _mesh_fingerprint(mesh_obj)
     else:
         decomposition = decomposition_result(decomposition_obj)
         source, _ = decomposition_inputs(decomposition_obj)
         # The cached result holds its decomposition, so that id() is not reused while it is cached.
         part_key = id(decomposition)
-    key = (part_key, tuple(sorted(params.items())), deflection)
+    key = (part_key,) + settings
     if cached is not None and cached[0] == key:
         return cached[1]
     proxy._result = None

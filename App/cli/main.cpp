@@ -619,19 +619,24 @@ void report_components(const Args& a, const Part& part, double part_volume_mm3,
     write_output(a, out.str());
 }
 
+// An option that applies to a solid, given with a mesh file: `why` names the option and what a mesh
+// does instead.
+[[noreturn]] void refused_for_a_mesh(const Args& a, const std::string& why) {
+    throw mas::Error(mas::ErrorCode::InvalidArgument, why + " (" + a.file + " is a mesh)");
+}
+
 // The pieces a mesh is split into (decompose_mesh), reported as a solid's components are.
 int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& ap,
                         const mas::DecomposeParams& dp, bool no_fallback, bool report) {
     for (const char* option : {"--face-angle", "--concave-angle", "--step-dir"})
         if (a.has(option))
-            throw mas::Error(mas::ErrorCode::InvalidArgument,
-                             std::string(option) + " applies to a solid: a mesh has no faces and " +
-                                 "is split at section planes (" + a.file + " is a mesh)");
+            refused_for_a_mesh(a, std::string(option) +
+                                      " applies to a solid: a mesh has no faces "
+                                      "and is split at section planes");
     if (no_fallback)
-        throw mas::Error(mas::ErrorCode::InvalidArgument,
-                         "--no-fallback applies to a solid: a mesh is split at section planes "
-                         "only (" +
-                             a.file + " is a mesh)");
+        refused_for_a_mesh(a,
+                           "--no-fallback applies to a solid: a mesh is split at section planes "
+                           "only");
     const mas::CentroidalAxis axis = axis_of(part, ap);
     mas::MeshDecomposeParams mp;
     mp.min_component_height_mm = dp.min_component_height_mm;
@@ -890,9 +895,7 @@ int run_slice(const std::vector<std::string>& args) {
     const Part part = load_part(a);
     if (part.model.kind == mas::Model::Kind::Mesh && a.has("--deflection"))
         // As the scripting API's slice() refuses it, before the axis is marched.
-        throw mas::Error(mas::ErrorCode::InvalidArgument,
-                         "--deflection tessellates a solid: a mesh is sliced as it is (" + a.file +
-                             " is a mesh)");
+        refused_for_a_mesh(a, "--deflection tessellates a solid: a mesh is sliced as it is");
     const mas::CentroidalAxis axis = axis_of(part, ap);
     mas::SlicedPart r;
     const mas::Progress progress = report ? stderr_progress() : mas::Progress();

@@ -1031,9 +1031,8 @@ def slice_result(obj, computed=False):
     settings = (tuple(sorted(params.items())), deflection)
     if mesh_obj is not None:
         decomposition = None
-        if (computed and cached is not None and cached[0][1:] == settings and obj.isValid()
-                and mesh_obj.isValid() and "Touched" not in obj.State
-                and "Touched" not in mesh_obj.State):
+        if (computed and cached is not None and cached[0][1:] == settings
+                and failure(obj) is None and failure(mesh_obj) is None):
             return cached[1]
         # The mesh, not a result holding it: the fingerprint names its state.
         part_key, source = _mesh_fingerprint(mesh_obj)

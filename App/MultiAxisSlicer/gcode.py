@@ -75,11 +75,15 @@ class GcodeProgram:
             umask = os.umask(0)
             os.umask(umask)
             mode = 0o666 & ~umask
+
+        def named(error):  # the system's error named by the path asked for, not the temporary file
+            return type(error)(error.errno, error.strerror, path)
+
         try:
             fd, partial = tempfile.mkstemp(prefix=".mas-", suffix=".partial",
                                            dir=os.path.dirname(target))
-        except OSError as error:  # named by the path asked for, not the temporary file's
-            raise type(error)(error.errno, error.strerror, path) from None
+        except OSError as error:
+            raise named(error) from None
         try:
             with os.fdopen(fd, "w", newline="\n") as f:
                 os.fchmod(f.fileno(), mode)
@@ -87,7 +91,7 @@ class GcodeProgram:
             try:
                 os.replace(partial, target)
             except OSError as error:
-                raise type(error)(error.errno, error.strerror, path) from None
+                raise named(error) from None
         except BaseException:
             try:
                 os.unlink(partial)

@@ -301,6 +301,40 @@ TEST(CentroidalAxis, ALeaningPinThinnerThanATwentiethOfTheStepIsOneNodeOverItsWh
     expect_invariants(b, pins);
 }
 
+TEST(CentroidalAxis, ARodLeaningOnTheRimOfItsEndIsOneBranchUpItsLength) {
+    // A round rod 100 mm long leaning sideways stands on a point of its end's rim: eps above the
+    // base its section is a sliver, which a step up the section has outgrown to one side. That
+    // read as the rod turning, and the marches across it took the rod's length in their first
+    // sections. Leaning 0.3 mm a mm (17 degrees), 1 mm across: a -X branch at its foot and +-Y
+    // ones at its middle; 4 mm across, the same, the march from the base one node. Leaning 0.1 mm
+    // a mm, 6 mm across: the march ended there, two thirds of the rod unsearched (the
+    // decomposition refused the axis as another part's). The root starts at the first plane
+    // above the sliver, its slab reaching down to the base, and marches up the rod.
+    for (const auto& [radius, lean] : {std::pair{0.5, 0.3}, {2.0, 0.3}, {3.0, 0.1}}) {
+        SCOPED_TRACE(radius);
+        const Vector3d axis = Vector3d(lean, 0.0, 1.0).normalized();
+        const auto mesh = mesh_of(mas::test::cylinder({0, 0, 0}, axis, radius, 100.0));
+        const auto a = mas::centroidal_axis(mesh);
+        ASSERT_EQ(a.branches.size(), 1u);
+        EXPECT_TRUE(a.branches[0].direction.isApprox(Vector3d::UnitZ()));
+        const auto& first = a.nodes[std::size_t(a.branches[0].nodes.front())];
+        EXPECT_NEAR(first.offset, a.params.base_z_mm + a.params.eps_mm + a.params.step_mm, 1e-9);
+        EXPECT_EQ(first.slab_start, a.params.base_z_mm);
+        // Between the ends' rims (each rising radius x the sine of the lean either side of the
+        // end's centre) a section is a whole ellipse, centred on the rod's axis.
+        const double rim = radius * std::sqrt(1.0 - axis.z() * axis.z());
+        std::size_t whole = 0;
+        for (const auto& node : a.nodes) {
+            if (node.offset < rim || node.offset > 100.0 * axis.z() - rim) continue;
+            ++whole;
+            EXPECT_NEAR((node.position - node.offset / axis.z() * axis).norm(), 0.0, kDeflection)
+                << node.position.transpose();
+        }
+        EXPECT_GE(double(whole), (100.0 * axis.z() - 2.0 * rim) / a.params.step_mm - 1.0);
+        expect_invariants(a, mesh);
+    }
+}
+
 TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {
     // No section at all eps above the tip (a disc 0.001 mm across is a sliver): the axis used to
     // be empty. Nodes on the cone's axis, areas pi r^2 within perimeter x deflection.

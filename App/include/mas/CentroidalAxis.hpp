@@ -336,8 +336,11 @@ double axis_frame_deg(const CentroidalAxis& axis, const std::string& caller);
 // base, a speck of a section or none; a step above, its flanks have outgrown the speck on every
 // side by far more than its size, which Eq. 3 would read as a stick-out far outside it, ending
 // the march. The root starts at the first grid plane with a section over min_region_area_mm2 and
-// at least a twentieth of a step across, its first slab reaching down to the base. (A part on an
-// edge or a line, such as a cylinder or a torus lying down, has a long section and starts at eps.)
+// at least a twentieth of a step across, its first slab reaching down to the base. So does a part
+// standing on a point of a rim (a round rod leaning on its end), whose section there is a sliver:
+// narrower on average (2 x area / outline) than a tenth of the step and less than a step across;
+// the root starts at the first plane with more. (A part on an edge or a line, such as a cylinder
+// or a torus lying down, has a long section and starts at eps.)
 // A part with no such section (a pin thinner than a twentieth of the step all the way up) starts
 // at its first section at least half as large as its largest when each section from there on
 // meets the one below it (an upright pin); else (a leaning pin, whose sections a step apart do

@@ -1157,6 +1157,36 @@ private:
                     first = std::move(seen[i]);
                 }
             }
+            // A part standing on a point of a rim (a round rod leaning on its end) has, eps above
+            // its base, a sliver of a section: narrower on average (twice its area over its
+            // outline) than a tenth of the step, and less than a step across, where a face resting
+            // on the base gives its footprint, as wide as the part's thinnest wall (twice the
+            // derived step), and an edge resting on it a strip as long as the edge. A step above
+            // it the section has outgrown the sliver to one side by far more than the sliver's
+            // size, which Eq. 3 (d at most a sixth of the lower section's size) reads as the part
+            // turning, and the marches across it that the turn's shares start took the rod's
+            // length in their first sections: a rod 1 mm across leaning 17 degrees grew a -X
+            // branch at its foot and +-Y ones at its middle, its volume searched 1.14 times; a rod
+            // 6 mm across leaning 6 degrees lost two thirds of its volume. So the root starts
+            // above such slivers too, at the first plane with more, its first slab still reaching
+            // down to the base; a part that thin all the way up keeps its first section. (A ring
+            // standing on its rim, its first section a strip as long as the ring is deep, still
+            // turns both ways round the ring.)
+            const auto slivers = [&](const Regions2& rs) {
+                return std::all_of(rs.begin(), rs.end(), [&](const Region2& r) {
+                    return speck(r) || (2.0 * area(r) / outline_of(r) <= p_.step_mm / 10.0 &&
+                                        bounds(r).diagonal().norm() < p_.step_mm);
+                });
+            };
+            if (!specks(first) && slivers(first)) {
+                for (std::size_t k = k0 + 1; k < count; ++k) {
+                    Regions2 above = unswept(g, k, nullptr);
+                    if (slivers(above)) continue;
+                    k0 = k;
+                    first = std::move(above);
+                    break;
+                }
+            }
         }
         std::vector<Track> tracks;
         std::vector<Task> hanging;  // branches leaving the first section

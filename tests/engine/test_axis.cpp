@@ -335,6 +335,60 @@ TEST(CentroidalAxis, ARodLeaningOnTheRimOfItsEndIsOneBranchUpItsLength) {
     }
 }
 
+TEST(CentroidalAxis, AThinLegOrPadUnderAPartKeepsItsFirstSection) {
+    // At a 1 mm step a leg 0.05 x 0.5 mm is narrower than a tenth of the step and less than a step
+    // across, as a rim's point is, but it is still there half a step up: the root starts on it,
+    // eps above the base, not at the box it carries (whose first slab, reaching down to the base,
+    // would stand for the legs: a box on three legs 5 mm tall was one node over them, searched
+    // twice over; a box on one pad 1 mm tall became one component, its first layer hanging).
+    mas::AxisParams p;
+    p.step_mm = 1.0;
+    const auto pad =
+        from_occt(fuse(occ_box(5, 5, 0, 0.05, 0.5, 1.01), occ_box(0, 0, 1, 10, 10, 10)));
+    TopoDS_Shape legs = occ_box(0, 0, 5, 10, 10, 5);
+    for (const auto& [x, y] : {std::pair{1.0, 1.0}, {8.0, 1.0}, {5.0, 8.0}})
+        legs = fuse(legs, occ_box(x, y, 0, 0.05, 0.5, 5.01));
+    for (const auto& [part, feet] : {std::pair{pad, 1}, {from_occt(legs), 3}}) {
+        const auto mesh = mesh_of(part);
+        const auto a = mas::centroidal_axis(mesh, p);
+        int on_feet = 0;
+        for (const auto& b : a.branches) {
+            if (b.parent >= 0) continue;
+            const auto& first = a.nodes[std::size_t(b.nodes.front())];
+            EXPECT_NEAR(first.offset, 0.001, 1e-12);
+            EXPECT_NEAR(first.area, 0.025, 1e-6);
+            ++on_feet;
+        }
+        EXPECT_EQ(on_feet, feet);
+        expect_invariants(a, mesh);
+    }
+}
+
+TEST(CentroidalAxis, AWedgeStandingOnItsKnifeEdgeIsMarchedUpFromIt) {
+    // A wedge 20 mm long and 20 tall, its faces 5 degrees off the vertical, standing on its edge:
+    // eps above the base its section is a strip 0.00017 mm wide, which the march reads as
+    // overlapping nothing above it (a hairline): the axis was one node, the wedge unsearched, and
+    // it was not sliced. The root starts a step up, its slab reaching down to the base. Sections
+    // are rectangles across the wedge, centred over the edge's middle.
+    const double half = 20.0 * std::tan(5.0 * kPi / 180.0);
+    const auto mesh = mesh_of(
+        from_occt(mas::test::occ_prism({{0, 0, 0}, {half, 0, 20}, {-half, 0, 20}}, {0, 20, 0})));
+    const auto a = mas::centroidal_axis(mesh);
+    ASSERT_EQ(a.branches.size(), 1u);
+    const double step = a.params.step_mm;
+    const auto planes = std::size_t(std::floor((20.0 - 0.001) / step));  // above plane 0
+    ASSERT_EQ(a.nodes.size(), planes);
+    EXPECT_EQ(a.nodes[0].slab_start, 0.0);
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        const auto& node = a.nodes[i];
+        const double z = 0.001 + step * double(i + 1);
+        EXPECT_NEAR((node.position - Vector3d(0, 10, z)).norm(), 0.0, kGrid) << "node " << i;
+        // 40 mm of outline, each point snapped within a grid unit.
+        EXPECT_NEAR(node.area, 40.0 * half / 20.0 * z, 40.0 * kGrid) << "node " << i;
+    }
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, ConeStandingOnItsTipIsSearched) {
     // No section at all eps above the tip (a disc 0.001 mm across is a sliver): the axis used to
     // be empty. Nodes on the cone's axis, areas pi r^2 within perimeter x deflection.

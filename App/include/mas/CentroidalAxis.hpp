@@ -339,8 +339,11 @@ double axis_frame_deg(const CentroidalAxis& axis, const std::string& caller);
 // at least a twentieth of a step across, its first slab reaching down to the base. So does a part
 // standing on a point of a rim (a round rod leaning on its end), whose section there is a sliver:
 // narrower on average (2 x area / outline) than a tenth of the step and less than a step across;
-// the root starts at the first plane with more. (A part on an edge or a line, such as a cylinder
-// or a torus lying down, has a long section and starts at eps.)
+// the root starts at the next plane where the part has outgrown the sliver half a step above it
+// (a thin leg or pad keeps its first section). A part on an edge or a line, such as a cylinder or
+// a torus lying down, has a long section and starts at eps; but a knife edge whose faces are
+// within 5.7 degrees of the vertical cuts a hairline there (no wider on average than 1e-4 mm),
+// which the march would read as overlapping nothing above it: a speck too.
 // A part with no such section (a pin thinner than a twentieth of the step all the way up) starts
 // at its first section at least half as large as its largest when each section from there on
 // meets the one below it (an upright pin); else (a leaning pin, whose sections a step apart do

@@ -657,9 +657,15 @@ private:
     // a twentieth of a step across (what eps above a vertex or a tip cuts). A step above it the
     // part's flanks have outgrown it on every side by far more than its size, which Eq. 3 (d at
     // most a sixth of the lower section's size) reads as a stick-out far outside it: the march
-    // would end there. A thin stem or pin is wider than that at any sensible step, and kept.
+    // would end there. A thin stem or pin is wider than that at any sensible step, and kept. Or a
+    // hairline, however long: no wider on average than kHairline (its area no more than that
+    // times its outline), what eps above a knife edge cuts (a wedge standing on its edge, its
+    // faces within 5.7 degrees of the vertical), which the march reads as overlapping nothing
+    // above it (search, `owner`): the march would end at once, the part unsearched (a wedge 20
+    // mm long, 20 tall and 3.5 wide at the top was one node, and not sliced).
     bool speck(const Region2& r) const {
-        return area(r) <= p_.min_region_area_mm2 || bounds(r).diagonal().norm() < p_.step_mm / 20.0;
+        return area(r) <= std::max(p_.min_region_area_mm2, kHairline * outline_of(r)) ||
+               bounds(r).diagonal().norm() < p_.step_mm / 20.0;
     }
 
     // A march starting at a fin's root (classify) takes the arm over the fin, which the node
@@ -1168,8 +1174,14 @@ private:
             // length in their first sections: a rod 1 mm across leaning 17 degrees grew a -X
             // branch at its foot and +-Y ones at its middle, its volume searched 1.14 times; a rod
             // 6 mm across leaning 6 degrees lost two thirds of its volume. So the root starts
-            // above such slivers too, at the first plane with more, its first slab still reaching
-            // down to the base; a part that thin all the way up keeps its first section. (A ring
+            // above such a sliver too, at the next plane, its first slab still reaching down to
+            // the base, where the part has outgrown the sliver half a step above it and that
+            // plane has more than slivers. A sliver still there half a step up is no rim's point
+            // but a thin leg, pad or wall, which keeps its first section. (Skipped up to the first
+            // plane with more, a 0.05 mm wall 100 mm tall under a cap, at a 1 mm step, became one
+            // node whose slab stood for the wall, searched 50 times over; a 10 mm box on a 0.05 x
+            // 0.5 mm pad 1 mm tall, which the march from the pad turns into and builds sideways,
+            // became one component whose first layer hung 85 mm^2.) (A ring
             // standing on its rim, its first section a strip as long as the ring is deep, still
             // turns both ways round the ring.)
             const auto slivers = [&](const Regions2& rs) {
@@ -1178,13 +1190,12 @@ private:
                                         bounds(r).diagonal().norm() < p_.step_mm);
                 });
             };
-            if (!specks(first) && slivers(first)) {
-                for (std::size_t k = k0 + 1; k < count; ++k) {
-                    Regions2 above = unswept(g, k, nullptr);
-                    if (slivers(above)) continue;
-                    k0 = k;
+            if (!specks(first) && slivers(first) && k0 + 1 < count &&
+                !slivers(half_plane(g, k0 + 1))) {
+                Regions2 above = unswept(g, k0 + 1, nullptr);
+                if (!slivers(above)) {
+                    ++k0;
                     first = std::move(above);
-                    break;
                 }
             }
         }

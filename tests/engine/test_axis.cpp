@@ -1594,6 +1594,34 @@ TEST(CentroidalAxisErrors, AStepEqualToThePartsHeightIsNotSmallerThanIt) {
     }
 }
 
+TEST(CentroidalAxisErrors, AMarchThatLosesWhatIsThinnerThanTheStepGivenIsNamed) {
+    // A 1 mm square pin leaning 0.3 mm a mm, 30 mm tall, under a 10 mm block: at a 10 mm step
+    // its sections a step apart do not meet, and the march from its foot ends at the next plane,
+    // the pin and the block unswept. The axis was returned all the same, and the decomposition
+    // refused it as another part's. The error names the step, what was swept, and a smaller step.
+    const auto mesh = mesh_of(from_occt(
+        fuse(mas::test::occ_prism({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {9, 0, 30}),
+             occ_box(4, -4.5, 29, 10, 10, 5))));
+    mas::AxisParams p;
+    p.step_mm = 10.0;
+    const std::string error = mas::test::error_of([&] { mas::centroidal_axis(mesh, p); });
+    EXPECT_EQ(
+        error.rfind("invalid_argument: centroidal axis: the march at a step of 10 mm swept ", 0),
+        0u)
+        << error;
+    const double derived = mas::derive_axis_step(mesh);
+    EXPECT_NE(error.find(" mm^3 of the part's " + mas::format_number(529.0, 4) + " ("),
+              std::string::npos)
+        << error;
+    EXPECT_NE(error.find("): what is thinner than the step was lost; give a smaller step, such as "
+                         "the one derived from the part (0: " +
+                         mas::format_number(derived) + " mm)"),
+              std::string::npos)
+        << error;
+    // At that step the march sweeps it all (within the first slabs' eps: 0.05 mm^3).
+    EXPECT_NEAR(mas::centroidal_axis(mesh).searched_volume_mm3, 529.0, 0.1);
+}
+
 TEST(CentroidalAxisErrors, APartMoreThanEpsAboveItsBasePlaneDoesNotStandOnIt) {
     // AxisParams::base_z_mm: a part whose lowest point lies above the base plane by more than eps
     // (0.001 mm) does not touch it. A box floating 0.002 mm above z = 0 is an error; 0.0005 mm

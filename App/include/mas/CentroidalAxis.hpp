@@ -329,8 +329,10 @@ double axis_frame_deg(const CentroidalAxis& axis, const std::string& caller);
 // Throws mas::Error: InvalidArgument for bad parameters (a step that is not positive and finite,
 // or not smaller than the part's height, or so small that more than max_nodes sections would cross
 // the part; an eps not smaller than the part's height), InvalidArgument when the part does not
-// touch base_z or no section of it is larger than min_region_area_mm2 (an empty axis), EmptyInput
-// for an empty mesh, Cancelled via throw_on_cancel. `mesh` must be closed.
+// touch base_z or no section of it is larger than min_region_area_mm2 (an empty axis) or when the
+// march swept less of the part's volume than the slabs' error allows (what is thinner than a step
+// given, whose sections a step apart do not meet, is lost: the message names the step and a
+// smaller one), EmptyInput for an empty mesh, Cancelled via throw_on_cancel. `mesh` must be closed.
 //
 // A part standing on a vertex or a tip (a cube on its corner, a cone on its tip) has, eps above its
 // base, a speck of a section or none; a step above, its flanks have outgrown the speck on every

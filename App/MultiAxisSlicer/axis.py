@@ -334,7 +334,9 @@ def centroidal_axis(shape, step=None, distance_threshold=None, eps=0.001, break_
     empty_input, read_failed, invalid_argument (a step not smaller than the part's height, a part
     that does not stand on ``base_z``, an eps not below the part's height, a part with no
     section larger than a sliver, a step so small that more than 200000 sections would cross the
-    part). Nothing the caller passed is modified.
+    part, a march that swept less of the part than its slabs' error allows: what is thinner than
+    a step given is lost, and the message names a smaller step). Nothing the caller passed is
+    modified.
     """
     step_mm = 0.0 if step is None else _length(step, "step")
     threshold_mm = (0.0 if distance_threshold is None

@@ -344,8 +344,8 @@ double axis_frame_deg(const CentroidalAxis& axis, const std::string& caller);
 // the root starts at the next plane where the part has outgrown the sliver half a step above it
 // (a thin leg or pad keeps its first section). A part on an edge or a line, such as a cylinder or
 // a torus lying down, has a long section and starts at eps; but a knife edge whose faces are
-// within 5.7 degrees of the vertical cuts a hairline there (no wider on average than 1e-4 mm),
-// which the march would read as overlapping nothing above it: a speck too.
+// within 11.3 degrees of the vertical cuts a hairline there (2 x area / outline up to 4e-4 mm at
+// the default eps), which the march would read as overlapping nothing above it: a speck too.
 // A part with no such section (a pin thinner than a twentieth of the step all the way up) starts
 // at its first section at least half as large as its largest when each section from there on
 // meets the one below it (an upright pin); else (a leaning pin, whose sections a step apart do

@@ -658,13 +658,17 @@ private:
     // part's flanks have outgrown it on every side by far more than its size, which Eq. 3 (d at
     // most a sixth of the lower section's size) reads as a stick-out far outside it: the march
     // would end there. A thin stem or pin is wider than that at any sensible step, and kept. Or a
-    // hairline, however long: no wider on average than kHairline (its area no more than that
-    // times its outline), what eps above a knife edge cuts (a wedge standing on its edge, its
-    // faces within 5.7 degrees of the vertical), which the march reads as overlapping nothing
-    // above it (search, `owner`): the march would end at once, the part unsearched (a wedge 20
-    // mm long, 20 tall and 3.5 wide at the top was one node, and not sliced).
+    // hairline, however long: what eps above a knife edge cuts (a wedge standing on its edge),
+    // which the march reads as overlapping nothing above it where the overlap is no more than
+    // kHairline times its outline (search, `owner`): the march would end at once, the part
+    // unsearched (a wedge 20 mm long and 20 tall, its faces 5 degrees off the vertical, was one
+    // node, and not sliced). Twice that here, 2 x area / outline up to 4e-4 mm, so that a strip
+    // near the march's limit, which the Booleans' rounding puts either side of it, is a speck
+    // (wedges at 5.75 to 5.95 degrees stayed one node at the limit itself): at the default eps, a
+    // wedge whose faces are within 11.3 degrees of the vertical (21.8 for one face, the other
+    // upright).
     bool speck(const Region2& r) const {
-        return area(r) <= std::max(p_.min_region_area_mm2, kHairline * outline_of(r)) ||
+        return area(r) <= std::max(p_.min_region_area_mm2, 2.0 * kHairline * outline_of(r)) ||
                bounds(r).diagonal().norm() < p_.step_mm / 20.0;
     }
 
@@ -1181,9 +1185,9 @@ private:
             // plane with more, a 0.05 mm wall 100 mm tall under a cap, at a 1 mm step, became one
             // node whose slab stood for the wall, searched 50 times over; a 10 mm box on a 0.05 x
             // 0.5 mm pad 1 mm tall, which the march from the pad turns into and builds sideways,
-            // became one component whose first layer hung 85 mm^2.) (A ring
-            // standing on its rim, its first section a strip as long as the ring is deep, still
-            // turns both ways round the ring.)
+            // became one component whose first layer hung 85 mm^2.) A ring standing on its rim,
+            // its first section a strip as long as the ring is deep, still turns both ways round
+            // the ring; and so does a rod at a step shorter than the sliver is across.
             const auto slivers = [&](const Regions2& rs) {
                 return std::all_of(rs.begin(), rs.end(), [&](const Region2& r) {
                     return speck(r) || (2.0 * area(r) / outline_of(r) <= p_.step_mm / 10.0 &&
@@ -2107,9 +2111,10 @@ CentroidalAxis compute_axis_in_frame(const TriangleMesh& mesh, const AxisParams&
         throw Error(ErrorCode::InvalidArgument, msg.str());
     }
     // A march that lost material is no axis of the part: a part thinner than a step given, which
-    // no plane's section carries on to the next (a rod 1 mm across leaning 17 degrees under a
-    // block, at a 10 mm step, was swept 3 % of it), is named here with the remedy, where the
-    // decomposition would refuse the axis as another part's (check_axis_belongs, the same slack).
+    // no plane's section carries on to the next (a round rod 1 mm across and 30 long leaning 17
+    // degrees under a 10 mm block, at a 10 mm step, was swept 3 % of it), is named here with the
+    // remedy, where the decomposition would refuse the axis as another part's (check_axis_belongs,
+    // the same slack). A march that sweeps too much (a region searched twice) is left to that.
     const double slack = sweep_slack(axis.nodes, axis.links, axis.branches, p.step_mm, volume);
     if (axis.searched_volume_mm3 < volume - slack) {
         std::ostringstream msg;

@@ -1619,8 +1619,8 @@ TEST(CentroidalAxisErrors, AMarchThatLosesWhatIsThinnerThanTheStepGivenIsNamed) 
               std::string::npos)
         << error;
     EXPECT_NE(error.find("): what is thinner than the step was lost; give a smaller step, such as "
-                         "the one derived from the part (0: " +
-                         mas::format_number(derived) + " mm)"),
+                         "the one derived from the part, " +
+                         mas::format_number(derived) + " mm (a step of 0 derives it)"),
               std::string::npos)
         << error;
     // At that step the march sweeps it all (within the first slabs' eps: 0.05 mm^3).

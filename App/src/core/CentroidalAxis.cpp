@@ -1187,7 +1187,7 @@ private:
             // 0.5 mm pad 1 mm tall, which the march from the pad turns into and builds sideways,
             // became one component whose first layer hung 85 mm^2.) A ring standing on its rim,
             // its first section a strip as long as the ring is deep, still turns both ways round
-            // the ring; and so does a rod at a step shorter than the sliver is across.
+            // the ring; and so does a rod at a step no longer than the sliver is across.
             const auto slivers = [&](const Regions2& rs) {
                 return std::all_of(rs.begin(), rs.end(), [&](const Region2& r) {
                     return speck(r) || (2.0 * area(r) / outline_of(r) <= p_.step_mm / 10.0 &&
@@ -2126,8 +2126,8 @@ CentroidalAxis compute_axis_in_frame(const TriangleMesh& mesh, const AxisParams&
             msg << "what is thinner than the step was lost; give a smaller step";
             const double derived = derive_axis_step(mesh);
             if (derived < p.step_mm)
-                msg << ", such as the one derived from the part (0: " << format_number(derived)
-                    << " mm)";
+                msg << ", such as the one derived from the part, " << format_number(derived)
+                    << " mm (a step of 0 derives it)";
         } else {
             msg << "some of it was lost at the step derived from the part; give a smaller step";
         }

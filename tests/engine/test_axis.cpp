@@ -308,8 +308,8 @@ TEST(CentroidalAxis, ARodLeaningOnTheRimOfItsEndIsOneBranchUpItsLength) {
     // sections. Leaning 0.3 mm a mm (17 degrees), 1 mm across: a -X branch at its foot and +-Y
     // ones at its middle; 4 mm across, the same, the march from the base one node. Leaning 0.1 mm
     // a mm, 6 mm across: the march ended there, two thirds of the rod unsearched (the
-    // decomposition refused the axis as another part's). The root starts at the first plane
-    // above the sliver, its slab reaching down to the base, and marches up the rod.
+    // decomposition refused the axis as another part's). The root starts at the next plane, its
+    // slab reaching down to the base, and marches up the rod.
     for (const auto& [radius, lean] : {std::pair{0.5, 0.3}, {2.0, 0.3}, {3.0, 0.1}}) {
         SCOPED_TRACE(radius);
         const Vector3d axis = Vector3d(lean, 0.0, 1.0).normalized();

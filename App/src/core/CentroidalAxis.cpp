@@ -335,6 +335,9 @@ double outline_of(const Region2& r) {
     return length;
 }
 
+// A region's width on average, mm: twice its area over its outline (a long strip's width).
+double mean_width(const Region2& r) { return 2.0 * area(r) / outline_of(r); }
+
 // The regions larger than min_area, largest first (ties in their given order).
 Regions2 keep_larger(Regions2 regions, double min_area) {
     std::vector<std::pair<double, std::size_t>> order;  // (area, index): each area computed once
@@ -475,7 +478,7 @@ private:
             task.start = offset(g, k);
             task.slab_start = offset(g, k - 1);
             for (Region2& r : unswept(g, k, &bottoms))
-                if (!speck(r) && 2.0 * area(r) / outline_of(r) > p_.step_mm / 10.0)
+                if (!speck(r) && mean_width(r) > p_.step_mm / 10.0)
                     task.constraints.push_back(Slab{task.direction,
                                                     offset(g, k - 1),
                                                     offset(g, k) + p_.step_mm,
@@ -1190,7 +1193,7 @@ private:
             // the ring; and so does a rod at a step no longer than the sliver is across.
             const auto slivers = [&](const Regions2& rs) {
                 return std::all_of(rs.begin(), rs.end(), [&](const Region2& r) {
-                    return speck(r) || (2.0 * area(r) / outline_of(r) <= p_.step_mm / 10.0 &&
+                    return speck(r) || (mean_width(r) <= p_.step_mm / 10.0 &&
                                         bounds(r).diagonal().norm() < p_.step_mm);
                 });
             };

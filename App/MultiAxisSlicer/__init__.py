@@ -255,6 +255,56 @@ class _Converted:
         self.kind, self.part, self.what = kind, part, what
 
 
+def _containers_placement(obj):
+    """The placement of the groups a document object sits in (an ``App::Part``, a PartDesign
+    ``Body`` holding a feature), combined outermost first: what the 3D view applies to its shape
+    on top of the object's own placement, which the shape already carries. None where it sits in
+    none, or they do not move it."""
+    parent_of = getattr(obj, "getParentGeoFeatureGroup", None)
+    if parent_of is None:
+        return None
+    placement, group, seen = None, parent_of(), set()
+    while group is not None and group.Name not in seen:  # a group in itself: FreeCAD refuses it
+        seen.add(group.Name)
+        own = getattr(group, "Placement", None)
+        if own is not None:
+            placement = own if placement is None else own.multiply(placement)
+        group = group.getParentGeoFeatureGroup()
+    if placement is None or placement.isIdentity():
+        return None
+    return placement
+
+
+def _placed(obj):
+    """A document object's ``Part.Shape`` or ``Mesh.Mesh`` where the 3D view shows it: with the
+    placements of the groups it sits in applied (``_containers_placement``), since the plate is
+    the document's XY plane. A copy where those move it, else its own shape or mesh; None when it
+    has neither. Anything that is not a document object is given back as it is."""
+    if not _is_document_object(obj):
+        return obj
+    if obj.isDerivedFrom("Mesh::Feature"):
+        model = obj.Mesh
+    else:
+        model = getattr(obj, "Shape", None)
+        if model is None:
+            try:
+                import Part
+
+                model = Part.getShape(obj)  # App::Link and other shape-less containers
+            except Exception:
+                return None
+        if not _is_part_shape(model):
+            return None
+        if model.isNull():
+            return model
+    placement = _containers_placement(obj)
+    if placement is None:
+        return model
+    model = model.copy()
+    model.Placement = placement.multiply(model.Placement)
+    return model
+
+
 def _model(obj, what=None):
     """(kind, engine part, name): ("solid", engine Shape) or ("mesh", engine Mesh) for anything the
     API accepts."""
@@ -282,19 +332,10 @@ def _model(obj, what=None):
         return "mesh", _engine_mesh_from_fc_mesh(obj, what), what
     if _is_document_object(obj):
         what = what or _label(obj)
-        if obj.isDerivedFrom("Mesh::Feature"):
-            return _model(obj.Mesh, what)
-        shape = getattr(obj, "Shape", None)
-        if shape is None:
-            try:
-                import Part
-
-                shape = Part.getShape(obj)  # App::Link and other shape-less containers
-            except Exception:
-                shape = None
-        if shape is None or not _is_part_shape(shape):
+        model = _placed(obj)
+        if model is None:
             raise TypeError("{} ({}) has no shape or mesh".format(what, obj.TypeId))
-        return _model(shape, what)
+        return _model(model, what)
     raise TypeError(
         "expected a solid or a closed mesh (Part.Shape, Mesh.Mesh, document object or file path), "
         "got {}".format(type(obj).__name__)
@@ -306,7 +347,8 @@ def to_engine_mesh(obj, deflection=None):
 
     ``obj`` may be a ``Part.Shape`` holding exactly one closed solid (a compound of one solid is
     fine; solids sharing material, as a CompSolid, are fused into the one body they make), a closed
-    ``Mesh.Mesh``, a FreeCAD document object with such a ``Shape`` or ``Mesh``, a file path
+    ``Mesh.Mesh``, a FreeCAD document object with such a ``Shape`` or ``Mesh`` (taken where the 3D
+    view shows it, the placements of the groups it sits in applied), a file path
     (.step/.stp, .iges/.igs, .brep/.brp, .stl, .off), or an engine ``Shape``/``Mesh``.
     Solids are tessellated with chordal ``deflection`` mm (None or 0: derived from the part's size,
     see ``deflection()``). Meshes are checked and copied: an inside-out mesh is flipped in the copy,

@@ -162,7 +162,7 @@ def _refuse_circular_links(obj):
     graph is no longer acyclic, and the object would be computed from its own output."""
     made_from_it = None
     for prop in obj.PropertiesList:
-        if obj.getTypeIdOfProperty(prop) != "App::PropertyLink":
+        if obj.getTypeIdOfProperty(prop) not in ("App::PropertyLink", "App::PropertyLinkGlobal"):
             continue
         linked = getattr(obj, prop)
         if linked is None:
@@ -287,7 +287,7 @@ class SectionsFeature(_EngineFeature):
     @staticmethod
     def ensure_properties(obj):
         group = "Sections"
-        _add_property(obj, "App::PropertyLink", "Source", group,
+        _add_property(obj, "App::PropertyLinkGlobal", "Source", group,
                       "Solid or closed mesh to cut")
         _add_property(obj, "App::PropertyVector", "Normal", group,
                       "Normal of the cutting planes", FreeCAD.Vector(0, 0, 1))
@@ -389,7 +389,7 @@ class CentroidalAxisFeature(_EngineFeature):
     @staticmethod
     def ensure_properties(obj):
         group = "Centroidal axis"
-        _add_property(obj, "App::PropertyLink", "Source", group,
+        _add_property(obj, "App::PropertyLinkGlobal", "Source", group,
                       "Solid or closed mesh, standing on its lowest point")
         _add_property(obj, "App::PropertyLength", "Step", group,
                       "Distance between consecutive sections (0 = derived from the part: half "
@@ -547,7 +547,7 @@ class DecompositionFeature(_EngineFeature):
     @staticmethod
     def ensure_properties(obj):
         group = "Decomposition"
-        _add_property(obj, "App::PropertyLink", "Source", group,
+        _add_property(obj, "App::PropertyLinkGlobal", "Source", group,
                       "Solid to split (empty: the Axis object's Source)")
         _add_property(obj, "App::PropertyLink", "Axis", group,
                       "CentroidalAxis object whose parameters are used (optional)")
@@ -655,9 +655,10 @@ def decomposition_inputs(obj):
 
 
 def _shape_key(source):
-    """A key that changes when the source's geometry or placement does: a hash of its BREP text
-    (well under a millisecond for a part of a few dozen faces). None when it has no Part shape."""
-    shape = getattr(source, "Shape", None)
+    """A key that changes when the source's geometry or placement does, its groups' included: a
+    hash of its BREP text as placed (well under a millisecond for a part of a few dozen faces).
+    None when it has no Part shape."""
+    shape = mas._placed(source)
     if shape is None or not hasattr(shape, "exportBrepToString") or shape.isNull():
         return None
     return hash(shape.exportBrepToString())
@@ -1244,7 +1245,7 @@ class LayersFeature(_EngineFeature):
     def ensure_properties(obj):
         _add_property(obj, "App::PropertyLink", "Decomposition", "Layers",
                       "Decomposition object whose part is sliced, component by component")
-        _add_property(obj, "App::PropertyLink", "Source", "Layers",
+        _add_property(obj, "App::PropertyLinkGlobal", "Source", "Layers",
                       "A closed mesh (Mesh feature) sliced in place of a Decomposition: split at "
                       "section planes where its centroidal axis turns (see SplitMesh)")
         _add_property(obj, "App::PropertyLink", "Axis", "Layers",

@@ -188,6 +188,46 @@ class TestInputs(support.EngineTestCase):
         finally:
             FreeCAD.closeDocument(doc.Name)
 
+    def test_objects_in_groups_are_cut_where_the_view_shows_them(self):
+        # The plate is the document's XY plane: an object inside an App::Part, or a feature
+        # inside a Body inside one, is cut with its groups' placements applied, as drawn. The
+        # group here stands the 10 x 20 x 30 box on its side: turned 90 degrees about Y, it
+        # reaches 30 along X from x = 100 and hangs 10 below z = 5.
+        doc = FreeCAD.newDocument("MasApiGroups")
+        try:
+            group = doc.addObject("App::Part", "Group")
+            group.Placement = FreeCAD.Placement(V(100, 0, 5), FreeCAD.Rotation(V(0, 1, 0), 90))
+            box = doc.addObject("Part::Box", "Box")
+            box.Length, box.Width, box.Height = 10, 20, 30
+            group.addObject(box)
+            body = doc.addObject("PartDesign::Body", "Body")
+            group.addObject(body)
+            body.Placement.Base = V(0, 50, 0)
+            feature = doc.addObject("PartDesign::AdditiveBox", "BodyBox")
+            body.addObject(feature)
+            feature.Length, feature.Width, feature.Height = 10, 20, 30
+            mesh = doc.addObject("Mesh::Feature", "Mesh")
+            mesh.Mesh = fc_mesh(Part.makeBox(10, 20, 30))
+            group.addObject(mesh)
+            mesh.Placement.Base = V(0, 100, 0)
+            link = doc.addObject("App::Link", "Link")
+            link.LinkedObject = box
+            group.addObject(link)
+            link.Placement.Base = V(0, 150, 0)
+            doc.recompute()
+            placements = [o.Placement for o in (group, box, body, feature, mesh, link)]
+            # y of each copy's middle; every one spans x 100..130, z -5..5.
+            for obj, y in ((box, 10), (body, 60), (feature, 60), (mesh, 110), (link, 160)):
+                s = mas.section(obj, origin=(0, 0, 0), normal=(0, 0, 1))
+                self.assertAlmostEqual(s.area, 600.0, places=6, msg=obj.Name)
+                self.assertVectorAlmostEqual(s.centroid, (115, y, 0))
+                self.assertAlmostEqual(mas.sections(obj, step=2.0)[0].origin.z, -4.0, places=9)
+            self.assertEqual([o.Placement for o in (group, box, body, feature, mesh, link)],
+                             placements)  # none moved
+            self.assertEqual(box.Shape.BoundBox.ZMax, 30.0)
+        finally:
+            FreeCAD.closeDocument(doc.Name)
+
     def test_files_are_read_by_extension(self):
         shape = box_10_20_30()
         folder = tempfile.mkdtemp(prefix="mas_api_")

@@ -443,6 +443,34 @@ class TestCentroidalAxisObject(AxisTest):
         self.assertNotIn("Touched", self.part.State)
         self.assertEqual(self.part.InList, [obj])
 
+    def test_a_source_in_a_group_is_computed_where_the_view_shows_it(self):
+        # An App::Part turning the L 90 degrees about Z and raising it 100: the object's axis is
+        # the one of the L as drawn (the group's placement applied), not of its shape in the
+        # group's own frame; moving the group and recomputing moves it along.
+        group = self.doc.addObject("App::Part", "Group")
+        group.addObject(self.part)
+        group.Placement = FreeCAD.Placement(V(0, 0, 100), FreeCAD.Rotation(V(0, 0, 1), 90))
+        self.doc.recompute()
+        before = self.part.Shape.exportBrepToString()
+        obj = mas.make_centroidal_axis(self.part, step=2.5)
+        self.doc.recompute()
+
+        for _ in range(2):
+            self.assertTrue(obj.isValid(), obj.getStatusString())
+            drawn = self.part.Shape.copy()
+            drawn.Placement = group.Placement.multiply(drawn.Placement)
+            expected = mas.centroidal_axis(drawn, step=2.5)
+            self.assertEqual(obj.NodeCount, len(expected.nodes))
+            self.assertEqual(obj.BranchCount, len(expected.branches))
+            nodes = [v.Point for v in obj.Shape.Vertexes[:obj.NodeCount]]
+            for got, node in zip(nodes, expected.nodes):
+                self.assertVectorAlmostEqual(got, node.position)
+            self.assertAlmostEqual(obj.Shape.BoundBox.ZMin, drawn.BoundBox.ZMin + EPS, places=9)
+            group.Placement = FreeCAD.Placement(V(5, 0, 0), FreeCAD.Rotation(V(0, 1, 0), 90))
+            obj.touch()  # a group's placement is no link of the object's (see README)
+            self.doc.recompute()
+        self.assertEqual(self.part.Shape.exportBrepToString(), before)
+
     def test_mesh_source(self):
         mesh = self.doc.addObject("Mesh::Feature", "LMesh")
         mesh.Mesh = fc_mesh(l_block())

@@ -869,6 +869,54 @@ TEST(Slicing, AGuideSteppingAsideByMicronsIsNoise) {
     EXPECT_EQ(unsupported, 1);
 }
 
+// Slicing.hpp: where the part is a prism along the layers' direction, the parallel layer deposits
+// it exactly, and the layers stay parallel however the guide wanders. Two prisms standing on the
+// plate, each sliced at its derived step into one component:
+// - a 60 x 40 x 12 plate with a 30 x 10 x 3 pocket sunk in its top near a corner: its centroids
+//   move 0.6 mm away from the pocket over one step (the layers tilted up to 1.8 degrees, the last
+//   two wedges 0.9 mm proud of the top, Eq. 9's VolDiff 0.23 and 0.67);
+// - a link plate 12 thick (two round ends joined by a tapering beam, both bored), tessellated
+//   with the deflection derived from its size (0.078 mm): the chords moved its centroids aside
+//   enough to tilt the layers 0.22 degrees, the last one a wedge with a VolDiff of 0.38.
+// Every layer lies square to Z, deposits its slab exactly and rests on the one below, and the last
+// one's top is the part's.
+TEST(Slicing, APrismsLayersStayParallelWhereItsSectionsChangeShape) {
+    const TopoDS_Shape pocketed =
+        BRepAlgoAPI_Cut(occ_box(0, 0, 0, 60, 40, 12), occ_box(5, 5, 9, 30, 10, 3)).Shape();
+    const Vector3d z = Vector3d::UnitZ();
+    TopoDS_Shape link =
+        fuse(fuse(occ_cylinder(Vector3d::Zero(), z, 24, 12),
+                  occ_cylinder(Vector3d(110, 0, 0), z, 13, 12)),
+             occ_prism({{0, -9, 0}, {110, -6, 0}, {110, 6, 0}, {0, 9, 0}}, Vector3d(0, 0, 12)));
+    link = BRepAlgoAPI_Cut(link, occ_cylinder(Vector3d(0, 0, -1), z, 16, 14)).Shape();
+    link = BRepAlgoAPI_Cut(link, occ_cylinder(Vector3d(110, 0, -1), z, 7, 14)).Shape();
+    for (const auto& [name, shape, deflection] :
+         {std::tuple{"pocketed plate", pocketed, kDeflection}, {"link plate", link, 0.0}}) {
+        SCOPED_TRACE(name);
+        auto params = default_params();
+        params.tessellation.deflection_mm = deflection;
+        const mas::Shape part = from_occt(shape);
+        Sliced s;
+        s.axis =
+            mas::centroidal_axis(mas::tessellate(part, params.tessellation), mas::AxisParams{});
+        s.decomposition = mas::decompose(part, s.axis);
+        s.result = mas::slice_part(part, s.axis, s.decomposition, params);
+        ASSERT_EQ(s.result.components.size(), 1u);
+        double bottom = 0.0;
+        for (std::size_t i = 0; i < s.result.layers.size(); ++i) {
+            SCOPED_TRACE("layer " + std::to_string(i));
+            const mas::Layer& l = s.result.layers[i];
+            EXPECT_TRUE(l.plane.normal.isApprox(z, 1e-12)) << l.plane.normal.transpose();
+            EXPECT_NEAR(l.lower.origin.z(), bottom, 1e-9);
+            bottom = l.plane.origin.z();
+            EXPECT_LE(l.volume_difference, 1e-6);
+            EXPECT_EQ(l.unsupported_area_mm2, 0.0);
+        }
+        EXPECT_NEAR(bottom, 12.0, 1e-9);
+        expect_invariants(s, params, name);
+    }
+}
+
 // A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
 // reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
 // where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.

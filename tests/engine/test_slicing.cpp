@@ -1605,6 +1605,47 @@ TEST(Slicing, LayersTiltNoFurtherFromThePlatesNormalThanTheMachineReaches) {
     }
 }
 
+// Slicing.hpp: the root's first layer also lays what the part holds half a thinnest layer above
+// the plate. A 40 x 40 x 30 block whose bottom is off flat by a hundredth of a mm (its +X half
+// stepped up, or the whole face tilted up towards +X) is laid whole by its first layer, and no
+// layer hangs; a step deeper than that (0.3 mm) is a recess whose ceiling the second layer lays
+// over nothing, less the first layer's allowance (min thickness 2 x tan 45 along the 40 mm edge).
+// Sliced as the command line does (slice_solid_part): the stepped half, which the axis marches
+// along +X from the other, cannot be built sideways so low over the plate and stays in the root.
+TEST(Slicing, TheFirstLayerLaysWhatStartsWithinHalfAThinnestLayerOfThePlate) {
+    const auto params = default_params();
+    ASSERT_EQ(params.layers.min_layer_mm, 0.5);
+    const auto slice = [&](const TopoDS_Shape& shape) {
+        const mas::Shape part = from_occt(shape);
+        Sliced s = decomposed(part);
+        mas::DecomposeParams dp;
+        dp.min_component_height_mm = params.layers.min_layer_mm;
+        dp.max_tilt_deg = params.layers.max_tilt_deg;
+        s.result = mas::slice_solid_part(part, s.axis, dp, params, s.decomposition);
+        return s;
+    };
+    const auto stepped = [](double rise) {
+        return fuse(occ_box(0, 0, 0, 20, 40, 30), occ_box(20, 0, rise, 20, 40, 30 - rise));
+    };
+    const TopoDS_Shape tilted =
+        occ_prism({{0, 0, 0}, {40, 0, 0.01}, {40, 0, 30}, {0, 0, 30}}, Vector3d(0, 40, 0));
+    for (const auto& [name, shape] :
+         {std::pair{"stepped 0.01 mm", stepped(0.01)}, {"tilted 0.01 mm", tilted}}) {
+        SCOPED_TRACE(name);
+        const auto s = slice(shape);
+        ASSERT_EQ(s.result.components.size(), 1u);
+        EXPECT_NEAR(s.result.layers.front().area_mm2, 1600.0, 1e-6);
+        EXPECT_EQ(total_unsupported(s), 0.0);
+        expect_invariants(s, params, name);
+    }
+    const auto s = slice(stepped(0.3));
+    ASSERT_EQ(s.result.components.size(), 1u);
+    ASSERT_GE(s.result.layers.size(), 2u);
+    EXPECT_NEAR(s.result.layers[0].area_mm2, 800.0, 1e-6);
+    EXPECT_NEAR(s.result.layers[1].unsupported_area_mm2, 800.0 - 2.0 * 40.0, 1e-6);
+    EXPECT_NEAR(total_unsupported(s), 720.0, 1e-6);
+}
+
 TEST(Slicing, ABlockHangingUnderABridgeIsSlicedWithItsFirstLayerUnsupported) {
     // The block first appears at z = 15 in mid-air (test_parts.hpp): sliced with the root, in Z,
     // its first layer rests on nothing, all 400 mm^2 of it (the legs lie 10 mm away, past any

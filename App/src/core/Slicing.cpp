@@ -345,6 +345,36 @@ private:
         return planar_regions(slice_mesh(*input_.mesh, cut), plane);
     }
 
+    // The root's first region: the section just above the build plate, and with it what the part
+    // holds half a thinnest layer above the plate, as a planar slicer's section at the middle of
+    // its first layer would. The plate carries it all: a bottom face a hundredth of a mm off
+    // flat (a CAD model's step, a face tilted by rounding), or a recess in it no deeper, is
+    // laid or filled by the first layer instead of hanging in the second (half of a block whose
+    // bottom was stepped 0.01 mm was left out of the first layer, 720 mm^2 unsupported above
+    // it). Eq. 9 counts what the first layer deposits below the part.
+    PlanarRegions first_above_plate(const Plane& base) const {
+        const Vector3d& n = base.normal;
+        std::vector<Section> cut =
+            slice_mesh(*input_.mesh, {make_plane(base.origin + offset_ * n, n),
+                                      make_plane(base.origin + 0.5 * params_.min_layer_mm * n, n)});
+        Regions2 at_plate, above;
+        for (const SectionRegion& r : cut[0].regions) at_plate.push_back(r.shape);
+        for (const SectionRegion& r : cut[1].regions) above.push_back(r.shape);
+        // Regions2 share one PlaneFrame(n): the two sections' planes differ in offset only.
+        if (area(difference(above, at_plate)) <= negligible_unsupported_mm2(cut[0].area))
+            return planar_regions(cut[0], base);
+        Section both;
+        both.plane = cut[0].plane;
+        for (Region2& r : union_of(at_plate, above)) {
+            SectionRegion region;
+            region.area = area(r);
+            region.shape = std::move(r);
+            both.area += region.area;
+            both.regions.push_back(std::move(region));
+        }
+        return planar_regions(both, base);
+    }
+
     void thickness_range(const PlanarRegions& lower, const Plane& upper, double& tmin,
                          double& tmax) const {
         tmin = std::numeric_limits<double>::infinity();
@@ -492,7 +522,8 @@ Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& 
 
 std::vector<Layer> ComponentSlicer::run() {
     const Plane base = make_plane(input_.base.origin, input_.base.normal);
-    PlanarRegions lower = section_above(base);
+    PlanarRegions lower =
+        input_.support_meshes.empty() ? first_above_plate(base) : section_above(base);
     if (lower.empty())
         invalid("component " + std::to_string(input_.component) +
                 ": no material just above its base plane (a base face that does not lie on the "

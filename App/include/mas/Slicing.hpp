@@ -10,6 +10,9 @@
 //   issue defines it; what rests on the layer below is exactly what that layer's top offers).
 //   The layer records U as its plane: the tool axis is n (unless the nozzle leans, Nozzle.hpp),
 //   and its regions are the lower region projected along n onto U, in PlaneFrame(n) coordinates.
+//   The root's first region, on the build plate, also takes the section min_layer / 2 above the
+//   plate (their union): a planar slicer's mid-layer section. The plate carries what starts that
+//   low (a bottom face a hundredth of a mm off flat, a recess that shallow, filled).
 // - Thickness at a point x of the lower region is its distance to U along n, (U.origin - x).n;
 //   the layer's min/max thickness are taken over the region's outline points (the thickness is
 //   linear, so the extremes lie on the outline). Eq. 9's bounds apply to both, so consecutive
@@ -37,7 +40,10 @@
 //   see (a 0.5 mm ceiling over a closed box's cavity went missing, one layer flagged); one
 //   across a floor lays the section below into the space above it. Turns under eps_angle / 10,
 //   or moving the plane less than a tenth of min_layer across the layer below (centroid noise), are
-//   ignored. Every D tilting more than max_tilt_deg from the build plate's +Z (the
+//   ignored. So is any turn where the part is a prism along D_lower over the first delta tried:
+//   the parallel layer there, if it deposits the part exactly (VolDiff within rounding) with the
+//   next layer supported, is taken before any tilted one (a pocket in a plate's top moves the
+//   centroids, not the part). Every D tilting more than max_tilt_deg from the build plate's +Z (the
 //   machine's reach) is turned back towards +Z onto it, in the plane of D and Z: where the guide
 //   turns further (a return bend's far leg), the layers stop at the reach. The paper prefers a
 //   thinner tilted layer to a thick parallel one: that is what lets the layers follow a bend.

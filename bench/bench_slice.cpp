@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <optional>
 #include <string>
 #include <thread>
@@ -124,7 +125,7 @@ int uniform_count(const mas::ComponentMesh& whole, const mas::CentroidalAxis& ax
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     std::vector<Part> all = parts();
     if (argc > 1) {
         mas::Model m = mas::read_model(argv[1]);
@@ -339,4 +340,14 @@ int main(int argc, char** argv) {
                     open.stats.worst_unsupported_area_mm2, filled.stats.worst_unsupported_area_mm2);
     }
     return 0;
+}
+
+// A part file it cannot read (or any error) is named, not an abort.
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "mas_bench_slice: %s\n", e.what());
+        return 1;
+    }
 }

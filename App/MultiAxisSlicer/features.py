@@ -2215,3 +2215,45 @@ def _attach_view_provider(obj, class_name):
     import MultiAxisSlicerGui.view_providers as view_providers
 
     getattr(view_providers, class_name)(obj.ViewObject)
+
+
+def _sits_in(obj, group):
+    """Whether the document object ``obj`` lies inside ``group`` (a GeoFeatureGroup), at any
+    depth."""
+    parent_of = getattr(obj, "getParentGeoFeatureGroup", None)
+    parent, seen = (parent_of() if parent_of is not None else None), set()
+    while parent is not None and parent.Name not in seen:
+        if parent == group:
+            return True
+        seen.add(parent.Name)
+        parent = parent.getParentGeoFeatureGroup()
+    return False
+
+
+class _GroupMoves:
+    """A document observer: where a group's placement changes (an ``App::Part``, a PartDesign
+    ``Body``), the objects here whose ``Source`` lies inside it are marked for recompute. Their
+    part is taken where the 3D view shows it (``MultiAxisSlicer._placed``), but the group is none
+    of their links, so FreeCAD would not recompute them: a link to it would close a circle as soon
+    as one of them were put into the group. What is made from those objects follows as usual."""
+
+    def slotChangedObject(self, obj, prop):
+        if prop != "Placement" or not hasattr(obj, "hasExtension"):
+            return
+        if not obj.hasExtension("App::GeoFeatureGroupExtension"):
+            return
+        doc = obj.Document
+        if getattr(doc, "Restoring", False):  # an opened document is as it was saved
+            return
+        for o in doc.Objects:
+            if not isinstance(getattr(o, "Proxy", None), _EngineFeature):
+                continue
+            source = getattr(o, "Source", None)
+            if source is not None and _sits_in(source, obj):
+                o.touch()
+
+
+# One for the session, from the first import (by a command, a script, or a document that holds
+# one of these objects).
+_GROUP_MOVES = _GroupMoves()
+FreeCAD.addDocumentObserver(_GROUP_MOVES)

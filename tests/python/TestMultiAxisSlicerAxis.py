@@ -446,16 +446,19 @@ class TestCentroidalAxisObject(AxisTest):
     def test_a_source_in_a_group_is_computed_where_the_view_shows_it(self):
         # An App::Part turning the L 90 degrees about Z and raising it 100: the object's axis is
         # the one of the L as drawn (the group's placement applied), not of its shape in the
-        # group's own frame; moving the group and recomputing moves it along.
+        # group's own frame. Moving the group (turning the L onto its side) marks the object for
+        # recompute, and the recompute moves the axis along; and back again.
         group = self.doc.addObject("App::Part", "Group")
         group.addObject(self.part)
-        group.Placement = FreeCAD.Placement(V(0, 0, 100), FreeCAD.Rotation(V(0, 0, 1), 90))
+        raised = FreeCAD.Placement(V(0, 0, 100), FreeCAD.Rotation(V(0, 0, 1), 90))
+        on_its_side = FreeCAD.Placement(V(5, 0, 0), FreeCAD.Rotation(V(0, 1, 0), 90))
+        group.Placement = raised
         self.doc.recompute()
         before = self.part.Shape.exportBrepToString()
         obj = mas.make_centroidal_axis(self.part, step=2.5)
         self.doc.recompute()
 
-        for _ in range(2):
+        for moved_to in (on_its_side, raised, None):
             self.assertTrue(obj.isValid(), obj.getStatusString())
             drawn = self.part.Shape.copy()
             drawn.Placement = group.Placement.multiply(drawn.Placement)
@@ -466,10 +469,21 @@ class TestCentroidalAxisObject(AxisTest):
             for got, node in zip(nodes, expected.nodes):
                 self.assertVectorAlmostEqual(got, node.position)
             self.assertAlmostEqual(obj.Shape.BoundBox.ZMin, drawn.BoundBox.ZMin + EPS, places=9)
-            group.Placement = FreeCAD.Placement(V(5, 0, 0), FreeCAD.Rotation(V(0, 1, 0), 90))
-            obj.touch()  # a group's placement is no link of the object's (see README)
+            if moved_to is None:
+                break
+            self.assertNotIn("Touched", obj.State)
+            group.Placement = moved_to
+            self.assertIn("Touched", obj.State)
             self.doc.recompute()
         self.assertEqual(self.part.Shape.exportBrepToString(), before)
+        # Opened again, the group's placement is read back, which moves nothing: the object is
+        # as it was saved, not marked for recompute.
+        path, name = os.path.join(self.folder, "group.FCStd"), obj.Name
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        doc = FreeCAD.openDocument(path)
+        self.assertNotIn("Touched", doc.getObject(name).State)
+        self.assertEqual(doc.getObject(name).Source, doc.getObject("L"))
 
     def test_mesh_source(self):
         mesh = self.doc.addObject("Mesh::Feature", "LMesh")

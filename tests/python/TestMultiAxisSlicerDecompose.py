@@ -468,24 +468,27 @@ class TestDecompositionObject(DecomposeTest):
         self.assertTrue(all(o.isValid() for o in self.doc.Objects))
 
     def test_a_source_in_a_group_is_split_where_the_view_shows_it(self):
-        # The L in an App::Part that raises it 100: its components are the L's as drawn. Moved,
-        # and the object recomputed, they follow: the result kept in memory is not reused for a
-        # source placed elsewhere.
+        # The L in an App::Part that raises it 100: its components are the L's as drawn. Moving
+        # the group marks the object for recompute, and the components follow: the result kept
+        # in memory is not reused for a source placed elsewhere.
         group = self.doc.addObject("App::Part", "Group")
         group.addObject(self.part)
         group.Placement.Base = V(0, 0, 100)
         self.doc.recompute()
         obj = mas.make_decomposition(self.part)
         self.doc.recompute()
-        for base in (V(0, 0, 100), V(0, -30, 7)):
+        for base, moved_to in ((V(0, 0, 100), V(0, -30, 7)), (V(0, -30, 7), None)):
             self.assertTrue(obj.isValid(), obj.getStatusString())
             self.assertEqual(obj.ComponentCount, 2)
             root, arm = features.components_of(obj)
             assert_box(self, root.Shape, base, base + V(20, 20, 60))
             assert_box(self, arm.Shape, base + V(20, 0, 40), base + V(70, 20, 60))
             self.assertVectorAlmostEqual(obj.BaseOrigins[1], base + V(20, 10, 50))
-            group.Placement.Base = V(0, -30, 7)
-            obj.touch()  # a group's placement is no link of the object's (see README)
+            if moved_to is None:
+                break
+            self.assertNotIn("Touched", obj.State)
+            group.Placement.Base = moved_to
+            self.assertIn("Touched", obj.State)
             self.doc.recompute()
         assert_box(self, self.part.Shape, (0, 0, 0), (70, 20, 60))
 

@@ -917,6 +917,31 @@ TEST(Slicing, APrismsLayersStayParallelWhereItsSectionsChangeShape) {
     }
 }
 
+// Slicing.hpp: the prism rule holds where the guide's turn is a jog, not where it turns on. A
+// 20 x 20 x 40 column (a prism along Z all the way up) under two guides that leave the vertical
+// at z = 19: one steps 0.6 mm aside over 2 mm and runs on straight up (a jog: every layer stays
+// square to Z), one bends on by 17 degrees a segment (a bend begins above the prism: the layers
+// start turning after it, as they would where the part bends).
+TEST(Slicing, APrismsLayersFollowAGuideThatTurnsOnButNotOneThatJogs) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const mas::TriangleMesh mesh = mas::tessellate(from_occt(occ_box(0, 0, 0, 20, 20, 40)), tp);
+    mas::ComponentSlicingInput input;
+    input.component = 0;
+    input.mesh = &mesh;
+    input.base = mas::make_plane(Vector3d(10, 10, 0), Vector3d::UnitZ());
+    const mas::LayerParams params = default_params().layers;
+    input.guide = {{10, 10, 0}, {10, 10, 19}, {10.6, 10, 21}, {10.6, 10, 40}};
+    for (const mas::Layer& l : mas::slice_component(input, params))
+        EXPECT_TRUE(l.plane.normal.isApprox(Vector3d::UnitZ(), 1e-12))
+            << l.plane.normal.transpose();
+    input.guide = {{10, 10, 0}, {10, 10, 19}, {10.6, 10, 21}, {11.8, 10, 22.9}, {13.7, 10, 24.5}};
+    double most = 0.0;
+    for (const mas::Layer& l : mas::slice_component(input, params))
+        most = std::max(most, angle_deg(l.plane.normal, Vector3d::UnitZ()));
+    EXPECT_GT(most, params.eps_angle_deg);
+}
+
 // A shelf no layer can support: a 10 x 10 stem 10 tall carrying a 30 x 10 slab, 2 thick, that
 // reaches 20 mm past it along +X. The slab's first layer is the only one left unsupported, and
 // where is exact: the slab's footprint past the stem grown by the allowance, on its lower plane.
@@ -1612,6 +1637,8 @@ TEST(Slicing, LayersTiltNoFurtherFromThePlatesNormalThanTheMachineReaches) {
 // over nothing, less the first layer's allowance (min thickness 2 x tan 45 along the 40 mm edge).
 // Sliced as the command line does (slice_solid_part): the stepped half, which the axis marches
 // along +X from the other, cannot be built sideways so low over the plate and stays in the root.
+// However small beside the footprint: a 6 x 6 post on the side of a 200 x 200 block, 0.1 mm off
+// the plate, is laid by the first layer too (36 mm^2 of 40036; it hung 24 mm^2 in the second).
 TEST(Slicing, TheFirstLayerLaysWhatStartsWithinHalfAThinnestLayerOfThePlate) {
     const auto params = default_params();
     ASSERT_EQ(params.layers.min_layer_mm, 0.5);
@@ -1637,6 +1664,13 @@ TEST(Slicing, TheFirstLayerLaysWhatStartsWithinHalfAThinnestLayerOfThePlate) {
         EXPECT_NEAR(s.result.layers.front().area_mm2, 1600.0, 1e-6);
         EXPECT_EQ(total_unsupported(s), 0.0);
         expect_invariants(s, params, name);
+    }
+    {
+        const auto s =
+            slice(fuse(occ_box(0, 0, 0, 200, 200, 20), occ_box(200, 97, 0.1, 6, 6, 19.9)));
+        ASSERT_EQ(s.result.components.size(), 1u);
+        EXPECT_NEAR(s.result.layers.front().area_mm2, 40036.0, 1e-6);
+        EXPECT_EQ(total_unsupported(s), 0.0);
     }
     const auto s = slice(stepped(0.3));
     ASSERT_EQ(s.result.components.size(), 1u);

@@ -12,7 +12,9 @@
 //   and its regions are the lower region projected along n onto U, in PlaneFrame(n) coordinates.
 //   The root's first region, on the build plate, also takes the section min_layer / 2 above the
 //   plate (their union): a planar slicer's mid-layer section. The plate carries what starts that
-//   low (a bottom face a hundredth of a mm off flat, a recess that shallow, filled).
+//   low (a bottom face a hundredth of a mm off flat, a recess that shallow, filled), however
+//   small beside the footprint. Eq. 9's samples, from an eighth of the layer up, need not see
+//   what it fills.
 // - Thickness at a point x of the lower region is its distance to U along n, (U.origin - x).n;
 //   the layer's min/max thickness are taken over the region's outline points (the thickness is
 //   linear, so the extremes lie on the outline). Eq. 9's bounds apply to both, so consecutive
@@ -40,13 +42,15 @@
 //   see (a 0.5 mm ceiling over a closed box's cavity went missing, one layer flagged); one
 //   across a floor lays the section below into the space above it. Turns under eps_angle / 10,
 //   or moving the plane less than a tenth of min_layer across the layer below (centroid noise), are
-//   ignored. So is any turn where the part is a prism along D_lower over the first delta tried:
-//   the parallel layer there, if it deposits the part exactly (VolDiff within rounding) with the
-//   next layer supported, is taken before any tilted one (a pocket in a plate's top moves the
-//   centroids, not the part). Every D tilting more than max_tilt_deg from the build plate's +Z (the
-//   machine's reach) is turned back towards +Z onto it, in the plane of D and Z: where the guide
-//   turns further (a return bend's far leg), the layers stop at the reach. The paper prefers a
-//   thinner tilted layer to a thick parallel one: that is what lets the layers follow a bend.
+//   ignored. So is a jog of the guide (its next segment runs within eps_angle of D_lower again)
+//   where the part is a prism along D_lower over the first delta tried: the parallel layer there,
+//   if it deposits the part exactly (VolDiff within rounding) with the next layer supported, is
+//   taken before any tilted one (a pocket in a plate's top moves the centroids, not the part).
+//   Where the guide turns on, a bend begins: the layers start turning as before. Every D tilting
+//   more than max_tilt_deg from the build plate's +Z (the machine's reach) is turned back
+//   towards +Z onto it, in the plane of D and Z: where the guide turns further (a return bend's
+//   far leg), the layers stop at the reach. The paper prefers a thinner tilted layer to a thick
+//   parallel one: that is what lets the layers follow a bend.
 // - Where no direction between D_upper and D_lower meets both at any delta (a tilt the thickness
 //   bounds forbid, an overhang of the part's own such as the ceiling of a horizontal hole), the
 //   layer keeps D_lower: the thickest parallel layer that meets both, else, of those that meet

@@ -1680,6 +1680,38 @@ TEST(Slicing, TheFirstLayerLaysWhatStartsWithinHalfAThinnestLayerOfThePlate) {
     EXPECT_NEAR(total_unsupported(s), 720.0, 1e-6);
 }
 
+// The same rule on a part resting on a line, sliced as a mesh: a cylinder 20 mm across and 40 long
+// lying along X. Its first region is its section min_layer / 2 = 0.25 mm above its lowest point,
+// a strip 2 sqrt(r^2 - (r - h)^2) wide (4.44 mm), not the one just above the plate (35.8 mm^2 on
+// this mesh, whose lowest facets lie flat). The tessellation's chords lie inside the surface,
+// within the deflection: the strip is no wider than the exact one and no narrower than a
+// cylinder's whose radius is a deflection less.
+TEST(Slicing, TheFirstLayerOfACylinderLyingDownIsItsSectionHalfAThinnestLayerUp) {
+    const double r = 10.0, length = 40.0;
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    const mas::TriangleMesh mesh = mas::tessellate(
+        from_occt(occ_cylinder(Vector3d(0, 0, r), Vector3d::UnitX(), r, length)), tp);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Vector3d& v : mesh.vertices) lowest = std::min(lowest, v.z());
+    ASSERT_NEAR(lowest, 0.0, kDeflection);
+    mas::ComponentSlicingInput input;
+    input.component = 0;
+    input.mesh = &mesh;
+    input.base = mas::make_plane(Vector3d(length / 2, 0, lowest), Vector3d::UnitZ());
+    input.guide = {{length / 2, 0, lowest}, {length / 2, 0, 2 * r}};
+    const mas::LayerParams params = default_params().layers;
+    const std::vector<mas::Layer> layers = mas::slice_component(input, params);
+    ASSERT_FALSE(layers.empty());
+    // The height of the cut above the exact cylinder's lowest line, and the strip's width there.
+    const double h = lowest + 0.5 * params.min_layer_mm;
+    auto width = [&](double radius) {
+        return 2.0 * std::sqrt(radius * radius - (r - h) * (r - h));
+    };
+    EXPECT_LE(layers.front().area_mm2, width(r) * length + 1e-6);
+    EXPECT_GE(layers.front().area_mm2, width(r - kDeflection) * length - 1e-6);
+}
+
 TEST(Slicing, ABlockHangingUnderABridgeIsSlicedWithItsFirstLayerUnsupported) {
     // The block first appears at z = 15 in mid-air (test_parts.hpp): sliced with the root, in Z,
     // its first layer rests on nothing, all 400 mm^2 of it (the legs lie 10 mm away, past any

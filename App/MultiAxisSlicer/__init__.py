@@ -255,21 +255,26 @@ class _Converted:
         self.kind, self.part, self.what = kind, part, what
 
 
-def _containers_placement(obj):
-    """The placement of the groups a document object sits in (an ``App::Part``, a PartDesign
-    ``Body`` holding a feature), combined outermost first: what the 3D view applies to its shape
-    on top of the object's own placement, which the shape already carries. None where it sits in
-    none, or they do not move it."""
+def _groups_of(obj):
+    """The groups a document object sits in (an ``App::Part``, a PartDesign ``Body`` holding a
+    feature), innermost first; none for anything else."""
     parent_of = getattr(obj, "getParentGeoFeatureGroup", None)
-    if parent_of is None:
-        return None
-    placement, group, seen = None, parent_of(), set()
+    group, seen = (parent_of() if parent_of is not None else None), set()
     while group is not None and group.Name not in seen:  # a group in itself: FreeCAD refuses it
         seen.add(group.Name)
+        yield group
+        group = group.getParentGeoFeatureGroup()
+
+
+def _containers_placement(obj):
+    """The placement of the groups a document object sits in (``_groups_of``), combined outermost
+    first: what the 3D view applies to its shape on top of the object's own placement, which the
+    shape already carries. None where it sits in none, or they do not move it."""
+    placement = None
+    for group in _groups_of(obj):
         own = getattr(group, "Placement", None)
         if own is not None:
             placement = own if placement is None else own.multiply(placement)
-        group = group.getParentGeoFeatureGroup()
     if placement is None or placement.isIdentity():
         return None
     return placement

@@ -2217,19 +2217,6 @@ def _attach_view_provider(obj, class_name):
     getattr(view_providers, class_name)(obj.ViewObject)
 
 
-def _sits_in(obj, group):
-    """Whether the document object ``obj`` lies inside ``group`` (a GeoFeatureGroup), at any
-    depth."""
-    parent_of = getattr(obj, "getParentGeoFeatureGroup", None)
-    parent, seen = (parent_of() if parent_of is not None else None), set()
-    while parent is not None and parent.Name not in seen:
-        if parent == group:
-            return True
-        seen.add(parent.Name)
-        parent = parent.getParentGeoFeatureGroup()
-    return False
-
-
 class _GroupMoves:
     """A document observer: where a group's placement changes (an ``App::Part``, a PartDesign
     ``Body``), the objects here whose ``Source`` lies inside it are marked for recompute. Their
@@ -2249,7 +2236,7 @@ class _GroupMoves:
             if not isinstance(getattr(o, "Proxy", None), _EngineFeature):
                 continue
             source = getattr(o, "Source", None)
-            if source is not None and _sits_in(source, obj):
+            if source is not None and any(g == obj for g in mas._groups_of(source)):
                 o.touch()
 
 

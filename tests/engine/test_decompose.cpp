@@ -423,8 +423,11 @@ TEST(Decompose, AnLBlockTurnedOnThePlateIsCutAsTheLBlockTurned) {
         0.0, 1e-9);
     expect_invariants(d, part);
 
-    // Marched in the document's frame (the paper's), the arm leaves the column between +X and +Y:
-    // no component is built along it.
+    // Marched in the document's frame (the paper's), the arm leaves the column between +X and +Y,
+    // 30 degrees off +X. No face of the column is square to +X within face_angle: the arm is cut
+    // at a section plane, turned square to its line, the clearance past the column's face (the
+    // rays find it exact, on the BREP), and built along itself. The column keeps a slab of the
+    // arm the clearance thick.
     mas::TessellationParams tp;
     tp.deflection_mm = kDeflection;
     mas::AxisParams ap;
@@ -432,8 +435,44 @@ TEST(Decompose, AnLBlockTurnedOnThePlateIsCutAsTheLBlockTurned) {
     ap.frame_deg = 0.0;
     auto document = mas::centroidal_axis(mas::tessellate(part, tp), ap);
     document.deflection_mm = kDeflection;
-    for (const auto& c : mas::decompose(part, document).components)
-        EXPECT_FALSE(c.build_direction.isApprox(r * Vector3d::UnitX(), 1e-3));
+    ASSERT_EQ(document.branches[1].direction, Vector3d::UnitX());
+    const auto turned = mas::decompose(part, document);
+    ASSERT_EQ(turned.components.size(), 2u);
+    const auto& along = turned.components[1];
+    // The arm's line, through its sections' centroids: exact on its flat faces.
+    EXPECT_LT(std::acos(std::min(1.0, along.build_direction.dot(r * Vector3d::UnitX()))), 1e-6);
+    EXPECT_EQ(along.rule, Rule::SectionPlane);
+    const double clearance = document.params.eps_mm + kDeflection + 0.01 * 2.5;
+    // Along the line, the face lies within its angle (under 1e-6) times the face's size of 20.
+    EXPECT_NEAR(along.build_direction.dot(along.base_origin), 20.0 + clearance, 1e-6 * 50.0);
+    EXPECT_NEAR(along.volume_mm3, 400.0 * (50.0 - clearance), 1e-6 * 20000.0);
+    EXPECT_NEAR(turned.components[0].volume_mm3, 24000.0 + 400.0 * clearance, 1e-6 * 24000.0);
+    EXPECT_TRUE(along.turned);
+    expect_invariants(turned, part);
+    // Asked to cut it square to its direction (DecomposeParams::square_branches), the section
+    // plane is square to +X, as the paper's directions have it.
+    mas::DecomposeParams square;
+    square.square_branches = {1};
+    const auto squared = mas::decompose(part, document, square);
+    ASSERT_GE(squared.components.size(), 2u);
+    EXPECT_EQ(squared.components[1].branch, 1);
+    EXPECT_FALSE(squared.components[1].turned);
+    EXPECT_EQ(squared.components[1].rule, Rule::SectionPlane);
+    EXPECT_TRUE(squared.components[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    expect_invariants(squared, part);
+    // No such branch, or the root, which is never cut: a clear error.
+    for (const int b : {0, int(document.branches.size()), -1}) {
+        square.square_branches = {b};
+        try {
+            mas::decompose(part, document, square);
+            ADD_FAILURE() << "branch " << b << " accepted";
+        } catch (const mas::Error& e) {
+            EXPECT_EQ(e.code(), mas::ErrorCode::InvalidArgument);
+            EXPECT_NE(std::string(e.what()).find("no branch " + std::to_string(b)),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 TEST(Decompose, AKeptBranchStaysInItsFatherSayingWhyAndIsListed) {
@@ -997,7 +1036,8 @@ TEST(Decompose, ASliverCutOffTheFathersTopStaysInTheFather) {
     const double step = 1.45;
     const auto d = mas::decompose(part, axis_of(part, step));
     // The root, the hub's two ends (built +-X), the two sideways blades (+-Y) and the two upper
-    // ones (+Z); the lower two hang into the pedestal's reach and stay with the root.
+    // ones (found marching +Z, built along their lean); the lower two hang into the pedestal's
+    // reach and stay with the root.
     ASSERT_EQ(d.components.size(), 7u);
     ASSERT_EQ(d.notes.size(), 1u);
     EXPECT_NE(d.notes[0].find("reaches only 0.3 mm"), std::string::npos) << d.notes[0];
@@ -1025,7 +1065,9 @@ TEST(Decompose, LeaningBladesAreBuiltWhole) {
     // With a 1.5 mm step the hub's +X march meets the blades at x = 10 and sends the two upper
     // ones up (+Z). Their leaning tips, which the +Z slabs leave partly unswept, must not become
     // +X branches of the hub's march: the decomposition would cut each blade lengthwise at x = 10
-    // and build its outer half sideways.
+    // and build its outer half sideways. Each blade leans 30 degrees off +Z about X, the hub's
+    // direction: it is cut square to its line and built along it (Decompose.hpp), (0, -+sin 30,
+    // cos 30), through its sections' centroids, exact on its flat faces.
     const auto part = lying_rotor();
     const auto d = mas::decompose(part, axis_of(part, 1.5));
     int upper_blades = 0;
@@ -1036,7 +1078,10 @@ TEST(Decompose, LeaningBladesAreBuiltWhole) {
         EXPECT_FALSE(b.min().x() > 9.0 && b.max().x() < 12.0 + 1e-6) << "a blade's outer part";
         if (b.max().z() < 57.0) continue;
         ++upper_blades;  // the blade's top is at z = 30 + 31 cos 30 + sin 30 = 57.35
-        EXPECT_TRUE(c.build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+        const double side = c.build_direction.y() < 0.0 ? -1.0 : 1.0;
+        const Vector3d lean(0.0, side * 0.5, std::sqrt(0.75));
+        EXPECT_LT(std::acos(std::min(1.0, c.build_direction.dot(lean))), 1e-6)
+            << c.build_direction.transpose();
         EXPECT_NEAR(b.min().x(), 8.0, 1e-6);
         EXPECT_NEAR(b.max().x(), 12.0, 1e-6);
     }

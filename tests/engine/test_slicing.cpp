@@ -591,6 +591,129 @@ TEST(Slicing, ShortLugsOnAThickColumnAreBuiltSidewaysWithEveryLayerSupported) {
     expect_invariants(s, params, "column with short lugs");
 }
 
+TEST(Slicing, BladesRoundAHubAreCutSquareToThemselvesJustPastItsSide) {
+    // A round hub (radius 12, 30 tall) with three flat blades (4 thick, 10 wide, from z = 10 to
+    // 20, reaching 32 from the hub's axis) at 20, 145 and 250 degrees round it: each between two
+    // of +-X and +-Y, where the axis marches it. Each is cut by the plane square to it, the
+    // clearance past the hub's side beside it, and built along itself: the hub keeps only the
+    // lens between its side and that plane, whose underside a layer of the hub carries. Cut
+    // square to +-X or +-Y where the blade's march began (Eq. 4's T), the hub kept a wedge of
+    // each blade up to 3 mm deep, overhanging its layers.
+    const double radius = 12.0, thick = 4.0, wide = 10.0, step = 3.0;
+    const double angles[] = {20.0, 145.0, 250.0};
+    TopoDS_Shape hub = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), radius, 30.0);
+    for (const double a : angles) {
+        gp_Trsf turn;
+        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), a * kPi / 180.0);
+        const TopoDS_Shape blade =
+            occ_box(radius / 2, -thick / 2, 10, 32 - radius / 2, thick, wide);
+        hub = fuse(hub, BRepBuilderAPI_Transform(blade, turn, true).Shape());
+    }
+    const auto part = from_occt(hub);
+    const auto params = default_params();
+    const auto s = slice(part, step, params);
+    ASSERT_EQ(s.axis.params.frame_deg, 0.0);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 4u);
+    // The plane lies the clearance (Decompose.hpp, with the part's default deflection: the axis
+    // records none) past the hub's side, which the rays find at points along the blade's outline
+    // no further apart than a tenth of a step: up to half that off the blade's middle, where the
+    // side lies (0.15)^2 / 24 mm short of the radius.
+    ASSERT_EQ(s.axis.deflection_mm, 0.0);
+    const double clearance = s.axis.params.eps_mm +
+                             mas::effective_deflection(part, mas::TessellationParams{}) +
+                             0.01 * step;
+    const double short_of = std::pow(0.05 * step, 2) / (2.0 * radius);
+    // The lens the hub keeps under a blade, seen along Z, with the plane `at` from the axis.
+    const auto lens = [&](double at) {
+        const double h = thick / 2;
+        return 2.0 * h * at -
+               (h * std::sqrt(radius * radius - h * h) + radius * radius * std::asin(h / radius));
+    };
+    double blades = 0.0;
+    for (const double a : angles) {
+        const Vector3d along(std::cos(a * kPi / 180.0), std::sin(a * kPi / 180.0), 0.0);
+        SCOPED_TRACE("the blade at " + std::to_string(a) + " degrees");
+        int found = 0;
+        for (std::size_t k = 1; k < comps.size(); ++k) {
+            const auto& c = comps[k];
+            if (c.build_direction.dot(along) < 0.9) continue;
+            ++found;
+            // The blade's line, through its sections' centroids: exact on its flat faces.
+            EXPECT_LT(angle_deg(c.build_direction, along), 1e-4);
+            EXPECT_EQ(c.rule, mas::Component::SplitRule::SectionPlane);
+            EXPECT_EQ(c.parent, 0);
+            const double at = c.build_direction.dot(c.base_origin);
+            EXPECT_LE(at, radius + clearance + 1e-9);
+            EXPECT_GE(at, radius + clearance - short_of - 1e-9);
+            // All of the blade past the plane: its box (less what lies in the hub) less the lens.
+            const double outside = (32.0 - at) * thick * wide;
+            EXPECT_NEAR(c.volume_mm3, outside, 1e-6 * outside);
+            blades += c.volume_mm3;
+            const auto& comp = s.result.components[k];
+            for (int i = 0; i < comp.layer_count; ++i) {
+                const auto& l = s.result.layers[std::size_t(comp.first_layer + i)];
+                EXPECT_LT(angle_deg(l.plane.normal, c.build_direction), 1e-4);
+                EXPECT_NEAR(l.area_mm2, thick * wide, 1e-6);
+            }
+        }
+        EXPECT_EQ(found, 1);
+    }
+    // The hub: its cylinder and the three lenses, each between the hub's side and its plane.
+    const double cylinder = kPi * radius * radius * 30.0;
+    EXPECT_NEAR(comps[0].volume_mm3, cylinder + 3.0 * wide * lens(radius + clearance),
+                3.0 * wide * thick * short_of + 1e-6 * cylinder);
+    EXPECT_NEAR(comps[0].volume_mm3 + blades, part.info().volume_mm3, 1e-6 * cylinder);
+    for (const auto& l : s.result.layers) EXPECT_EQ(l.unsupported_area_mm2, 0.0);
+    expect_invariants(s, params, "hub with three blades");
+}
+
+TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections) {
+    // A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 30
+    // degrees round and 8 mm up from one to the next. Cut square to their own lines (those
+    // between +-X and +-Y), a tread's root lies 4 mm over the one before it, which runs under
+    // it near the column: the nozzle at the root, built along the tread's line, meets it. Every
+    // turned cut is then made square to its branch's direction (SlicePart.hpp), where the nozzle
+    // clears them. Without that, the two treads it met were kept in the column: 507 mm^2 hanging.
+    const int treads = 6;
+    TopoDS_Shape stair = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10.0, 8.0 * treads + 10.0);
+    for (int i = 0; i < treads; ++i) {
+        gp_Trsf turn;
+        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 30.0 * i * kPi / 180.0);
+        stair = fuse(
+            stair,
+            BRepBuilderAPI_Transform(occ_box(0, -9, 8.0 * i + 6, 45, 18, 4), turn, true).Shape());
+    }
+    const auto part = from_occt(stair);
+    auto params = default_params();
+    params.paths.measure_coverage = false;
+    Sliced s = decomposed(part);
+    mas::DecomposeParams dp;
+    dp.min_component_height_mm = params.layers.min_layer_mm;
+    dp.max_tilt_deg = params.layers.max_tilt_deg;
+    // Decomposed once, the four treads between the directions (30, 60, 120 and 150 degrees
+    // round) are cut square to their lines.
+    const auto first = mas::decompose(part, s.axis, dp).components;
+    EXPECT_EQ(std::count_if(first.begin(), first.end(),
+                            [](const auto& c) { return c.turned && c.volume_mm3 > 2000.0; }),
+              4);
+    s.result = mas::slice_solid_part(part, s.axis, dp, params, s.decomposition);
+    EXPECT_EQ(s.result.stats.colliding_layers, 0);
+    for (const auto& note : s.result.notes)
+        EXPECT_EQ(note.find("would meet the plate or what is deposited"), std::string::npos)
+            << note;
+    // Each tread is built sideways from the column along +-X or +-Y: no turned cut is left, and
+    // each tread's body (2403 to 2516 mm^3 past its cut) is a component of its own.
+    int bodies = 0;
+    for (std::size_t k = 1; k < s.decomposition.components.size(); ++k) {
+        const auto& c = s.decomposition.components[k];
+        EXPECT_FALSE(c.turned) << k;
+        EXPECT_NEAR(std::abs(c.build_direction.x()) + std::abs(c.build_direction.y()), 1.0, 1e-12);
+        if (c.volume_mm3 > 2000.0) ++bodies;
+    }
+    EXPECT_EQ(bodies, treads);
+}
+
 TEST(Slicing, ACollarAndAShelfWiderThanTheirColumnsAreBuiltSidewaysFromItsFaces) {
     // A collar [-15,15]^2 x [40,50] all round a column [-10,10]^2 x [0,70] (CentroidalAxis test
     // of the same name), and a shelf [-55,55] x [-20,20] x [50,56] through a column

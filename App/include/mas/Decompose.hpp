@@ -134,6 +134,26 @@
 //   b's first node's material point is taken that far along D too. The same piece selection
 //   follows. What lies between the father's surface and that plane (the lens of a round boss on a
 //   round body) stays in the father.
+// - A branch whose line runs off D about its father's direction is cut at a section plane turned
+//   square to its line instead (a blade on a round hub 33 degrees off -X: the march takes the
+//   nearest of +-X, +-Y, +-Z, and the plane square to D at T left a wedge of the blade up to 3 mm
+//   deep in the hub, its underside overhanging the hub's layers, 21.6 mm^2 on a hub with five
+//   blades). The line runs through the centroids of the branch's first nodes, as many of the
+//   first six as lie on one within the clearance (three at least: a blade's tip cuts its last
+//   section short), less its component along the father's direction (a branch leaning up out of
+//   a column keeps D); it is turned to when more than 2 degrees and less than 45 off D. Rays cast
+//   back along the line, from points along the first node's outline (no further apart than a
+//   tenth of a step) moved the clearance out of it, as far as the father's node the branch links
+//   to, meet the father's faces facing the branch (a ray meeting the branch's own side, on a line
+//   a little off the branch's, counts for nothing); the plane lies the clearance past the
+//   furthest hit, and the child is built along the line. What stays in the father is the lens
+//   between its side and the plane (under half a millimetre deep beside a 6 mm blade on a 13 mm
+//   hub), as under a round boss. The plane square to D, above, is taken where the branch runs
+//   along D, no ray meets the father, its first node carries no region or would not lie the
+//   clearance in front of the turned plane, the turned plane's split is refused, or
+//   DecomposeParams::square_branches lists it (as slicing does where the nozzle cannot build the
+//   turned cuts' layers: a spiral stair's treads, SlicePart.hpp); its component says which
+//   (Component::turned).
 // - The whole plane can cut off, on the father's side, material joined only to the child's
 //   piece: an S bracket's middle plate, cut off its lower upright's face, takes with it the top
 //   plate's tail past that face. Such a piece (wholly on the father's side, joined to exactly
@@ -224,6 +244,11 @@ struct DecomposeParams {
     // why; their sub-branches are cut from there as usual): what slicing asks for when a
     // branch's own component would leave the nozzle no way to some of its layers (SlicePart.hpp).
     std::vector<KeptBranch> keep_branches;
+    // Branches cut at the section plane square to their direction D, never turned square to their
+    // line (above): what slicing asks for first when the nozzle has no way to some layers of a
+    // turned cut's component (SlicePart.hpp). Each must be a branch of the axis other than its
+    // root, else InvalidArgument.
+    std::vector<int> square_branches;
 };
 
 struct Component {
@@ -244,6 +269,9 @@ struct Component {
     int branch = -1;      // the axis branch that made this component (the root's: 0)
     int break_link = -1;  // that branch's first link (the break, turn or split), -1 for the root
     SplitRule rule = SplitRule::Root;
+    // Cut at a section plane turned square to its branch's line (above), not to the branch's
+    // direction: its build_direction is that line's.
+    bool turned = false;
     double volume_mm3 = 0.0;
 };
 
@@ -259,6 +287,9 @@ struct Decomposition {
     // The branches DecomposeParams::keep_branches asked to keep that were kept so (the others
     // got no cut for other reasons, or none was asked of them), in increasing order.
     std::vector<int> kept_branches;
+    // DecomposeParams::square_branches, in increasing order, each once: decomposing with them (and
+    // kept_branches) gives this decomposition again.
+    std::vector<int> square_branches;
 };
 
 // Splits `solid` along `axis` (computed for this solid). Throws mas::Error: NotASolid /

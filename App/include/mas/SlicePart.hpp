@@ -176,27 +176,32 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
                            const SlicePartParams& params, const Progress& progress = {});
 
 // A part decomposed and sliced, for slice_clear_of_collisions: the slicing, the axis branch each
-// of its components came from (the root's first) and the decomposition's notes.
+// of its components came from (the root's first), whether its cut was turned square to its
+// branch's line (Component::turned; a mesh's never is), and the decomposition's notes.
 struct SplitSliced {
     SlicedPart sliced;
     std::vector<int> branches;
+    std::vector<char> turned;
     std::vector<std::string> notes;
 };
 
 // The rounds slice_mesh_part and slice_solid_part share. `split` decomposes the part, keeping the
-// branches it is given in their fathers, and slices it (given the first 70 % of `progress`).
+// branches it is given in their fathers and cutting those it is given square to their directions
+// (DecomposeParams::square_branches), and slices it (given the first 70 % of `progress`).
 // Unless `avoid_collisions` is false: where some layers would meet what is deposited before them
-// (no order or lean clears them, Nozzle.hpp), the branches of their components (not the root's)
-// are kept too, each saying so, and the part is split and sliced again, up to five times in all
-// (the next 20 %); with layers still in the way, `whole` slices it as one component (the last
-// 10 %), kept when fewer of its layers are, with a note. The decomposition's notes come first in
-// the result's, each "decomposition: ...".
+// (no order or lean clears them, Nozzle.hpp), and one of their components (not the root) was cut
+// turned square to its branch's line (Component::turned), every component so cut is cut square to
+// its branch's direction next; else their branches are kept too, each saying so; and the part is
+// split and sliced again, up to five times in all (the next 20 %); with layers still in the way,
+// `whole` slices it as one component (the last 10 %), kept when fewer of its layers are, with a
+// note. The decomposition's notes come first in the result's, each "decomposition: ...".
 struct SplitOutcome {
     bool took_whole = false;         // the part sliced as one component was kept
     std::vector<std::string> notes;  // the decomposition's notes, without the "decomposition: "
 };
 SlicedPart slice_clear_of_collisions(
-    const std::function<SplitSliced(const std::vector<KeptBranch>& keep, const Progress& progress)>&
+    const std::function<SplitSliced(const std::vector<KeptBranch>& keep,
+                                    const std::vector<int>& square, const Progress& progress)>&
         split,
     const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
     const Progress& progress, SplitOutcome* outcome = nullptr);

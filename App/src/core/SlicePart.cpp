@@ -39,28 +39,45 @@ Plane build_plate(const TriangleMesh& mesh) {
 }
 
 SlicedPart slice_clear_of_collisions(
-    const std::function<SplitSliced(const std::vector<KeptBranch>& keep, const Progress& progress)>&
+    const std::function<SplitSliced(const std::vector<KeptBranch>& keep,
+                                    const std::vector<int>& square, const Progress& progress)>&
         split,
     const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
     const Progress& progress, SplitOutcome* outcome) {
     const int rounds = avoid_collisions ? 5 : 1;
     std::vector<KeptBranch> keep;
+    std::vector<int> square;
     SplitSliced parts;
     for (int round = 0;; ++round) {
         // The first round is most of the work (the rest, seldom needed, share a fifth; the part
         // sliced whole the last tenth).
         const double lo = round == 0 ? 0.0 : 0.7 + 0.2 * (round - 1) / (rounds - 1);
         const double hi = round == 0 ? 0.7 : 0.7 + 0.2 * round / (rounds - 1);
-        parts = split(keep, progress.span(lo, hi));
+        parts = split(keep, square, progress.span(lo, hi));
         if (parts.sliced.stats.colliding_layers == 0 || parts.branches.size() == 1 ||
             round + 1 == rounds)
             break;
         std::set<int> branches;
+        bool turned = false;
         for (const NozzleCollision& c : parts.sliced.sequence.collisions) {
-            const int component = parts.sliced.layers[std::size_t(c.layer)].component;
-            if (component > 0) branches.insert(parts.branches[std::size_t(component)]);
+            const std::size_t component =
+                std::size_t(parts.sliced.layers[std::size_t(c.layer)].component);
+            if (component == 0) continue;
+            branches.insert(parts.branches[component]);
+            turned = turned || (component < parts.turned.size() && parts.turned[component]);
         }
         if (branches.empty()) break;
+        // Where a cut turned square to its branch's line leaves the nozzle no way to some layers,
+        // every such cut is made square to its branch's direction instead, as Sec. 3.2.1's
+        // directions cut the part, and the rounds go on from there. (A spiral stair's treads, 30
+        // degrees apart round a column and 8 mm apart up it: built along their own lines, the
+        // nozzle at one tread's root met the tread under it. Squaring only those cut the next
+        // ones across their neighbours, and seven of twelve treads ended in the column's layers.)
+        if (turned) {
+            for (std::size_t c = 1; c < parts.turned.size(); ++c)
+                if (parts.turned[c]) square.push_back(parts.branches[c]);
+            continue;
+        }
         for (int b : branches)
             keep.push_back({b,
                             "built on its own, its layers would meet the plate or what is "
@@ -103,7 +120,9 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
     root.mesh = mesh;
     root.base = build_plate(mesh);
     if (!params.split_mesh) return slice_components({root}, axis, params, progress);
-    const auto split = [&](const std::vector<KeptBranch>& keep, const Progress& round) {
+    // A mesh's cuts are square to its branches' directions: `square` asks for nothing more.
+    const auto split = [&](const std::vector<KeptBranch>& keep, const std::vector<int>&,
+                           const Progress& round) {
         MeshDecomposeParams split;
         split.min_component_height_mm = params.layers.min_layer_mm;
         split.max_tilt_deg = params.layers.max_tilt_deg;

@@ -18,12 +18,15 @@
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <Eigen/Eigenvalues>
 #include <GProp_GProps.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
 #include <NCollection_DataMap.hxx>
 #include <OSD_Parallel.hxx>
+#include <Precision.hxx>
 #include <ShapeFix_Shape.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -36,6 +39,7 @@
 #include <algorithm>
 #include <cmath>
 #include <gp_Ax1.hxx>
+#include <gp_Lin.hxx>
 #include <gp_Trsf.hxx>
 #include <limits>
 #include <memory>
@@ -673,6 +677,11 @@ struct Work {
     Component c;
 };
 
+// A branch whose line runs further than this off its direction D (degrees) is cut square to its
+// line when cut at a section plane (Decomposer::turn_square). Below it, the stub the plane
+// square to D leaves in the father is less than 3.5 % of its section's width deep.
+constexpr double kOffLineDeg = 2.0;
+
 // Where a branch asks to be cut from its father, and by which plane.
 struct Plan {
     Component::SplitRule rule = Component::SplitRule::PlanarFace;
@@ -680,6 +689,7 @@ struct Plan {
     Vector3d pos_end;          // the branch's first node
     Vector3d inner;            // a point in the material of its first section
     bool by_own_face = false;  // a face chosen nearest the father's own face (over a gusset)
+    bool turned = false;       // a section plane turned square to the branch's line (plan())
 };
 
 class Decomposer {
@@ -694,8 +704,8 @@ public:
 
     // The splitting plane for branch b on the father solid `fs` (edge-face map `e2f`): the
     // criteria's face nearest the father's own face over a gusset (`attempt` 0) or nearest the
-    // junction (0 without a gusset, or 1), else (or with `attempt` 2) the section plane; false
-    // for none.
+    // junction (0 without a gusset, or 1), else (or with `attempt` 2) the section plane, turned
+    // square to a branch running off D (not with `attempt` 3); false for none.
     bool plan(std::size_t b, const TopoDS_Shape& fs,
               const TopTools_IndexedDataMapOfShapeListOfShape& e2f, Plan& out,
               int attempt = 0) const {
@@ -827,6 +837,9 @@ public:
             at = own_face + clearance_;
             out.by_own_face = true;
         }
+        // A branch running off D (a blade on a hub between -X and +Y): the plane square to its
+        // line, just past the father's surface beside it (Decompose.hpp).
+        if (attempt < 3 && !out.by_own_face && turn_square(b, fs, out)) return true;
         const double cut = past_slivers(fs, D, at, frame, reach);
         out.point = D * cut;
         out.normal = D;
@@ -843,6 +856,132 @@ public:
     }
 
 private:
+    // Branch b's line, where it runs off D by more than kOffLineDeg about its father's direction:
+    // the line through its first nodes' centroids, as many of the first six as lie on one within
+    // the clearance (at least three: a blade's last node, at its tip, cuts its end obliquely), less
+    // its component along the father's direction (a branch leaning up out of its father keeps D).
+    // False for a branch along D, or one whose first three nodes do not lie on a line.
+    bool off_line(std::size_t b, const Vector3d& D, Vector3d& along) const {
+        const AxisBranch& br = axis_.branches[b];
+        Vector3d line = Vector3d::Zero();
+        for (std::size_t n = std::min<std::size_t>(br.nodes.size(), 6); n >= 3; --n) {
+            Vector3d mean = Vector3d::Zero();
+            for (std::size_t i = 0; i < n; ++i)
+                mean += axis_.nodes[std::size_t(br.nodes[i])].position;
+            mean /= double(n);
+            Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+            for (std::size_t i = 0; i < n; ++i) {
+                const Vector3d d = axis_.nodes[std::size_t(br.nodes[i])].position - mean;
+                spread += d * d.transpose();
+            }
+            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(spread);
+            const Vector3d fit = solver.eigenvectors().col(2);  // the largest eigenvalue's
+            bool straight = true;
+            for (std::size_t i = 0; i < n && straight; ++i) {
+                const Vector3d d = axis_.nodes[std::size_t(br.nodes[i])].position - mean;
+                straight = (d - fit.dot(d) * fit).norm() <= clearance_;
+            }
+            if (straight) {
+                line = fit.dot(D) < 0.0 ? Vector3d(-fit) : fit;
+                break;
+            }
+        }
+        if (line.isZero()) return false;
+        const int start = axis_.links[std::size_t(br.first_link)].start;
+        const int fb = axis_.nodes[std::size_t(start)].branch;
+        const Vector3d F =
+            axis_.branches[std::size_t(fb >= 0 ? fb : br.parent)].direction.normalized();
+        line -= line.dot(F) * F;
+        if (line.norm() < 1e-9) return false;
+        line.normalize();
+        const double off = std::acos(std::clamp(line.dot(D), -1.0, 1.0)) * 180.0 / kPi;
+        if (off <= kOffLineDeg || off >= 45.0) return false;
+        along = line;
+        return true;
+    }
+
+    // The section plane turned square to branch b's line (off_line()), just past the father's
+    // surface beside the branch's first section: rays cast back along the line from just
+    // outside that section's outline (grown by the clearance), as far as the father's node the
+    // branch links to, meet the father's surface; the plane lies the clearance past the
+    // furthest hit. On a round hub, the lens between its side and the plane stays in it, as
+    // under a round boss. False (the plane square to D is taken) where the branch runs along
+    // D, its first node carries no region, no ray meets the father, or the plane would not
+    // leave the first node's centroid a clearance in front of it.
+    bool turn_square(std::size_t b, const TopoDS_Shape& fs, Plan& out) const {
+        const AxisBranch& br = axis_.branches[b];
+        const Vector3d D = br.direction.normalized();
+        Vector3d along;
+        if (!off_line(b, D, along)) return false;
+        const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
+        const std::vector<Eigen::Vector2d>& outline = first.region.outer.points;
+        if (outline.size() < 3) return false;
+        const AxisNode& junction =
+            axis_.nodes[std::size_t(axis_.links[std::size_t(br.first_link)].start)];
+        const PlaneFrame frame(first.normal);
+        IntCurvesFace_ShapeIntersector rays;
+        rays.Load(fs, Precision::Confusion());
+        // Points along the outline, no further apart than a tenth of a step (a square blade's
+        // outline has its corners alone, where a round hub's side is furthest from its middle),
+        // 256 at most, each moved out of it by the clearance.
+        const std::size_t count = outline.size();
+        double perimeter = 0.0;
+        for (std::size_t i = 0; i < count; ++i)
+            perimeter += (outline[(i + 1) % count] - outline[i]).norm();
+        const double spacing = std::max(0.1 * axis_.params.step_mm, perimeter / 256.0);
+        double furthest = -std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < count; ++i) {
+            const Eigen::Vector2d& p = outline[i];
+            const Eigen::Vector2d edge = outline[(i + 1) % count] - p;
+            const double length = edge.norm();
+            if (length < 1e-12) continue;
+            const Eigen::Vector2d outward = Eigen::Vector2d(edge.y(), -edge.x()) / length;
+            const int pieces = std::max(1, int(std::ceil(length / spacing)));
+            for (int k = 0; k <= pieces; ++k) {
+                const Eigen::Vector2d q = p + edge * (double(k) / pieces) + clearance_ * outward;
+                const Vector3d from =
+                    frame.u * q.x() + frame.v * q.y() + first.normal * first.offset;
+                const double reach = along.dot(from - junction.position);
+                if (reach <= 0.0) continue;
+                rays.Perform(gp_Lin(pnt(from), gp_Dir(-along.x(), -along.y(), -along.z())), 0.0,
+                             reach);
+                if (!rays.IsDone() || rays.NbPnt() == 0) continue;
+                int nearest = 1;
+                for (int h = 2; h <= rays.NbPnt(); ++h)
+                    if (rays.WParameter(h) < rays.WParameter(nearest)) nearest = h;
+                // The father's surface faces the branch. A ray that met the branch's own side
+                // (running into it, on a line a little off the branch's) tells nothing.
+                if (facing(rays, nearest).dot(along) < 0.1) continue;
+                furthest = std::max(furthest, along.dot(from) - rays.WParameter(nearest));
+            }
+        }
+        if (!std::isfinite(furthest)) return false;
+        const double cut = furthest + clearance_;
+        if (along.dot(first.position) < cut + clearance_) return false;
+        out.normal = along;
+        out.point = first.position + along * (cut - along.dot(first.position));
+        out.by_own_face = false;
+        out.turned = true;
+        // The first node's material, moved along the line past the plane if it lies behind.
+        if (along.dot(out.inner) < cut + clearance_)
+            out.inner += along * (cut + clearance_ - along.dot(out.inner));
+        return true;
+    }
+
+    // The outward unit normal of the solid's face at a ray's `hit`-th point (zero where the face
+    // has none).
+    static Vector3d facing(IntCurvesFace_ShapeIntersector& rays, int hit) {
+        const TopoDS_Face& face = rays.Face(hit);
+        const BRepAdaptor_Surface surface(face);
+        gp_Pnt p;
+        gp_Vec du, dv;
+        surface.D1(rays.UParameter(hit), rays.VParameter(hit), p, du, dv);
+        const gp_Vec n = du.Crossed(dv);
+        if (n.Magnitude() < 1e-12) return Vector3d::Zero();
+        const Vector3d unit = Vector3d(n.X(), n.Y(), n.Z()).normalized();
+        return face.Orientation() == TopAbs_REVERSED ? Vector3d(-unit) : unit;
+    }
+
     // T was measured on the mesh, whose chords lie inside a curved face by up to the deflection:
     // a plane at `at` along D (one of +-X, +-Y, +-Z) can cross a face of the father that reaches
     // only a little further (a round shank under a bolt's hex head, its side reaching 0.013 mm
@@ -911,6 +1050,13 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
     check_params(params);
     const Shape checked = input.single_solid("decompose");
     check_kept_branches(params.keep_branches, world_axis, "decompose");
+    for (const int b : params.square_branches)
+        if (b <= 0 || b >= int(world_axis.branches.size()))
+            throw Error(ErrorCode::InvalidArgument,
+                        "decompose: there is no branch " + std::to_string(b) +
+                            " to cut square to its direction (the axis has " +
+                            std::to_string(world_axis.branches.size()) +
+                            " branches, 0 its root, which is not cut)");
     const double frame = axis_frame_deg(world_axis, "decompose");
     std::optional<CentroidalAxis> turned_axis;
     if (frame != 0.0) turned_axis = turned_about_z(world_axis, -frame);
@@ -1110,9 +1256,17 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             // section plane at Eq. 4's T; a section plane past the father's own section over a
             // gusset gives way to the one at T. (The side face of one of two square arms meeting at
             // a round column, chosen for the other, cuts through the column down to the plate: that
-            // arm stayed in the root, overhanging.) Per branch: 0, 1 or 2, as plan() takes it.
+            // arm stayed in the root, overhanging.) A section plane turned square to the branch's
+            // line gives way to the one square to its direction. Per branch: 0 to 3, as plan()
+            // takes it (3 from the start for DecomposeParams::square_branches).
             std::vector<int> attempt(nb, 0);
+            for (const int b : params.square_branches) attempt[std::size_t(b)] = 3;
             const auto retry = [&](std::size_t g, const Plan& p) {
+                if (p.turned && attempt[g] < 3) {
+                    attempt[g] = 3;  // the section plane square to D
+                    holder[g] = -1;
+                    return true;
+                }
                 if (attempt[g] >= 2) return false;
                 if (p.rule == Component::SplitRule::SectionPlane) {
                     if (!p.by_own_face) return false;
@@ -1307,6 +1461,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     child.c.branch = int(g);
                     child.c.break_link = axis.branches[g].first_link;
                     child.c.rule = p.rule;
+                    child.c.turned = p.turned;
                     child.c.has_base_face = true;
                     child.c.base_face = occ::wrap(children[k].base);
                     child.c.base_origin = children[k].base_origin;
@@ -1403,6 +1558,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
         }
         out.notes = std::move(notes);
         out.kept_branches.assign(kept_asked.begin(), kept_asked.end());
+        const std::set<int> square(params.square_branches.begin(), params.square_branches.end());
+        out.square_branches.assign(square.begin(), square.end());
     } catch (const Standard_Failure& e) {
         throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
     }

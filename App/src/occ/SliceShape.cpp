@@ -198,10 +198,11 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                             Decomposition& decomposition, const Progress& progress) {
     const Shape part = solid.single_solid("slice");
     const DecomposeParams& dp = decompose_params;
-    const auto run = [&](const std::vector<KeptBranch>& keep, const Progress& round,
-                         Decomposition& into) {
+    const auto run = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square,
+                         const Progress& round, Decomposition& into) {
         DecomposeParams p = dp;
         p.keep_branches.insert(p.keep_branches.end(), keep.begin(), keep.end());
+        p.square_branches.insert(p.square_branches.end(), square.begin(), square.end());
         into = decompose(part, axis, p, round.span(0.0, 0.2));
         return slice_part(part, axis, into, params, round.span(0.2, 1.0));
     };
@@ -213,9 +214,10 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
         holes = holes_to_fill(part, Eigen::Vector3d::UnitZ(), params.fill_holes_up_to_mm,
                               params.layers.overhang_angle_deg, part);
     Decomposition split_one, whole_one;
-    const auto split = [&](const std::vector<KeptBranch>& keep, const Progress& round) {
+    const auto split = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square,
+                           const Progress& round) {
         SplitSliced out;
-        out.sliced = run(keep, holes.empty() ? round : round.span(0.0, 0.5), split_one);
+        out.sliced = run(keep, square, holes.empty() ? round : round.span(0.0, 0.5), split_one);
         std::vector<std::string> open;  // the holes left open, where keeping branches is worse
         if (!holes.empty()) {
             // The branches whose splits cut such a hole are kept in their fathers (and those of
@@ -243,6 +245,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                 if (last == &split_one) cutting_as_asked = cut_holes.size();
                 DecomposeParams p = dp;
                 p.keep_branches.insert(p.keep_branches.end(), more.begin(), more.end());
+                p.square_branches.insert(p.square_branches.end(), square.begin(), square.end());
                 d = decompose(part, axis, p, again.span(0.0, 0.2));
                 last = &d;
             }
@@ -271,14 +274,17 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
         }
         out.notes = split_one.notes;
         out.notes.insert(out.notes.end(), open.begin(), open.end());
-        for (const Component& c : split_one.components) out.branches.push_back(c.branch);
+        for (const Component& c : split_one.components) {
+            out.branches.push_back(c.branch);
+            out.turned.push_back(c.turned);
+        }
         return out;
     };
     const auto whole = [&](const Progress& p) {
         std::vector<KeptBranch> all;
         for (std::size_t b = 1; b < axis.branches.size(); ++b)
             all.push_back({int(b), "the part is sliced as one component"});
-        return run(all, p, whole_one);
+        return run(all, {}, p, whole_one);
     };
     SplitOutcome outcome;
     SlicedPart out =

@@ -663,21 +663,23 @@ def make_centroidal_axis(source, step=0.0, distance_threshold=0.0, eps=0.001, br
 
 def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
                        deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0,
-                       max_tilt=100.0, keep_branches=()):
+                       max_tilt=100.0, keep_branches=(), square_branches=()):
     """Adds a parametric ``Decomposition`` object (FreeCAD only) splitting the document object
     ``source`` (optionally following the ``CentroidalAxis`` object ``axis``, whose parameters are
     then used), computes it and adds one ``Component`` object per sub-component (labelled
     Component001, ... in tree order). Returns the Decomposition object. ``keep_branches``: axis
     branches left in their fathers (its KeepBranches; ``features.keep_unreachable_branches()``
-    sets those whose own layers a Layers object's nozzle cannot reach). See
-    ``MultiAxisSlicer.features``."""
+    sets those whose own layers a Layers object's nozzle cannot reach); ``square_branches``: axis
+    branches cut square to their directions (its SquareBranches; set there where the cuts turned
+    square to their lines leave the nozzle no way). See ``MultiAxisSlicer.features``."""
     from . import features
 
     return features.make_decomposition(source, axis=axis, face_angle=face_angle,
                                        section_plane_fallback=section_plane_fallback,
                                        deflection=deflection, name=name, doc=doc,
                                        min_component_height=min_component_height,
-                                       max_tilt=max_tilt, keep_branches=keep_branches)
+                                       max_tilt=max_tilt, keep_branches=keep_branches,
+                                       square_branches=square_branches)
 
 
 def make_slice(part, deflection=0.0, show_travel=False, name="Layers", toolpath_name="Toolpath",

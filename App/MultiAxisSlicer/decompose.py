@@ -52,7 +52,7 @@ def _max_tilt(value):
 
 def _checked_params(face_angle=10.0, concave_angle=1.0, projection_tolerance=0.01,
                     section_plane_fallback=True, min_component_height=0.0, max_tilt=100.0,
-                    keep_branches=()):
+                    keep_branches=(), square_branches=()):
     """decompose()'s decomposition parameters, checked (TypeError / ValueError naming the bad one),
     as a Decomposition's ``params``."""
     face_angle_deg = _angle(face_angle, "face_angle", 90.0)
@@ -67,6 +67,7 @@ def _checked_params(face_angle=10.0, concave_angle=1.0, projection_tolerance=0.0
                          "millimetres, got {}".format(min_height_mm))
     max_tilt_deg = _max_tilt(max_tilt)
     keep = _branch_list(keep_branches)
+    square = _branch_list(square_branches, "square_branches")
     if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
         raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
             section_plane_fallback))
@@ -74,7 +75,7 @@ def _checked_params(face_angle=10.0, concave_angle=1.0, projection_tolerance=0.0
             "projection_tolerance_mm": tolerance_mm,
             "section_plane_fallback": bool(section_plane_fallback),
             "min_component_height_mm": min_height_mm, "max_tilt_deg": max_tilt_deg,
-            "keep_branches": keep}
+            "keep_branches": keep, "square_branches": square}
 
 
 def _engine_args(params):
@@ -83,19 +84,20 @@ def _engine_args(params):
             "projection_tolerance": params["projection_tolerance_mm"],
             "section_plane_fallback": params["section_plane_fallback"],
             "min_component_height": params["min_component_height_mm"],
-            "max_tilt": params["max_tilt_deg"], "keep_branches": list(params["keep_branches"])}
+            "max_tilt": params["max_tilt_deg"], "keep_branches": list(params["keep_branches"]),
+            "square_branches": list(params["square_branches"])}
 
 
-def _branch_list(value):
-    """keep_branches as a sorted tuple of distinct ints (which exist is the engine's to say)."""
+def _branch_list(value, name="keep_branches"):
+    """keep_branches (or the parameter `name`) as a sorted tuple of distinct ints (which exist is
+    the engine's to say)."""
     if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
-        raise TypeError("keep_branches must be a sequence of axis branch indices, got {!r}".format(
-            value))
+        raise TypeError("{} must be a sequence of axis branch indices, got {!r}".format(
+            name, value))
     out = set()
     for b in value:
         if isinstance(b, bool) or not isinstance(b, numbers.Integral):
-            raise TypeError("keep_branches must hold axis branch indices (ints), got {!r}".format(
-                b))
+            raise TypeError("{} must hold axis branch indices (ints), got {!r}".format(name, b))
         out.add(int(b))
     return tuple(sorted(out))
 
@@ -117,12 +119,15 @@ class Component:
       * ``branch``: the axis branch that made it (0 for the root); ``break_link``: that branch's
         first link (the break, turn or split), -1 for the root.
       * ``rule``: how it was cut: "root", "planar_face" (a face meeting the paper's three criteria)
-        or "section_plane" (the fallback: the plane where the branch's march started).
+        or "section_plane" (the fallback: the plane where the branch's march started);
+        ``turned``: True where that plane was turned square to the branch's own line, which runs
+        between the six directions (a blade on a hub 33 degrees off -X), not to its direction.
       * ``volume``: mm³.
     Vectors are FreeCAD.Vector when FreeCAD is importable, else tuples.
     """
 
-    __slots__ = ("parent", "branch", "break_link", "rule", "volume", "has_base_face", "_solid",
+    __slots__ = ("parent", "branch", "break_link", "rule", "turned", "volume", "has_base_face",
+                 "_solid",
                  "_face", "_build_direction", "_base_origin", "_base_normal", "_shape",
                  "_base_face")
 
@@ -137,6 +142,7 @@ class Component:
         self.branch = data["branch"]
         self.break_link = data["break_link"]
         self.rule = data["rule"]
+        self.turned = bool(data["turned"])
         self.volume = data["volume_mm3"]
         self._shape = None
         self._base_face = None
@@ -194,6 +200,7 @@ class Component:
             "branch": self.branch,
             "break_link": self.break_link,
             "rule": self.rule,
+            "turned": self.turned,
             "volume_mm3": self.volume,
         }
 
@@ -210,11 +217,14 @@ class Decomposition:
     ``Component``), ``axis`` (the ``CentroidalAxis`` it followed), ``part_volume`` (mm³, the
     part's; the components' volumes add up to it), ``params`` (the decomposition's parameters:
     face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback,
-    min_component_height_mm, max_tilt_deg, keep_branches),
+    min_component_height_mm, max_tilt_deg, keep_branches, square_branches),
     ``notes`` (one line per axis branch that asked for a cut and got none: why, and which
     component kept its material), ``kept_branches`` (the branches of keep_branches that stayed in
-    their fathers so: ``decompose(..., keep_branches=d.kept_branches)`` gives this decomposition
-    again; ``slice()`` keeps those whose own layers the nozzle could not reach).
+    their fathers so) and ``square_branches`` (as asked): ``decompose(...,
+    keep_branches=d.kept_branches, square_branches=d.square_branches)`` gives this decomposition
+    again. ``slice()`` asks for both where the nozzle could not reach some layers: it cuts square
+    to their directions the branches whose cuts it had turned square to their lines, and keeps the
+    others.
     """
 
     def __init__(self, data, axis, params):
@@ -222,6 +232,7 @@ class Decomposition:
         self.part_volume = data["part_volume_mm3"]
         self.notes = list(data["notes"])
         self.kept_branches = list(data["kept_branches"])
+        self.square_branches = list(data["square_branches"])
         self.axis = axis
         self.params = params
 
@@ -242,7 +253,7 @@ class Decomposition:
         """JSON-ready plain data in the layout of ``multiaxis-slicer decompose FILE --json``
         (without its "file"): kind, part_volume_mm3, axis (step_mm, nodes, branches), components
         [{parent, build_direction, has_base_face, base_origin, base_normal, branch, break_link,
-        rule, volume_mm3}], notes."""
+        rule, turned, volume_mm3}], notes."""
         return {
             "kind": "solid",
             "part_volume_mm3": self.part_volume,
@@ -260,7 +271,7 @@ class Decomposition:
 def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
               deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
               eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0,
-              max_tilt=100.0, keep_branches=(), frame=None, progress=None):
+              max_tilt=100.0, keep_branches=(), square_branches=(), frame=None, progress=None):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid (or solids sharing material, fused
@@ -296,18 +307,22 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
         leave in their fathers' components whatever they qualify for, each with a note (default
         none); their own sub-branches are cut from there as usual. ``slice()`` keeps so the
         branches whose own components' layers the nozzle could not reach.
+      * ``square_branches``: indices of axis branches cut, where a section plane cuts them, square
+        to their directions (+-X, +-Y, +-Z), never turned square to their own lines (default
+        none). ``slice()`` asks for this where the turned cuts leave the nozzle no way.
 
     ``progress``: None or ``progress(fraction, stage)``, reported branch by branch; an exception it
     raises (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
 
     Returns a ``Decomposition``. Raises TypeError for a mesh, None or another type (or
-    keep_branches not of ints); ValueError for a parameter out of range; EngineError (with
-    ``code``) not_a_solid (a face, a shell), multiple_solids, empty_input, read_failed,
-    invalid_argument (an axis of another part, a malformed axis, a kept branch the axis lacks or
-    its root), geometry_failure. Nothing the caller passed is modified.
+    keep_branches or square_branches not of ints); ValueError for a parameter out of range;
+    EngineError (with ``code``) not_a_solid (a face, a shell), multiple_solids, empty_input,
+    read_failed, invalid_argument (an axis of another part, a malformed axis, a kept or squared
+    branch the axis lacks or its root), geometry_failure. Nothing the caller passed is modified.
     """
     params = _checked_params(face_angle, concave_angle, projection_tolerance,
-                             section_plane_fallback, min_component_height, max_tilt, keep_branches)
+                             section_plane_fallback, min_component_height, max_tilt, keep_branches,
+                             square_branches)
     _progress.check(progress)
     axis_params = {"step": step, "distance_threshold": distance_threshold, "eps": eps,
                    "break_angle": break_angle, "base_z": base_z, "deflection": deflection,

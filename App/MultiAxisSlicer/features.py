@@ -519,7 +519,9 @@ class DecompositionFeature(_EngineFeature):
     Deflection, and its Source is used when Source is empty), Step (mm, 0 = derived; used without
     Axis), Deflection (mm, 0 = automatic; used without Axis), FaceAngle, ConcaveAngle,
     SectionPlaneFallback, MinComponentHeight, MaxTilt, KeepBranches (axis branches left in their
-    fathers: the Slice command sets those whose own layers the nozzle could not reach).
+    fathers: the Slice command sets those whose own layers the nozzle could not reach),
+    SquareBranches (axis branches cut square to their directions, never turned square to their
+    lines: the Slice command sets them where the turned cuts leave the nozzle no way).
     Outputs: Shape (a compound of the component solids in tree order: a
     father before its children, the root first), ComponentCount, and per component, in the same
     order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
@@ -535,7 +537,8 @@ class DecompositionFeature(_EngineFeature):
     PROPERTY_NAMES = _AXIS_NAMES + _names(
         ("face_angle", "FaceAngle"), ("concave_angle", "ConcaveAngle"),
         ("min_component_height", "MinComponentHeight"), ("max_tilt", "MaxTilt"),
-        ("section_plane_fallback", "SectionPlaneFallback"), ("keep_branches", "KeepBranches"))
+        ("section_plane_fallback", "SectionPlaneFallback"), ("keep_branches", "KeepBranches"),
+        ("square_branches", "SquareBranches"))
     PARAMETERS = (("Decomposition",
                    ("Step", "Deflection", "FaceAngle", "ConcaveAngle", "SectionPlaneFallback",
                     "MinComponentHeight", "MaxTilt")),)
@@ -578,6 +581,10 @@ class DecompositionFeature(_EngineFeature):
         _add_property(obj, "App::PropertyIntegerList", "KeepBranches", group,
                       "Axis branches left in their fathers' components, each with a note (the "
                       "Slice command sets those whose own layers the nozzle cannot reach)")
+        _add_property(obj, "App::PropertyIntegerList", "SquareBranches", group,
+                      "Axis branches cut square to their directions (+-X, +-Y, +-Z), never "
+                      "turned square to their own lines (the Slice command sets them where the "
+                      "turned cuts leave the nozzle no way)")
         result = "Result"
         _add_property(obj, "App::PropertyInteger", "ComponentCount", result,
                       "Number of sub-components", 0, _OUTPUT)
@@ -650,7 +657,8 @@ def decomposition_inputs(obj):
     params.update(face_angle=obj.FaceAngle.Value, concave_angle=obj.ConcaveAngle.Value,
                   section_plane_fallback=bool(obj.SectionPlaneFallback),
                   min_component_height=obj.MinComponentHeight.Value,
-                  max_tilt=obj.MaxTilt.Value, keep_branches=tuple(obj.KeepBranches))
+                  max_tilt=obj.MaxTilt.Value, keep_branches=tuple(obj.KeepBranches),
+                  square_branches=tuple(obj.SquareBranches))
     return source, params
 
 
@@ -806,7 +814,7 @@ def sync_components(decomposition):
 
 def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallback=True,
                        deflection=0.0, name="Decomposition", doc=None, min_component_height=0.0,
-                       max_tilt=100.0, keep_branches=()):
+                       max_tilt=100.0, keep_branches=(), square_branches=()):
     """Adds a ``Decomposition`` object splitting ``source`` to ``doc`` (default: the source's,
     else the axis object's document), computes it and adds its Component objects; returns the
     Decomposition object. ``axis``: an optional ``CentroidalAxis`` object whose parameters (and
@@ -814,7 +822,8 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     automatic; used without ``axis``), ``min_component_height`` in mm (the least a sub-component
     reaches past its cut, besides one axis step), ``max_tilt`` in degrees (no sub-component is
     built further from +Z: the machine's reach, 90 to 180), ``keep_branches`` axis branches to
-    leave in their fathers (KeepBranches). A failing computation leaves the object marked invalid
+    leave in their fathers (KeepBranches), ``square_branches`` axis branches to cut square to
+    their directions (SquareBranches). A failing computation leaves the object marked invalid
     with the message, without components. The source is not changed.
 
     In the GUI the objects get their view providers (one distinct colour per component)."""
@@ -833,6 +842,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
                                        allow_zero=True)
     max_tilt = _max_tilt(max_tilt)
     keep_branches = _branch_list(keep_branches)
+    square_branches = _branch_list(square_branches, "square_branches")
     obj = doc.addObject("Part::FeaturePython", name)
     DecompositionFeature(obj)
     obj.Source = source
@@ -843,6 +853,7 @@ def make_decomposition(source, axis=None, face_angle=10.0, section_plane_fallbac
     obj.MinComponentHeight = min_component_height
     obj.MaxTilt = max_tilt
     obj.KeepBranches = list(keep_branches)
+    obj.SquareBranches = list(square_branches)
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, DecompositionFeature.VIEW_PROVIDER)
     obj.recompute(True)  # with what it depends on: the count decides the Component objects
@@ -1056,12 +1067,14 @@ def slice_result(obj, computed=False):
 def keep_unreachable_branches(layers):
     """Where some layers of a Layers object slicing a Decomposition object would meet the plate or
     what is deposited before them (its CollidingLayers), keeps their components' branches in
-    their fathers, as ``MultiAxisSlicer.slice()`` does when it decomposes a solid itself: the part
-    is decomposed (with the Decomposition's parameters) and sliced (with the Layers') again, up to
-    five rounds, and as one component if that leaves fewer such layers. The branches kept go to
-    the Decomposition's KeepBranches; both objects are recomputed from that result (remembered,
-    not computed once more) and the Component objects follow. Returns the branches added: [] when
-    no layer collides or keeping branches clears none, and nothing is changed then. Raises
+    their fathers, as ``MultiAxisSlicer.slice()`` does when it decomposes a solid itself (first
+    cutting square to their directions the branches whose cuts were turned square to their
+    lines): the part is decomposed (with the Decomposition's parameters) and sliced (with the
+    Layers') again, up to five rounds, and as one component if that leaves fewer such layers. The
+    branches kept go to the Decomposition's KeepBranches, those cut square to its SquareBranches;
+    both objects are recomputed from that result (remembered, not computed once more) and the
+    Component objects follow. Returns the branches added to either, in increasing order: [] when
+    no layer collides or neither clears any, and nothing is changed then. Raises
     TypeError for a Layers object slicing a mesh (AvoidCollisions does this for a mesh) and as
     ``slice()`` (``Cancelled`` too). Call it outside a recompute."""
     decomposition_obj, _mesh, params, deflection = slice_inputs(layers)
@@ -1074,7 +1087,7 @@ def keep_unreachable_branches(layers):
     decomposition = decomposition_result(decomposition_obj)
     source, values = decomposition_inputs(decomposition_obj)
     names = ("face_angle", "concave_angle", "section_plane_fallback", "min_component_height",
-             "max_tilt", "keep_branches")
+             "max_tilt", "keep_branches", "square_branches")
     checked = _checked_params(**{k: values[k] for k in names})
     p = mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))
     if deflection is not None:
@@ -1085,10 +1098,13 @@ def keep_unreachable_branches(layers):
         again = mas.slicing._slice_decomposing(part.single_solid(what), decomposition.axis,
                                                checked, p, progress)
     kept = again.decomposition.kept_branches
-    added = sorted(set(kept) - set(decomposition_obj.KeepBranches))
+    square = again.decomposition.square_branches
+    added = sorted((set(kept) - set(decomposition_obj.KeepBranches)) |
+                   (set(square) - set(decomposition_obj.SquareBranches)))
     if not added:
         return []
     decomposition_obj.KeepBranches = kept
+    decomposition_obj.SquareBranches = square
     # Both remember the result, as their recompute would key it.
     key = _shape_key(source)
     if key is not None:

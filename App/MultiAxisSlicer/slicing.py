@@ -410,7 +410,8 @@ def _slice_decomposing(solid, axis, decomposition_params, p, progress):
     data = _require_engine().slice_solid_part(solid, axis._engine_dict(),
                                                _engine_args(decomposition_params), p, progress)
     d = data.pop("decomposition")
-    params = dict(decomposition_params, keep_branches=tuple(d["kept_branches"]))
+    params = dict(decomposition_params, keep_branches=tuple(d["kept_branches"]),
+                  square_branches=tuple(d["square_branches"]))
     return SliceResult(data, p, axis, Decomposition(d, axis, params), "solid")
 
 
@@ -465,12 +466,14 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     axis turns or branches (the engine's decompose_mesh, SlicePart.hpp), each piece closed with a
     cap. A solid is decomposed (``decompose()``) unless ``components`` are given. A mesh's piece,
     or a solid's sub-component decomposed here, some of whose layers the nozzle could not reach
-    (they would meet the plate or what is deposited before them) is left in its father, and the
-    part is split and sliced again, up to five times; it is sliced as one component when that
-    leaves fewer layers in the nozzle's way (``avoid_collisions=False``: the first split is kept,
-    those layers listed in ``collisions``). The result's ``notes`` say which branches got no
-    component and why; for a solid its ``decomposition`` is the one sliced (its ``kept_branches``
-    the branches so kept).
+    (they would meet the plate or what is deposited before them) is left in its father (for a
+    solid whose cuts were turned square to their branches' lines, those cuts are first all made
+    square to the branches' directions), and the part is split and sliced again, up to five
+    times; it is sliced as one component when that leaves fewer layers in the nozzle's way
+    (``avoid_collisions=False``: the first split is kept, those layers listed in
+    ``collisions``). The result's ``notes`` say which branches got no component and why; for a
+    solid its ``decomposition`` is the one sliced (its ``kept_branches`` the branches so kept,
+    its ``square_branches`` those so cut).
 
     ``axis``: the part's ``CentroidalAxis``; None: computed here (with ``step``,
     ``distance_threshold``, ``eps``, ``break_angle``, ``base_z``, ``frame`` from ``params`` when

@@ -41,7 +41,8 @@ const char* kUsage =
     "       multiaxis-slicer decompose FILE [axis options] [--face-angle DEG]\n"
     "                                       [--concave-angle DEG] [--no-fallback]\n"
     "                                       [--min-height MM] [--max-tilt DEG]\n"
-    "                                       [--keep-branches B[,B...]] [--step-dir DIR]\n"
+    "                                       [--keep-branches B[,B...]]\n"
+    "                                       [--square-branches B[,B...]] [--step-dir DIR]\n"
     "                                       [--stl-dir DIR] [--progress]\n"
     "                                       [--json [OUT.json]]\n"
     "       multiaxis-slicer slice FILE [axis options] [--min-layer MM] [--max-layer MM]\n"
@@ -74,6 +75,9 @@ const char* kUsage =
     "           is built no more than --max-tilt (default 100) degrees from +Z, the machine's\n"
     "           reach: nothing is built straight down. --keep-branches leaves those axis\n"
     "           branches in their fathers (slice keeps so those the nozzle cannot reach).\n"
+    "           A branch running between the six directions is cut square to its own line\n"
+    "           (\"turned\": true); --square-branches cuts those square to their directions\n"
+    "           (slice does so where the turned cuts leave the nozzle no way).\n"
     "slice      adaptive multi-axis layers of every sub-component (Sec. 4.2) and the bead paths\n"
     "           in every layer: per layer its plane, thickness range, volumetric difference and\n"
     "           unsupported area; --json adds its regions, its unsupported regions (on the\n"
@@ -548,6 +552,7 @@ struct ComponentRow {
     int branch = 0;
     int break_link = -1;
     std::string rule;
+    bool turned = false;  // cut square to its branch's line (Component::turned)
     double volume_mm3 = 0.0;
     std::string file;  // where --step-dir or --stl-dir wrote it, empty when not written
 };
@@ -594,6 +599,7 @@ void report_components(const Args& a, const Part& part, double part_volume_mm3,
                 << ", \"base_origin\": " << vec(c.base_origin)
                 << ", \"base_normal\": " << vec(c.base_normal) << ", \"branch\": " << c.branch
                 << ", \"break_link\": " << c.break_link << ", \"rule\": " << quoted(c.rule)
+                << ", \"turned\": " << (c.turned ? "true" : "false")
                 << ", \"volume_mm3\": " << num(c.volume_mm3);
             if (!c.file.empty()) out << ", \"" << file_key << "\": " << quoted(c.file);
             out << "}";
@@ -633,6 +639,10 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
             refused_for_a_mesh(a, std::string(option) +
                                       " applies to a solid: a mesh has no faces "
                                       "and is split at section planes");
+    if (a.has("--square-branches"))
+        refused_for_a_mesh(a,
+                           "--square-branches applies to a solid: a mesh is cut square to its "
+                           "branches' directions");
     if (no_fallback)
         refused_for_a_mesh(a,
                            "--no-fallback applies to a solid: a mesh is split at section planes "
@@ -669,7 +679,7 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
 int run_decompose(const std::vector<std::string>& args) {
     std::set<std::string> allowed = kAxisOptions;
     allowed.insert({"--face-angle", "--concave-angle", "--min-height", "--max-tilt", "--step-dir",
-                    "--stl-dir", "--keep-branches"});
+                    "--stl-dir", "--keep-branches", "--square-branches"});
     // --no-fallback takes no value: take it out before the common parser sees it.
     std::vector<std::string> rest;
     bool fallback = true, report = false;
@@ -691,6 +701,7 @@ int run_decompose(const std::vector<std::string>& args) {
     dp.section_plane_fallback = fallback;
     for (const int b : a.integers("--keep-branches"))
         dp.keep_branches.push_back({b, "kept in its father, as asked (--keep-branches)"});
+    dp.square_branches = a.integers("--square-branches");
     const Part part = load_part(a);
     if (part.model.kind != mas::Model::Kind::Solid)
         return decompose_mesh_part(a, part, ap, dp, !fallback, report);
@@ -720,6 +731,7 @@ int run_decompose(const std::vector<std::string>& args) {
         r.branch = c.branch;
         r.break_link = c.break_link;
         r.rule = mas::to_string(c.rule);
+        r.turned = c.turned;
         r.volume_mm3 = c.volume_mm3;
         r.file = files[i];
     }

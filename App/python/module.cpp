@@ -1088,17 +1088,20 @@ bp::dict decomposition_to_py(const mas::Decomposition& d, double part_volume) {
         out["branch"] = c.branch;
         out["break_link"] = c.break_link;
         out["rule"] = mas::to_string(c.rule);
+        out["turned"] = c.turned;
         out["volume_mm3"] = c.volume_mm3;
         components.append(out);
     }
-    bp::list notes, kept;
+    bp::list notes, kept, square;
     for (const auto& n : d.notes) notes.append(n);
     for (int b : d.kept_branches) kept.append(b);
+    for (int b : d.square_branches) square.append(b);
     bp::dict result;
     result["components"] = components;
     result["part_volume_mm3"] = part_volume;
     result["notes"] = notes;
     result["kept_branches"] = kept;
+    result["square_branches"] = square;
     return result;
 }
 
@@ -1114,23 +1117,32 @@ void for_each_param(const bp::dict& d, const std::string& what,
     }
 }
 
-// Branches to keep in their fathers (a sequence of ints), each "kept in its father, as asked".
-std::vector<mas::KeptBranch> kept_branches_from_py(const bp::object& value) {
-    std::vector<mas::KeptBranch> kept;
-    bp::handle<> seq = fast_sequence(value, "keep_branches");
+// Branch indices: a sequence of ints, the parameter `name`'s.
+std::vector<int> branches_from_py(const bp::object& value, const std::string& name) {
+    std::vector<int> out;
+    bp::handle<> seq = fast_sequence(value, name);
     const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq.get());
     PyObject** items = PySequence_Fast_ITEMS(seq.get());
     for (Py_ssize_t i = 0; i < n; ++i) {
         const bp::extract<int> b(items[i]);
         if (!PyLong_Check(items[i]) || !b.check())
-            invalid_argument("keep_branches[" + std::to_string(i) + "] must be a branch index");
-        kept.push_back({b(), "kept in its father, as asked (keep_branches)"});
+            invalid_argument(name + "[" + std::to_string(i) + "] must be a branch index");
+        out.push_back(b());
     }
+    return out;
+}
+
+// Branches to keep in their fathers (a sequence of ints), each "kept in its father, as asked".
+std::vector<mas::KeptBranch> kept_branches_from_py(const bp::object& value) {
+    std::vector<mas::KeptBranch> kept;
+    for (const int b : branches_from_py(value, "keep_branches"))
+        kept.push_back({b, "kept in its father, as asked (keep_branches)"});
     return kept;
 }
 
 // decompose()'s parameters from a dict of its argument names (face_angle, concave_angle,
-// projection_tolerance, section_plane_fallback, min_component_height, max_tilt, keep_branches);
+// projection_tolerance, section_plane_fallback, min_component_height, max_tilt, keep_branches,
+// square_branches);
 // missing ones take the engine's defaults, unknown names are errors.
 mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
     mas::DecomposeParams p;
@@ -1150,6 +1162,8 @@ mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
             p.max_tilt_deg = number();
         else if (key == "keep_branches")
             p.keep_branches = kept_branches_from_py(value);
+        else if (key == "square_branches")
+            p.square_branches = branches_from_py(value, "square_branches");
         else
             invalid_argument("unknown decomposition parameter '" + key + "'");
     });
@@ -1159,7 +1173,7 @@ mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
 bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
                    double concave_angle, double projection_tolerance, bool section_plane_fallback,
                    double min_component_height, double max_tilt, const bp::object& keep_branches,
-                   const bp::object& progress) {
+                   const bp::object& square_branches, const bp::object& progress) {
     bp::dict given;
     given["face_angle"] = face_angle;
     given["concave_angle"] = concave_angle;
@@ -1168,6 +1182,7 @@ bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double fa
     given["min_component_height"] = min_component_height;
     given["max_tilt"] = max_tilt;
     given["keep_branches"] = keep_branches;
+    given["square_branches"] = square_branches;
     const mas::DecomposeParams params = decompose_params_from_py(given);
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     mas::Decomposition d;
@@ -1186,18 +1201,21 @@ void bind_decompose() {
          bp::arg("concave_angle") = 1.0, bp::arg("projection_tolerance") = 0.01,
          bp::arg("section_plane_fallback") = true, bp::arg("min_component_height") = 0.0,
          bp::arg("max_tilt") = 100.0, bp::arg("keep_branches") = bp::tuple(),
-         bp::arg("progress") = bp::object()),
+         bp::arg("square_branches") = bp::tuple(), bp::arg("progress") = bp::object()),
         "Splits a solid (a Shape holding one closed solid) into sub-components along its "
         "centroidal axis `axis` (the dict centroidal_axis() returns for this solid; node regions "
         "are not needed). Angles in degrees, projection_tolerance and min_component_height (the "
         "least a child reaches past its splitting plane, besides one axis step) in mm; max_tilt: "
         "no child is built further from +Z, degrees (the machine's reach); keep_branches: axis "
-        "branches (ints, not the root's) left in their fathers' components. Returns a dict: "
+        "branches (ints, not the root's) left in their fathers' components; square_branches: "
+        "axis branches cut at a section plane square to their directions, never turned square "
+        "to their lines. Returns a dict: "
         "components [{solid (Shape), parent (-1 for the root), build_direction, has_base_face, "
         "base_face (Shape or None), base_origin, base_normal, branch, break_link, rule ('root' | "
-        "'planar_face' | 'section_plane'), volume_mm3}] in tree order (a father before its "
+        "'planar_face' | 'section_plane'), turned (cut square to its branch's line), "
+        "volume_mm3}] in tree order (a father before its "
         "children), part_volume_mm3, notes (branches that got no cut, and why), kept_branches "
-        "(those of keep_branches kept so). EngineError "
+        "(those of keep_branches kept so), square_branches (as given, sorted). EngineError "
         "not_a_solid / multiple_solids / empty_input "
         "for the shape, invalid_argument for bad parameters, a malformed axis or an axis of "
         "another part, geometry_failure when OCCT fails on the input. `progress`: None or "
@@ -1572,10 +1590,12 @@ void bind_slice() {
         (std::string("Decomposes a solid along its centroidal axis `axis` (with "
                      "`decompose_params`, a dict of decompose()'s keyword arguments: face_angle, "
                      "concave_angle, projection_tolerance, section_plane_fallback, "
-                     "min_component_height, max_tilt, keep_branches) and slices it; where some "
-                     "layers would meet what is deposited before them, "
-                     "their components' branches are kept in their fathers and it is done "
-                     "again (unless avoid_collisions is false; SlicePart.hpp). The result "
+                     "min_component_height, max_tilt, keep_branches, square_branches) and "
+                     "slices it; where some layers would meet what is deposited before them, "
+                     "the cuts turned square to their branches' lines are made square to their "
+                     "directions, else their components' branches are kept in their fathers, "
+                     "and it is done again (unless avoid_collisions is false; SlicePart.hpp). "
+                     "The result "
                      "also holds `decomposition`, the one sliced, as decompose() returns "
                      "it.") +
          params_doc)

@@ -373,8 +373,9 @@ class SliceCommand(_PartCommand):
         or None. `mesh`: the mesh object `source` is or is the axis of, else None. A mesh is split
         as it is sliced (Layers' SplitMesh); a solid is decomposed first, into a Decomposition
         object, and where some layers would meet the plate or what is deposited before them, the
-        branches of their components are kept in their fathers (its KeepBranches), as slice()
-        does. A Decomposition object selected is sliced as it is."""
+        branches of their components are kept in their fathers (its KeepBranches), or cut square
+        to their directions where their cuts were turned square to their lines (its
+        SquareBranches), as slice() does. A Decomposition object selected is sliced as it is."""
         import MultiAxisSlicer.features as features
 
         decomposed_here = False
@@ -401,7 +402,8 @@ class SliceCommand(_PartCommand):
         doc.recompute([layers])  # one stage at a time, for the feedback
         if decomposed_here and features.failure(layers) is None and layers.CollidingLayers:
             # As slice() does: the branches whose own layers the nozzle cannot reach are built
-            # in their fathers (the decomposition's KeepBranches), the part split again.
+            # in their fathers (the decomposition's KeepBranches), or first cut square to their
+            # directions (its SquareBranches), the part split again.
             busy.stage("Building in their fathers the branches the nozzle cannot reach...")
             try:
                 features.keep_unreachable_branches(layers)

@@ -496,6 +496,34 @@ class CliSections(unittest.TestCase):
         self.expect_error(["decompose", brep, "--keep-branches", "1.5"], 2,
                           "--keep-branches must be whole numbers")
 
+    def test_decompose_cuts_a_branch_between_the_directions_square_to_its_line(self):
+        # The L marched in a frame turned 30 degrees (--frame 30): its arm, along X, runs 30
+        # degrees off the frame's X. Cut square to its own line ("turned"), it is built along X,
+        # through its sections' centroids (exact on its flat faces); --square-branches cuts it
+        # square to the frame's X, as the paper's directions do.
+        brep = os.path.join(DATA, "l_block.brep")
+        arms = {}
+        for extra in ([], ["--square-branches", "1"]):
+            r = run("decompose", brep, "--frame", "30", "--step", "2.5", "--json", *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            doc = json.loads(r.stdout)
+            self.assertEqual([c["turned"] for c in doc["components"]][0], False)
+            arms[bool(extra)] = doc["components"][1]
+        self.assertTrue(arms[False]["turned"])
+        self.assertEqual(arms[False]["rule"], "section_plane")
+        for got, want in zip(arms[False]["build_direction"], (1.0, 0.0, 0.0)):
+            self.assertAlmostEqual(got, want, delta=1e-6)
+        self.assertFalse(arms[True]["turned"])
+        self.assertEqual(arms[True]["rule"], "section_plane")
+        for got, want in zip(arms[True]["build_direction"], (math.cos(math.pi / 6), 0.5, 0.0)):
+            self.assertAlmostEqual(got, want, delta=1e-12)
+        self.expect_error(["decompose", brep, "--square-branches", "0"], 1, "invalid_argument",
+                          "there is no branch 0 to cut square")
+        self.expect_error(["decompose", brep, "--square-branches", "1.5"], 2,
+                          "--square-branches must be whole numbers")
+        self.expect_error(["decompose", self.write("l.stl", l_prism_stl()), "--square-branches",
+                           "1"], 1, "invalid_argument", "--square-branches applies to a solid")
+
     def test_decompose_splits_a_mesh_at_section_planes_and_writes_its_pieces(self):
         # The L as a mesh: the arm cut off at the column's face plus the axis' clearance, the two
         # pieces written as STL files that read back closed and of their volumes.

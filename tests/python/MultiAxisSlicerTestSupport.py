@@ -52,6 +52,19 @@ def hub_with_six_blades():
     return solid.removeSplitter()
 
 
+def spiral_stair(treads=6):
+    """A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 30
+    degrees round and 8 mm up from one to the next, the first along +X at z = 6 (the engine's
+    Slicing.TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections). Cut square
+    to their own lines, the treads between +-X and +-Y leave the nozzle no way to their roots."""
+    solid = Part.makeCylinder(10, 8.0 * treads + 10.0)
+    for i in range(treads):
+        tread = Part.makeBox(45, 18, 4, V(0, -9, 8.0 * i + 6))
+        tread.rotate(V(0, 0, 0), V(0, 0, 1), 30.0 * i)
+        solid = solid.fuse(tread)
+    return solid.removeSplitter()
+
+
 def pipe_tee():
     """A pipe of radius 10 with a bore of 8, 60 tall along Z, and a branch of the same pipe
     reaching +Y from its axis at z = 35, 35 long (the engine's test_parts.hpp)."""

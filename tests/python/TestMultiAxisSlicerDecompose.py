@@ -209,6 +209,36 @@ class TestDecomposeApi(DecomposeTest):
             self.assertEqual(e.exception.code, "invalid_argument")
             self.assertIn(message, str(e.exception))
 
+    def test_a_branch_between_the_directions_is_cut_square_to_its_line_unless_asked(self):
+        # The L marched in a frame turned 30 degrees: its arm, along X, runs 30 degrees off the
+        # frame's X. Its cut is turned square to its line (Component.turned) and it is built
+        # along X; asked (square_branches), it is cut square to the frame's X. Either way
+        # decompose() with the result's kept and squared branches gives it again.
+        axis = mas.centroidal_axis(l_block(), step=2.5, frame=30.0)
+        turned = mas.decompose(l_block(), axis=axis)
+        self.assertEqual((turned.square_branches, turned.params["square_branches"]), ([], ()))
+        self.assertEqual([c.turned for c in turned][:2], [False, True])
+        self.assertEqual(turned[1].rule, "section_plane")
+        self.assertLess((turned[1].build_direction - V(1, 0, 0)).Length, 1e-6)
+        self.assertTrue(turned[1].to_dict()["turned"])
+        squared = mas.decompose(l_block(), axis=axis, square_branches=[1, 1])
+        self.assertEqual((squared.square_branches, squared.params["square_branches"]), ([1], (1,)))
+        self.assertFalse(squared[1].turned)
+        self.assertLess((squared[1].build_direction - V(math.cos(math.pi / 6), 0.5, 0)).Length,
+                        1e-12)
+        self.assertFalse(squared[1].to_dict()["turned"])
+        again = mas.decompose(l_block(), axis=axis, keep_branches=squared.kept_branches,
+                              square_branches=squared.square_branches)
+        self.assertEqual([c.to_dict() for c in again], [c.to_dict() for c in squared])
+        for bad in ("1", 1, [1.0], [True], None):
+            with self.assertRaisesRegex(TypeError, "square_branches", msg=repr(bad)):
+                mas.decompose(l_block(), axis=axis, square_branches=bad)
+        for bad in (0, len(axis.branches)):
+            with self.assertRaises(mas.EngineError) as e:
+                mas.decompose(l_block(), axis=axis, square_branches=[bad])
+            self.assertEqual(e.exception.code, "invalid_argument")
+            self.assertIn("there is no branch {} to cut square".format(bad), str(e.exception))
+
     def test_a_round_boss_is_cut_at_the_extent_of_the_body_it_leaves(self):
         # A boss (radius 6, along X) on a cylinder (radius 20): no planar face to split at, so the
         # section-plane fallback cuts where the boss' march started, Eq. 4's T (x = 20, measured on
@@ -254,8 +284,8 @@ class TestDecomposeApi(DecomposeTest):
         self.assertEqual(len(data["components"]), 2)
         for c in data["components"]:
             self.assertEqual(set(c), {"parent", "build_direction", "base_origin", "base_normal",
-                                      "branch", "break_link", "rule", "volume_mm3",
-                                      "has_base_face"})
+                                      "branch", "break_link", "rule", "turned",
+                                      "volume_mm3", "has_base_face"})
         arm = data["components"][1]
         self.assertEqual(arm["parent"], 0)
         self.assertEqual(arm["rule"], "planar_face")

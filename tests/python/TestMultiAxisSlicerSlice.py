@@ -606,6 +606,27 @@ class TestSliceSequence(SliceTest):
                                    nozzle_max_lean=0.0).to_dict()["layers"],
                          result.to_dict()["layers"])
 
+    def test_turned_cuts_the_nozzle_cannot_build_are_made_square_to_their_directions(self):
+        # A spiral stair (support.spiral_stair): its treads between +-X and +-Y are first cut
+        # square to their own lines, where the nozzle at a tread's root meets the tread under it;
+        # every such cut is then made square to its branch's direction (decomposition.
+        # square_branches), and a tread whose layers the nozzle still cannot reach is kept.
+        stair = support.spiral_stair()
+        result = mas.slice(stair)
+        self.assertEqual(result.stats["colliding_layers"], 0)
+        d = result.decomposition
+        first = mas.decompose(stair, axis=result.axis, min_component_height=0.5)
+        turned = sorted(c.branch for c in first if c.turned)
+        self.assertGreater(len(turned), 0)
+        self.assertEqual(d.square_branches, turned)
+        self.assertEqual(d.params["square_branches"], tuple(turned))
+        self.assertFalse(any(c.turned for c in d))
+        # decompose() with its kept and squared branches gives the same decomposition.
+        again = mas.decompose(stair, axis=result.axis, min_component_height=0.5,
+                              keep_branches=d.kept_branches, square_branches=d.square_branches)
+        self.assertEqual([c.to_dict() for c in again], [c.to_dict() for c in d])
+        self.assertEqual(again.params, d.params)
+
     def test_an_order_leaving_a_leaning_nozzle_its_way_is_found(self):
         # The rod under the bar, both built sideways along +X: coaxial, the rod's nozzle meets the
         # plate; leaned 20 degrees up it clears it, but meets the bar where the bar is deposited
@@ -1037,6 +1058,34 @@ class TestKeepingUnreachableBranches(SliceObjectTest):
         self.assertEqual(calls, ["decompose", "slice"])
         self.assertIsNone(features.failure(layers))
         self.assertEqual(list(layers.LayerOrigins), origins)
+        self.assertEqual(layers.CollidingLayers, 0)
+
+    def test_turned_cuts_the_nozzle_cannot_reach_are_made_square_and_saved(self):
+        part = self.doc.addObject("Part::Feature", "Stair")
+        part.Shape = support.spiral_stair()
+        self.doc.recompute()
+        decomposition, layers, toolpath = self.make(part)
+        self.assertGreater(layers.CollidingLayers, 0)
+        added = features.keep_unreachable_branches(layers)
+        square, kept = list(decomposition.SquareBranches), list(decomposition.KeepBranches)
+        self.assertGreater(len(square), 0)
+        self.assertEqual(added, sorted(set(square) | set(kept)))
+        for obj in (decomposition, layers, toolpath):
+            self.assertIsNone(features.failure(obj))
+        self.assertEqual(layers.CollidingLayers, 0)
+        self.assertEqual(features.keep_unreachable_branches(layers), [])
+        # Reopened and recomputed from its properties, the same (to rounding: one origin moved
+        # by 5e-15 mm).
+        origins = list(layers.LayerOrigins)
+        layers = self.reopened("squared.FCStd")
+        decomposition = self.doc.getObject("Decomposition")
+        self.assertEqual(list(decomposition.SquareBranches), square)
+        decomposition.touch()
+        self.doc.recompute()
+        self.assertIsNone(features.failure(layers))
+        self.assertEqual(len(layers.LayerOrigins), len(origins))
+        for got, expected in zip(layers.LayerOrigins, origins):
+            self.assertLess((got - expected).Length, 1e-9)
         self.assertEqual(layers.CollidingLayers, 0)
 
     def test_nothing_changes_where_the_nozzle_reaches_every_layer(self):

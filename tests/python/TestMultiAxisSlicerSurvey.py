@@ -81,13 +81,17 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
                 self.assertEqual(r["filled_holes"], r["lugs"])
                 self.assert_supported(r)
 
-    def test_a_hub_with_two_or_four_blades_needs_no_support(self):
-        # Blades within 10 degrees of +-X and +-Y (or of the frame their sides line up) are cut
-        # off at the hub and built sideways, square to the plate or twisted. Three, five or six
-        # blades lie between the six directions (Sec. 3.2.1): README.
-        claimed = [r for r in self.parts("hub with blades") if r["blades"] in (2, 4)]
+    def test_a_hub_with_blades_needs_no_support(self):
+        # Each blade is cut off at the hub and built sideways, square to the plate or twisted.
+        # Blades between the six directions (Sec. 3.2.1; three, five or six round a hub) are cut
+        # square to their own line just past the hub's side, which keeps only the lens between
+        # (Decompose.hpp). Cut square to the direction they were marched along, the hub kept a
+        # wedge of each, its underside overhanging: 4 of these 12 were over the strip (up to
+        # 11.6 mm^2); over seeds 83, 84 and 88 to 94, 32 of 72 hubs, up to 28.6 mm^2, and 2 are
+        # now (README).
+        claimed = self.parts("hub with blades")
         self.assertGreater(sum(1 for r in claimed if r["twist_deg"] != 0), 0)
-        self.assertGreater(len(claimed), 0)
+        self.assertGreater(sum(1 for r in claimed if r["blades"] in (3, 5, 6)), 0)
         for r in claimed:
             with self.subTest(part=self.name(r)):
                 self.assert_supported(r)

@@ -616,14 +616,18 @@ TEST(Slicing, BladesRoundAHubAreCutSquareToThemselvesJustPastItsSide) {
     const auto& comps = s.decomposition.components;
     ASSERT_EQ(comps.size(), 4u);
     // The plane lies the clearance (Decompose.hpp, with the part's default deflection: the axis
-    // records none) past the hub's side, which the rays find at points along the blade's outline
-    // no further apart than a tenth of a step: up to half that off the blade's middle, where the
-    // side lies (0.15)^2 / 24 mm short of the radius.
+    // records none) past the hub's side, which the rays find at points along the outline of the
+    // blade's first section no further apart than a tenth of a step or a 64th of its perimeter
+    // (the section square to +-X or +-Y, at most 35 degrees off the blade: 10 by 4 / cos 35): up
+    // to half that off the blade's middle, where the side lies (spacing / 2)^2 / 24 mm short of
+    // the radius.
     ASSERT_EQ(s.axis.deflection_mm, 0.0);
     const double clearance = s.axis.params.eps_mm +
                              mas::effective_deflection(part, mas::TessellationParams{}) +
                              0.01 * step;
-    const double short_of = std::pow(0.05 * step, 2) / (2.0 * radius);
+    const double spacing =
+        std::max(0.1 * step, 2.0 * (wide + thick / std::cos(35.0 * kPi / 180.0)) / 64.0);
+    const double short_of = std::pow(0.5 * spacing, 2) / (2.0 * radius);
     // The lens the hub keeps under a blade, seen along Z, with the plane `at` from the axis.
     const auto lens = [&](double at) {
         const double h = thick / 2;

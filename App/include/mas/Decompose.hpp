@@ -138,19 +138,19 @@
 //   square to its line instead (a blade on a round hub 33 degrees off -X: the march takes the
 //   nearest of +-X, +-Y, +-Z, and the plane square to D at T left a wedge of the blade up to 3 mm
 //   deep in the hub, its underside overhanging the hub's layers, 21.6 mm^2 on a hub with five
-//   blades). The line runs through the centroids of the branch's first nodes, as many of the
-//   first six as lie on one within the clearance (three at least: a blade's tip cuts its last
-//   section short), less its component along the father's direction (a branch leaning up out of
-//   a column keeps D); it is turned to when more than 2 degrees and less than 45 off D. Rays cast
-//   back along the line, from points along the first node's outline (no further apart than a
-//   tenth of a step) moved the clearance out of it, as far as the father's node the branch links
-//   to, meet the father's faces facing the branch (a ray meeting the branch's own side, on a line
-//   a little off the branch's, counts for nothing); the plane lies the clearance past the
+//   blades). The line runs through the centroids of the branch's first nodes, as many of the first
+//   six as lie on one within the clearance (three at least: a blade's tip cuts its last section
+//   short), less its component along the father's direction (a branch leaning up out of a column
+//   keeps D); it is turned to when more than 2 degrees and less than 45 off D. Rays cast back along
+//   the line, from points along the first node's outline (no further apart than a tenth of a step
+//   or a 64th of the outline) moved the clearance out of it, as far as the father's node the branch
+//   links to, meet the father's faces facing the branch (a ray meeting the branch's own side, on a
+//   line a little off the branch's, counts for nothing); the plane lies the clearance past the
 //   furthest hit, and the child is built along the line. What stays in the father is the lens
 //   between its side and the plane (under half a millimetre deep beside a 6 mm blade on a 13 mm
-//   hub), as under a round boss. The plane square to D, above, is taken where the branch runs
-//   along D, no ray meets the father, its first node carries no region or would not lie the
-//   clearance in front of the turned plane, the turned plane's split is refused, or
+//   hub), as under a round boss. The plane square to D, above, is taken where the branch runs along
+//   D, no ray meets the father, its first node carries no region or would not lie the clearance in
+//   front of the turned plane, the turned plane's split is refused, or
 //   DecomposeParams::square_branches lists it (as slicing does where the nozzle cannot build the
 //   turned cuts' layers: a spiral stair's treads, SlicePart.hpp); its component says which
 //   (Component::turned).

@@ -42,6 +42,7 @@
 #include <gp_Lin.hxx>
 #include <gp_Trsf.hxx>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -838,8 +839,21 @@ public:
             out.by_own_face = true;
         }
         // A branch running off D (a blade on a hub between -X and +Y): the plane square to its
-        // line, just past the father's surface beside it (Decompose.hpp).
-        if (attempt < 3 && !out.by_own_face && turn_square(b, fs, out)) return true;
+        // line, just past the father's surface beside it (Decompose.hpp). Worked out once per
+        // father solid: each later sibling asks again while one split is planned.
+        if (attempt < 3 && !out.by_own_face) {
+            const auto key = std::make_pair(b, fs.TShape().get());
+            auto known = turned_.find(key);
+            if (known == turned_.end()) {
+                Plan plan = out;
+                if (!turn_square(b, fs, plan)) plan.turned = false;
+                known = turned_.emplace(key, std::make_pair(fs, plan)).first;
+            }
+            if (known->second.second.turned) {
+                out = known->second.second;
+                return true;
+            }
+        }
         const double cut = past_slivers(fs, D, at, frame, reach);
         out.point = D * cut;
         out.normal = D;
@@ -921,14 +935,15 @@ private:
         const PlaneFrame frame(first.normal);
         IntCurvesFace_ShapeIntersector rays;
         rays.Load(fs, Precision::Confusion());
-        // Points along the outline, no further apart than a tenth of a step (a square blade's
-        // outline has its corners alone, where a round hub's side is furthest from its middle),
-        // 256 at most, each moved out of it by the clearance.
+        // Points along the outline, no further apart than a tenth of a step or a 64th of the
+        // outline (a square blade's outline has its corners alone, where a round hub's side is
+        // furthest from its middle; a 0.5 mm spacing leaves the plane 0.003 mm short of a 10 mm
+        // hub's side), each moved out of it by the clearance.
         const std::size_t count = outline.size();
         double perimeter = 0.0;
         for (std::size_t i = 0; i < count; ++i)
             perimeter += (outline[(i + 1) % count] - outline[i]).norm();
-        const double spacing = std::max(0.1 * axis_.params.step_mm, perimeter / 256.0);
+        const double spacing = std::max(0.1 * axis_.params.step_mm, perimeter / 64.0);
         double furthest = -std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < count; ++i) {
             const Eigen::Vector2d& p = outline[i];
@@ -1028,6 +1043,9 @@ private:
     const DecomposeParams& params_;
     double clearance_;
     double cos_face_, min_concave_;
+    // turn_square()'s plans by branch and father solid (turned false for none), each with the
+    // solid, held so that its address is not reused for another while the Decomposer lives.
+    mutable std::map<std::pair<std::size_t, const void*>, std::pair<TopoDS_Shape, Plan>> turned_;
 };
 
 // `shape` turned by `degrees` about the +Z axis through the origin, its geometry moved (no

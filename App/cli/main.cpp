@@ -639,10 +639,6 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
             refused_for_a_mesh(a, std::string(option) +
                                       " applies to a solid: a mesh has no faces "
                                       "and is split at section planes");
-    if (a.has("--square-branches"))
-        refused_for_a_mesh(a,
-                           "--square-branches applies to a solid: a mesh is cut square to its "
-                           "branches' directions");
     if (no_fallback)
         refused_for_a_mesh(a,
                            "--no-fallback applies to a solid: a mesh is split at section planes "
@@ -652,6 +648,7 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
     mp.min_component_height_mm = dp.min_component_height_mm;
     mp.max_tilt_deg = dp.max_tilt_deg;
     mp.keep_branches = dp.keep_branches;
+    mp.square_branches = dp.square_branches;
     const mas::MeshDecomposition d =
         mas::decompose_mesh(part.mesh, axis, mp, report ? stderr_progress() : mas::Progress());
     const std::vector<std::string> files = write_components(
@@ -669,6 +666,7 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
         r.base_normal = -c.base.normal;
         r.branch = c.branch;
         r.rule = c.parent < 0 ? "root" : "section_plane";
+        r.turned = c.turned;
         r.volume_mm3 = mas::mesh_volume(c.mesh);
         r.file = files[i];
     }

@@ -521,8 +521,21 @@ class CliSections(unittest.TestCase):
                           "there is no branch 0 to cut square")
         self.expect_error(["decompose", brep, "--square-branches", "1.5"], 2,
                           "--square-branches must be whole numbers")
-        self.expect_error(["decompose", self.write("l.stl", l_prism_stl()), "--square-branches",
-                           "1"], 1, "invalid_argument", "--square-branches applies to a solid")
+        # The L as a mesh turned 30 degrees, marched in the document's frame: the same, its arm cut
+        # square to its line (the mesh's facets flat: exact), or asked, to +X.
+        stl = self.write("l30.stl", l_prism_stl(30.0))
+        arms = {}
+        for extra in ([], ["--square-branches", "1"]):
+            r = run("decompose", stl, "--frame", "0", "--json", *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            arms[bool(extra)] = json.loads(r.stdout)["components"][1]
+        self.assertTrue(arms[False]["turned"])
+        for got, want in zip(arms[False]["build_direction"], (math.cos(math.pi / 6), 0.5, 0.0)):
+            self.assertAlmostEqual(got, want, delta=1e-6)
+        self.assertFalse(arms[True]["turned"])
+        self.assertEqual(arms[True]["build_direction"], [1, 0, 0])
+        self.expect_error(["decompose", stl, "--square-branches", "7"], 1, "invalid_argument",
+                          "there is no branch 7 to cut square")
 
     def test_decompose_splits_a_mesh_at_section_planes_and_writes_its_pieces(self):
         # The L as a mesh: the arm cut off at the column's face plus the axis' clearance, the two

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <gp_Ax1.hxx>
+#include <gp_Trsf.hxx>
 #include <string>
 #include <vector>
 
@@ -186,6 +189,60 @@ TEST(DecomposeMesh, TheLIsSplitAtItsColumnsFaceAndItsArmBuiltAlongX) {
     expect_solid(arm.mesh, "arm");
 }
 
+TEST(DecomposeMesh, ABladeBetweenTheDirectionsIsCutSquareToItsLineJustPastTheHub) {
+    // A round hub (radius 12, 30 tall) with one flat blade (4 thick, 10 wide, z = 10 to 20,
+    // reaching 32 from the hub's axis) 25 degrees round from +X: marched along +X (in the
+    // document's frame), it is cut
+    // square to its own line, the clearance past the hub's side beside it, as a solid's is
+    // (Decompose.hpp); asked (square_branches), square to +X at Eq. 4's T.
+    gp_Trsf turn;
+    turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 25.0 * kPi / 180.0);
+    const auto hub = mesh_of(mas::test::from_occt(
+        fuse(mas::test::occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 12.0, 30.0),
+             BRepBuilderAPI_Transform(occ_box(6, -2, 10, 26, 4, 10), turn, true).Shape())));
+    mas::AxisParams document;  // the frame of the blade's sides would march it along itself
+    document.frame_deg = 0.0;
+    const auto axis = mas::centroidal_axis(hub, document);
+    const Vector3d along(std::cos(25.0 * kPi / 180.0), std::sin(25.0 * kPi / 180.0), 0.0);
+    const mas::MeshDecomposition d = mas::decompose_mesh(hub, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    EXPECT_TRUE(d.notes.empty());
+    const mas::ComponentMesh& blade = d.components[1];
+    EXPECT_TRUE(blade.turned);
+    EXPECT_FALSE(d.components[0].turned);
+    EXPECT_EQ(axis.branches[std::size_t(blade.branch)].direction, Vector3d::UnitX());
+    // The line through the blade's sections' centroids: exact on its flat faces.
+    EXPECT_LT(std::acos(std::min(1.0, blade.base.normal.dot(along))), 1e-6);
+    // The hub's facets lie up to the deflection (0.02) inside its side, and the rays find it at
+    // points along the blade's outline no further apart than a tenth of a step or a 64th of the
+    // section's outline (10 by 4 / cos 25): up to half that off the blade's middle.
+    const double clearance = axis.params.eps_mm + axis.params.step_mm / 100.0;
+    const double spacing = std::max(0.1 * axis.params.step_mm,
+                                    2.0 * (10.0 + 4.0 / std::cos(25.0 * kPi / 180.0)) / 64.0);
+    const double cut = blade.base.normal.dot(blade.base.origin);
+    EXPECT_LE(cut, 12.0 + clearance + 1e-6);
+    EXPECT_GE(cut, 12.0 + clearance - 0.02 - std::pow(0.5 * spacing, 2) / 24.0 - 1e-6);
+    EXPECT_NEAR(lowest(blade.mesh, blade.base.normal), cut, 1e-9);
+    EXPECT_NEAR(mas::mesh_volume(blade.mesh), (32.0 - cut) * 4.0 * 10.0, 1e-6 * 1000.0);
+    expect_solid(d.components[0].mesh, "hub");
+    expect_solid(blade.mesh, "blade");
+    // Asked to, square to +X, where the blade's march began.
+    mas::MeshDecomposeParams square;
+    square.square_branches = {blade.branch};
+    const mas::MeshDecomposition squared = mas::decompose_mesh(hub, axis, square);
+    ASSERT_EQ(squared.components.size(), 2u);
+    EXPECT_FALSE(squared.components[1].turned);
+    EXPECT_EQ(squared.components[1].base.normal, Vector3d::UnitX());
+    square.square_branches = {0};
+    EXPECT_THROW(mas::decompose_mesh(hub, axis, square), mas::Error);
+    // Sliced, no layer hangs: the lens the hub keeps, under 0.2 mm deep, its layers carry. Cut
+    // square to +X, the hub kept the blade's wedge up to x = 12, its underside hanging 1.15 mm^2
+    // in a layer.
+    const mas::SlicedPart sliced = mas::slice_mesh_part(hub, axis, params());
+    EXPECT_EQ(sliced.components.size(), 2u);
+    for (const auto& layer : sliced.layers) EXPECT_EQ(layer.unsupported_area_mm2, 0.0);
+}
+
 TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {
     // A post with a beam over to the side and a block hanging from the beam's end (-Z: built
     // downwards), and an arm along +X a fifth of a millimetre over the plate: its piece stands on
@@ -194,7 +251,7 @@ TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {
         fuse(fuse(occ_box(0, 0, 0, 12, 12, 70), occ_box(12, 0, 60, 50, 12, 10)),
              fuse(occ_box(50, 0, 40, 8, 12, 20), occ_box(12, 0, 0.2, 20, 12, 8)))));
     const auto axis = mas::centroidal_axis(gallows);
-    const mas::MeshDecomposition d = mas::decompose_mesh(gallows, axis, {0.5, 100.0, {}});
+    const mas::MeshDecomposition d = mas::decompose_mesh(gallows, axis, {0.5, 100.0, {}, {}});
     ASSERT_EQ(d.components.size(), 2u);  // the column and the beam
     EXPECT_EQ(d.components[1].base.normal, Vector3d::UnitX());
     std::string notes;
@@ -209,7 +266,7 @@ TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {
         << notes;
     // A branch kept by the caller stays, its note saying why.
     const int beam = d.components[1].branch;
-    mas::MeshDecomposeParams keep{0.5, 100.0, {{beam, "as asked"}}};
+    mas::MeshDecomposeParams keep{0.5, 100.0, {{beam, "as asked"}}, {}};
     const mas::MeshDecomposition whole = mas::decompose_mesh(gallows, axis, keep);
     EXPECT_EQ(whole.components.size(), 1u);
     ASSERT_EQ(whole.notes.size(), d.notes.size() + 1);

@@ -217,6 +217,35 @@ struct KeptBranch {
 // Throws InvalidArgument ("<caller>: ...") when a kept branch is the axis' root or one it lacks.
 void check_kept_branches(const std::vector<KeptBranch>& kept, const CentroidalAxis& axis,
                          const std::string& caller);
+// The same for branches asked to be cut square to their directions (square_branches).
+void check_square_branches(const std::vector<int>& square, const CentroidalAxis& axis,
+                           const std::string& caller);
+
+// Branch b's line, where it runs off its direction D about its father's direction by more than 2
+// degrees and less than 45 (a blade on a hub between -X and +Y, marched along the nearer): the
+// unit direction of the line through the centroids of its first nodes, as many of the first six
+// as lie on one within `tolerance_mm` (three at least: a blade's tip cuts its last section short),
+// less its component along the father's direction (a branch leaning up out of a column keeps D),
+// pointing along D. False otherwise. A solid's decomposition and a mesh's turn a section plane
+// square to it (above; SlicePart.hpp).
+bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
+                 Eigen::Vector3d& along);
+
+// A ray's first hit on a father's surface: cast(from, direction, length, distance, normal) is
+// true when the ray from `from` along the unit `direction` meets the surface within `length`,
+// with `distance` along it and the surface's outward unit `normal` there.
+using RayCast = std::function<bool(const Eigen::Vector3d& from, const Eigen::Vector3d& direction,
+                                   double length, double& distance, Eigen::Vector3d& normal)>;
+
+// How far along `along` (branch_line()) the father's surface reaches beside branch b: the furthest
+// first hit of rays cast back along the line from points along its first node's outline (no
+// further apart than a tenth of a step or a 64th of the outline; a square blade's has its corners
+// alone, where a round hub's side is furthest from its middle), each moved `clearance_mm` out of
+// it, as far as the father's node the branch links to. A hit on a face not facing the branch
+// (normal . along under 0.1: the branch's own side, met by a ray a little off its line) is passed
+// over. NaN where no ray counts or the first node carries no region.
+double reach_beside(const CentroidalAxis& axis, std::size_t b, const Eigen::Vector3d& along,
+                    double clearance_mm, const RayCast& cast);
 
 struct DecomposeParams {
     // Criterion (1): a splitting face's normal is within this angle of +-D, degrees.

@@ -44,6 +44,9 @@ struct ComponentMesh {
     int parent = -1;  // father component, -1 for the root
     Plane base;       // on its base face (root: the build plate), normal = build direction
     int branch = 0;   // the axis branch it follows
+    // Cut square to its branch's line, which runs between the six directions (Decompose.hpp's
+    // Component::turned), not to the branch's direction.
+    bool turned = false;
 };
 
 struct ComponentLayers {
@@ -142,12 +145,19 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
 // defaults), rests on the build plate (comes within min_component_height, at least eps, of it:
 // the root builds it up), would take all of its father's base or leave the father thinner than
 // that along its build direction, holds over four times what the branch and its sub-branches
-// swept (plus two steps of its first section), or either piece is no closed solid. The root stands
-// on build_plate() and follows branch 0.
+// swept (plus two steps of its first section), or either piece is no closed solid. A branch
+// running between the six directions (branch_line(), Decompose.hpp: a blade on a hub) is cut
+// first at the plane turned square to its line, the clearance past the father's surface beside it
+// (reach_beside(), rays cast at the father's facets), its first section's material point moved
+// along the line past that plane if it lies behind; where that cut is refused for any of the
+// reasons above, or square_branches lists the branch, at the plane square to its direction. The
+// root stands on build_plate() and follows branch 0.
 struct MeshDecomposeParams {
     double min_component_height_mm = 0.0;
     double max_tilt_deg = 100.0;
     std::vector<KeptBranch> keep_branches;  // branches not cut off, whatever they are
+    // Branches cut square to their directions, never to their lines (DecomposeParams).
+    std::vector<int> square_branches;
 };
 struct MeshDecomposition {
     std::vector<ComponentMesh> components;  // tree order: a father before its children
@@ -177,7 +187,7 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
 
 // A part decomposed and sliced, for slice_clear_of_collisions: the slicing, the axis branch each
 // of its components came from (the root's first), whether its cut was turned square to its
-// branch's line (Component::turned; a mesh's never is), and the decomposition's notes.
+// branch's line (Component::turned, ComponentMesh::turned), and the decomposition's notes.
 struct SplitSliced {
     SlicedPart sliced;
     std::vector<int> branches;

@@ -1,6 +1,7 @@
 // Decomposing a closed mesh (SlicePart.hpp, decompose_mesh): each branch of the centroidal axis
 // that turned or split cut off its father's mesh at the section plane, the cut closed with a cap on
 // both sides.
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "mas/Angles.hpp"
+#include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
 #include "mas/Section.hpp"
 #include "mas/SlicePart.hpp"
@@ -246,8 +248,10 @@ struct UnionFind {
     void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
-// The nearest triangle the ray from `origin` along `dir` meets (t > 0), -1 for none.
-int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir) {
+// The nearest triangle the ray from `origin` along `dir` meets (t > 0), -1 for none; `distance`
+// receives how far along the ray (infinity for none).
+int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir,
+              double* distance = nullptr) {
     int best = -1;
     double best_t = std::numeric_limits<double>::infinity();
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -270,6 +274,7 @@ int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir) {
             best = int(t);
         }
     }
+    if (distance) *distance = best_t;
     return best;
 }
 
@@ -480,9 +485,100 @@ void check_kept_branches(const std::vector<KeptBranch>& kept, const CentroidalAx
     }
 }
 
+bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm, Vec3& along) {
+    // Below 2 degrees, the stub a plane square to D leaves in the father is less than 3.5 % of
+    // the branch's section's width deep.
+    constexpr double kOffLineDeg = 2.0;
+    const AxisBranch& br = axis.branches[b];
+    if (br.first_link < 0 || br.nodes.empty()) return false;
+    const Vec3 D = br.direction.normalized();
+    Vec3 line = Vec3::Zero();
+    for (std::size_t n = std::min<std::size_t>(br.nodes.size(), 6); n >= 3; --n) {
+        Vec3 mean = Vec3::Zero();
+        for (std::size_t i = 0; i < n; ++i) mean += axis.nodes[std::size_t(br.nodes[i])].position;
+        mean /= double(n);
+        Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec3 d = axis.nodes[std::size_t(br.nodes[i])].position - mean;
+            spread += d * d.transpose();
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(spread);
+        const Vec3 fit = solver.eigenvectors().col(2);  // the largest eigenvalue's
+        bool straight = true;
+        for (std::size_t i = 0; i < n && straight; ++i) {
+            const Vec3 d = axis.nodes[std::size_t(br.nodes[i])].position - mean;
+            straight = (d - fit.dot(d) * fit).norm() <= tolerance_mm;
+        }
+        if (straight) {
+            line = fit.dot(D) < 0.0 ? Vec3(-fit) : fit;
+            break;
+        }
+    }
+    if (line.isZero()) return false;
+    const int start = axis.links[std::size_t(br.first_link)].start;
+    const int fb = axis.nodes[std::size_t(start)].branch;
+    const Vec3 F = axis.branches[std::size_t(fb >= 0 ? fb : br.parent)].direction.normalized();
+    line -= line.dot(F) * F;
+    if (line.norm() < 1e-9) return false;
+    line.normalize();
+    const double off = std::acos(std::clamp(line.dot(D), -1.0, 1.0)) * 180.0 / kPi;
+    if (off <= kOffLineDeg || off >= 45.0) return false;
+    along = line;
+    return true;
+}
+
+double reach_beside(const CentroidalAxis& axis, std::size_t b, const Vec3& along,
+                    double clearance_mm, const RayCast& cast) {
+    const AxisBranch& br = axis.branches[b];
+    const AxisNode& first = axis.nodes[std::size_t(br.nodes.front())];
+    const std::vector<Vec2>& outline = first.region.outer.points;
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    if (outline.size() < 3) return none;
+    const AxisNode& junction =
+        axis.nodes[std::size_t(axis.links[std::size_t(br.first_link)].start)];
+    const PlaneFrame frame(first.normal);
+    const std::size_t count = outline.size();
+    double perimeter = 0.0;
+    for (std::size_t i = 0; i < count; ++i)
+        perimeter += (outline[(i + 1) % count] - outline[i]).norm();
+    const double spacing = std::max(0.1 * axis.params.step_mm, perimeter / 64.0);
+    double furthest = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < count; ++i) {
+        const Vec2& p = outline[i];
+        const Vec2 edge = outline[(i + 1) % count] - p;
+        const double length = edge.norm();
+        if (length < 1e-12) continue;
+        const Vec2 outward = Vec2(edge.y(), -edge.x()) / length;  // the outline is anticlockwise
+        const int pieces = std::max(1, int(std::ceil(length / spacing)));
+        for (int k = 0; k <= pieces; ++k) {
+            const Vec2 q = p + edge * (double(k) / pieces) + clearance_mm * outward;
+            const Vec3 from = frame.u * q.x() + frame.v * q.y() + first.normal * first.offset;
+            const double reach = along.dot(from - junction.position);
+            if (reach <= 0.0) continue;
+            double distance = 0.0;
+            Vec3 normal = Vec3::Zero();
+            if (!cast(from, -along, reach, distance, normal) || normal.dot(along) < 0.1) continue;
+            furthest = std::max(furthest, along.dot(from) - distance);
+        }
+    }
+    return std::isfinite(furthest) ? furthest : none;
+}
+
+void check_square_branches(const std::vector<int>& square, const CentroidalAxis& axis,
+                           const std::string& caller) {
+    for (const int b : square)
+        if (b <= 0 || b >= int(axis.branches.size()))
+            throw Error(ErrorCode::InvalidArgument,
+                        caller + ": there is no branch " + std::to_string(b) +
+                            " to cut square to its direction (the axis has " +
+                            std::to_string(axis.branches.size()) +
+                            " branches, 0 its root, which is not cut)");
+}
+
 MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis& axis,
                                  const MeshDecomposeParams& params, const Progress& progress) {
     check_kept_branches(params.keep_branches, axis, "decompose_mesh");
+    check_square_branches(params.square_branches, axis, "decompose_mesh");
     MeshDecomposition out;
     ComponentMesh root;
     root.mesh = mesh;
@@ -552,74 +648,113 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
         const double offset =
             std::min(first.slab_start + clearance, first.offset - axis.params.eps_mm);
         ComponentMesh& from = out.components[father];
-        TriangleMesh above, below;
+        // Cuts the father at the plane of normal `n` at `at` (n . point), the branch's piece
+        // holding `in`: true when made (the child added), else false with why not.
+        const auto cut_off = [&](const Vec3& n, double at, const Vec3& in, std::string& why) {
+            TriangleMesh above, below;
+            double cut = at;
+            if (!split_mesh(from.mesh, make_plane(n * at, n), in, above, below, why, &cut)) {
+                why = "the section plane cannot split it: " + why;
+                return false;
+            }
+            const double reach = highest_along(above, n) - cut;
+            if (reach < min_reach) {
+                std::ostringstream text;
+                text << std::setprecision(3) << "its piece reaches " << reach
+                     << " mm past the cut, less than " << min_reach;
+                why = text.str();
+                return false;
+            }
+            // Within a thinnest layer of the plate (a mesh's facets under a round body lying on
+            // it may stand a chordal deviation above it), the piece stands on it.
+            if (father == 0 && lowest_along(above, Vec3::UnitZ()) <=
+                                   from.base.origin.z() + std::max(plate_tol, tol)) {
+                why = "its piece rests on the build plate, from which the root builds it up";
+                return false;
+            }
+            const Vec3& base_normal = from.base.normal;
+            const double base_offset = base_normal.dot(from.base.origin);
+            if (lowest_along(below, base_normal) > base_offset + 1e-6) {
+                why = "its piece would take all of the base its component is built from";
+                return false;
+            }
+            // Cut where its component begins (a branch born of a split whose brother's cut took
+            // their common plane with it, both legs meeting again above a window), the father
+            // would keep a sliver no layer fits.
+            const double left = highest_along(below, base_normal) - base_offset;
+            if (left < min_reach) {
+                std::ostringstream text;
+                text << std::setprecision(3) << "its component would keep only " << left
+                     << " mm along its build direction, less than " << min_reach;
+                why = text.str();
+                return false;
+            }
+            const double bound = 4.0 * (swept[b] + 2.0 * step * first.area);
+            if (mesh_volume(above) > bound) {
+                why =
+                    "its piece holds over four times what the branch swept: mostly other "
+                    "material";
+                return false;
+            }
+            const MeshReport above_report = check_mesh(above), below_report = check_mesh(below);
+            bool solid = above_report.closed() && below_report.closed() &&
+                         above_report.volume_mm3 > 0.0 && below_report.volume_mm3 > 0.0;
+            if (solid) {
+                try {
+                    require_one_solid(above, "piece");
+                    require_one_solid(below, "piece");
+                } catch (const Error&) {
+                    solid = false;
+                }
+            }
+            if (!solid) {
+                why = "its pieces would not be closed solids";
+                return false;
+            }
+            from.mesh = std::move(below);
+            ComponentMesh child;
+            child.mesh = std::move(above);
+            child.parent = father;
+            child.base = make_plane(in - (n.dot(in) - cut) * n, n);
+            child.branch = int(b);
+            component_of[b] = int(out.components.size());
+            out.components.push_back(std::move(child));
+            return true;
+        };
+        // A branch running between the six directions (a blade on a hub): first at the plane
+        // square to its line, just past the father's surface beside it (Decompose.hpp), its first
+        // node's material moved along the line past it if it lies behind; that refused, or
+        // asked (square_branches), at the plane square to its direction.
         std::string why;
-        double cut = offset;
-        if (!split_mesh(from.mesh, make_plane(dir * offset, dir), inside, above, below, why,
-                        &cut)) {
-            note("the section plane cannot split it: " + why);
-            continue;
-        }
-        const double reach = highest_along(above, dir) - cut;
-        if (reach < min_reach) {
-            std::ostringstream text;
-            text << std::setprecision(3) << "its piece reaches " << reach
-                 << " mm past the cut, less than " << min_reach;
-            note(text.str());
-            continue;
-        }
-        // Within a thinnest layer of the plate (a mesh's facets under a round body lying on it
-        // may stand a chordal deviation above it), the piece stands on it.
-        if (father == 0 &&
-            lowest_along(above, Vec3::UnitZ()) <= from.base.origin.z() + std::max(plate_tol, tol)) {
-            note("its piece rests on the build plate, from which the root builds it up");
-            continue;
-        }
-        const Vec3& base_normal = from.base.normal;
-        const double base_offset = base_normal.dot(from.base.origin);
-        if (lowest_along(below, base_normal) > base_offset + 1e-6) {
-            note("its piece would take all of the base its component is built from");
-            continue;
-        }
-        // Cut where its component begins (a branch born of a split whose brother's cut took
-        // their common plane with it, both legs meeting again above a window), the father would
-        // keep a sliver no layer fits.
-        const double left = highest_along(below, base_normal) - base_offset;
-        if (left < min_reach) {
-            std::ostringstream text;
-            text << std::setprecision(3) << "its component would keep only " << left
-                 << " mm along its build direction, less than " << min_reach;
-            note(text.str());
-            continue;
-        }
-        const double bound = 4.0 * (swept[b] + 2.0 * step * first.area);
-        if (mesh_volume(above) > bound) {
-            note("its piece holds over four times what the branch swept: mostly other material");
-            continue;
-        }
-        const MeshReport above_report = check_mesh(above), below_report = check_mesh(below);
-        bool solid = above_report.closed() && below_report.closed() &&
-                     above_report.volume_mm3 > 0.0 && below_report.volume_mm3 > 0.0;
-        if (solid) {
-            try {
-                require_one_solid(above, "piece");
-                require_one_solid(below, "piece");
-            } catch (const Error&) {
-                solid = false;
+        Vec3 along;
+        if (std::find(params.square_branches.begin(), params.square_branches.end(), int(b)) ==
+                params.square_branches.end() &&
+            branch_line(axis, b, clearance, along)) {
+            const TriangleMesh& father_mesh = from.mesh;
+            const double furthest = reach_beside(
+                axis, b, along, clearance,
+                [&](const Vec3& origin, const Vec3& direction, double length, double& distance,
+                    Vec3& normal) {
+                    const int hit = first_hit(father_mesh, origin, direction, &distance);
+                    if (hit < 0 || distance > length) return false;
+                    const auto& t = father_mesh.triangles[std::size_t(hit)];
+                    const Vec3& p0 = father_mesh.vertices[std::size_t(t[0])];
+                    normal = (father_mesh.vertices[std::size_t(t[1])] - p0)
+                                 .cross(father_mesh.vertices[std::size_t(t[2])] - p0)
+                                 .normalized();
+                    return true;
+                });
+            const double at = furthest + clearance;
+            if (std::isfinite(furthest) && along.dot(first.position) >= at + clearance) {
+                Vec3 in = inside;
+                if (along.dot(in) < at + clearance) in += along * (at + clearance - along.dot(in));
+                if (cut_off(along, at, in, why)) {
+                    out.components.back().turned = true;
+                    continue;
+                }
             }
         }
-        if (!solid) {
-            note("its pieces would not be closed solids");
-            continue;
-        }
-        from.mesh = std::move(below);
-        ComponentMesh child;
-        child.mesh = std::move(above);
-        child.parent = father;
-        child.base = make_plane(inside - (dir.dot(inside) - cut) * dir, dir);
-        child.branch = int(b);
-        component_of[b] = int(out.components.size());
-        out.components.push_back(std::move(child));
+        if (!cut_off(dir, offset, inside, why)) note(why);
     }
     progress(1.0);
     return out;

@@ -120,17 +120,20 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
     root.mesh = mesh;
     root.base = build_plate(mesh);
     if (!params.split_mesh) return slice_components({root}, axis, params, progress);
-    // A mesh's cuts are square to its branches' directions: `square` asks for nothing more.
-    const auto split = [&](const std::vector<KeptBranch>& keep, const std::vector<int>&,
+    const auto split = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square,
                            const Progress& round) {
         MeshDecomposeParams split;
         split.min_component_height_mm = params.layers.min_layer_mm;
         split.max_tilt_deg = params.layers.max_tilt_deg;
         split.keep_branches = keep;
+        split.square_branches = square;
         MeshDecomposition parts = decompose_mesh(mesh, axis, split, round.span(0.0, 0.05));
         SplitSliced out;
         out.sliced = slice_components(parts.components, axis, params, round.span(0.05, 1.0));
-        for (const ComponentMesh& c : parts.components) out.branches.push_back(c.branch);
+        for (const ComponentMesh& c : parts.components) {
+            out.branches.push_back(c.branch);
+            out.turned.push_back(c.turned);
+        }
         out.notes = std::move(parts.notes);
         return out;
     };

@@ -18,7 +18,6 @@
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
-#include <Eigen/Eigenvalues>
 #include <GProp_GProps.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_Curve.hxx>
@@ -678,11 +677,6 @@ struct Work {
     Component c;
 };
 
-// A branch whose line runs further than this off its direction D (degrees) is cut square to its
-// line when cut at a section plane (Decomposer::turn_square). Below it, the stub the plane
-// square to D leaves in the father is less than 3.5 % of its section's width deep.
-constexpr double kOffLineDeg = 2.0;
-
 // Where a branch asks to be cut from its father, and by which plane.
 struct Plan {
     Component::SplitRule rule = Component::SplitRule::PlanarFace;
@@ -870,51 +864,7 @@ public:
     }
 
 private:
-    // Branch b's line, where it runs off D by more than kOffLineDeg about its father's direction:
-    // the line through its first nodes' centroids, as many of the first six as lie on one within
-    // the clearance (at least three: a blade's last node, at its tip, cuts its end obliquely), less
-    // its component along the father's direction (a branch leaning up out of its father keeps D).
-    // False for a branch along D, or one whose first three nodes do not lie on a line.
-    bool off_line(std::size_t b, const Vector3d& D, Vector3d& along) const {
-        const AxisBranch& br = axis_.branches[b];
-        Vector3d line = Vector3d::Zero();
-        for (std::size_t n = std::min<std::size_t>(br.nodes.size(), 6); n >= 3; --n) {
-            Vector3d mean = Vector3d::Zero();
-            for (std::size_t i = 0; i < n; ++i)
-                mean += axis_.nodes[std::size_t(br.nodes[i])].position;
-            mean /= double(n);
-            Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-            for (std::size_t i = 0; i < n; ++i) {
-                const Vector3d d = axis_.nodes[std::size_t(br.nodes[i])].position - mean;
-                spread += d * d.transpose();
-            }
-            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(spread);
-            const Vector3d fit = solver.eigenvectors().col(2);  // the largest eigenvalue's
-            bool straight = true;
-            for (std::size_t i = 0; i < n && straight; ++i) {
-                const Vector3d d = axis_.nodes[std::size_t(br.nodes[i])].position - mean;
-                straight = (d - fit.dot(d) * fit).norm() <= clearance_;
-            }
-            if (straight) {
-                line = fit.dot(D) < 0.0 ? Vector3d(-fit) : fit;
-                break;
-            }
-        }
-        if (line.isZero()) return false;
-        const int start = axis_.links[std::size_t(br.first_link)].start;
-        const int fb = axis_.nodes[std::size_t(start)].branch;
-        const Vector3d F =
-            axis_.branches[std::size_t(fb >= 0 ? fb : br.parent)].direction.normalized();
-        line -= line.dot(F) * F;
-        if (line.norm() < 1e-9) return false;
-        line.normalize();
-        const double off = std::acos(std::clamp(line.dot(D), -1.0, 1.0)) * 180.0 / kPi;
-        if (off <= kOffLineDeg || off >= 45.0) return false;
-        along = line;
-        return true;
-    }
-
-    // The section plane turned square to branch b's line (off_line()), just past the father's
+    // The section plane turned square to branch b's line (branch_line()), just past the father's
     // surface beside the branch's first section: rays cast back along the line from just
     // outside that section's outline (grown by the clearance), as far as the father's node the
     // branch links to, meet the father's surface; the plane lies the clearance past the
@@ -924,52 +874,25 @@ private:
     // leave the first node's centroid a clearance in front of it.
     bool turn_square(std::size_t b, const TopoDS_Shape& fs, Plan& out) const {
         const AxisBranch& br = axis_.branches[b];
-        const Vector3d D = br.direction.normalized();
         Vector3d along;
-        if (!off_line(b, D, along)) return false;
+        if (!branch_line(axis_, b, clearance_, along)) return false;
         const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
-        const std::vector<Eigen::Vector2d>& outline = first.region.outer.points;
-        if (outline.size() < 3) return false;
-        const AxisNode& junction =
-            axis_.nodes[std::size_t(axis_.links[std::size_t(br.first_link)].start)];
-        const PlaneFrame frame(first.normal);
         IntCurvesFace_ShapeIntersector rays;
         rays.Load(fs, Precision::Confusion());
-        // Points along the outline, no further apart than a tenth of a step or a 64th of the
-        // outline (a square blade's outline has its corners alone, where a round hub's side is
-        // furthest from its middle; a 0.5 mm spacing leaves the plane 0.003 mm short of a 10 mm
-        // hub's side), each moved out of it by the clearance.
-        const std::size_t count = outline.size();
-        double perimeter = 0.0;
-        for (std::size_t i = 0; i < count; ++i)
-            perimeter += (outline[(i + 1) % count] - outline[i]).norm();
-        const double spacing = std::max(0.1 * axis_.params.step_mm, perimeter / 64.0);
-        double furthest = -std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < count; ++i) {
-            const Eigen::Vector2d& p = outline[i];
-            const Eigen::Vector2d edge = outline[(i + 1) % count] - p;
-            const double length = edge.norm();
-            if (length < 1e-12) continue;
-            const Eigen::Vector2d outward = Eigen::Vector2d(edge.y(), -edge.x()) / length;
-            const int pieces = std::max(1, int(std::ceil(length / spacing)));
-            for (int k = 0; k <= pieces; ++k) {
-                const Eigen::Vector2d q = p + edge * (double(k) / pieces) + clearance_ * outward;
-                const Vector3d from =
-                    frame.u * q.x() + frame.v * q.y() + first.normal * first.offset;
-                const double reach = along.dot(from - junction.position);
-                if (reach <= 0.0) continue;
-                rays.Perform(gp_Lin(pnt(from), gp_Dir(-along.x(), -along.y(), -along.z())), 0.0,
-                             reach);
-                if (!rays.IsDone() || rays.NbPnt() == 0) continue;
+        const double furthest = reach_beside(
+            axis_, b, along, clearance_,
+            [&](const Vector3d& from, const Vector3d& direction, double length, double& distance,
+                Vector3d& normal) {
+                rays.Perform(gp_Lin(pnt(from), gp_Dir(direction.x(), direction.y(), direction.z())),
+                             0.0, length);
+                if (!rays.IsDone() || rays.NbPnt() == 0) return false;
                 int nearest = 1;
                 for (int h = 2; h <= rays.NbPnt(); ++h)
                     if (rays.WParameter(h) < rays.WParameter(nearest)) nearest = h;
-                // The father's surface faces the branch. A ray that met the branch's own side
-                // (running into it, on a line a little off the branch's) tells nothing.
-                if (facing(rays, nearest).dot(along) < 0.1) continue;
-                furthest = std::max(furthest, along.dot(from) - rays.WParameter(nearest));
-            }
-        }
+                distance = rays.WParameter(nearest);
+                normal = facing(rays, nearest);
+                return true;
+            });
         if (!std::isfinite(furthest)) return false;
         const double cut = furthest + clearance_;
         if (along.dot(first.position) < cut + clearance_) return false;
@@ -1068,13 +991,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
     check_params(params);
     const Shape checked = input.single_solid("decompose");
     check_kept_branches(params.keep_branches, world_axis, "decompose");
-    for (const int b : params.square_branches)
-        if (b <= 0 || b >= int(world_axis.branches.size()))
-            throw Error(ErrorCode::InvalidArgument,
-                        "decompose: there is no branch " + std::to_string(b) +
-                            " to cut square to its direction (the axis has " +
-                            std::to_string(world_axis.branches.size()) +
-                            " branches, 0 its root, which is not cut)");
+    check_square_branches(params.square_branches, world_axis, "decompose");
     const double frame = axis_frame_deg(world_axis, "decompose");
     std::optional<CentroidalAxis> turned_axis;
     if (frame != 0.0) turned_axis = turned_about_z(world_axis, -frame);

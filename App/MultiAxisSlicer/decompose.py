@@ -52,7 +52,7 @@ def _max_tilt(value):
 
 def _checked_params(face_angle=10.0, concave_angle=1.0, projection_tolerance=0.01,
                     section_plane_fallback=True, min_component_height=0.0, max_tilt=100.0,
-                    keep_branches=(), square_branches=()):
+                    keep_branches=(), square_branches=(), turn_cuts=True):
     """decompose()'s decomposition parameters, checked (TypeError / ValueError naming the bad one),
     as a Decomposition's ``params``."""
     face_angle_deg = _angle(face_angle, "face_angle", 90.0)
@@ -68,6 +68,8 @@ def _checked_params(face_angle=10.0, concave_angle=1.0, projection_tolerance=0.0
     max_tilt_deg = _max_tilt(max_tilt)
     keep = _branch_list(keep_branches)
     square = _branch_list(square_branches, "square_branches")
+    if not isinstance(turn_cuts, (bool, numbers.Integral)):
+        raise TypeError("turn_cuts must be True or False, got {!r}".format(turn_cuts))
     if not isinstance(section_plane_fallback, (bool, numbers.Integral)):
         raise TypeError("section_plane_fallback must be True or False, got {!r}".format(
             section_plane_fallback))
@@ -75,7 +77,7 @@ def _checked_params(face_angle=10.0, concave_angle=1.0, projection_tolerance=0.0
             "projection_tolerance_mm": tolerance_mm,
             "section_plane_fallback": bool(section_plane_fallback),
             "min_component_height_mm": min_height_mm, "max_tilt_deg": max_tilt_deg,
-            "keep_branches": keep, "square_branches": square}
+            "keep_branches": keep, "square_branches": square, "turn_cuts": bool(turn_cuts)}
 
 
 def _engine_args(params):
@@ -85,7 +87,7 @@ def _engine_args(params):
             "section_plane_fallback": params["section_plane_fallback"],
             "min_component_height": params["min_component_height_mm"],
             "max_tilt": params["max_tilt_deg"], "keep_branches": list(params["keep_branches"]),
-            "square_branches": list(params["square_branches"])}
+            "square_branches": list(params["square_branches"]), "turn_cuts": params["turn_cuts"]}
 
 
 def _branch_list(value, name="keep_branches"):
@@ -217,7 +219,7 @@ class Decomposition:
     ``Component``), ``axis`` (the ``CentroidalAxis`` it followed), ``part_volume`` (mm³, the
     part's; the components' volumes add up to it), ``params`` (the decomposition's parameters:
     face_angle_deg, concave_angle_deg, projection_tolerance_mm, section_plane_fallback,
-    min_component_height_mm, max_tilt_deg, keep_branches, square_branches),
+    min_component_height_mm, max_tilt_deg, keep_branches, square_branches, turn_cuts),
     ``notes`` (one line per axis branch that asked for a cut and got none: why, and which
     component kept its material), ``kept_branches`` (the branches of keep_branches that stayed in
     their fathers so) and ``square_branches`` (as asked): ``decompose(...,
@@ -271,7 +273,8 @@ class Decomposition:
 def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=30.0,
               deflection=None, face_angle=10.0, concave_angle=1.0, section_plane_fallback=True,
               eps=0.001, base_z=None, projection_tolerance=0.01, min_component_height=0.0,
-              max_tilt=100.0, keep_branches=(), square_branches=(), frame=None, progress=None):
+              max_tilt=100.0, keep_branches=(), square_branches=(), turn_cuts=True, frame=None,
+              progress=None):
     """Splits one solid into sub-components where its centroidal axis turns or branches.
 
     ``shape``: a ``Part.Shape`` holding exactly one closed solid (or solids sharing material, fused
@@ -310,6 +313,9 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
       * ``square_branches``: indices of axis branches cut, where a section plane cuts them, square
         to their directions (+-X, +-Y, +-Z), never turned square to their own lines (default
         none). ``slice()`` asks for this where the turned cuts leave the nozzle no way.
+      * ``turn_cuts``: False turns no cut square to a branch's line, as if every branch were in
+        ``square_branches`` (default True; a FreeCAD document saved before the turned cuts keeps
+        False).
 
     ``progress``: None or ``progress(fraction, stage)``, reported branch by branch; an exception it
     raises (``Cancelled``) stops the work and is raised again (see ``MultiAxisSlicer.progress``).
@@ -322,7 +328,7 @@ def decompose(shape, axis=None, step=None, distance_threshold=None, break_angle=
     """
     params = _checked_params(face_angle, concave_angle, projection_tolerance,
                              section_plane_fallback, min_component_height, max_tilt, keep_branches,
-                             square_branches)
+                             square_branches, turn_cuts)
     _progress.check(progress)
     axis_params = {"step": step, "distance_threshold": distance_threshold, "eps": eps,
                    "break_angle": break_angle, "base_z": base_z, "deflection": deflection,

@@ -521,7 +521,9 @@ class DecompositionFeature(_EngineFeature):
     SectionPlaneFallback, MinComponentHeight, MaxTilt, KeepBranches (axis branches left in their
     fathers: the Slice command sets those whose own layers the nozzle could not reach),
     SquareBranches (axis branches cut square to their directions, never turned square to their
-    lines: the Slice command sets them where the turned cuts leave the nozzle no way).
+    lines: the Slice command sets them where the turned cuts leave the nozzle no way), TurnCuts
+    (False: no cut is turned square to its branch's line; a document saved before the turned
+    cuts opens so).
     Outputs: Shape (a compound of the component solids in tree order: a
     father before its children, the root first), ComponentCount, and per component, in the same
     order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
@@ -538,7 +540,7 @@ class DecompositionFeature(_EngineFeature):
         ("face_angle", "FaceAngle"), ("concave_angle", "ConcaveAngle"),
         ("min_component_height", "MinComponentHeight"), ("max_tilt", "MaxTilt"),
         ("section_plane_fallback", "SectionPlaneFallback"), ("keep_branches", "KeepBranches"),
-        ("square_branches", "SquareBranches"))
+        ("square_branches", "SquareBranches"), ("turn_cuts", "TurnCuts"))
     PARAMETERS = (("Decomposition",
                    ("Step", "Deflection", "FaceAngle", "ConcaveAngle", "SectionPlaneFallback",
                     "MinComponentHeight", "MaxTilt")),)
@@ -585,6 +587,13 @@ class DecompositionFeature(_EngineFeature):
                       "Axis branches cut square to their directions (+-X, +-Y, +-Z), never "
                       "turned square to their own lines (the Slice command sets them where the "
                       "turned cuts leave the nozzle no way)")
+        # A document saved before the turned cuts keeps its cuts square to the directions (its
+        # KeepBranches were found for them) until the user changes it.
+        if (_add_property(obj, "App::PropertyBool", "TurnCuts", group,
+                          "Cut a branch running between the six directions (a blade on a hub) "
+                          "square to its own line, not to its direction", True) and
+                "ComponentCount" in obj.PropertiesList):
+            obj.TurnCuts = False
         result = "Result"
         _add_property(obj, "App::PropertyInteger", "ComponentCount", result,
                       "Number of sub-components", 0, _OUTPUT)
@@ -658,7 +667,7 @@ def decomposition_inputs(obj):
                   section_plane_fallback=bool(obj.SectionPlaneFallback),
                   min_component_height=obj.MinComponentHeight.Value,
                   max_tilt=obj.MaxTilt.Value, keep_branches=tuple(obj.KeepBranches),
-                  square_branches=tuple(obj.SquareBranches))
+                  square_branches=tuple(obj.SquareBranches), turn_cuts=bool(obj.TurnCuts))
     return source, params
 
 
@@ -1087,7 +1096,7 @@ def keep_unreachable_branches(layers):
     decomposition = decomposition_result(decomposition_obj)
     source, values = decomposition_inputs(decomposition_obj)
     names = ("face_angle", "concave_angle", "section_plane_fallback", "min_component_height",
-             "max_tilt", "keep_branches", "square_branches")
+             "max_tilt", "keep_branches", "square_branches", "turn_cuts")
     checked = _checked_params(**{k: values[k] for k in names})
     p = mas.slicing._slice_params(dict(mas.SLICE_DEFAULTS, **params))
     if deflection is not None:

@@ -1142,7 +1142,7 @@ std::vector<mas::KeptBranch> kept_branches_from_py(const bp::object& value) {
 
 // decompose()'s parameters from a dict of its argument names (face_angle, concave_angle,
 // projection_tolerance, section_plane_fallback, min_component_height, max_tilt, keep_branches,
-// square_branches);
+// square_branches, turn_cuts);
 // missing ones take the engine's defaults, unknown names are errors.
 mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
     mas::DecomposeParams p;
@@ -1164,6 +1164,8 @@ mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
             p.keep_branches = kept_branches_from_py(value);
         else if (key == "square_branches")
             p.square_branches = branches_from_py(value, "square_branches");
+        else if (key == "turn_cuts")
+            p.turn_cuts = bp::extract<bool>(value)();
         else
             invalid_argument("unknown decomposition parameter '" + key + "'");
     });
@@ -1173,7 +1175,7 @@ mas::DecomposeParams decompose_params_from_py(const bp::dict& d) {
 bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double face_angle,
                    double concave_angle, double projection_tolerance, bool section_plane_fallback,
                    double min_component_height, double max_tilt, const bp::object& keep_branches,
-                   const bp::object& square_branches, const bp::object& progress) {
+                   const bp::object& square_branches, bool turn_cuts, const bp::object& progress) {
     bp::dict given;
     given["face_angle"] = face_angle;
     given["concave_angle"] = concave_angle;
@@ -1183,6 +1185,7 @@ bp::dict decompose(const mas::Shape& shape, const bp::object& axis_py, double fa
     given["max_tilt"] = max_tilt;
     given["keep_branches"] = keep_branches;
     given["square_branches"] = square_branches;
+    given["turn_cuts"] = turn_cuts;
     const mas::DecomposeParams params = decompose_params_from_py(given);
     const mas::CentroidalAxis axis = axis_from_py(axis_py);
     mas::Decomposition d;
@@ -1201,7 +1204,8 @@ void bind_decompose() {
          bp::arg("concave_angle") = 1.0, bp::arg("projection_tolerance") = 0.01,
          bp::arg("section_plane_fallback") = true, bp::arg("min_component_height") = 0.0,
          bp::arg("max_tilt") = 100.0, bp::arg("keep_branches") = bp::tuple(),
-         bp::arg("square_branches") = bp::tuple(), bp::arg("progress") = bp::object()),
+         bp::arg("square_branches") = bp::tuple(), bp::arg("turn_cuts") = true,
+         bp::arg("progress") = bp::object()),
         "Splits a solid (a Shape holding one closed solid) into sub-components along its "
         "centroidal axis `axis` (the dict centroidal_axis() returns for this solid; node regions "
         "are not needed). Angles in degrees, projection_tolerance and min_component_height (the "
@@ -1209,7 +1213,7 @@ void bind_decompose() {
         "no child is built further from +Z, degrees (the machine's reach); keep_branches: axis "
         "branches (ints, not the root's) left in their fathers' components; square_branches: "
         "axis branches cut at a section plane square to their directions, never turned square "
-        "to their lines. Returns a dict: "
+        "to their lines; turn_cuts: False turns none. Returns a dict: "
         "components [{solid (Shape), parent (-1 for the root), build_direction, has_base_face, "
         "base_face (Shape or None), base_origin, base_normal, branch, break_link, rule ('root' | "
         "'planar_face' | 'section_plane'), turned (cut square to its branch's line), "
@@ -1590,8 +1594,8 @@ void bind_slice() {
         (std::string("Decomposes a solid along its centroidal axis `axis` (with "
                      "`decompose_params`, a dict of decompose()'s keyword arguments: face_angle, "
                      "concave_angle, projection_tolerance, section_plane_fallback, "
-                     "min_component_height, max_tilt, keep_branches, square_branches) and "
-                     "slices it; where some layers would meet what is deposited before them, "
+                     "min_component_height, max_tilt, keep_branches, square_branches, turn_cuts) "
+                     "and slices it; where some layers would meet what is deposited before them, "
                      "the cuts turned square to their branches' lines are made square to their "
                      "directions, else their components' branches are kept in their fathers, "
                      "and it is done again (unless avoid_collisions is false; SlicePart.hpp). "

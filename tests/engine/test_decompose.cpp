@@ -25,6 +25,7 @@
 #include <functional>
 #include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
+#include <gp_Vec.hxx>
 #include <set>
 #include <string>
 #include <utility>
@@ -35,6 +36,7 @@
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
 #include "mas/Shape.hpp"
+#include "mas/Slicing.hpp"
 #include "test_parts.hpp"
 
 using Eigen::Vector3d;
@@ -460,6 +462,16 @@ TEST(Decompose, AnLBlockTurnedOnThePlateIsCutAsTheLBlockTurned) {
     EXPECT_EQ(squared.components[1].rule, Rule::SectionPlane);
     EXPECT_TRUE(squared.components[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
     expect_invariants(squared, part);
+    // turn_cuts false: none is turned, as every branch were asked.
+    mas::DecomposeParams unturned;
+    unturned.turn_cuts = false;
+    const auto off = mas::decompose(part, document, unturned);
+    ASSERT_EQ(off.components.size(), squared.components.size());
+    for (std::size_t k = 0; k < off.components.size(); ++k) {
+        EXPECT_FALSE(off.components[k].turned);
+        EXPECT_EQ(off.components[k].build_direction, squared.components[k].build_direction);
+        EXPECT_NEAR(off.components[k].volume_mm3, squared.components[k].volume_mm3, 1e-9);
+    }
     // No such branch, or the root, which is never cut: a clear error.
     for (const int b : {0, int(document.branches.size()), -1}) {
         square.square_branches = {b};
@@ -1059,6 +1071,42 @@ TEST(Decompose, ASliverCutOffTheFathersTopStaysInTheFather) {
         EXPECT_GE(reach, step) << "component " << i;
     }
     expect_invariants(d, part);
+}
+
+TEST(Decompose, ATurnedCutNeverBuildsPastTheMachinesReach) {
+    // The lying rotor's hub (along X) with one blade leaning 120 degrees from +Z about X: marched
+    // along -Y, its line runs 30 degrees under it. Cut square to its line, it would be built 120
+    // degrees from +Z, past max_tilt (100 by default, the machine's reach): it is cut square to
+    // -Y (the slicer refused the part). With max_tilt 180, it is turned.
+    TopoDS_Shape s = fuse(occ_box(-10, -10, 0, 20, 20, 20), occ_box(-5, -3, 18, 10, 6, 12));
+    s = fuse(s, occ_cylinder({-20, 0, 30}, Vector3d::UnitX(), 8, 40));
+    gp_Trsf lean, move;
+    lean.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 120.0 * kPi / 180);
+    move.SetTranslation(gp_Vec(10, 0, 30));
+    s = fuse(s, BRepBuilderAPI_Transform(occ_box(-2, -1, 6, 4, 2, 25), move * lean, true).Shape());
+    const auto part = from_occt(s);
+    const auto axis = axis_of(part, 1.5);
+    const Vector3d line(0.0, -std::sqrt(0.75), -0.5);
+    int blades = 0;
+    for (const double reach : {100.0, 180.0}) {
+        SCOPED_TRACE("max_tilt " + std::to_string(reach));
+        mas::DecomposeParams p;
+        p.max_tilt_deg = reach;
+        const auto d = mas::decompose(part, axis, p);
+        for (const auto& c : d.components) {
+            EXPECT_LE(mas::tilt_from_plate_deg(c.build_direction), reach + 1e-9);
+            if (c.build_direction.dot(line) < 0.8) continue;
+            ++blades;
+            EXPECT_EQ(c.turned, reach > 120.0);
+            if (c.turned) {
+                EXPECT_LT(std::acos(std::min(1.0, c.build_direction.dot(line))), 1e-6);
+            } else {
+                EXPECT_EQ(c.build_direction, -Vector3d::UnitY());
+            }
+        }
+        expect_invariants(d, part);
+    }
+    EXPECT_EQ(blades, 2);
 }
 
 TEST(Decompose, LeaningBladesAreBuiltWhole) {

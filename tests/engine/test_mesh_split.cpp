@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <gp_Ax1.hxx>
 #include <gp_Trsf.hxx>
+#include <gp_Vec.hxx>
 #include <string>
 #include <vector>
 
@@ -241,6 +242,39 @@ TEST(DecomposeMesh, ABladeBetweenTheDirectionsIsCutSquareToItsLineJustPastTheHub
     const mas::SlicedPart sliced = mas::slice_mesh_part(hub, axis, params());
     EXPECT_EQ(sliced.components.size(), 2u);
     for (const auto& layer : sliced.layers) EXPECT_EQ(layer.unsupported_area_mm2, 0.0);
+}
+
+TEST(DecomposeMesh, ATurnedCutNeverBuildsPastTheMachinesReach) {
+    // A hub lying along X with one blade leaning 120 degrees from +Z about X, as a mesh (as the
+    // solid's Decompose.ATurnedCutNeverBuildsPastTheMachinesReach): cut square to its line, it
+    // would be built 120 degrees from +Z, past max_tilt (100): it is cut square to -Y.
+    gp_Trsf lean, move;
+    lean.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 120.0 * kPi / 180.0);
+    move.SetTranslation(gp_Vec(10, 0, 30));
+    TopoDS_Shape s = fuse(occ_box(-10, -10, 0, 20, 20, 20), occ_box(-5, -3, 18, 10, 6, 12));
+    s = fuse(s, mas::test::occ_cylinder({-20, 0, 30}, Vector3d::UnitX(), 8, 40));
+    s = fuse(s, BRepBuilderAPI_Transform(occ_box(-2, -1, 6, 4, 2, 25), move * lean, true).Shape());
+    const auto rotor = mesh_of(mas::test::from_occt(s));
+    mas::AxisParams ap;
+    ap.step_mm = 1.5;
+    const auto axis = mas::centroidal_axis(rotor, ap);
+    const Vector3d line(0.0, -std::sqrt(0.75), -0.5);
+    for (const double reach : {100.0, 180.0}) {
+        SCOPED_TRACE("max_tilt " + std::to_string(reach));
+        mas::MeshDecomposeParams p;
+        p.max_tilt_deg = reach;
+        int blades = 0;
+        for (const auto& c : mas::decompose_mesh(rotor, axis, p).components) {
+            EXPECT_LE(std::acos(c.base.normal.z()) * 180.0 / kPi, reach + 1e-9);
+            if (c.base.normal.dot(line) < 0.8) continue;
+            ++blades;
+            EXPECT_EQ(c.turned, reach > 120.0);
+            if (!c.turned) {
+                EXPECT_EQ(c.base.normal, -Vector3d::UnitY());
+            }
+        }
+        EXPECT_EQ(blades, 1);
+    }
 }
 
 TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {

@@ -230,6 +230,12 @@ class TestDecomposeApi(DecomposeTest):
         again = mas.decompose(l_block(), axis=axis, keep_branches=squared.kept_branches,
                               square_branches=squared.square_branches)
         self.assertEqual([c.to_dict() for c in again], [c.to_dict() for c in squared])
+        # turn_cuts=False turns none: as every branch were asked.
+        unturned = mas.decompose(l_block(), axis=axis, turn_cuts=False)
+        self.assertEqual((unturned.params["turn_cuts"], turned.params["turn_cuts"]), (False, True))
+        self.assertEqual([c.to_dict() for c in unturned], [c.to_dict() for c in squared])
+        with self.assertRaisesRegex(TypeError, "turn_cuts"):
+            mas.decompose(l_block(), axis=axis, turn_cuts="no")
         for bad in ("1", 1, [1.0], [True], None):
             with self.assertRaisesRegex(TypeError, "square_branches", msg=repr(bad)):
                 mas.decompose(l_block(), axis=axis, square_branches=bad)

@@ -1615,6 +1615,33 @@ class TestLayersObject(SliceObjectTest):
         self.assertEqual((decomposition.MaxTilt.Value, layers.MaxTilt.Value), (180.0, 180.0))
         self.assertEqual(layers.LayerCount, 11)
 
+    def test_old_documents_keep_their_cuts_square_to_the_directions(self):
+        # Six blades 60 degrees apart: four run between +-X and +-Y, their cuts turned square to
+        # their lines (TurnCuts). A document saved before the turned cuts opens with TurnCuts
+        # off: recomputed, its cuts stay square to the directions its KeepBranches were found for.
+        part = self.doc.addObject("Part::Feature", "Hub")
+        part.Shape = support.hub_with_six_blades()
+        decomposition = mas.make_decomposition(part)
+        self.assertTrue(decomposition.TurnCuts)
+
+        def off_directions(obj):
+            return sum(1 for d in obj.BuildDirections
+                       if abs(abs(d.x) + abs(d.y) + abs(d.z) - 1.0) > 1e-9)
+
+        self.assertEqual(off_directions(decomposition), 4)
+        decomposition.removeProperty("TurnCuts")
+        name = decomposition.Name
+        self.reopened("MasOldCuts.FCStd")
+        decomposition = self.doc.getObject(name)
+        self.assertFalse(decomposition.TurnCuts)
+        decomposition.touch()
+        self.doc.recompute()
+        self.assertIsNone(features.failure(decomposition))
+        self.assertEqual(off_directions(decomposition), 0)
+        decomposition.TurnCuts = True
+        self.doc.recompute()
+        self.assertEqual(off_directions(decomposition), 4)
+
     def test_undo_removes_both_objects(self):
         self.doc.UndoMode = 1
         decomposition = mas.make_decomposition(self.part)

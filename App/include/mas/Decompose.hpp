@@ -138,19 +138,21 @@
 //   square to its line instead (a blade on a round hub 33 degrees off -X: the march takes the
 //   nearest of +-X, +-Y, +-Z, and the plane square to D at T left a wedge of the blade up to 3 mm
 //   deep in the hub, its underside overhanging the hub's layers, 21.6 mm^2 on a hub with five
-//   blades). The line runs through the centroids of the branch's first nodes, as many of the first
-//   six as lie on one within the clearance (three at least: a blade's tip cuts its last section
-//   short), less its component along the father's direction (a branch leaning up out of a column
-//   keeps D); it is turned to when more than 2 degrees and less than 45 off D. Rays cast back along
-//   the line, from points along the first node's outline (no further apart than a tenth of a step
-//   or a 64th of the outline) moved the clearance out of it, as far as the father's node the branch
-//   links to, meet the father's faces facing the branch (a ray meeting the branch's own side, on a
-//   line a little off the branch's, counts for nothing); the plane lies the clearance past the
-//   furthest hit, and the child is built along the line. What stays in the father is the lens
-//   between its side and the plane (under half a millimetre deep beside a 6 mm blade on a 13 mm
-//   hub), as under a round boss. The plane square to D, above, is taken where the branch runs along
-//   D, no ray meets the father, its first node carries no region or would not lie the clearance in
-//   front of the turned plane, the turned plane's split is refused, or
+//   blades). The line runs through the centroids of the branch's first six nodes (all, if fewer;
+//   the last left out if off the line: a blade's tip cuts its last section short; three at
+//   least), lying on one within the clearance, less its component along the father's direction (a
+//   branch leaning up out of a column keeps D); it is turned to when more than 2 degrees and less
+//   than 45 off D, those nodes' section areas within 10 % of each other (a wedge's centroids drift
+//   along a line too), and the line within max_tilt_deg of +Z. Rays cast back along the line, from
+//   points along the first node's outline (spaced the larger of a tenth of a step and a 64th of the
+//   outline) moved the clearance out of it, as far as the father's node the branch links to, meet
+//   the father's faces facing the branch (a hit on the branch's own side, met by a ray a little off
+//   the branch's line, counts for nothing); the plane lies
+//   the clearance past the furthest hit, and the child is built along the line. What stays in the
+//   father is the lens between its side and the plane (under half a millimetre deep beside a 6 mm
+//   blade on a 13 mm hub), as under a round boss. The plane square to D, above, is taken where the
+//   branch runs along D, no ray meets the father, its first node carries no region or would not lie
+//   the clearance in front of the turned plane, the turned plane's split is refused, or
 //   DecomposeParams::square_branches lists it (as slicing does where the nozzle cannot build the
 //   turned cuts' layers: a spiral stair's treads, SlicePart.hpp); its component says which
 //   (Component::turned).
@@ -223,27 +225,34 @@ void check_square_branches(const std::vector<int>& square, const CentroidalAxis&
 
 // Branch b's line, where it runs off its direction D about its father's direction by more than 2
 // degrees and less than 45 (a blade on a hub between -X and +Y, marched along the nearer): the
-// unit direction of the line through the centroids of its first nodes, as many of the first six
-// as lie on one within `tolerance_mm` (three at least: a blade's tip cuts its last section short),
-// less its component along the father's direction (a branch leaning up out of a column keeps D),
-// pointing along D. False otherwise. A solid's decomposition and a mesh's turn a section plane
-// square to it (above; SlicePart.hpp).
+// unit direction of the line through the centroids of its first six nodes (all, if fewer; the
+// last left out if off the line: a blade's tip cuts its last section short; three at least),
+// lying on one within `tolerance_mm`, their section areas within 10 % of each other (a wedge's
+// centroids drift along a line too), less its component along the father's direction (a branch
+// leaning up out of a column keeps D), pointing along D. False otherwise (also for the root, a
+// branch without nodes or link, or one the axis lacks). A solid's decomposition and a mesh's turn a
+// section plane square to it (above; SlicePart.hpp).
 bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
                  Eigen::Vector3d& along);
 
-// A ray's first hit on a father's surface: cast(from, direction, length, distance, normal) is
-// true when the ray from `from` along the unit `direction` meets the surface within `length`,
-// with `distance` along it and the surface's outward unit `normal` there.
-using RayCast = std::function<bool(const Eigen::Vector3d& from, const Eigen::Vector3d& direction,
-                                   double length, double& distance, Eigen::Vector3d& normal)>;
+// Where a ray meets a father's surface: how far along it, and the surface's outward unit normal.
+struct RayHit {
+    double distance = 0.0;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+// cast(from, direction, length, hits) adds to `hits` where the ray from `from` along the unit
+// `direction` meets the father's surface within `length` (in any order).
+using RayCast = std::function<void(const Eigen::Vector3d& from, const Eigen::Vector3d& direction,
+                                   double length, std::vector<RayHit>& hits)>;
 
-// How far along `along` (branch_line()) the father's surface reaches beside branch b: the furthest
-// first hit of rays cast back along the line from points along its first node's outline (no
-// further apart than a tenth of a step or a 64th of the outline; a square blade's has its corners
-// alone, where a round hub's side is furthest from its middle), each moved `clearance_mm` out of
-// it, as far as the father's node the branch links to. A hit on a face not facing the branch
-// (normal . along under 0.1: the branch's own side, met by a ray a little off its line) is passed
-// over. NaN where no ray counts or the first node carries no region.
+// How far along `along` (branch_line()) the father's surface reaches beside branch b: rays are
+// cast back along the line from points along its first node's outline, spaced the larger of a
+// tenth of a step and a 64th of the outline (a square blade's outline has its corners alone,
+// where a round hub's side is furthest from its middle), each moved `clearance_mm` out of it, as
+// far as the father's node the branch links to; each ray's nearest hit on a face facing the
+// branch (normal . along at least 0.1: not the branch's own side, met by a ray a little off its
+// line, nor a face the ray leaves the father by) counts. The furthest along `along`; NaN where
+// nothing counts or the first node carries no region.
 double reach_beside(const CentroidalAxis& axis, std::size_t b, const Eigen::Vector3d& along,
                     double clearance_mm, const RayCast& cast);
 
@@ -278,6 +287,9 @@ struct DecomposeParams {
     // turned cut's component (SlicePart.hpp). Each must be a branch of the axis other than its
     // root, else InvalidArgument.
     std::vector<int> square_branches;
+    // False: no section plane is turned square to a branch's line, as every branch were in
+    // square_branches (what a FreeCAD document saved before the turned cuts keeps).
+    bool turn_cuts = true;
 };
 
 struct Component {

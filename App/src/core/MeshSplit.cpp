@@ -248,10 +248,8 @@ struct UnionFind {
     void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
-// The nearest triangle the ray from `origin` along `dir` meets (t > 0), -1 for none; `distance`
-// receives how far along the ray (infinity for none).
-int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir,
-              double* distance = nullptr) {
+// The nearest triangle the ray from `origin` along `dir` meets (t > 0), -1 for none.
+int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir) {
     int best = -1;
     double best_t = std::numeric_limits<double>::infinity();
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -274,8 +272,32 @@ int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir,
             best = int(t);
         }
     }
-    if (distance) *distance = best_t;
     return best;
+}
+
+// Where the ray from `origin` along the unit `dir` meets the mesh's facets within (0, length]:
+// distance and the facet's unit normal (outward on a closed mesh facing out).
+void ray_hits(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, double length,
+              std::vector<RayHit>& hits) {
+    for (const auto& t : mesh.triangles) {
+        const Vec3& a = mesh.vertices[std::size_t(t[0])];
+        const Vec3& b = mesh.vertices[std::size_t(t[1])];
+        const Vec3& c = mesh.vertices[std::size_t(t[2])];
+        const Vec3 e1 = b - a, e2 = c - a;
+        const Vec3 p = dir.cross(e2);
+        const double det = e1.dot(p);
+        if (det == 0.0) continue;
+        const Vec3 s = origin - a;
+        const double u = s.dot(p) / det;
+        if (u < 0.0 || u > 1.0) continue;
+        const Vec3 q = s.cross(e1);
+        const double v = dir.dot(q) / det;
+        if (v < 0.0 || u + v > 1.0) continue;
+        const double dist = e2.dot(q) / det;
+        const Vec3 normal = e1.cross(e2);
+        if (dist > 0.0 && dist <= length && normal.norm() > 0.0)
+            hits.push_back({dist, normal.normalized()});
+    }
 }
 
 // Drops the vertices no triangle uses.
@@ -489,13 +511,24 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
     // Below 2 degrees, the stub a plane square to D leaves in the father is less than 3.5 % of
     // the branch's section's width deep.
     constexpr double kOffLineDeg = 2.0;
+    if (b >= axis.branches.size()) return false;
     const AxisBranch& br = axis.branches[b];
-    if (br.first_link < 0 || br.nodes.empty()) return false;
+    if (br.parent < 0 || std::size_t(br.parent) >= axis.branches.size() || br.first_link < 0 ||
+        std::size_t(br.first_link) >= axis.links.size() || br.nodes.size() < 3)
+        return false;
     const Vec3 D = br.direction.normalized();
+    const std::size_t most = std::min<std::size_t>(br.nodes.size(), 6);
     Vec3 line = Vec3::Zero();
-    for (std::size_t n = std::min<std::size_t>(br.nodes.size(), 6); n >= 3; --n) {
+    for (std::size_t n = most; n + 1 >= most && n >= 3; --n) {
         Vec3 mean = Vec3::Zero();
-        for (std::size_t i = 0; i < n; ++i) mean += axis.nodes[std::size_t(br.nodes[i])].position;
+        double least = std::numeric_limits<double>::infinity(), largest = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const AxisNode& node = axis.nodes[std::size_t(br.nodes[i])];
+            mean += node.position;
+            least = std::min(least, node.area);
+            largest = std::max(largest, node.area);
+        }
+        if (!(largest <= 1.1 * least)) continue;
         mean /= double(n);
         Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
         for (std::size_t i = 0; i < n; ++i) {
@@ -504,7 +537,7 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
         }
         const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(spread);
         const Vec3 fit = solver.eigenvectors().col(2);  // the largest eigenvalue's
-        bool straight = true;
+        bool straight = fit.allFinite();
         for (std::size_t i = 0; i < n && straight; ++i) {
             const Vec3 d = axis.nodes[std::size_t(br.nodes[i])].position - mean;
             straight = (d - fit.dot(d) * fit).norm() <= tolerance_mm;
@@ -516,8 +549,13 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
     }
     if (line.isZero()) return false;
     const int start = axis.links[std::size_t(br.first_link)].start;
-    const int fb = axis.nodes[std::size_t(start)].branch;
-    const Vec3 F = axis.branches[std::size_t(fb >= 0 ? fb : br.parent)].direction.normalized();
+    const int fb = start >= 0 && std::size_t(start) < axis.nodes.size()
+                       ? axis.nodes[std::size_t(start)].branch
+                       : -1;
+    const Vec3 F =
+        axis.branches[std::size_t(fb >= 0 && std::size_t(fb) < axis.branches.size() ? fb
+                                                                                    : br.parent)]
+            .direction.normalized();
     line -= line.dot(F) * F;
     if (line.norm() < 1e-9) return false;
     line.normalize();
@@ -529,13 +567,16 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
 
 double reach_beside(const CentroidalAxis& axis, std::size_t b, const Vec3& along,
                     double clearance_mm, const RayCast& cast) {
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    if (b >= axis.branches.size()) return none;
     const AxisBranch& br = axis.branches[b];
+    if (br.nodes.empty() || br.first_link < 0 || std::size_t(br.first_link) >= axis.links.size())
+        return none;
     const AxisNode& first = axis.nodes[std::size_t(br.nodes.front())];
     const std::vector<Vec2>& outline = first.region.outer.points;
-    const double none = std::numeric_limits<double>::quiet_NaN();
-    if (outline.size() < 3) return none;
-    const AxisNode& junction =
-        axis.nodes[std::size_t(axis.links[std::size_t(br.first_link)].start)];
+    const int start = axis.links[std::size_t(br.first_link)].start;
+    if (outline.size() < 3 || start < 0 || std::size_t(start) >= axis.nodes.size()) return none;
+    const AxisNode& junction = axis.nodes[std::size_t(start)];
     const PlaneFrame frame(first.normal);
     const std::size_t count = outline.size();
     double perimeter = 0.0;
@@ -543,6 +584,7 @@ double reach_beside(const CentroidalAxis& axis, std::size_t b, const Vec3& along
         perimeter += (outline[(i + 1) % count] - outline[i]).norm();
     const double spacing = std::max(0.1 * axis.params.step_mm, perimeter / 64.0);
     double furthest = -std::numeric_limits<double>::infinity();
+    std::vector<RayHit> hits;
     for (std::size_t i = 0; i < count; ++i) {
         const Vec2& p = outline[i];
         const Vec2 edge = outline[(i + 1) % count] - p;
@@ -555,10 +597,15 @@ double reach_beside(const CentroidalAxis& axis, std::size_t b, const Vec3& along
             const Vec3 from = frame.u * q.x() + frame.v * q.y() + first.normal * first.offset;
             const double reach = along.dot(from - junction.position);
             if (reach <= 0.0) continue;
-            double distance = 0.0;
-            Vec3 normal = Vec3::Zero();
-            if (!cast(from, -along, reach, distance, normal) || normal.dot(along) < 0.1) continue;
-            furthest = std::max(furthest, along.dot(from) - distance);
+            hits.clear();
+            cast(from, -along, reach, hits);
+            std::sort(hits.begin(), hits.end(),
+                      [](const RayHit& x, const RayHit& y) { return x.distance < y.distance; });
+            for (const RayHit& hit : hits)
+                if (hit.normal.dot(along) >= 0.1) {
+                    furthest = std::max(furthest, along.dot(from) - hit.distance);
+                    break;
+                }
         }
     }
     return std::isfinite(furthest) ? furthest : none;
@@ -729,21 +776,14 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
         Vec3 along;
         if (std::find(params.square_branches.begin(), params.square_branches.end(), int(b)) ==
                 params.square_branches.end() &&
-            branch_line(axis, b, clearance, along)) {
+            branch_line(axis, b, clearance, along) && along.z() >= cos_tilt - 1e-12) {
             const TriangleMesh& father_mesh = from.mesh;
-            const double furthest = reach_beside(
-                axis, b, along, clearance,
-                [&](const Vec3& origin, const Vec3& direction, double length, double& distance,
-                    Vec3& normal) {
-                    const int hit = first_hit(father_mesh, origin, direction, &distance);
-                    if (hit < 0 || distance > length) return false;
-                    const auto& t = father_mesh.triangles[std::size_t(hit)];
-                    const Vec3& p0 = father_mesh.vertices[std::size_t(t[0])];
-                    normal = (father_mesh.vertices[std::size_t(t[1])] - p0)
-                                 .cross(father_mesh.vertices[std::size_t(t[2])] - p0)
-                                 .normalized();
-                    return true;
-                });
+            const double furthest =
+                reach_beside(axis, b, along, clearance,
+                             [&](const Vec3& origin, const Vec3& direction, double length,
+                                 std::vector<RayHit>& hits) {
+                                 ray_hits(father_mesh, origin, direction, length, hits);
+                             });
             const double at = furthest + clearance;
             if (std::isfinite(furthest) && along.dot(first.position) >= at + clearance) {
                 Vec3 in = inside;

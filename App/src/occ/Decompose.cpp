@@ -833,14 +833,18 @@ public:
             out.by_own_face = true;
         }
         // A branch running off D (a blade on a hub between -X and +Y): the plane square to its
-        // line, just past the father's surface beside it (Decompose.hpp). Worked out once per
-        // father solid: each later sibling asks again while one split is planned.
-        if (attempt < 3 && !out.by_own_face) {
+        // line, just past the father's surface beside it (Decompose.hpp), unless the child would
+        // then be built past the machine's reach. Worked out once per father solid: each later
+        // sibling asks again while one split is planned.
+        Vector3d along;
+        if (params_.turn_cuts && attempt < 3 && !out.by_own_face &&
+            branch_line(axis_, b, clearance_, along) &&
+            tilt_from_plate_deg(along) <= params_.max_tilt_deg + 1e-9) {
             const auto key = std::make_pair(b, fs.TShape().get());
             auto known = turned_.find(key);
             if (known == turned_.end()) {
                 Plan plan = out;
-                if (!turn_square(b, fs, plan)) plan.turned = false;
+                if (!turn_square(b, fs, along, plan)) plan.turned = false;
                 known = turned_.emplace(key, std::make_pair(fs, plan)).first;
             }
             if (known->second.second.turned) {
@@ -864,34 +868,28 @@ public:
     }
 
 private:
-    // The section plane turned square to branch b's line (branch_line()), just past the father's
-    // surface beside the branch's first section: rays cast back along the line from just
-    // outside that section's outline (grown by the clearance), as far as the father's node the
-    // branch links to, meet the father's surface; the plane lies the clearance past the
-    // furthest hit. On a round hub, the lens between its side and the plane stays in it, as
-    // under a round boss. False (the plane square to D is taken) where the branch runs along
-    // D, its first node carries no region, no ray meets the father, or the plane would not
-    // leave the first node's centroid a clearance in front of it.
-    bool turn_square(std::size_t b, const TopoDS_Shape& fs, Plan& out) const {
+    // The section plane turned square to branch b's line `along` (branch_line()), the clearance
+    // past the father's surface beside the branch's first section (reach_beside(), the rays cast
+    // at the father's faces).
+    // On a round hub, the lens between its side and the plane stays in it, as under a round
+    // boss. False (the plane square to D is taken) where the first node carries no region, no ray
+    // meets the father, or the plane would not leave the first node's centroid the clearance in
+    // front of it.
+    bool turn_square(std::size_t b, const TopoDS_Shape& fs, const Vector3d& along,
+                     Plan& out) const {
         const AxisBranch& br = axis_.branches[b];
-        Vector3d along;
-        if (!branch_line(axis_, b, clearance_, along)) return false;
         const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
         IntCurvesFace_ShapeIntersector rays;
         rays.Load(fs, Precision::Confusion());
         const double furthest = reach_beside(
             axis_, b, along, clearance_,
-            [&](const Vector3d& from, const Vector3d& direction, double length, double& distance,
-                Vector3d& normal) {
+            [&](const Vector3d& from, const Vector3d& direction, double length,
+                std::vector<RayHit>& hits) {
                 rays.Perform(gp_Lin(pnt(from), gp_Dir(direction.x(), direction.y(), direction.z())),
                              0.0, length);
-                if (!rays.IsDone() || rays.NbPnt() == 0) return false;
-                int nearest = 1;
-                for (int h = 2; h <= rays.NbPnt(); ++h)
-                    if (rays.WParameter(h) < rays.WParameter(nearest)) nearest = h;
-                distance = rays.WParameter(nearest);
-                normal = facing(rays, nearest);
-                return true;
+                if (rays.IsDone())
+                    for (int h = 1; h <= rays.NbPnt(); ++h)
+                        hits.push_back({rays.WParameter(h), facing(rays, h)});
             });
         if (!std::isfinite(furthest)) return false;
         const double cut = furthest + clearance_;
@@ -967,7 +965,8 @@ private:
     double clearance_;
     double cos_face_, min_concave_;
     // turn_square()'s plans by branch and father solid (turned false for none), each with the
-    // solid, held so that its address is not reused for another while the Decomposer lives.
+    // solid, held so that its address is not reused for another while the Decomposer lives (only
+    // branches running off D have one).
     mutable std::map<std::pair<std::size_t, const void*>, std::pair<TopoDS_Shape, Plan>> turned_;
 };
 
@@ -1312,7 +1311,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 // out of the section it leaves, however thin it is along its own direction (a 3 mm
                 // margin of a clevis's head past the rod under it): it need only hold a thickest
                 // layer at slicing's defaults. So when every branch cut at this plane turned.
-                const auto turned = [&](std::size_t c) {
+                const auto turned_off_father = [&](std::size_t c) {
                     const int father_branch = axis.branches[c].parent;
                     return father_branch >= 0 &&
                            axis.branches[c].direction.dot(
@@ -1321,7 +1320,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 const double step_height =
                     std::max(axis.params.step_mm, params.min_component_height_mm);
                 const double min_height =
-                    std::all_of(group.begin(), group.end(), turned)
+                    std::all_of(group.begin(), group.end(), turned_off_father)
                         ? std::max(std::min(axis.params.step_mm, LayerParams{}.max_layer_mm),
                                    params.min_component_height_mm)
                         : step_height;
@@ -1371,7 +1370,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     const std::size_t g = group[k];
                     if (!children[k].kept_because.empty()) {
                         // A sibling's retry comes in its own pass, later in this loop.
-                        if (!children[k].too_short && retry(g, p)) {
+                        // A turned plane lies past T: the one square to D may leave a piece
+                        // long enough.
+                        if ((!children[k].too_short || p.turned) && retry(g, p)) {
                             again = again || g == b;
                             continue;
                         }

@@ -678,7 +678,7 @@ TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirect
     // between +-X and +-Y), a tread's root lies 4 mm over the one before it, which runs under
     // it near the column: the nozzle at the root, built along the tread's line, meets it. Every
     // turned cut is then made square to its branch's direction (SlicePart.hpp), where the nozzle
-    // clears them. Without that, the two treads it met were kept in the column: 507 mm^2 hanging.
+    // clears them. Without that, the treads it met were kept in the column, hanging.
     const int treads = 6;
     TopoDS_Shape stair = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10.0, 8.0 * treads + 10.0);
     for (int i = 0; i < treads; ++i) {

@@ -248,26 +248,32 @@ struct UnionFind {
     void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
+// Where the ray from `origin` along `dir` meets triangle t of the mesh (Moller-Trumbore): true,
+// with how far along it in `dist` (in units of |dir|; negative behind the origin).
+bool ray_meets(const TriangleMesh& mesh, const Eigen::Vector3i& t, const Vec3& origin,
+               const Vec3& dir, double& dist) {
+    const Vec3& a = mesh.vertices[std::size_t(t[0])];
+    const Vec3 e1 = mesh.vertices[std::size_t(t[1])] - a, e2 = mesh.vertices[std::size_t(t[2])] - a;
+    const Vec3 p = dir.cross(e2);
+    const double det = e1.dot(p);
+    if (det == 0.0) return false;
+    const Vec3 s = origin - a;
+    const double u = s.dot(p) / det;
+    if (u < 0.0 || u > 1.0) return false;
+    const Vec3 q = s.cross(e1);
+    const double v = dir.dot(q) / det;
+    if (v < 0.0 || u + v > 1.0) return false;
+    dist = e2.dot(q) / det;
+    return true;
+}
+
 // The nearest triangle the ray from `origin` along `dir` meets (t > 0), -1 for none.
 int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir) {
     int best = -1;
     double best_t = std::numeric_limits<double>::infinity();
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        const Vec3& a = mesh.vertices[mesh.triangles[t][0]];
-        const Vec3& b = mesh.vertices[mesh.triangles[t][1]];
-        const Vec3& c = mesh.vertices[mesh.triangles[t][2]];
-        const Vec3 e1 = b - a, e2 = c - a;
-        const Vec3 p = dir.cross(e2);
-        const double det = e1.dot(p);
-        if (det == 0.0) continue;
-        const Vec3 s = origin - a;
-        const double u = s.dot(p) / det;
-        if (u < 0.0 || u > 1.0) continue;
-        const Vec3 q = s.cross(e1);
-        const double v = dir.dot(q) / det;
-        if (v < 0.0 || u + v > 1.0) continue;
-        const double dist = e2.dot(q) / det;
-        if (dist > 0.0 && dist < best_t) {
+        double dist = 0.0;
+        if (ray_meets(mesh, mesh.triangles[t], origin, dir, dist) && dist > 0.0 && dist < best_t) {
             best_t = dist;
             best = int(t);
         }
@@ -280,23 +286,12 @@ int first_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir) {
 void ray_hits(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, double length,
               std::vector<RayHit>& hits) {
     for (const auto& t : mesh.triangles) {
+        double dist = 0.0;
+        if (!ray_meets(mesh, t, origin, dir, dist) || dist <= 0.0 || dist > length) continue;
         const Vec3& a = mesh.vertices[std::size_t(t[0])];
-        const Vec3& b = mesh.vertices[std::size_t(t[1])];
-        const Vec3& c = mesh.vertices[std::size_t(t[2])];
-        const Vec3 e1 = b - a, e2 = c - a;
-        const Vec3 p = dir.cross(e2);
-        const double det = e1.dot(p);
-        if (det == 0.0) continue;
-        const Vec3 s = origin - a;
-        const double u = s.dot(p) / det;
-        if (u < 0.0 || u > 1.0) continue;
-        const Vec3 q = s.cross(e1);
-        const double v = dir.dot(q) / det;
-        if (v < 0.0 || u + v > 1.0) continue;
-        const double dist = e2.dot(q) / det;
-        const Vec3 normal = e1.cross(e2);
-        if (dist > 0.0 && dist <= length && normal.norm() > 0.0)
-            hits.push_back({dist, normal.normalized()});
+        const Vec3 normal =
+            (mesh.vertices[std::size_t(t[1])] - a).cross(mesh.vertices[std::size_t(t[2])] - a);
+        if (normal.norm() > 0.0) hits.push_back({dist, normal.normalized()});
     }
 }
 

@@ -1194,6 +1194,97 @@ TEST(TravelCheck, EveryMovePassedKeepsTheMargin) {
     EXPECT_GT(passed, 5);
 }
 
+// The nozzle lying on its side (+X), turning down by a twentieth of max_turn_rad() (a piece of the
+// G-code's finer pass) onto a pose whose body's lowest point is 2.05 mm over the plate (a margin
+// and 2.5 %) as its tip comes down 0.05 mm: judged by its first axis alone, within the margin and
+// the allowance (0.1 mm) of the plate, it is reported; given its last axis, the plate is judged
+// from both ends and the move passes. A pose 1.95 mm over the plate is reported either way, at the
+// move's end.
+TEST(TravelCheck, ATurningMoveIsJudgedAgainstThePlateFromBothEnds) {
+    const Built b = block();
+    const mas::NozzleParams p = coaxial();
+    mas::TravelCheck check(b.layers, p, {Vector3d::Zero(), Vector3d::UnitZ()});
+    const double turn = check.max_turn_rad() / 20.0;
+    // Tilted up about -Y: its body's end higher at the start.
+    const Vector3d first = Eigen::AngleAxisd(turn, -Vector3d::UnitY()) * Vector3d::UnitX();
+    EXPECT_GT(first.z(), 0.0);
+    auto down_onto = [&](double clearance, bool given) {
+        const Vector3d to(100, 0, 25.0 + clearance);
+        mas::NozzleMove move{to + Vector3d(0, 0, 0.05), to, first, turn};
+        if (given) move.to_axis = Vector3d::UnitX();
+        return check.meets({move});
+    };
+    EXPECT_TRUE(down_onto(2.05, false));
+    EXPECT_FALSE(down_onto(2.05, true));
+    for (const bool given : {false, true}) {
+        const auto hit = down_onto(1.95, given);
+        ASSERT_TRUE(hit) << given;
+        EXPECT_EQ(hit->obstacle_layer, -1);
+        EXPECT_NEAR(hit->obstacle.z(), 0.0, 1e-9);
+    }
+    const auto end = down_onto(1.95, true);
+    EXPECT_NEAR((end->nozzle_at - Vector3d(100, 0, 26.95)).norm(), 0.0, 1e-9);
+}
+
+// Random moves near the plate, the nozzle lying within 40 degrees of its side, each turning by up
+// to max_turn_rad() about a random direction, its last axis given: every move passed keeps the
+// margin from the plate (the nozzle's lowest rim point taken every 1/400 of the way), and a move
+// met comes within the margin and twice the allowance of it.
+TEST(TravelCheck, EveryTurningMovePassedKeepsTheMarginFromThePlate) {
+    const Built b = block();
+    const mas::NozzleParams p = coaxial();
+    mas::TravelCheck check(b.layers, p, {Vector3d::Zero(), Vector3d::UnitZ()});
+    const double m = p.margin_mm, turn = check.max_turn_rad();
+    const double cone_end = p.standoff_mm + mas::cone_length(p);
+    const double allowance =
+        turn * std::hypot(cone_end + p.body_length_mm, 0.5 * p.body_diameter_mm);
+    // The lowest point of the nozzle: a rim of the tip's face, of the cone's end or of the body's.
+    auto lowest = [&](const Vector3d& tip, const Vector3d& a) {
+        const double side = std::sqrt(std::max(0.0, 1.0 - a.z() * a.z()));
+        double z = INFINITY;
+        for (const auto& [h, r] :
+             {std::pair{p.standoff_mm, 0.5 * p.tip_diameter_mm},
+              std::pair{cone_end, 0.5 * p.body_diameter_mm},
+              std::pair{cone_end + p.body_length_mm, 0.5 * p.body_diameter_mm}})
+            z = std::min(z, tip.z() + h * a.z() - r * side);
+        return z;
+    };
+    std::mt19937 rng(20261205);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    int met = 0, passed = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const double heading = kPi * uniform(rng), tilt = 40.0 * mas::kDegree * uniform(rng);
+        const Vector3d axis(std::cos(heading) * std::cos(tilt), std::sin(heading) * std::cos(tilt),
+                            std::sin(tilt));
+        const Vector3d about =
+            axis.cross(Vector3d(uniform(rng), uniform(rng), uniform(rng))).normalized();
+        const double by = turn * (0.5 + 0.5 * std::abs(uniform(rng)));
+        const Vector3d to_axis = Eigen::AngleAxisd(by, about) * axis;
+        const Vector3d from(200 * uniform(rng), 200 * uniform(rng), 0.0);
+        const Vector3d to = from + Vector3d(5 * uniform(rng), 5 * uniform(rng), 2 * uniform(rng));
+        // Its tip at a height where the nozzle along its first axis comes within a few mm of the
+        // plate.
+        const Vector3d lift(0, 0, m - lowest(from, axis) + 6.0 * uniform(rng));
+        double least = INFINITY;
+        for (int i = 0; i <= 400; ++i) {
+            const double s = i / 400.0;
+            least = std::min(least, lowest(from + lift + s * (to - from),
+                                           Eigen::AngleAxisd(s * by, about) * axis));
+        }
+        mas::NozzleMove move{from + lift, to + lift, axis, by};
+        move.to_axis = to_axis;
+        if (check.meets({move})) {
+            ++met;
+            EXPECT_LT(least, m + 2.0 * allowance + 1e-9) << trial;
+        } else {
+            ++passed;
+            EXPECT_GE(least, m - 1e-9) << trial;
+        }
+    }
+    EXPECT_GT(met, 50);
+    EXPECT_GT(passed, 50);
+}
+
 TEST(TravelCheck, BadMovesAreNamed) {
     const Built b = block();
     mas::TravelCheck check(b.layers, coaxial(), {Vector3d::Zero(), Vector3d::UnitZ()});
@@ -1215,6 +1306,16 @@ TEST(TravelCheck, BadMovesAreNamed) {
                   check.meets({{Vector3d::Zero(), Vector3d::UnitX(), Vector3d(0, 0, 2), 0.0}});
               }),
               "travel move 0 needs finite ends and a unit axis");
+    mas::NozzleMove turned{Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitZ(), turn};
+    turned.to_axis = Vector3d(0, 0, 2);
+    EXPECT_EQ(error_of([&] { check.meets({turned}); }),
+              "travel move 0's end axis must be a unit vector");
+    turned.to_axis = Eigen::AngleAxisd(2 * turn, Vector3d::UnitX()) * Vector3d::UnitZ();
+    EXPECT_EQ(error_of([&] { check.meets({turned}); }),
+              "travel move 0's end axis lies " + mas::format_number(2 * turn) +
+                  " rad from its axis, past its turn of " + mas::format_number(turn) + " rad");
+    turned.to_axis = Eigen::AngleAxisd(turn, Vector3d::UnitX()) * Vector3d::UnitZ();
+    EXPECT_FALSE(check.meets({turned}));
     EXPECT_EQ(error_of([&] { check.deposited(1); }), "the travel check has no layer 1 (it has 1)");
     mas::NozzleParams bad = coaxial();
     bad.margin_mm = -1;

@@ -253,6 +253,38 @@ class TestTravelCheck(GcodeTest):
             self.assertEqual(c["obstacle_layer"], 0)
             self.assertEqual(len(c["nozzle_at"]), 3)
 
+    def test_a_route_down_onto_a_layer_lying_just_clear_of_the_plate_is_not_reported(self):
+        # A column's layer along +Z, then a layer built sideways off its -X face along -X, its
+        # lowest path 27.05 mm up: the nozzle lying on its side there keeps 2.05 mm (the margin and
+        # 2.5 %) under its body (25 mm round the axis). The route comes down the sphere round the
+        # part turning the table from A 0 to A -90, ending with the nozzle on its side at the
+        # height of that path. Judged by each turning piece's first axis within its allowance
+        # (0.1 mm), the last piece was reported as meeting the plate; judged from both its ends,
+        # it passes. 1.95 mm over the plate (at 26.95), the routes to that layer and off the part
+        # from it are reported, the plate met.
+        engine = mas._engine
+        column = layer_dict(0, 30.0, 30.0, [rectangle(-2, -6, 2, 6, 30)],
+                            [[(0, -5, 30), (0, 5, 30)]])
+
+        def sideways(z):
+            return {"component": 1, "tool_axis": (-1, 0, 0), "max_thickness_mm": 1.0,
+                    "origin": (-3, 0, 0), "normal": (-1, 0, 0),
+                    "lower_origin": (-2, 0, 0), "lower_normal": (-1, 0, 0),
+                    "regions": [{"outer": [(-3, -5, z), (-3, -5, 29), (-3, 5, 29), (-3, 5, z)],
+                                 "holes": []}],
+                    "paths": [{"kind": "contour", "points": [(-3, -4, z), (-3, 4, z)],
+                               "thickness_mm": [1.0, 1.0]}]}
+
+        clear = engine.write_gcode([column, sideways(27.05)], {}, None, {}, self.PLATE)
+        self.assertEqual(clear["stats"]["travel_collisions"], [])
+        self.assertIn("A-90.0000", clear["text"])
+        met = engine.write_gcode([column, sideways(26.95)], {}, None, {}, self.PLATE)
+        collisions = met["stats"]["travel_collisions"]
+        self.assertEqual([(c["layer"], c["obstacle_layer"]) for c in collisions],
+                         [(1, -1), (-1, -1)])
+        for c in collisions:
+            self.assertAlmostEqual(c["obstacle"][2], 0.0, places=9)
+
     def test_gcode_checks_against_the_results_nozzle_and_plate(self):
         program = mas.gcode(self.result)
         s = program.stats

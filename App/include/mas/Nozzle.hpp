@@ -101,7 +101,14 @@
 //   the distance from the deposit point to the rim of the body's end, the nozzle's farthest
 //   point), so that every point of the nozzle stays within an allowance a = L x turn <= margin_mm
 //   of the nozzle along the piece's first axis, which is tested grown by a more (from the plate it
-//   keeps a more). A sample in the grown nozzle counts only when the nozzle along the
+//   keeps a more). Where the piece's last axis is given (NozzleMove::to_axis), the plate is judged
+//   from both ends instead, exactly there: at a fraction s of the way the nozzle lies within a x s
+//   of the nozzle along the first axis and within a x (1 - s) of the nozzle along the last, the
+//   tip where it is, so its lowest point lies no lower than the higher of those two nozzles'
+//   lowest points, less s a and (1 - s) a; the piece passes where that keeps the margin all the
+//   way. (Judged by the first axis alone, a nozzle turning down onto a layer's tool axis that the
+//   sequence had passed 2.05 mm over the plate, a margin and 2.5 %, was reported as meeting the
+//   plate on the way.) A sample in the grown nozzle counts only when the nozzle along the
 //   first axis, its tip taken every 0.05 margin_mm along the move, comes within 2.05 margin_mm + a
 //   of it. So no move is passed that comes within the margin, and one is reported only when it
 //   comes within 2.05 margin_mm + 2a of a deposited layer's surface (4.1 mm at the defaults with
@@ -193,15 +200,19 @@ struct SequenceInput {
 };
 
 // One move of the nozzle off the deposit paths: its tip straight from `from` to `to`, its tool axis
-// (unit) `axis` at `from` and turning by at most `turn_rad` from it on the way. `along_layer`: a
-// layer the move leaves or comes back to along its tool axis, between a deposit point on it and
-// over it (the table still): it is not checked against that layer, which lies under its plane,
-// the nozzle the margin above it (see "Travel").
+// (unit) `axis` at `from` and turning by at most `turn_rad` from it on the way, to `to_axis` (unit)
+// at `to` where that is given (zero: not given; see "Travel" for what the check makes of it), the
+// tool axis at each point of the way within turn_rad times the fraction of the way from `axis`,
+// and within turn_rad times the fraction left from `to_axis`, as when the table's angles turn in
+// proportion. `along_layer`: a layer the move leaves or comes back to along its tool axis, between
+// a deposit point on it and over it (the table still): it is not checked against that layer, which
+// lies under its plane, the nozzle the margin above it (see "Travel").
 struct NozzleMove {
     Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
     Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
     double turn_rad = 0.0;
     int along_layer = -1;
+    Eigen::Vector3d to_axis = Eigen::Vector3d::Zero();
 };
 
 // What a move meets: a deposited layer (-1: the build plate), its point near the nozzle, and the
@@ -225,8 +236,9 @@ public:
     void deposited(std::size_t k);
     // Something the nozzle meets along `moves` (of the first run of them that meets something);
     // nullopt when it keeps clear. `also`: a layer counted as deposited for these moves alone (-1:
-    // none). Throws InvalidArgument for a move turning by more than max_turn_rad(), or a layer
-    // named that the check lacks.
+    // none). Throws InvalidArgument for a move turning by more than max_turn_rad(), a to_axis
+    // given that is not unit or lies further than turn_rad from its axis, or a layer named that the
+    // check lacks.
     std::optional<TravelHit> meets(const std::vector<NozzleMove>& moves, int also = -1) const;
     // The most a move's tool axis may turn (radians).
     double max_turn_rad() const;

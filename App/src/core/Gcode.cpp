@@ -238,11 +238,11 @@ void turning_moves(const Eigen::Vector3d& p, const TableAngles& a, const Eigen::
         const double s0 = static_cast<double>(k) / pieces;
         const double s1 = static_cast<double>(k + 1) / pieces;
         const TableAngles at{a.a_deg + s0 * da, a.c_deg + s0 * dc};
+        const TableAngles end =
+            k + 1 == pieces ? b : TableAngles{a.a_deg + s1 * da, a.c_deg + s1 * dc};
         out.push_back({p + s0 * (q - p), k + 1 == pieces ? q : Eigen::Vector3d(p + s1 * (q - p)),
-                       axis_of(at), std::min(turn / pieces, max_turn), -1});
-        if (spans)
-            spans->push_back(
-                {at, k + 1 == pieces ? b : TableAngles{a.a_deg + s1 * da, a.c_deg + s1 * dc}});
+                       axis_of(at), std::min(turn / pieces, max_turn), -1, axis_of(end)});
+        if (spans) spans->push_back({at, end});
     }
 }
 

@@ -420,14 +420,9 @@ Eigen::AlignedBox3d reach_box(const Sweep& sweep, const Shape& shape) {
                                sweep.box3().max() + nozzle.max());
 }
 
-// Where the nozzle, along the sweep's moves with its tool axis, comes within `keep` of the plate
-// (exact): the move's end where it does, and the plate's point under the nozzle's lowest point.
-std::optional<std::pair<Vector3d, Vector3d>> plate_hit(const Sweep& sweep, const Shape& shape,
-                                                       const Plane& plate, double keep) {
-    // The nozzle's lowest point: on the rim of the tip's face, where the cone meets the body, or
-    // of the body's end.
-    const Vector3d up = plate.normal.normalized();
-    const Vector3d n = sweep.frame().normal;
+// The nozzle's lowest point along `up` (unit) with its tool axis `n`, from its deposit point: on
+// the rim of the tip's face, where the cone meets the body, or of the body's end.
+Vector3d lowest_point(const Shape& shape, const Vector3d& up, const Vector3d& n) {
     const double side = std::sqrt(std::max(0.0, 1.0 - n.dot(up) * n.dot(up)));
     Vector3d sideways = up - n.dot(up) * n;  // towards up, across the axis
     sideways = sideways.norm() > 1e-12 ? sideways.normalized() : Vector3d::Zero();
@@ -441,12 +436,55 @@ std::optional<std::pair<Vector3d, Vector3d>> plate_hit(const Sweep& sweep, const
             offset = h * n - r * sideways;
         }
     }
+    return offset;
+}
+
+// The point of `plate` under `p`.
+Vector3d onto_plate(const Plane& plate, const Vector3d& p) {
+    const Vector3d up = plate.normal.normalized();
+    return p - up.dot(p - plate.origin) * up;
+}
+
+// Where the nozzle, along the sweep's moves with its tool axis, comes within `keep` of the plate
+// (exact): the move's end where it does, and the plate's point under the nozzle's lowest point.
+std::optional<std::pair<Vector3d, Vector3d>> plate_hit(const Sweep& sweep, const Shape& shape,
+                                                       const Plane& plate, double keep) {
+    const Vector3d up = plate.normal.normalized();
+    const Vector3d offset = lowest_point(shape, up, sweep.frame().normal);
+    const double lowest = up.dot(offset);
     for (const Segment& s : sweep.segments())
         for (const Vector3d& p : {s.a3, s.b3})
-            if (up.dot(p - plate.origin) + lowest < keep) {
-                const Vector3d low = p + offset;
-                return std::pair{p, Vector3d(low - up.dot(low - plate.origin) * up)};
-            }
+            if (up.dot(p - plate.origin) + lowest < keep)
+                return std::pair{p, onto_plate(plate, p + offset)};
+    return std::nullopt;
+}
+
+// Where the nozzle, its tip straight from `from` to `to` while its tool axis turns from `axis` to
+// `to_axis`, every point of it within `allowance` x s of the nozzle along `axis` and within
+// `allowance` x (1 - s) of the nozzle along `to_axis` at the fraction s of the way (NozzleMove),
+// may come within `keep` of the plate: the tip's point there, and the plate's point under the
+// lowest point of the nearer bound. At s its lowest point lies no lower than the higher of
+// h0(s) = height(s) + low0 - allowance s and h1(s) = height(s) + low1 - allowance (1 - s), both
+// linear in s, whose upper envelope is least at an end or where they cross.
+std::optional<std::pair<Vector3d, Vector3d>> turning_plate_hit(
+    const Vector3d& from, const Vector3d& to, const Vector3d& axis, const Vector3d& to_axis,
+    double allowance, const Shape& shape, const Plane& plate, double keep) {
+    const Vector3d up = plate.normal.normalized();
+    const Vector3d off0 = lowest_point(shape, up, axis), off1 = lowest_point(shape, up, to_axis);
+    const double z0 = up.dot(from - plate.origin), dz = up.dot(to - from);
+    const auto h0 = [&](double s) { return z0 + s * dz + up.dot(off0) - allowance * s; };
+    const auto h1 = [&](double s) { return z0 + s * dz + up.dot(off1) - allowance * (1.0 - s); };
+    std::vector<double> at = {0.0, 1.0};
+    // h0 - h1 = low0 - low1 - allowance (2 s - 1): zero at s = (low0 - low1 + allowance) / 2a.
+    if (allowance > 0.0) {
+        const double s = (up.dot(off0 - off1) + allowance) / (2.0 * allowance);
+        if (s > 0.0 && s < 1.0) at.push_back(s);
+    }
+    for (const double s : at) {
+        if (std::max(h0(s), h1(s)) >= keep) continue;
+        const Vector3d p = from + s * (to - from);
+        return std::pair{p, onto_plate(plate, p + (h0(s) >= h1(s) ? off0 : off1))};
+    }
     return std::nullopt;
 }
 
@@ -1050,17 +1088,23 @@ struct TravelCheck::Impl {
 
     // What the nozzle along the sweep's `moves` (its tool axis, that of their first point where
     // it turns by up to `allowance` / length()) meets: the plate within the margin and
-    // the allowance, or a sample of a deposited layer in the nozzle grown by 2 margins and the
-    // allowance, which counts only when the nozzle along the first axis comes within 2 margins,
-    // the step and the allowance of it.
+    // the allowance (the margin, judged from both ends, where the one turning move's last axis
+    // `to_axis` is given), or a sample of a deposited layer in the nozzle grown by 2 margins and
+    // the allowance, which counts only when the nozzle along the first axis comes within 2
+    // margins, the step and the allowance of it.
     std::optional<TravelHit> check(const std::vector<std::pair<Vector3d, Vector3d>>& moves,
-                                   const Sweep& sweep, double allowance, int skip, int also) const {
+                                   const Sweep& sweep, double allowance, int skip, int also,
+                                   const std::optional<Vector3d>& to_axis) const {
         const double m = params.margin_mm;
         const Shape grown(params, 2.0 * m + allowance);
         if (sweep.empty()) return std::nullopt;
-        if (params.check_plate)
-            if (const auto hit = plate_hit(sweep, grown, plate, m + allowance))
-                return TravelHit{-1, hit->first, hit->second};
+        if (params.check_plate) {
+            const auto hit = to_axis ? turning_plate_hit(moves.front().first, moves.front().second,
+                                                         sweep.frame().normal, *to_axis, allowance,
+                                                         grown, plate, m)
+                                     : plate_hit(sweep, grown, plate, m + allowance);
+            if (hit) return TravelHit{-1, hit->first, hit->second};
+        }
         const Eigen::AlignedBox3d box = reach_box(sweep, grown);
         const Vector3d a = sweep.frame().normal;
         const double low = grown.standoff - grown.grow, high = grown.top + grown.grow;
@@ -1146,6 +1190,18 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
                                                         format_number(move.turn_rad) +
                                                         " rad, where a move may turn it by 0 to " +
                                                         format_number(c.max_turn()) + " rad");
+        if (move.to_axis != Vector3d::Zero()) {
+            if (!move.to_axis.allFinite() || std::abs(move.to_axis.norm() - 1.0) > 1e-6)
+                throw Error(ErrorCode::InvalidArgument, "travel move " + std::to_string(k) +
+                                                            "'s end axis must be a unit vector");
+            const double apart =
+                std::atan2(move.axis.cross(move.to_axis).norm(), move.axis.dot(move.to_axis));
+            if (apart > move.turn_rad * (1.0 + 1e-9) + 1e-12)
+                throw Error(ErrorCode::InvalidArgument,
+                            "travel move " + std::to_string(k) + "'s end axis lies " +
+                                format_number(apart) + " rad from its axis, past its turn of " +
+                                format_number(move.turn_rad) + " rad");
+        }
     }
     // Runs of moves along which the table keeps still, one axis and along_layer each, and each
     // turning move alone.
@@ -1162,7 +1218,11 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
         // axis.
         const double allowance = c.length() * moves[k].turn_rad;
         const Sweep sweep(run, reach + allowance, moves[k].axis, m);
-        if (auto hit = c.check(run, sweep, allowance, moves[k].along_layer, also)) return hit;
+        std::optional<Vector3d> to_axis;
+        if (moves[k].turn_rad != 0.0 && moves[k].to_axis != Vector3d::Zero())
+            to_axis = moves[k].to_axis;
+        if (auto hit = c.check(run, sweep, allowance, moves[k].along_layer, also, to_axis))
+            return hit;
         k = end;
     }
     return std::nullopt;

@@ -1198,8 +1198,12 @@ TEST(TravelCheck, EveryMovePassedKeepsTheMargin) {
 // G-code's finer pass) onto a pose whose body's lowest point is 2.05 mm over the plate (a margin
 // and 2.5 %) as its tip comes down 0.05 mm: judged by its first axis alone, within the margin and
 // the allowance (0.1 mm) of the plate, it is reported; given its last axis, the plate is judged
-// from both ends and the move passes. A pose 1.95 mm over the plate is reported either way, at the
-// move's end.
+// from both ends and the move passes. A pose 1.95 mm over the plate is reported either way (given
+// its last axis, at the move's end). 2.01 mm over it, both ends keep the margin, but between them
+// the bound from both ends does not: the nozzle along either axis, less the allowance in
+// proportion to the way, is lowest where the two bounds cross, s = (low0 - low1 + a) / 2a of the
+// way (low: the lowest rim's height from the tip, the cone's end's on the first axis), and there
+// it is reported.
 TEST(TravelCheck, ATurningMoveIsJudgedAgainstThePlateFromBothEnds) {
     const Built b = block();
     const mas::NozzleParams p = coaxial();
@@ -1224,12 +1228,25 @@ TEST(TravelCheck, ATurningMoveIsJudgedAgainstThePlateFromBothEnds) {
     }
     const auto end = down_onto(1.95, true);
     EXPECT_NEAR((end->nozzle_at - Vector3d(100, 0, 26.95)).norm(), 0.0, 1e-9);
+    const double cone_end = p.standoff_mm + mas::cone_length(p), body = 0.5 * p.body_diameter_mm;
+    const double a = turn * std::hypot(cone_end + p.body_length_mm, body);
+    const double low0 = cone_end * first.z() - body * first.x(), low1 = -body;
+    const double s = (low0 - low1 + a) / (2.0 * a);
+    ASSERT_GT(s, 0.0);
+    ASSERT_LT(s, 1.0);
+    const auto between = down_onto(2.01, true);
+    ASSERT_TRUE(between);
+    EXPECT_EQ(between->obstacle_layer, -1);
+    EXPECT_NEAR((between->nozzle_at - Vector3d(100, 0, 25.0 + 2.01 + 0.05 * (1.0 - s))).norm(), 0.0,
+                1e-9);
 }
 
 // Random moves near the plate, the nozzle lying within 40 degrees of its side, each turning by up
 // to max_turn_rad() about a random direction, its last axis given: every move passed keeps the
 // margin from the plate (the nozzle's lowest rim point taken every 1/400 of the way), and a move
-// met comes within the margin and twice the allowance of it.
+// met comes within the margin and its allowance (L x its turn) of it. (Judged by the first axis
+// alone, within the margin and the allowance, moves met came up to nearly twice the allowance
+// further.)
 TEST(TravelCheck, EveryTurningMovePassedKeepsTheMarginFromThePlate) {
     const Built b = block();
     const mas::NozzleParams p = coaxial();
@@ -1275,7 +1292,9 @@ TEST(TravelCheck, EveryTurningMovePassedKeepsTheMarginFromThePlate) {
         move.to_axis = to_axis;
         if (check.meets({move})) {
             ++met;
-            EXPECT_LT(least, m + 2.0 * allowance + 1e-9) << trial;
+            // Within the bound from both ends, which lies no more than its own allowance (L x
+            // its turn) under the nozzle.
+            EXPECT_LT(least, m + allowance / turn * by + 1e-9) << trial;
         } else {
             ++passed;
             EXPECT_GE(least, m - 1e-9) << trial;

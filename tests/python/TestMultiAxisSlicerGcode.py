@@ -259,8 +259,8 @@ class TestTravelCheck(GcodeTest):
         # 2.5 %) under its body (25 mm round the axis). The route comes down the sphere round the
         # part turning the table from A 0 to A -90, ending with the nozzle on its side at the
         # height of that path. Judged by each turning piece's first axis within its allowance
-        # (0.1 mm), the last piece was reported as meeting the plate; judged from both its ends,
-        # it passes. 1.95 mm over the plate (at 26.95), the routes to that layer and off the part
+        # (0.1 mm), the last piece of that route and the first of the route off the part were
+        # reported as meeting the plate; judged from both their ends, they pass. 1.95 mm over the plate (at 26.95), the routes to that layer and off the part
         # from it are reported, the plate met.
         engine = mas._engine
         column = layer_dict(0, 30.0, 30.0, [rectangle(-2, -6, 2, 6, 30)],

@@ -67,9 +67,11 @@
 //   most margin / 20, Nozzle.hpp; the others keep the margin already, and refining only those
 //   costs the coil's program 2.4 times less): a route is taken round the part or
 //   reported only where the nozzle comes within 2.15 margins of a deposited layer's surface (4.3
-//   mm at the defaults), or within the margin of the plate (each turning piece judged from both
-//   its ends, NozzleMove::to_axis: a route turning down onto a layer that the sequence passed a
-//   margin and 1.5 % over the plate was reported as meeting it). The moves out of a layer and back
+//   mm at the defaults), or within the margin of the plate where the table keeps still and at
+//   both ends of a piece along which it turns, within 1.05 margins between them (each turning
+//   piece judged from both its ends, NozzleMove::to_axis: a route turning down onto a layer that
+//   the sequence passed a margin and 2.5 % over the plate was reported as meeting it). The moves
+//   out of a layer and back
 //   to it along its tool axis are not checked against that layer (NozzleMove::along_layer); round
 //   the part between two paths of one layer, that layer counts, all of it, on the rest of the way.
 //   The deposit moves are the build sequence's to check (plan_build_sequence).

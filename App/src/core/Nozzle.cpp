@@ -1220,7 +1220,7 @@ std::optional<TravelHit> TravelCheck::meets(const std::vector<NozzleMove>& moves
         const Sweep sweep(run, reach + allowance, moves[k].axis, m);
         std::optional<Vector3d> to_axis;
         if (moves[k].turn_rad != 0.0 && moves[k].to_axis != Vector3d::Zero())
-            to_axis = moves[k].to_axis;
+            to_axis = moves[k].to_axis.normalized();
         if (auto hit = c.check(run, sweep, allowance, moves[k].along_layer, also, to_axis))
             return hit;
         k = end;

@@ -71,9 +71,9 @@
 //   both ends of a piece along which it turns, within 1.05 margins between them (each turning
 //   piece judged from both its ends, NozzleMove::to_axis: a route turning down onto a layer that
 //   the sequence passed a margin and 2.5 % over the plate was reported as meeting it). The moves
-//   out of a layer and back
-//   to it along its tool axis are not checked against that layer (NozzleMove::along_layer); round
-//   the part between two paths of one layer, that layer counts, all of it, on the rest of the way.
+//   out of a layer and back to it along its tool axis are not checked against that layer
+//   (NozzleMove::along_layer); round the part between two paths of one layer, that layer counts,
+//   all of it, on the rest of the way.
 //   The deposit moves are the build sequence's to check (plan_build_sequence).
 // - Not checked: the X Y Z travel limits, which depend on where the table pivots.
 #pragma once

@@ -90,9 +90,9 @@
 //   the paths (Gcode.hpp: retracts, moves between paths and layers, the routes round the part) are
 //   checked against the same nozzle by TravelCheck: along every move the nozzle keeps margin_mm
 //   from the plate (exact where the table keeps still and at the ends of a piece along which it
-//   turns, below) and from every layer deposited before it, the layer under way
-//   excepted (its paths lie on its plane, which the nozzle keeps the margin above: the tip stays on
-//   or above the plane along the tool axis), and so is the layer a move leaves or comes back to
+//   turns, below) and from every layer deposited before it, the layer under way excepted (its
+//   paths lie on its plane, which the nozzle keeps the margin above: the tip stays on or above the
+//   plane along the tool axis), and so is the layer a move leaves or comes back to
 //   along its tool axis from a deposit point on it (NozzleMove::along_layer; standoff >= 2 margins
 //   and the leans' rule keep the nozzle the margin above its plane there, which a check with the
 //   grown nozzle might not tell). The moves along which the table keeps still are

@@ -245,16 +245,19 @@ struct RayHit {
 using RayCast = std::function<void(const Eigen::Vector3d& from, const Eigen::Vector3d& direction,
                                    double length, std::vector<RayHit>& hits)>;
 
-// How far along `along` (branch_line()) the father's surface reaches beside branch b: rays are
-// cast back along the line from points along its first node's outline, spaced the larger of a
-// tenth of a step and a 64th of the outline (a square blade's outline has its corners alone,
-// where a round hub's side is furthest from its middle), each moved `clearance_mm` out of it, as
-// far as the father's node the branch links to; each ray's nearest hit on a face facing the
-// branch (normal . along at least 0.1: not the branch's own side, met by a ray a little off its
-// line, nor a face the ray leaves the father by) counts. The furthest along `along`; NaN where
-// nothing counts or the first node carries no region.
-double reach_beside(const CentroidalAxis& axis, std::size_t b, const Eigen::Vector3d& along,
-                    double clearance_mm, const RayCast& cast);
+// Where the section plane turned square to branch b's line `along` (branch_line()) lies: its
+// offset along `along`, `clearance_mm` past how far the father's surface reaches beside the
+// branch. Rays are cast back along the line from points along its first node's outline, spaced
+// the larger of a tenth of a step and a 64th of the outline (a square blade's outline has its
+// corners alone, where a round hub's side is furthest from its middle), each moved `clearance_mm`
+// out of it, as far as the father's node the branch links to; each ray's nearest hit on a face
+// facing the branch (normal . along at least 0.1: not the branch's own side, met by a ray a little
+// off its line, nor a face the ray leaves the father by) counts, the furthest along `along`. NaN
+// where nothing counts, the first node carries no region, or its centroid would not lie the
+// clearance in front of the plane. `inner`, a point in the first section's material, is moved
+// along the line to the clearance in front of the plane where it lies behind that.
+double turned_plane(const CentroidalAxis& axis, std::size_t b, const Eigen::Vector3d& along,
+                    double clearance_mm, const RayCast& cast, Eigen::Vector3d& inner);
 
 struct DecomposeParams {
     // Criterion (1): a splitting face's normal is within this angle of +-D, degrees.

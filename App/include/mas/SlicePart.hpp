@@ -148,7 +148,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
 // swept (plus two steps of its first section), or either piece is no closed solid. A branch
 // running between the six directions (branch_line(), Decompose.hpp: a blade on a hub) is cut
 // first at the plane turned square to its line, the clearance past the father's surface beside it
-// (reach_beside(), rays cast at the father's facets), its first section's material point moved
+// (turned_plane(), rays cast at the father's facets), its first section's material point moved
 // along the line past that plane if it lies behind; where that cut is refused for any of the
 // reasons above, or square_branches lists the branch, at the plane square to its direction. The
 // root stands on build_plate() and follows branch 0.

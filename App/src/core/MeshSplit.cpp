@@ -560,8 +560,8 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
     return true;
 }
 
-double reach_beside(const CentroidalAxis& axis, std::size_t b, const Vec3& along,
-                    double clearance_mm, const RayCast& cast) {
+double turned_plane(const CentroidalAxis& axis, std::size_t b, const Vec3& along,
+                    double clearance_mm, const RayCast& cast, Vec3& inner) {
     const double none = std::numeric_limits<double>::quiet_NaN();
     if (b >= axis.branches.size()) return none;
     const AxisBranch& br = axis.branches[b];
@@ -603,7 +603,12 @@ double reach_beside(const CentroidalAxis& axis, std::size_t b, const Vec3& along
                 }
         }
     }
-    return std::isfinite(furthest) ? furthest : none;
+    if (!std::isfinite(furthest)) return none;
+    const double at = furthest + clearance_mm;
+    if (along.dot(first.position) < at + clearance_mm) return none;
+    if (along.dot(inner) < at + clearance_mm)
+        inner += along * (at + clearance_mm - along.dot(inner));
+    return at;
 }
 
 void check_square_branches(const std::vector<int>& square, const CentroidalAxis& axis,
@@ -773,16 +778,15 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
                 params.square_branches.end() &&
             branch_line(axis, b, clearance, along) && along.z() >= cos_tilt - 1e-12) {
             const TriangleMesh& father_mesh = from.mesh;
-            const double furthest =
-                reach_beside(axis, b, along, clearance,
-                             [&](const Vec3& origin, const Vec3& direction, double length,
-                                 std::vector<RayHit>& hits) {
-                                 ray_hits(father_mesh, origin, direction, length, hits);
-                             });
-            const double at = furthest + clearance;
-            if (std::isfinite(furthest) && along.dot(first.position) >= at + clearance) {
-                Vec3 in = inside;
-                if (along.dot(in) < at + clearance) in += along * (at + clearance - along.dot(in));
+            Vec3 in = inside;
+            const double at = turned_plane(
+                axis, b, along, clearance,
+                [&](const Vec3& origin, const Vec3& direction, double length,
+                    std::vector<RayHit>& hits) {
+                    ray_hits(father_mesh, origin, direction, length, hits);
+                },
+                in);
+            if (std::isfinite(at)) {
                 if (cut_off(along, at, in, why)) {
                     out.components.back().turned = true;
                     continue;

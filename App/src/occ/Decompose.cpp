@@ -869,7 +869,7 @@ public:
 
 private:
     // The section plane turned square to branch b's line `along` (branch_line()), the clearance
-    // past the father's surface beside the branch's first section (reach_beside(), the rays cast
+    // past the father's surface beside the branch's first section (turned_plane(), the rays cast
     // at the father's faces).
     // On a round hub, the lens between its side and the plane stays in it, as under a round
     // boss. False (the plane square to D is taken) where the first node carries no region, no ray
@@ -881,7 +881,7 @@ private:
         const AxisNode& first = axis_.nodes[std::size_t(br.nodes.front())];
         IntCurvesFace_ShapeIntersector rays;
         rays.Load(fs, Precision::Confusion());
-        const double furthest = reach_beside(
+        const double cut = turned_plane(
             axis_, b, along, clearance_,
             [&](const Vector3d& from, const Vector3d& direction, double length,
                 std::vector<RayHit>& hits) {
@@ -890,17 +890,13 @@ private:
                 if (rays.IsDone())
                     for (int h = 1; h <= rays.NbPnt(); ++h)
                         hits.push_back({rays.WParameter(h), facing(rays, h)});
-            });
-        if (!std::isfinite(furthest)) return false;
-        const double cut = furthest + clearance_;
-        if (along.dot(first.position) < cut + clearance_) return false;
+            },
+            out.inner);
+        if (!std::isfinite(cut)) return false;
         out.normal = along;
         out.point = first.position + along * (cut - along.dot(first.position));
         out.by_own_face = false;
         out.turned = true;
-        // The first node's material, moved along the line past the plane if it lies behind.
-        if (along.dot(out.inner) < cut + clearance_)
-            out.inner += along * (cut + clearance_ - along.dot(out.inner));
         return true;
     }
 

@@ -197,13 +197,16 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                             const DecomposeParams& decompose_params, const SlicePartParams& params,
                             Decomposition& decomposition, const Progress& progress) {
     const Shape part = solid.single_solid("slice");
-    const DecomposeParams& dp = decompose_params;
-    const auto run = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square,
-                         const Progress& round, Decomposition& into) {
-        DecomposeParams p = dp;
+    // The decomposition's parameters with the branches a round keeps and squares besides.
+    const auto asked = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square) {
+        DecomposeParams p = decompose_params;
         p.keep_branches.insert(p.keep_branches.end(), keep.begin(), keep.end());
         p.square_branches.insert(p.square_branches.end(), square.begin(), square.end());
-        into = decompose(part, axis, p, round.span(0.0, 0.2));
+        return p;
+    };
+    const auto run = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square,
+                         const Progress& round, Decomposition& into) {
+        into = decompose(part, axis, asked(keep, square), round.span(0.0, 0.2));
         return slice_part(part, axis, into, params, round.span(0.2, 1.0));
     };
     // The holes slicing would fill, read on the whole part built along +Z, as its root is. A
@@ -243,10 +246,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                 }
                 if (more.size() == had) break;
                 if (last == &split_one) cutting_as_asked = cut_holes.size();
-                DecomposeParams p = dp;
-                p.keep_branches.insert(p.keep_branches.end(), more.begin(), more.end());
-                p.square_branches.insert(p.square_branches.end(), square.begin(), square.end());
-                d = decompose(part, axis, p, again.span(0.0, 0.2));
+                d = decompose(part, axis, asked(more, square), again.span(0.0, 0.2));
                 last = &d;
             }
             if (last != &split_one) {

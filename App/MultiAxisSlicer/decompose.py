@@ -129,8 +129,7 @@ class Component:
     """
 
     __slots__ = ("parent", "branch", "break_link", "rule", "turned", "volume", "has_base_face",
-                 "_solid",
-                 "_face", "_build_direction", "_base_origin", "_base_normal", "_shape",
+                 "_solid", "_face", "_build_direction", "_base_origin", "_base_normal", "_shape",
                  "_base_face")
 
     def __init__(self, data):

@@ -1049,6 +1049,69 @@ TEST(CentroidalAxis, ABossReachingOutLessThanAThickPartsStepTurnsWhereLayersCann
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, AStickOutEndingBeforeTheGridsNextPlaneIsOneNodeOnEq4sPlane) {
+    // A block 37 x 36 x 40 with two bosses 3 mm long, faceted as 16-gons of circumradius 5 with
+    // a vertex at their lowest lines (their sections exact): along +X at y = 18, z = 12, and
+    // along -Y at x = 18.5, z = 19; and an arm on its top reaching 15 mm along +X. Step 5: along
+    // +X the grid's planes lie at x = 35.001 and 40.001, so past the block's face, T = 37, the
+    // first one lies past the boss's end (the arm's march starts there); along -Y the grid's
+    // last plane lies 0.999 mm inside the block, the boss past it. Each boss is a ledge (its
+    // first layer would hang), and turns; its march had no plane through it, and its share, taken
+    // from the block's march, was swept by none: the bosses stayed in the block, their undersides
+    // hanging (13.7 mm^2 in one layer of a survey manifold's, seed 112, 7). Each is one node on
+    // Eq. 4's own plane, T + eps: its section the 16-gon, on its axis, its slab from T to the
+    // boss's end.
+    const double r = 5.0, reach = 3.0;
+    std::vector<Vector3d> along_x, along_y;
+    for (int i = 0; i < 16; ++i) {
+        const double t = (-90.0 + 22.5 * i) * kPi / 180.0;
+        along_x.emplace_back(36.0, 18.0 + r * std::cos(t), 12.0 + r * std::sin(t));
+        along_y.emplace_back(18.5 + r * std::cos(t), 1.0, 19.0 + r * std::sin(t));
+    }
+    TopoDS_Shape part = fuse(occ_box(0, 0, 0, 37, 36, 40), occ_box(37, 14, 34, 15, 8, 6));
+    part = fuse(part, mas::test::occ_prism(along_x, {reach + 1, 0, 0}));
+    part = fuse(part, mas::test::occ_prism(along_y, {0, -(reach + 1), 0}));
+    const auto mesh = mesh_of(from_occt(part));
+    mas::AxisParams p;
+    p.step_mm = 5.0;
+    const auto a = mas::centroidal_axis(mesh, p);
+    const double polygon = 8.0 * r * r * std::sin(kPi / 8.0);
+    const auto boss = [&](const Vector3d& direction) -> const mas::AxisNode* {
+        const mas::AxisNode* found = nullptr;
+        for (const auto& b : a.branches) {
+            if (!b.direction.isApprox(direction, 1e-12) || b.nodes.size() != 1) continue;
+            const auto& node = a.nodes[std::size_t(b.nodes.front())];
+            if (std::abs(node.area - polygon) > 1e-6) continue;
+            EXPECT_EQ(found, nullptr) << "two bosses along " << direction.transpose();
+            EXPECT_EQ(b.parent, 0);
+            found = &node;
+        }
+        return found;
+    };
+    const mas::AxisNode* x = boss(Vector3d::UnitX());
+    ASSERT_NE(x, nullptr);
+    EXPECT_NEAR(x->slab_start, 37.0, 1e-9);
+    EXPECT_NEAR(x->offset, 37.0 + p.eps_mm, 1e-9);
+    EXPECT_NEAR(x->position.x(), 37.0 + p.eps_mm, 1e-9);
+    EXPECT_NEAR(x->position.y(), 18.0, kGrid);
+    EXPECT_NEAR(x->position.z(), 12.0, kGrid);
+    EXPECT_NEAR(x->thickness, reach, 1e-9);  // to the boss's end, short of the grid's next plane
+    const mas::AxisNode* y = boss(-Vector3d::UnitY());
+    ASSERT_NE(y, nullptr);
+    EXPECT_NEAR(y->slab_start, 0.0, 1e-9);
+    EXPECT_NEAR(y->offset, p.eps_mm, 1e-9);
+    EXPECT_NEAR(y->position.y(), -p.eps_mm, 1e-9);
+    EXPECT_NEAR(y->position.x(), 18.5, kGrid);
+    EXPECT_NEAR(y->position.z(), 19.0, kGrid);
+    EXPECT_NEAR(y->thickness, reach, 1e-9);  // to the boss's end, the part's
+    // The arm's march along +X, from the block's face, still has its planes.
+    bool arm = false;
+    for (const auto& b : a.branches)
+        arm = arm || (b.direction.isApprox(Vector3d::UnitX(), 1e-12) && b.nodes.size() == 3);
+    EXPECT_TRUE(arm);
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxis, APinHolesCeilingIsNoLedgeUnderAThickPartsStep) {
     // A lug of the survey's (seed 39, 6): a plate 45.1 x 29.1 x 8.3, an upright 15.1 wide and 7.7
     // thick rising 33.5 mm into a round top round the axis along Y at z = 41.9, with a pin hole of

@@ -167,7 +167,14 @@
 //   offset along the direction + eps + k step): a turned branch starts at the first grid plane at
 //   or past Eq. 4's location, at most one step on. Its first node's slab reaches back to T
 //   (AxisNode::slab_start), so nothing between is left unswept; the decomposition's
-//   section-plane cut is placed from T (Decompose.hpp).
+//   section-plane cut is placed from T (Decompose.hpp). A stick-out ending before that plane (a
+//   boss shorter than the way from T to the grid's next plane, or past its last) is one node on
+//   Eq. 4's own plane, T + eps, off the grid, its slab from T to where it ends (the mesh's
+//   farthest vertex over its section, short of that plane). Only a stick-out whole, not a share
+//   of one shared out among sides (an arm's end past the web under it, its flanks turning
+//   sideways), which stays with the march it came from. A share thinner on average than a tenth of
+//   the step starts nothing there: that is what the Booleans leave along a face the sections'
+//   simplification moved.
 // - Several regions in the very first section (a part standing on several feet) each root a tree:
 //   the result is a forest with one tree per foot.
 // - Material the march from the base cannot reach, because it first appears in mid-air and joins
@@ -231,8 +238,8 @@ struct AxisNode {
     // Where that slab starts along `normal` (normal . point), mm: the node's own plane, except
     // for a march's first node: a root's reaches down to the base plane (eps below; one step
     // below for a root of material hanging in mid-air), a turned branch's back from its grid
-    // plane to Eq. 4's T (the lower section's extent along the new direction), up to a step
-    // before `offset`.
+    // plane (or, a short stick-out's, from its plane off the grid) to Eq. 4's T (the lower
+    // section's extent along the new direction), up to a step before `offset`.
     double slab_start = 0.0;
     int branch = -1;
     int incoming_link = -1;  // the link ending at this node, -1 for a root node

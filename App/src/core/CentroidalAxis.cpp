@@ -503,6 +503,9 @@ private:
         // The march's share of the stick-out dA_k, swept between the lower and the upper plane;
         // none for the root, which takes every region of its first section.
         std::vector<Slab> constraints;
+        // The share is the whole stick-out (none of it shared out to other sides or left to the
+        // march it came from).
+        bool whole = false;
     };
     struct Track {
         int branch;
@@ -582,21 +585,28 @@ private:
     // a region's box can take anything away: a march's slabs far along another direction are
     // skipped without being cut.
     PlaneSweep swept_on(const Grid& g, std::size_t k, std::size_t slab_count) const {
-        const Regions2& regions = g.regions[k];
+        return swept_across(g.normal, offset(g, k), g.regions[k], g.boxes[k], g.bounds2[k],
+                            slab_count);
+    }
+
+    // The same on the plane at offset c along n, given its regions, their 3-D boxes (grown by a
+    // hair) and their 2-D boxes.
+    PlaneSweep swept_across(const Vector3d& n, double c, const Regions2& regions,
+                            const std::vector<Eigen::AlignedBox3d>& boxes,
+                            const std::vector<Eigen::AlignedBox2d>& bounds2,
+                            std::size_t slab_count) const {
         PlaneSweep out;
         if (regions.empty()) return out;
-        const Vector3d& n = g.normal;
-        const double c = offset(g, k);
         const PlaneFrame frame(n);
         Regions2& swept = out.swept;
         std::map<int, std::pair<StripAxes, std::vector<Strip>>> strips;  // per branch
         Eigen::AlignedBox3d all;  // of every region: most slabs miss it
-        for (const auto& box : g.boxes[k]) all.extend(box);
+        for (const auto& box : boxes) all.extend(box);
         for (std::size_t i = 0; i < slab_count; ++i) {
             const Slab& slab = slabs_[i];
             if (!slab.box.intersects(all)) continue;
             bool meets = false;
-            for (const auto& box : g.boxes[k]) meets = meets || slab.box.intersects(box);
+            for (const auto& box : boxes) meets = meets || slab.box.intersects(box);
             if (!meets) continue;
             if (std::abs(slab.normal.dot(n)) > 0.5) {
                 for (auto& r : slab_cut(slab, n, c, frame)) swept.push_back(std::move(r));
@@ -613,7 +623,7 @@ private:
         Regions2 kept;
         for (auto& r : swept) {
             const Eigen::AlignedBox2d b = bounds(r);
-            if (!meets(b, &g.bounds2[k])) continue;
+            if (!meets(b, &bounds2)) continue;
             kept.push_back(std::move(r));
             out.swept_boxes.push_back(b);
         }
@@ -626,8 +636,10 @@ private:
     // Works out the regions of plane k that meet one of `near` and are not done yet.
     void subtract_near(const Grid& g, std::size_t k, PlaneSweep& sweep,
                        const std::vector<Eigen::AlignedBox2d>* near) const {
-        const Regions2& regions = g.regions[k];
-        const auto& boxes = g.bounds2[k];
+        subtract_near(g.regions[k], g.bounds2[k], sweep, near);
+    }
+    void subtract_near(const Regions2& regions, const std::vector<Eigen::AlignedBox2d>& boxes,
+                       PlaneSweep& sweep, const std::vector<Eigen::AlignedBox2d>* near) const {
         for (std::size_t i = 0; i < sweep.done.size(); ++i) {
             if (sweep.done[i] || !meets(boxes[i], near)) continue;
             if (sweep.swept.empty()) {
@@ -826,6 +838,40 @@ private:
 
     enum : int { kUncut, kCutting, kCut };
 
+    // A plane's section as the search reads it (Grid): its regions simplified to step / 100,
+    // largest first, their 3-D boxes grown by a hair, and their 2-D boxes.
+    void read_section(const Section& section, Regions2& regions,
+                      std::vector<Eigen::AlignedBox3d>& boxes,
+                      std::vector<Eigen::AlignedBox2d>& bounds2) const {
+        Regions2 rs;
+        boxes.clear();
+        for (const auto& r : section.regions) {
+            rs.push_back(simplify(r.shape, p_.step_mm / 100.0));
+            Eigen::AlignedBox3d box = r.bounds;
+            box.min().array() -= 1e-6;
+            box.max().array() += 1e-6;
+            boxes.push_back(box);
+        }
+        regions = keep_larger(std::move(rs), p_.min_region_area_mm2);
+        bounds2.clear();
+        for (const auto& r : regions) bounds2.push_back(bounds(r));
+    }
+
+    // B - Bs on the plane of g's direction at offset c, which need not be one of the grid's:
+    // what is left of its section once everything swept is taken away, largest first.
+    Regions2 unswept_at(Grid& g, double c) {
+        Regions2 regions;
+        std::vector<Eigen::AlignedBox3d> boxes;
+        std::vector<Eigen::AlignedBox2d> bounds2;
+        read_section(g.sections->cut_at(c), regions, boxes, bounds2);
+        PlaneSweep sweep = swept_across(g.normal, c, regions, boxes, bounds2, slabs_.size());
+        subtract_near(regions, bounds2, sweep, nullptr);
+        Regions2 out;
+        for (auto& left : sweep.left)
+            for (auto& r : left) out.push_back(std::move(r));
+        return keep_larger(std::move(out), p_.min_region_area_mm2);
+    }
+
     // Cuts the chunk of grid planes holding plane k, unless it is cut already; waits if the
     // other thread is cutting it. `on_search`: called from the search's own thread, the only
     // one where cancellation may be checked.
@@ -841,24 +887,12 @@ private:
         }
         try {
             if (on_search) checkpoint_(searched_);
-            const double tol = p_.step_mm / 100.0;
             // Each plane's regions simplified as soon as it is cut, in parallel. Isolated: while
             // waiting for its planes this thread must not pick up a Lookahead's task, which
             // could wait for this very chunk.
             tbb::this_task_arena::isolate([&] {
                 g.sections->cut(first, last, [&](std::size_t i, Section& section) {
-                    Regions2 rs;
-                    g.boxes[i].clear();
-                    for (const auto& r : section.regions) {
-                        rs.push_back(simplify(r.shape, tol));
-                        Eigen::AlignedBox3d box = r.bounds;
-                        box.min().array() -= 1e-6;
-                        box.max().array() += 1e-6;
-                        g.boxes[i].push_back(box);
-                    }
-                    g.regions[i] = keep_larger(std::move(rs), p_.min_region_area_mm2);
-                    g.bounds2[i].clear();
-                    for (const auto& r : g.regions[i]) g.bounds2[i].push_back(bounds(r));
+                    read_section(section, g.regions[i], g.boxes[i], g.bounds2[i]);
                 });
             });
         } catch (...) {
@@ -1108,7 +1142,8 @@ private:
         // Eq. 4's location, moved up to the next plane of the grid (at most one step on; the
         // first node's slab reaches back to T, so nothing between is left unswept).
         const double first_k = std::ceil((task.start - g.origin) / p_.step_mm - 1e-9);
-        if (first_k >= double(g.count)) return;
+        const bool turned = !task.constraints.empty();
+        if (first_k >= double(g.count) && !(turned && task.start < g.hi)) return;
         std::size_t k0 = static_cast<std::size_t>(std::max(0.0, first_k));
         const std::size_t count = g.count;
         auto offset_of = [&](std::size_t k) { return offset(g, k); };
@@ -1116,20 +1151,66 @@ private:
 
         // First section: the regions the stick-out reaches (every region for the root).
         Regions2 first;
-        if (!task.constraints.empty()) {
+        if (turned) {
             const PlaneFrame frame(n);
-            Regions2 reach;
-            for (const auto& c : task.constraints)
-                for (auto& r : slab_cut(c, n, offset_of(k0), frame)) reach.push_back(std::move(r));
-            std::vector<Eigen::AlignedBox2d> near;
-            for (const auto& r : reach) near.push_back(bounds(r));
-            first = unswept(g, k0, &near);
-            first.erase(std::remove_if(first.begin(), first.end(),
-                                       [&](const Region2& r) {
-                                           return area(intersection({r}, reach)) <=
-                                                  p_.min_region_area_mm2;
-                                       }),
-                        first.end());
+            // The regions of a section at offset `at` that meet the stick-out's slab there.
+            const auto reaching = [&](const auto& section, double at) {
+                Regions2 reach;
+                for (const auto& c : task.constraints)
+                    for (auto& r : slab_cut(c, n, at, frame)) reach.push_back(std::move(r));
+                std::vector<Eigen::AlignedBox2d> near;
+                for (const auto& r : reach) near.push_back(bounds(r));
+                Regions2 out = section(near);
+                out.erase(std::remove_if(out.begin(), out.end(),
+                                         [&](const Region2& r) {
+                                             return area(intersection({r}, reach)) <=
+                                                    p_.min_region_area_mm2;
+                                         }),
+                          out.end());
+                return out;
+            };
+            if (k0 < count)
+                first = reaching([&](const auto& near) { return unswept(g, k0, &near); },
+                                 offset_of(k0));
+            if (first.empty()) {
+                // The stick-out ends before the grid's next plane past Eq. 4's T: a boss
+                // sticking out 5.1 mm from a block, its step 5.6 mm, the grid's last plane 0.5
+                // mm behind the block's face. Its march is one node on the paper's own first
+                // plane, T + eps, off the grid, its slab reaching from T to where the stick-out
+                // ends. (Its share had left the march it came from, and no march swept
+                // it: the boss stayed in the block's layers, its round underside overhanging 13.7
+                // mm^2 in one.) Only a stick-out that is the share whole: a part of one shared
+                // out among sides, such as an arm's end past the tip of the web under it while
+                // its flanks turn sideways, is left to the march it came from, as before (a
+                // node there took the arm's whole section, the flanks became its children and
+                // were merged back into it, their layers colliding, and the arm's root over the
+                // column hung 160 mm^2). Nor a share thinner on average than a tenth of the
+                // step, as the root's first slivers are: what the Booleans leave along a face
+                // the sections' simplification moves (a hundredth of the step), no stick-out.
+                double a = 0.0, outline = 0.0;
+                for (const auto& c : task.constraints) {
+                    a += area(c.region);
+                    outline += outline_of(c.region);
+                }
+                if (!task.whole || !(2.0 * a > p_.step_mm / 10.0 * outline)) return;
+                // The slab ends where the stick-out does: at the mesh's farthest vertex over the
+                // region's box, short of that next plane or the part's end.
+                const double to = k0 < count ? offset_of(k0) : g.hi;
+                for (const auto& region :
+                     reaching([&](const auto&) { return unswept_at(g, task.start); }, task.start)) {
+                    Eigen::AlignedBox2d box = bounds(region);
+                    box.min().array() -= p_.step_mm / 100.0;
+                    box.max().array() += p_.step_mm / 100.0;
+                    double end = task.start;
+                    for (const Vector3d& v : mesh_.vertices) {
+                        const double h = n.dot(v);
+                        if (h > end && h <= to && box.contains(frame.to_2d(v))) end = h;
+                    }
+                    add_node(region, n, task.start, task.slab_start, end,
+                             new_branch(n, task.parent_branch, task.father_node));
+                }
+                return;
+            }
         } else {
             // The root. A part standing on a vertex or a tip has, eps above its base, a speck of
             // a section (or none), and the march would end a step above it, the part unsearched.
@@ -1645,6 +1726,7 @@ private:
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
                 rest = std::move(behind);
                 if (share.empty()) continue;
+                const bool whole = side == sides.front() && area(rest) <= p_.min_region_area_mm2;
                 Vector2d g_share = Vector2d::Zero();
                 double a_share = 0.0;
                 for (const auto& r : share) {
@@ -1670,6 +1752,7 @@ private:
                 child.slab_start = t_max;
                 child.parent_branch = track.branch;
                 child.father_node = track.node;
+                child.whole = whole;
                 if (at_fin) {
                     // The arm over the fin goes to the new march too (and the node below gives
                     // back what its slab took of it: release()).

@@ -127,3 +127,9 @@ hub4.exportBrep(os.path.join(here, "hub_four_blades.brep"))
 disc = Part.Face(Part.Wire(Part.makeCircle(8, V(0, 0, 20))))
 odd = Part.makeCylinder(8, 20).fuse(disc.revolve(V(30, 0, 20), V(0, 1, 0), -45)).removeSplitter()
 odd.exportBrep(os.path.join(here, "cylinder_meshed_off.brep"))
+
+# hub_blade_near_plate.brep  the survey's hub with blades 3 (seed 84): a hub of radius 11.09, 23.0
+# tall, bored, with five blades 3.05 mm thick and 16.96 wide twisted 30 degrees; built along its
+# own line, one blade's layers met the build plate, and every turned cut was made square
+hub5, _ = MultiAxisSlicerSurvey.part("hub with blades", 3, 84)
+hub5.exportBrep(os.path.join(here, "hub_blade_near_plate.brep"))

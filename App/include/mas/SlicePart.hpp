@@ -3,6 +3,7 @@
 // layer (Toolpath.hpp), with the statistics a process engineer checks first.
 #pragma once
 #include <Eigen/Core>
+#include <any>
 #include <functional>
 #include <string>
 #include <vector>
@@ -193,6 +194,9 @@ struct SplitSliced {
     std::vector<int> branches;
     std::vector<char> turned;
     std::vector<std::string> notes;
+    // Whatever else `split` made of the part (a solid's Decomposition), handed back with the
+    // split slice_clear_of_collisions takes (SplitOutcome::made): a round may split it twice.
+    std::any made;
 };
 
 // The rounds slice_mesh_part and slice_solid_part share. `split` decomposes the part, keeping the
@@ -201,14 +205,21 @@ struct SplitSliced {
 // Unless `avoid_collisions` is false: where some layers would meet what is deposited before them
 // (no order or lean clears them, Nozzle.hpp), and one of their components (not the root) was cut
 // turned square to its branch's line (Component::turned), every component so cut is cut square to
-// its branch's direction next; else their branches are kept too, each saying so; and the part is
+// its branch's direction next, and, tried besides where some such cuts met nothing, only those
+// that did, taken where that slices better (sliced_better); else their branches are kept too,
+// each saying so; and the part is
 // split and sliced again, up to five times in all (the next 20 %); with layers still in the way,
 // `whole` slices it as one component (the last 10 %), kept when fewer of its layers are, with a
 // note. The decomposition's notes come first in the result's, each "decomposition: ...".
 struct SplitOutcome {
     bool took_whole = false;         // the part sliced as one component was kept
     std::vector<std::string> notes;  // the decomposition's notes, without the "decomposition: "
+    std::any made;                   // the SplitSliced::made of the split taken
 };
+// Whether slicing `b` leaves fewer layers in the nozzle's way than `a`, or as many and less
+// unsupported at worst (by more than a hundredth of a mm^2).
+bool sliced_better(const SlicedPart& b, const SlicedPart& a);
+
 SlicedPart slice_clear_of_collisions(
     const std::function<SplitSliced(const std::vector<KeptBranch>& keep,
                                     const std::vector<int>& square, const Progress& progress)>&

@@ -2,6 +2,7 @@
 // the part's deflection, then sliced as meshes (see SlicePart.hpp).
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <algorithm>
+#include <any>
 #include <cmath>
 #include <gp_Pnt.hxx>
 #include <optional>
@@ -123,14 +124,6 @@ std::vector<std::pair<int, std::size_t>> branches_cutting(const Decomposition& d
     return out;
 }
 
-// Whether slicing `b` leaves fewer layers in the nozzle's way than `a`, or as many and less
-// unsupported at worst (by more than a hundredth of a mm^2).
-bool sliced_better(const SlicedPart& b, const SlicedPart& a) {
-    if (b.stats.colliding_layers != a.stats.colliding_layers)
-        return b.stats.colliding_layers < a.stats.colliding_layers;
-    return b.stats.worst_unsupported_area_mm2 < a.stats.worst_unsupported_area_mm2 - 0.01;
-}
-
 }  // namespace
 
 SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
@@ -216,10 +209,11 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
     if (params.fill_holes_up_to_mm > 0.0)
         holes = holes_to_fill(part, Eigen::Vector3d::UnitZ(), params.fill_holes_up_to_mm,
                               params.layers.overhang_angle_deg, part);
-    Decomposition split_one, whole_one;
+    Decomposition whole_one;
     const auto split = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square,
                            const Progress& round) {
         SplitSliced out;
+        Decomposition split_one;
         out.sliced = run(keep, square, holes.empty() ? round : round.span(0.0, 0.5), split_one);
         std::vector<std::string> open;  // the holes left open, where keeping branches is worse
         if (!holes.empty()) {
@@ -278,6 +272,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
             out.branches.push_back(c.branch);
             out.turned.push_back(c.turned);
         }
+        out.made = std::move(split_one);
         return out;
     };
     const auto whole = [&](const Progress& p) {
@@ -289,7 +284,8 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
     SplitOutcome outcome;
     SlicedPart out =
         slice_clear_of_collisions(split, whole, params.avoid_collisions, progress, &outcome);
-    decomposition = outcome.took_whole ? std::move(whole_one) : std::move(split_one);
+    decomposition = outcome.took_whole ? std::move(whole_one)
+                                       : std::any_cast<Decomposition&&>(std::move(outcome.made));
     // The notes said with the result's (the split's, and why the part is sliced whole).
     decomposition.notes = std::move(outcome.notes);
     return out;

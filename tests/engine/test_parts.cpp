@@ -278,4 +278,17 @@ double nozzle_clearance(const NozzleParams& n, const Eigen::Vector3d& p,
     return h >= s && h <= top && rho <= radius ? -d : d;
 }
 
+double perimeter(const Regions2& regions) {
+    double p = 0.0;
+    for (const auto& r : regions) {
+        auto loop = [&](const Polygon2& poly) {
+            for (std::size_t i = 0, j = poly.points.size() - 1; i < poly.points.size(); j = i++)
+                p += (poly.points[i] - poly.points[j]).norm();
+        };
+        loop(r.outer);
+        for (const auto& h : r.holes) loop(h);
+    }
+    return p;
+}
+
 }  // namespace mas::test

@@ -10,6 +10,7 @@
 
 #include "mas/Mesh.hpp"
 #include "mas/Nozzle.hpp"
+#include "mas/Polygon2.hpp"
 #include "mas/Shape.hpp"
 
 namespace mas::test {
@@ -106,5 +107,9 @@ struct ValveBody {
 // The survey's valve body 2 at seed 44: three ports whose bores into the central one break the
 // body's ring at three heights.
 ValveBody survey_valve_body_44_2();
+
+// The length of the regions' outlines, holes included, mm: times the deflection, the strip along
+// them that a layer's unsupported area may show on a part with none.
+double perimeter(const Regions2& regions);
 
 }  // namespace mas::test

@@ -175,18 +175,7 @@ double corner_residue(const mas::Regions2& regions, double w) {
     return total;
 }
 
-double perimeter(const mas::Regions2& regions) {
-    double p = 0.0;
-    for (const auto& r : regions) {
-        auto loop = [&](const mas::Polygon2& poly) {
-            for (std::size_t i = 0, j = poly.points.size() - 1; i < poly.points.size(); j = i++)
-                p += (poly.points[i] - poly.points[j]).norm();
-        };
-        loop(r.outer);
-        for (const auto& h : r.holes) loop(h);
-    }
-    return p;
-}
+using mas::test::perimeter;
 
 // What every sliced part must satisfy (the invariants); `name` labels failures. A part
 // with overhangs of its own (the saddle of a tee's junction in Z layers) passes

@@ -1572,11 +1572,7 @@ TEST(CentroidalAxis, DerivedStepIsNotTakenFromAPlaneGrazingAnEdge) {
     // Taken for the thinnest wall, that made the step diagonal / 2000 (0.056 mm) and the axis
     // 3600 nodes. The step is half a wall as thick as the blades, give or take the half again a
     // strip that goes on may thicken by.
-    const mas::Model model =
-        mas::read_model(std::string(MAS_TEST_DATA) + "/hub_twisted_blades.brep");
-    mas::TessellationParams tp;
-    tp.deflection_mm = mas::effective_deflection(model.shape, tp);
-    const auto mesh = mas::tessellate(model.shape, tp);
+    const auto mesh = mas::test::data_mesh("hub_twisted_blades.brep");
     const double t = 3.063852014180396, w = 13.73836330961673;
     const double blade = 2.0 * t * w / (2.0 * (t + w));
     const double step = mas::derive_axis_step(mesh);

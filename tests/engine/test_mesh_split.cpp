@@ -447,11 +447,8 @@ TEST(DecomposeMesh, OnlyTheTurnedCutsWhoseLayersMeetSomethingAreSquaredWhereThat
     // square to its own line, some layers meet something. Every turned cut squared, more hangs at
     // worst than with only the colliding ones squared, which is taken: nothing in the nozzle's
     // way, no blade kept, no layer unsupported beyond the deflection's strip along its outline.
-    const mas::Model model =
-        mas::read_model(std::string(MAS_TEST_DATA) + "/hub_blade_near_plate.brep");
-    mas::TessellationParams tp;
-    tp.deflection_mm = mas::effective_deflection(model.shape, tp);
-    const auto mesh = mas::tessellate(model.shape, tp);
+    double deflection = 0.0;
+    const auto mesh = mas::test::data_mesh("hub_blade_near_plate.brep", &deflection);
     const auto axis = mas::centroidal_axis(mesh);
     mas::SlicePartParams p;
     mas::MeshDecomposeParams split;
@@ -475,7 +472,7 @@ TEST(DecomposeMesh, OnlyTheTurnedCutsWhoseLayersMeetSomethingAreSquaredWhereThat
         << all.stats.worst_unsupported_area_mm2 << " mm^2 at worst with every turned cut squared";
     for (std::size_t i = 0; i < sliced.layers.size(); ++i) {
         const auto& l = sliced.layers[i];
-        EXPECT_LE(l.unsupported_area_mm2, mas::test::perimeter(l.regions) * tp.deflection_mm)
+        EXPECT_LE(l.unsupported_area_mm2, mas::test::perimeter(l.regions) * deflection)
             << "layer " << i;
     }
 }

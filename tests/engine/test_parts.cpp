@@ -278,6 +278,14 @@ double nozzle_clearance(const NozzleParams& n, const Eigen::Vector3d& p,
     return h >= s && h <= top && rho <= radius ? -d : d;
 }
 
+TriangleMesh data_mesh(const std::string& name, double* deflection) {
+    const Model model = read_model(std::string(MAS_TEST_DATA) + "/" + name);
+    TessellationParams tp;
+    tp.deflection_mm = effective_deflection(model.shape, tp);
+    if (deflection) *deflection = tp.deflection_mm;
+    return tessellate(model.shape, tp);
+}
+
 double perimeter(const Regions2& regions) {
     double p = 0.0;
     for (const auto& r : regions) {

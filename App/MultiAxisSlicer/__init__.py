@@ -280,6 +280,33 @@ def _containers_placement(obj):
     return placement
 
 
+def _linked_mesh(obj):
+    """(mesh object, matrix) when the document object ``obj`` links to a mesh object (an
+    ``App::Link``, or a chain of them, to a ``Mesh::Feature``): the mesh object and the transform
+    the link applies to its mesh's own coordinates, as the 3D view shows it (the link's placement,
+    or the mesh object's too with LinkTransform). None for anything else. A link array (its
+    ElementCount set) holds several copies, which no one part is: ValueError."""
+    if obj.isDerivedFrom("Mesh::Feature") or not hasattr(obj, "getLinkedObject"):
+        return None
+    if getattr(obj, "ElementCount", 0):
+        target = getattr(obj, "LinkedObject", None)
+        if isinstance(target, tuple):
+            target = target[0]
+        target = target.getLinkedObject(True) if target is not None else None
+        if target is not None and target.isDerivedFrom("Mesh::Feature"):
+            raise ValueError("{} is an array of {} links to the mesh {}: select the mesh or one "
+                             "of the array's elements".format(_label(obj), obj.ElementCount,
+                                                              _label(target)))
+        return None
+    linked = obj.getLinkedObject(True)
+    if linked is None or linked is obj or not linked.isDerivedFrom("Mesh::Feature"):
+        return None
+    import FreeCAD
+
+    mesh, matrix = obj.getLinkedObject(True, FreeCAD.Matrix(), True)
+    return mesh, matrix
+
+
 def _placed(obj):
     """A document object's ``Part.Shape`` or ``Mesh.Mesh`` where the 3D view shows it: with the
     placements of the groups it sits in applied (``_containers_placement``), since the plate is
@@ -287,8 +314,16 @@ def _placed(obj):
     has neither. Anything that is not a document object is given back as it is."""
     if not _is_document_object(obj):
         return obj
+    link = _linked_mesh(obj)
     if obj.isDerivedFrom("Mesh::Feature"):
         model = obj.Mesh
+    elif link is not None:
+        import FreeCAD
+
+        # The mesh in its own coordinates, moved as the link shows it.
+        model = link[0].Mesh.copy()
+        model.Placement = FreeCAD.Placement()
+        model.transform(link[1])
     else:
         model = getattr(obj, "Shape", None)
         if model is None:

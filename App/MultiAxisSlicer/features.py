@@ -962,8 +962,13 @@ def _check_link(obj, prop, check, what):
 
 def is_mesh_part(obj):
     """Whether the document object ``obj`` is a mesh a Layers object can slice as its Source (a
-    ``Mesh::Feature``; whether it is closed is checked when it is sliced)."""
-    return mas._is_document_object(obj) and obj.isDerivedFrom("Mesh::Feature")
+    ``Mesh::Feature``, or a link to one; whether it is closed is checked when it is sliced)."""
+    if not mas._is_document_object(obj):
+        return False
+    try:
+        return obj.isDerivedFrom("Mesh::Feature") or mas._linked_mesh(obj) is not None
+    except ValueError:  # a link array: slicing it says so
+        return True
 
 
 def sliced_mesh(obj):

@@ -214,10 +214,21 @@ class TestInputs(support.EngineTestCase):
             link.LinkedObject = box
             group.addObject(link)
             link.Placement.Base = V(0, 150, 0)
+            # A link to the mesh (its placement the link's, the mesh's own overridden), and a link
+            # to that link.
+            mesh_link = doc.addObject("App::Link", "MeshLink")
+            mesh_link.LinkedObject = mesh
+            group.addObject(mesh_link)
+            mesh_link.Placement.Base = V(0, 200, 0)
+            chained = doc.addObject("App::Link", "Chained")
+            chained.LinkedObject = mesh_link
+            group.addObject(chained)
+            chained.Placement.Base = V(0, 250, 0)
             doc.recompute()
             placements = [o.Placement for o in (group, box, body, feature, mesh, link)]
             # y of each copy's middle; every one spans x 100..130, z -5..5.
-            for obj, y in ((box, 10), (body, 60), (feature, 60), (mesh, 110), (link, 160)):
+            for obj, y in ((box, 10), (body, 60), (feature, 60), (mesh, 110), (link, 160),
+                           (mesh_link, 210), (chained, 260)):
                 s = mas.section(obj, origin=(0, 0, 0), normal=(0, 0, 1))
                 self.assertAlmostEqual(s.area, 600.0, places=6, msg=obj.Name)
                 self.assertVectorAlmostEqual(s.centroid, (115, y, 0))
@@ -225,6 +236,13 @@ class TestInputs(support.EngineTestCase):
             self.assertEqual([o.Placement for o in (group, box, body, feature, mesh, link)],
                              placements)  # none moved
             self.assertEqual(box.Shape.BoundBox.ZMax, 30.0)
+            self.assertEqual(mesh.Mesh.BoundBox.YMin, 100.0)
+            self.assertIsInstance(mas._model(mesh_link)[1], mas._engine.Mesh)  # sliced as one
+            # An array of links is no one part.
+            mesh_link.ElementCount = 2
+            doc.recompute()
+            with self.assertRaisesRegex(ValueError, "array of 2 links to the mesh 'Mesh'"):
+                mas.section(mesh_link, origin=(0, 0, 0), normal=(0, 0, 1))
         finally:
             FreeCAD.closeDocument(doc.Name)
 

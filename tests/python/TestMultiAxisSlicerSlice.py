@@ -1173,6 +1173,59 @@ class TestLayersOfAMesh(SliceObjectTest):
                          whole.stats["worst_unsupported_area_mm2"])
         self.assertGreater(layers.WorstUnsupportedArea.Value, 100.0)
 
+    def test_a_link_to_a_mesh_object_is_sliced_where_the_link_shows_it(self):
+        # An App::Link to the L's mesh object, turned 90 degrees about Z and moved (the mesh's own
+        # placement overridden, LinkTransform off): sliced as the mesh placed as the link shows
+        # it (to rounding: the link's matrix is not the placement's), as the scripting API
+        # slices the link; moving the link moves the layers; a reopened document slices it again.
+        scan = self.add_mesh(l_block())
+        scan.Placement.Base = FreeCAD.Vector(300, 0, 0)
+        link = self.doc.addObject("App::Link", "ScanLink")
+        link.LinkedObject = scan
+        link.Placement = FreeCAD.Placement(FreeCAD.Vector(0, 50, 0),
+                                           FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), 90))
+        self.doc.recompute()
+
+        def shown(**params):  # the mesh in its own coordinates, placed by the link, sliced
+            mesh = scan.Mesh.copy()
+            mesh.Placement = link.Placement
+            return mas.slice(mesh, **params)
+
+        def same(result, expected):
+            self.assertEqual([layer.component for layer in result.layers],
+                             [layer.component for layer in expected.layers])
+            for got, want in zip(result.layers, expected.layers):
+                self.assertVectorAlmostEqual(got.origin, want.origin, places=6)
+                self.assertVectorAlmostEqual(got.normal, want.normal, places=9)
+                self.assertAlmostEqual(got.unsupported_area, want.unsupported_area, places=6)
+
+        self.assertTrue(features.is_mesh_part(link))
+        layers, toolpath = mas.make_slice(link, max_layer=1.5)
+        self.assertIs(layers.Source, link)
+        self.doc.recompute()
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        expected = shown(max_layer=1.5)
+        same(features.slice_result(layers), expected)
+        self.assertEqual(mas.slice(link, max_layer=1.5).to_dict(),
+                         features.slice_result(layers).to_dict())
+        # The column along +Z, the arm along +X turned to +Y: nothing stands on nothing.
+        column, arm = layers.ComponentLayerCounts
+        self.assertGreater(arm, 0)
+        self.assertVectorAlmostEqual(layers.LayerNormals[column], (0, 1, 0))
+        self.assertEqual(layers.WorstUnsupportedArea.Value, 0.0)
+        link.Placement.Base = FreeCAD.Vector(0, 80, 0)
+        self.doc.recompute()
+        same(features.slice_result(layers), shown(max_layer=1.5))
+        self.assertAlmostEqual(features.slice_result(layers).layers[0].origin.y,
+                               expected.layers[0].origin.y + 30.0, places=6)
+        layers = self.reopened("MasSliceMeshLink.FCStd")
+        link, scan = self.doc.getObject("ScanLink"), self.doc.getObject("Scan")
+        self.assertIs(layers.Source, link)
+        layers.MaxLayer = 2.0
+        self.doc.recompute()
+        self.assertTrue(layers.isValid(), layers.getStatusString())
+        same(features.slice_result(layers), shown())
+
     def test_avoid_collisions_keeps_a_piece_the_nozzle_cannot_reach_in_its_father(self):
         # A coaxial nozzle 100 mm across would meet the plate at each of the arm's layers.
         scan = self.add_mesh(l_block())

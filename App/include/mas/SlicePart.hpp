@@ -205,12 +205,12 @@ struct SplitSliced {
 // Unless `avoid_collisions` is false: where some layers would meet what is deposited before them
 // (no order or lean clears them, Nozzle.hpp), and one of their components (not the root) was cut
 // turned square to its branch's line (Component::turned), every component so cut is cut square to
-// its branch's direction next, and, tried besides where some such cuts met nothing, only those
-// that did, taken where that slices better (sliced_better); else their branches are kept too,
-// each saying so; and the part is
-// split and sliced again, up to five times in all (the next 20 %); with layers still in the way,
-// `whole` slices it as one component (the last 10 %), kept when fewer of its layers are, with a
-// note. The decomposition's notes come first in the result's, each "decomposition: ...".
+// its branch's direction next; where only some of them hold such layers, squaring those alone is
+// tried too, and taken where it slices better (sliced_better). Else their branches are kept too,
+// each saying so. The part is split and sliced again, up to five times in all (the next 20 %);
+// with layers still in the way, `whole` slices it as one component (the last 10 %), kept when
+// fewer of its layers are, with a note. The decomposition's notes come first in the result's,
+// each "decomposition: ...".
 struct SplitOutcome {
     bool took_whole = false;         // the part sliced as one component was kept
     std::vector<std::string> notes;  // the decomposition's notes, without the "decomposition: "

@@ -169,11 +169,12 @@
 //   (AxisNode::slab_start), so nothing between is left unswept; the decomposition's
 //   section-plane cut is placed from T (Decompose.hpp). A stick-out ending before that plane (a
 //   boss shorter than the way from T to the grid's next plane, or past its last) is one node on
-//   Eq. 4's own plane, T + eps, off the grid, its slab from T to where it ends (the mesh's
-//   farthest vertex over its section, short of that plane). Only a stick-out whole, not a share
-//   of one shared out among sides (an arm's end past the web under it, its flanks turning
-//   sideways), which stays with the march it came from. A share thinner on average than a tenth of
-//   the step starts nothing there: that is what the Booleans leave along a face the sections'
+//   Eq. 4's own plane, T + eps, off the grid, its slab from T to where it ends (the last offset
+//   short of that plane where the section still holds material over the node's region, bisected
+//   and snapped to the mesh's farthest vertex there). Only a stick-out whole, not a share of one
+//   shared out among sides (an arm's end past the web under it, its flanks turning sideways),
+//   which stays with the march it came from. A share thinner on average than a tenth of the step
+//   starts nothing there: that is what the Booleans leave along a face the sections'
 //   simplification moved.
 // - Several regions in the very first section (a part standing on several feet) each root a tree:
 //   the result is a forest with one tree per foot.

@@ -1193,18 +1193,34 @@ private:
                     outline += outline_of(c.region);
                 }
                 if (!task.whole || !(2.0 * a > p_.step_mm / 10.0 * outline)) return;
-                // The slab ends where the stick-out does: at the mesh's farthest vertex over the
-                // region's box, short of that next plane or the part's end.
+                // The slab ends where the stick-out does: the highest offset, short of that next
+                // plane or the part's end, where the section still holds material over the
+                // region (bisected to a ten-thousandth of a step, as release() finds an
+                // underside), then the mesh's farthest vertex over the region's box within that
+                // last bracket (exact where the stick-out ends on a face square to n). Not the
+                // farthest vertex over the box alone: other material in its footprint, short of
+                // that plane, would stretch the slab over it.
                 const double to = k0 < count ? offset_of(k0) : g.hi;
                 for (const auto& region :
                      reaching([&](const auto&) { return unswept_at(g, task.start); }, task.start)) {
+                    const auto holds = [&](double at) {
+                        Regions2 cut;
+                        for (const auto& r : g.sections->cut_at(at).regions) cut.push_back(r.shape);
+                        return area(intersection(cut, {region})) > p_.min_region_area_mm2;
+                    };
+                    double present = task.start, absent = to;
+                    if (holds(absent)) present = absent;
+                    while (absent - present > 1e-4 * p_.step_mm) {
+                        const double mid = 0.5 * (present + absent);
+                        (holds(mid) ? present : absent) = mid;
+                    }
                     Eigen::AlignedBox2d box = bounds(region);
                     box.min().array() -= p_.step_mm / 100.0;
                     box.max().array() += p_.step_mm / 100.0;
-                    double end = task.start;
+                    double end = present;
                     for (const Vector3d& v : mesh_.vertices) {
                         const double h = n.dot(v);
-                        if (h > end && h <= to && box.contains(frame.to_2d(v))) end = h;
+                        if (h > end && h <= absent && box.contains(frame.to_2d(v))) end = h;
                     }
                     add_node(region, n, task.start, task.slab_start, end,
                              new_branch(n, task.parent_branch, task.father_node));

@@ -280,26 +280,39 @@ def _containers_placement(obj):
     return placement
 
 
+def _mesh_array_of(obj):
+    """The mesh object a link array ``obj`` (its ElementCount set) holds copies of; None when
+    ``obj`` is no link array, or one of something else."""
+    if not getattr(obj, "ElementCount", 0):
+        return None
+    target = getattr(obj, "LinkedObject", None)
+    if isinstance(target, tuple):  # (container, sub-object's name): a link into a group
+        owner, sub = target[0], target[1]
+        if isinstance(sub, (list, tuple)):
+            sub = sub[0] if sub else ""
+        target = owner.getSubObject(sub, 1) if sub else owner
+    target = target.getLinkedObject(True) if target is not None else None
+    return target if target is not None and target.isDerivedFrom("Mesh::Feature") else None
+
+
 def _linked_mesh(obj):
     """(mesh object, matrix) when the document object ``obj`` links to a mesh object (an
     ``App::Link``, or a chain of them, to a ``Mesh::Feature``): the mesh object and the transform
     the link applies to its mesh's own coordinates, as the 3D view shows it (the link's placement,
-    or the mesh object's too with LinkTransform). None for anything else. A link array (its
-    ElementCount set) holds several copies, which no one part is: ValueError."""
+    or the mesh object's too with LinkTransform). None for anything else. A link array of a mesh
+    (ElementCount set), or a link to one, holds several copies, which no one part is:
+    ValueError."""
     if obj.isDerivedFrom("Mesh::Feature") or not hasattr(obj, "getLinkedObject"):
         return None
-    if getattr(obj, "ElementCount", 0):
-        target = getattr(obj, "LinkedObject", None)
-        if isinstance(target, tuple):
-            target = target[0]
-        target = target.getLinkedObject(True) if target is not None else None
-        if target is not None and target.isDerivedFrom("Mesh::Feature"):
-            raise ValueError("{} is an array of {} links to the mesh {}: select the mesh or one "
-                             "of the array's elements".format(_label(obj), obj.ElementCount,
-                                                              _label(target)))
-        return None
     linked = obj.getLinkedObject(True)
-    if linked is None or linked is obj or not linked.isDerivedFrom("Mesh::Feature"):
+    if linked is None:
+        return None
+    array = _mesh_array_of(linked)
+    if array is not None:
+        raise ValueError("{} {} {} copies of the mesh {} (a link array): select the mesh".format(
+            _label(obj), "is" if linked is obj else "links to", linked.ElementCount,
+            _label(array)))
+    if linked is obj or not linked.isDerivedFrom("Mesh::Feature"):
         return None
     import FreeCAD
 

@@ -12,8 +12,12 @@ MultiAxisSlicerGui.progress.install()  # the commands' recomputes show progress 
 
 
 def _selected_part():
-    """The one selected object if it has a shape or a mesh, else None."""
-    return _selected_one(lambda o: o.isDerivedFrom("Mesh::Feature") or hasattr(o, "Shape"))
+    """The one selected object if it has a shape or a mesh (a link to a mesh object too), else
+    None."""
+    import MultiAxisSlicer.features as features
+
+    return _selected_one(lambda o: o.isDerivedFrom("Mesh::Feature") or hasattr(o, "Shape")
+                         or features.is_mesh_part(o))
 
 
 # This workbench's results, which are no part to work on: their type -> what they are, in words.
@@ -62,8 +66,8 @@ def _model_problem(source, split):
             mas._require_engine().make_closed(part, what)
         else:
             part.single_solid(what)
-    except mas.EngineError as error:  # it names the object: "'Part': not a solid (...)"
-        return str(error)
+    except (mas.EngineError, ValueError) as error:  # it names the object: "'Part': not a solid
+        return str(error)  # (...)", "'Array' is 3 copies of the mesh 'Scan' (a link array) ..."
     return None
 
 

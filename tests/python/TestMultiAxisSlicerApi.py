@@ -238,11 +238,21 @@ class TestInputs(support.EngineTestCase):
             self.assertEqual(box.Shape.BoundBox.ZMax, 30.0)
             self.assertEqual(mesh.Mesh.BoundBox.YMin, 100.0)
             self.assertIsInstance(mas._model(mesh_link)[1], mas._engine.Mesh)  # sliced as one
-            # An array of links is no one part.
+            # With LinkTransform, the mesh's own placement too: 100 + 300 along Y.
+            mesh_link.LinkTransform = True
+            mesh_link.Placement.Base = V(0, 300, 0)
+            doc.recompute()
+            s = mas.section(mesh_link, origin=(0, 0, 0), normal=(0, 0, 1))
+            self.assertAlmostEqual(s.area, 600.0, places=6)
+            self.assertVectorAlmostEqual(s.centroid, (115, 410, 0))
+            # An array of links is no one part, nor is a link to one.
             mesh_link.ElementCount = 2
             doc.recompute()
-            with self.assertRaisesRegex(ValueError, "array of 2 links to the mesh 'Mesh'"):
+            with self.assertRaisesRegex(ValueError, "'MeshLink' is 2 copies of the mesh 'Mesh'"):
                 mas.section(mesh_link, origin=(0, 0, 0), normal=(0, 0, 1))
+            with self.assertRaisesRegex(ValueError,
+                                        "'Chained' links to 2 copies of the mesh 'Mesh'"):
+                mas.section(chained, origin=(0, 0, 0), normal=(0, 0, 1))
         finally:
             FreeCAD.closeDocument(doc.Name)
 

@@ -1113,6 +1113,39 @@ class TestSliceCommand(unittest.TestCase):
         self.assertTrue(layers.ViewObject.Proxy.onDelete(layers.ViewObject, []))
         self.assertTrue(scan.ViewObject.Visibility)
 
+    def test_command_slices_a_selected_link_to_a_mesh_where_the_link_shows_it(self):
+        # An App::Link to a mesh object (which has no Shape of its own in FreeCAD 0.20) is sliced
+        # as the mesh the link shows, moved 40 mm along Y; a link array of the mesh is refused,
+        # named, before anything is made.
+        import Mesh
+
+        scan = self.doc.addObject("Mesh::Feature", "Scan")
+        scan.Mesh = Mesh.Mesh(Part.makeBox(20, 10, 21).tessellate(0.01))
+        link = self.doc.addObject("App::Link", "ScanLink")
+        link.LinkedObject = scan
+        link.Placement.Base = FreeCAD.Vector(0, 40, 0)
+        self.doc.recompute()
+        layers, toolpath = self.run_command(link)
+        self.assertEqual(error_boxes(), [])
+        self.assertTrue(toolpath.isValid(), toolpath.getStatusString())
+        self.assertIs(layers.Source, link)
+        self.assertEqual(layers.LayerCount, 11)
+        bb = layers.Shape.BoundBox
+        self.assertAlmostEqual(bb.YMin, 40.0, delta=0.01)
+        self.assertAlmostEqual(bb.YMax, 50.0, delta=0.01)
+        self.assertFalse(link.ViewObject.Visibility)
+        self.doc.undo()
+        process_events()
+        link.ElementCount = 3
+        self.doc.recompute()
+        names = [o.Name for o in self.doc.Objects]
+        layers, toolpath = self.run_command(link)
+        self.assertIsNone(layers)
+        self.assertEqual([o.Name for o in self.doc.Objects], names)
+        boxes = error_boxes()
+        self.assertEqual(len(boxes), 1)
+        self.assertIn("'ScanLink' is 3 copies of the mesh 'Scan' (a link array)", boxes[0].text())
+
     def test_command_on_an_open_mesh_names_the_problem(self):
         import Mesh
 

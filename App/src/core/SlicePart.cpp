@@ -90,13 +90,14 @@ SlicedPart slice_clear_of_collisions(
         // every such cut is made square to its branch's direction instead, as Sec. 3.2.1's
         // directions cut the part, and the rounds go on from there. (A spiral stair's treads, 30
         // degrees apart round a column and 8 mm apart up it: built along their own lines, the
-        // nozzle at one tread's root met the tread under it. Squaring only those cut the next
-        // ones across their neighbours, and seven of twelve treads ended in the column's layers.)
-        // Squaring only the colliding ones is tried besides, and taken where it slices better
-        // (sliced_better): the blades of a hub, twisted 30 degrees about their lengths, all cut
-        // square to +-X or +-Y, left their roots in the hub's layers, and one blade's layers
-        // still met something; it was kept in the hub, its underside hanging 18.2 mm^2 in one
-        // layer. Squaring the one blade whose layers met the plate left nothing hanging.
+        // nozzle at one tread's root met the tread under it. Squaring only those once cut the
+        // next ones across their neighbours, and seven of twelve treads ended in the column's
+        // layers.) Squaring only the colliding ones is tried besides, and taken only where it
+        // slices better (sliced_better), which guards against that: the blades of a hub,
+        // twisted 30 degrees about their lengths, all cut square to +-X or +-Y, left their roots
+        // in the hub's layers, and one blade's layers still met something; it was kept in the
+        // hub, its underside hanging 18.2 mm^2 in one layer. Squaring the one blade whose layers
+        // met the plate left nothing hanging.
         if (!turned.empty()) {
             std::vector<int> only = square;
             for (std::size_t c = 1; c < parts.turned.size(); ++c) {

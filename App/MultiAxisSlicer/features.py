@@ -1084,9 +1084,9 @@ def keep_unreachable_branches(layers):
     their fathers, as ``MultiAxisSlicer.slice()`` does when it decomposes a solid itself (first
     cutting square to their directions the branches whose cuts were turned square to their
     lines: all of them, or only the colliding ones where that slices better): the part is
-    decomposed (with the Decomposition's parameters) and sliced (with the
-    Layers') again, up to five rounds, and as one component if that leaves fewer such layers. The
-    branches kept go to the Decomposition's KeepBranches, those cut square to its SquareBranches;
+    decomposed (with the Decomposition's parameters) and sliced (with the Layers') again, up to
+    five rounds, and as one component if that leaves fewer such layers. The branches kept go to
+    the Decomposition's KeepBranches, those cut square to its SquareBranches;
     both objects are recomputed from that result (remembered, not computed once more) and the
     Component objects follow. Returns the branches added to either, in increasing order: [] when
     no layer collides or neither clears any, and nothing is changed then. Raises

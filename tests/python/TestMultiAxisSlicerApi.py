@@ -210,20 +210,19 @@ class TestInputs(support.EngineTestCase):
             mesh.Mesh = fc_mesh(Part.makeBox(10, 20, 30))
             group.addObject(mesh)
             mesh.Placement.Base = V(0, 100, 0)
-            link = doc.addObject("App::Link", "Link")
-            link.LinkedObject = box
-            group.addObject(link)
-            link.Placement.Base = V(0, 150, 0)
+
+            def add_link(name, target, y):  # in the group, moved y along Y
+                link = doc.addObject("App::Link", name)
+                link.LinkedObject = target
+                group.addObject(link)
+                link.Placement.Base = V(0, y, 0)
+                return link
+
+            link = add_link("Link", box, 150)
             # A link to the mesh (its placement the link's, the mesh's own overridden), and a link
             # to that link.
-            mesh_link = doc.addObject("App::Link", "MeshLink")
-            mesh_link.LinkedObject = mesh
-            group.addObject(mesh_link)
-            mesh_link.Placement.Base = V(0, 200, 0)
-            chained = doc.addObject("App::Link", "Chained")
-            chained.LinkedObject = mesh_link
-            group.addObject(chained)
-            chained.Placement.Base = V(0, 250, 0)
+            mesh_link = add_link("MeshLink", mesh, 200)
+            chained = add_link("Chained", mesh_link, 250)
             doc.recompute()
             placements = [o.Placement for o in (group, box, body, feature, mesh, link)]
             # y of each copy's middle; every one spans x 100..130, z -5..5.

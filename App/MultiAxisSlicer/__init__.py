@@ -304,7 +304,9 @@ def _linked_mesh(obj):
     ValueError."""
     if obj.isDerivedFrom("Mesh::Feature") or not hasattr(obj, "getLinkedObject"):
         return None
-    linked = obj.getLinkedObject(True)
+    import FreeCAD
+
+    linked, matrix = obj.getLinkedObject(True, FreeCAD.Matrix(), True)
     if linked is None:
         return None
     array = _mesh_array_of(linked)
@@ -314,10 +316,7 @@ def _linked_mesh(obj):
             _label(array)))
     if linked is obj or not linked.isDerivedFrom("Mesh::Feature"):
         return None
-    import FreeCAD
-
-    mesh, matrix = obj.getLinkedObject(True, FreeCAD.Matrix(), True)
-    return mesh, matrix
+    return linked, matrix
 
 
 def _placed(obj):

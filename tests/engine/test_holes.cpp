@@ -248,6 +248,64 @@ TEST(Holes, AHoleMeetingAnotherStaysOpenWithANote) {
     expect_volume(g.added_volume_mm3, kPi * 4.0 * 40.0, volume(two));
 }
 
+TEST(Holes, TwoBoresCrossingArePluggedTogether) {
+    // A manifold's block [0,40]x[0,40]x[0,50] bored from two sides, as two ports' bores cross
+    // inside it (survey seed 125, manifold 1): radius 3 along X at y = 18, z = 11 from x = 0 to
+    // 16, and radius 4 along Y at x = 18, z = 14 from y = 0 to 20. Each opens into the other near
+    // its blind end: neither is square-ended alone, and OCCT's defeaturing closes neither over
+    // (on this block; on one 40 mm tall it does). Open, their ceilings overhang 9 mm^2.
+    TopoDS_Shape s = occ_box(0, 0, 0, 40, 40, 50);
+    s = cut(s, occ_cylinder({-1, 18, 11}, Vector3d::UnitX(), 3.0, 17.0));
+    s = cut(s, occ_cylinder({18, -1, 14}, Vector3d::UnitY(), 4.0, 21.0));
+    const mas::Shape part = from_occt(s);
+    const mas::HoleFill f = mas::fill_holes(part, Vector3d::UnitZ(), 8.0, 45.0);
+    EXPECT_TRUE(f.notes.empty()) << f.notes[0];
+    ASSERT_EQ(f.holes.size(), 2u);
+    for (const mas::FilledHole& h : f.holes) {
+        if (std::abs(h.axis.x()) > 0.5) {
+            EXPECT_NEAR(h.diameter_mm, 6.0, 1e-9);
+            EXPECT_NEAR(h.length_mm, 16.0, 1e-9);
+            EXPECT_NEAR((h.centre - Vector3d(8, 18, 11)).norm(), 0.0, 1e-9);
+        } else {
+            EXPECT_NEAR(h.diameter_mm, 8.0, 1e-9);
+            EXPECT_NEAR(h.length_mm, 20.0, 1e-9);
+            EXPECT_NEAR((h.centre - Vector3d(18, 10, 14)).norm(), 0.0, 1e-9);
+        }
+    }
+    // Both plugged, the block is whole again: it gained exactly the bores.
+    expect_volume(volume(f.solid), 80000.0, 80000.0);
+    expect_volume(f.added_volume_mm3, 80000.0 - volume(part), 80000.0);
+    // Sliced so, no layer overhangs.
+    mas::TessellationParams tp;
+    tp.deflection_mm = 0.02;
+    const mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(part, tp), {});
+    mas::SlicePartParams params;
+    params.tessellation = tp;
+    params.fill_holes_up_to_mm = 8.0;
+    const mas::SlicedPart sliced = mas::slice_part(part, axis, mas::decompose(part, axis), params);
+    EXPECT_EQ(sliced.stats.filled_holes, 2);
+    for (const mas::Layer& l : sliced.layers)
+        EXPECT_LE(l.unsupported_area_mm2, mas::negligible_unsupported_mm2(l.area_mm2));
+    // One of them meeting a vertical bore of radius 4 (at x = 20, y = 12, not filled: it has no
+    // ceiling) is not plugged, which would stick its cylinder into that bore: OCCT closes it
+    // over, that bore's wall extended across its mouth. It adds the X bore's cylinder up to that
+    // wall: 20 * 9 pi less the integral over its disc of sqrt(16 - dy^2), with dy = 3 sin(u).
+    TopoDS_Shape t = occ_box(0, 0, 0, 40, 40, 40);
+    t = cut(t, occ_cylinder({-1, 12, 18}, Vector3d::UnitX(), 3.0, 23.0));
+    t = cut(t, occ_cylinder({20, 12, 10}, Vector3d::UnitZ(), 4.0, 31.0));
+    const mas::HoleFill g = mas::fill_holes(from_occt(t), Vector3d::UnitZ(), 8.0, 45.0);
+    EXPECT_TRUE(g.notes.empty()) << g.notes[0];
+    ASSERT_EQ(g.holes.size(), 1u);
+    EXPECT_NEAR(g.holes[0].length_mm, 20.0 - std::sqrt(7.0), 1e-9);
+    double wall = 0.0;
+    constexpr int n = 2000;
+    for (int i = 0; i < n; ++i) {
+        const double u = -0.5 * kPi + (i + 0.5) * kPi / n, c = 3.0 * std::cos(u);
+        wall += 2.0 * c * std::sqrt(16.0 - 9.0 * std::sin(u) * std::sin(u)) * c * kPi / n;
+    }
+    expect_volume(g.added_volume_mm3, 20.0 * 9.0 * kPi - wall, 64000.0);
+}
+
 TEST(Holes, ADrillMustFitAllTheWayIn) {
     // From the face y = 0 of a block [0,40]x[0,20]x[0,40], along Y at x = 20, z = 20: an entry
     // 9.2 mm across and 5 deep, then a chamber 10 mm across 5 deeper. The entry is a hole a drill

@@ -496,15 +496,41 @@ TopoDS_Shape fill(const TopoDS_Shape& solid, double volume, const std::vector<Ho
     }
 }
 
+// Whether point p lies on the wall of `other` (its cylinder between lo and hi), within tol.
+bool on_wall(const Hole& other, const Vector3d& p, double tol) {
+    const Vector3d d = p - other.point;
+    const double t = d.dot(other.axis);
+    return t >= other.lo - tol && t <= other.hi + tol &&
+           std::abs((d - t * other.axis).norm() - other.radius) <= tol;
+}
+
 // Whether the hole is a plain cylinder between lo and hi: its wall's edges are lines along the axis
 // (seams) and circles of its radius square to it at lo or hi, and its bottom, if any, is flat at
 // one of them. That is a hole drilled square through faces (or a cut) square to its axis, the
-// commonest kind; its plug is that cylinder.
-bool square_ended(const Hole& hole) {
+// commonest kind; its plug is that cylinder. An edge may also lie on the wall of one of `others`,
+// holes plugged with it: where it opens into one of them (two ports' bores crossing in a
+// manifold's block), its cylinder borders the other's, filled too.
+bool square_ended(const Hole& hole, const std::vector<const Hole*>& others) {
     const double tol = 1e-6 * (1.0 + hole.hi - hole.lo + hole.radius);
     auto at_end = [&](const Vector3d& p) {
         const double t = (p - hole.point).dot(hole.axis);
         return std::abs(t - hole.lo) <= tol || std::abs(t - hole.hi) <= tol;
+    };
+    // The edge sampled at 17 points, each on the wall of one of `others`.
+    auto into_other = [&](const BRepAdaptor_Curve& c, const TopoDS_Edge& edge) {
+        if (others.empty()) return false;
+        const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+        constexpr int n = 16;
+        for (int i = 0; i <= n; ++i) {
+            const Vector3d p = vec(c.Value(t0 + (t1 - t0) * i / n));
+            bool on = false;
+            for (const Hole* o : others)
+                on = on ||
+                     on_wall(*o, p,
+                             BRep_Tool::Tolerance(edge) + 1e-6 * (1.0 + o->hi - o->lo + o->radius));
+            if (!on) return false;
+        }
+        return true;
     };
     for (const TopoDS_Face& face : hole.faces) {
         BRepAdaptor_Surface s(face, Standard_False);
@@ -517,22 +543,42 @@ bool square_ended(const Hole& hole) {
             const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
             if (BRep_Tool::Degenerated(edge)) continue;
             const BRepAdaptor_Curve c(edge);
+            bool square = false;
             if (c.GetType() == GeomAbs_Line) {
-                if (vec(c.Line().Direction()).cross(hole.axis).norm() > 1e-9) return false;
+                square = vec(c.Line().Direction()).cross(hole.axis).norm() <= 1e-9;
             } else if (c.GetType() == GeomAbs_Circle) {
                 const gp_Circ circle = c.Circle();
-                if (std::abs(circle.Radius() - hole.radius) > tol ||
-                    vec(circle.Axis().Direction()).cross(hole.axis).norm() > 1e-9 ||
-                    !at_end(vec(circle.Location())))
-                    return false;
                 const Vector3d d = vec(circle.Location()) - hole.point;
-                if ((d - d.dot(hole.axis) * hole.axis).norm() > tol) return false;
-            } else {
-                return false;
+                square = std::abs(circle.Radius() - hole.radius) <= tol &&
+                         vec(circle.Axis().Direction()).cross(hole.axis).norm() <= 1e-9 &&
+                         at_end(vec(circle.Location())) &&
+                         (d - d.dot(hole.axis) * hole.axis).norm() <= tol;
             }
+            if (!square && !into_other(c, edge)) return false;
         }
     }
     return true;
+}
+
+// Which of `holes` are plugged by their cylinders: the most that are square-ended (above), each
+// allowed to open into the others so chosen. (Two bores crossing are each square-ended only with
+// the other: neither alone.)
+std::vector<char> pluggable(const std::vector<Hole>& holes) {
+    std::vector<char> in(holes.size(), 1);
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (std::size_t i = 0; i < holes.size(); ++i) {
+            if (!in[i]) continue;
+            std::vector<const Hole*> others;
+            for (std::size_t j = 0; j < holes.size(); ++j)
+                if (j != i && in[j]) others.push_back(&holes[j]);
+            if (!square_ended(holes[i], others)) {
+                in[i] = 0;
+                changed = true;
+            }
+        }
+    }
+    return in;
 }
 
 // `solid` with the square-ended `holes` filled by fusing their cylinders in, or a null shape and
@@ -625,7 +671,9 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
     // Square-ended holes get their cylinders fused in, in one Boolean: far quicker than OCCT's
     // defeaturing, which closes holes over by rebuilding the faces around each.
     std::vector<Hole> square, other;
-    for (Hole& h : holes) (square_ended(h) ? square : other).push_back(std::move(h));
+    const std::vector<char> plugged = pluggable(holes);
+    for (std::size_t i = 0; i < holes.size(); ++i)
+        (plugged[i] ? square : other).push_back(std::move(holes[i]));
     if (!square.empty()) {
         progress.check();
         double added = 0.0;

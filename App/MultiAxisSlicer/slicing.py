@@ -587,7 +587,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
             min_component_height=p["min_layer"], max_tilt=p["max_tilt"]), p, progress)
     engine_components = [{"solid": c._solid, "parent": c.parent,
                           "build_direction": tuple(c._build_direction),
-                          "base_origin": tuple(c._base_origin), "branch": c.branch}
+                          "base_origin": tuple(c._base_origin), "branch": c.branch,
+                          "turned": c.turned}
                          for c in components]
     data = eng.slice_part(solid, axis._engine_dict(), engine_components, p, progress)
     return SliceResult(data, p, axis, components, kind)

@@ -1485,7 +1485,7 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
 }
 
 // The engine's decomposition from the component dicts decompose() returned (only what slicing
-// reads: solid, parent, build direction, base origin and normal, branch).
+// reads: solid, parent, build direction, base origin and normal, branch, turned).
 mas::Decomposition decomposition_from_py(const bp::object& value) {
     mas::Decomposition d;
     bp::handle<> seq = fast_sequence(value, "components");
@@ -1504,6 +1504,12 @@ mas::Decomposition decomposition_from_py(const bp::object& value) {
         c.base_origin = vector3(required(item, "base_origin", what), what + "['base_origin']");
         c.base_normal = -c.build_direction;
         c.branch = index_of(item, "branch", what);
+        // Optional: cut square to its branch's line (decompose()'s "turned"), built along it.
+        if (bp::extract<bp::dict>(item).check() && bp::dict(item).has_key("turned")) {
+            const bp::extract<bool> turned(item["turned"]);
+            if (!turned.check()) invalid_argument(what + "['turned'] must be True or False");
+            c.turned = turned();
+        }
         if (!c.build_direction.allFinite() || c.build_direction.norm() < 1e-12 ||
             !c.base_origin.allFinite())
             invalid_argument(what + " has a non-finite or zero build direction or base origin");

@@ -53,14 +53,15 @@ def hub_with_six_blades():
 
 
 def spiral_stair(treads=6):
-    """A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 30
+    """A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 20
     degrees round and 8 mm up from one to the next, the first along +X at z = 6 (the engine's
     Slicing.TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections). Cut square
-    to their own lines, the treads between +-X and +-Y leave the nozzle no way to their roots."""
+    to their own lines, some treads between +-X and +-Y leave the nozzle no way to their
+    roots."""
     solid = Part.makeCylinder(10, 8.0 * treads + 10.0)
     for i in range(treads):
         tread = Part.makeBox(45, 18, 4, V(0, -9, 8.0 * i + 6))
-        tread.rotate(V(0, 0, 0), V(0, 0, 1), 30.0 * i)
+        tread.rotate(V(0, 0, 0), V(0, 0, 1), 20.0 * i)
         solid = solid.fuse(tread)
     return solid.removeSplitter()
 

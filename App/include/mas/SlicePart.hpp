@@ -117,18 +117,21 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 // its plane: where a split took from a father part of its nodes' sections (a column cut from the
 // arm whose near end, out to the tip of a gusset, its sections held), the father's layers follow
 // its own material, not what went to the child. Material a node's region never held (another
-// branch's, which a mesh sliced as one component keeps) moves nothing. They are started in
-// build_order();
-// each child's first layer is checked against everything built before it. Then the layers'
-// sequence against params.nozzle (plan_build_sequence): a component waits for its father's
-// layers it may rest on and for the components before it in build_order that its first layer
-// rests on (those that, reaching its base, leave less of it unsupported than its father alone);
-// the plate is the root's base.
-// `progress` (Progress.hpp) follows the build order (a few per cent), the components' layers
-// (each its share by volume, reported after every layer and checked between candidate planes),
-// the paths (layer by layer), what each component rests on and the sequence (the last tenth),
-// and reaches 1 when done. Throws as slice_component, and InvalidArgument for a
-// component whose parent is not before it.
+// branch's, which a mesh sliced as one component keeps) moves nothing. A component cut turned
+// square to its branch's line (ComponentMesh::turned) follows, instead, the centroids of its own
+// sections square to that line (its build direction), one through each such node, dropping those
+// past its end or no further along the line than the one before: it is built along the line to
+// its tip, which the nodes, marched along the nearest of the six directions, cut aslant (a twisted
+// blade's centroids dropped to its tip's lowest corner, and its layers tilted after them). They
+// are started in build_order(); each child's first layer is checked against everything built before
+// it. Then the layers' sequence against params.nozzle (plan_build_sequence): a component waits for
+// its father's layers it may rest on and for the components before it in build_order that its first
+// layer rests on (those that, reaching its base, leave less of it unsupported than its father
+// alone); the plate is the root's base. `progress` (Progress.hpp) follows the build order (a few
+// per cent), the components' layers (each its share by volume, reported after every layer and
+// checked between candidate planes), the paths (layer by layer), what each component rests on and
+// the sequence (the last tenth), and reaches 1 when done. Throws as slice_component, and
+// InvalidArgument for a component whose parent is not before it.
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const Progress& progress = {});

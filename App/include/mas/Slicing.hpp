@@ -28,10 +28,11 @@
 //   exactly the part; it is exact for parallel layers of prismatic parts.
 // - Sec. 4.2.2's search: from P_lower (the guide point on L) try P_upper at arc length delta
 //   further along the guide (the polyline of the component's axis nodes, those whose section's
-//   material lies in it, since a pipe's centroids lie in its bore; extended straight past both
-//   ends), direction D_upper = the guide's direction there (the link), plane through P_upper
-//   normal to D (a plane parallel to L goes exactly delta above it). Accept when
-//   Eq. 9 holds and the next layer's footprint (the component's section on U) is supported by
+//   material lies in it, since a pipe's centroids lie in its bore; a component cut turned square
+//   to its branch's line, through its own sections' centroids square to the line, SlicePart.hpp;
+//   extended straight past both ends), direction D_upper = the guide's direction there (the link),
+//   plane through P_upper normal to D (a plane parallel to L goes exactly delta above it). Accept
+//   when Eq. 9 holds and the next layer's footprint (the component's section on U) is supported by
 //   this layer (below, with min_layer's allowance).
 //   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then
 //   delta -= delta / 4, from max_layer down to min_layer. Where a face of the part square to L

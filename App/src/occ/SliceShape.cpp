@@ -173,6 +173,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         m.mesh = occ::tessellate(solid, tessellation, what);
         m.parent = c.parent;
         m.branch = c.branch < 0 ? 0 : c.branch;
+        m.turned = c.turned;
         // The root stands on the build plate; a child on its base face.
         m.base = c.parent < 0 ? build_plate(m.mesh) : make_plane(c.base_origin, c.build_direction);
         meshes.push_back(std::move(m));

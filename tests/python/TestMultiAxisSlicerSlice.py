@@ -606,6 +606,24 @@ class TestSliceSequence(SliceTest):
                                    nozzle_max_lean=0.0).to_dict()["layers"],
                          result.to_dict()["layers"])
 
+    def test_a_decomposition_given_slices_its_turned_cuts_as_slice_does(self):
+        # The survey's hub 4 at seed 125: six blades twisted 15 degrees, each cut square to its
+        # own line and built along it to its tip (the engine's SlicePart.hpp). Sliced again with
+        # that decomposition given, the components keep their turned cuts and the layers are the
+        # same; guided by the axis' nodes, the blades' last layers tilted after their tips.
+        hub, _ = survey.part("hub with blades", 4, 125)
+        result = mas.slice(hub)
+        self.assertEqual(result.notes, [])
+        self.assertEqual(result.collisions, [])
+        turned = [k for k, c in enumerate(result.decomposition) if c.turned]
+        self.assertEqual(len(turned), 6)
+        for k in turned:
+            direction = result.decomposition[k].build_direction
+            for layer in (layer for layer in result.layers if layer.component == k):
+                self.assertLess((layer.normal - direction).Length, 1e-9, k)
+        again = mas.slice(hub, components=result.decomposition)
+        self.assertEqual(again.to_dict()["layers"], result.to_dict()["layers"])
+
     def test_turned_cuts_the_nozzle_cannot_build_are_made_square_to_their_directions(self):
         # A spiral stair (support.spiral_stair): its treads between +-X and +-Y are first cut
         # square to their own lines, where the nozzle at a tread's root meets the tread under it;

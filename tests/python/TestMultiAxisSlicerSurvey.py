@@ -113,17 +113,15 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
         # would: a ledge, cut off the block and built sideways (CentroidalAxis.hpp). Before, a
         # boss centred within the distance threshold stayed in the block's layers and its first
         # one hung (2 of these 12: 35 and 88 mm^2; over seeds 48 and 49, 7 of 16: 11 to 121).
-        # Bores that open into each other inside the block stay open (README), their ceilings
-        # overhanging: such blocks are not claimed (1 of 12; 2 of 72 over seeds 39 to 44).
+        # Every bore is deposited solid in the block, bores that open into each other inside it
+        # too (plugged together, Holes.hpp: before, they stayed open, 1 of these 12 and 2 of 72
+        # over seeds 39 to 44, their ceilings overhanging 7.2 and 37 mm^2).
         manifolds = self.parts("manifold")
+        self.assertGreater(sum(1 for r in manifolds if r["bored"]), 0)
         for r in manifolds:
             with self.subTest(part=self.name(r)):
                 self.assertEqual(r["components"], r["bosses"] + 1)
-        claimed = [r for r in manifolds if r["filled_holes"] == r["bored"]]
-        self.assertGreaterEqual(len(claimed), PER_FAMILY * 3 // 4)
-        self.assertGreater(sum(1 for r in claimed if r["bored"]), 0)
-        for r in claimed:
-            with self.subTest(part=self.name(r)):
+                self.assertEqual(r["filled_holes"], r["bored"])
                 self.assert_supported(r)
 
     def test_a_round_valve_body_with_bosses_needs_no_support(self):

@@ -527,7 +527,8 @@ class DecompositionFeature(_EngineFeature):
     Outputs: Shape (a compound of the component solids in tree order: a
     father before its children, the root first), ComponentCount, and per component, in the same
     order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
-    Rules ("root", "planar_face", "section_plane"), Volumes (mm³); PartVolume, UsedStep.
+    Rules ("root", "planar_face", "section_plane"), Volumes (mm³), Turned (the cut turned square
+    to the branch's line, the component built along it); PartVolume, UsedStep.
 
     The ``Component`` objects (``ComponentFeature``) show the solids one by one; they are created
     by ``make_decomposition()`` / ``sync_components()``, never inside a recompute (adding or
@@ -608,6 +609,9 @@ class DecompositionFeature(_EngineFeature):
                       _OUTPUT)
         _add_property(obj, "App::PropertyFloatList", "Volumes", result,
                       "Each component's volume (mm^3)", None, _OUTPUT)
+        _add_property(obj, "App::PropertyBoolList", "Turned", result,
+                      "Whether each component's cut was turned square to its branch's line (it is "
+                      "built along that line, between the six directions)", None, _OUTPUT)
         _add_property(obj, "App::PropertyVolume", "PartVolume", result,
                       "Volume of the source solid (the components' volumes add up to it)", 0.0,
                       _OUTPUT)
@@ -626,6 +630,7 @@ class DecompositionFeature(_EngineFeature):
         obj.BaseOrigins = [FreeCAD.Vector(c.base_origin) for c in result]
         obj.Rules = [c.rule for c in result]
         obj.Volumes = [c.volume for c in result]
+        obj.Turned = [c.turned for c in result]
         obj.PartVolume = result.part_volume
         obj.UsedStep = result.axis.params["step_mm"]
         obj.Notes = result.notes
@@ -711,9 +716,9 @@ class ComponentFeature(_EngineFeature):
 
     Inputs: Decomposition (the object it belongs to), Index (its place in tree order, 0 = the
     root). Outputs: Shape (the component's solid), Parent (index of the father component, -1 for
-    the root), BuildDirection, BaseOrigin, Rule, Volume. It follows the Decomposition on every
-    recompute; an Index the Decomposition no longer has is an error until ``sync_components()``
-    (or the GUI, after a recompute) removes the object."""
+    the root), BuildDirection, BaseOrigin, Rule, Volume, Turned. It follows the Decomposition on
+    every recompute; an Index the Decomposition no longer has is an error until
+    ``sync_components()`` (or the GUI, after a recompute) removes the object."""
 
     TYPE = "MultiAxisSlicer::Component"
     VIEW_PROVIDER = "ViewProviderComponent"
@@ -741,6 +746,9 @@ class ComponentFeature(_EngineFeature):
         _add_property(obj, "App::PropertyString", "Rule", result,
                       "How it was cut: root, planar_face or section_plane", None, _OUTPUT)
         _add_property(obj, "App::PropertyVolume", "Volume", result, "Volume", 0.0, _OUTPUT)
+        _add_property(obj, "App::PropertyBool", "Turned", result,
+                      "Whether its cut was turned square to its branch's line (it is built along "
+                      "that line, between the six directions)", False, _OUTPUT)
 
     @staticmethod
     def recompute(obj):
@@ -758,6 +766,9 @@ class ComponentFeature(_EngineFeature):
         obj.BaseOrigin = d.BaseOrigins[i]
         obj.Rule = d.Rules[i]
         obj.Volume = d.Volumes[i]
+        # A decomposition of a document saved before it had Turned gets it at its next recompute.
+        turned = list(getattr(d, "Turned", []))
+        obj.Turned = bool(turned[i]) if i < len(turned) else False
         obj.Shape = solids[i].copy()
 
 

@@ -428,6 +428,7 @@ class TestDecompositionObject(DecomposeTest):
         self.assertEqual(obj.ComponentCount, 2)
         self.assertEqual(list(obj.ComponentParents), [-1, 0])
         self.assertEqual(list(obj.Rules), ["root", "planar_face"])
+        self.assertEqual(list(obj.Turned), [False, False])
         self.assertVectorAlmostEqual(obj.BuildDirections[1], (1, 0, 0))
         self.assertVectorAlmostEqual(obj.BaseOrigins[1], (20, 10, 50))
         self.assertAlmostEqual(obj.Volumes[1], 20000.0, delta=20000.0 * REL)
@@ -630,6 +631,35 @@ class TestDecompositionObject(DecomposeTest):
         doc.recompute()
         self.check_l_block_objects(obj)
         doc.save()
+
+    def test_turned_cuts_are_listed_and_shown_on_their_components(self):
+        # Six blades 60 degrees apart round a hub, the first along +X: the four between +-X and
+        # +-Y are cut square to their own lines and built along them, listed in Turned, each
+        # Component saying so; with TurnCuts off none is. Saved and reopened, the same.
+        hub = self.doc.addObject("Part::Feature", "Hub")
+        hub.Shape = support.hub_with_six_blades()
+        self.doc.recompute()
+        obj = mas.make_decomposition(hub)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(obj.ComponentCount, 7)
+        between = [abs(d.x) + abs(d.y) + abs(d.z) > 1.0 + 1e-9 for d in obj.BuildDirections]
+        self.assertEqual(sum(between), 4)
+        self.assertEqual(list(obj.Turned), between)
+        self.assertEqual([c.Turned for c in features.components_of(obj)], between)
+        path = os.path.join(self.folder, "turned.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        obj = self.doc.getObject("Decomposition")
+        self.assertEqual(list(obj.Turned), between)
+        self.assertEqual([c.Turned for c in features.components_of(obj)], between)
+        obj.TurnCuts = False
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual(list(obj.Turned), [False] * obj.ComponentCount)
+        self.assertEqual([c.Turned for c in features.components_of(obj)],
+                         [False] * obj.ComponentCount)
 
     def test_undo_removes_everything_the_command_made(self):
         self.doc.UndoMode = 1

@@ -624,6 +624,26 @@ class TestSliceSequence(SliceTest):
         again = mas.slice(hub, components=result.decomposition)
         self.assertEqual(again.to_dict()["layers"], result.to_dict()["layers"])
 
+    def test_a_blade_whose_tip_is_cut_short_over_two_nodes_is_cut_square_to_its_line(self):
+        # The survey's hub 6 at seed 150: five blades, one 43.3 degrees off -X (223.3 degrees
+        # round), marched along -X. Its tip cuts the last two sections short (areas 82 and 28 %
+        # of the others'): its line is fit through its first four nodes, the last two left out
+        # (Decompose.hpp). Leaving out only the last found no line, the cut stayed square to -X,
+        # and the wedge of the blade it left in the hub hung 14.5 mm^2 in the hub's layer.
+        hub, _ = survey.part("hub with blades", 6, 150)
+        result = mas.slice(hub)
+        self.assertEqual(result.collisions, [])
+        d = result.decomposition
+        self.assertEqual(len(d), 6)
+        self.assertTrue(all(c.turned for c in list(d)[1:]))
+        blade = [c for c in d if c.turned and abs(math.degrees(math.atan2(
+            c.build_direction.y, c.build_direction.x)) % 360.0 - 223.3) < 0.1]
+        self.assertEqual(len(blade), 1)
+        deflection = mas.deflection(hub)
+        for i, layer in enumerate(result.layers):
+            self.assertLessEqual(layer.unsupported_area,
+                                 survey.support_tolerance(layer, deflection), i)
+
     def test_turned_cuts_the_nozzle_cannot_build_are_made_square_to_their_directions(self):
         # A spiral stair (support.spiral_stair): its treads between +-X and +-Y are first cut
         # square to their own lines, where the nozzle at a tread's root meets the tread under it;

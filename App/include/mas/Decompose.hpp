@@ -139,20 +139,22 @@
 //   nearest of +-X, +-Y, +-Z, and the plane square to D at T left a wedge of the blade up to 3 mm
 //   deep in the hub, its underside overhanging the hub's layers, 21.6 mm^2 on a hub with five
 //   blades). The line runs through the centroids of the branch's first six nodes (all, if fewer;
-//   the last left out if off the line: a blade's tip cuts its last section short; three at
-//   least), lying on one within the clearance, less its component along the father's direction (a
-//   branch leaning up out of a column keeps D); it is turned to when more than 2 degrees and less
-//   than 45 off D, those nodes' section areas within 10 % of each other (a wedge's centroids drift
-//   along a line too), and the line within max_tilt_deg of +Z. Rays cast back along the line, from
-//   points along the first node's outline (spaced the larger of a tenth of a step and a 64th of the
-//   outline) moved the clearance out of it, as far as the father's node the branch links to, meet
-//   the father's faces facing the branch (a hit on the branch's own side, met by a ray a little off
-//   the branch's line, counts for nothing); the plane lies
-//   the clearance past the furthest hit, and the child is built along the line. What stays in the
-//   father is the lens between its side and the plane (under half a millimetre deep beside a 6 mm
-//   blade on a 13 mm hub), as under a round boss. The plane square to D, above, is taken where the
-//   branch runs along D, no ray meets the father, its first node carries no region or would not lie
-//   the clearance in front of the turned plane, the turned plane's split is refused, or
+//   the last ones left out, down to three, where they are off the line or their areas differ: a
+//   blade's tip cuts its last sections short, over two nodes on a blade 43 degrees off -X, where
+//   leaving out only the last found no line, and a wedge of the blade hung 14.5 mm^2 in the hub's
+//   layers, survey seed 150), lying on one within the clearance, less its component along the
+//   father's direction (a branch leaning up out of a column keeps D); it is turned to when more
+//   than 2 degrees and less than 45 off D, those nodes' section areas within 10 % of each other (a
+//   wedge's centroids drift along a line too), and the line within max_tilt_deg of +Z. Rays cast
+//   back along the line, from points along the first node's outline (spaced the larger of a tenth
+//   of a step and a 64th of the outline) moved the clearance out of it, as far as the father's node
+//   the branch links to, meet the father's faces facing the branch (a hit on the branch's own side,
+//   met by a ray a little off the branch's line, counts for nothing); the plane lies the clearance
+//   past the furthest hit, and the child is built along the line. What stays in the father is the
+//   lens between its side and the plane (under half a millimetre deep beside a 6 mm blade on a 13
+//   mm hub), as under a round boss. The plane square to D, above, is taken where the branch runs
+//   along D, no ray meets the father, its first node carries no region or would not lie the
+//   clearance in front of the turned plane, the turned plane's split is refused, or
 //   DecomposeParams::square_branches lists it (as slicing does where the nozzle cannot build the
 //   turned cuts' layers: a spiral stair's treads, SlicePart.hpp); its component says which
 //   (Component::turned).
@@ -226,12 +228,12 @@ void check_square_branches(const std::vector<int>& square, const CentroidalAxis&
 // Branch b's line, where it runs off its direction D about its father's direction by more than 2
 // degrees and less than 45 (a blade on a hub between -X and +Y, marched along the nearer): the
 // unit direction of the line through the centroids of its first six nodes (all, if fewer; the
-// last left out if off the line: a blade's tip cuts its last section short; three at least),
-// lying on one within `tolerance_mm`, their section areas within 10 % of each other (a wedge's
-// centroids drift along a line too), less its component along the father's direction (a branch
-// leaning up out of a column keeps D), pointing along D. False otherwise (also for the root, a
-// branch without nodes or link, or one the axis lacks). A solid's decomposition and a mesh's turn a
-// section plane square to it (above; SlicePart.hpp).
+// last ones left out, down to three, where they are off the line or their areas differ: a blade's
+// tip cuts its last sections short), lying on one within `tolerance_mm`, their section areas within
+// 10 % of each other (a wedge's centroids drift along a line too), less its component along the
+// father's direction (a branch leaning up out of a column keeps D), pointing along D. False
+// otherwise (also for the root, a branch without nodes or link, or one the axis lacks). A solid's
+// decomposition and a mesh's turn a section plane square to it (above; SlicePart.hpp).
 bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
                  Eigen::Vector3d& along);
 

@@ -514,7 +514,7 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
     const Vec3 D = br.direction.normalized();
     const std::size_t most = std::min<std::size_t>(br.nodes.size(), 6);
     Vec3 line = Vec3::Zero();
-    for (std::size_t n = most; n + 1 >= most && n >= 3; --n) {
+    for (std::size_t n = most; n >= 3; --n) {
         Vec3 mean = Vec3::Zero();
         double least = std::numeric_limits<double>::infinity(), largest = 0.0;
         for (std::size_t i = 0; i < n; ++i) {

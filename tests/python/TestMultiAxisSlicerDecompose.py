@@ -647,7 +647,7 @@ class TestDecompositionObject(DecomposeTest):
         self.assertEqual(sum(between), 4)
         self.assertEqual(list(obj.Turned), between)
         self.assertEqual([c.Turned for c in features.components_of(obj)], between)
-        path = os.path.join(self.folder, "turned.FCStd")
+        path = os.path.join(self.folder, "MasDecTurned.FCStd")  # closed by tearDown
         self.doc.saveAs(path)
         FreeCAD.closeDocument(self.doc.Name)
         self.doc = FreeCAD.openDocument(path)

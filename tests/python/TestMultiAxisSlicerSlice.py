@@ -644,6 +644,27 @@ class TestSliceSequence(SliceTest):
             self.assertLessEqual(layer.unsupported_area,
                                  survey.support_tolerance(layer, deflection), i)
 
+    def test_a_blade_marched_along_the_farther_direction_is_cut_square_to_its_line(self):
+        # The survey's hub 5 at seed 130: six blades, one 308.7 degrees round, 51.3 degrees off
+        # +X and 38.7 off -Y. Its march along -Y broke off after six nodes and a branch along +X
+        # took it on: its line runs 51 degrees off that branch's direction, under the 60 a turned
+        # cut allows (Decompose.hpp). Allowed only 45, the cut stayed square to +X; the wedge it
+        # left in the hub and the slivers each of its layers left along its side hung up to 6.0
+        # mm^2.
+        hub, _ = survey.part("hub with blades", 5, 130)
+        result = mas.slice(hub)
+        self.assertEqual(result.collisions, [])
+        d = result.decomposition
+        blade = [c for c in d if c.turned and abs(math.degrees(math.atan2(
+            c.build_direction.y, c.build_direction.x)) % 360.0 - 308.7) < 0.1]
+        self.assertEqual(len(blade), 1)
+        self.assertAlmostEqual(blade[0].volume, max(c.volume for c in list(d)[1:]),
+                               delta=blade[0].volume * 1e-3)
+        deflection = mas.deflection(hub)
+        for i, layer in enumerate(result.layers):
+            self.assertLessEqual(layer.unsupported_area,
+                                 survey.support_tolerance(layer, deflection), i)
+
     def test_turned_cuts_the_nozzle_cannot_build_are_made_square_to_their_directions(self):
         # A spiral stair (support.spiral_stair): its treads between +-X and +-Y are first cut
         # square to their own lines, where the nozzle at a tread's root meets the tread under it;

@@ -144,7 +144,7 @@
 //   leaving out only the last found no line, and a wedge of the blade hung 14.5 mm^2 in the hub's
 //   layers, survey seed 150), lying on one within the clearance, less its component along the
 //   father's direction (a branch leaning up out of a column keeps D); it is turned to when more
-//   than 2 degrees and less than 45 off D, those nodes' section areas within 10 % of each other (a
+//   than 2 degrees and less than 60 off D, those nodes' section areas within 10 % of each other (a
 //   wedge's centroids drift along a line too), and the line within max_tilt_deg of +Z. Rays cast
 //   back along the line, from points along the first node's outline (spaced the larger of a tenth
 //   of a step and a 64th of the outline) moved the clearance out of it, as far as the father's node
@@ -226,7 +226,10 @@ void check_square_branches(const std::vector<int>& square, const CentroidalAxis&
                            const std::string& caller);
 
 // Branch b's line, where it runs off its direction D about its father's direction by more than 2
-// degrees and less than 45 (a blade on a hub between -X and +Y, marched along the nearer): the
+// degrees and less than 60 (a blade on a hub between -X and +Y, marched along the nearer, or
+// along the farther, where the march along the nearer broke off within a few nodes: a blade 51
+// degrees off +X, marched 6 nodes along -Y and then along +X, was cut square to +X, and its wedge
+// and the slivers each layer left along its side hung up to 6 mm^2; survey seed 130): the
 // unit direction of the line through the centroids of its first six nodes (all, if fewer; the
 // last ones left out, down to three, where they are off the line or their areas differ: a blade's
 // tip cuts its last sections short), lying on one within `tolerance_mm`, their section areas within

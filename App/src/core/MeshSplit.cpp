@@ -555,7 +555,7 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
     if (line.norm() < 1e-9) return false;
     line.normalize();
     const double off = std::acos(std::clamp(line.dot(D), -1.0, 1.0)) * 180.0 / kPi;
-    if (off <= kOffLineDeg || off >= 45.0) return false;
+    if (off <= kOffLineDeg || off >= 60.0) return false;
     along = line;
     return true;
 }

@@ -766,9 +766,8 @@ class ComponentFeature(_EngineFeature):
         obj.BaseOrigin = d.BaseOrigins[i]
         obj.Rule = d.Rules[i]
         obj.Volume = d.Volumes[i]
-        # A decomposition of a document saved before it had Turned gets it at its next recompute.
-        turned = list(getattr(d, "Turned", []))
-        obj.Turned = bool(turned[i]) if i < len(turned) else False
+        # Empty in a document saved before it had Turned, until the decomposition recomputes.
+        obj.Turned = i < len(d.Turned) and bool(d.Turned[i])
         obj.Shape = solids[i].copy()
 
 

@@ -1501,6 +1501,33 @@ TEST(Decompose, ATrackBesideASliverIsItsFathersMarchGoingOn) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, AHairlineAlongABoresWallTurnsNoMarchAcrossTheRing) {
+    // A valve body drawn at random (the survey's, seed 159, 5): the +-Y ports' bores cut the
+    // ring into halves from z = 14.9 to 24.3. Over the bores' axes the strip each half's wall
+    // adds trailed a hairline, microns wide, 5 mm on along the -Y port, where the port's slabs
+    // and the section differ: read as a ledge reaching 5.3 mm out, it turned a march along -X
+    // from inside the ring, which swept the body's upper half. The +-X ports were then branches
+    // starting inside the body, whose splits would cut the +-Y bores lengthwise: kept in the
+    // body, their undersides hung 79.9 mm^2 (with fill_holes; 96.8 without).
+    const ValveBody body{
+        18.22752652109135,
+        48.21523168352593,
+        {{-Vector3d::UnitY(), 9.446105498529297, 19.945275588819698, 19.543562026655593},
+         {Vector3d::UnitY(), 9.505968798147482, 16.155539518813974, 19.61863646044499},
+         {-Vector3d::UnitX(), 5.529301958431927, 9.600547479231082, 36.35405543072459},
+         {Vector3d::UnitX(), 9.285588611558243, 18.123328310147066, 35.70000724278496}}};
+    const auto part = from_occt(body.shape());
+    const auto d = decompose_as_slicing_does(part);
+    expect_a_body_and_its_ports(d, body);
+    expect_invariants(d, part);
+    // Each port is cut off where it leaves the body's side.
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        const mas::Component& c = d.components[i];
+        EXPECT_GE(c.build_direction.dot(c.base_origin), body.radius - 1e-6)
+            << "port along " << c.build_direction.transpose();
+    }
+}
+
 TEST(Decompose, SourceShapeIsUnchanged) {
     const auto part = t_block();
     const std::string before = part.to_brep_string();

@@ -1617,11 +1617,22 @@ private:
             const double ledge_limit = whole_lower.contains(bounds(da))
                                            ? std::max(p_.step_mm, std::min(bump, laid))
                                            : std::min(std::max(p_.step_mm, bump), laid);
-            const double out_of_lower =
-                turn ? 0.0
-                     : reach({da},
-                             derived_threshold_ ? std::min(ledge_limit, wide_limit) : wide_limit,
-                             wide_limit);
+            const double matters =
+                derived_threshold_ ? std::min(ledge_limit, wide_limit) : wide_limit;
+            double out_of_lower = turn ? 0.0 : reach({da}, matters, wide_limit);
+            // Read on what is wider than twice the sections' simplification (step / 100): U - L
+            // can trail a hairline along a wall where a slab's cut and the section it is taken
+            // from differ by microns, and its far end is no material reaching out. (Where a bore
+            // across a ring narrows over its axis, the strip its wall adds, 0.14 mm wide, trailed
+            // one 4 microns wide for 5 mm along the slabs of the bore's boss: read as a ledge
+            // reaching 5.3 mm out, it turned a march across the ring's upper half, and the
+            // decomposition, its cut through the bores refused, left the bosses in the body.)
+            if (out_of_lower > matters) {
+                const double w = p_.step_mm / 100.0;
+                out_of_lower =
+                    reach(mas::offset(mas::offset({da}, -w, JoinType::Miter), w, JoinType::Miter),
+                          matters, wide_limit);
+            }
             const bool wide = out_of_lower > wide_limit;
             // A ledge: material that appears at once between the planes (on an underside flat
             // along the march, or tangent to its planes), reaching out past the lower section by

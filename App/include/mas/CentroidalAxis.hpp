@@ -40,11 +40,18 @@
 //   join pieces larger than min_region_area (opened by a hundredth of the step), and each piece
 //   is judged on its own. (Two blades a quarter turn apart round a hub, joined so at the part's
 //   deflection, were marched with the hub: 74.6 mm^2 of their undersides hung.)
-//   The new direction is the one of +-X, +-Y, +-Z closest to G_k - E, E the point of L's boundary
-//   nearest to G_k, plus the step along the march (the paper's Sec. 3.2.1 says G_k - C, C the
-//   lower centroid; that sends a lug sticking out sideways near the end of a long wall along the
-//   wall, past the part, so its material is never searched); the first plane of the new branch
-//   is at Eq. 4's location: the lower boundary's extent T along the new direction, plus eps.
+//   The new direction is the one of +-X, +-Y, +-Z closest to G_k - E, plus the step along the
+//   march, E where the stick-out meets L. The paper's Sec. 3.2.1 says G_k - C, C the lower
+//   centroid; that sends a lug sticking out sideways near the end of a long wall along the wall,
+//   past the part, so its material is never searched. E is the centroid of what of L lies within
+//   two hundredths of a step of the stick-out opened by one hundredth (unopened, a sliver U - L
+//   keeps along L's outline drew E round L: a hub's straight blade 31 degrees off -X turned +Y);
+//   where that meets L nowhere, the point of L's boundary nearest to G_k. (That point was E
+//   before: a strip leaving a round hub aslant, as a twisted blade's lowest edge does, 7.4 mm to
+//   one side of the blade's middle plane, is centred 15 degrees round from where it leaves, and
+//   from that point a blade 30.5 degrees off +Y turned -X, whose march caught only its tip; the
+//   rest hung in the hub's layers, 7.8 mm^2.) The first plane of the new branch is at Eq. 4's
+//   location: the lower boundary's extent T along the new direction, plus eps.
 // - A stick-out that is no turn by its centre (centred near L, or a bridge between lower
 //   regions) yet reaches out past L by more than `distance_threshold` and half L's size wraps
 //   round L or spans past the regions it joins: a hub lying across the neck it stands on makes
@@ -102,6 +109,14 @@
 //   planes. Reaching out less, it is a shoulder, which the march lays (cut into four, a 2 mm
 //   shoulder on a 12 mm shaft gave pieces tapering over the volumetric bound, and the lenses left
 //   overhung more than the shoulder had).
+// - How far a stick-out reaches out past L, for the ledges and wide stick-outs above, is read on
+//   what of it is wider than twice the sections' simplification (opened by a hundredth of a
+//   step): U - L can trail a hairline along a wall where a slab's cut and the section it was
+//   taken from differ by microns. (On a bored valve body whose ports' bores cut its ring into
+//   halves, the strip a half's wall adds over a bore's axis trailed one 4 microns wide 5 mm along
+//   the slabs of the port's boss: read as a ledge reaching 5.3 mm out, it turned a march across
+//   the ring's upper half, and the ports, split inside the body through the other bores, stayed
+//   in the body's layers, 79.9 mm^2 hanging.)
 // - A march in a new direction reaches only what lies beyond its T, so a stick-out is shared out
 //   among the four sides of the lower section (the turn's direction first, then the others):
 //   each side's share beyond that side's T whose centre still lies beyond the threshold starts a

@@ -353,15 +353,19 @@ Regions2 keep_larger(Regions2 regions, double min_area) {
     return out;
 }
 
+// `regions` opened by `width`: shrunk by it and grown back, which drops whatever is narrower than
+// twice `width` (hairlines and slivers the Booleans leave along outlines) and keeps the rest.
+Regions2 opening(const Regions2& regions, double width) {
+    return mas::offset(mas::offset(regions, -width, JoinType::Miter), width, JoinType::Miter);
+}
+
 // `regions` with each region that joins larger pieces only through necks narrower than twice
-// `width` split there: opened (shrunk by `width`, grown back) and cut to that, where the opening
-// leaves two or more pieces of over `min_area`; other regions as they are.
+// `width` split there: opened (opening()) and cut to that, where the opening leaves two or more
+// pieces of over `min_area`; other regions as they are.
 Regions2 split_at_necks(const Regions2& regions, double width, double min_area) {
     Regions2 out;
     for (const Region2& r : regions) {
-        Regions2 opened = keep_larger(
-            mas::offset(mas::offset({r}, -width, JoinType::Miter), width, JoinType::Miter),
-            min_area);
+        Regions2 opened = keep_larger(opening({r}, width), min_area);
         if (opened.size() < 2) {
             out.push_back(r);
             continue;
@@ -1591,11 +1595,30 @@ private:
             Vector3d dir = n;
             bool along = false;  // far, but still along the march
             if (turn) {
-                // The turn follows the way the stick-out leaves the lower section: from the
-                // nearest point of its boundary to G. (The paper's G - C sends a lug near the
-                // end of a long wall along the wall, past the part, and its material is never
-                // searched.)
-                dir = closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(exit, upper_plane) +
+                // The turn follows the way the stick-out leaves the lower section: from where it
+                // meets it to G. Where it meets it is the centroid of what of L lies within two
+                // hundredths of a step of the stick-out opened by one (a sliver U - L keeps along
+                // L's outline would draw it round L), or, where that meets L nowhere, the nearest
+                // point of L's boundary to G. (The paper's G - C sends a lug near the end of a
+                // long wall along the wall, past the part, and its material is never searched.
+                // From the nearest point, a twisted blade's lowest edge, leaving a round hub
+                // aslant and centred 15 degrees round from where it leaves, turned a march 59.5
+                // degrees off the blade.)
+                Vector2d from = exit;
+                {
+                    const double w = p_.step_mm / 100.0;
+                    const Regions2 contact = intersection(
+                        mas::offset(opening({da}, w), 2.0 * w, JoinType::Miter), lower);
+                    double a_contact = 0.0;
+                    Vector2d c_contact = Vector2d::Zero();
+                    for (const auto& piece : contact) {
+                        const double a = area(piece);
+                        a_contact += a;
+                        c_contact += a * centroid(piece);
+                    }
+                    if (a_contact > 0.0) from = c_contact / a_contact;
+                }
+                dir = closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(from, upper_plane) +
                                    n * (upper_offset - lower_offset));
                 along = std::abs(dir.dot(n)) > 0.5;
                 turn = !along;
@@ -1629,9 +1652,7 @@ private:
             // decomposition, its cut through the bores refused, left the bosses in the body.)
             if (out_of_lower > matters) {
                 const double w = p_.step_mm / 100.0;
-                out_of_lower =
-                    reach(mas::offset(mas::offset({da}, -w, JoinType::Miter), w, JoinType::Miter),
-                          matters, wide_limit);
+                out_of_lower = reach(opening({da}, w), matters, wide_limit);
             }
             const bool wide = out_of_lower > wide_limit;
             // A ledge: material that appears at once between the planes (on an underside flat

@@ -28,10 +28,12 @@ using Regions2 = std::vector<Region2>;
 double signed_area(const Polygon2& polygon);
 Eigen::Vector2d centroid(const Polygon2& polygon);
 
-// Area of a region (outer minus holes) and its centroid; area of a set of regions.
+// Area of a region (outer minus holes) and its centroid; area of a set of regions, and their
+// centroid (each region's weighted by its area; the origin where they have none).
 double area(const Region2& region);
 double area(const Regions2& regions);
 Eigen::Vector2d centroid(const Region2& region);
+Eigen::Vector2d centroid(const Regions2& regions);
 Eigen::AlignedBox2d bounds(const Region2& region);
 
 // True if the point lies inside the region (inside the outer loop and outside every hole).

@@ -1604,20 +1604,10 @@ private:
                 // From the nearest point, a twisted blade's lowest edge, leaving a round hub
                 // aslant and centred 15 degrees round from where it leaves, turned a march 59.5
                 // degrees off the blade.)
-                Vector2d from = exit;
-                {
-                    const double w = p_.step_mm / 100.0;
-                    const Regions2 contact = intersection(
-                        mas::offset(opening({da}, w), 2.0 * w, JoinType::Miter), lower);
-                    double a_contact = 0.0;
-                    Vector2d c_contact = Vector2d::Zero();
-                    for (const auto& piece : contact) {
-                        const double a = area(piece);
-                        a_contact += a;
-                        c_contact += a * centroid(piece);
-                    }
-                    if (a_contact > 0.0) from = c_contact / a_contact;
-                }
+                const double w = p_.step_mm / 100.0;
+                const Regions2 contact =
+                    intersection(mas::offset(opening({da}, w), 2.0 * w, JoinType::Miter), lower);
+                const Vector2d from = area(contact) > 0.0 ? centroid(contact) : exit;
                 dir = closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(from, upper_plane) +
                                    n * (upper_offset - lower_offset));
                 along = std::abs(dir.dot(n)) > 0.5;
@@ -1775,15 +1765,8 @@ private:
                 rest = std::move(behind);
                 if (share.empty()) continue;
                 const bool whole = side == sides.front() && area(rest) <= p_.min_region_area_mm2;
-                Vector2d g_share = Vector2d::Zero();
-                double a_share = 0.0;
-                for (const auto& r : share) {
-                    const double a = area(r);
-                    g_share += a * centroid(r);
-                    a_share += a;
-                }
-                if (a_share <= p_.min_region_area_mm2) continue;
-                g_share /= a_share;
+                if (area(share) <= p_.min_region_area_mm2) continue;
+                const Vector2d g_share = centroid(share);
                 double d_share = std::numeric_limits<double>::infinity();
                 for (const auto& l : lower)
                     d_share = std::min(d_share, distance_to_region(l, g_share));

@@ -61,6 +61,17 @@ double area(const Regions2& regions) {
     return a;
 }
 
+Eigen::Vector2d centroid(const Regions2& regions) {
+    double a = 0.0;
+    Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+    for (const auto& r : regions) {
+        const double ar = area(r);
+        a += ar;
+        moment += ar * centroid(r);
+    }
+    return a > 0.0 ? Eigen::Vector2d(moment / a) : Eigen::Vector2d::Zero();
+}
+
 Eigen::Vector2d centroid(const Region2& region) {
     if (region.outer.points.empty()) return Eigen::Vector2d::Zero();
     const Eigen::Vector2d ref = region.outer.points.front();

@@ -291,14 +291,9 @@ void recentre_guide(const TriangleMesh& mesh, const CentroidalAxis& axis,
         for (const SectionRegion& r : sections[i].regions) held.push_back(r.shape);
         const Regions2 lacked = difference({node.region}, held);
         if (lacked.empty() || offset(lacked, -0.5 * sliver, JoinType::Miter).empty()) continue;
-        double a = 0.0;
-        Eigen::Vector2d moment = Eigen::Vector2d::Zero();
-        for (const Region2& r : intersection({node.region}, held)) {
-            const double ar = area(r);
-            a += ar;
-            moment += ar * centroid(r);
-        }
-        if (a > 0.0) input.guide[i] = sections[i].frame().to_3d(moment / a, sections[i].plane);
+        const Regions2 kept = intersection({node.region}, held);
+        if (area(kept) > 0.0)
+            input.guide[i] = sections[i].frame().to_3d(centroid(kept), sections[i].plane);
     }
 }
 

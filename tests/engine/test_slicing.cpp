@@ -661,6 +661,87 @@ TEST(Slicing, BladesRoundAHubAreCutSquareToThemselvesJustPastItsSide) {
     expect_invariants(s, params, "hub with three blades");
 }
 
+// A round column (radius 10, 60 tall) with a round branch (radius 7, 30 long) leaving its side
+// from (0, 0, 25), leaning 67 degrees from the vertical towards +X (the survey's leaning branches).
+// Marched up the column, the branch's section moves 2.4 planes' spacing a plane, a crescent round
+// its end, centred inside the section below: Eq. 3 never turned into it, and it stayed in the
+// column's layers until it parted from the column, its underside hanging (2.7 mm^2 in one layer,
+// 16.6 in all; 8.5 and 70 on a survey part). It is a steep limb (CentroidalAxis.cpp): the march
+// turns +X where the limb leaves the column, its first plane the first of the grid past the
+// column's extent, and the decomposition cuts it off there and builds it sideways. What of it lies
+// past the cut is the branch beyond a plane across it, pi r^2 times its length past where the
+// plane crosses its axis; its layers leave nothing beyond the deflection's strip, and the
+// column's leave no more than the wedge of it between their side and the cut.
+TEST(Slicing, ABranchLeaningSteeplyOffAColumnIsTurnedIntoWhereItLeavesItAndBuiltSideways) {
+    const double lean = 67.0 * kPi / 180.0, radius = 7.0, length = 30.0, column = 10.0;
+    const Vector3d root(0, 0, 25), line(std::sin(lean), 0.0, std::cos(lean));
+    const auto part = from_occt(fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), column, 60.0),
+                                     occ_cylinder(root, line, radius, length)));
+    const auto params = default_params();
+    const auto s = slice(part, 0.0, params);
+    // One march turns +X, off the root (where its section parts, its tracks go on as its
+    // children); the others go on up.
+    const auto along_x = [&](int b) {
+        return s.axis.branches[std::size_t(b)].direction.isApprox(Vector3d::UnitX(), 1e-12);
+    };
+    std::vector<std::size_t> turned;
+    for (std::size_t b = 1; b < s.axis.branches.size(); ++b) {
+        const auto& branch = s.axis.branches[b];
+        if (!along_x(int(b))) {
+            EXPECT_TRUE(branch.direction.isApprox(Vector3d::UnitZ(), 1e-12)) << "branch " << b;
+        } else if (!along_x(branch.parent)) {
+            EXPECT_EQ(branch.parent, 0);
+            turned.push_back(b);
+        }
+    }
+    ASSERT_EQ(turned.size(), 1u);
+    const auto& march = s.axis.branches[turned[0]];
+    ASSERT_FALSE(march.nodes.empty());
+    // Eq. 4's T is the column's extent (its mesh has a vertex on +X), the first node on the
+    // grid's next plane past T + eps. (From the section below the turn, T lay 3.3 mm out, the
+    // limb's growth in it.)
+    const double first = s.axis.nodes[std::size_t(march.nodes.front())].position.x();
+    const double step = s.axis.params.step_mm;
+    EXPECT_GT(first, column + s.axis.params.eps_mm);
+    EXPECT_LE(first, column + s.axis.params.eps_mm + step + 1e-9);
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), 2u);
+    const auto& branch = comps[1];
+    EXPECT_TRUE(branch.build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    EXPECT_EQ(branch.parent, 0);
+    EXPECT_TRUE(branch.base_normal.isApprox(-Vector3d::UnitX(), 1e-12));
+    const double cut = branch.base_origin.x();
+    EXPECT_GE(cut, column);
+    EXPECT_LE(cut, first + 1e-9);
+    const double past = kPi * radius * radius * (length - cut / line.x());
+    EXPECT_NEAR(branch.volume_mm3, past, 1e-6 * past);
+    EXPECT_NEAR(comps[0].volume_mm3 + branch.volume_mm3, part.info().volume_mm3,
+                1e-6 * part.info().volume_mm3);
+    ASSERT_EQ(s.result.components.size(), 2u);
+    for (std::size_t c = 0; c < 2; ++c) {
+        const auto& built = s.result.components[c];
+        ASSERT_GT(built.layer_count, 0);
+        for (int i = 0; i < built.layer_count; ++i) {
+            const std::size_t at = std::size_t(built.first_layer + i);
+            SCOPED_TRACE("layer " + std::to_string(at));
+            const auto& l = s.result.layers[at];
+            if (c == 1) {
+                EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * kDeflection + 1e-6);
+                continue;
+            }
+            // The column's: outside its side (less the chords' deflection), short of the cut.
+            for (std::size_t r = 0; r < l.unsupported.size(); ++r)
+                for (const auto& loop : l.unsupported_loops_3d(r))
+                    for (const Vector3d& q : loop) {
+                        EXPECT_GE(q.head<2>().norm(), column - kDeflection - 1e-6);
+                        EXPECT_LE(q.x(), cut + 1e-6);
+                    }
+        }
+    }
+    EXPECT_EQ(s.result.stats.colliding_layers, 0);
+    expect_invariants(s, params, "branch leaning 67 degrees", false);
+}
+
 TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections) {
     // A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 20
     // degrees round and 8 mm up from one to the next. Cut square to their own lines (those

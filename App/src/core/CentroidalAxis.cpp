@@ -380,6 +380,11 @@ Regions2 split_at_necks(const Regions2& regions, double width, double min_area) 
 // feature the axis resolves.
 constexpr double kHairline = 1e-4;  // mm
 
+// How far past the section below, in planes' spacings, a steep limb's stick-out reaches
+// (Search::classify, steep_limb): tan 56.3 degrees, a side sloping that far off the march, past
+// the 45 degrees its layers lay untilted.
+constexpr double kSteepLimb = 1.5;
+
 // Per node, whether it is a root's first node.
 std::vector<char> root_starts(std::size_t node_count, const std::vector<AxisBranch>& branches) {
     std::vector<char> out(node_count, 0);
@@ -1687,9 +1692,68 @@ private:
                 return dist >= out / 3.0 && emerged().is_new &&
                        reaches(emerged().half, 0.75 * out_of_lower);
             };
-            bool ledge = false;
-            if (derived_threshold_ && !turn && !wide && out_of_lower > ledge_limit &&
-                (at_once() || reaches_out_at_once()) && !spans_a_gap(da, lower)) {
+            // A steep limb: a branch leaning out of the march by more than kSteepLimb planes'
+            // spacing a plane. Its section moves on along the way it leans, and U - L is a crescent
+            // round the end of it, centred inside L (Eq. 3's distance 0), so Eq. 3 never turns
+            // into it however far it goes, and its underside hangs in the march's layers. (A
+            // branch leaning 70 degrees off a round column, 1.13 mm apart, moves 3.1 mm a plane:
+            // its underside overhung the column's layers by 8.5 mm^2 in one, 70 in all.) It is a
+            // crescent centred inside L, reaching out of it by more than that, new on this plane
+            // (not in the section below), centred a quarter of L's size or more off L's centroid C
+            // (a cone or a ball widening all round is centred on C), whose limb L already holds
+            // by more than that past where it leaves the march's section (below): its end moves
+            // on plane after plane. (A boss's round underside does not: its end stays where its
+            // first sliver was, and a sliver is centred out of L. Turned from its first sliver, a
+            // valve body's boss was marched from there and its split refused.) The march turns
+            // from C, as a ledge centred inside L does, and starts where the limb leaves the
+            // march's section (limb_root): Eq. 4's T on the section found going down from L
+            // through the regions under it, plane by plane, while each reaches out along the
+            // turn's way by more than a plane's spacing (45 degrees) past the one under it. From
+            // L's own T, what L holds of the limb stayed in the march's layers, a wedge hanging
+            // under the cut (8.5 mm^2 in one layer of a survey part, as before); going down only
+            // while the limb grew steeper than kSteepLimb, the first sliver of another, 54
+            // degrees, did (2.6 mm^2).
+            const double spacing = upper_offset - lower_offset;
+            const double steep = kSteepLimb * spacing;
+            const auto limb_root = [&](const Vector3d& side) {
+                double t = extent_along(*left, n, lower_offset, side);
+                Regions2 at{*left};
+                for (std::size_t j = k - 1; j > 0; --j) {
+                    cut_chunk(planes, j - 1);
+                    Eigen::AlignedBox2d box;
+                    for (const auto& r : at) box.extend(bounds(r));
+                    Regions2 below;
+                    double t_below = -std::numeric_limits<double>::infinity();
+                    for (std::size_t i = 0; i < planes.regions[j - 1].size(); ++i) {
+                        if (!planes.bounds2[j - 1][i].intersects(box)) continue;
+                        const Region2& r = planes.regions[j - 1][i];
+                        if (area(intersection({r}, at)) <= p_.min_region_area_mm2) continue;
+                        t_below =
+                            std::max(t_below, extent_along(r, n, offset(planes, j - 1), side));
+                        below.push_back(r);
+                    }
+                    if (below.empty() || t - t_below <= spacing) break;
+                    t = t_below;
+                    at = std::move(below);
+                }
+                return t;
+            };
+            double root = 0.0;  // limb_root() along the turn's way, for a steep limb
+            const auto steep_limb = [&] {
+                if (dist > 0.0) return false;
+                const Vector2d c = centroid(*left);
+                if ((g - c).norm() < size / 4.0 || !reaches({da}, steep) || !emerged().is_new)
+                    return false;
+                const Vector3d way =
+                    closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane));
+                root = limb_root(way);
+                return extent_along(*left, n, lower_offset, way) - root > steep;
+            };
+            bool ledge = false, limb = false;
+            if (derived_threshold_ && !turn && !wide &&
+                ((out_of_lower > ledge_limit && (at_once() || reaches_out_at_once())) ||
+                 (limb = steep_limb())) &&
+                !spans_a_gap(da, lower)) {
                 // Out of L from E, or, centred inside L (an arm's underside round the web under
                 // it), from L's centroid C (the paper's G_k - C). Centred on C itself (a head or
                 // a collar all round a rod), it goes no one way: reaching out more than two
@@ -1761,8 +1825,19 @@ private:
                     fin_root(rest, around ? lower : Regions2{*left}, side, t_max);
                 const bool at_fin = fin.has_value() && at_once();
                 if (at_fin) t_max = fin.value();
+                // A steep limb's march starts at its root and takes all of U beyond it that the
+                // crescent is part of: from there the crescent is far ahead of its first plane.
+                const bool at_root = limb && side == sides.front();
+                if (at_root) t_max = root;
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
                 rest = std::move(behind);
+                if (at_root) {
+                    Regions2 limb_share;
+                    for (auto& piece : split_at({upper}, frame, side, t_max).first)
+                        if (area(intersection({piece}, share)) > p_.min_region_area_mm2)
+                            limb_share.push_back(std::move(piece));
+                    if (!limb_share.empty()) share = std::move(limb_share);
+                }
                 if (share.empty()) continue;
                 const bool whole = side == sides.front() && area(rest) <= p_.min_region_area_mm2;
                 if (area(share) <= p_.min_region_area_mm2) continue;

@@ -1848,9 +1848,20 @@ private:
                 // A ledge's or a fin's share turns wherever it reaches out of the bump (a ledge's,
                 // out of what the layers lay, if less: hanging from its first layer, a bracket
                 // plate's 6 mm margins past a 50 mm column beside its arm stayed in the column,
-                // within its 6.25 mm bump, and overhung 400 mm^2); any other only when far.
+                // within its 6.25 mm bump, and overhung 400 mm^2); any other only when far. A
+                // steep limb's reaches out of L by its crescent alone, a plane's growth: it turns
+                // however far that is where L holds no more than twice as much of the limb past
+                // its root, its section beyond the root the limb's own. (A branch leaning 62.6
+                // degrees, 1.77 mm a plane under a 2 mm bump, stayed in the column's layers, 3.3
+                // mm^2 hanging in one. An elephant's belly, 11.6 mm out past its leg in L and
+                // 1.2 mm further a plane, is the body widening: turned along it, its underside
+                // hung in the leg's layers, 45 mm^2 in one.)
+                const bool young =
+                    at_root && extent_along(*left, n, lower_offset, side) - root <=
+                                   2.0 * reach({da}, 0.0, std::numeric_limits<double>::infinity());
                 const double out_of = ledge ? std::min(bump, laid_overhang_mm()) : bump;
-                if (ledge || at_fin ? !reaches(share, out_of) : !is_far(share, d_share)) continue;
+                if (!young && (ledge || at_fin ? !reaches(share, out_of) : !is_far(share, d_share)))
+                    continue;
                 // Eq. 4: the new march starts just beyond the lower boundary's extent T.
                 Task child;
                 child.direction = side;

@@ -1528,6 +1528,49 @@ TEST(Decompose, AHairlineAlongABoresWallTurnsNoMarchAcrossTheRing) {
     }
 }
 
+TEST(Decompose, ABosssFirstSliverOutOfTheBlockIsNoHairline) {
+    // A manifold block drawn at random (the survey's, seed 184, 3): 41.26 x 42.63 x 41.75, with a
+    // boss of radius 4.17 reaching 8.15 mm out of its +X face, its lowest line at z = 26.738, and
+    // one of radius 6.33 reaching 16.81 out of its -X face. The axis' step is 4.46 mm (half the
+    // block's thinnest wall), and a plane falls 3 microns over the +X boss's lowest line: its
+    // first sliver there, under a tenth of a millimetre wide, reaches 8.1 mm out of the block at
+    // once, a ledge. Opened by a hundredth of the step to drop hairlines, it was gone, and the
+    // boss stayed in the block's layers, 27.0 mm^2 of its underside hanging in one. Out of the
+    // box of the section below it hangs over nothing of the part: no hairline.
+    const double w = 41.25864229579129, depth = 42.633315268187296, h = 41.748945994997655;
+    struct Boss {
+        Vector3d out;
+        double radius, reach, along, z;
+    };
+    const Boss bosses[] = {{Vector3d::UnitX(), 4.165446575220949, 8.147844130649744,
+                            -2.76293948838803, 30.903811128938358},
+                           {-Vector3d::UnitX(), 6.331427391555834, 16.811847575531147,
+                            -11.595455946737346, 21.588341568066973}};
+    TopoDS_Shape shape = occ_box(-w / 2, -depth / 2, 0, w, depth, h);
+    for (const Boss& b : bosses)
+        shape = fuse(shape, occ_cylinder(b.out * (w / 2 - 1) + Vector3d(0, b.along, b.z), b.out,
+                                         b.radius, b.reach + 1));
+    const auto part = from_occt(shape);
+    const auto d = decompose_as_slicing_does(part);
+    ASSERT_EQ(d.components.size(), 3u);
+    for (const Boss& b : bosses) {
+        SCOPED_TRACE("boss along " + std::to_string(b.out.x()));
+        int found = 0;
+        for (std::size_t i = 1; i < d.components.size(); ++i) {
+            const mas::Component& c = d.components[i];
+            if (!c.build_direction.isApprox(b.out, 1e-12)) continue;
+            ++found;
+            EXPECT_EQ(c.parent, 0);
+            // Cut off at the block's face: all of the boss past it.
+            EXPECT_NEAR(c.build_direction.dot(c.base_origin), w / 2, 1e-6);
+            const double past = kPi * b.radius * b.radius * b.reach;
+            EXPECT_NEAR(c.volume_mm3, past, 1e-6 * past);
+        }
+        EXPECT_EQ(found, 1);
+    }
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, ATwistedBladeTurnsTheWayItsUndersideLeavesTheHub) {
     // A hub drawn at random (the survey's, seed 175, 7): six blades round a hub of radius 13.76,
     // each twisted 30 degrees about its length. A blade's lowest edge, where the +Z march first

@@ -116,7 +116,11 @@
 //   halves, the strip a half's wall adds over a bore's axis trailed one 4 microns wide 5 mm along
 //   the slabs of the port's boss: read as a ledge reaching 5.3 mm out, it turned a march across
 //   the ring's upper half, and the ports, split inside the body through the other bores, stayed
-//   in the body's layers, 79.9 mm^2 hanging.)
+//   in the body's layers, 79.9 mm^2 hanging.) Only within the box of the lower plane's whole
+//   section, where such walls are: out of it a stick-out hangs over nothing of the part and is
+//   material however thin (a boss's first sliver, under a tenth of a millimetre wide 3 microns
+//   over its lowest line at a 4.46 mm step, reaching 8.1 mm out of a block, was opened away, and
+//   the boss stayed in the block's layers, 27.0 mm^2 hanging).
 // - A steep limb turns too (with a derived `distance_threshold` only): a branch leaning out of
 //   the march by more than 1.5 planes' spacing a plane (56 degrees). Its section moves on along
 //   the way it leans, and U - L is a crescent round the end of it, centred inside L, so Eq. 3

@@ -661,6 +661,8 @@ TEST(Slicing, BladesRoundAHubAreCutSquareToThemselvesJustPastItsSide) {
     expect_invariants(s, params, "hub with three blades");
 }
 
+namespace {
+
 // Slicing.ABranchLeaningSteeplyOffAColumnIsTurnedIntoWhereItLeavesItAndBuiltSideways, at one lean.
 void leaning_branch_is_built_sideways(double degrees) {
     const double lean = degrees * kPi / 180.0, radius = 7.0, length = 30.0, column = 10.0;
@@ -733,6 +735,8 @@ void leaning_branch_is_built_sideways(double degrees) {
     expect_invariants(s, params, "leaning branch", false);
 }
 
+}  // namespace
+
 // A round column (radius 10, 60 tall) with a round branch (radius 7, 30 long) leaving its side
 // from (0, 0, 25), leaning 63 or 67 degrees from the vertical towards +X (the survey's leaning
 // branches). Marched up the column, the branch's section moves 2 or 2.4 planes' spacing a plane,
@@ -740,11 +744,12 @@ void leaning_branch_is_built_sideways(double degrees) {
 // stayed in the column's layers until it parted from the column, its underside hanging (at the
 // default deflection 2.9 and 2.7 mm^2 in one layer, 15.2 and 16.6 in all; 8.5 and 70 on a survey
 // part). It is a steep limb (CentroidalAxis.cpp; at 63 degrees its crescent reaches out less than
-// the bump): the march turns +X where the limb leaves the column, its first plane the first of
-// the grid past the column's extent, and the decomposition cuts it off there and builds it
-// sideways. What of it lies past the cut is the branch beyond a plane across it, pi r^2 times its
-// length past where the plane crosses its axis; its layers leave nothing beyond the deflection's
-// strip, and the column's leave no more than the wedge of it between their side and the cut.
+// the bump): the march turns +X where the limb leaves the column, its first plane within a
+// spacing and a step past the column's extent, and the decomposition cuts it off there and builds
+// it sideways. What of it lies past the cut is the branch beyond a plane across it, pi r^2 times
+// its length past where the plane crosses its axis; its layers leave nothing beyond the
+// deflection's strip, and the column's leave no more than the wedge of it between their side and
+// the cut.
 TEST(Slicing, ABranchLeaningSteeplyOffAColumnIsTurnedIntoWhereItLeavesItAndBuiltSideways) {
     for (const double degrees : {63.0, 67.0}) {
         SCOPED_TRACE("lean " + std::to_string(degrees));

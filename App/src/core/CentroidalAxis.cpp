@@ -1743,7 +1743,9 @@ private:
                 }
                 return t;
             };
-            double root = 0.0;  // limb_root() along the turn's way, for a steep limb
+            // For a steep limb: limb_root() along the turn's way, and how far L holds the limb
+            // past it (L's extent that way less the root).
+            double root = 0.0, held = 0.0;
             const auto steep_limb = [&] {
                 if (dist > 0.0) return false;
                 const Vector2d c = centroid(*left);
@@ -1752,7 +1754,8 @@ private:
                 const Vector3d way =
                     closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane));
                 root = limb_root(way);
-                return extent_along(*left, n, lower_offset, way) - root > steep;
+                held = extent_along(*left, n, lower_offset, way) - root;
+                return held > steep;
             };
             bool ledge = false, limb = false;
             if (derived_threshold_ && !turn && !wide &&
@@ -1862,8 +1865,8 @@ private:
                 // 1.2 mm further a plane, is the body widening: turned along it, its underside
                 // hung in the leg's layers, 45 mm^2 in one.)
                 const bool young =
-                    at_root && extent_along(*left, n, lower_offset, side) - root <=
-                                   2.0 * reach({da}, 0.0, std::numeric_limits<double>::infinity());
+                    at_root &&
+                    held <= 2.0 * reach({da}, 0.0, std::numeric_limits<double>::infinity());
                 const double out_of = ledge ? std::min(bump, laid_overhang_mm()) : bump;
                 if (!young && (ledge || at_fin ? !reaches(share, out_of) : !is_far(share, d_share)))
                     continue;

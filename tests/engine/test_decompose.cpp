@@ -1528,6 +1528,45 @@ TEST(Decompose, AHairlineAlongABoresWallTurnsNoMarchAcrossTheRing) {
     }
 }
 
+TEST(Decompose, ABoresCeilingClosingOverTheRingTurnsNoMarchAcrossIt) {
+    // A valve body drawn at random (the survey's, seed 188, 6): the +-Y ports' bores (8.3 mm
+    // across) cut the ring, 6.3 mm thick, into halves from z = 9.1 to 15.5. At the axis' 1.72 mm
+    // step a plane falls 0.07 mm under the +Y bore's top: each half's wall grows 2.7 mm towards
+    // the other over it, leaving a slot 1.5 mm wide, and that strip read as a ledge. The march it
+    // turned along +X started inside the ring and took the whole wall over the bore in its first
+    // section; the ring was swept sideways in pieces, the +-X ports were branches starting inside
+    // the body, and the decomposition, every split through a bore refused, left all but the +-Y
+    // ports in the body: 82.6 mm^2 hung in one layer (with fill_holes). Across the slot the other
+    // half's wall is there on the same plane, and the gap is closed on the next: a hole's
+    // ceiling, which the march lays.
+    const ValveBody body{
+        12.536114156667507,
+        49.95065317659945,
+        {{-Vector3d::UnitY(), 8.358533265713127, 17.49166641936746, 13.296954879269553},
+         {Vector3d::UnitY(), 8.322029893853209, 13.14513429901162, 11.37669084186458},
+         {Vector3d::UnitX(), 7.535855599332123, 7.338388282750936, 31.64986511995663},
+         {-Vector3d::UnitX(), 6.894977056046914, 18.33183950621052, 24.39399637197161}}};
+    const auto part = from_occt(body.shape());
+    const auto d = decompose_as_slicing_does(part);
+    expect_a_body_and_its_ports(d, body);
+    expect_invariants(d, part);
+    // Each port is cut off past the body's side, within a step of it (where the axis' march
+    // along it starts), and holds all of the bored port past there.
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        const mas::Component& c = d.components[i];
+        for (const ValvePort& p : body.ports) {
+            if (!c.build_direction.isApprox(p.out, 1e-9)) continue;
+            SCOPED_TRACE("port along " + std::to_string(p.out.x()) + ", " +
+                         std::to_string(p.out.y()));
+            const double cut = c.build_direction.dot(c.base_origin);
+            EXPECT_GE(cut, body.radius - 1e-6);
+            EXPECT_LT(cut, body.radius + 1.72);  // the derived step, 1.7193 mm
+            const double past = kPi * 0.75 * p.radius * p.radius * (body.radius + p.reach - cut);
+            EXPECT_NEAR(c.volume_mm3, past, 1e-6 * past);
+        }
+    }
+}
+
 TEST(Decompose, ABosssFirstSliverOutOfTheBlockIsNoHairline) {
     // A manifold block drawn at random (the survey's, seed 184, 3): 41.26 x 42.63 x 41.75, with a
     // boss of radius 4.17 reaching 8.15 mm out of its +X face, its lowest line at z = 26.738, and

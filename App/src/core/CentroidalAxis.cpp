@@ -924,6 +924,56 @@ private:
         return contacts > 1;
     }
 
+    // Whether stick-out `da` of grid plane k, turning the way `way` (a unit vector of the planes'
+    // frame), grows into a gap of the part's section that closes by the next plane: the part's
+    // section at plane k holds material ahead of it that way, across from it (within its span
+    // across `way`, past where it ends along it), and the section of plane k + 1 covers at least
+    // half the gap between the two. That is a hole's ceiling (a bore across the march, whose
+    // sides grow towards each other near its top) or an arch's crown, not material leaving the
+    // part: the march lays it as the two sides meet (a bridge, spans_a_gap()). Turned, the march
+    // along `way` started inside the part and took the whole wall above the hole in its first
+    // section (a valve body's bore, 8.3 mm across, in a ring 6.3 mm thick: the ring was swept
+    // sideways in pieces, the bosses left in the body's layers, 82.6 mm^2 hanging in one). An
+    // inward lip or a boss facing another part across a gap that stays open is still a ledge.
+    bool closes_a_gap(const Region2& da, const Vector2d& way, Grid& g, std::size_t k) {
+        if (k + 1 >= g.count) return false;
+        const Vector2d across(-way.y(), way.x());
+        double front = -std::numeric_limits<double>::infinity();
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const auto& q : da.outer.points) {
+            front = std::max(front, way.dot(q));
+            lo = std::min(lo, across.dot(q));
+            hi = std::max(hi, across.dot(q));
+        }
+        // The band from `s0` to `s1` along `way`, over da's span across it.
+        const auto band = [&](double s0, double s1) {
+            Region2 r;
+            for (const auto& [s, t] : {std::pair{s0, lo}, {s1, lo}, {s1, hi}, {s0, hi}})
+                r.outer.points.push_back(s * way + t * across);
+            return r;
+        };
+        const auto near = [&](std::size_t j, const Region2& r) {
+            const Eigen::AlignedBox2d box = bounds(r);
+            Regions2 out;
+            for (std::size_t i = 0; i < g.regions[j].size(); ++i)
+                if (g.bounds2[j][i].intersects(box)) out.push_back(g.regions[j][i]);
+            return out;
+        };
+        Eigen::AlignedBox2d all;
+        for (const auto& b : g.bounds2[k]) all.extend(b);
+        const double hair = p_.step_mm / 100.0;
+        const Region2 beyond = band(front + hair, front + hair + all.diagonal().norm());
+        const Regions2 ahead = intersection({beyond}, near(k, beyond));
+        if (area(ahead) <= p_.min_region_area_mm2) return false;
+        double other = std::numeric_limits<double>::infinity();  // where the material ahead begins
+        for (const auto& r : ahead)
+            for (const auto& q : r.outer.points) other = std::min(other, way.dot(q));
+        if (!(other > front + hair)) return false;
+        const Region2 gap = band(front, other);
+        cut_chunk(g, k + 1);
+        return area(intersection({gap}, near(k + 1, gap))) >= 0.5 * area(gap);
+    }
+
     // How stick-out `da` of plane k over plane k - 1 comes about between them: whether it is new
     // (nearly none of it, a tenth, in plane k - 1's section: the whole section, every march's)
     // and, if so, what of it the section half a step up holds.
@@ -1771,8 +1821,13 @@ private:
                 const Vector2d from = dist > 0.0 ? exit : centroid(*left);
                 const Vector3d out = frame.to_3d(g, upper_plane) - frame.to_3d(from, upper_plane);
                 if (out.norm() > p_.step_mm / 100.0) {
-                    dir = closest_axis(out);
-                    turn = ledge = true;
+                    const Vector3d way = closest_axis(out);
+                    if (closes_a_gap(da, Vector2d(way.dot(frame.u), way.dot(frame.v)), planes, k)) {
+                        limb = false;  // a hole's ceiling: the march lays it
+                    } else {
+                        dir = way;
+                        turn = ledge = true;
+                    }
                 } else {
                     ledge = out_of_lower > 2.0 * bump || out_of_lower > 1.05 * laid_overhang_mm();
                 }

@@ -198,8 +198,10 @@ struct Waypoint {
 };
 
 // A route whose table turns and meets something is checked again with pieces turning this many
-// times less: its allowance (Nozzle.hpp, "Travel") at most margin / kFinerTurn.
+// times less: its allowance (Nozzle.hpp, "Travel") at most margin / kFinerTurn. Pieces still
+// meeting something are cut finer again, up to kFinerPasses times in all.
 constexpr double kFinerTurn = 20.0;
+constexpr int kFinerPasses = 3;
 
 // The tool axis the table at `a` turns to machine +Z: Rx(A) Rz(C) maps it there.
 Eigen::Vector3d axis_of(const TableAngles& a) {
@@ -630,7 +632,12 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     // that turns the table and meets something on its own cut kFinerTurn times finer; a piece
     // passed on its own keeps the margin already, and the moves with the table still are judged
     // as before. (Cutting the whole route finer cost some 20 times its turns, and could report a
-    // piece passed coarse, within 2.15 margins but clear of one.)
+    // piece passed coarse, within 2.15 margins but clear of one.) While a finer piece still meets
+    // something it is cut finer again, kFinerPasses times at most: a piece's bound may fall short
+    // of its ends by half its allowance between them (turning_plate_hit), and a layer built
+    // sideways 2.03 mm over the plate, under a 2 mm margin, had the last piece of the way down
+    // onto it reported as meeting the plate (a survey's angle bracket, seed 185). At 400 times
+    // finer the allowance is a two-hundredth of the margin.
     auto meets = [&](const std::vector<Waypoint>& way, const std::optional<Eigen::Vector3d>& plunge,
                      int next, int also) -> std::optional<TravelHit> {
         std::vector<NozzleMove> moves;
@@ -648,16 +655,42 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         const bool turns = std::any_of(moves.begin(), moves.end(),
                                        [](const NozzleMove& move) { return move.turn_rad != 0.0; });
         if (!hit || !turns) return hit;
-        std::vector<NozzleMove> finer;
-        for (std::size_t k = 0; k < moves.size(); ++k) {
-            const NozzleMove& move = moves[k];
-            if (move.turn_rad == 0.0)
-                finer.push_back(move);
-            else if (check->meets({move}, also))
-                turning_moves(move.from, spans[k].from, move.to, spans[k].to,
-                              check->max_turn_rad() / kFinerTurn, -1, finer);
+        // Whether the nozzle standing at either end of a turning piece keeps clear.
+        const auto ends_clear = [&](const NozzleMove& move) {
+            const NozzleMove at_from{move.from, move.from, move.axis, 0.0, -1};
+            const NozzleMove at_to{move.to, move.to, move.to_axis, 0.0, -1};
+            return !check->meets({at_from}, also) && !check->meets({at_to}, also);
+        };
+        double max_turn = check->max_turn_rad();
+        for (int pass = 0; pass < kFinerPasses; ++pass) {
+            max_turn /= kFinerTurn;
+            std::vector<NozzleMove> finer;
+            std::vector<AngleSpan> finer_spans;
+            bool cut = false;
+            for (std::size_t k = 0; k < moves.size(); ++k) {
+                const NozzleMove& move = moves[k];
+                if (move.turn_rad == 0.0) {
+                    finer.push_back(move);
+                    finer_spans.push_back(spans[k]);
+                } else if (check->meets({move}, also)) {
+                    // After the first pass, only a piece whose ends both keep clear: one that
+                    // meets something where it starts or ends does, however fine.
+                    if (pass > 0 && !ends_clear(move)) {
+                        finer.push_back(move);
+                        finer_spans.push_back(spans[k]);
+                        continue;
+                    }
+                    turning_moves(move.from, spans[k].from, move.to, spans[k].to, max_turn, -1,
+                                  finer, &finer_spans);
+                    cut = true;
+                }
+            }
+            hit = check->meets(finer, also);
+            if (!hit || !cut) return hit;
+            moves = std::move(finer);
+            spans = std::move(finer_spans);
         }
-        return check->meets(finer, also);
+        return hit;
     };
     // A layer (its place, -1 for none) as named; what a hit meets, in words.
     auto name_of = [&](int i) {

@@ -68,9 +68,11 @@
 //   costs the coil's program 2.4 times less): a route is taken round the part or
 //   reported only where the nozzle comes within 2.15 margins of a deposited layer's surface (4.3
 //   mm at the defaults), or within the margin of the plate where the table keeps still and at
-//   both ends of a piece along which it turns, within 1.05 margins between them (each turning
+//   both ends of a piece along which it turns, within 1.0001 margins between them (each turning
 //   piece judged from both its ends, NozzleMove::to_axis: a route turning down onto a layer that
-//   the sequence passed a margin and 2.5 % over the plate was reported as meeting it). The moves
+//   the sequence passed a margin and 2.5 % over the plate was reported as meeting it; and a
+//   piece still meeting something with both its ends clear cut 20 times finer again, twice at
+//   most: at 1.05 margins, one onto a layer 1.5 % over them was reported). The moves
 //   out of a layer and back to it along its tool axis are not checked against that layer
 //   (NozzleMove::along_layer); round the part between two paths of one layer, that layer counts,
 //   all of it, on the rest of the way.

@@ -633,11 +633,12 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     // passed on its own keeps the margin already, and the moves with the table still are judged
     // as before. (Cutting the whole route finer cost some 20 times its turns, and could report a
     // piece passed coarse, within 2.15 margins but clear of one.) While a finer piece still meets
-    // something it is cut finer again, kFinerPasses times at most: a piece's bound may fall short
-    // of its ends by half its allowance between them (turning_plate_hit), and a layer built
-    // sideways 2.03 mm over the plate, under a 2 mm margin, had the last piece of the way down
-    // onto it reported as meeting the plate (a survey's angle bracket, seed 185). At 400 times
-    // finer the allowance is a two-hundredth of the margin.
+    // something and both its ends keep clear, it is cut finer again, kFinerPasses times in all:
+    // a piece's bound may fall short of its ends by half its allowance between them
+    // (turning_plate_hit), and a layer built sideways 2.03 mm over the plate, under a 2 mm
+    // margin, had the last piece of the way down onto it reported as meeting the plate (a
+    // survey's angle bracket, seed 185). The last pass's allowance is margin / kFinerTurn^3
+    // (0.25 microns at 2 mm). A piece meeting something at an end does so however fine.
     auto meets = [&](const std::vector<Waypoint>& way, const std::optional<Eigen::Vector3d>& plunge,
                      int next, int also) -> std::optional<TravelHit> {
         std::vector<NozzleMove> moves;
@@ -673,8 +674,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                     finer.push_back(move);
                     finer_spans.push_back(spans[k]);
                 } else if (check->meets({move}, also)) {
-                    // After the first pass, only a piece whose ends both keep clear: one that
-                    // meets something where it starts or ends does, however fine.
+                    // After the first pass, only a piece whose ends both keep clear.
                     if (pass > 0 && !ends_clear(move)) {
                         finer.push_back(move);
                         finer_spans.push_back(spans[k]);

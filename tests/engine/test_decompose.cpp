@@ -1610,6 +1610,67 @@ TEST(Decompose, ABosssFirstSliverOutOfTheBlockIsNoHairline) {
     expect_invariants(d, part);
 }
 
+TEST(Decompose, BladesWhoseFirstSliversASliverJoinsAreEachBuiltAlongItself) {
+    // A hub drawn at random (the survey's, seed 190, 6): six flat blades round a bored hub of
+    // radius 12.59, their undersides flat at z = 2.5. Where the +Z march first meets them, U - L
+    // kept a sliver along the hub's outline between the blades at 0.07 and 62.7 degrees, and the
+    // two first slivers made one ledge centred between them, which turned along +X. Shared out
+    // by sides, the outer half of the blade at 62.7 degrees went along +X too, 62.7 degrees off
+    // its length: its layers overhung 8.5 mm^2 each. Split where the sliver joins them, each
+    // blade is turned on its own, and each is one component built along itself.
+    const double hub = 12.591735103663469, height = 23.006230462553813;
+    const double length = 30.312201815279646, thickness = 5.01722372640131,
+                 width = 18.01564187531245;
+    const std::vector<double> angles{0.06606399841033062, 62.7140632549141,  128.13571596056917,
+                                     187.18546178499287,  245.8301041163386, 306.5171468539502};
+    const TopoDS_Shape cylinder = occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), hub, height);
+    TopoDS_Shape shape = cylinder;
+    double blade_outside = 0.0;  // one blade's volume outside the hub
+    for (const double angle : angles) {
+        gp_Trsf turn;
+        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), angle * kPi / 180.0);
+        const TopoDS_Shape blade =
+            BRepBuilderAPI_Transform(occ_box(hub / 2, -thickness / 2, (height - width) / 2,
+                                             length + hub / 2, thickness, width),
+                                     turn, true);
+        blade_outside = precise_volume(BRepAlgoAPI_Cut(blade, cylinder).Shape());
+        shape = fuse(shape, blade);
+    }
+    shape = BRepAlgoAPI_Cut(
+                shape, occ_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), hub / 3, height + 2))
+                .Shape();
+    const auto part = from_occt(shape);
+    const auto d = decompose_as_slicing_does(part);
+    ASSERT_EQ(d.components.size(), angles.size() + 1);
+    std::set<std::size_t> blades;
+    for (std::size_t i = 1; i < d.components.size(); ++i) {
+        const mas::Component& c = d.components[i];
+        SCOPED_TRACE("component " + std::to_string(i));
+        // Built along its blade (within the 2 degrees under which a cut is not turned).
+        std::size_t nearest = 0;
+        double off = 180.0;
+        for (std::size_t k = 0; k < angles.size(); ++k) {
+            const double a = angles[k] * kPi / 180.0;
+            const double deg =
+                std::acos(std::clamp(c.build_direction.dot(Vector3d(std::cos(a), std::sin(a), 0)),
+                                     -1.0, 1.0)) *
+                180.0 / kPi;
+            if (deg < off) {
+                off = deg;
+                nearest = k;
+            }
+        }
+        EXPECT_LE(off, 2.0);
+        blades.insert(nearest);
+        // The whole blade but the lens between the hub's side and the cut.
+        const double v = precise_volume(to_occt(c.solid));
+        EXPECT_LE(v, blade_outside + 1e-6 * blade_outside);
+        EXPECT_GE(v, 0.95 * blade_outside);
+    }
+    EXPECT_EQ(blades.size(), angles.size());
+    expect_invariants(d, part);
+}
+
 TEST(Decompose, ATwistedBladeTurnsTheWayItsUndersideLeavesTheHub) {
     // A hub drawn at random (the survey's, seed 175, 7): six blades round a hub of radius 13.76,
     // each twisted 30 degrees about its length. A blade's lowest edge, where the +Z march first

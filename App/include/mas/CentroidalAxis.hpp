@@ -39,7 +39,10 @@
 //   between them along L's outline. It is split where necks narrower than a fiftieth of the step
 //   join pieces larger than min_region_area (opened by a hundredth of the step), and each piece
 //   is judged on its own. (Two blades a quarter turn apart round a hub, joined so at the part's
-//   deflection, were marched with the hub: 74.6 mm^2 of their undersides hung.)
+//   deflection, were marched with the hub: 74.6 mm^2 of their undersides hung.) So is a stick-out
+//   that turns (far, a ledge or a steep limb, below): two blades' first slivers 62.7 degrees apart
+//   round a hub, joined so, made one ledge that turned along +X, and the outer half of the blade
+//   62.7 degrees round went along +X too, its layers overhanging 8.5 mm^2 each.
 //   The new direction is the one of +-X, +-Y, +-Z closest to G_k - E, plus the step along the
 //   march, E where the stick-out meets L. The paper's Sec. 3.2.1 says G_k - C, C the lower
 //   centroid; that sends a lug sticking out sideways near the end of a long wall along the wall,

@@ -1832,6 +1832,22 @@ private:
                     ledge = out_of_lower > 2.0 * bump || out_of_lower > 1.05 * laid_overhang_mm();
                 }
             }
+            // Turning, it may be stick-outs of several features that such a sliver joins (below):
+            // each is judged on its own. (Two blades of a hub 62.7 degrees apart, their first
+            // slivers joined along the hub's outline, made one ledge centred between them that
+            // turned along +X; shared out by sides, the outer half of the blade 62.7 degrees
+            // round went along +X too, and its layers overhung 8.5 mm^2 each.)
+            if ((turn || ledge) && next < stick_out.size()) {
+                const double whole = area(da);
+                Regions2 pieces;
+                for (auto& piece : split_at_necks({da}, p_.step_mm / 100.0, p_.min_region_area_mm2))
+                    if (area(piece) < whole - p_.min_region_area_mm2)
+                        pieces.push_back(std::move(piece));
+                if (pieces.size() > 1) {
+                    for (auto& piece : pieces) split.push_back(std::move(piece));
+                    continue;
+                }
+            }
             if (!turn && !ledge && (along || !wide)) {
                 // Far but along the march; or near, or a bridge, and not wide. Wide and along,
                 // its centre near L, it may be stick-outs that a sliver along L's outline joins:

@@ -133,3 +133,9 @@ odd.exportBrep(os.path.join(here, "cylinder_meshed_off.brep"))
 # own line, one blade's layers met the build plate, and every turned cut was made square
 hub5, _ = MultiAxisSlicerSurvey.part("hub with blades", 3, 84)
 hub5.exportBrep(os.path.join(here, "hub_blade_near_plate.brep"))
+
+# pipe_bend_classifier.brep  the survey's pipe bend 3 (seed 198): hollow, radius 10.15 with a 7.01
+# bore, a 27.24 mm bend: OCCT's solid classifier calls the point (16.5924, 8.51982, 65.7732), 1.5 mm
+# inside the bend's wall, out (and the points 0.5 mm either side of it along Y in)
+bend, _ = MultiAxisSlicerSurvey.part("pipe bend", 3, 198)
+bend.exportBrep(os.path.join(here, "pipe_bend_classifier.brep"))

@@ -8,6 +8,7 @@
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -1608,6 +1609,31 @@ TEST(Decompose, ABosssFirstSliverOutOfTheBlockIsNoHairline) {
         EXPECT_EQ(found, 1);
     }
     expect_invariants(d, part);
+}
+
+TEST(Decompose, ABranchWhoseFirstMaterialPointTheClassifierCallsOutIsStillSplitOff) {
+    // The survey's pipe bend 3 at seed 198 (tests/data/pipe_bend_classifier.brep): hollow, radius
+    // 10.15 round a 7.01 bore, bent on 27.24 mm into a run along +X. The axis' +X march starts
+    // 67 degrees round the bend; OCCT's classifier calls its first node's material point, 1.5 mm
+    // inside the wall, out of the part (and points 0.5 mm either side of it in), so no component
+    // held the branch: the run stayed in the riser's layers, 9.6 mm^2 hanging in one. The next
+    // node's point finds the riser.
+    const mas::Model model =
+        mas::read_model(std::string(MAS_TEST_DATA) + "/pipe_bend_classifier.brep");
+    const TopoDS_Shape& solid = to_occt(model.shape);
+    const auto out = [&](const Vector3d& p) {
+        return BRepClass3d_SolidClassifier(solid, gp_Pnt(p.x(), p.y(), p.z()), 1e-7).State() ==
+               TopAbs_OUT;
+    };
+    EXPECT_TRUE(out(Vector3d(16.5924, 8.51982, 65.7732)));  // what the test is about
+    EXPECT_FALSE(out(Vector3d(16.5924, 8.0, 65.7732)));
+    const auto d = decompose_as_slicing_does(model.shape);
+    ASSERT_EQ(d.components.size(), 2u);
+    EXPECT_TRUE(d.components[1].build_direction.isApprox(Vector3d::UnitX(), 1e-9));
+    EXPECT_EQ(d.components[1].parent, 0);
+    for (const std::string& note : d.notes)
+        EXPECT_EQ(note.find("lies in no component"), std::string::npos) << note;
+    expect_invariants(d, model.shape);
 }
 
 TEST(Decompose, BladesWhoseFirstSliversASliverJoinsAreEachBuiltAlongItself) {

@@ -1076,14 +1076,20 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             };
             // The father component of branch b: its parent branch's holder, or whichever component
             // now holds b's first node (an earlier whole-plane split may have moved it), newest
-            // first; -1 for none.
+            // first; -1 for none. Where no component is found to hold the first node's material
+            // point, its next two nodes' are tried: OCCT's classifier can call a point inside
+            // a solid out (a bent pipe's wall cut 67 degrees round its bend, 1.5 mm inside the
+            // wall, was out, and 0.5 mm either side of it in: the pipe's run, marched along
+            // +X from there, stayed in the riser's layers, 9.6 mm^2 hanging in one).
             const auto father_of = [&](std::size_t b) {
                 const int h = holder[std::size_t(axis.branches[b].parent)];
-                const Vector3d p =
-                    axis.nodes[std::size_t(axis.branches[b].nodes.front())].material_point();
-                if (h >= 0 && contains(work[std::size_t(h)].solid, p, true)) return h;
-                for (int k = int(work.size()) - 1; k >= 0; --k)
-                    if (contains(work[std::size_t(k)].solid, p, true)) return k;
+                const std::vector<int>& nodes = axis.branches[b].nodes;
+                for (std::size_t i = 0; i < std::min<std::size_t>(nodes.size(), 3); ++i) {
+                    const Vector3d p = axis.nodes[std::size_t(nodes[i])].material_point();
+                    if (h >= 0 && contains(work[std::size_t(h)].solid, p, true)) return h;
+                    for (int k = int(work.size()) - 1; k >= 0; --k)
+                        if (contains(work[std::size_t(k)].solid, p, true)) return k;
+                }
                 return -1;
             };
 

@@ -659,7 +659,9 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         // Whether the nozzle standing at either end of a turning piece keeps clear.
         const auto ends_clear = [&](const NozzleMove& move) {
             const NozzleMove at_from{move.from, move.from, move.axis, 0.0, -1};
-            const NozzleMove at_to{move.to, move.to, move.to_axis, 0.0, -1};
+            const Eigen::Vector3d last =
+                move.to_axis == Eigen::Vector3d::Zero() ? move.axis : move.to_axis;
+            const NozzleMove at_to{move.to, move.to, last, 0.0, -1};
             return !check->meets({at_from}, also) && !check->meets({at_to}, also);
         };
         double max_turn = check->max_turn_rad();

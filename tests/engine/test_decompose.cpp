@@ -1636,43 +1636,52 @@ TEST(Decompose, ABranchWhoseFirstMaterialPointTheClassifierCallsOutIsStillSplitO
     expect_invariants(d, model.shape);
 }
 
-TEST(Decompose, BladesWhoseFirstSliversASliverJoinsAreEachBuiltAlongItself) {
-    // A hub drawn at random (the survey's, seed 190, 6): six flat blades round a bored hub of
-    // radius 12.59, their undersides flat at z = 2.5. Where the +Z march first meets them, U - L
-    // kept a sliver along the hub's outline between the blades at 0.07 and 62.7 degrees, and the
-    // two first slivers made one ledge centred between them, which turned along +X. Shared out
-    // by sides, the outer half of the blade at 62.7 degrees went along +X too, 62.7 degrees off
-    // its length: its layers overhung 8.5 mm^2 each. Split where the sliver joins them, each
-    // blade is turned on its own, and each is one component built along itself.
-    const double hub = 12.591735103663469, height = 23.006230462553813;
-    const double length = 30.312201815279646, thickness = 5.01722372640131,
-                 width = 18.01564187531245;
-    const std::vector<double> angles{0.06606399841033062, 62.7140632549141,  128.13571596056917,
-                                     187.18546178499287,  245.8301041163386, 306.5171468539502};
-    const TopoDS_Shape cylinder = occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), hub, height);
-    TopoDS_Shape shape = cylinder;
-    double blade_outside = 0.0;  // one blade's volume outside the hub
-    for (const double angle : angles) {
-        gp_Trsf turn;
-        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), angle * kPi / 180.0);
-        const TopoDS_Shape blade =
-            BRepBuilderAPI_Transform(occ_box(hub / 2, -thickness / 2, (height - width) / 2,
-                                             length + hub / 2, thickness, width),
-                                     turn, true);
-        blade_outside = precise_volume(BRepAlgoAPI_Cut(blade, cylinder).Shape());
-        shape = fuse(shape, blade);
+namespace {
+
+// The survey's hub with blades (MultiAxisSlicerSurvey.hub_with_blades): a round hub standing on
+// the plate with flat blades round it at `angles` (degrees from +X), each twisted `twist` degrees
+// about its length, bored through at a third of its radius or not.
+struct BladedHub {
+    double hub, height, length, thickness, width;
+    std::vector<double> angles;
+    double twist = 0.0;
+    bool bored = false;
+    // The solid, and one blade's volume outside the hub in `blade_outside`.
+    TopoDS_Shape shape(double& blade_outside) const {
+        const TopoDS_Shape cylinder =
+            occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), hub, height);
+        TopoDS_Shape s = cylinder;
+        for (const double angle : angles) {
+            gp_Trsf tilt, turn;
+            tilt.SetRotation(gp_Ax1(gp_Pnt(0, 0, height / 2), gp_Dir(1, 0, 0)),
+                             twist * kPi / 180.0);
+            turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), angle * kPi / 180.0);
+            const TopoDS_Shape blade =
+                BRepBuilderAPI_Transform(occ_box(hub / 2, -thickness / 2, (height - width) / 2,
+                                                 length + hub / 2, thickness, width),
+                                         turn * tilt, true);
+            blade_outside = precise_volume(BRepAlgoAPI_Cut(blade, cylinder).Shape());
+            s = fuse(s, blade);
+        }
+        if (bored)
+            s = BRepAlgoAPI_Cut(
+                    s, occ_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), hub / 3, height + 2))
+                    .Shape();
+        return s;
     }
-    shape = BRepAlgoAPI_Cut(
-                shape, occ_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), hub / 3, height + 2))
-                .Shape();
-    const auto part = from_occt(shape);
-    const auto d = decompose_as_slicing_does(part);
+};
+
+// The hub is the root and each blade (round it at `angles`, degrees from +X) one component built
+// along it, within the 2 degrees under which a cut is not turned, holding the whole blade but the
+// lens between the hub's side and the cut (at least 95 % of `blade_outside`, a blade's volume
+// outside the hub).
+void expect_a_hub_and_its_blades(const mas::Decomposition& d, const mas::Shape& part,
+                                 const std::vector<double>& angles, double blade_outside) {
     ASSERT_EQ(d.components.size(), angles.size() + 1);
     std::set<std::size_t> blades;
     for (std::size_t i = 1; i < d.components.size(); ++i) {
         const mas::Component& c = d.components[i];
         SCOPED_TRACE("component " + std::to_string(i));
-        // Built along its blade (within the 2 degrees under which a cut is not turned).
         std::size_t nearest = 0;
         double off = 180.0;
         for (std::size_t k = 0; k < angles.size(); ++k) {
@@ -1688,13 +1697,37 @@ TEST(Decompose, BladesWhoseFirstSliversASliverJoinsAreEachBuiltAlongItself) {
         }
         EXPECT_LE(off, 2.0);
         blades.insert(nearest);
-        // The whole blade but the lens between the hub's side and the cut.
         const double v = precise_volume(to_occt(c.solid));
         EXPECT_LE(v, blade_outside + 1e-6 * blade_outside);
         EXPECT_GE(v, 0.95 * blade_outside);
     }
     EXPECT_EQ(blades.size(), angles.size());
     expect_invariants(d, part);
+}
+
+}  // namespace
+
+TEST(Decompose, BladesWhoseFirstSliversASliverJoinsAreEachBuiltAlongItself) {
+    // A hub drawn at random (the survey's, seed 190, 6): six flat blades round a bored hub of
+    // radius 12.59, their undersides flat at z = 2.5. Where the +Z march first meets them, U - L
+    // kept a sliver along the hub's outline between the blades at 0.07 and 62.7 degrees, and the
+    // two first slivers made one ledge centred between them, which turned along +X. Shared out
+    // by sides, the outer half of the blade at 62.7 degrees went along +X too, 62.7 degrees off
+    // its length: its layers overhung 8.5 mm^2 each. Split where the sliver joins them, each
+    // blade is turned on its own, and each is one component built along itself.
+    const BladedHub h{12.591735103663469,
+                      23.006230462553813,
+                      30.312201815279646,
+                      5.01722372640131,
+                      18.01564187531245,
+                      {0.06606399841033062, 62.7140632549141, 128.13571596056917,
+                       187.18546178499287, 245.8301041163386, 306.5171468539502},
+                      0.0,
+                      true};
+    double blade_outside = 0.0;
+    const auto part = from_occt(h.shape(blade_outside));
+    const auto d = decompose_as_slicing_does(part);
+    expect_a_hub_and_its_blades(d, part, h.angles, blade_outside);
 }
 
 TEST(Decompose, ATwistedBladeTurnsTheWayItsUndersideLeavesTheHub) {
@@ -1706,57 +1739,20 @@ TEST(Decompose, ATwistedBladeTurnsTheWayItsUndersideLeavesTheHub) {
     // strip's centre, the march took -X and +X, 59.5 degrees off the blade, and caught only the
     // blade's tip; the rest stayed in the hub, its underside hanging 7.8 mm^2 in the hub's layers.
     // The way the strip leaves the hub is from where it meets it, along the blade.
-    const double hub = 13.762284825059862, height = 39.95338775655509;
-    const double length = 18.521916422192085, thickness = 3.5429300535962307,
-                 width = 29.724184501608637;
-    const std::vector<double> angles{2.4803101521854423, 66.7303929773592,  120.47049408629232,
-                                     181.65921950624244, 247.1566468705153, 300.31355267103095};
-    const TopoDS_Shape cylinder = occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), hub, height);
-    TopoDS_Shape shape = cylinder;
-    double blade_outside = 0.0;  // one blade's volume outside the hub
-    for (const double angle : angles) {
-        gp_Trsf twist, turn;
-        twist.SetRotation(gp_Ax1(gp_Pnt(0, 0, height / 2), gp_Dir(1, 0, 0)), 30.0 * kPi / 180.0);
-        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), angle * kPi / 180.0);
-        const TopoDS_Shape blade =
-            BRepBuilderAPI_Transform(occ_box(hub / 2, -thickness / 2, (height - width) / 2,
-                                             length + hub / 2, thickness, width),
-                                     turn * twist, true);
-        blade_outside = precise_volume(BRepAlgoAPI_Cut(blade, cylinder).Shape());
-        shape = fuse(shape, blade);
-    }
-    const auto part = from_occt(shape);
+    const BladedHub h{13.762284825059862,
+                      39.95338775655509,
+                      18.521916422192085,
+                      3.5429300535962307,
+                      29.724184501608637,
+                      {2.4803101521854423, 66.7303929773592, 120.47049408629232, 181.65921950624244,
+                       247.1566468705153, 300.31355267103095},
+                      30.0};
+    double blade_outside = 0.0;
+    const auto part = from_occt(h.shape(blade_outside));
     const auto d = decompose_as_slicing_does(part);
-    ASSERT_EQ(d.components.size(), angles.size() + 1);
-    std::set<std::size_t> blades;
-    for (std::size_t i = 1; i < d.components.size(); ++i) {
-        const mas::Component& c = d.components[i];
-        SCOPED_TRACE("component " + std::to_string(i));
-        // Built along its blade: within the 2 degrees under which a cut is not turned (the blade
-        // at 181.66 degrees is built along -X).
-        std::size_t nearest = 0;
-        double off = 180.0;
-        for (std::size_t k = 0; k < angles.size(); ++k) {
-            const double a = angles[k] * kPi / 180.0;
-            const double deg =
-                std::acos(std::clamp(c.build_direction.dot(Vector3d(std::cos(a), std::sin(a), 0)),
-                                     -1.0, 1.0)) *
-                180.0 / kPi;
-            if (deg < off) {
-                off = deg;
-                nearest = k;
-            }
-        }
-        EXPECT_LE(off, 2.0);
-        blades.insert(nearest);
-        // The whole blade but the lens between the hub's side and the cut (under half a
-        // millimetre deep: 83 mm^3 of a blade's 2028 outside the hub).
-        const double v = precise_volume(to_occt(c.solid));
-        EXPECT_LE(v, blade_outside + 1e-6 * blade_outside);
-        EXPECT_GE(v, 0.95 * blade_outside);
-    }
-    EXPECT_EQ(blades.size(), angles.size());
-    expect_invariants(d, part);
+    // The blade at 181.66 degrees is built along -X; the lens between the hub's side and a cut is
+    // under half a millimetre deep (83 mm^3 of a blade's 2028 outside the hub).
+    expect_a_hub_and_its_blades(d, part, h.angles, blade_outside);
 }
 
 TEST(Decompose, SourceShapeIsUnchanged) {

@@ -474,9 +474,7 @@ private:
             std::vector<Eigen::AlignedBox2d> bottoms;  // of the regions in mid-air
             for (std::size_t i = 0; i < g.regions[k].size(); ++i) {
                 const Eigen::AlignedBox2d& box = g.bounds2[k][i];
-                Regions2 below;
-                for (std::size_t j = 0; j < g.regions[k - 1].size(); ++j)
-                    if (g.bounds2[k - 1][j].intersects(box)) below.push_back(g.regions[k - 1][j]);
+                const Regions2 below = regions_near(g, k - 1, box);
                 if (below.empty() ||
                     area(intersection({g.regions[k][i]}, below)) <= p_.min_region_area_mm2)
                     bottoms.push_back(box);
@@ -913,6 +911,14 @@ private:
 
     double offset(const Grid& g, std::size_t k) const { return g.origin + double(k) * p_.step_mm; }
 
+    // The regions of grid plane j (cut) whose boxes meet `box`, in the plane's order.
+    static Regions2 regions_near(const Grid& g, std::size_t j, const Eigen::AlignedBox2d& box) {
+        Regions2 out;
+        for (std::size_t i = 0; i < g.regions[j].size(); ++i)
+            if (g.bounds2[j][i].intersects(box)) out.push_back(g.regions[j][i]);
+        return out;
+    }
+
     // Whether stick-out `da` meets the lower regions in more than one place: it spans a gap
     // between them or between two ends of one of them (a bore's ceiling closing a ring the bore
     // broke open), as a bridge does. A ledge meets them along one stretch.
@@ -952,18 +958,11 @@ private:
                 r.outer.points.push_back(s * way + t * across);
             return r;
         };
-        const auto near = [&](std::size_t j, const Region2& r) {
-            const Eigen::AlignedBox2d box = bounds(r);
-            Regions2 out;
-            for (std::size_t i = 0; i < g.regions[j].size(); ++i)
-                if (g.bounds2[j][i].intersects(box)) out.push_back(g.regions[j][i]);
-            return out;
-        };
         Eigen::AlignedBox2d all;
         for (const auto& b : g.bounds2[k]) all.extend(b);
         const double hair = p_.step_mm / 100.0;
         const Region2 beyond = band(front + hair, front + hair + all.diagonal().norm());
-        const Regions2 ahead = intersection({beyond}, near(k, beyond));
+        const Regions2 ahead = intersection({beyond}, regions_near(g, k, bounds(beyond)));
         if (area(ahead) <= p_.min_region_area_mm2) return false;
         double other = std::numeric_limits<double>::infinity();  // where the material ahead begins
         for (const auto& r : ahead)
@@ -971,7 +970,7 @@ private:
         if (!(other > front + hair)) return false;
         const Region2 gap = band(front, other);
         cut_chunk(g, k + 1);
-        return area(intersection({gap}, near(k + 1, gap))) >= 0.5 * area(gap);
+        return area(intersection({gap}, regions_near(g, k + 1, bounds(gap)))) >= 0.5 * area(gap);
     }
 
     // How stick-out `da` of plane k over plane k - 1 comes about between them: whether it is new
@@ -993,10 +992,8 @@ private:
         const double a = area(da);
         if (!(a > 0.0) || k == 0) return e;
         const Eigen::AlignedBox2d box = bounds(da);
-        Regions2 below, half;
-        for (std::size_t i = 0; i < g.regions[k - 1].size(); ++i)
-            if (g.bounds2[k - 1][i].intersects(box)) below.push_back(g.regions[k - 1][i]);
-        if (area(intersection({da}, below)) > 0.1 * a) return e;
+        if (area(intersection({da}, regions_near(g, k - 1, box))) > 0.1 * a) return e;
+        Regions2 half;
         for (const auto& r : half_plane(g, k))
             if (bounds(r).intersects(box)) half.push_back(r);
         e.is_new = true;
@@ -1161,9 +1158,7 @@ private:
                           std::vector<Task>& children) {
         cut_chunk(g, k0 - 1);
         const Eigen::AlignedBox2d box = bounds(region);
-        Regions2 below;
-        for (std::size_t i = 0; i < g.regions[k0 - 1].size(); ++i)
-            if (g.bounds2[k0 - 1][i].intersects(box)) below.push_back(g.regions[k0 - 1][i]);
+        const Regions2 below = regions_near(g, k0 - 1, box);
         Regions2 out = difference({region}, below);
         if (area(out) <= p_.min_region_area_mm2 || below.empty()) return {region};
         // Only what hangs at once (on a flat underside, as a ledge): a first section cut across
@@ -1606,9 +1601,19 @@ private:
         whole_lower.min().array() -= p_.step_mm / 100.0;
         whole_lower.max().array() += p_.step_mm / 100.0;
         const double laid = 1.05 * laid_overhang_mm();
-        // A wide stick-out found along the march is split at its necks and its pieces judged
-        // each (below), after the stick-outs given: they are kept here.
+        // A wide stick-out found along the march, or one turning, is split at its necks and its
+        // pieces judged each (below), after the stick-outs given: they are kept here.
         Regions2 split;
+        // The pieces of `r` that necks narrower than twice a hundredth of the step join, each
+        // smaller than `r` (none where it has no such neck).
+        const auto necked = [&](const Region2& r) {
+            const double whole = area(r);
+            Regions2 pieces;
+            for (auto& piece : split_at_necks({r}, p_.step_mm / 100.0, p_.min_region_area_mm2))
+                if (area(piece) < whole - p_.min_region_area_mm2)
+                    pieces.push_back(std::move(piece));
+            return pieces;
+        };
         for (std::size_t next = 0; next < stick_out.size() + split.size(); ++next) {
             // Not used past a piece appended to `split` (which may move its regions).
             const Region2& da =
@@ -1838,11 +1843,7 @@ private:
             // turned along +X; shared out by sides, the outer half of the blade 62.7 degrees
             // round went along +X too, and its layers overhung 8.5 mm^2 each.)
             if ((turn || ledge) && next < stick_out.size()) {
-                const double whole = area(da);
-                Regions2 pieces;
-                for (auto& piece : split_at_necks({da}, p_.step_mm / 100.0, p_.min_region_area_mm2))
-                    if (area(piece) < whole - p_.min_region_area_mm2)
-                        pieces.push_back(std::move(piece));
+                Regions2 pieces = necked(da);
                 if (pieces.size() > 1) {
                     for (auto& piece : pieces) split.push_back(std::move(piece));
                     continue;
@@ -1856,13 +1857,8 @@ private:
                 // quarter turn apart round a hub, their joint centre near the hub: neither turned,
                 // 74.6 mm^2 overhanging). Split where such necks join larger pieces, each piece is
                 // judged on its own.
-                if (along && wide) {
-                    const double whole = area(da);
-                    for (auto& piece :
-                         split_at_necks({da}, p_.step_mm / 100.0, p_.min_region_area_mm2))
-                        if (area(piece) < whole - p_.min_region_area_mm2)
-                            split.push_back(std::move(piece));
-                }
+                if (along && wide)
+                    for (auto& piece : necked(da)) split.push_back(std::move(piece));
                 continue;
             }
             // Otherwise (not a turn, yet reaching out past every lower region by more than half

@@ -91,21 +91,32 @@ mas::SlicePartParams default_params() {
 }
 
 // The part's axis (at `step`, 0: derived) and decomposition, not yet sliced.
-Sliced decomposed(const mas::Shape& part, double step = 0.0) {
+Sliced decomposed(const mas::Shape& part, const mas::AxisParams& ap) {
     mas::TessellationParams tp;
     tp.deflection_mm = kDeflection;
-    mas::AxisParams ap;
-    ap.step_mm = step;
     Sliced s;
     s.axis = mas::centroidal_axis(mas::tessellate(part, tp), ap);
     s.decomposition = mas::decompose(part, s.axis);
     return s;
 }
 
-Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& params) {
-    Sliced s = decomposed(part, step);
+Sliced decomposed(const mas::Shape& part, double step = 0.0) {
+    mas::AxisParams ap;
+    ap.step_mm = step;
+    return decomposed(part, ap);
+}
+
+Sliced slice(const mas::Shape& part, const mas::AxisParams& ap,
+             const mas::SlicePartParams& params) {
+    Sliced s = decomposed(part, ap);
     s.result = mas::slice_part(part, s.axis, s.decomposition, params);
     return s;
+}
+
+Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& params) {
+    mas::AxisParams ap;
+    ap.step_mm = step;
+    return slice(part, ap, params);
 }
 
 Sliced slice(const mas::Shape& part, double step) { return slice(part, step, default_params()); }
@@ -260,8 +271,8 @@ void expect_invariants(const Sliced& s, const mas::SlicePartParams& params, cons
         ASSERT_EQ(r.sequence.tool_axes.size(), r.layers.size());
         EXPECT_EQ(tp.tool_axis, r.sequence.tool_axes[i]);
         EXPECT_NEAR(tp.tool_axis.norm(), 1.0, 1e-12);
-        const double lean =
-            std::acos(std::clamp(tp.tool_axis.dot(l.plane.normal), -1.0, 1.0)) * 180.0 / kPi;
+        // (atan2: acos of a dot product one ulp under 1 is 1.2e-6 degrees.)
+        const double lean = angle_deg(tp.tool_axis, l.plane.normal);
         if (lean > 1e-6) {
             ++leaned;
             EXPECT_LE(lean, params.nozzle.max_lean_deg + 1e-6);
@@ -462,9 +473,22 @@ TEST(Slicing, AWallJustPastTheOverhangAngleIsBuiltInThinLayers) {
     EXPECT_GE(layers.back().lower.origin.z(), 35.0 - params.layers.max_layer_mm - 1e-9);
 }
 
-// An arm leaning `lean` degrees from the vertical off the top of a column (leaning_arm). Each Z
-// section moves less than the distance threshold, so the axis marches on in Z and the arm stays
-// in the column's component, yet the centroids lean along the arm: the layers must tilt with them.
+// The axis parameters for `part` with the distance threshold derived for it given: used as
+// given, the ledge and steep-limb rules, which read only a derived one, leave the march to Eq. 3.
+mas::AxisParams threshold_given(const mas::Shape& part) {
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    mas::AxisParams ap;
+    ap.distance_threshold_mm =
+        mas::centroidal_axis(mas::tessellate(part, tp), ap).params.distance_threshold_mm;
+    return ap;
+}
+
+// An arm leaning `lean` degrees from the vertical off the top of a column (leaning_arm), with the
+// distance threshold given (threshold_given; derived, the arm is a steep limb, turned along +X
+// where it leaves the column's side and built sideways, nothing hanging). Each Z section moves
+// less than the threshold, so the axis marches on in Z and the arm stays in the column's
+// component, yet the centroids lean along the arm: the layers must tilt with them.
 // No one tilt the thickness bounds allow makes the next layer supported (the arm's walls lie lean -
 // 45 degrees past the overhang angle), so the search used to keep the layers parallel and every one
 // of the arm's thin layers overhung; it now tilts a little at a time, each tilt leaving less
@@ -478,7 +502,8 @@ TEST(Slicing, LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported) {
         SCOPED_TRACE("lean " + std::to_string(lean));
         const double a = lean * kPi / 180.0;
         const Vector3d arm_axis(std::sin(a), 0.0, std::cos(a));
-        const auto s = slice(leaning_arm(lean), 0.0, params);
+        const auto arm = leaning_arm(lean);
+        const auto s = slice(arm, threshold_given(arm), params);
         ASSERT_EQ(s.axis.branches.size(), 1u);
         ASSERT_EQ(s.result.components.size(), 1u);
         const auto& layers = s.result.layers;
@@ -509,6 +534,31 @@ TEST(Slicing, LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported) {
         // The tilting costs less than two thin Z layers' overhang in all (it used to be every
         // layer's: 75 mm2 at 60 degrees, 131 mm2 at 65).
         EXPECT_LT(total, 2.0 * z_layer_overhang);
+        expect_invariants(s, params, "leaning arm", false);
+    }
+}
+
+// The same arms with the distance threshold derived: each Z section moves on along the arm by 2.1
+// or 3.0 mm a plane (60 or 65 degrees), more than 1.5 planes' spacing, a strip beside the section
+// below centred out of it: a steep limb (CentroidalAxis.hpp). The march turns +X where the arm
+// leaves the column's side (x = 6), and the decomposition cuts it off within a step past that
+// and builds it sideways: no layer leaves more than the deflection's strip unsupported, where
+// the tilting layers above left 1.7 and 6.0 mm^2 in one (at the CLI's 0.02 mm deflection).
+TEST(Slicing, AnArmLeaningSteeplyOffAColumnsTopIsCutAtItsSideAndBuiltSideways) {
+    auto params = default_params();
+    params.layers.volume_samples = 16;
+    for (const double lean : {60.0, 65.0}) {
+        SCOPED_TRACE("lean " + std::to_string(lean));
+        const auto s = slice(leaning_arm(lean), 0.0, params);
+        const auto& comps = s.decomposition.components;
+        ASSERT_EQ(comps.size(), 2u);
+        EXPECT_EQ(comps[1].parent, 0);
+        EXPECT_TRUE(comps[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+        EXPECT_GE(comps[1].base_origin.x(), 6.0);
+        EXPECT_LE(comps[1].base_origin.x(), 6.0 + s.axis.params.step_mm);
+        ASSERT_EQ(s.result.components.size(), 2u);
+        for (const auto& l : s.result.layers)
+            EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * kDeflection + 1e-6);
         expect_invariants(s, params, "leaning arm", false);
     }
 }
@@ -663,12 +713,21 @@ TEST(Slicing, BladesRoundAHubAreCutSquareToThemselvesJustPastItsSide) {
 
 namespace {
 
+// A round column standing on the plate, and a round branch leaving its side towards +X.
+struct LeaningBranch {
+    double column = 10.0, height = 60.0;  // the column's radius and height
+    double radius = 7.0, length = 30.0;   // the branch's
+    double root_z = 25.0;                 // where the branch's axis leaves the column's
+};
+
 // Slicing.ABranchLeaningSteeplyOffAColumnIsTurnedIntoWhereItLeavesItAndBuiltSideways, at one lean.
-void leaning_branch_is_built_sideways(double degrees) {
-    const double lean = degrees * kPi / 180.0, radius = 7.0, length = 30.0, column = 10.0;
-    const Vector3d root(0, 0, 25), line(std::sin(lean), 0.0, std::cos(lean));
-    const auto part = from_occt(fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), column, 60.0),
-                                     occ_cylinder(root, line, radius, length)));
+void leaning_branch_is_built_sideways(double degrees, const LeaningBranch& shape = {}) {
+    const double lean = degrees * kPi / 180.0, radius = shape.radius, length = shape.length,
+                 column = shape.column;
+    const Vector3d root(0, 0, shape.root_z), line(std::sin(lean), 0.0, std::cos(lean));
+    const auto part =
+        from_occt(fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), column, shape.height),
+                       occ_cylinder(root, line, radius, length)));
     const auto params = default_params();
     const auto s = slice(part, 0.0, params);
     // One march turns +X, off the root (where its section parts, its tracks go on as its
@@ -754,6 +813,26 @@ TEST(Slicing, ABranchLeaningSteeplyOffAColumnIsTurnedIntoWhereItLeavesItAndBuilt
     for (const double degrees : {63.0, 67.0}) {
         SCOPED_TRACE("lean " + std::to_string(degrees));
         leaning_branch_is_built_sideways(degrees);
+    }
+}
+
+// As above, a branch half as thick as the column (a survey part's, radius 5.5 off a column of
+// 10.7, from z = 17.2, leaning 62 or 64 degrees). At the derived 3.26 mm step it moves 6.1 or
+// 6.7 mm a plane, more than the bump (2.4 mm): its crescent, wider than the round end of the
+// section below that it grows round, is centred out of it (0.8 mm), though nearer than Eq. 3's d.
+// Its end moving on past that section's by more than kSteepLimb spacings, it is a steep limb
+// all the same. (It stayed in the column's layers until it parted from the column: 2.6 and 4.4
+// mm^2 hanging in one layer, 25 and 22 in all, three components.)
+TEST(Slicing, ABranchThinnerThanItsColumnLeaningSteeplyOffItIsBuiltSideways) {
+    LeaningBranch thin;
+    thin.column = 10.7;
+    thin.height = 52.8;
+    thin.radius = 5.5;
+    thin.length = 38.6;
+    thin.root_z = 17.2;
+    for (const double degrees : {62.0, 64.0}) {
+        SCOPED_TRACE("lean " + std::to_string(degrees));
+        leaning_branch_is_built_sideways(degrees, thin);
     }
 }
 
@@ -2013,14 +2092,15 @@ TEST(Slicing, ABlockHangingUnderABridgeIsSlicedWithItsFirstLayerUnsupported) {
 TEST(Slicing, AWedgeLayersOverhangAllowanceIsTakenOnItsThinSide) {
     // Slicing.hpp's support: a layer's footprint may reach past the layer below by the overhang
     // allowance, the layer's MIN thickness x tan(overhang_angle). The arm leaning 65 degrees off
-    // a column of LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported is built in tilting
-    // layers, wedges thicker on one side than the other; on some of them (two, 0.53 to 1.59 and
-    // 0.55 to 1.05 mm thick) the thin side's allowance leaves a strip of the footprint (6 and
-    // 0.7 mm^2) unsupported that the thick side's would not. The reported area is always the
-    // thin side's.
+    // a column of LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported (the distance
+    // threshold given, as there) is built in tilting layers, wedges thicker on one side than the
+    // other; on some of them (two, 0.53 to 1.59 and 0.55 to 1.05 mm thick) the thin side's
+    // allowance leaves a strip of the footprint (6 and 0.7 mm^2) unsupported that the thick
+    // side's would not. The reported area is always the thin side's.
     auto params = default_params();
     params.layers.volume_samples = 16;
-    const auto s = slice(leaning_arm(65.0), 0.0, params);
+    const auto arm = leaning_arm(65.0);
+    const auto s = slice(arm, threshold_given(arm), params);
     ASSERT_EQ(s.result.components.size(), 1u);
     const auto& layers = s.result.layers;
     const double allowance = std::tan(params.layers.overhang_angle_deg * kPi / 180.0);

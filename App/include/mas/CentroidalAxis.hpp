@@ -147,7 +147,13 @@
 //   cone or a ball widening all round is centred on C), new on the plane, reaching out past L by
 //   more than 1.5 spacings, its limb already held in L by more than that past where it leaves the
 //   march's section: its end moves on plane after plane, where a boss's round underside's end
-//   stays where its first sliver was. It turns the closest of the four sides to G_k - C, and its
+//   stays where its first sliver was. A limb much thinner than what it leaves makes a crescent
+//   wider than the round end of L it grows round, centred out of L though nearer than d: it is
+//   one too where its end moves past L's, the way it leans, by more than 1.5 spacings on the
+//   plane, where a round underside's end moves out by less and less as the round flattens. (A
+//   branch of radius 5.5 leaning 63.8 degrees off a column of 10.7, its crescents centred 0.8
+//   mm out of L, stayed in the column's layers until it parted from it: 4.4 mm^2 hanging in a
+//   layer.) It turns the closest of the four sides to G_k - C, and its
 //   march starts at Eq. 4's T on the section the limb leaves: going down from L through the
 //   regions under it, plane by plane, while each reaches out along that side by more than a
 //   plane's spacing (45 degrees) past the one under it. That march takes all of U beyond there

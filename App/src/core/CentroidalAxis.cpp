@@ -1764,7 +1764,16 @@ private:
             // by more than that past where it leaves the march's section (below): its end moves
             // on plane after plane. (A boss's round underside does not: its end stays where its
             // first sliver was, and a sliver is centred out of L. Turned from its first sliver, a
-            // valve body's boss was marched from there and its split refused.) The march turns
+            // valve body's boss was marched from there and its split refused.) A limb much
+            // thinner than what it leaves moves on as far, but its crescent, wider than the
+            // narrow end of L it grows round, is centred out of L, though nearer it than Eq. 3's
+            // d: then its end must also move past L's, the way it leans, by more than that on
+            // this plane. (A branch of radius 5.5 leaning 63.8 degrees off a column of 10.7, 6.6
+            // mm a 3.26 mm spacing, its crescents centred 0.8 mm out of L, stayed in the column's
+            // layers until it parted from it, 4.4 mm^2 hanging in one. A round underside's end
+            // moves out by less plane after plane as the round flattens: a hub lying across a
+            // post, 2.3 then 1.3 mm a 1.5 mm spacing, and L held it 2.28 mm past the post's
+            // side; turned there, one blade below it was cut in two.) The march turns
             // from C, as a ledge centred inside L does, and starts where the limb leaves the
             // march's section (limb_root): Eq. 4's T on the section found going down from L
             // through the regions under it, plane by plane, while each reaches out along the
@@ -1802,12 +1811,15 @@ private:
             // past it (L's extent that way less the root).
             double root = 0.0, held = 0.0;
             const auto steep_limb = [&] {
-                if (dist > 0.0) return false;
                 const Vector2d c = centroid(*left);
                 if ((g - c).norm() < size / 4.0 || !reaches({da}, steep) || !emerged().is_new)
                     return false;
                 const Vector3d way =
                     closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane));
+                if (dist > 0.0 && extent_along(da, n, upper_offset, way) -
+                                          extent_along(*left, n, lower_offset, way) <=
+                                      steep)
+                    return false;
                 root = limb_root(way);
                 held = extent_along(*left, n, lower_offset, way) - root;
                 return held > steep;

@@ -543,7 +543,7 @@ TEST(Slicing, LayersTiltUntilAnArmLeaningPastTheOverhangAngleIsSupported) {
 // below centred out of it: a steep limb (CentroidalAxis.hpp). The march turns +X where the arm
 // leaves the column's side (x = 6), and the decomposition cuts it off within a step past that
 // and builds it sideways: no layer leaves more than the deflection's strip unsupported, where
-// the tilting layers above left 1.7 and 6.0 mm^2 in one (at the CLI's 0.02 mm deflection).
+// the tilting layers above left 1.7 and 6.0 mm^2 in one (at this file's 0.02 mm deflection).
 TEST(Slicing, AnArmLeaningSteeplyOffAColumnsTopIsCutAtItsSideAndBuiltSideways) {
     auto params = default_params();
     params.layers.volume_samples = 16;

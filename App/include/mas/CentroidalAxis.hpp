@@ -153,11 +153,14 @@
 //   plane, where a round underside's end moves out by less and less as the round flattens. (A
 //   branch of radius 5.5 leaning 63.8 degrees off a column of 10.7, its crescents centred 0.8
 //   mm out of L, stayed in the column's layers until it parted from it: 4.4 mm^2 hanging in a
-//   layer.) It turns the closest of the four sides to G_k - C, and its
-//   march starts at Eq. 4's T on the section the limb leaves: going down from L through the
-//   regions under it, plane by plane, while each reaches out along that side by more than a
-//   plane's spacing (45 degrees) past the one under it. That march takes all of U beyond there
-//   that the crescent is part of. (From L's own T, what L held of the limb stayed in the
+//   layer.) It turns the closest of the four sides to G_k - C, and its march starts at Eq. 4's
+//   T on the section the limb leaves: going down from L through the regions under it, plane by
+//   plane, while each reaches out along that side by more than a plane's spacing (45 degrees)
+//   past the one under it, and one plane more where the last reaches out less past a side
+//   running straight up: the limb's first sliver, its underside begun between the planes (cut
+//   past such a sliver, 1.5 mm out of a column of radius 11.4, a branch leaning 68.9 degrees
+//   left a wedge hanging 1.4 mm^2 in the column's layers). That march takes all of U beyond
+//   there that the crescent is part of. (From L's own T, what L held of the limb stayed in the
 //   march's layers, a wedge hanging under the cut.) It turns as a ledge's share does, where
 //   the crescent reaches out of the bump or of what layers at slicing's defaults lay, or
 //   however little where L holds no more than twice the crescent's reach of the limb past its

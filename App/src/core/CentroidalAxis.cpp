@@ -1777,31 +1777,52 @@ private:
             // from C, as a ledge centred inside L does, and starts where the limb leaves the
             // march's section (limb_root): Eq. 4's T on the section found going down from L
             // through the regions under it, plane by plane, while each reaches out along the
-            // turn's way by more than a plane's spacing (45 degrees) past the one under it. From
-            // L's own T, what L holds of the limb stayed in the march's layers, a wedge hanging
-            // under the cut (8.5 mm^2 in one layer of a survey part, as before); going down only
-            // while the limb grew steeper than kSteepLimb, the first sliver of another, 54
-            // degrees, did (2.6 mm^2).
+            // turn's way by more than a plane's spacing (45 degrees) past the one under it, and
+            // one plane more where the last reaches out less past a side running straight up
+            // (no farther out on the plane under that, within a hundredth of a step): the limb's
+            // first sliver, its underside begun between the planes. (A branch leaning 68.9
+            // degrees off a column of radius 11.4 reached 1.5 mm past it on the plane over its
+            // underside's start, at a 3.51 mm step; cut there, the wedge between hung 1.4 mm^2
+            // in the column's layers.) From L's own T, what L holds of the limb stayed in the
+            // march's layers, a wedge hanging under the cut (8.5 mm^2 in one layer of a survey
+            // part, as before); going down only while the limb grew steeper than kSteepLimb, the
+            // first sliver of another, 54 degrees, did (2.6 mm^2).
             const double spacing = upper_offset - lower_offset;
             const double steep = kSteepLimb * spacing;
+            // The regions of plane j that overlap `at` and their extent along `side`.
+            const auto under = [&](const Regions2& at, std::size_t j, const Vector3d& side) {
+                cut_chunk(planes, j);
+                Eigen::AlignedBox2d box;
+                for (const auto& r : at) box.extend(bounds(r));
+                std::pair<Regions2, double> out{{}, -std::numeric_limits<double>::infinity()};
+                for (std::size_t i = 0; i < planes.regions[j].size(); ++i) {
+                    if (!planes.bounds2[j][i].intersects(box)) continue;
+                    const Region2& r = planes.regions[j][i];
+                    if (area(intersection({r}, at)) <= p_.min_region_area_mm2) continue;
+                    out.second = std::max(out.second, extent_along(r, n, offset(planes, j), side));
+                    out.first.push_back(r);
+                }
+                return out;
+            };
             const auto limb_root = [&](const Vector3d& side) {
                 double t = extent_along(*left, n, lower_offset, side);
                 Regions2 at{*left};
                 for (std::size_t j = k - 1; j > 0; --j) {
-                    cut_chunk(planes, j - 1);
-                    Eigen::AlignedBox2d box;
-                    for (const auto& r : at) box.extend(bounds(r));
-                    Regions2 below;
-                    double t_below = -std::numeric_limits<double>::infinity();
-                    for (std::size_t i = 0; i < planes.regions[j - 1].size(); ++i) {
-                        if (!planes.bounds2[j - 1][i].intersects(box)) continue;
-                        const Region2& r = planes.regions[j - 1][i];
-                        if (area(intersection({r}, at)) <= p_.min_region_area_mm2) continue;
-                        t_below =
-                            std::max(t_below, extent_along(r, n, offset(planes, j - 1), side));
-                        below.push_back(r);
+                    auto [below, t_below] = under(at, j - 1, side);
+                    if (below.empty()) break;
+                    if (t - t_below <= spacing) {
+                        // The limb's first sliver, over a side that runs straight up under it (the
+                        // plane below that reaches out as far): the limb's underside began
+                        // between the planes, already past 45 degrees, and the sliver is its
+                        // start, not a gentler root.
+                        const double tolerance = p_.step_mm / 100.0;
+                        if (t - t_below > tolerance && j > 1) {
+                            const auto [under_that, t_under] = under(below, j - 2, side);
+                            if (!under_that.empty() && std::abs(t_below - t_under) <= tolerance)
+                                t = t_below;
+                        }
+                        break;
                     }
-                    if (below.empty() || t - t_below <= spacing) break;
                     t = t_below;
                     at = std::move(below);
                 }

@@ -1779,7 +1779,7 @@ private:
             // through the regions under it, plane by plane, while each reaches out along the
             // turn's way by more than a plane's spacing (45 degrees) past the one under it, and
             // one plane more where the last reaches out less past a side running straight up
-            // (no farther out on the plane under that, within a hundredth of a step): the limb's
+            // (as far out on the plane under that, within a hundredth of a step): the limb's
             // first sliver, its underside begun between the planes. (A branch leaning 68.9
             // degrees off a column of radius 11.4 reached 1.5 mm past it on the plane over its
             // underside's start, at a 3.51 mm step; cut there, the wedge between hung 1.4 mm^2

@@ -1795,17 +1795,15 @@ private:
                 Eigen::AlignedBox2d box;
                 for (const auto& r : at) box.extend(bounds(r));
                 std::pair<Regions2, double> out{{}, -std::numeric_limits<double>::infinity()};
-                for (std::size_t i = 0; i < planes.regions[j].size(); ++i) {
-                    if (!planes.bounds2[j][i].intersects(box)) continue;
-                    const Region2& r = planes.regions[j][i];
+                for (auto& r : regions_near(planes, j, box)) {
                     if (area(intersection({r}, at)) <= p_.min_region_area_mm2) continue;
                     out.second = std::max(out.second, extent_along(r, n, offset(planes, j), side));
-                    out.first.push_back(r);
+                    out.first.push_back(std::move(r));
                 }
                 return out;
             };
-            const auto limb_root = [&](const Vector3d& side) {
-                double t = extent_along(*left, n, lower_offset, side);
+            // From L, whose extent along `side` is `t`.
+            const auto limb_root = [&](const Vector3d& side, double t) {
                 Regions2 at{*left};
                 for (std::size_t j = k - 1; j > 0; --j) {
                     auto [below, t_below] = under(at, j - 1, side);
@@ -1837,12 +1835,11 @@ private:
                     return false;
                 const Vector3d way =
                     closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane));
-                if (dist > 0.0 && extent_along(da, n, upper_offset, way) -
-                                          extent_along(*left, n, lower_offset, way) <=
-                                      steep)
+                const double end = extent_along(*left, n, lower_offset, way);  // L's, that way
+                if (dist > 0.0 && extent_along(da, n, upper_offset, way) - end <= steep)
                     return false;
-                root = limb_root(way);
-                held = extent_along(*left, n, lower_offset, way) - root;
+                root = limb_root(way, end);
+                held = end - root;
                 return held > steep;
             };
             bool ledge = false, limb = false;

@@ -1470,6 +1470,16 @@ void expect_a_body_and_its_ports(const mas::Decomposition& d, const ValveBody& b
     }
 }
 
+// `body` built in OCCT and decomposed as slicing does, checked to be the body and its ports and
+// for the decomposition's invariants.
+mas::Decomposition expect_a_valve_body_split(const ValveBody& body) {
+    const auto part = from_occt(body.shape());
+    mas::Decomposition d = decompose_as_slicing_does(part);
+    expect_a_body_and_its_ports(d, body);
+    expect_invariants(d, part);
+    return d;
+}
+
 }  // namespace
 
 TEST(Decompose, TracksThatSplitAgainBeforeTheyRejoinAreOneComponent) {
@@ -1479,10 +1489,7 @@ TEST(Decompose, TracksThatSplitAgainBeforeTheyRejoinAreOneComponent) {
     // one that went on (its child did): it was cut off at z = 12.76, and neither half of the
     // body held the lower two bores whole, to be deposited solid (5.8 mm^2 under their ceilings).
     const ValveBody body = mas::test::survey_valve_body_44_2();
-    const auto part = from_occt(body.shape());
-    const auto d = decompose_as_slicing_does(part);
-    expect_a_body_and_its_ports(d, body);
-    expect_invariants(d, part);
+    expect_a_valve_body_split(body);
 }
 
 TEST(Decompose, ATrackBesideASliverIsItsFathersMarchGoingOn) {
@@ -1496,10 +1503,7 @@ TEST(Decompose, ATrackBesideASliverIsItsFathersMarchGoingOn) {
         47.20393033224486,
         {{-Vector3d::UnitY(), 9.520574328071719, 18.83899239650789, 19.11256685294195},
          {Vector3d::UnitX(), 7.28941783082178, 10.513350401490369, 9.638761562378875}}};
-    const auto part = from_occt(body.shape());
-    const auto d = decompose_as_slicing_does(part);
-    expect_a_body_and_its_ports(d, body);
-    expect_invariants(d, part);
+    expect_a_valve_body_split(body);
 }
 
 TEST(Decompose, AHairlineAlongABoresWallTurnsNoMarchAcrossTheRing) {
@@ -1517,10 +1521,7 @@ TEST(Decompose, AHairlineAlongABoresWallTurnsNoMarchAcrossTheRing) {
          {Vector3d::UnitY(), 9.505968798147482, 16.155539518813974, 19.61863646044499},
          {-Vector3d::UnitX(), 5.529301958431927, 9.600547479231082, 36.35405543072459},
          {Vector3d::UnitX(), 9.285588611558243, 18.123328310147066, 35.70000724278496}}};
-    const auto part = from_occt(body.shape());
-    const auto d = decompose_as_slicing_does(part);
-    expect_a_body_and_its_ports(d, body);
-    expect_invariants(d, part);
+    const auto d = expect_a_valve_body_split(body);
     // Each port is cut off where it leaves the body's side.
     for (std::size_t i = 1; i < d.components.size(); ++i) {
         const mas::Component& c = d.components[i];
@@ -1547,10 +1548,7 @@ TEST(Decompose, ABoresCeilingClosingOverTheRingTurnsNoMarchAcrossIt) {
          {Vector3d::UnitY(), 8.322029893853209, 13.14513429901162, 11.37669084186458},
          {Vector3d::UnitX(), 7.535855599332123, 7.338388282750936, 31.64986511995663},
          {-Vector3d::UnitX(), 6.894977056046914, 18.33183950621052, 24.39399637197161}}};
-    const auto part = from_occt(body.shape());
-    const auto d = decompose_as_slicing_does(part);
-    expect_a_body_and_its_ports(d, body);
-    expect_invariants(d, part);
+    const auto d = expect_a_valve_body_split(body);
     // Each port is cut off past the body's side, within a step of it (where the axis' march
     // along it starts), and holds all of the bored port past there.
     for (std::size_t i = 1; i < d.components.size(); ++i) {

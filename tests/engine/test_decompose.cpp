@@ -1566,6 +1566,26 @@ TEST(Decompose, ABoresCeilingClosingOverTheRingTurnsNoMarchAcrossIt) {
     }
 }
 
+TEST(Decompose, AValveBodysPortNearItsTopIsNoBend) {
+    // A valve body drawn at random (the survey's, seed 163, 1): the +X port's top (z = 55.6) lies
+    // within a step of the body's (58.1), and the body's march ends under it at z = 44.2, going on
+    // up in sub-branches of its own. Its centroids lie level along X from z = 22 to 26, between
+    // the ports. Read as a bend (Decompose.hpp's bend_plane: the march turning +X), the port was
+    // cut at a plane square to (1, 0, 1) through the corner of its line and the body's; the
+    // body's top went with it, and 63.6 mm^2 hung in one layer. Branches leave the body's march
+    // past z = 26 that do not lie wholly in front of that plane (the other ports, the body going
+    // on): no bend, and every port is cut off square to its own direction.
+    const ValveBody body{
+        14.326482443705437,
+        58.149675360020964,
+        {{Vector3d::UnitX(), 7.978454913738391, 13.82551344535349, 47.62260420589829},
+         {-Vector3d::UnitY(), 9.389625737384383, 9.411485546343005, 22.263734647411933},
+         {Vector3d::UnitY(), 6.113649174540202, 9.328137597337093, 48.00780044080838},
+         {-Vector3d::UnitX(), 6.980004219335004, 17.741680325139278, 35.662158419624014}}};
+    const auto d = expect_a_valve_body_split(body);
+    for (const mas::Component& c : d.components) EXPECT_FALSE(c.turned);
+}
+
 TEST(Decompose, ABosssFirstSliverOutOfTheBlockIsNoHairline) {
     // A manifold block drawn at random (the survey's, seed 184, 3): 41.26 x 42.63 x 41.75, with a
     // boss of radius 4.17 reaching 8.15 mm out of its +X face, its lowest line at z = 26.738, and
@@ -1615,7 +1635,8 @@ TEST(Decompose, ABranchWhoseFirstMaterialPointTheClassifierCallsOutIsStillSplitO
     // 67 degrees round the bend; OCCT's classifier calls its first node's material point, 1.5 mm
     // inside the wall, out of the part (and points 0.5 mm either side of it in), so no component
     // held the branch: the run stayed in the riser's layers, 9.6 mm^2 hanging in one. The next
-    // node's point finds the riser.
+    // node's point finds the riser. The run is cut at the bend's halfway plane and built along
+    // (1, 0, 1) (Decompose.hpp's bend_plane).
     const mas::Model model =
         mas::read_model(std::string(MAS_TEST_DATA) + "/pipe_bend_classifier.brep");
     const TopoDS_Shape& solid = to_occt(model.shape);
@@ -1627,7 +1648,8 @@ TEST(Decompose, ABranchWhoseFirstMaterialPointTheClassifierCallsOutIsStillSplitO
     EXPECT_FALSE(out(Vector3d(16.5924, 8.0, 65.7732)));
     const auto d = decompose_as_slicing_does(model.shape);
     ASSERT_EQ(d.components.size(), 2u);
-    EXPECT_TRUE(d.components[1].build_direction.isApprox(Vector3d::UnitX(), 1e-9));
+    EXPECT_TRUE(d.components[1].build_direction.isApprox(Vector3d(1, 0, 1).normalized(), 1e-9));
+    EXPECT_TRUE(d.components[1].turned);
     EXPECT_EQ(d.components[1].parent, 0);
     for (const std::string& note : d.notes)
         EXPECT_EQ(note.find("lies in no component"), std::string::npos) << note;

@@ -277,6 +277,49 @@ TEST(DecomposeMesh, ATurnedCutNeverBuildsPastTheMachinesReach) {
     }
 }
 
+TEST(DecomposeMesh, APipeBendIsCutAtItsBendsHalfwayPlaneAsASolidIs) {
+    // The survey's hollow pipe bend (seed 206, 5: radius 11.4 round a 9.2 bore, bent on 16.2),
+    // as a mesh: its run is cut at the plane square to (1, 0, 1) through the bend's centre, as
+    // the solid's is (Slicing.APipeBendIsCutHalfwayRoundItsBendAndItsBoresCeilingIsSupported),
+    // and built along that bisector; asked (square_branches), square to +X at Eq. 4's T.
+    const auto solid = mas::test::pipe_bend(11.4, 9.2, 22.2, 16.2, 23.8, 8.0);
+    const auto bend = mesh_of(solid);
+    const auto axis = mas::centroidal_axis(bend, {});
+    const mas::MeshDecomposition d = mas::decompose_mesh(bend, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    EXPECT_TRUE(d.notes.empty());
+    const mas::ComponentMesh& run = d.components[1];
+    EXPECT_TRUE(run.turned);
+    EXPECT_EQ(axis.branches[std::size_t(run.branch)].direction, Vector3d::UnitX());
+    const Vector3d n = Vector3d(1, 0, 1).normalized();
+    EXPECT_TRUE(run.base.normal.isApprox(n, 1e-12));
+    // Through the centre (16.2, 0, 26.2), up to the sections' centroids: within the deflection.
+    EXPECT_NEAR(n.dot(run.base.origin - Vector3d(16.2, 0, 26.2)), 0.0, 0.02);
+    EXPECT_NEAR(lowest(run.mesh, n), n.dot(run.base.origin), 1e-9);
+    expect_solid(d.components[0].mesh, "riser");
+    expect_solid(run.mesh, "run");
+    // The same plane as the solid's, from the same axis.
+    const mas::Decomposition exact = mas::decompose(solid, axis);
+    ASSERT_EQ(exact.components.size(), 2u);
+    EXPECT_TRUE(exact.components[1].turned);
+    EXPECT_TRUE(exact.components[1].build_direction.isApprox(n, 1e-12));
+    EXPECT_NEAR(n.dot(exact.components[1].base_origin), n.dot(run.base.origin), 1e-9);
+    // Asked to, square to +X.
+    mas::MeshDecomposeParams square;
+    square.square_branches = {run.branch};
+    const mas::MeshDecomposition squared = mas::decompose_mesh(bend, axis, square);
+    ASSERT_EQ(squared.components.size(), 2u);
+    EXPECT_FALSE(squared.components[1].turned);
+    EXPECT_EQ(squared.components[1].base.normal, Vector3d::UnitX());
+    // Sliced, every layer is supported up to the deflection along its outline. Cut at T, the
+    // bore's ceiling hung in the riser's layers, 6.6 mm^2 in one.
+    const mas::SlicedPart sliced = mas::slice_mesh_part(bend, axis, params());
+    EXPECT_EQ(sliced.components.size(), 2u);
+    EXPECT_EQ(sliced.stats.colliding_layers, 0);
+    for (const auto& layer : sliced.layers)
+        EXPECT_LE(layer.unsupported_area_mm2, mas::test::perimeter(layer.regions) * 0.02 + 1e-6);
+}
+
 TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {
     // A post with a beam over to the side and a block hanging from the beam's end (-Z: built
     // downwards), and an arm along +X a fifth of a millimetre over the plate: its piece stands on

@@ -190,6 +190,22 @@ Shape pipe_tee() {
     return from_occt(BRepAlgoAPI_Cut(outer, bore).Shape());
 }
 
+Shape pipe_bend(double radius, double bore, double rise, double bend_radius, double run,
+                double flange) {
+    const double z0 = 4.0;
+    const auto channel = [&](double r) {
+        const gp_Ax2 bend(gp_Pnt(bend_radius, 0, z0 + rise), gp_Dir(0, 1, 0), gp_Dir(-1, 0, 0));
+        TopoDS_Shape s = occ_cylinder({0, 0, z0 - 1}, Eigen::Vector3d::UnitZ(), r, rise + 1);
+        s = fuse(s, BRepPrimAPI_MakeTorus(bend, bend_radius, r, kPi / 2).Shape());
+        return fuse(s, occ_cylinder({bend_radius, 0, z0 + rise + bend_radius},
+                                    Eigen::Vector3d::UnitX(), r, run + 1));
+    };
+    TopoDS_Shape s = fuse(occ_cylinder({0, 0, 0}, Eigen::Vector3d::UnitZ(), radius + flange, z0),
+                          channel(radius));
+    if (bore > 0.0) s = BRepAlgoAPI_Cut(s, channel(bore)).Shape();
+    return from_occt(s);
+}
+
 Shape torus(double major_radius, double minor_radius) {
     return from_occt(
         BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), major_radius, minor_radius)

@@ -55,6 +55,13 @@ Shape arch_with_pendant();
 // A pipe tee: a pipe of radius 10 with a bore of 8, 60 tall on z = 0 along Z, and a branch of the
 // same pipe reaching +Y from its axis at z = 35, 35 long.
 Shape pipe_tee();
+// The survey's pipe bend (tests/python/MultiAxisSlicerSurvey.py): a flange of radius radius +
+// flange, 4 tall, on z = 0; a round riser of `radius` up to z = 4 + rise; a quarter torus bending
+// it towards +X round the centre (bend_radius, 0, 4 + rise); a run along +X from x = bend_radius,
+// run + 1 long. With bore > 0, a channel of that radius runs the same way from z = 3 (inside the
+// flange) out of the run's end.
+Shape pipe_bend(double radius, double bore, double rise, double bend_radius, double run,
+                double flange);
 // Torus with its axis along Z through the origin.
 Shape torus(double major_radius, double minor_radius);
 // A shape made of one planar face (not a solid) and a compound of two disjoint boxes.

@@ -158,6 +158,23 @@
 //   DecomposeParams::square_branches lists it (as slicing does where the nozzle cannot build the
 //   turned cuts' layers: a spiral stair's treads, SlicePart.hpp); its component says which
 //   (Component::turned).
+// - A branch turning off its father round a bend (a pipe's elbow: the father marches up a straight
+//   riser, its centroids then drifting along D through the bend, and the branch marches along the
+//   run) is cut at the bend's halfway plane instead (bend_plane()): square to F + D (F the
+//   father's direction), through the corner where the riser's line meets the run's, which is the
+//   plane through the bend's centre of curvature halfway round it, whatever the bend's radius.
+//   The child is built along that bisector (Component::turned): its layers start at 45 degrees
+//   and turn towards D as the thickness bounds let them (Slicing.hpp), and no face of the bend's
+//   second half or of the run leans more than 45 degrees off them; the father's layers hold the
+//   bend's first half, whose faces lean no more than 45 degrees off F. Cut square to D at T
+//   (where the run's march began, near the bend's end), the father held nearly all of the bend,
+//   and a hollow bend's bore ceiling (the inside of its outer wall, leaning past 45 degrees from
+//   halfway round, which is why the plane lies there) hung in its layers: 7.0 mm^2 in one layer on
+//   a survey part (seed 206), 45 of the 54 survey parts over the deflection's strip at seeds 161 to
+//   224 were such bends. Only where the father's march past its straight run is the bend: branches
+//   leaving it other than this one lie wholly in front of the plane (a valve body going on above a
+//   port near its top is no bend: cut halfway, its top went with the port). Refused (or asked,
+//   square_branches, or turn_cuts false), the plane square to D at T.
 // - The whole plane can cut off, on the father's side, material joined only to the child's
 //   piece: an S bracket's middle plate, cut off its lower upright's face, takes with it the top
 //   plate's tail past that face. Such a piece (wholly on the father's side, joined to exactly
@@ -264,6 +281,21 @@ using RayCast = std::function<void(const Eigen::Vector3d& from, const Eigen::Vec
 double turned_plane(const CentroidalAxis& axis, std::size_t b, const Eigen::Vector3d& along,
                     double clearance_mm, const RayCast& cast, Eigen::Vector3d& inner);
 
+// Where branch b turns off its father's march round a bend (a pipe's elbow), the plane halfway
+// round it: its normal bisects the father's direction F and b's direction D (square to each
+// other), and it passes through the corner where the father's straight run meets b's line.
+// The father's run: walking back from the node b links to, the first two consecutive nodes
+// whose centroids lie level along D (within step / 100); b's line: the first two consecutive of
+// its nodes whose centroids lie level along F. On a bend of any radius that corner and the bend's
+// centre of curvature lie on the same plane square to F + D. False (cut square to D at Eq. 4's T,
+// as before) unless F and D are square to each other, both runs are found, the father's run's
+// last section lies wholly `clearance_mm` behind the plane (its straight part is not cut), the
+// father's march ends no further along F than b's sections reach, plus a step (a column going
+// on past the branch, a tee, is cut at T), and `inner` (a point in b's first section) lies the
+// clearance in front of it. `point` and `normal` receive the plane (normal along F + D).
+bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm,
+                const Eigen::Vector3d& inner, Eigen::Vector3d& point, Eigen::Vector3d& normal);
+
 struct DecomposeParams {
     // Criterion (1): a splitting face's normal is within this angle of +-D, degrees.
     double face_angle_deg = 10.0;
@@ -318,8 +350,8 @@ struct Component {
     int branch = -1;      // the axis branch that made this component (the root's: 0)
     int break_link = -1;  // that branch's first link (the break, turn or split), -1 for the root
     SplitRule rule = SplitRule::Root;
-    // Cut at a section plane turned square to its branch's line (above), not to the branch's
-    // direction: its build_direction is that line's.
+    // Cut at a section plane turned square to its branch's line, or at a bend's halfway plane
+    // (above), not square to the branch's direction: its build_direction is that plane's normal.
     bool turned = false;
     double volume_mm3 = 0.0;
 };

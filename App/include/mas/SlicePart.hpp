@@ -45,8 +45,8 @@ struct ComponentMesh {
     int parent = -1;  // father component, -1 for the root
     Plane base;       // on its base face (root: the build plate), normal = build direction
     int branch = 0;   // the axis branch it follows
-    // Cut square to its branch's line, which runs between the six directions (Decompose.hpp's
-    // Component::turned), not to the branch's direction.
+    // Cut square to its branch's line, which runs between the six directions, or at a bend's
+    // halfway plane (Decompose.hpp's Component::turned), not square to the branch's direction.
     bool turned = false;
 };
 
@@ -122,16 +122,19 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 // sections square to that line (its build direction), one through each such node, dropping those
 // past its end or no further along the line than the one before: it is built along the line to
 // its tip, which the nodes, marched along the nearest of the six directions, cut aslant (a twisted
-// blade's centroids dropped to its tip's lowest corner, and its layers tilted after them). They
-// are started in build_order(); each child's first layer is checked against everything built before
-// it. Then the layers' sequence against params.nozzle (plan_build_sequence): a component waits for
-// its father's layers it may rest on and for the components before it in build_order that its first
-// layer rests on (those that, reaching its base, leave less of it unsupported than its father
-// alone); the plate is the root's base. `progress` (Progress.hpp) follows the build order (a few
-// per cent), the components' layers (each its share by volume, reported after every layer and
-// checked between candidate planes), the paths (layer by layer), what each component rests on and
-// the sequence (the last tenth), and reaches 1 when done. Throws as slice_component, and
-// InvalidArgument for a component whose parent is not before it.
+// blade's centroids dropped to its tip's lowest corner, and its layers tilted after them). So does
+// one cut at a bend's halfway plane, square to its build direction (the bisector): the centroids
+// of its sections square to that run along the pipe's run beyond the bend, and its layers turn
+// from the base's 45 degrees towards it (Slicing.hpp). They are started in build_order(); each
+// child's first layer is checked against everything built before it. Then the layers' sequence
+// against params.nozzle (plan_build_sequence): a component waits for its father's layers it may
+// rest on and for the components before it in build_order that its first layer rests on (those
+// that, reaching its base, leave less of it unsupported than its father alone); the plate is the
+// root's base. `progress` (Progress.hpp) follows the build order (a few per cent), the components'
+// layers (each its share by volume, reported after every layer and checked between candidate
+// planes), the paths (layer by layer), what each component rests on and the sequence (the last
+// tenth), and reaches 1 when done. Throws as slice_component, and InvalidArgument for a component
+// whose parent is not before it.
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                             const CentroidalAxis& axis, const SlicePartParams& params,
                             const Progress& progress = {});
@@ -154,8 +157,11 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
 // first at the plane turned square to its line, the clearance past the father's surface beside it
 // (turned_plane(), rays cast at the father's facets), its first section's material point moved
 // along the line past that plane if it lies behind; where that cut is refused for any of the
-// reasons above, or square_branches lists the branch, at the plane square to its direction. The
-// root stands on build_plate() and follows branch 0.
+// reasons above, or square_branches lists the branch, at the plane square to its direction. A
+// branch turning off its father round a bend (bend_plane(), Decompose.hpp: a pipe's elbow) is cut
+// first at the bend's halfway plane, built along the bisector of its direction and its father's;
+// refused, or asked (square_branches), at the plane square to its direction. The root stands on
+// build_plate() and follows branch 0.
 struct MeshDecomposeParams {
     double min_component_height_mm = 0.0;
     double max_tilt_deg = 100.0;

@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -611,6 +612,83 @@ double turned_plane(const CentroidalAxis& axis, std::size_t b, const Vec3& along
     return at;
 }
 
+bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm, const Vec3& inner,
+                Vec3& point, Vec3& normal) {
+    if (b >= axis.branches.size()) return false;
+    const AxisBranch& br = axis.branches[b];
+    if (br.parent < 0 || br.first_link < 0 || std::size_t(br.first_link) >= axis.links.size() ||
+        br.nodes.size() < 3)
+        return false;
+    const int start = axis.links[std::size_t(br.first_link)].start;
+    if (start < 0 || std::size_t(start) >= axis.nodes.size()) return false;
+    const int fb = axis.nodes[std::size_t(start)].branch;
+    if (fb < 0 || std::size_t(fb) >= axis.branches.size()) return false;
+    const std::vector<int>& march = axis.branches[std::size_t(fb)].nodes;
+    const Vec3 F = axis.branches[std::size_t(fb)].direction.normalized();
+    const Vec3 D = br.direction.normalized();
+    if (std::abs(F.dot(D)) > 1e-9) return false;
+    const auto node = [&](int i) -> const AxisNode& { return axis.nodes[std::size_t(i)]; };
+    const auto reach = [&](const AxisNode& n, const Vec3& d) {
+        return n.region.outer.points.empty() ? d.dot(n.position)
+                                             : extent_along(n.region, n.normal, n.offset, d);
+    };
+    const double level = axis.params.step_mm / 100.0;
+    // The father's straight run, back from the junction.
+    const auto at = std::find(march.begin(), march.end(), start);
+    if (at == march.end()) return false;
+    // Three nodes in a row level along `d` (two steps, not one that merely turns back).
+    const auto straight = [&](int a, int m, int c, const Vec3& d) {
+        const double x = d.dot(node(m).position);
+        return std::abs(d.dot(node(a).position) - x) <= level &&
+               std::abs(d.dot(node(c).position) - x) <= level;
+    };
+    std::ptrdiff_t run = at - march.begin();
+    while (run >= 2 && !straight(march[std::size_t(run)], march[std::size_t(run - 1)],
+                                 march[std::size_t(run - 2)], D))
+        --run;
+    if (run < 2) return false;
+    const AxisNode& last_straight = node(march[std::size_t(run)]);
+    // The father's march past its straight run is the bend. Other branches leaving it (and
+    // their sub-branches) are the bend's own material, wholly in front of the plane below: the
+    // rest of a valve body above a port, a column going on past an arm, are not.
+    const std::set<int> bend(march.begin() + run + 1, march.end());
+    const auto leaves_bend = [&](std::size_t c) {
+        for (int x = int(c); x >= 0; x = axis.branches[std::size_t(x)].parent) {
+            const AxisBranch& up = axis.branches[std::size_t(x)];
+            if (std::size_t(x) == b) return false;  // one of b's own sub-branches
+            if (up.first_link >= 0 && std::size_t(up.first_link) < axis.links.size() &&
+                bend.count(axis.links[std::size_t(up.first_link)].start))
+                return true;
+        }
+        return false;
+    };
+    // The branch's line.
+    std::size_t settled = 2;
+    while (settled < br.nodes.size() &&
+           !straight(br.nodes[settled - 2], br.nodes[settled - 1], br.nodes[settled], F))
+        ++settled;
+    if (settled >= br.nodes.size()) return false;
+    const Vec3 first = node(br.nodes.front()).position;
+    const Vec3 corner = first + D * (D.dot(last_straight.position) - D.dot(first)) +
+                        F * (F.dot(node(br.nodes[settled]).position) - F.dot(first));
+    const Vec3 n = (F + D).normalized();
+    const double plane = n.dot(corner);
+    if (reach(last_straight, n) > plane - clearance_mm) return false;
+    double reached = -std::numeric_limits<double>::infinity();
+    for (const int i : br.nodes) reached = std::max(reached, reach(node(i), F));
+    if (reach(node(march.back()), F) > reached + axis.params.step_mm) return false;
+    for (std::size_t c = 0; c < axis.branches.size(); ++c)
+        if (c != b && leaves_bend(c))
+            for (const int i : axis.branches[c].nodes)
+                if (n.dot(node(i).position) < plane + clearance_mm ||
+                    reach(node(i), F) > reached + axis.params.step_mm)
+                    return false;
+    if (n.dot(inner) < plane + clearance_mm) return false;
+    point = corner;
+    normal = n;
+    return true;
+}
+
 void check_square_branches(const std::vector<int>& square, const CentroidalAxis& axis,
                            const std::string& caller) {
     for (const int b : square)
@@ -774,9 +852,10 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
         // asked (square_branches), at the plane square to its direction.
         std::string why;
         Vec3 along;
-        if (std::find(params.square_branches.begin(), params.square_branches.end(), int(b)) ==
-                params.square_branches.end() &&
-            branch_line(axis, b, clearance, along) && along.z() >= cos_tilt - 1e-12) {
+        const bool square = std::find(params.square_branches.begin(), params.square_branches.end(),
+                                      int(b)) != params.square_branches.end();
+        const bool lined = branch_line(axis, b, clearance, along);
+        if (!square && lined && along.z() >= cos_tilt - 1e-12) {
             const TriangleMesh& father_mesh = from.mesh;
             Vec3 in = inside;
             const double at = turned_plane(
@@ -792,6 +871,14 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
                     continue;
                 }
             }
+        }
+        // A branch turning off its father round a bend: at the bend's halfway plane, built
+        // along the bisector of its direction and its father's; that refused, square to D.
+        Vec3 point, normal;
+        if (!square && !lined && bend_plane(axis, b, clearance, inside, point, normal) &&
+            normal.z() >= cos_tilt - 1e-12 && cut_off(normal, normal.dot(point), inside, why)) {
+            out.components.back().turned = true;
+            continue;
         }
         if (!cut_off(dir, offset, inside, why)) note(why);
     }

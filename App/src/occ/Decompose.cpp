@@ -852,6 +852,19 @@ public:
                 return true;
             }
         }
+        // A branch turning off its father round a bend: the bend's halfway plane, the child
+        // built along the bisector of its direction and its father's (Decompose.hpp), unless
+        // that is past the machine's reach.
+        Vector3d bend_point, bisector;
+        if (params_.turn_cuts && attempt < 3 && !out.by_own_face &&
+            !branch_line(axis_, b, clearance_, along) &&
+            bend_plane(axis_, b, clearance_, out.inner, bend_point, bisector) &&
+            tilt_from_plate_deg(bisector) <= params_.max_tilt_deg + 1e-9) {
+            out.point = bend_point;
+            out.normal = bisector;
+            out.turned = true;
+            return true;
+        }
         const double cut = past_slivers(fs, D, at, frame, reach);
         out.point = D * cut;
         out.normal = D;

@@ -521,14 +521,15 @@ class DecompositionFeature(_EngineFeature):
     SectionPlaneFallback, MinComponentHeight, MaxTilt, KeepBranches (axis branches left in their
     fathers: the Slice command sets those whose own layers the nozzle could not reach),
     SquareBranches (axis branches cut square to their directions, never turned square to their
-    lines: the Slice command sets them where the turned cuts leave the nozzle no way), TurnCuts
-    (False: no cut is turned square to its branch's line; a document saved before the turned
-    cuts opens so).
+    lines or halfway round a bend: the Slice command sets them where the turned cuts leave the
+    nozzle no way), TurnCuts (False: no cut is turned; a document saved before the turned cuts
+    opens so).
     Outputs: Shape (a compound of the component solids in tree order: a
     father before its children, the root first), ComponentCount, and per component, in the same
     order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
     Rules ("root", "planar_face", "section_plane"), Volumes (mm³), Turned (the cut turned square
-    to the branch's line, the component built along it); PartVolume, UsedStep.
+    to the branch's line, or halfway round a bend, the component built along the plane's
+    normal); PartVolume, UsedStep.
 
     The ``Component`` objects (``ComponentFeature``) show the solids one by one; they are created
     by ``make_decomposition()`` / ``sync_components()``, never inside a recompute (adding or
@@ -586,13 +587,14 @@ class DecompositionFeature(_EngineFeature):
                       "Slice command sets those whose own layers the nozzle cannot reach)")
         _add_property(obj, "App::PropertyIntegerList", "SquareBranches", group,
                       "Axis branches cut square to their directions (+-X, +-Y, +-Z), never "
-                      "turned square to their own lines (the Slice command sets them where the "
-                      "turned cuts leave the nozzle no way)")
+                      "turned square to their own lines or halfway round a bend (the Slice "
+                      "command sets them where the turned cuts leave the nozzle no way)")
         # A document saved before the turned cuts keeps its cuts square to the directions (its
         # KeepBranches were found for them) until the user changes it.
         if (_add_property(obj, "App::PropertyBool", "TurnCuts", group,
                           "Cut a branch running between the six directions (a blade on a hub) "
-                          "square to its own line, not to its direction", True) and
+                          "square to its own line, and one turning off its father round a bend "
+                          "at the bend's halfway plane, not square to its direction", True) and
                 "ComponentCount" in obj.PropertiesList):
             obj.TurnCuts = False
         result = "Result"
@@ -610,8 +612,9 @@ class DecompositionFeature(_EngineFeature):
         _add_property(obj, "App::PropertyFloatList", "Volumes", result,
                       "Each component's volume (mm^3)", None, _OUTPUT)
         _add_property(obj, "App::PropertyBoolList", "Turned", result,
-                      "Whether each component's cut was turned square to its branch's line (it is "
-                      "built along that line, between the six directions)", None, _OUTPUT)
+                      "Whether each component's cut was turned square to its branch's line, or "
+                      "halfway round a bend (it is built along the plane's normal, between the "
+                      "six directions)", None, _OUTPUT)
         _add_property(obj, "App::PropertyVolume", "PartVolume", result,
                       "Volume of the source solid (the components' volumes add up to it)", 0.0,
                       _OUTPUT)
@@ -747,8 +750,9 @@ class ComponentFeature(_EngineFeature):
                       "How it was cut: root, planar_face or section_plane", None, _OUTPUT)
         _add_property(obj, "App::PropertyVolume", "Volume", result, "Volume", 0.0, _OUTPUT)
         _add_property(obj, "App::PropertyBool", "Turned", result,
-                      "Whether its cut was turned square to its branch's line (it is built along "
-                      "that line, between the six directions)", False, _OUTPUT)
+                      "Whether its cut was turned square to its branch's line, or halfway round "
+                      "a bend (it is built along the plane's normal, between the six "
+                      "directions)", False, _OUTPUT)
 
     @staticmethod
     def recompute(obj):

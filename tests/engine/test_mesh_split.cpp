@@ -75,6 +75,18 @@ Pieces split_into_solids(const mas::TriangleMesh& mesh, const Vector3d& origin,
     return p;
 }
 
+// decompose_mesh() asked to cut `branch` square to its direction (square_branches): two
+// components, the child not turned, its base square to +X.
+void expect_cut_square_to_x_when_asked(const mas::TriangleMesh& mesh,
+                                       const mas::CentroidalAxis& axis, int branch) {
+    mas::MeshDecomposeParams square;
+    square.square_branches = {branch};
+    const mas::MeshDecomposition squared = mas::decompose_mesh(mesh, axis, square);
+    ASSERT_EQ(squared.components.size(), 2u);
+    EXPECT_FALSE(squared.components[1].turned);
+    EXPECT_EQ(squared.components[1].base.normal, Vector3d::UnitX());
+}
+
 mas::SlicePartParams params() {
     mas::SlicePartParams p;
     p.tessellation.deflection_mm = 0.02;
@@ -228,12 +240,8 @@ TEST(DecomposeMesh, ABladeBetweenTheDirectionsIsCutSquareToItsLineJustPastTheHub
     expect_solid(d.components[0].mesh, "hub");
     expect_solid(blade.mesh, "blade");
     // Asked to, square to +X, where the blade's march began.
+    expect_cut_square_to_x_when_asked(hub, axis, blade.branch);
     mas::MeshDecomposeParams square;
-    square.square_branches = {blade.branch};
-    const mas::MeshDecomposition squared = mas::decompose_mesh(hub, axis, square);
-    ASSERT_EQ(squared.components.size(), 2u);
-    EXPECT_FALSE(squared.components[1].turned);
-    EXPECT_EQ(squared.components[1].base.normal, Vector3d::UnitX());
     square.square_branches = {0};
     EXPECT_THROW(mas::decompose_mesh(hub, axis, square), mas::Error);
     // Sliced, no layer hangs: the lens the hub keeps, under 0.2 mm deep, its layers carry. Cut
@@ -305,12 +313,7 @@ TEST(DecomposeMesh, APipeBendIsCutAtItsBendsHalfwayPlaneAsASolidIs) {
     EXPECT_TRUE(exact.components[1].build_direction.isApprox(n, 1e-12));
     EXPECT_NEAR(n.dot(exact.components[1].base_origin), n.dot(run.base.origin), 1e-9);
     // Asked to, square to +X.
-    mas::MeshDecomposeParams square;
-    square.square_branches = {run.branch};
-    const mas::MeshDecomposition squared = mas::decompose_mesh(bend, axis, square);
-    ASSERT_EQ(squared.components.size(), 2u);
-    EXPECT_FALSE(squared.components[1].turned);
-    EXPECT_EQ(squared.components[1].base.normal, Vector3d::UnitX());
+    expect_cut_square_to_x_when_asked(bend, axis, run.branch);
     // Sliced, every layer is supported up to the deflection along its outline. Cut at T, the
     // bore's ceiling hung in the riser's layers, 6.6 mm^2 in one.
     const mas::SlicedPart sliced = mas::slice_mesh_part(bend, axis, params());

@@ -122,12 +122,10 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 // sections square to that line (its build direction), one through each such node, dropping those
 // past its end or no further along the line than the one before: it is built along the line to
 // its tip, which the nodes, marched along the nearest of the six directions, cut aslant (a twisted
-// blade's centroids dropped to its tip's lowest corner, and its layers tilted after them). One cut
-// at a bend's halfway plane (its base's normal bisects its branch's direction and its father's)
-// follows its branch's own nodes, as an unturned one does: they lie on the run's line beyond the
-// bend, and its layers turn from the base's 45 degrees to lie square to the run (Slicing.hpp;
-// through its sections square to the bisector, which the run's end cuts short, a survey bend's
-// last layers stayed 20 degrees off it). They are started in build_order(); each
+// blade's centroids dropped to its tip's lowest corner, and its layers tilted after them). So does
+// one cut at a bend's halfway plane, square to its build direction (the bisector): the centroids
+// of its sections square to that run along the pipe's run beyond the bend, and its layers turn
+// from the base's 45 degrees towards it (Slicing.hpp). They are started in build_order(); each
 // child's first layer is checked against everything built before it. Then the layers' sequence
 // against params.nozzle (plan_build_sequence): a component waits for its father's layers it may
 // rest on and for the components before it in build_order that its first layer rests on (those

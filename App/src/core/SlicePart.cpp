@@ -323,25 +323,6 @@ void guide_along_line(const TriangleMesh& mesh, const Eigen::Vector3d& along,
     input.guide_nodes = std::move(nodes);
 }
 
-// Whether `comp`, cut turned, was cut at a bend's halfway plane (Decompose.hpp's bend_plane()),
-// not square to its branch's line: its base's normal bisects its branch's direction and its
-// father's, where a branch's line has no part along its father's direction (branch_line()).
-// Its guide is its branch's own nodes, as an unturned component's: they lie on the run's line
-// beyond the bend, square to which its layers turn from the base's 45 degrees. Through its
-// sections square to the bisector, the guide ran along the run too, but those near the run's
-// end, cut short by it, drew it back up: a survey bend's (seed 206) last layers stayed 20 degrees
-// off the run, at the thinnest layer, 42 layers where 27 do.
-bool cut_round_a_bend(const CentroidalAxis& axis, const ComponentMesh& comp) {
-    const AxisBranch& branch = axis.branches[std::size_t(comp.branch)];
-    if (branch.first_link < 0 || std::size_t(branch.first_link) >= axis.links.size()) return false;
-    const int start = axis.links[std::size_t(branch.first_link)].start;
-    if (start < 0 || std::size_t(start) >= axis.nodes.size()) return false;
-    const int father = axis.nodes[std::size_t(start)].branch;
-    if (father < 0 || std::size_t(father) >= axis.branches.size()) return false;
-    return std::abs(axis.branches[std::size_t(father)].direction.normalized().dot(
-               comp.base.normal)) > 1e-6;
-}
-
 }  // namespace
 
 SlicedPart slice_components(const std::vector<ComponentMesh>& components,
@@ -401,7 +382,7 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
                 input.guide.push_back(node.position);
                 input.guide_nodes.push_back(n);
             }
-            if (comp.turned && !cut_round_a_bend(axis, comp))
+            if (comp.turned)
                 guide_along_line(comp.mesh, input.base.normal, input);
             else
                 recentre_guide(comp.mesh, axis, input);

@@ -140,6 +140,19 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
                 self.assertEqual(r["filled_holes"], r["bosses"] if r["bored"] else 0)
                 self.assert_supported(r)
 
+    def test_a_pipe_bend_needs_no_support(self):
+        # Hollow or solid: each run is cut off at its bend's halfway plane and built along the
+        # bisector, its layers turning until they lie square to the run (README). Before, cut near
+        # the bend's end, the riser's layers held the rest of the bend, and a hollow bend's bore
+        # ceiling hung there: 45 of the 512 bends at seeds 161 to 224 over the strip, up to 7.0
+        # mm^2; none since (at most 1.7 mm^2, within it).
+        bends = self.parts("pipe bend")
+        self.assertGreater(sum(1 for r in bends if r["bore"] > 0.0), 0)
+        self.assertGreater(sum(1 for r in bends if r["bore"] == 0.0), 0)
+        for r in bends:
+            with self.subTest(part=self.name(r)):
+                self.assert_supported(r)
+
     def test_a_branch_leaning_up_to_45_degrees_needs_no_support(self):
         claimed = [r for r in self.parts("leaning branch") if r["lean_deg"] <= 45.0]
         self.assertGreater(len(claimed), 0)

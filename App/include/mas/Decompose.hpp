@@ -284,15 +284,20 @@ double turned_plane(const CentroidalAxis& axis, std::size_t b, const Eigen::Vect
 // Where branch b turns off its father's march round a bend (a pipe's elbow), the plane halfway
 // round it: its normal bisects the father's direction F and b's direction D (square to each
 // other), and it passes through the corner where the father's straight run meets b's line.
-// The father's run: walking back from the node b links to, the first two consecutive nodes
-// whose centroids lie level along D (within step / 100); b's line: the first two consecutive of
-// its nodes whose centroids lie level along F. On a bend of any radius that corner and the bend's
-// centre of curvature lie on the same plane square to F + D. False (cut square to D at Eq. 4's T,
-// as before) unless F and D are square to each other, both runs are found, the father's run's
-// last section lies wholly `clearance_mm` behind the plane (its straight part is not cut), the
-// father's march ends no further along F than b's sections reach, plus a step (a column going
-// on past the branch, a tee, is cut at T), and `inner` (a point in b's first section) lies the
-// clearance in front of it. `point` and `normal` receive the plane (normal along F + D).
+// The father's run: walking back from the node b links to, the first three nodes in a row whose
+// centroids lie level along D (within step / 100; two could be a drift turning back); b's line:
+// the first three of its nodes in a row whose centroids lie level along F. On a bend of any
+// radius that corner and the bend's centre of curvature lie on the same plane square to F + D.
+// False (cut square to D at Eq. 4's T, as before) unless F and D are square to each other, both
+// runs are found, the father's run's last section lies wholly `clearance_mm` behind the plane
+// (its straight part is not cut), the father's march ends no further along F than b's sections
+// reach, plus a step (a column going on past the branch, a tee, is cut at T), every other branch
+// leaving the father's march past its run (and their sub-branches: the bend's own material where
+// a Z plane cuts it in two) has its centroids the clearance in front of the plane and reaches
+// no further along F than b's sections, plus a step (a valve body going on past a port near its
+// top, other ports, are not the bend's), and `inner` (a point in b's first section) lies the
+// clearance in front of it. `point` and `normal` receive the plane (normal along F + D); the
+// caller checks that the child, built along it, is within the machine's reach.
 bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm,
                 const Eigen::Vector3d& inner, Eigen::Vector3d& point, Eigen::Vector3d& normal);
 

@@ -125,7 +125,9 @@ std::vector<int> build_order(const std::vector<ComponentMesh>& components,
 // blade's centroids dropped to its tip's lowest corner, and its layers tilted after them). So does
 // one cut at a bend's halfway plane, square to its build direction (the bisector): the centroids
 // of its sections square to that run along the pipe's run beyond the bend, and its layers turn
-// from the base's 45 degrees towards it (Slicing.hpp). They are started in build_order(); each
+// from the base's 45 degrees towards it (Slicing.hpp), as far as the thickness bounds and the
+// guide let them (the sections near the run's end, cut short by it, draw the guide back up: a
+// survey bend's last layers lie 20 degrees off the run). They are started in build_order(); each
 // child's first layer is checked against everything built before it. Then the layers' sequence
 // against params.nozzle (plan_build_sequence): a component waits for its father's layers it may
 // rest on and for the components before it in build_order that its first layer rests on (those

@@ -1566,6 +1566,39 @@ TEST(Decompose, ABoresCeilingClosingOverTheRingTurnsNoMarchAcrossIt) {
     }
 }
 
+TEST(Decompose, APipeBendPlacedTurnedOnThePlateIsCutHalfwayRoundInItsFrame) {
+    // Seed 206's hollow bend
+    // (Slicing.APipeBendIsCutHalfwayRoundItsBendAndItsBoresCeilingIsSupported) turned 30 degrees
+    // about Z, and 90 (its run along +Y): the axis marches in the part's frame
+    // (AxisParams::frame_deg, read off the run's sides: 29.94 degrees at 30), where the run is
+    // along +X, and the run is cut at the bend's halfway plane there. It is built along the
+    // bisector of +Z and the run's direction, within a tenth of a degree (the frame), its plane
+    // through the bend's centre within the deflection; the components' volumes are the part's, up
+    // to OCCT's on pieces of a torus (2.4e-6 in the bend's test).
+    for (const double degrees : {30.0, 90.0}) {
+        SCOPED_TRACE(std::to_string(degrees) + " degrees");
+        const auto part = mas::test::turned_about_z(
+            mas::test::pipe_bend(11.4, 9.2, 22.2, 16.2, 23.8, 8.0), degrees);
+        const auto d = decompose_as_slicing_does(part);
+        ASSERT_EQ(d.components.size(), 2u);
+        const mas::Component& run = d.components[1];
+        const double a = degrees * kPi / 180.0;
+        const Vector3d along(std::cos(a), std::sin(a), 0.0);
+        const Vector3d n = (along + Vector3d::UnitZ()).normalized();
+        EXPECT_TRUE(run.turned);
+        EXPECT_EQ(run.parent, 0);
+        EXPECT_NEAR(run.build_direction.z(), std::sqrt(0.5), 1e-12);
+        const double off =
+            std::atan2(run.build_direction.cross(n).norm(), run.build_direction.dot(n));
+        EXPECT_LE(off * 180.0 / kPi, 0.1);
+        const Vector3d centre = 16.2 * along + Vector3d(0, 0, 26.2);
+        EXPECT_LE(std::abs(run.build_direction.dot(run.base_origin - centre)),
+                  mas::effective_deflection(part, mas::TessellationParams{}));
+        EXPECT_NEAR(d.components[0].volume_mm3 + run.volume_mm3, part.info().volume_mm3,
+                    1e-5 * part.info().volume_mm3);
+    }
+}
+
 TEST(Decompose, AValveBodysPortNearItsTopIsNoBend) {
     // A valve body drawn at random (the survey's, seed 163, 1): the +X port's top (z = 55.6) lies
     // within a step of the body's (58.1), and the body's march ends under it at z = 44.2, going on

@@ -449,6 +449,10 @@ void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& b
 double extent_along(const Region2& region, const Eigen::Vector3d& normal, double offset,
                     const Eigen::Vector3d& dir);
 
+// How far a node's section reaches along `dir`: extent_along() of its region, or its centroid's
+// projection for an axis handed over without regions (a dict built by hand).
+double reach_along(const AxisNode& node, const Eigen::Vector3d& dir);
+
 // Distance from a point to a region in the same 2-D frame: 0 inside, else to the nearest edge of
 // the outer loop (holes count as outside: a point in a hole is at its distance to the hole edge).
 double distance_to_region(const Region2& region, const Eigen::Vector2d& point);

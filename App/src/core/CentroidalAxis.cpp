@@ -73,6 +73,11 @@ double extent_along(const Region2& region, const Eigen::Vector3d& normal, double
     return t;
 }
 
+double reach_along(const AxisNode& node, const Eigen::Vector3d& dir) {
+    if (node.region.outer.points.empty()) return dir.dot(node.position);
+    return extent_along(node.region, node.normal, node.offset, dir);
+}
+
 double distance_to_region(const Region2& region, const Eigen::Vector2d& point) {
     if (contains(region, point)) return 0.0;
     return (nearest_boundary_point(region, point) - point).norm();

@@ -628,10 +628,6 @@ bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm, 
     const Vec3 D = br.direction.normalized();
     if (std::abs(F.dot(D)) > 1e-9) return false;
     const auto node = [&](int i) -> const AxisNode& { return axis.nodes[std::size_t(i)]; };
-    const auto reach = [&](const AxisNode& n, const Vec3& d) {
-        return n.region.outer.points.empty() ? d.dot(n.position)
-                                             : extent_along(n.region, n.normal, n.offset, d);
-    };
     const double level = axis.params.step_mm / 100.0;
     // The father's straight run, back from the junction.
     const auto at = std::find(march.begin(), march.end(), start);
@@ -673,15 +669,15 @@ bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm, 
                         F * (F.dot(node(br.nodes[settled]).position) - F.dot(first));
     const Vec3 n = (F + D).normalized();
     const double plane = n.dot(corner);
-    if (reach(last_straight, n) > plane - clearance_mm) return false;
+    if (reach_along(last_straight, n) > plane - clearance_mm) return false;
     double reached = -std::numeric_limits<double>::infinity();
-    for (const int i : br.nodes) reached = std::max(reached, reach(node(i), F));
-    if (reach(node(march.back()), F) > reached + axis.params.step_mm) return false;
+    for (const int i : br.nodes) reached = std::max(reached, reach_along(node(i), F));
+    if (reach_along(node(march.back()), F) > reached + axis.params.step_mm) return false;
     for (std::size_t c = 0; c < axis.branches.size(); ++c)
         if (c != b && leaves_bend(c))
             for (const int i : axis.branches[c].nodes)
                 if (n.dot(node(i).position) < plane + clearance_mm ||
-                    reach(node(i), F) > reached + axis.params.step_mm)
+                    reach_along(node(i), F) > reached + axis.params.step_mm)
                     return false;
     if (n.dot(inner) < plane + clearance_mm) return false;
     point = corner;

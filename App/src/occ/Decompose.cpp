@@ -836,10 +836,10 @@ public:
         // line, just past the father's surface beside it (Decompose.hpp), unless the child would
         // then be built past the machine's reach. Worked out once per father solid: each later
         // sibling asks again while one split is planned.
+        const bool may_turn = params_.turn_cuts && attempt < 3 && !out.by_own_face;
         Vector3d along;
-        if (params_.turn_cuts && attempt < 3 && !out.by_own_face &&
-            branch_line(axis_, b, clearance_, along) &&
-            tilt_from_plate_deg(along) <= params_.max_tilt_deg + 1e-9) {
+        const bool lined = may_turn && branch_line(axis_, b, clearance_, along);
+        if (lined && tilt_from_plate_deg(along) <= params_.max_tilt_deg + 1e-9) {
             const auto key = std::make_pair(b, fs.TShape().get());
             auto known = turned_.find(key);
             if (known == turned_.end()) {
@@ -856,8 +856,7 @@ public:
         // built along the bisector of its direction and its father's (Decompose.hpp), unless
         // that is past the machine's reach.
         Vector3d bend_point, bisector;
-        if (params_.turn_cuts && attempt < 3 && !out.by_own_face &&
-            !branch_line(axis_, b, clearance_, along) &&
+        if (may_turn && !lined &&
             bend_plane(axis_, b, clearance_, out.inner, bend_point, bisector) &&
             tilt_from_plate_deg(bisector) <= params_.max_tilt_deg + 1e-9) {
             out.point = bend_point;
@@ -960,13 +959,6 @@ private:
                 }
         }
         return out;
-    }
-
-    // How far the node's section reaches along `d` (its centroid's projection for an axis handed
-    // over without regions).
-    static double reach_along(const AxisNode& n, const Vector3d& d) {
-        if (n.region.outer.points.empty()) return d.dot(n.position);
-        return extent_along(n.region, n.normal, n.offset, d);
     }
 
     const CentroidalAxis& axis_;

@@ -833,12 +833,7 @@ TEST(Slicing, ABranchLeaningSteeplyOffAColumnIsTurnedIntoWhereItLeavesItAndBuilt
 // all the same. (It stayed in the column's layers until it parted from the column: 2.6 and 4.4
 // mm^2 hanging in one layer, 25 and 22 in all, three components.)
 TEST(Slicing, ABranchThinnerThanItsColumnLeaningSteeplyOffItIsBuiltSideways) {
-    LeaningBranch thin;
-    thin.column = 10.7;
-    thin.height = 52.8;
-    thin.radius = 5.5;
-    thin.length = 38.6;
-    thin.root_z = 17.2;
+    const LeaningBranch thin{10.7, 52.8, 5.5, 38.6, 17.2};
     for (const double degrees : {62.0, 64.0}) {
         SCOPED_TRACE("lean " + std::to_string(degrees));
         leaning_branch_is_built_sideways(degrees, thin);
@@ -854,12 +849,7 @@ TEST(Slicing, ABranchThinnerThanItsColumnLeaningSteeplyOffItIsBuiltSideways) {
 // column's layer.) The +X march has children of its own here (the wedge under its first planes,
 // marched down), all in the branch's component.
 TEST(Slicing, ABranchWhoseUndersideBeginsBetweenTwoPlanesIsCutAtTheColumnsSide) {
-    LeaningBranch shape;
-    shape.column = 11.4;
-    shape.height = 61.9;
-    shape.radius = 6.6;
-    shape.length = 34.0;
-    shape.root_z = 33.7;
+    const LeaningBranch shape{11.4, 61.9, 6.6, 34.0, 33.7};
     std::pair<double, double> cut_and_step{std::nan(""), std::nan("")};
     leaning_branch_is_built_sideways(68.9, shape, &cut_and_step);
     const auto [cut, step] = cut_and_step;

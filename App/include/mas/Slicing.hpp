@@ -77,8 +77,10 @@
 //   component thinner than min_layer is an error.
 // - Support (the point of the method): a layer's footprint on the layer below (its lower region,
 //   which lies on the lower layer's top) must lie within the lower layer's region grown by the
-//   overhang allowance, the layer's min thickness x tan(overhang_angle). unsupported_area_mm2 is
-//   what lies outside. The first layer of a child is checked against what was deposited before
+//   overhang allowance: where the layer is t thick, t x tan(overhang_angle), so a wedge layer's
+//   thick side may reach further than its thin side (unsupported_regions_sloped; the candidates
+//   are compared with min_layer's allowance all round). unsupported_area_mm2 is what lies
+//   outside. The first layer of a child is checked against what was deposited before
 //   it (its father and the components built earlier, see SlicePart.hpp's build order), their
 //   sections just below the base face; the root's first layer stands on the build plate.
 #pragma once
@@ -219,5 +221,17 @@ BaseSupport base_support(const TriangleMesh& component, const Plane& base,
 // for tests and for checking any two layers; unsupported_area is its area.
 Regions2 unsupported_regions(const Layer& upper, const Layer& lower, double allowance_mm);
 double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm);
+
+// The thickness bands of unsupported_regions_sloped, mm.
+inline constexpr double kSlopedAllowanceBandMm = 0.05;
+
+// The support check the slicer reports: unsupported_regions with the allowance following the
+// upper layer's thickness along its footprint. Where the layer is t thick, its footprint is
+// supported within t x slope (tan(overhang_angle)) of the lower region: a layer between two
+// planes that are not parallel (a wedge) may overhang more on its thick side than on its thin
+// one, as a wall leaning at the overhang angle does. The thickness is taken in bands of
+// kSlopedAllowanceBandMm, each at its thinnest, so the allowance falls short of the local one by
+// less than kSlopedAllowanceBandMm x slope; it is never less than the min thickness x slope.
+Regions2 unsupported_regions_sloped(const Layer& upper, const Layer& lower, double slope);
 
 }  // namespace mas

@@ -723,14 +723,12 @@ std::vector<Layer> ComponentSlicer::run() {
         layer.axis_node = guide_.node_near(c.along);
         layer.tries = tries;
         if (!layers.empty()) {
-            layer.unsupported =
-                unsupported_regions(layer, layers.back(), layer.min_thickness_mm * allowance_);
+            layer.unsupported = unsupported_regions_sloped(layer, layers.back(), allowance_);
         } else if (!input_.support_meshes.empty()) {
             // The first layer of a child rests on what was deposited before it, just below the
             // base face.
-            layer.unsupported =
-                unsupported_regions(layer, support_below(input_.support_meshes, base, offset_),
-                                    layer.min_thickness_mm * allowance_);
+            layer.unsupported = unsupported_regions_sloped(
+                layer, support_below(input_.support_meshes, base, offset_), allowance_);
         }
         layer.unsupported_area_mm2 = area(layer.unsupported);
         material += layer.material_volume_mm3;
@@ -863,6 +861,46 @@ Regions2 unsupported_regions(const Layer& upper, const Layer& lower, double allo
 
 double unsupported_area(const Layer& upper, const Layer& lower, double allowance_mm) {
     return area(unsupported_regions(upper, lower, allowance_mm));
+}
+
+Regions2 unsupported_regions_sloped(const Layer& upper, const Layer& lower, double slope) {
+    const double t0 = std::max(0.0, upper.min_thickness_mm), t1 = upper.max_thickness_mm;
+    Regions2 out = unsupported_regions(upper, lower, t0 * slope);
+    if (out.empty() || !(slope > 0.0) || !(t1 - t0 > kSlopedAllowanceBandMm)) return out;
+    // The thickness over the footprint, t = a + b.q: affine in the footprint's 2-D coordinates q
+    // (PlaneFrame(lower.plane.normal)), whose points lie on the upper layer's lower plane.
+    const PlaneFrame down(lower.plane.normal);
+    const Plane& base = upper.lower;
+    auto thickness = [&](const Vector2d& q) {
+        const Vector3d in_frame = down.u * q.x() + down.v * q.y();
+        const Vector3d on_base = in_frame + down.normal * (base.signed_distance(in_frame) /
+                                                           -base.normal.dot(down.normal));
+        return -upper.plane.signed_distance(on_base);
+    };
+    const double a = thickness(Vector2d::Zero());
+    const Vector2d b(thickness(Vector2d::UnitX()) - a, thickness(Vector2d::UnitY()) - a);
+    if (!(b.norm() > 1e-12)) return out;
+    const Vector2d g = b.normalized(), side(-g.y(), g.x());
+    Eigen::AlignedBox2d box = bounds_of(out);
+    for (const Region2& r : lower.regions) box.extend(bounds(r));
+    const double reach = box.diagonal().norm() + t1 * slope + 1.0;
+    const Vector2d centre = box.center();
+    const double along_far = g.dot(centre) + reach, across = side.dot(centre);
+    // Band k: where the layer is at least t_k thick, the lower region grown by t_k x slope
+    // supports it. Each band takes its thinnest thickness, so the allowance falls short of the
+    // local one by less than a band's width x slope.
+    const int bands = int(std::ceil((t1 - t0) / kSlopedAllowanceBandMm));
+    for (int k = 1; k <= bands && !out.empty(); ++k) {
+        const double tk = t0 + (t1 - t0) * k / bands;
+        const double along = (tk - a) / b.norm();
+        if (along >= along_far) break;
+        Region2 thick;
+        for (const auto& [s, w] :
+             {std::pair{along, -reach}, {along_far, -reach}, {along_far, reach}, {along, reach}})
+            thick.outer.points.push_back(g * s + side * (across + w));
+        out = difference(out, intersection(offset(lower.regions, tk * slope), {thick}));
+    }
+    return out;
 }
 
 BaseSupport base_support(const TriangleMesh& component, const Plane& base,

@@ -1248,10 +1248,14 @@ struct AsSlicingDecomposes {
         : AsSlicingDecomposes(mas::read_model(std::string(MAS_TEST_DATA) + "/" + name), step_mm) {}
     explicit AsSlicingDecomposes(const mas::Shape& part)
         : AsSlicingDecomposes(mas::Model{mas::Model::Kind::Solid, part, {}, "part"}, 0.0) {}
-    AsSlicingDecomposes(mas::Model read, double step_mm) : model(std::move(read)) {
+    AsSlicingDecomposes(mas::Model read, double step_mm)
+        : AsSlicingDecomposes(std::move(read), [&] {
+              mas::AxisParams ap;
+              ap.step_mm = step_mm;
+              return ap;
+          }()) {}
+    AsSlicingDecomposes(mas::Model read, const mas::AxisParams& ap) : model(std::move(read)) {
         tp.deflection_mm = mas::effective_deflection(model.shape, mas::TessellationParams{});
-        mas::AxisParams ap;
-        ap.step_mm = step_mm;
         mas::CentroidalAxis axis = mas::centroidal_axis(mas::tessellate(model.shape, tp), ap);
         axis.deflection_mm = tp.deflection_mm;
         d = mas::decompose(model.shape, axis, {},
@@ -1340,7 +1344,16 @@ TEST(Decompose, AChildThatDoesNotMeshClosedStaysInItsFather) {
         fuse(fuse(occ_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), riser, height),
                   occ_cylinder(root, Vector3d(std::sin(lean), 0, std::cos(lean)), pipe, length)),
              occ_cylinder(root, Vector3d(-std::sin(lean), 0, std::cos(lean)), pipe, length));
-    const AsSlicingDecomposes run(from_occt(fork));
+    // The distance threshold given, at the value derived (twice the derived step): steep limbs,
+    // and forks, are read only with a derived threshold (CentroidalAxis.hpp), and these two
+    // pipes, leaning apart past 45 degrees, are a fork, cut at the riser's side since; the
+    // split this test is about came from the marches before.
+    mas::TessellationParams tp;
+    tp.deflection_mm = mas::effective_deflection(from_occt(fork), mas::TessellationParams{});
+    mas::AxisParams ap;
+    ap.distance_threshold_mm = 2.0 * mas::derive_axis_step(mas::tessellate(from_occt(fork), tp));
+    const AsSlicingDecomposes run(mas::Model{mas::Model::Kind::Solid, from_occt(fork), {}, "part"},
+                                  ap);
     const mas::Decomposition& d = run.d;
     run.expect_components_mesh_closed();
     ASSERT_FALSE(d.notes.empty());
@@ -1368,6 +1381,13 @@ TEST(Decompose, AChildThatDoesNotMeshClosedStaysInItsFather) {
         EXPECT_NE(d.components[i].branch, 1);
     }
     expect_invariants(d, run.model.shape);
+    // Derived, the threshold reads the pipes as a fork's limbs: each is cut off at the riser's
+    // side, and no split is refused.
+    const AsSlicingDecomposes derived(from_occt(fork));
+    EXPECT_EQ(derived.d.components.size(), 3u);
+    EXPECT_TRUE(derived.d.notes.empty());
+    derived.expect_components_mesh_closed();
+    expect_invariants(derived.d, derived.model.shape);
 }
 
 TEST(Decompose, AHollowPipeCrossIsCutAtItsSideArms) {

@@ -857,6 +857,53 @@ TEST(Slicing, ABranchWhoseUndersideBeginsBetweenTwoPlanesIsCutAtTheColumnsSide) 
     EXPECT_LE(cut, shape.column + step / 50.0);
 }
 
+// A solid wye fitting (survey seed 225's, part 3): a riser of radius 10.6, 55.5 tall, and two
+// laterals of radius 9.56, 32.9 long, leaving its axis at z = 14.4 and leaning 56.2 degrees off
+// it towards +X and -X; and the same leaning 50 degrees. Each lateral's section moves 1.2 to 1.5
+// planes' spacing a plane, less than a steep limb's kSteepLimb, whose layers lean after it as the
+// march's centroids do; but the two lean apart, the centroids move towards neither, and the
+// riser's Z layers held both laterals up to where they parted, their undersides overhanging every
+// layer (at 56.2 degrees 3.5 mm^2 in each, 101 in all, past the deflection's strip). A fork
+// (CentroidalAxis.cpp): each lateral is a steep limb from a spacing a plane on, cut off at the
+// riser and built sideways, its own component along +X or -X, and no layer hangs past the strip.
+TEST(Slicing, ASolidWyesTwoLateralsLeaningApartPast45DegreesAreEachBuiltSideways) {
+    for (const double degrees : {50.0, 56.2}) {
+        SCOPED_TRACE("lean " + std::to_string(degrees));
+        const double lean = degrees * kPi / 180.0, riser = 10.6, lateral = 9.56;
+        TopoDS_Shape shape = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), riser, 55.5);
+        for (const double side : {1.0, -1.0})
+            shape = fuse(shape, occ_cylinder({0, 0, 14.4},
+                                             Vector3d(side * std::sin(lean), 0, std::cos(lean)),
+                                             lateral, 32.9));
+        const auto part = from_occt(shape);
+        const auto params = default_params();
+        const auto s = slice(part, 0.0, params);
+        const auto& comps = s.decomposition.components;
+        ASSERT_EQ(comps.size(), 3u);
+        std::set<double> sides;
+        for (std::size_t c = 1; c < comps.size(); ++c) {
+            SCOPED_TRACE("component " + std::to_string(c));
+            EXPECT_EQ(comps[c].parent, 0);
+            const double side = comps[c].build_direction.x();
+            EXPECT_TRUE(comps[c].build_direction.isApprox(Vector3d(side, 0, 0), 1e-12));
+            EXPECT_TRUE(comps[c].base_normal.isApprox(-comps[c].build_direction, 1e-12));
+            sides.insert(side);
+            // Cut where the lateral leaves the riser's side, within a step past it.
+            const double cut = side * comps[c].base_origin.x();
+            EXPECT_GE(cut, riser - kDeflection);
+            EXPECT_LE(cut, riser + s.axis.params.step_mm + s.axis.params.eps_mm);
+        }
+        EXPECT_EQ(sides, (std::set<double>{-1.0, 1.0}));
+        double volume = 0.0;
+        for (const auto& c : comps) volume += c.volume_mm3;
+        // Within OCCT's integration of the volumes over faces bounded by the curves where the
+        // laterals meet the riser and each other (2e-6 of it at 50 degrees).
+        EXPECT_NEAR(volume, part.info().volume_mm3, 1e-5 * part.info().volume_mm3);
+        EXPECT_EQ(s.result.stats.colliding_layers, 0);
+        expect_invariants(s, params, "solid wye");
+    }
+}
+
 TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections) {
     // A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 20
     // degrees round and 8 mm up from one to the next. Cut square to their own lines (those

@@ -166,6 +166,16 @@
 //   however little where L holds no more than twice the crescent's reach of the limb past its
 //   root (a limb leaning 62.6 degrees moves 1.77 mm a plane, under a 2 mm bump; an elephant's
 //   belly, 11.6 mm out past its leg in L, is the body widening, and stays).
+//   Two limbs leaning apart (a fork) are steep from one spacing a plane on (45 degrees): the
+//   march's layers lean after its centroids, which move towards neither, so short of kSteepLimb
+//   each limb's underside overhung every layer (a solid wye with two laterals leaning 56.2
+//   degrees off its riser: 3.5 mm^2 in each layer up to where they parted). Each must be such a
+//   crescent reaching out past L by more than a spacing, held by L past its root by more than one
+//   and by no more than four spacings (begun within the last three planes), and they must lean
+//   opposite ways. A side long leaning out is no fork's limb: turned where the other side begins
+//   to lean (CGAL's elephant's belly, 14 mm out past its root), its part was cut deep into the
+//   body where the nozzle could not build it, and kept in the body it hung 23.1 mm^2 in a layer
+//   where it hangs 15.5.
 //   On organic meshes, whose limbs lean so, the axis has more branches and takes longer
 //   (CGAL's armadillo: 125 branches where it had 62, about twice the time), and their slicing
 //   leaves far less unsupported (the armadillo scaled to 100 mm: 80.7 to 11.3 mm^2 in its worst

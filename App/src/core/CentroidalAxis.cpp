@@ -1619,6 +1619,36 @@ private:
                     pieces.push_back(std::move(piece));
             return pieces;
         };
+        // This plane's stick-outs reaching out past L by more than a plane's spacing (45
+        // degrees): each with the way it leans out of the lower region nearest to it, from that
+        // region's centroid, as a steep limb turns (forks, in steep_limb below).
+        struct Leaning {
+            Vector3d way;
+            const Region2* piece;
+            const Region2* lower;
+        };
+        std::vector<Leaning> leaning;
+        {
+            const double spacing = upper_offset - lower_offset;
+            for (const auto& piece : stick_out) {
+                if (area(piece) <= p_.min_region_area_mm2 || !reaches({piece}, spacing)) continue;
+                const Vector2d g = centroid(piece);
+                const Region2* nearest = &track.region.front();
+                double best = std::numeric_limits<double>::infinity();
+                for (const auto& l : lower) {
+                    const double d_l = distance_to_region(l, g);
+                    if (d_l < best) {
+                        best = d_l;
+                        nearest = &l;
+                    }
+                }
+                const Vector2d c = centroid(*nearest);
+                if ((g - c).norm() > 0.0)
+                    leaning.push_back(
+                        {closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane)),
+                         &piece, nearest});
+            }
+        }
         for (std::size_t next = 0; next < stick_out.size() + split.size(); ++next) {
             // Not used past a piece appended to `split` (which may move its regions).
             const Region2& da =
@@ -1808,8 +1838,8 @@ private:
                 return out;
             };
             // From L, whose extent along `side` is `t`.
-            const auto limb_root = [&](const Vector3d& side, double t) {
-                Regions2 at{*left};
+            const auto limb_root = [&](const Region2& from, const Vector3d& side, double t) {
+                Regions2 at{from};
                 for (std::size_t j = k - 1; j > 0; --j) {
                     auto [below, t_below] = under(at, j - 1, side);
                     if (below.empty()) break;
@@ -1834,18 +1864,49 @@ private:
             // For a steep limb: limb_root() along the turn's way, and how far L holds the limb
             // past it (L's extent that way less the root).
             double root = 0.0, held = 0.0;
+            // How far `from`, whose extent along `way` is `end`, holds a limb leaning that way
+            // past where it leaves the march's section.
+            const auto hold = [&](const Region2& from, const Vector3d& way, double end) {
+                return end - limb_root(from, way, end);
+            };
+            // A fork: two limbs leaning apart, each reaching out past L by more than a plane's
+            // spacing (45 degrees) and begun within the last three planes (held by L past its
+            // root by more than a spacing and by no more than four: a limb leaning 45 to 56
+            // degrees grows 1 to kSteepLimb spacings a plane).
+            // The march's layers lean as its centroids move, towards neither limb, so each limb's
+            // underside overhangs every layer (a solid wye with two laterals leaning 56.2
+            // degrees off its riser hung 3.5 mm^2 in each of its layers up to where they parted,
+            // 101 mm^2 in all): each is a steep limb from a spacing a plane on. A side that has
+            // long leaned out (an elephant's belly, a body widening over its legs) is none: turned
+            // so late, its part would be cut deep into the body, where the nozzle could not
+            // build it, and kept in the body it hung more than before (CGAL's elephant 15.5 to
+            // 23.1 mm^2 in a layer).
+            const auto fresh = [&](double h) { return h > spacing && h <= 4.0 * spacing; };
+            const auto forked = [&](const Vector3d& way) {
+                for (const auto& other : leaning) {
+                    if (other.piece == &da || other.way.dot(way) > -0.5) continue;
+                    if (fresh(hold(*other.lower, other.way,
+                                   extent_along(*other.lower, n, lower_offset, other.way))))
+                        return true;
+                }
+                return false;
+            };
             const auto steep_limb = [&] {
                 const Vector2d c = centroid(*left);
-                if ((g - c).norm() < size / 4.0 || !reaches({da}, steep) || !emerged().is_new)
-                    return false;
+                if ((g - c).norm() < size / 4.0) return false;
                 const Vector3d way =
                     closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane));
                 const double end = extent_along(*left, n, lower_offset, way);  // L's, that way
-                if (dist > 0.0 && extent_along(da, n, upper_offset, way) - end <= steep)
-                    return false;
-                root = limb_root(way, end);
-                held = end - root;
-                return held > steep;
+                const auto limb_at = [&](double limit) {
+                    if (!reaches({da}, limit) || !emerged().is_new) return false;
+                    if (dist > 0.0 && extent_along(da, n, upper_offset, way) - end <= limit)
+                        return false;
+                    root = limb_root(*left, way, end);
+                    held = end - root;
+                    return held > limit;
+                };
+                if (limb_at(steep)) return true;
+                return limb_at(spacing) && fresh(held) && forked(way);
             };
             bool ledge = false, limb = false;
             if (derived_threshold_ && !turn && !wide &&

@@ -1620,8 +1620,10 @@ private:
             return pieces;
         };
         // This plane's stick-outs reaching out past L by more than a plane's spacing (45
-        // degrees): each with the way it leans out of the lower region nearest to it, from that
-        // region's centroid, as a steep limb turns (forks, in steep_limb below).
+        // degrees), centred a quarter of L's size or more off the centroid of the lower region
+        // nearest to them (a collar widening all round leans no one way): each with the way it
+        // leans out of that region, from its centroid, as a steep limb turns (forks, in
+        // steep_limb below).
         struct Leaning {
             Vector3d way;
             const Region2* piece;
@@ -1643,7 +1645,7 @@ private:
                     }
                 }
                 const Vector2d c = centroid(*nearest);
-                if ((g - c).norm() > 0.0)
+                if ((g - c).norm() >= size / 4.0)  // centred off C, as a steep limb is
                     leaning.push_back(
                         {closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane)),
                          &piece, nearest});

@@ -1629,8 +1629,10 @@ private:
             const Region2* piece;
             const Region2* lower;
         };
-        std::vector<Leaning> leaning;
-        {
+        std::optional<std::vector<Leaning>> leaning_found;  // found when a fork is first asked
+        const auto leaning = [&]() -> const std::vector<Leaning>& {
+            if (leaning_found) return *leaning_found;
+            leaning_found.emplace();
             const double spacing = upper_offset - lower_offset;
             for (const auto& piece : stick_out) {
                 if (area(piece) <= p_.min_region_area_mm2 || !reaches({piece}, spacing)) continue;
@@ -1646,11 +1648,12 @@ private:
                 }
                 const Vector2d c = centroid(*nearest);
                 if ((g - c).norm() >= size / 4.0)  // centred off C, as a steep limb is
-                    leaning.push_back(
+                    leaning_found->push_back(
                         {closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane)),
                          &piece, nearest});
             }
-        }
+            return *leaning_found;
+        };
         for (std::size_t next = 0; next < stick_out.size() + split.size(); ++next) {
             // Not used past a piece appended to `split` (which may move its regions).
             const Region2& da =
@@ -1884,8 +1887,13 @@ private:
             // build it, and kept in the body it hung more than before (CGAL's elephant 15.5 to
             // 23.1 mm^2 in a layer).
             const auto fresh = [&](double h) { return h > spacing && h <= 4.0 * spacing; };
+            const auto opposed = [&](const Vector3d& way) {
+                for (const auto& other : leaning())
+                    if (other.piece != &da && other.way.dot(way) < -0.5) return true;
+                return false;
+            };
             const auto forked = [&](const Vector3d& way) {
-                for (const auto& other : leaning) {
+                for (const auto& other : leaning()) {
                     if (other.piece == &da || other.way.dot(way) > -0.5) continue;
                     if (fresh(hold(*other.lower, other.way,
                                    extent_along(*other.lower, n, lower_offset, other.way))))
@@ -1908,6 +1916,9 @@ private:
                     return held > limit;
                 };
                 if (limb_at(steep)) return true;
+                // A fork's limb, the cheap tests first: another stick-out, and one leaning the
+                // other way.
+                if (stick_out.size() < 2 || !reaches({da}, spacing) || !opposed(way)) return false;
                 return limb_at(spacing) && fresh(held) && forked(way);
             };
             bool ledge = false, limb = false;

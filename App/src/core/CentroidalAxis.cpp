@@ -1882,10 +1882,10 @@ private:
             // underside overhangs every layer (a solid wye with two laterals leaning 56.2
             // degrees off its riser hung 3.5 mm^2 in each of its layers up to where they parted,
             // 101 mm^2 in all): each is a steep limb from a spacing a plane on. A side that has
-            // long leaned out (an elephant's belly, a body widening over its legs) is none: turned
-            // so late, its part would be cut deep into the body, where the nozzle could not
-            // build it, and kept in the body it hung more than before (CGAL's elephant 15.5 to
-            // 23.1 mm^2 in a layer).
+            // long leaned out (an elephant's belly, a body widening over its legs) is none: taken
+            // for one where the other side began to lean, CGAL's elephant's belly was cut deep
+            // into its body, where the nozzle could not build it, and kept in the body it hung
+            // 23.1 mm^2 in a layer where it hangs 15.5.
             const auto fresh = [&](double h) { return h > spacing && h <= 4.0 * spacing; };
             const auto opposed = [&](const Vector3d& way) {
                 for (const auto& other : leaning())

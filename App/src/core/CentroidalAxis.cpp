@@ -1907,15 +1907,16 @@ private:
                 const Vector3d way =
                     closest_axis(frame.to_3d(g, upper_plane) - frame.to_3d(c, upper_plane));
                 const double end = extent_along(*left, n, lower_offset, way);  // L's, that way
+                // Given that the crescent reaches out past L by more than `limit`.
                 const auto limb_at = [&](double limit) {
-                    if (!reaches({da}, limit) || !emerged().is_new) return false;
+                    if (!emerged().is_new) return false;
                     if (dist > 0.0 && extent_along(da, n, upper_offset, way) - end <= limit)
                         return false;
                     root = limb_root(*left, way, end);
                     held = end - root;
                     return held > limit;
                 };
-                if (limb_at(steep)) return true;
+                if (reaches({da}, steep) && limb_at(steep)) return true;
                 // A fork's limb, the cheap tests first: another stick-out, and one leaning the
                 // other way.
                 if (stick_out.size() < 2 || !reaches({da}, spacing) || !opposed(way)) return false;

@@ -487,6 +487,20 @@ double highest_along(const TriangleMesh& mesh, const Vec3& n) {
     return hi;
 }
 
+// The node branch `br`'s first link starts at (on its father's march, where it turns or splits
+// off), -1 where the axis has none.
+int junction(const CentroidalAxis& axis, const AxisBranch& br) {
+    if (br.first_link < 0 || std::size_t(br.first_link) >= axis.links.size()) return -1;
+    const int start = axis.links[std::size_t(br.first_link)].start;
+    return start >= 0 && std::size_t(start) < axis.nodes.size() ? start : -1;
+}
+
+// The branch whose march node `start` (a junction) lies on, -1 where there is none.
+int march_of(const CentroidalAxis& axis, int start) {
+    const int fb = start >= 0 ? axis.nodes[std::size_t(start)].branch : -1;
+    return fb >= 0 && std::size_t(fb) < axis.branches.size() ? fb : -1;
+}
+
 }  // namespace
 
 void check_kept_branches(const std::vector<KeptBranch>& kept, const CentroidalAxis& axis,
@@ -544,14 +558,8 @@ bool branch_line(const CentroidalAxis& axis, std::size_t b, double tolerance_mm,
         }
     }
     if (line.isZero()) return false;
-    const int start = axis.links[std::size_t(br.first_link)].start;
-    const int fb = start >= 0 && std::size_t(start) < axis.nodes.size()
-                       ? axis.nodes[std::size_t(start)].branch
-                       : -1;
-    const Vec3 F =
-        axis.branches[std::size_t(fb >= 0 && std::size_t(fb) < axis.branches.size() ? fb
-                                                                                    : br.parent)]
-            .direction.normalized();
+    const int fb = march_of(axis, junction(axis, br));
+    const Vec3 F = axis.branches[std::size_t(fb >= 0 ? fb : br.parent)].direction.normalized();
     line -= line.dot(F) * F;
     if (line.norm() < 1e-9) return false;
     line.normalize();
@@ -566,12 +574,11 @@ double turned_plane(const CentroidalAxis& axis, std::size_t b, const Vec3& along
     const double none = std::numeric_limits<double>::quiet_NaN();
     if (b >= axis.branches.size()) return none;
     const AxisBranch& br = axis.branches[b];
-    if (br.nodes.empty() || br.first_link < 0 || std::size_t(br.first_link) >= axis.links.size())
-        return none;
+    const int start = junction(axis, br);
+    if (br.nodes.empty() || start < 0) return none;
     const AxisNode& first = axis.nodes[std::size_t(br.nodes.front())];
     const std::vector<Vec2>& outline = first.region.outer.points;
-    const int start = axis.links[std::size_t(br.first_link)].start;
-    if (outline.size() < 3 || start < 0 || std::size_t(start) >= axis.nodes.size()) return none;
+    if (outline.size() < 3) return none;
     const AxisNode& junction = axis.nodes[std::size_t(start)];
     const PlaneFrame frame(first.normal);
     const std::size_t count = outline.size();
@@ -616,13 +623,9 @@ bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm, 
                 Vec3& point, Vec3& normal) {
     if (b >= axis.branches.size()) return false;
     const AxisBranch& br = axis.branches[b];
-    if (br.parent < 0 || br.first_link < 0 || std::size_t(br.first_link) >= axis.links.size() ||
-        br.nodes.size() < 3)
-        return false;
-    const int start = axis.links[std::size_t(br.first_link)].start;
-    if (start < 0 || std::size_t(start) >= axis.nodes.size()) return false;
-    const int fb = axis.nodes[std::size_t(start)].branch;
-    if (fb < 0 || std::size_t(fb) >= axis.branches.size()) return false;
+    const int start = junction(axis, br);
+    const int fb = march_of(axis, start);
+    if (br.parent < 0 || br.nodes.size() < 3 || fb < 0) return false;
     const std::vector<int>& march = axis.branches[std::size_t(fb)].nodes;
     const Vec3 F = axis.branches[std::size_t(fb)].direction.normalized();
     const Vec3 D = br.direction.normalized();
@@ -652,9 +655,7 @@ bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm, 
         for (int x = int(c); x >= 0; x = axis.branches[std::size_t(x)].parent) {
             const AxisBranch& up = axis.branches[std::size_t(x)];
             if (std::size_t(x) == b) return false;  // one of b's own sub-branches
-            if (up.first_link >= 0 && std::size_t(up.first_link) < axis.links.size() &&
-                bend.count(axis.links[std::size_t(up.first_link)].start))
-                return true;
+            if (bend.count(junction(axis, up))) return true;
         }
         return false;
     };

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -24,6 +25,7 @@ using mas::kPi;
 constexpr double kDeg = mas::kDegree;
 // The program writes X Y Z A C with 4 decimals: a read-back value is within half a unit of that.
 constexpr double kWord = 0.5e-4 + 1e-12;
+constexpr double kInfinity() { return std::numeric_limits<double>::infinity(); }
 
 // Where the table at (a, c) turns a part vector: LinuxCNC's xyzac-trt-kins, Rx(a) Rz(c).
 Vector3d turned(const Vector3d& v, double a_deg, double c_deg) {
@@ -517,6 +519,29 @@ TEST(Gcode, BadInputNamesTheProblem) {
     EXPECT_EQ(bad([](auto& m) { m.deposit_output = 64; }),
               "invalid_argument: machine: the deposition output must be a digital output 0 to "
               "63, got 64");
+    EXPECT_EQ(bad([](auto& m) {
+                  m.travel_min.y() = 10;
+                  m.travel_max.y() = 10;
+              }),
+              "invalid_argument: machine: Y's travel limits must have min < max, got 10 to 10 mm");
+    EXPECT_EQ(bad([](auto& m) { m.travel_max.z() = NAN; }),
+              "invalid_argument: machine: Z's travel limits must have min < max, got -inf to nan "
+              "mm");
+    EXPECT_EQ(bad([](auto& m) { m.travel_min.x() = INFINITY; }),
+              "invalid_argument: machine: X's travel limits must have min < max, got inf to inf "
+              "mm");
+    EXPECT_EQ(bad([](auto& m) { m.work_offset.z() = NAN; }),
+              "invalid_argument: machine: the work offset's Z must be a finite length within "
+              "1e+09 mm, got nan");
+    EXPECT_EQ(bad([](auto& m) { m.rot_point.x() = -INFINITY; }),
+              "invalid_argument: machine: the rot point's X must be a finite length within 1e+09 "
+              "mm, got -inf");
+    EXPECT_EQ(bad([](auto& m) { m.rot_offset_z_mm = 2e9; }),
+              "invalid_argument: machine: the rot offset's Z must be a finite length within 1e+09 "
+              "mm, got 2e+09");
+    EXPECT_EQ(bad([](auto& m) { m.tool_length_mm = NAN; }),
+              "invalid_argument: machine: the tool length must be a finite length within 1e+09 "
+              "mm, got nan");
 
     EXPECT_EQ(error_of([] { mas::write_gcode({}, mas::MachineParams()); }),
               "empty_input: G-code: no layer has a path to deposit");
@@ -844,6 +869,124 @@ TEST(Gcode, OffThePartTheTableTurnsLevel) {
     EXPECT_GE(least_clearance(p.nozzle, r, last + 1, r.moves.size() - 1,
                               box_surface(20, 0, 40, 70, 20, 60, 0.5)),
               p.nozzle.margin_mm - 0.36);
+}
+
+// The machine's joints (Gcode.hpp, "The machine's X Y Z travel"): the part's point moved by the
+// work offset, turned by C about the vertical line through the rot point, tilted by A about the
+// line along X through the rot point's y and z plus the offsets, the tool length on Z.
+TEST(Gcode, MachinePositionTurnsThePartAboutTheTablesAxes) {
+    mas::MachineParams m;
+    m.work_offset = {100, 50, -20};
+    m.tool_length_mm = 30;
+    EXPECT_EQ(mas::machine_position({1, 2, 3}, {0, 0}, m), Vector3d(101, 52, 13));
+    m = mas::MachineParams();
+    m.rot_point = {10, 0, 7};  // C's axis: x = 10, y = 0 (the rot point's z is A's)
+    EXPECT_LE((mas::machine_position({20, 0, 0}, {0, 90}, m) - Vector3d(10, 10, 0)).norm(), 1e-12);
+    m = mas::MachineParams();
+    m.rot_point = {0, 0, 2};
+    m.rot_offset_y_mm = 5;  // A's axis: y = 5, z = 2 + 3
+    m.rot_offset_z_mm = 3;
+    // 10 mm over A's axis, tilted 90 degrees: 10 mm towards -Y of it.
+    EXPECT_LE((mas::machine_position({0, 5, 15}, {90, 0}, m) - Vector3d(0, -5, 5)).norm(), 1e-12);
+    // C's axis stays where the rot point puts it however the A axis is offset.
+    EXPECT_LE((mas::machine_position({0, 0, 5}, {0, 180}, m) - Vector3d(0, 0, 5)).norm(), 1e-12);
+}
+
+// The joints' ranges are those of the moves the program makes (the first from its end), and a
+// limit the program passes is an error naming the axis, the range, the limit and the layer.
+TEST(Gcode, TheMachinesTravelIsReportedAndCheckedAgainstItsLimits) {
+    // A square tower (A 0, C 0 throughout): the joints are the program's points moved by G54 and
+    // the tool length, and its moves are straight in them.
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2)};
+    mas::MachineParams m;
+    m.work_offset = {100, 50, -20};
+    m.tool_length_mm = 30;
+    mas::GcodeStats stats;
+    const std::string text = mas::write_gcode(layers, m, &stats);
+    EXPECT_EQ(text.find("machine travel checked"), std::string::npos);  // no limits given
+    const Read r = read_program(text);
+    Vector3d lo = r.moves.front().p, hi = lo;
+    for (const Move& mv : r.moves) {
+        ASSERT_EQ(mv.a, 0.0);
+        ASSERT_EQ(mv.c, 0.0);
+        lo = lo.cwiseMin(mv.p);
+        hi = hi.cwiseMax(mv.p);
+    }
+    const Vector3d shift(100, 50, 10);
+    EXPECT_LE((stats.machine_min - (lo + shift)).cwiseAbs().maxCoeff(), kWord);
+    EXPECT_LE((stats.machine_max - (hi + shift)).cwiseAbs().maxCoeff(), kWord);
+    EXPECT_NEAR(stats.machine_min.x(), 100.0, kWord);  // the square's sides
+    EXPECT_NEAR(stats.machine_max.y(), 60.0, kWord);
+    EXPECT_NEAR(stats.machine_min.z(), 11.0, kWord);  // the first layer's plane, 1 + 10
+    // Limits met exactly pass; the header says what was checked.
+    mas::MachineParams limited = m;
+    limited.travel_min = stats.machine_min;
+    limited.travel_max = stats.machine_max;
+    mas::GcodeStats again;
+    const std::string checked = mas::write_gcode(layers, limited, &again);
+    EXPECT_EQ(again.machine_max, stats.machine_max);
+    EXPECT_NE(checked.find("(machine travel checked: X 100 to 110, Y 50 to 60, Z 11 to "),
+              std::string::npos);
+    // Past them, an error: the sphere's top is the highest point, reached on the way to the
+    // first layer.
+    limited.travel_max.z() -= 0.01;
+    limited.travel_min.x() = -kInfinity();
+    limited.travel_max.x() = kInfinity();
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, limited); }),
+              "out_of_travel: the program leaves the machine's travel (G54 at (100 50 -20)): it "
+              "takes Z from 11 to " +
+                  mas::format_number(stats.machine_max.z(), 7) + " mm, beyond its limits 11 to " +
+                  mas::format_number(stats.machine_max.z() - 0.01) +
+                  ", first at layer 0 (component 0); move the part on the table (the work offset) "
+                  "or slice it otherwise");
+    // Two axes past their limits, one limit only: each named.
+    limited = m;
+    limited.travel_max.x() = 105;
+    limited.travel_min.y() = 55;
+    EXPECT_EQ(error_of([&] { mas::write_gcode(layers, limited); }),
+              "out_of_travel: the program leaves the machine's travel (G54 at (100 50 -20)): it "
+              "takes X from 100 to 110 mm, beyond its greatest 105, first at layer 0 (component "
+              "0); it takes Y from 50 to 60 mm, beyond its least 55, first at layer 0 (component "
+              "0); move the part on the table (the work offset) or slice it otherwise");
+}
+
+// Where the table turns, the joints move on arcs: the range is taken along them, not only at the
+// moves' ends.
+TEST(Gcode, TheMachinesTravelFollowsTheTableAsItTurns) {
+    std::vector<mas::GcodeLayer> layers = {square_layer(0, 0, 0, 1), square_layer(0, 0, 0, 2),
+                                           side_layer(1, 11)};
+    mas::MachineParams m;
+    m.work_offset = {-40, 30, 25};
+    m.rot_point = {5, -10, 8};
+    m.rot_offset_y_mm = 20;
+    m.rot_offset_z_mm = 10;
+    mas::GcodeStats stats;
+    const Read r = read_program(mas::write_gcode(layers, m, &stats));
+    // The joints along every move, XYZAC in proportion, 4000 points a move; and at its ends only.
+    Vector3d lo = Vector3d::Constant(1e300), hi = -lo, lo_ends = lo, hi_ends = hi;
+    double reach = 0.0;  // the farthest the joints come from the axes
+    for (std::size_t k = 0; k < r.moves.size(); ++k) {
+        const Move& b = r.moves[k];
+        const Move& a = k ? r.moves[k - 1] : b;
+        for (int i = 0; i <= 4000; ++i) {
+            const double s = i / 4000.0;
+            const Vector3d j = mas::machine_position(
+                a.p + s * (b.p - a.p), {a.a + s * (b.a - a.a), a.c + s * (b.c - a.c)}, m);
+            lo = lo.cwiseMin(j);
+            hi = hi.cwiseMax(j);
+            reach = std::max(reach, (j - Vector3d(5, -10, 8)).norm() + 30.0);
+        }
+        const Vector3d j = mas::machine_position(b.p, {b.a, b.c}, m);
+        lo_ends = lo_ends.cwiseMin(j);
+        hi_ends = hi_ends.cwiseMax(j);
+    }
+    // Within the words' rounding (a position's 0.5e-4 mm, an angle's 0.5e-4 degrees at the reach),
+    // and 1e-5 of the reach between the engine's samples.
+    const double tol = kWord + reach * (0.5e-4 * kDeg + 1e-5);
+    EXPECT_LE((stats.machine_min - lo).cwiseAbs().maxCoeff(), tol);
+    EXPECT_LE((stats.machine_max - hi).cwiseAbs().maxCoeff(), tol);
+    // The arcs reach past the moves' ends here: ends alone would miss it.
+    EXPECT_GT((lo_ends - lo).maxCoeff() + (hi - hi_ends).maxCoeff(), 10 * tol);
 }
 
 // Where nothing is met, the check changes nothing in the program.

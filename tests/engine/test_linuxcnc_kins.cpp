@@ -1,9 +1,9 @@
-// The post-processor's table angles against LinuxCNC's own kinematics: the xyzac-trt-kins module
-// (Debian package linuxcnc-uspace) is loaded, with the few HAL and RTAPI functions it calls
-// stood in for here (its pins, the pivot and tool offsets, all 0), and its inverse kinematics
-// turns the angles Gcode.hpp chooses into joints. A layer's tool axis must then run along the
-// machine's +Z, where the nozzle points from. An executable of its own: the module resolves the
-// stand-ins against it (ENABLE_EXPORTS).
+// The post-processor against LinuxCNC's own kinematics: the xyzac-trt-kins module (Debian
+// package linuxcnc-uspace) is loaded, with the few HAL and RTAPI functions it calls stood in for
+// here (its pins kept by name). Its inverse kinematics turns the angles Gcode.hpp chooses into
+// joints, the pivot and tool offsets 0: a layer's tool axis must then run along the machine's +Z,
+// where the nozzle points from. With its pins set, its joints must be machine_position()'s. An
+// executable of its own: the module resolves the stand-ins against it (ENABLE_EXPORTS).
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <random>
 #include <string>
 
@@ -26,8 +27,19 @@
 extern "C" {
 int hal_init(const char*) { return 1; }
 void* hal_malloc(long size) { return std::calloc(1, size < 8 ? 8 : static_cast<size_t>(size)); }
-int hal_pin_float_newf(int, double** pin, int, const char*, ...) {
+// The module's float pins by name ("xyzac-trt-kins.y-offset", ...).
+std::map<std::string, double*>& float_pins() {
+    static std::map<std::string, double*> pins;
+    return pins;
+}
+int hal_pin_float_newf(int, double** pin, int, const char* format, ...) {
     *pin = static_cast<double*>(std::calloc(1, sizeof(double)));
+    char name[256];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(name, sizeof name, format, args);
+    va_end(args);
+    float_pins()[name] = *pin;
     return 0;
 }
 int hal_pin_bit_new(const char*, int, void** pin, int) {
@@ -54,16 +66,41 @@ struct EmcPose {
 };
 using Inverse = int (*)(const EmcPose*, double*, const unsigned long*, unsigned long*);
 
+// The module's inverse kinematics, loaded and started once; null (and a failure) when it cannot
+// be.
+Inverse load_inverse() {
+    static Inverse inverse = [] {
+        void* module = dlopen(MAS_LINUXCNC_KINS, RTLD_NOW | RTLD_GLOBAL);
+        EXPECT_NE(module, nullptr) << "cannot load LinuxCNC's kinematics (package "
+                                      "linuxcnc-uspace, installed by tools/setup.sh): "
+                                   << dlerror();
+        if (!module) return Inverse(nullptr);
+        auto main = reinterpret_cast<int (*)()>(dlsym(module, "rtapi_app_main"));
+        auto found = reinterpret_cast<Inverse>(dlsym(module, "kinematicsInverse"));
+        EXPECT_NE(main, nullptr);
+        EXPECT_NE(found, nullptr);
+        if (!main || !found) return Inverse(nullptr);
+        EXPECT_EQ(main(), 0);
+        return found;
+    }();
+    return inverse;
+}
+
+// Sets the module's pin `name` (after "xyzac-trt-kins."); fails when it has none such.
+void set_pin(const std::string& name, double value) {
+    const auto pin = float_pins().find("xyzac-trt-kins." + name);
+    ASSERT_NE(pin, float_pins().end()) << name;
+    *pin->second = value;
+}
+
+void zero_pins() {
+    for (auto& pin : float_pins()) *pin.second = 0.0;
+}
+
 TEST(LinuxCncKinematics, TheTableAnglesTurnEveryLayersAxisUpToTheNozzle) {
-    void* module = dlopen(MAS_LINUXCNC_KINS, RTLD_NOW | RTLD_GLOBAL);
-    ASSERT_NE(module, nullptr) << "cannot load LinuxCNC's kinematics (package linuxcnc-uspace, "
-                                  "installed by tools/setup.sh): "
-                               << dlerror();
-    auto main = reinterpret_cast<int (*)()>(dlsym(module, "rtapi_app_main"));
-    auto inverse = reinterpret_cast<Inverse>(dlsym(module, "kinematicsInverse"));
-    ASSERT_NE(main, nullptr);
+    const Inverse inverse = load_inverse();
     ASSERT_NE(inverse, nullptr);
-    ASSERT_EQ(main(), 0);
+    zero_pins();
 
     const double degree = kPi / 180.0;
     std::mt19937 random(11);
@@ -92,6 +129,43 @@ TEST(LinuxCncKinematics, TheTableAnglesTurnEveryLayersAxisUpToTheNozzle) {
         previous_a = angles.a_deg;
         previous_c = angles.c_deg;
     }
+}
+
+// machine_position() is the module's joints with its pivot and offsets set: the work offset
+// added to the pose, the tool length both on the pose (G43 in force) and on its tool-offset pin
+// (motion.tooloffset.z, as LinuxCNC's sample xyzac-trt configuration wires it).
+TEST(LinuxCncKinematics, TheMachinePositionIsTheModulesJoints) {
+    const Inverse inverse = load_inverse();
+    ASSERT_NE(inverse, nullptr);
+    ASSERT_EQ(float_pins().size(), 7u);  // x/y/z-rot-point, x/y/z-offset, tool-offset
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> place(-150.0, 150.0), angle(-360.0, 360.0);
+    for (int i = 0; i < 500; ++i) {
+        mas::MachineParams m;
+        m.work_offset = {place(random), place(random), place(random)};
+        m.rot_point = {place(random), place(random), place(random)};
+        m.rot_offset_y_mm = place(random);
+        m.rot_offset_z_mm = place(random);
+        m.tool_length_mm = i % 5 == 0 ? 0.0 : 0.5 * (place(random) + 150.0);
+        set_pin("x-rot-point", m.rot_point.x());
+        set_pin("y-rot-point", m.rot_point.y());
+        set_pin("z-rot-point", m.rot_point.z());
+        set_pin("y-offset", m.rot_offset_y_mm);
+        set_pin("z-offset", m.rot_offset_z_mm);
+        set_pin("tool-offset", m.tool_length_mm);
+        const Eigen::Vector3d p(place(random), place(random), place(random));
+        const mas::TableAngles angles{angle(random), angle(random)};
+        const Eigen::Vector3d w = p + m.work_offset;
+        const EmcPose pose{w.x(), w.y(), w.z() + m.tool_length_mm, angles.a_deg, 0, angles.c_deg, 0,
+                           0,     0};
+        double joints[9] = {0};
+        unsigned long inverse_flags = 0, forward_flags = 0;
+        ASSERT_EQ(inverse(&pose, joints, &inverse_flags, &forward_flags), 0);
+        const Eigen::Vector3d expected(joints[0], joints[1], joints[2]);
+        EXPECT_LE((mas::machine_position(p, angles, m) - expected).norm(), 1e-9)
+            << "p " << p.transpose() << " A " << angles.a_deg << " C " << angles.c_deg;
+    }
+    zero_pins();
 }
 
 }  // namespace

@@ -20,6 +20,7 @@ enum class ErrorCode {
     NonFiniteCoordinate,     // NaN, infinite or out-of-range (kMaxCoordinateMm) coordinates
     GeometryFailure,         // the geometry kernel failed on valid-looking input
     UnreachableOrientation,  // a tool axis the machine's rotary axes cannot turn to the nozzle
+    OutOfTravel,             // a program taking the machine's X, Y or Z past its travel limits
     Cancelled,               // the caller cancelled a long computation
 };
 

@@ -77,9 +77,24 @@
 //   (NozzleMove::along_layer); round the part between two paths of one layer, that layer counts,
 //   all of it, on the rest of the way.
 //   The deposit moves are the build sequence's to check (plan_build_sequence).
-// - Not checked: the X Y Z travel limits, which depend on where the table pivots.
+// - The machine's X Y Z travel (not in the paper). Where the joints go depends on where the part
+//   sits and where the table pivots, so the check takes both: the work offset (G54: where the
+//   part's origin lies in the machine's frame, A and C at 0), xyzac-trt-kins' pivot (its HAL pins
+//   x-rot-point, y-rot-point, z-rot-point, y-offset, z-offset) and the tool length (its
+//   tool-offset pin, motion.tooloffset.z). machine_position() is its inverse kinematics: the
+//   part's point p, in the world frame w = p + work offset, turned by C about the vertical line
+//   through (x-rot-point, y-rot-point) and tilted by A about the line along X through
+//   (y-rot-point + y-offset, z-rot-point + z-offset), plus the tool length on Z (tested against
+//   the module with its pins set). Every move is followed, the first (from wherever the machine
+//   is) from its end: where the table keeps still the joints move straight, where it turns they
+//   are taken every kJointStepDeg of A and of C, so that between two of them a joint strays from
+//   the chord by at most 1e-5 of its distance from the axes. The joints' ranges are reported
+//   (GcodeStats) whether or not limits are given; a program taking a joint past a finite limit is
+//   an error (OutOfTravel) naming the axis, the range the program needs, the limits, and the layer
+//   at whose moves it first goes past them.
 #pragma once
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -88,6 +103,11 @@
 #include "mas/Toolpath.hpp"
 
 namespace mas {
+
+inline constexpr double kInfiniteTravel = std::numeric_limits<double>::infinity();
+
+// The step (degrees of A and of C) at which the joints are followed where the table turns.
+inline constexpr double kJointStepDeg = 0.25;
 
 struct MachineParams {
     // Travel limits of the table's axes, degrees (LinuxCNC's sample xyzac-trt.ini).
@@ -100,6 +120,14 @@ struct MachineParams {
     double max_feed_ratio = 4.0;  // the feed stays within [feed / ratio, feed x ratio]; >= 1
     double clearance_mm = 2.0;    // retract along the tool axis, and the margin of the sphere; > 0
     int deposit_output = 0;       // the digital output (M62/M63/M65 P) that switches deposition
+    // The X Y Z travel, mm in the machine's frame (the joints: where the nozzle's gauge line goes,
+    // the tool length above its tip). Infinite (the default): not checked.
+    Eigen::Vector3d travel_min = Eigen::Vector3d::Constant(-kInfiniteTravel);
+    Eigen::Vector3d travel_max = Eigen::Vector3d::Constant(kInfiniteTravel);
+    Eigen::Vector3d work_offset = Eigen::Vector3d::Zero();  // G54, mm
+    Eigen::Vector3d rot_point = Eigen::Vector3d::Zero();    // xyzac-trt-kins' x/y/z-rot-point, mm
+    double rot_offset_y_mm = 0.0, rot_offset_z_mm = 0.0;    // its y-offset and z-offset pins
+    double tool_length_mm = 0.0;  // its tool-offset pin: the nozzle's tool length offset
 };
 
 // Throws mas::Error(InvalidArgument) naming the first parameter out of its range; the feed range
@@ -145,6 +173,12 @@ struct TableAngles {
 bool table_angles(const Eigen::Vector3d& tool_axis, const MachineParams& params, double previous_a,
                   double previous_c, TableAngles& out);
 
+// The machine's X Y Z joints (mm) with the nozzle tip at `p` (the part's frame) and the table at
+// `angles`: xyzac-trt-kins' inverse kinematics with the params' work offset, pivot and tool length
+// (above).
+Eigen::Vector3d machine_position(const Eigen::Vector3d& p, const TableAngles& angles,
+                                 const MachineParams& params);
+
 struct GcodeStats {
     int lines = 0;
     int deposit_moves = 0;  // G1 moves with deposition on (none to where the nozzle is, to 1e-4)
@@ -155,6 +189,9 @@ struct GcodeStats {
     double deposit_time_min = 0.0;  // the deposit moves at their feeds
     double rapid_length_mm = 0.0;   // of the tool tip, in the part's frame
     double reference_thickness_mm = 0.0;
+    // The machine's X Y Z joints the program takes (machine_position()), least and greatest; the
+    // first move's start (wherever the machine is) not counted.
+    Eigen::Vector3d machine_min = Eigen::Vector3d::Zero(), machine_max = Eigen::Vector3d::Zero();
     // With a TravelNozzle: the routes checked, those taken round the part because the way within
     // the component would meet something, and those meeting something all the same.
     int checked_routes = 0;
@@ -170,7 +207,8 @@ inline constexpr double kMaxClearanceInMargins = 1e4;
 
 // The program. Throws InvalidArgument for bad params (the nozzle's too, and a clearance over
 // kMaxClearanceInMargins of its margins) or a layer without a unit
-// tool axis, EmptyInput when no layer deposits anything, Error(UnreachableOrientation) as above.
+// tool axis, EmptyInput when no layer deposits anything, Error(UnreachableOrientation) and
+// Error(OutOfTravel) as above.
 // `progress` is reported per layer and may cancel. `nozzle`: the travel is checked against it
 // (null: not checked).
 std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachineParams& params,

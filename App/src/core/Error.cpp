@@ -28,6 +28,8 @@ const char* to_string(ErrorCode code) {
             return "geometry_failure";
         case ErrorCode::UnreachableOrientation:
             return "unreachable_orientation";
+        case ErrorCode::OutOfTravel:
+            return "out_of_travel";
         case ErrorCode::Cancelled:
             return "cancelled";
     }

@@ -44,7 +44,12 @@ std::string vector_text(Eigen::Vector3d v) {
 // excepted.
 class Program {
 public:
-    explicit Program(GcodeStats& stats) : stats_(stats) {}
+    Program(GcodeStats& stats, const MachineParams& machine) : stats_(stats), machine_(machine) {}
+
+    // The layer the moves from here on are made for, as errors name it.
+    void at(std::string what) { at_ = std::move(what); }
+    // The first move past a finite travel limit of each axis: where, as at() named it.
+    const std::array<std::string, 3>& past_limits() const { return past_; }
 
     void line(const std::string& text) {
         out_ << text << '\n';
@@ -101,7 +106,9 @@ private:
         if (!started_) {
             stats_.a_min_deg = stats_.a_max_deg = angles.a_deg;
             stats_.c_min_deg = stats_.c_max_deg = angles.c_deg;
+            stats_.machine_min = stats_.machine_max = machine_position(p, angles, machine_);
         }
+        follow_joints(p, angles);
         stats_.a_min_deg = std::min(stats_.a_min_deg, angles.a_deg);
         stats_.a_max_deg = std::max(stats_.a_max_deg, angles.a_deg);
         stats_.c_min_deg = std::min(stats_.c_min_deg, angles.c_deg);
@@ -114,7 +121,34 @@ private:
         line(s);
     }
 
+    // The machine's joints along the move from where the tip is to `p` (the table to `angles`),
+    // every kJointStepDeg of A and of C where it turns; from `p` alone for the first move.
+    void follow_joints(const Eigen::Vector3d& p, const TableAngles& angles) {
+        const double da = angles.a_deg - angles_.a_deg, dc = angles.c_deg - angles_.c_deg;
+        const int steps =
+            !started_ ? 0
+                      : static_cast<int>(
+                            std::ceil(std::max(std::abs(da), std::abs(dc)) / kJointStepDeg - 1e-9));
+        for (int k = steps > 0 ? 1 : 0; k <= steps; ++k) {
+            const double s = steps > 0 ? static_cast<double>(k) / steps : 1.0;
+            const Eigen::Vector3d j =
+                k == steps
+                    ? machine_position(p, angles, machine_)
+                    : machine_position(position_ + s * (p - position_),
+                                       {angles_.a_deg + s * da, angles_.c_deg + s * dc}, machine_);
+            stats_.machine_min = stats_.machine_min.cwiseMin(j);
+            stats_.machine_max = stats_.machine_max.cwiseMax(j);
+            for (int axis = 0; axis < 3; ++axis)
+                if (past_[axis].empty() &&
+                    (j[axis] < machine_.travel_min[axis] || j[axis] > machine_.travel_max[axis]))
+                    past_[axis] = at_;
+        }
+    }
+
     GcodeStats& stats_;
+    const MachineParams& machine_;
+    std::string at_;
+    std::array<std::string, 3> past_;
     std::ostringstream out_;
     Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
     TableAngles angles_;
@@ -263,6 +297,21 @@ std::string layer_name(std::size_t place, const GcodeLayer& layer) {
 
 }  // namespace
 
+Eigen::Vector3d machine_position(const Eigen::Vector3d& p, const TableAngles& angles,
+                                 const MachineParams& m) {
+    const Eigen::Vector3d w = p + m.work_offset;
+    // C about the vertical line through the rot point.
+    const double c = angles.c_deg * kDegree, a = angles.a_deg * kDegree;
+    const double x = w.x() - m.rot_point.x(), y = w.y() - m.rot_point.y();
+    const double xc = x * std::cos(c) - y * std::sin(c) + m.rot_point.x();
+    const double yc = x * std::sin(c) + y * std::cos(c) + m.rot_point.y();
+    // A about the line along X through (rot point y + y-offset, rot point z + z-offset).
+    const double ya = m.rot_point.y() + m.rot_offset_y_mm, za = m.rot_point.z() + m.rot_offset_z_mm;
+    const double dy = yc - ya, dz = w.z() - za;
+    return {xc, dy * std::cos(a) - dz * std::sin(a) + ya,
+            dy * std::sin(a) + dz * std::cos(a) + za + m.tool_length_mm};
+}
+
 void validate(const MachineParams& p) {
     auto fail = [](const std::string& what) { throw Error(ErrorCode::InvalidArgument, what); };
     auto finite = [](double v) { return std::isfinite(v); };
@@ -292,6 +341,26 @@ void validate(const MachineParams& p) {
     if (p.deposit_output < 0 || p.deposit_output > 63)
         fail("machine: the deposition output must be a digital output 0 to 63, got " +
              std::to_string(p.deposit_output));
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = p.travel_min[axis], hi = p.travel_max[axis];
+        // Infinite: not checked; NaN fails the comparison.
+        if (!(lo < hi) || lo == kInfiniteTravel || hi == -kInfiniteTravel)
+            fail(std::string("machine: ") + "XYZ"[axis] +
+                 "'s travel limits must have min < max, got " + format_number(lo) + " to " +
+                 format_number(hi) + " mm");
+    }
+    const auto place = [&](const std::string& what, double v) {
+        if (!(std::abs(v) <= kMaxCoordinateMm))
+            fail("machine: " + what + " must be a finite length within " +
+                 format_number(kMaxCoordinateMm) + " mm, got " + format_number(v));
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+        place(std::string("the work offset's ") + "XYZ"[axis], p.work_offset[axis]);
+        place(std::string("the rot point's ") + "XYZ"[axis], p.rot_point[axis]);
+    }
+    place("the rot offset's Y", p.rot_offset_y_mm);
+    place("the rot offset's Z", p.rot_offset_z_mm);
+    place("the tool length", p.tool_length_mm);
 }
 
 std::vector<GcodeLayer> gcode_layers(const SlicedPart& part) {
@@ -530,7 +599,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         }
     }
 
-    Program g(stats);
+    Program g(stats, params);
     const std::string out_n = " P" + std::to_string(params.deposit_output);
     int component_count = 0;
     {
@@ -547,6 +616,21 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
               " deg, C " + format_number(params.c_min_deg) + " to " +
               format_number(params.c_max_deg) + " deg");
     g.comment("X Y Z: the part's coordinates in mm; set G54 to the part's origin on the table");
+    const bool travel_checked = (params.travel_min.array() > -kInfiniteTravel).any() ||
+                                (params.travel_max.array() < kInfiniteTravel).any();
+    if (travel_checked) {
+        std::string limits;
+        for (int axis = 0; axis < 3; ++axis)
+            limits += std::string(axis ? ", " : "") + "XYZ"[axis] + " " +
+                      format_number(params.travel_min[axis]) + " to " +
+                      format_number(params.travel_max[axis]);
+        g.comment("machine travel checked: " + limits + " mm, for G54 at (" +
+                  vector_text(params.work_offset) + "), the table's rot point at (" +
+                  vector_text(params.rot_point) + "), its y and z offsets " +
+                  format_number(params.rot_offset_y_mm) + " " +
+                  format_number(params.rot_offset_z_mm) + ", tool length " +
+                  format_number(params.tool_length_mm));
+    }
     if (nozzle) {
         // Where the part stands: a part modelled off the plane Z = 0 (centred on its origin, or
         // above it) has its program's Z as modelled, so the work offset must take the difference.
@@ -743,6 +827,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                                    (g.position() - s).norm() <= kSamePoint &&
                                    g.angles().a_deg == a.a_deg && g.angles().c_deg == a.c_deg;
             if (first_path) {
+                g.at(layer_name(i, layer));
                 if (!continues) stop_deposit();  // the last layer's end before this one's name
                 g.comment(layer_number(i, layer) + ", component " +
                           std::to_string(layer.component) + ": tool axis " + vector_text(n) +
@@ -827,6 +912,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     }
     // Out to the sphere and up to its top, the table turning level on the way.
     stop_deposit();
+    g.at("the way off the part");
     std::vector<Waypoint> way;
     const Eigen::Vector3d out = sphere.exit(g.position(), layers[used.back()].tool_axis);
     way.push_back({out, g.angles(), int(used.back())});
@@ -839,6 +925,25 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     rapid_along(way);
     g.line("M65" + out_n);
     g.line("M2");
+    std::string beyond;
+    for (int axis = 0; axis < 3; ++axis) {
+        const std::string& where = g.past_limits()[std::size_t(axis)];
+        if (where.empty()) continue;
+        const double lo = params.travel_min[axis], hi = params.travel_max[axis];
+        const std::string limits = lo == -kInfiniteTravel  ? "its greatest " + format_number(hi)
+                                   : hi == kInfiniteTravel ? "its least " + format_number(lo)
+                                                           : "its limits " + format_number(lo) +
+                                                                 " to " + format_number(hi);
+        beyond += std::string(beyond.empty() ? "" : "; ") + "it takes " + "XYZ"[axis] + " from " +
+                  format_number(stats.machine_min[axis], 7) + " to " +
+                  format_number(stats.machine_max[axis], 7) + " mm, beyond " + limits +
+                  ", first at " + where;
+    }
+    if (!beyond.empty())
+        throw Error(ErrorCode::OutOfTravel,
+                    "the program leaves the machine's travel (G54 at (" +
+                        vector_text(params.work_offset) + ")): " + beyond +
+                        "; move the part on the table (the work offset) or slice it otherwise");
     progress(1.0);
     if (stats_out) *stats_out = stats;
     return g.text();

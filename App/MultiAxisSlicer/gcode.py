@@ -35,14 +35,38 @@ MACHINE_DEFAULTS = {
     "max_feed_ratio": 4.0,
     "clearance": 2.0,
     "deposit_output": 0,
+    # The X Y Z travel (mm, the machine's frame; None: not checked) and what places the part in
+    # it: the work offset (G54) and xyzac-trt-kins' pivot and tool length pins.
+    "x_min": None,
+    "x_max": None,
+    "y_min": None,
+    "y_max": None,
+    "z_min": None,
+    "z_max": None,
+    "work_offset_x": 0.0,
+    "work_offset_y": 0.0,
+    "work_offset_z": 0.0,
+    "rot_point_x": 0.0,
+    "rot_point_y": 0.0,
+    "rot_point_z": 0.0,
+    "rot_offset_y": 0.0,
+    "rot_offset_z": 0.0,
+    "tool_length": 0.0,
 }
+
+# The travel limits: None is no limit.
+TRAVEL_LIMITS = ("x_min", "x_max", "y_min", "y_max", "z_min", "z_max")
+_PLACEMENT = ("work_offset_x", "work_offset_y", "work_offset_z", "rot_point_x", "rot_point_y",
+              "rot_point_z", "rot_offset_y", "rot_offset_z", "tool_length")
 
 
 class GcodeProgram:
     """A G-code program: ``text`` (str), ``stats`` (dict: lines, deposit_moves,
     feed_limited_moves, reorientations, a_range_deg and c_range_deg (the angles used, as (min,
     max)), deposit_length_mm, deposit_time_min (the deposit moves at their feeds),
-    rapid_length_mm, reference_thickness_mm; and the travel checked against the slicing's nozzle:
+    rapid_length_mm, reference_thickness_mm, x_range_mm, y_range_mm and z_range_mm (the machine's
+    X Y Z joints the program takes, as (min, max), with the work offset, pivot and tool length
+    given); and the travel checked against the slicing's nozzle:
     checked_routes, rerouted_travels (ways within a component taken round the part because they
     would meet something), travel_collisions (routes meeting something all the same: dicts of
     layer (the layer the route leads to, -1 off the part), obstacle_layer (-1: the build plate),
@@ -53,6 +77,8 @@ class GcodeProgram:
         self.stats = dict(data["stats"])
         self.stats["a_range_deg"] = tuple(self.stats["a_range_deg"])
         self.stats["c_range_deg"] = tuple(self.stats["c_range_deg"])
+        for axis in "xyz":
+            self.stats[axis + "_range_mm"] = tuple(self.stats[axis + "_range_mm"])
         self.machine = dict(machine)
 
     def write(self, path):
@@ -143,6 +169,11 @@ def _machine_params(values):
         p[name] = _measure(values.get(name, p[name]), name, "degrees")
     for name in ("reference_thickness", "clearance"):
         p[name] = _measure(values.get(name, p[name]), name, "millimetres")
+    for name in TRAVEL_LIMITS:
+        if values.get(name) is not None:
+            p[name] = _measure(values[name], name, "millimetres")
+    for name in _PLACEMENT:
+        p[name] = _measure(values.get(name, p[name]), name, "millimetres")
     p["feed"] = _measure(values.get("feed", p["feed"]), "feed", "millimetres per minute")
     p["max_feed_ratio"] = _number(values.get("max_feed_ratio", p["max_feed_ratio"]),
                                   "max_feed_ratio", "a ratio")
@@ -169,6 +200,16 @@ def gcode(result, progress=None, **machine):
       * ``clearance``: how far the nozzle retracts along the tool axis between paths, and its
         margin round the part between components, mm (2).
       * ``deposit_output``: the digital output that switches deposition (M62/M63 P, 0).
+      * The X Y Z travel, mm in the machine's frame: ``x_min``, ``x_max``, ``y_min``, ``y_max``,
+        ``z_min``, ``z_max`` (None: not checked), where the nozzle's gauge line may go (the joint
+        limits of the machine's INI file). Where the joints go is computed as LinuxCNC's
+        ``xyzac-trt-kins`` does, from ``work_offset_x``, ``work_offset_y``, ``work_offset_z``
+        (G54: where the part's origin lies with A and C at 0), ``rot_point_x``, ``rot_point_y``,
+        ``rot_point_z``, ``rot_offset_y``, ``rot_offset_z`` (its pins ``x-rot-point`` ...
+        ``z-offset``) and ``tool_length`` (its ``tool-offset`` pin: the nozzle's length offset),
+        all 0 by default. ``stats`` reports the ranges the program takes whether or not limits
+        are given; a program past one is an error naming the axis, its range, the limit and the
+        layer (EngineError ``out_of_travel``).
 
     The travel between paths is checked against the nozzle the result was sliced with and its
     build plate (see Gcode.hpp and Nozzle.hpp): a way within a component that would meet what is
@@ -178,7 +219,8 @@ def gcode(result, progress=None, **machine):
     ``progress``: as ``slice()``'s, reported layer by layer. Returns a ``GcodeProgram``. Raises
     TypeError for an unknown parameter or one of the wrong type, EngineError ``invalid_argument``
     for one out of its range (a feed of 0, A's limits the wrong way round, an output beyond 63),
-    ``unreachable_orientation`` as above, ``empty_input`` when nothing is deposited.
+    ``unreachable_orientation`` and ``out_of_travel`` as above, ``empty_input`` when nothing is
+    deposited.
     """
     from .slicing import SliceResult
     if not isinstance(result, SliceResult):
@@ -197,5 +239,7 @@ def gcode(result, progress=None, **machine):
         plate = (result._data["plate_origin"], result._data["plate_normal"])
     # In the order they are deposited (the result's sequence, checked against the nozzle), each
     # named by its index in the result.
-    return GcodeProgram(eng.write_gcode([dict(layers[i], index=i) for i in result.sequence], p,
-                                        progress, nozzle, plate), p)
+    # No limit given: none checked (the engine's infinite limits).
+    engine_params = {k: v for k, v in p.items() if v is not None}
+    return GcodeProgram(eng.write_gcode([dict(layers[i], index=i) for i in result.sequence],
+                                        engine_params, progress, nozzle, plate), p)

@@ -110,7 +110,11 @@ const char* kUsage =
     "           --feed MM/MIN (600, at the reference thickness), --reference-thickness MM (0:\n"
     "           half-way between the thinnest and thickest deposit), --max-feed-ratio R (4: the\n"
     "           feed within feed/R to feed*R as the thickness varies; 1: constant), --clearance\n"
-    "           MM (2: retract along the tool axis), --deposit-output N (0: M62/M63 P0).\n"
+    "           MM (2: retract along the tool axis), --deposit-output N (0: M62/M63 P0);\n"
+    "           the machine's travel, mm: --x-limits MIN,MAX, --y-limits, --z-limits (the\n"
+    "           joints' limits; none by default: not checked; past one, an error), where the\n"
+    "           part sits: --work-offset X,Y,Z (G54, 0,0,0), and xyzac-trt-kins' pins:\n"
+    "           --rot-point X,Y,Z (0,0,0), --rot-offset Y,Z (0,0), --tool-length MM (0).\n"
     "FILE       .step/.stp, .iges/.igs, .brep/.brp (one closed solid) or .stl/.off (a closed "
     "mesh)\n"
     "--json     write JSON instead of text, to OUT.json or standard output\n"
@@ -761,8 +765,10 @@ const std::set<std::string> kSliceOptions = {"--min-layer",
                                              "--nozzle-max-lean"};
 
 const std::set<std::string> kMachineOptions = {
-    "--a-limits",       "--c-limits",  "--feed",          "--reference-thickness",
-    "--max-feed-ratio", "--clearance", "--deposit-output"};
+    "--a-limits",       "--c-limits",   "--feed",           "--reference-thickness",
+    "--max-feed-ratio", "--clearance",  "--deposit-output", "--x-limits",
+    "--y-limits",       "--z-limits",   "--work-offset",    "--rot-point",
+    "--rot-offset",     "--tool-length"};
 
 // The machine for --gcode; its options without --gcode are a usage error.
 mas::MachineParams machine_params(const Args& a) {
@@ -787,6 +793,27 @@ mas::MachineParams machine_params(const Args& a) {
     m.max_feed_ratio = a.number("--max-feed-ratio", m.max_feed_ratio);
     m.clearance_mm = a.number("--clearance", m.clearance_mm);
     m.deposit_output = a.integer("--deposit-output", m.deposit_output);
+    for (int axis = 0; axis < 3; ++axis) {
+        const std::string option = std::string("--") + "xyz"[axis] + "-limits";
+        if (!a.has(option)) continue;
+        const auto v = parse_numbers(a.options.at(option), 2, option, "MIN,MAX");
+        m.travel_min[axis] = v[0];
+        m.travel_max[axis] = v[1];
+    }
+    if (a.has("--work-offset")) {
+        const auto v = parse_numbers(a.options.at("--work-offset"), 3, "--work-offset", "X,Y,Z");
+        m.work_offset = {v[0], v[1], v[2]};
+    }
+    if (a.has("--rot-point")) {
+        const auto v = parse_numbers(a.options.at("--rot-point"), 3, "--rot-point", "X,Y,Z");
+        m.rot_point = {v[0], v[1], v[2]};
+    }
+    if (a.has("--rot-offset")) {
+        const auto v = parse_numbers(a.options.at("--rot-offset"), 2, "--rot-offset", "Y,Z");
+        m.rot_offset_y_mm = v[0];
+        m.rot_offset_z_mm = v[1];
+    }
+    m.tool_length_mm = a.number("--tool-length", m.tool_length_mm);
     mas::validate(m);
     const std::string& path = a.options.at("--gcode");
     std::error_code same;
@@ -1004,6 +1031,10 @@ int run_slice(const std::vector<std::string>& args) {
                 << ", \"deposit_time_min\": " << num(gs.deposit_time_min)
                 << ", \"rapid_length_mm\": " << num(gs.rapid_length_mm)
                 << ", \"reference_thickness_mm\": " << num(gs.reference_thickness_mm)
+                << ", \"x_range_mm\": [" << num(gs.machine_min.x()) << ", "
+                << num(gs.machine_max.x()) << "], \"y_range_mm\": [" << num(gs.machine_min.y())
+                << ", " << num(gs.machine_max.y()) << "], \"z_range_mm\": ["
+                << num(gs.machine_min.z()) << ", " << num(gs.machine_max.z()) << "]"
                 << ", \"checked_routes\": " << gs.checked_routes
                 << ", \"rerouted_travels\": " << gs.rerouted_travels << ", \"travel_collisions\": ["
                 << travel_collisions_json(gs) << "]},";
@@ -1109,8 +1140,11 @@ int run_slice(const std::vector<std::string>& args) {
                 << gs.deposit_moves << " deposit moves (" << gs.feed_limited_moves
                 << " at a feed limit), A " << num(gs.a_min_deg) << " to " << num(gs.a_max_deg)
                 << " deg, C " << num(gs.c_min_deg) << " to " << num(gs.c_max_deg)
-                << " deg, deposit time " << num(gs.deposit_time_min)
-                << " min\n# travel: " << gs.checked_routes << " routes checked against the nozzle, "
+                << " deg, deposit time " << num(gs.deposit_time_min) << " min\n# machine: X "
+                << num(gs.machine_min.x()) << " to " << num(gs.machine_max.x()) << ", Y "
+                << num(gs.machine_min.y()) << " to " << num(gs.machine_max.y()) << ", Z "
+                << num(gs.machine_min.z()) << " to " << num(gs.machine_max.z())
+                << " mm\n# travel: " << gs.checked_routes << " routes checked against the nozzle, "
                 << gs.rerouted_travels << " taken round the part, " << gs.travel_collisions.size()
                 << " meeting what is deposited\n";
         for (const mas::TravelCollision& c : gs.travel_collisions)

@@ -1764,6 +1764,36 @@ mas::MachineParams machine_from_py(const bp::dict& d) {
             m.max_feed_ratio = x;
         else if (key == "clearance")
             m.clearance_mm = x;
+        else if (key == "x_min")
+            m.travel_min.x() = x;
+        else if (key == "x_max")
+            m.travel_max.x() = x;
+        else if (key == "y_min")
+            m.travel_min.y() = x;
+        else if (key == "y_max")
+            m.travel_max.y() = x;
+        else if (key == "z_min")
+            m.travel_min.z() = x;
+        else if (key == "z_max")
+            m.travel_max.z() = x;
+        else if (key == "work_offset_x")
+            m.work_offset.x() = x;
+        else if (key == "work_offset_y")
+            m.work_offset.y() = x;
+        else if (key == "work_offset_z")
+            m.work_offset.z() = x;
+        else if (key == "rot_point_x")
+            m.rot_point.x() = x;
+        else if (key == "rot_point_y")
+            m.rot_point.y() = x;
+        else if (key == "rot_point_z")
+            m.rot_point.z() = x;
+        else if (key == "rot_offset_y")
+            m.rot_offset_y_mm = x;
+        else if (key == "rot_offset_z")
+            m.rot_offset_z_mm = x;
+        else if (key == "tool_length")
+            m.tool_length_mm = x;
         else if (key == "deposit_output") {
             if (x != std::floor(x))
                 invalid_argument("machine parameter deposit_output must be a whole number, got " +
@@ -1829,6 +1859,9 @@ bp::dict write_gcode(const bp::object& layers_py, const bp::dict& machine_py,
     stats["deposit_time_min"] = s.deposit_time_min;
     stats["rapid_length_mm"] = s.rapid_length_mm;
     stats["reference_thickness_mm"] = s.reference_thickness_mm;
+    stats["x_range_mm"] = bp::make_tuple(s.machine_min.x(), s.machine_max.x());
+    stats["y_range_mm"] = bp::make_tuple(s.machine_min.y(), s.machine_max.y());
+    stats["z_range_mm"] = bp::make_tuple(s.machine_min.z(), s.machine_max.z());
     stats["checked_routes"] = s.checked_routes;
     stats["rerouted_travels"] = s.rerouted_travels;
     bp::list collisions;
@@ -1850,15 +1883,20 @@ void bind_gcode() {
             "name, else its place in `layers`). `machine`: a "
             "dict of a_min, a_max, c_min, c_max (degrees), feed (mm/min at the reference "
             "thickness), reference_thickness (mm, 0: derived), max_feed_ratio, clearance (mm), "
-            "deposit_output; missing ones take the engine's defaults. Returns {text, stats "
+            "deposit_output, and the X Y Z travel (mm): x_min, x_max, y_min, y_max, z_min, z_max "
+            "(infinite: not checked), work_offset_x/y/z (G54), rot_point_x/y/z, rot_offset_y, "
+            "rot_offset_z (xyzac-trt-kins' pivot pins), tool_length; missing ones take the "
+            "engine's defaults. Returns {text, stats "
             "{lines, deposit_moves, feed_limited_moves, reorientations, a_range_deg, c_range_deg, "
             "deposit_length_mm, deposit_time_min, rapid_length_mm, reference_thickness_mm, "
-            "checked_routes, rerouted_travels, travel_collisions [{layer, obstacle_layer, "
+            "x_range_mm, y_range_mm, z_range_mm (the machine's joints), checked_routes, "
+            "rerouted_travels, travel_collisions [{layer, obstacle_layer, "
             "nozzle_at, obstacle}]}}. `nozzle` (a dict of slice_part()'s nozzle_* parameters and "
             "check_plate) and `plate` ((origin, normal)): the travel is checked against them and "
             "the layers' prisms (their origin, normal, lower_origin, lower_normal and regions). "
             "EngineError invalid_argument for bad parameters, unreachable_orientation for a "
-            "layer the table cannot turn to the nozzle. `progress` as slice_part()'s.");
+            "layer the table cannot turn to the nozzle, out_of_travel for a program past the X Y "
+            "Z limits. `progress` as slice_part()'s.");
 }
 
 // ---- drawing

@@ -1174,6 +1174,42 @@ class CliGcode(unittest.TestCase):
         # The program still runs through LinuxCNC's interpreter.
         self.interpret(program)
 
+    def test_the_machines_travel(self):
+        # The joints' ranges in the JSON and the summary; limits at them pass, the program says
+        # what it was checked for and LinuxCNC reads it; a limit past them is an error, no file.
+        brep = os.path.join(DATA, "l_block.brep")
+        program = os.path.join(self.tmp.name, "l.ngc")
+        place = ["--work-offset", "10,-20,-150", "--rot-point", "0,5,0", "--rot-offset", "20,10",
+                 "--tool-length", "60"]
+        r = run("slice", brep, "--step", "2.5", "--gcode", program, *place, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        g = doc["gcode"]
+        ranges = [g[axis + "_range_mm"] for axis in "xyz"]
+        for lo, hi in ranges:
+            self.assertLess(lo, hi)
+        # The column's first layer is deposited with A and C at 0: its joints are its points less
+        # the work offset's 150 mm plus the tool length's 60 in Z.
+        first = doc["layers"][doc["sequence"][0]]
+        self.assertEqual(first["normal"], [0, 0, 1])
+        self.assertLessEqual(ranges[2][0], first["origin"][2] - 90 + 1e-9)
+        # The JSON's 15 significant digits may round a range's end inside it.
+        limits = []
+        for axis, (lo, hi) in zip("xyz", ranges):
+            limits += ["--{}-limits".format(axis), "{!r},{!r}".format(lo - 1e-9, hi + 1e-9)]
+        r = run("slice", brep, "--step", "2.5", "--gcode", program, *place, *limits)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("# machine: X ", r.stdout)
+        with open(program) as f:
+            self.assertIn("(machine travel checked: X ", f.read())
+        self.interpret(program)
+        os.remove(program)
+        tight = limits[:-1] + ["{!r},{!r}".format(ranges[2][0], ranges[2][1] - 5)]
+        CliSections.expect_error(self, ["slice", brep, "--step", "2.5", "--gcode", program,
+                                        *place, *tight], 1, "out_of_travel",
+                                 "it takes Z from", "G54 at (10 -20 -150)")
+        self.assertFalse(os.path.exists(program))
+
     def test_bad_machine_input(self):
         brep = os.path.join(DATA, "l_block.brep")
         program = os.path.join(self.tmp.name, "l.ngc")
@@ -1186,6 +1222,15 @@ class CliGcode(unittest.TestCase):
         expect(self, ["slice", brep, "--gcode", program, "--a-limits", "10"], 2,
                "--a-limits must be MIN,MAX")
         expect(self, ["slice", brep, "--gcode", program, "--c-limits", "0,nan"], 2, "c-limits")
+        expect(self, ["slice", brep, "--x-limits", "0,10"], 2, "--x-limits is for the G-code")
+        expect(self, ["slice", brep, "--gcode", program, "--z-limits", "10,0"], 1,
+               "invalid_argument", "Z's travel limits must have min < max, got 10 to 0 mm")
+        expect(self, ["slice", brep, "--gcode", program, "--work-offset", "1,2"], 2,
+               "--work-offset must be X,Y,Z")
+        expect(self, ["slice", brep, "--gcode", program, "--rot-offset", "1,inf"], 2,
+               "--rot-offset must be finite")
+        expect(self, ["slice", brep, "--gcode", program, "--tool-length", "long"], 2,
+               "--tool-length must be a number")
         expect(self, ["slice", brep, "--gcode", program, "--feed", "0"], 1, "invalid_argument",
                "feed must be > 0")
         expect(self, ["slice", brep, "--gcode", program, "--deposit-output", "1.5"], 2,

@@ -164,6 +164,76 @@ class TestGcodeApi(GcodeTest):
         with self.assertRaisesRegex(mas.Cancelled, "enough"):
             self.result.gcode(progress=stop)
 
+    def test_the_machines_travel_is_reported_and_checked(self):
+        """The joints' ranges (xyzac-trt-kins with the work offset, pivot and tool length) hold
+        every move's end; limits at those ranges pass, and a limit the program passes is an
+        error naming the axis, its range and the layer."""
+        Q = FreeCAD.Units.Quantity
+        place = dict(work_offset_x=Q("-2 cm"), work_offset_y=35, work_offset_z=-60,
+                     rot_point_x=5, rot_point_y=-10, rot_point_z=8, rot_offset_y=20,
+                     rot_offset_z=10, tool_length=40)
+        program = self.result.gcode(**place)
+        self.assertEqual(program.machine["work_offset_x"], -20.0)
+        self.assertIsNone(program.machine["z_max"])
+        self.assertNotIn("machine travel checked", program.text)
+        s = program.stats
+
+        def joints(x, y, z, a_deg, c_deg):
+            # The world point turned by C about the vertical line through the rot point, tilted
+            # by A about the line along X through its y and z plus the offsets.
+            a, c = math.radians(a_deg), math.radians(c_deg)
+            wx, wy, wz = x - 20, y + 35, z - 60
+            dx, dy = wx - 5, wy + 10
+            xc, yc = math.cos(c) * dx - math.sin(c) * dy + 5, math.sin(c) * dx + math.cos(c) * dy - 10
+            ya, za = -10 + 20, 8 + 10
+            return (xc, math.cos(a) * (yc - ya) - math.sin(a) * (wz - za) + ya,
+                    math.sin(a) * (yc - ya) + math.cos(a) * (wz - za) + za + 40)
+
+        state = {"X": 0.0, "Y": 0.0, "Z": 0.0, "A": 0.0, "C": 0.0}
+        ends = []
+        for line in program.text.splitlines():
+            words = line.split("(", 1)[0].split()
+            if words and words[0] in ("G0", "G1"):
+                for word in words[1:]:
+                    if word[0] in state:
+                        state[word[0]] = float(word[1:])
+                ends.append(joints(*(state[k] for k in "XYZAC")))
+        # The words' rounding: 0.5e-4 mm, and 0.5e-4 degrees at up to 300 mm from the axes.
+        tol = 0.5e-4 + 300 * math.radians(0.5e-4)
+        for axis, name in enumerate("xyz"):
+            lo, hi = s[name + "_range_mm"]
+            self.assertLessEqual(lo, min(e[axis] for e in ends) + tol)
+            self.assertGreaterEqual(hi, max(e[axis] for e in ends) - tol)
+        # The arm is built along +X, the table tilted 90 degrees: Z's range is not the part's
+        # height plus the offsets.
+        self.assertEqual(s["a_range_deg"][0], -90.0)
+        limits = dict(x_min=s["x_range_mm"][0], x_max=s["x_range_mm"][1],
+                      y_min=s["y_range_mm"][0], y_max=s["y_range_mm"][1],
+                      z_min=s["z_range_mm"][0], z_max=s["z_range_mm"][1])
+        checked = self.result.gcode(**place, **limits)
+        self.assertEqual(checked.stats["z_range_mm"], s["z_range_mm"])
+        self.assertIn("(machine travel checked: X ", checked.text)
+        e = self.assertRaisesEngineError("out_of_travel", self.result.gcode, **place,
+                                         **dict(limits, z_max=s["z_range_mm"][1] - 1))
+        self.assertRegex(str(e), r"^the program leaves the machine's travel \(G54 "
+                         r"at \(-20 35 -60\)\): it takes Z from \S+ to \S+ mm, beyond its "
+                         r"limits \S+ to \S+, first (at layer \d+ \(component \d+\)|on the way off "
+                         r"the part); move the part on the table")
+        self.assertNotIn("takes X", str(e))
+        # A limit of its own: the others stay unchecked.
+        self.assertRaisesEngineError("out_of_travel", self.result.gcode, **place,
+                                     x_max=s["x_range_mm"][1] - 1)
+        self.result.gcode(**place, x_max=s["x_range_mm"][1] + 1e-6, y_min=float("-inf"))
+        self.assertRaisesEngineError("invalid_argument", self.result.gcode, z_min=5, z_max=5)
+        self.assertRaisesEngineError("invalid_argument", self.result.gcode, x_max=math.nan)
+        self.assertRaisesEngineError("invalid_argument", self.result.gcode,
+                                     work_offset_y=math.inf)
+        with self.assertRaisesRegex(TypeError, "tool_length must be .* a length quantity, got an "
+                                    "angle"):
+            self.result.gcode(tool_length=Q("3 deg"))
+        with self.assertRaisesRegex(TypeError, "x_min must be a number"):
+            self.result.gcode(x_min="far")
+
     def test_bad_machine_parameters(self):
         e = self.assertRaisesEngineError("unreachable_orientation", self.result.gcode, a_min=-45,
                                          a_max=45)

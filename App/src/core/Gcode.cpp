@@ -46,7 +46,7 @@ class Program {
 public:
     Program(GcodeStats& stats, const MachineParams& machine) : stats_(stats), machine_(machine) {}
 
-    // The layer the moves from here on are made for, as errors name it.
+    // Where the moves from here on are made ("at layer 3 (component 1)"), as errors name it.
     void at(std::string what) { at_ = std::move(what); }
     // The first move past a finite travel limit of each axis: where, as at() named it.
     const std::array<std::string, 3>& past_limits() const { return past_; }
@@ -827,7 +827,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                                    (g.position() - s).norm() <= kSamePoint &&
                                    g.angles().a_deg == a.a_deg && g.angles().c_deg == a.c_deg;
             if (first_path) {
-                g.at(layer_name(i, layer));
+                g.at("at " + layer_name(i, layer));
                 if (!continues) stop_deposit();  // the last layer's end before this one's name
                 g.comment(layer_number(i, layer) + ", component " +
                           std::to_string(layer.component) + ": tool axis " + vector_text(n) +
@@ -912,7 +912,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     }
     // Out to the sphere and up to its top, the table turning level on the way.
     stop_deposit();
-    g.at("the way off the part");
+    g.at("on the way off the part");
     std::vector<Waypoint> way;
     const Eigen::Vector3d out = sphere.exit(g.position(), layers[used.back()].tool_axis);
     way.push_back({out, g.angles(), int(used.back())});
@@ -936,8 +936,8 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                                                                  " to " + format_number(hi);
         beyond += std::string(beyond.empty() ? "" : "; ") + "it takes " + "XYZ"[axis] + " from " +
                   format_number(stats.machine_min[axis], 7) + " to " +
-                  format_number(stats.machine_max[axis], 7) + " mm, beyond " + limits +
-                  ", first at " + where;
+                  format_number(stats.machine_max[axis], 7) + " mm, beyond " + limits + ", first " +
+                  where;
     }
     if (!beyond.empty())
         throw Error(ErrorCode::OutOfTravel,

@@ -2019,7 +2019,29 @@ _MACHINE_PROPERTIES = (
      "components"),
     ("DepositOutput", "deposit_output", "App::PropertyInteger",
      "Digital output that switches deposition on and off (M62/M63 P)"),
+    ("WorkOffsetX", "work_offset_x", "App::PropertyDistance",
+     "Work offset G54's X: where the part's origin lies in the machine's frame, A and C at 0"),
+    ("WorkOffsetY", "work_offset_y", "App::PropertyDistance", "Work offset G54's Y"),
+    ("WorkOffsetZ", "work_offset_z", "App::PropertyDistance", "Work offset G54's Z"),
+    ("RotPointX", "rot_point_x", "App::PropertyDistance",
+     "xyzac-trt-kins' x-rot-point: C turns about the vertical line through (RotPointX, "
+     "RotPointY)"),
+    ("RotPointY", "rot_point_y", "App::PropertyDistance", "xyzac-trt-kins' y-rot-point"),
+    ("RotPointZ", "rot_point_z", "App::PropertyDistance",
+     "xyzac-trt-kins' z-rot-point: A tilts about the line along X through (RotPointY + "
+     "RotOffsetY, RotPointZ + RotOffsetZ)"),
+    ("RotOffsetY", "rot_offset_y", "App::PropertyDistance", "xyzac-trt-kins' y-offset"),
+    ("RotOffsetZ", "rot_offset_z", "App::PropertyDistance", "xyzac-trt-kins' z-offset"),
+    ("ToolLength", "tool_length", "App::PropertyDistance",
+     "The nozzle's tool length offset (xyzac-trt-kins' tool-offset): the joints' Z is the tip's "
+     "plus this"),
 )
+
+# The X Y Z travel limits (property, gcode() parameter, default when checked: the joints of
+# LinuxCNC's sample xyzac-trt.ini), checked when CheckTravel is on; an infinite one (set from a
+# script) is no limit.
+_TRAVEL_LIMITS = (("XMin", "x_min", -200.0), ("XMax", "x_max", 200.0), ("YMin", "y_min", -100.0),
+                  ("YMax", "y_max", 100.0), ("ZMin", "z_min", -120.0), ("ZMax", "z_max", 120.0))
 
 
 def program_travel_shape(text):
@@ -2064,13 +2086,17 @@ class MachineProgramFeature(_EngineFeature):
     ``Layers`` object's layers (``MultiAxisSlicer.gcode``): the plan the machine runs.
 
     Inputs: Layers (the Layers object), the machine (AMin, AMax, CMin, CMax, Feed,
-    ReferenceThickness, MaxFeedRatio, Clearance, DepositOutput). Outputs: Shape (the moves made
+    ReferenceThickness, MaxFeedRatio, Clearance, DepositOutput; where the part sits and the table
+    pivots: WorkOffsetX/Y/Z, RotPointX/Y/Z, RotOffsetY/Z, ToolLength), and its X Y Z travel
+    (CheckTravel, XMin ... ZMax: checked when CheckTravel is on; an infinite limit is none).
+    Outputs: Shape (the moves made
     with the deposition off, as polylines: retracts, approaches and the routes round the part
     between components; the Toolpath object shows the deposits), LineCount, DepositMoves,
     FeedLimitedMoves, Reorientations, ARange and CRange (the angles the program uses, [least,
     greatest], degrees), DepositLength, DepositTime (minutes), RapidLength,
-    ReferenceThicknessUsed, and the travel checked against the Layers' nozzle: CheckedRoutes,
-    ReroutedTravels (ways within a component taken round the part), TravelCollisions (routes
+    ReferenceThicknessUsed, XRange, YRange and ZRange (the machine's joints, mm), and the
+    travel checked against the Layers' nozzle: CheckedRoutes, ReroutedTravels (ways within a
+    component taken round the part), TravelCollisions (routes
     meeting what is deposited all the same, each warned of on the console and by a comment in the
     program). The program's text stays in memory only (``machine_program()``);
     ``export_gcode()`` and the Export G-code command write it to a file."""
@@ -2085,8 +2111,16 @@ class MachineProgramFeature(_EngineFeature):
                       (r"\bclearance (?=\S+ mm is more than)", "Clearance "),
                       (r"\bthe nozzle's margin\b", "the Layers' NozzleMargin"),
                       (r"\bthe deposition output\b", "DepositOutput"),
-                      (r"\bdeposit_output\b", "DepositOutput"))
-    PARAMETERS = _grouped((prop, "Machine") for prop, _, _, _ in _MACHINE_PROPERTIES)
+                      (r"\bdeposit_output\b", "DepositOutput"),
+                      (r"\b([XYZ])'s travel limits\b", r"\1Min and \1Max"),
+                      (r"\bthe work offset's ([XYZ])\b", r"WorkOffset\1"),
+                      (r"\bthe rot point's ([XYZ])\b", r"RotPoint\1"),
+                      (r"\bthe rot offset's ([YZ])\b", r"RotOffset\1"),
+                      (r"\bthe tool length\b", "ToolLength"))
+    PARAMETERS = _grouped(
+        [(prop, "Machine") for prop, _, _, _ in _MACHINE_PROPERTIES] +
+        [("CheckTravel", "Machine travel")] + [(prop, "Machine travel")
+                                               for prop, _, _ in _TRAVEL_LIMITS])
 
     @staticmethod
     def ensure_properties(obj):
@@ -2095,6 +2129,14 @@ class MachineProgramFeature(_EngineFeature):
                       "Layers object whose paths the program deposits, in its Sequence")
         for prop, name, type_id, doc in _MACHINE_PROPERTIES:
             _add_property(obj, type_id, prop, "Machine", doc, mas.MACHINE_DEFAULTS[name])
+        _add_property(obj, "App::PropertyBool", "CheckTravel", "Machine travel",
+                      "Check the program against the X Y Z travel limits (the joints' limits of "
+                      "the machine's INI file): past one, the program is an error naming it",
+                      False)
+        for prop, _name, default in _TRAVEL_LIMITS:
+            _add_property(obj, "App::PropertyDistance", prop, "Machine travel",
+                          "{} of the machine's {} travel (the joint, with CheckTravel)".format(
+                              "Least" if prop.endswith("Min") else "Greatest", prop[0]), default)
         result = "Result"
         for type_id, prop, doc, default in (
                 ("App::PropertyInteger", "LineCount", "Lines of the program", 0),
@@ -2113,6 +2155,13 @@ class MachineProgramFeature(_EngineFeature):
                  "Length of the rapid moves of the nozzle tip, in the part's frame", 0.0),
                 ("App::PropertyLength", "ReferenceThicknessUsed",
                  "The deposit thickness at which the nozzle moves at Feed", 0.0),
+                ("App::PropertyFloatList", "XRange",
+                 "Least and greatest X the machine's joints take (mm; the work offset, rot "
+                 "point and tool length as given)", None),
+                ("App::PropertyFloatList", "YRange",
+                 "Least and greatest Y the machine's joints take (mm)", None),
+                ("App::PropertyFloatList", "ZRange",
+                 "Least and greatest Z the machine's joints take (mm)", None),
                 ("App::PropertyInteger", "CheckedRoutes",
                  "Routes between paths checked against the Layers' nozzle and build plate", 0),
                 ("App::PropertyInteger", "ReroutedTravels",
@@ -2138,6 +2187,9 @@ class MachineProgramFeature(_EngineFeature):
         obj.DepositTime = s["deposit_time_min"]
         obj.RapidLength = s["rapid_length_mm"]
         obj.ReferenceThicknessUsed = s["reference_thickness_mm"]
+        obj.XRange = list(s["x_range_mm"])
+        obj.YRange = list(s["y_range_mm"])
+        obj.ZRange = list(s["z_range_mm"])
         obj.CheckedRoutes = s["checked_routes"]
         obj.ReroutedTravels = s["rerouted_travels"]
         obj.TravelCollisions = len(s["travel_collisions"])
@@ -2178,9 +2230,12 @@ def machine_inputs(obj):
     machine = {}
     for prop, name, type_id, _doc in _MACHINE_PROPERTIES:
         value = getattr(obj, prop)
-        if type_id in ("App::PropertyLength", "App::PropertyAngle"):
+        if type_id in ("App::PropertyLength", "App::PropertyAngle", "App::PropertyDistance"):
             value = value.Value
         machine[name] = value
+    if obj.CheckTravel:
+        for prop, name, _default in _TRAVEL_LIMITS:
+            machine[name] = getattr(obj, prop).Value
     return layers, _machine_params(machine)
 
 
@@ -2229,7 +2284,8 @@ def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
     ``Toolpath`` object stands for its Layers) to ``doc`` (default: the layers' document) and
     returns it; recompute the document to compute it. ``machine``: ``MultiAxisSlicer.gcode``'s
     machine parameters (defaults ``MultiAxisSlicer.MACHINE_DEFAULTS``), their names and types
-    checked before anything is added. Nothing is changed on the layers."""
+    checked before anything is added; travel limits given turn CheckTravel on, those not given
+    infinite (no limit). Nothing is changed on the layers."""
     if is_toolpath(layers):
         if layers.Layers is None:
             raise ValueError("make_machine_program(): the Toolpath '{}' has no Layers".format(
@@ -2251,6 +2307,12 @@ def make_machine_program(layers, name="MachineProgram", doc=None, **machine):
     obj.Layers = layers
     for prop, param, _t, _d in _MACHINE_PROPERTIES:
         setattr(obj, prop, values[param])
+    # Limits given: the travel is checked, those not given infinite (no limit), as gcode() has it.
+    if any(values[param] is not None for _p, param, _d in _TRAVEL_LIMITS):
+        obj.CheckTravel = True
+        for prop, param, _d in _TRAVEL_LIMITS:
+            unlimited = -math.inf if prop.endswith("Min") else math.inf
+            setattr(obj, prop, unlimited if values[param] is None else values[param])
     if FreeCAD.GuiUp:
         _attach_view_provider(obj, MachineProgramFeature.VIEW_PROVIDER)
     return obj

@@ -511,6 +511,77 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
         self.assertEqual(list(program_obj.ARange), [-90.0, 0.0])
 
+    def test_the_machines_travel_on_the_object(self):
+        """The travel limits as properties: off by default, the ranges reported; checked, a
+        limit passed marks the object naming its properties; limits from a script check those
+        given only; all of it survives save and reopen."""
+        import MultiAxisSlicer.features as features
+
+        program_obj = mas.make_machine_program(self.layers, work_offset_z=-150, tool_length=60)
+        self.doc.recompute()
+        self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+        self.assertFalse(program_obj.CheckTravel)
+        result = features.slice_result(self.layers, computed=True)
+        stats = result.gcode(work_offset_z=-150, tool_length=60).stats
+        for prop, name in (("XRange", "x_range_mm"), ("YRange", "y_range_mm"),
+                           ("ZRange", "z_range_mm")):
+            self.assertEqual(tuple(getattr(program_obj, prop)), stats[name])
+        # The defaults when checked are LinuxCNC's sample machine's (its joints), where the
+        # arm, tilted 90 degrees about A's axis, reaches past Y's least.
+        self.assertEqual((program_obj.YMin.Value, program_obj.ZMax.Value), (-100, 120))
+        program_obj.CheckTravel = True
+        self.doc.recompute()
+        self.assertIn("Invalid", program_obj.State)
+        self.assertIn("it takes Y from {:g} to".format(stats["y_range_mm"][0]),
+                      program_obj.getStatusString())
+        self.assertIn("beyond its limits -100 to 100", program_obj.getStatusString())
+        # Limits round the ranges pass; one a millimetre inside fails.
+        for axis in "XYZ":
+            lo, hi = stats[axis.lower() + "_range_mm"]
+            setattr(program_obj, axis + "Min", lo - 1e-9)
+            setattr(program_obj, axis + "Max", hi + 1e-9)
+        self.doc.recompute()
+        self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+        program_obj.ZMin = stats["z_range_mm"][0] + 1
+        self.doc.recompute()
+        self.assertIn("Invalid", program_obj.State)
+        status = program_obj.getStatusString()
+        self.assertIn("it takes Z from", status)
+        self.assertNotIn("it takes Y", status)
+        with self.assertRaisesRegex(ValueError, "leaves the machine's travel"):
+            features.export_gcode(program_obj, os.path.join(self.folder, "x.ngc"))
+        program_obj.ZMax = program_obj.ZMin.Value
+        self.doc.recompute()
+        self.assertIn("ZMin and ZMax must have min < max", program_obj.getStatusString())
+        program_obj.CheckTravel = False
+        self.doc.recompute()
+        self.assertTrue(program_obj.isValid(), program_obj.getStatusString())
+        # From a script: the limits given are checked, the others none.
+        scripted = mas.make_machine_program(self.layers, name="Scripted", work_offset_z=-150,
+                                            tool_length=60, z_max=stats["z_range_mm"][1] - 1)
+        self.assertTrue(scripted.CheckTravel)
+        self.assertEqual(scripted.XMin.Value, -math.inf)
+        self.assertEqual(scripted.YMax.Value, math.inf)
+        self.doc.recompute()
+        self.assertIn("it takes Z from", scripted.getStatusString())
+        self.assertNotIn("it takes X", scripted.getStatusString())
+        scripted.ZMax = stats["z_range_mm"][1]
+        self.doc.recompute()
+        self.assertTrue(scripted.isValid(), scripted.getStatusString())
+        path = os.path.join(self.folder, "travel.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        doc = FreeCAD.openDocument(path)
+        try:
+            scripted = doc.getObject("Scripted")
+            self.assertTrue(scripted.CheckTravel)
+            self.assertEqual(scripted.XMin.Value, -math.inf)
+            self.assertEqual(scripted.ZMax.Value, stats["z_range_mm"][1])
+            self.assertEqual(tuple(scripted.ZRange), stats["z_range_mm"])
+            self.assertEqual(doc.getObject("MachineProgram").WorkOffsetZ.Value, -150)
+        finally:
+            FreeCAD.closeDocument(doc.Name)
+
     def test_save_reopen_export_and_undo(self):
         import MultiAxisSlicer.features as features
 

@@ -2212,7 +2212,12 @@ class TestParameterPanel(unittest.TestCase):
         panel = self.open(program)
         self.assertEqual([f.prop for f in panel.fields],
                          ["AMin", "AMax", "CMin", "CMax", "Feed", "ReferenceThickness",
-                          "MaxFeedRatio", "Clearance", "DepositOutput"])
+                          "MaxFeedRatio", "Clearance", "DepositOutput", "WorkOffsetX",
+                          "WorkOffsetY", "WorkOffsetZ", "RotPointX", "RotPointY", "RotPointZ",
+                          "RotOffsetY", "RotOffsetZ", "ToolLength", "CheckTravel", "XMin", "XMax",
+                          "YMin", "YMax", "ZMin", "ZMax"])
+        titles = [b.title() for b in panel.form.groups.findChildren(QtGui.QGroupBox)]
+        self.assertEqual(titles, ["Machine", "Machine travel"])
         self.assertIn("{} lines".format(program.LineCount), panel.form.result.text())
         self.set_field(panel, "AMin", -45)
         self.set_field(panel, "AMax", 45)
@@ -2221,6 +2226,26 @@ class TestParameterPanel(unittest.TestCase):
         self.press("cancel")
         self.assertIsNone(self.features.failure(program))
         self.assertEqual(program.AMin.Value, mas.MACHINE_DEFAULTS["a_min"])
+        # The travel checked: a ZMax under the part's top is named.
+        panel = self.open(program)
+        panel.field("CheckTravel").widget.setChecked(True)
+        self.set_field(panel, "ZMax", program.ZRange[1] - 1)
+        self.press("apply")
+        self.assertIn("it takes Z from", panel.form.result.text())
+        self.press("cancel")
+        self.assertIsNone(self.features.failure(program))
+        self.assertFalse(program.CheckTravel)
+        # Limits a script left infinite (none) stay none through the panel.
+        scripted = mas.make_machine_program(self.layers, name="Scripted",
+                                            z_max=program.ZRange[1] + 1)
+        self.doc.recompute()
+        panel = self.open(scripted)
+        self.set_field(panel, "Feed", 700)
+        self.press("ok")
+        self.assertEqual(scripted.Feed, 700)
+        self.assertLessEqual(scripted.XMin.Value, -1e300)
+        self.assertGreaterEqual(scripted.YMax.Value, 1e300)
+        self.assertIsNone(self.features.failure(scripted))
 
     def test_the_axis_sections_and_decomposition_show_their_own_parameters(self):
         axis = mas.make_centroidal_axis(self.part)

@@ -87,8 +87,9 @@
 //   (y-rot-point + y-offset, z-rot-point + z-offset), plus the tool length on Z (tested against
 //   the module with its pins set). Every move is followed, the first (from wherever the machine
 //   is) from its end: where the table keeps still the joints move straight, where it turns they
-//   are taken every kJointStepDeg of A and of C, so that between two of them a joint strays from
-//   the chord by at most 1e-5 of its distance from the axes. The joints' ranges are reported
+//   are taken every kJointStepDeg of A and of C: between two of them a joint strays from the
+//   chord by some 1e-5 of its distance from the axes (the sagitta of a half-degree turn, 9.5e-6,
+//   and the turn times the move's step over 4). The joints' ranges are reported
 //   (GcodeStats) whether or not limits are given; a program taking a joint past a finite limit is
 //   an error (OutOfTravel) naming the axis, the range the program needs, the limits, and the layer
 //   at whose moves it first goes past them.

@@ -1112,6 +1112,46 @@ TEST(CentroidalAxis, AStickOutEndingBeforeTheGridsNextPlaneIsOneNodeOnEq4sPlane)
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, AShortBossOnARoundBodyIsOneNodeThoughItsCornersLieBehindT) {
+    // A round valve body of the survey's (seed 256, 5) in round figures: a body 43.75 tall,
+    // faceted as a 32-gon of circumradius 23.68 with a vertex at -Y (its sections exact), with a
+    // boss along -Y sticking out 5.12 mm past that vertex, its axis at z = 23.6, faceted as a
+    // 16-gon of circumradius 6.91 with a vertex at its lowest line. Step 5.9: the
+    // first plane through the boss, z = 17.701, finds it a ledge (its first layer would hang)
+    // turning -Y from T, the body's extent; the grid's planes along -Y lie 0.16 mm into the body
+    // and past the boss's end, so its march is one node on Eq. 4's plane, T + eps. Between the
+    // body's facets and T the boss's corners hold a share of the stick-out (1.3 mm^2 here), which
+    // stays with the body's march as it does behind any turn's T; no other side's share turns.
+    // Before, the boss was one node only where nothing lay behind T, and stayed in the body's
+    // layers, its round underside hanging 16.8 mm^2 in one. Its section is the 16-gon, on its
+    // axis, its slab from T to the boss's end.
+    const double radius = 23.68, r = 6.914, z = 23.603, reach = 5.118;
+    std::vector<Vector3d> body, boss;
+    for (int i = 0; i < 32; ++i) {
+        const double t = (-90.0 + 11.25 * i) * kPi / 180.0;
+        body.emplace_back(radius * std::cos(t), radius * std::sin(t), 0.0);
+    }
+    for (int i = 0; i < 16; ++i) {
+        const double t = (-90.0 + 22.5 * i) * kPi / 180.0;
+        boss.emplace_back(r * std::cos(t), -radius + 1.0, z + r * std::sin(t));
+    }
+    const auto mesh = mesh_of(from_occt(fuse(mas::test::occ_prism(body, {0, 0, 43.75}),
+                                             mas::test::occ_prism(boss, {0, -(reach + 1.0), 0}))));
+    mas::AxisParams p;
+    p.step_mm = 5.9;
+    const auto a = mas::centroidal_axis(mesh, p);
+    ASSERT_TRUE(turns_once(a, -Vector3d::UnitY()));
+    const auto& branch = a.branches[1];
+    ASSERT_EQ(branch.nodes.size(), 1u);
+    const auto& node = a.nodes[std::size_t(branch.nodes.front())];
+    EXPECT_NEAR(node.slab_start, radius, 1e-9);  // T: the body's extent along -Y
+    EXPECT_NEAR(node.offset, radius + p.eps_mm, 1e-9);
+    EXPECT_NEAR(node.slab_start + node.thickness, radius + reach, 1e-9);  // to the boss's end
+    EXPECT_NEAR(node.area, 8.0 * r * r * std::sin(kPi / 8.0), 1e-6);
+    EXPECT_NEAR(node.position.x(), 0.0, kGrid);
+    EXPECT_NEAR(node.position.z(), z, kGrid);
+    expect_invariants(a, mesh);
+}
 TEST(CentroidalAxis, APinHolesCeilingIsNoLedgeUnderAThickPartsStep) {
     // A lug of the survey's (seed 39, 6): a plate 45.1 x 29.1 x 8.3, an upright 15.1 wide and 7.7
     // thick rising 33.5 mm into a round top round the axis along Y at z = 41.9, with a pin hole of

@@ -140,6 +140,21 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
                 self.assertEqual(r["filled_holes"], r["bosses"] if r["bored"] else 0)
                 self.assert_supported(r)
 
+    def test_a_valve_bodys_boss_sticking_out_less_than_a_step_is_built_sideways(self):
+        # Seed 256's valve body 5: a boss along -Y sticking out 5.1 mm, under the body's 5.5 mm
+        # step, is one node on Eq. 4's plane just past the body (CentroidalAxis.hpp); its corners
+        # between the body's side and that plane stay in the body. Before, that node was made
+        # only where nothing of the stick-out lay behind the plane, and on a round body its
+        # corners do: the boss stayed in the body's layers, 16.8 mm^2 hanging in one.
+        solid, description = survey.part("valve body", 5, 256)
+        r = survey.survey_part(solid, description, FILL_HOLES)
+        self.assertEqual(r["bosses"], 4)
+        self.assertEqual(r["components"], 5)
+        self.assert_supported(r)
+        self.assertEqual(r["colliding_layers"], 0)
+        self.assertEqual(r["travel_collisions"], 0)
+        self.assertEqual(r["layers_out_of_bounds"], [])
+
     def test_a_pipe_bend_needs_no_support(self):
         # Hollow or solid: each run is cut off at its bend's halfway plane and built along the
         # bisector, its layers turning until they lie square to the run (README). Before, cut near

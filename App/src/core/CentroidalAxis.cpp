@@ -1993,6 +1993,9 @@ private:
             Regions2 rest{da};
             const std::vector<Vector3d> sides =
                 sides_from(around ? axis_vector((axis_index(n) + 1) % 3, 1.0) : dir, n);
+            // The first side's march, and how many this stick-out starts (whole, below).
+            const std::size_t children_before = children.size();
+            std::optional<std::size_t> front_child;
             for (const Vector3d& side : sides) {
                 if (rest.empty()) break;
                 // Beyond the extent of the lower region it leaves (where tracks merge, not
@@ -2024,6 +2027,8 @@ private:
                     if (!limb_share.empty()) share = std::move(limb_share);
                 }
                 if (share.empty()) continue;
+                // Whole: nothing of the stick-out left behind T (to this march, or to other
+                // sides); or, after the loop, the only march it starts (below).
                 const bool whole = side == sides.front() && area(rest) <= p_.min_region_area_mm2;
                 if (area(share) <= p_.min_region_area_mm2) continue;
                 const Vector2d g_share = centroid(share);
@@ -2071,8 +2076,19 @@ private:
                         Slab{n, lower_offset, upper_offset + p_.step_mm, r, {}});
                     far.push_back(std::move(r));
                 }
+                if (side == sides.front()) front_child = children.size();
                 children.push_back(std::move(child));
             }
+            // The first side's share is the stick-out's whole share too where no other side's
+            // share of it turns: what it leaves behind T stays with this march, as behind any
+            // turn's T. (A boss on a round body: between the body's curve and the plane square
+            // to the boss at its extent, T, its corners hold some of the stick-out, and a boss
+            // sticking out 5.1 mm, under a 5.5 mm step, whose march is one node (search()),
+            // stayed in a valve body's layers, its round underside hanging 16.8 mm^2 in one.)
+            // Another side's turning is an arm's end past the web under it while its flanks
+            // turn sideways (search()).
+            if (front_child && children.size() == children_before + 1)
+                children[*front_child].whole = true;
         }
         if (far.empty()) return {upper};
         // What is left holds hairlines of the Booleans along the shares' split lines (a micron

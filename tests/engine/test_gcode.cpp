@@ -935,7 +935,7 @@ TEST(Gcode, TheMachinesTravelIsReportedAndCheckedAgainstItsLimits) {
     EXPECT_EQ(error_of([&] { mas::write_gcode(layers, limited); }),
               "out_of_travel: the program leaves the machine's travel (G54 at (100 50 -20)): it "
               "takes Z from 11 to " +
-                  mas::format_number(stats.machine_max.z(), 7) + " mm, beyond its limits 11 to " +
+                  mas::format_number(stats.machine_max.z(), 7) + " mm, beyond the Z limits 11 to " +
                   mas::format_number(stats.machine_max.z() - 0.01) +
                   ", first at layer 0 (component 0); move the part on the table (the work offset) "
                   "or slice it otherwise");
@@ -945,8 +945,8 @@ TEST(Gcode, TheMachinesTravelIsReportedAndCheckedAgainstItsLimits) {
     limited.travel_min.y() = 55;
     EXPECT_EQ(error_of([&] { mas::write_gcode(layers, limited); }),
               "out_of_travel: the program leaves the machine's travel (G54 at (100 50 -20)): it "
-              "takes X from 100 to 110 mm, beyond its greatest 105, first at layer 0 (component "
-              "0); it takes Y from 50 to 60 mm, beyond its least 55, first at layer 0 (component "
+              "takes X from 100 to 110 mm, above the greatest X 105, first at layer 0 (component "
+              "0); it takes Y from 50 to 60 mm, below the least Y 55, first at layer 0 (component "
               "0); move the part on the table (the work offset) or slice it otherwise");
 }
 

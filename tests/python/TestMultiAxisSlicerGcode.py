@@ -216,7 +216,7 @@ class TestGcodeApi(GcodeTest):
         e = self.assertRaisesEngineError("out_of_travel", self.result.gcode, **place,
                                          **dict(limits, z_max=s["z_range_mm"][1] - 1))
         self.assertRegex(str(e), r"^the program leaves the machine's travel \(G54 "
-                         r"at \(-20 35 -60\)\): it takes Z from \S+ to \S+ mm, beyond its "
+                         r"at \(-20 35 -60\)\): it takes Z from \S+ to \S+ mm, beyond the Z "
                          r"limits \S+ to \S+, first (at layer \d+ \(component \d+\)|on the way off "
                          r"the part); move the part on the table")
         self.assertNotIn("takes X", str(e))
@@ -534,7 +534,7 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertIn("Invalid", program_obj.State)
         self.assertIn("it takes Y from {:g} to".format(stats["y_range_mm"][0]),
                       program_obj.getStatusString())
-        self.assertIn("beyond its limits -100 to 100", program_obj.getStatusString())
+        self.assertIn("beyond YMin and YMax -100 to 100", program_obj.getStatusString())
         # Limits round the ranges pass; one a millimetre inside fails.
         for axis in "XYZ":
             lo, hi = stats[axis.lower() + "_range_mm"]
@@ -564,6 +564,7 @@ class TestMachineProgramObject(support.EngineTestCase):
         self.assertEqual(scripted.YMax.Value, math.inf)
         self.doc.recompute()
         self.assertIn("it takes Z from", scripted.getStatusString())
+        self.assertRegex(scripted.getStatusString(), r"above ZMax \S+, first ")
         self.assertNotIn("it takes X", scripted.getStatusString())
         scripted.ZMax = stats["z_range_mm"][1]
         self.doc.recompute()

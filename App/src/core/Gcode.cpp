@@ -930,14 +930,15 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
         const std::string& where = g.past_limits()[std::size_t(axis)];
         if (where.empty()) continue;
         const double lo = params.travel_min[axis], hi = params.travel_max[axis];
-        const std::string limits = lo == -kInfiniteTravel  ? "its greatest " + format_number(hi)
-                                   : hi == kInfiniteTravel ? "its least " + format_number(lo)
-                                                           : "its limits " + format_number(lo) +
-                                                                 " to " + format_number(hi);
+        const std::string name(1, "XYZ"[axis]);
+        const std::string limits =
+            lo == -kInfiniteTravel  ? "above the greatest " + name + " " + format_number(hi)
+            : hi == kInfiniteTravel ? "below the least " + name + " " + format_number(lo)
+                                    : "beyond the " + name + " limits " + format_number(lo) +
+                                          " to " + format_number(hi);
         beyond += std::string(beyond.empty() ? "" : "; ") + "it takes " + "XYZ"[axis] + " from " +
                   format_number(stats.machine_min[axis], 7) + " to " +
-                  format_number(stats.machine_max[axis], 7) + " mm, beyond " + limits + ", first " +
-                  where;
+                  format_number(stats.machine_max[axis], 7) + " mm, " + limits + ", first " + where;
     }
     if (!beyond.empty())
         throw Error(ErrorCode::OutOfTravel,

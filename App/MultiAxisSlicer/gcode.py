@@ -55,7 +55,7 @@ MACHINE_DEFAULTS = {
 }
 
 # The travel limits: None is no limit.
-TRAVEL_LIMITS = ("x_min", "x_max", "y_min", "y_max", "z_min", "z_max")
+_LIMITS = ("x_min", "x_max", "y_min", "y_max", "z_min", "z_max")
 _PLACEMENT = ("work_offset_x", "work_offset_y", "work_offset_z", "rot_point_x", "rot_point_y",
               "rot_point_z", "rot_offset_y", "rot_offset_z", "tool_length")
 
@@ -169,7 +169,7 @@ def _machine_params(values):
         p[name] = _measure(values.get(name, p[name]), name, "degrees")
     for name in ("reference_thickness", "clearance"):
         p[name] = _measure(values.get(name, p[name]), name, "millimetres")
-    for name in TRAVEL_LIMITS:
+    for name in _LIMITS:
         if values.get(name) is not None:
             p[name] = _measure(values[name], name, "millimetres")
     for name in _PLACEMENT:

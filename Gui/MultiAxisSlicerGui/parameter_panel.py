@@ -101,11 +101,17 @@ def _summary(obj):
                      "deposited.".format(obj.LeanedLayers, obj.CollidingLayers))
         return "\n".join(lines)
     if kind == "MultiAxisSlicer::MachineProgram":
-        return ("{} lines, {} deposit moves, {:.4g} min depositing; A {:.4g} to {:.4g}°.\n"
+        text = ("{} lines, {} deposit moves, {:.4g} min depositing; A {:.4g} to {:.4g}°.\n"
                 "Travel: {} routes checked, {} taken round the part, {} meeting what is "
                 "deposited.".format(obj.LineCount, obj.DepositMoves, obj.DepositTime,
                                     *(list(obj.ARange) or [0.0, 0.0]), obj.CheckedRoutes,
                                     obj.ReroutedTravels, obj.TravelCollisions))
+        ranges = [list(getattr(obj, axis + "Range", [])) for axis in "XYZ"]
+        if all(len(r) == 2 for r in ranges):  # recomputed since the ranges were added
+            text += ("\nMachine: X {:.4g} to {:.4g}, Y {:.4g} to {:.4g}, Z {:.4g} to {:.4g} "
+                     "mm{}.").format(*(v for r in ranges for v in r),
+                                     " (within the travel limits)" if obj.CheckTravel else "")
+        return text
     return "Computed."
 
 

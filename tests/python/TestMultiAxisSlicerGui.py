@@ -2219,6 +2219,8 @@ class TestParameterPanel(unittest.TestCase):
         titles = [b.title() for b in panel.form.groups.findChildren(QtGui.QGroupBox)]
         self.assertEqual(titles, ["Machine", "Machine travel"])
         self.assertIn("{} lines".format(program.LineCount), panel.form.result.text())
+        self.assertIn("Machine: X {:.4g} to {:.4g}, ".format(*program.XRange),
+                      panel.form.result.text())
         self.set_field(panel, "AMin", -45)
         self.set_field(panel, "AMax", 45)
         self.press("apply")

@@ -22,16 +22,18 @@
 #define MAS_LINUXCNC_KINS "/usr/lib/linuxcnc/modules/xyzac-trt-kins.so"
 #endif
 
-// What the module calls of HAL and RTAPI. Pins are zeroed memory: rot points and offsets are 0,
-// and the kinematics type pin 0 selects the tool-centre-point kinematics (trtfuncs.c).
-extern "C" {
-int hal_init(const char*) { return 1; }
-void* hal_malloc(long size) { return std::calloc(1, size < 8 ? 8 : static_cast<size_t>(size)); }
 // The module's float pins by name ("xyzac-trt-kins.y-offset", ...).
-std::map<std::string, double*>& float_pins() {
+static std::map<std::string, double*>& float_pins() {
     static std::map<std::string, double*> pins;
     return pins;
 }
+
+// What the module calls of HAL and RTAPI. Pins are zeroed memory: rot points and offsets are 0
+// until a test sets them, and the kinematics type pin 0 selects the tool-centre-point kinematics
+// (trtfuncs.c).
+extern "C" {
+int hal_init(const char*) { return 1; }
+void* hal_malloc(long size) { return std::calloc(1, size < 8 ? 8 : static_cast<size_t>(size)); }
 int hal_pin_float_newf(int, double** pin, int, const char* format, ...) {
     *pin = static_cast<double*>(std::calloc(1, sizeof(double)));
     char name[256];

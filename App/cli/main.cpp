@@ -800,14 +800,10 @@ mas::MachineParams machine_params(const Args& a) {
         m.travel_min[axis] = v[0];
         m.travel_max[axis] = v[1];
     }
-    if (a.has("--work-offset")) {
-        const auto v = parse_numbers(a.options.at("--work-offset"), 3, "--work-offset", "X,Y,Z");
-        m.work_offset = {v[0], v[1], v[2]};
-    }
-    if (a.has("--rot-point")) {
-        const auto v = parse_numbers(a.options.at("--rot-point"), 3, "--rot-point", "X,Y,Z");
-        m.rot_point = {v[0], v[1], v[2]};
-    }
+    if (a.has("--work-offset"))
+        m.work_offset = parse_vector(a.options.at("--work-offset"), "--work-offset");
+    if (a.has("--rot-point"))
+        m.rot_point = parse_vector(a.options.at("--rot-point"), "--rot-point");
     if (a.has("--rot-offset")) {
         const auto v = parse_numbers(a.options.at("--rot-offset"), 2, "--rot-offset", "Y,Z");
         m.rot_offset_y_mm = v[0];

@@ -1748,53 +1748,37 @@ mas::MachineParams machine_from_py(const bp::dict& d) {
             PyErr_Clear();
             invalid_argument("machine parameter " + key + " must be a number");
         }
-        if (key == "a_min")
-            m.a_min_deg = x;
-        else if (key == "a_max")
-            m.a_max_deg = x;
-        else if (key == "c_min")
-            m.c_min_deg = x;
-        else if (key == "c_max")
-            m.c_max_deg = x;
-        else if (key == "feed")
-            m.feed_mm_min = x;
-        else if (key == "reference_thickness")
-            m.reference_thickness_mm = x;
-        else if (key == "max_feed_ratio")
-            m.max_feed_ratio = x;
-        else if (key == "clearance")
-            m.clearance_mm = x;
-        else if (key == "x_min")
-            m.travel_min.x() = x;
-        else if (key == "x_max")
-            m.travel_max.x() = x;
-        else if (key == "y_min")
-            m.travel_min.y() = x;
-        else if (key == "y_max")
-            m.travel_max.y() = x;
-        else if (key == "z_min")
-            m.travel_min.z() = x;
-        else if (key == "z_max")
-            m.travel_max.z() = x;
-        else if (key == "work_offset_x")
-            m.work_offset.x() = x;
-        else if (key == "work_offset_y")
-            m.work_offset.y() = x;
-        else if (key == "work_offset_z")
-            m.work_offset.z() = x;
-        else if (key == "rot_point_x")
-            m.rot_point.x() = x;
-        else if (key == "rot_point_y")
-            m.rot_point.y() = x;
-        else if (key == "rot_point_z")
-            m.rot_point.z() = x;
-        else if (key == "rot_offset_y")
-            m.rot_offset_y_mm = x;
-        else if (key == "rot_offset_z")
-            m.rot_offset_z_mm = x;
-        else if (key == "tool_length")
-            m.tool_length_mm = x;
-        else if (key == "deposit_output") {
+        // The plain numbers, each to its field.
+        const std::pair<const char*, double*> numbers[] = {
+            {"a_min", &m.a_min_deg},
+            {"a_max", &m.a_max_deg},
+            {"c_min", &m.c_min_deg},
+            {"c_max", &m.c_max_deg},
+            {"feed", &m.feed_mm_min},
+            {"reference_thickness", &m.reference_thickness_mm},
+            {"max_feed_ratio", &m.max_feed_ratio},
+            {"clearance", &m.clearance_mm},
+            {"x_min", &m.travel_min.x()},
+            {"x_max", &m.travel_max.x()},
+            {"y_min", &m.travel_min.y()},
+            {"y_max", &m.travel_max.y()},
+            {"z_min", &m.travel_min.z()},
+            {"z_max", &m.travel_max.z()},
+            {"work_offset_x", &m.work_offset.x()},
+            {"work_offset_y", &m.work_offset.y()},
+            {"work_offset_z", &m.work_offset.z()},
+            {"rot_point_x", &m.rot_point.x()},
+            {"rot_point_y", &m.rot_point.y()},
+            {"rot_point_z", &m.rot_point.z()},
+            {"rot_offset_y", &m.rot_offset_y_mm},
+            {"rot_offset_z", &m.rot_offset_z_mm},
+            {"tool_length", &m.tool_length_mm}};
+        for (const auto& [name, field] : numbers)
+            if (key == name) {
+                *field = x;
+                return;
+            }
+        if (key == "deposit_output") {
             if (x != std::floor(x))
                 invalid_argument("machine parameter deposit_output must be a whole number, got " +
                                  mas::format_number(x));

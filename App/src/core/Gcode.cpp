@@ -106,7 +106,6 @@ private:
         if (!started_) {
             stats_.a_min_deg = stats_.a_max_deg = angles.a_deg;
             stats_.c_min_deg = stats_.c_max_deg = angles.c_deg;
-            stats_.machine_min = stats_.machine_max = machine_position(p, angles, machine_);
         }
         follow_joints(p, angles);
         stats_.a_min_deg = std::min(stats_.a_min_deg, angles.a_deg);
@@ -122,7 +121,8 @@ private:
     }
 
     // The machine's joints along the move from where the tip is to `p` (the table to `angles`),
-    // every kJointStepDeg of A and of C where it turns; from `p` alone for the first move.
+    // every kJointStepDeg of A and of C where it turns; from `p` alone for the first move, which
+    // starts the ranges.
     void follow_joints(const Eigen::Vector3d& p, const TableAngles& angles) {
         const double da = angles.a_deg - angles_.a_deg, dc = angles.c_deg - angles_.c_deg;
         const int steps =
@@ -136,8 +136,8 @@ private:
                     ? machine_position(p, angles, machine_)
                     : machine_position(position_ + s * (p - position_),
                                        {angles_.a_deg + s * da, angles_.c_deg + s * dc}, machine_);
-            stats_.machine_min = stats_.machine_min.cwiseMin(j);
-            stats_.machine_max = stats_.machine_max.cwiseMax(j);
+            stats_.machine_min = started_ ? stats_.machine_min.cwiseMin(j) : j;
+            stats_.machine_max = started_ ? stats_.machine_max.cwiseMax(j) : j;
             for (int axis = 0; axis < 3; ++axis)
                 if (past_[axis].empty() &&
                     (j[axis] < machine_.travel_min[axis] || j[axis] > machine_.travel_max[axis]))
@@ -936,7 +936,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
             : hi == kInfiniteTravel ? "below the least " + name + " " + format_number(lo)
                                     : "beyond the " + name + " limits " + format_number(lo) +
                                           " to " + format_number(hi);
-        beyond += std::string(beyond.empty() ? "" : "; ") + "it takes " + "XYZ"[axis] + " from " +
+        beyond += std::string(beyond.empty() ? "" : "; ") + "it takes " + name + " from " +
                   format_number(stats.machine_min[axis], 7) + " to " +
                   format_number(stats.machine_max[axis], 7) + " mm, " + limits + ", first " + where;
     }

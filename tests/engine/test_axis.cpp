@@ -1152,6 +1152,48 @@ TEST(CentroidalAxis, AShortBossOnARoundBodyIsOneNodeThoughItsCornersLieBehindT) 
     EXPECT_NEAR(node.position.z(), z, kGrid);
     expect_invariants(a, mesh);
 }
+TEST(CentroidalAxis, AWyesLateralsCrescentsBesideTheRiserLeaveItsMarchTheLateralsWhole) {
+    // A solid wye fitting of the survey's (seed 293, 7): a riser of radius 8.43, 56.93 tall, with
+    // two laterals of radius 5.89, 37.48 long, leaving its axis at z = 22.71 leaning 53.07
+    // degrees to +X and -X. Step 2.608 (its part's). The plane at z = 26.08 finds each lateral's
+    // root as a crescent beside the riser, reaching less than a step past T (the riser's extent):
+    // the grid's next plane along the lateral, past T, cuts none of the crescent's slab. That is
+    // no boss ending there: the lateral goes on past that plane, above the crescent's slab. The
+    // riser's march finds each lateral again further out and turns there, both laterals alike.
+    // (A one-node march took each crescent with a slab to that plane, and one lateral was lost:
+    // the march swept 88 % of the part and the axis was refused.)
+    const double radius = 8.427064774768324, height = 56.9309477130183, r = 5.8888230996516135,
+                 length = 37.48196865948428, z = 22.712999990453923;
+    const double lean = 53.07286021113223 * kPi / 180.0;
+    TopoDS_Shape s = mas::test::occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), radius, height);
+    for (const double side : {1.0, -1.0})
+        s = fuse(s, mas::test::occ_cylinder({0, 0, z}, {side * std::sin(lean), 0, std::cos(lean)},
+                                            r, length));
+    const auto mesh = mesh_of(from_occt(s));
+    mas::AxisParams p;
+    p.step_mm = 2.60803276817715;
+    const auto a = mas::centroidal_axis(mesh, p);
+    std::vector<int> laterals;
+    for (std::size_t b = 0; b < a.branches.size(); ++b)
+        if (a.branches[b].parent >= 0) laterals.push_back(int(b));
+    ASSERT_EQ(laterals.size(), 2u);
+    const auto& plus = a.branches[std::size_t(laterals[0])];
+    const auto& minus = a.branches[std::size_t(laterals[1])];
+    const Vector3d dirs[2] = {plus.direction, minus.direction};
+    EXPECT_TRUE((dirs[0] == Vector3d::UnitX() && dirs[1] == -Vector3d::UnitX()) ||
+                (dirs[0] == -Vector3d::UnitX() && dirs[1] == Vector3d::UnitX()));
+    // Each marches its lateral out to its end face, whose farthest point along X is
+    // length sin(lean) + r cos(lean) from the axis: 33.5 mm, a step's reach short of it at most.
+    const double end = length * std::sin(lean) + r * std::cos(lean);
+    for (const auto* b : {&plus, &minus}) {
+        EXPECT_GE(b->nodes.size(), 8u);
+        const auto& last = a.nodes[std::size_t(b->nodes.back())];
+        EXPECT_GT(last.offset, end - p.step_mm);
+        EXPECT_LT(last.offset, end);
+    }
+    EXPECT_EQ(plus.nodes.size(), minus.nodes.size());
+    expect_invariants(a, mesh);
+}
 TEST(CentroidalAxis, APinHolesCeilingIsNoLedgeUnderAThickPartsStep) {
     // A lug of the survey's (seed 39, 6): a plate 45.1 x 29.1 x 8.3, an upright 15.1 wide and 7.7
     // thick rising 33.5 mm into a round top round the axis along Y at z = 41.9, with a pin hole of

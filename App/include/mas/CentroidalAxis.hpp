@@ -257,7 +257,11 @@
 //   a boss sticking out 5.1 mm under a 5.5 mm step stayed in a valve body's layers, 16.8 mm^2
 //   hanging in one, until it was so). A share thinner on average than a tenth of the step
 //   starts nothing there: that is what the Booleans leave along a face the sections'
-//   simplification moved.
+//   simplification moved. Nor does one whose region on T + eps the part still holds on that
+//   next plane, beyond the stick-out's slab: the part goes on past it there (a wye's lateral
+//   leaving its riser at 53 degrees, its root a crescent beside the riser), and the march it
+//   came from finds it again on later planes, further out (one node took one lateral's root and
+//   lost the rest of it, 12 % of the part, and the axis was refused).
 // - Several regions in the very first section (a part standing on several feet) each root a tree:
 //   the result is a forest with one tree per foot.
 // - Material the march from the base cannot reach, because it first appears in mid-air and joins

@@ -119,6 +119,13 @@ hub.exportBrep(os.path.join(here, "hub_twisted_blades.brep"))
 hub4, _ = MultiAxisSlicerSurvey.part("hub with blades", 5, 65)
 hub4.exportBrep(os.path.join(here, "hub_four_blades.brep"))
 
+# hub_blades_graze.brep  the survey's hub with blades 0 (seed 283): a hub of radius 8.02, 36.6
+# tall, with a bore and six blades 5.59 thick and 27.8 wide twisted 30 degrees; planes near the
+# blades' corners cut strips 0.08 to 0.92 mm wide which the blades only taper or widen from, and
+# taken for walls they made its derived step 0.05 mm
+hub6, _ = MultiAxisSlicerSurvey.part("hub with blades", 0, 283)
+hub6.exportBrep(os.path.join(here, "hub_blades_graze.brep"))
+
 # cylinder_meshed_off.brep  a cylinder of radius 8, 20 tall, as Part's Refine shape left it after
 # fusing it with a 45-degree revolve of its top disc about a line beside it (which adds nothing):
 # one valid solid (OCCT's shape check passes) whose side, seamed by a B-spline, with its top and

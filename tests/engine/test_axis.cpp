@@ -1666,6 +1666,27 @@ TEST(CentroidalAxis, DerivedStepIsNotTakenFromAPlaneGrazingAnEdge) {
     expect_invariants(a, mesh);
 }
 
+TEST(CentroidalAxis, AStripTheBladesOnlyTaperToIsNoWall) {
+    // tests/data/hub_blades_graze.brep: six blades 5.59 mm thick and 27.8 wide, twisted 30
+    // degrees, round a hub with a bore. Planes near the blades' twisted edges cut strips 0.08 to
+    // 0.92 mm wide, where a blade's corner tapers to its edge: its width further on, 0.1 to 0.5 mm,
+    // is thinner, and back, 1 to 5 mm, thicker. A wall goes on at its thickness, within half as
+    // thick again either way; taken for walls for going on thinner, they made the step diagonal /
+    // 2000 (0.05 mm), the axis 4362 nodes, and the blades' layers, too many to split, stayed in the
+    // hub's, hanging 112 mm^2 in one. The walls are the cuts across the blades now, and the strips
+    // taken are those within an eighth of them: the step is at least half of an eighth of a blade's
+    // cut, 2A/P.
+    const auto mesh = mas::test::data_mesh("hub_blades_graze.brep");
+    const double t = 5.5921970847627245, w = 27.782716740278985;
+    const double blade = 2.0 * t * w / (2.0 * (t + w));
+    const double step = mas::derive_axis_step(mesh);
+    EXPECT_GE(step, blade / 8.0 / 2.0);
+    EXPECT_LE(step, blade / 2.0);
+    const auto a = mas::centroidal_axis(mesh);
+    EXPECT_DOUBLE_EQ(a.params.step_mm, step);
+    expect_invariants(a, mesh, false);  // the hub's bore holds its centroids
+}
+
 TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     const auto mesh = mas::test::box_mesh(0, 0, 5, 10, 10, 10);
     auto expect_error_on = [&](const mas::TriangleMesh& m, const std::string& word,

@@ -384,8 +384,9 @@ struct CentroidalAxis {
 // when no section has an elongated one, since a plane grazing a rounded tip cuts a tiny disc that
 // says nothing about wall thickness. Nor does a plane grazing an edge along it (two surfaces that
 // meet): the thinnest strip confirmed as a wall (the planes its width, at least diagonal / 200,
-// either side cut a region no more than 1.5 times as thick where it lies) sets how thin a strip
-// may be and count, an eighth of it, and the thinnest strip that counts is the wall. Clamped to
+// either side cut a region where it lies within 1.5 times as thick or as thin: a wall goes on at
+// its thickness, a wedge's edge only thinner) sets how thin a strip may be and count, an eighth
+// of it, and the thinnest strip that counts is the wall. Clamped to
 // [diagonal / 2000, diagonal / 20], then at most half the part's height (z extent), which the
 // march's step must stay under. centroidal_axis() derives it on the part turned into its frame
 // (AxisParams::frame_deg), where the sections along X and Y cut its walls square.

@@ -1668,14 +1668,14 @@ TEST(CentroidalAxis, DerivedStepIsNotTakenFromAPlaneGrazingAnEdge) {
 
 TEST(CentroidalAxis, AStripTheBladesOnlyTaperToIsNoWall) {
     // tests/data/hub_blades_graze.brep: six blades 5.59 mm thick and 27.8 wide, twisted 30
-    // degrees, round a hub with a bore. Planes near the blades' twisted edges cut strips 0.08 to
-    // 0.92 mm wide, where a blade's corner tapers to its edge: its width further on, 0.1 to 0.5 mm,
-    // is thinner, and back, 1 to 5 mm, thicker. A wall goes on at its thickness, within half as
-    // thick again either way; taken for walls for going on thinner, they made the step diagonal /
-    // 2000 (0.05 mm), the axis 4362 nodes, and the blades' layers, too many to split, stayed in the
-    // hub's, hanging 112 mm^2 in one. The walls are the cuts across the blades now, and the strips
-    // taken are those within an eighth of them: the step is at least half of an eighth of a blade's
-    // cut, 2A/P.
+    // degrees, round a hub with a bore. Planes near the blades' corners, where a blade tapers to
+    // its edge, cut strips 0.6 to 0.92 mm wide: the planes their width further on cut 0.11 to
+    // 0.14 mm there, and back 1.1 to 1.7 mm. A wall goes on at its thickness, within half as
+    // thick again either way. Taken for walls for going on thinner, they let a 0.08 mm graze
+    // count (within an eighth of them): the step was diagonal / 2000 (0.05 mm), the axis 4362
+    // nodes, and four of the six blades stayed in the hub's layers, 112 mm^2 hanging in one. The
+    // first walls are cuts across the blades now, and the strips taken are those within an
+    // eighth of them: the step is at least half of an eighth of a blade's cut, 2A/P.
     const auto mesh = mas::test::data_mesh("hub_blades_graze.brep");
     const double t = 5.5921970847627245, w = 27.782716740278985;
     const double blade = 2.0 * t * w / (2.0 * (t + w));

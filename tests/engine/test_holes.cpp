@@ -655,6 +655,48 @@ TEST(Holes, ASplitThatWouldCutAPinHoleLengthwiseIsNotMadeWhereTheHoleIsFilled) {
         EXPECT_EQ(note.find("cuts the hole"), std::string::npos) << note;
 }
 
+TEST(Holes, ASplitThatWouldCutAnUprightHoleInAnArmBuiltSidewaysIsNotMade) {
+    // An L bracket: a column 16.39 mm square and 50.19 tall, an arm 22.61 long along +X at its
+    // top (6.67 thick), with three upright holes 6.62 mm across through the arm, the last 0.5 mm
+    // from its end. The arm is built along +X, where the upright holes need filling; the axis
+    // splits round each hole, and the decomposition it asks for cuts the arm's end off at x =
+    // 31.97, 0.05 mm into the last hole (its wall from x = 31.92): that hole is then whole in
+    // neither piece and stays open, and the end layer hangs over its far side (13.9 mm^2). The
+    // holes a split must not cut were read along +Z, the root's direction, where upright holes
+    // need no filling. Now that split is not made: all three holes are filled in the arm, the
+    // notes naming the last, and every layer is supported.
+    const double w = 16.38530710667973, h = 50.18970504490862, t = 6.673008768610355,
+                 length = 22.611465502404414, r = 3.311485285808114;
+    TopoDS_Shape s = fuse(occ_box(0, 0, 0, w, w, h), occ_box(0, 0, h - t, w + length, w, t));
+    for (int i = 0; i < 3; ++i)
+        s = cut(s, occ_cylinder({w + (i + 0.5) * length / 3.0, w / 2.0, h - t - 1.0},
+                                Vector3d::UnitZ(), r, t + 2.0));
+    const mas::Shape part = from_occt(s);
+    const auto [axis, params, dp] = filling_holes(part, mas::effective_deflection(part, {}));
+    // Decomposed as the axis asks, the arm's end is a component of its own, cut through the
+    // last hole, which neither piece fills.
+    const mas::Decomposition asked = mas::decompose(part, axis, dp);
+    ASSERT_EQ(asked.components.size(), 3u);
+    EXPECT_EQ(mas::slice_part(part, axis, asked, params).filled_holes.size(), 2u);
+    mas::Decomposition d;
+    const mas::SlicedPart sliced = mas::slice_solid_part(part, axis, dp, params, d);
+    ASSERT_EQ(d.components.size(), 2u);  // the column and the arm
+    EXPECT_TRUE(d.components[1].build_direction.isApprox(Vector3d::UnitX(), 1e-12));
+    ASSERT_EQ(sliced.filled_holes.size(), 3u);
+    for (const mas::FilledHole& hole : sliced.filled_holes) {
+        EXPECT_EQ(hole.component, 1);
+        EXPECT_NEAR(hole.diameter_mm, 2.0 * r, 1e-6);
+    }
+    int named = 0;
+    for (const std::string& note : sliced.notes)
+        if (note.find("its split cuts the hole 6.62297 mm across at (35.2282, 8.19265, 46.8532) "
+                      "along its length") != std::string::npos)
+            ++named;
+    EXPECT_GE(named, 1);
+    for (const mas::Layer& l : sliced.layers)
+        EXPECT_LE(l.unsupported_area_mm2, mas::negligible_unsupported_mm2(l.area_mm2));
+}
+
 TEST(Holes, AnArmWhoseSplitCutsAHoleIsStillCutOffWhereKeepingItWouldLeaveMoreUnsupported) {
     // The L-block (a 20 mm column 60 tall, an arm 50 long along +X at its top, z = 40 to 60) with
     // a hole 6 mm across along Y through the arm's root, on the plane x = 20 where the arm is cut

@@ -244,8 +244,10 @@ SlicedPart slice_clear_of_collisions(
 // (with the layers' min_layer_mm as the least component height and their max_tilt_deg, so that
 // every component fits a layer and the machine's reach). Sliced as one component, it is
 // decomposed with every branch kept. With fill_holes_up_to_mm, a split that would cut a hole it
-// fills along its length (holes_to_fill() on the whole part along +Z; the split's plane through
-// the material round the hole, the sub-component holding some of it but not all), leaving it
+// fills along its length (holes_to_fill() on the whole part along +Z, and the upright ones along
+// X and Y, which count for a sub-component built along a direction they lean over
+// overhang_angle_deg off; the split's plane through the material round the hole, the
+// sub-component holding some of it but not all), leaving it
 // whole in no component, is not made where that helps: in each round the branches of such splits
 // are kept in their fathers, and those of their sub-branches that then cut one, and that
 // decomposition is sliced too (the second half of the round) and taken when it leaves fewer layers

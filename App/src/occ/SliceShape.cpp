@@ -110,17 +110,26 @@ bool cuts_lengthwise(const Component& child, const TopoDS_Shape& part, const Fil
 }
 
 // The branches of `d`'s children (the root has no split) that cut one of `holes` lengthwise
-// (cuts_lengthwise), each with the first such hole: (branch, hole index).
+// (cuts_lengthwise), each with the first such hole: (branch, hole index). The first `upright`
+// holes lean no more than `overhang_deg` off +Z, the root's build direction: they count only for
+// a child built along a direction they lean more than that off, which fills them.
 std::vector<std::pair<int, std::size_t>> branches_cutting(const Decomposition& d,
                                                           const TopoDS_Shape& part,
-                                                          const std::vector<FilledHole>& holes) {
+                                                          const std::vector<FilledHole>& holes,
+                                                          std::size_t upright,
+                                                          double overhang_deg) {
+    const double lean_cos = std::cos(overhang_deg * kPi / 180.0);
     std::vector<std::pair<int, std::size_t>> out;
     for (std::size_t c = 1; c < d.components.size(); ++c)
-        for (std::size_t h = 0; h < holes.size(); ++h)
+        for (std::size_t h = 0; h < holes.size(); ++h) {
+            if (h < upright &&
+                std::abs(holes[h].axis.dot(d.components[c].build_direction)) >= lean_cos)
+                continue;
             if (cuts_lengthwise(d.components[c], part, holes[h])) {
                 out.emplace_back(d.components[c].branch, h);
                 break;
             }
+        }
     return out;
 }
 
@@ -206,10 +215,30 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
     // The holes slicing would fill, read on the whole part built along +Z, as its root is. A
     // split that cuts one lengthwise leaves it whole in no component, so that none fills it (the
     // pin hole of a lug whose round top the axis turned sideways round: its ceiling overhung).
+    // First those a sideways component fills, upright ones, read along X and Y: a split across
+    // an arm built along +X, 0.05 mm into the last of three upright holes in it, left the hole
+    // whole in neither piece and open, the arm's end layer hanging 13.9 mm^2 over its far side.
     std::vector<FilledHole> holes;
+    if (params.fill_holes_up_to_mm > 0.0) {
+        const double overhang = params.layers.overhang_angle_deg;
+        const double lean_cos = std::cos(overhang * kPi / 180.0);
+        for (const Eigen::Vector3d& way : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)})
+            for (FilledHole& h :
+                 holes_to_fill(part, way, params.fill_holes_up_to_mm, overhang, part)) {
+                const bool upright = std::abs(h.axis.z()) >= lean_cos;
+                const bool seen = std::any_of(holes.begin(), holes.end(), [&](const FilledHole& o) {
+                    return (o.centre - h.centre).norm() <= 1e-6 * (1.0 + h.centre.norm()) &&
+                           std::abs(o.axis.dot(h.axis)) >= 1.0 - 1e-9;
+                });
+                if (upright && !seen) holes.push_back(std::move(h));
+            }
+    }
+    const std::size_t upright = holes.size();
     if (params.fill_holes_up_to_mm > 0.0)
-        holes = holes_to_fill(part, Eigen::Vector3d::UnitZ(), params.fill_holes_up_to_mm,
-                              params.layers.overhang_angle_deg, part);
+        for (FilledHole& h :
+             holes_to_fill(part, Eigen::Vector3d::UnitZ(), params.fill_holes_up_to_mm,
+                           params.layers.overhang_angle_deg, part))
+            holes.push_back(std::move(h));
     Decomposition whole_one;
     const auto split = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square,
                            const Progress& round) {
@@ -230,7 +259,9 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
             const Decomposition* last = &split_one;
             for (std::size_t r = 1; r < axis.branches.size(); ++r) {
                 const std::size_t had = more.size();
-                for (const auto& [branch, h] : branches_cutting(*last, occ::occt(part), holes)) {
+                for (const auto& [branch, h] :
+                     branches_cutting(*last, occ::occt(part), holes, upright,
+                                      params.layers.overhang_angle_deg)) {
                     if (std::any_of(more.begin(), more.end(),
                                     [&](const KeptBranch& m) { return m.branch == branch; }))
                         continue;

@@ -72,6 +72,12 @@ struct FilledHole {
 // "the hole D mm across at (x, y, z)": how notes name a hole.
 std::string describe(const FilledHole& hole);
 
+// Whether a hole along `axis` leans more than `overhang_angle_deg` off `direction` (both unit
+// vectors, either way along them), within 1e-9 rad: the holes fill_holes() and holes_to_fill()
+// take for that build direction.
+bool leans_over(const Eigen::Vector3d& axis, const Eigen::Vector3d& direction,
+                double overhang_angle_deg);
+
 struct HoleFill {
     Shape solid;                     // the component with its holes filled (the input if none)
     std::vector<FilledHole> holes;   // the holes filled, in the solid's face order

@@ -125,6 +125,11 @@ std::string describe(const Hole& h) {
     return s.str();
 }
 
+// leans_over() with the angle in radians.
+bool leans_over_rad(const Vector3d& axis, const Vector3d& direction, double overhang_rad) {
+    return std::acos(std::min(1.0, std::abs(axis.dot(direction)))) > overhang_rad + 1e-9;
+}
+
 // The holes of `solid` that qualify (Holes.hpp), in face order, less those `skip` names.
 std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& direction,
                              double max_diameter, double overhang_rad,
@@ -157,7 +162,7 @@ std::vector<Hole> find_holes(const TopoDS_Shape& solid, const Vector3d& directio
         if (face.Orientation() == TopAbs_REVERSED) n = -n;
         const Vector3d radial = vec(p) - p0 - (vec(p) - p0).dot(a) * a;
         if (n.dot(radial) >= 0.0) continue;
-        if (std::acos(std::min(1.0, std::abs(a.dot(direction)))) <= overhang_rad + 1e-9) continue;
+        if (!leans_over_rad(a, direction, overhang_rad)) continue;
         const double tol = 1e-4 + BRep_Tool::Tolerance(face);
         std::size_t k = 0;
         while (k < lines.size() && !lines[k].same(p0, a, r, tol)) ++k;
@@ -763,6 +768,11 @@ Vector3d checked_direction(const Eigen::Vector3d& build_direction, double max_di
 }  // namespace
 
 std::string describe(const FilledHole& hole) { return hole_at(hole.diameter_mm, hole.centre); }
+
+bool leans_over(const Eigen::Vector3d& axis, const Eigen::Vector3d& direction,
+                double overhang_angle_deg) {
+    return leans_over_rad(axis, direction, overhang_angle_deg * kPi / 180.0);
+}
 
 std::vector<FilledHole> holes_to_fill(const Shape& input, const Eigen::Vector3d& build_direction,
                                       double max_diameter_mm, double overhang_angle_deg,

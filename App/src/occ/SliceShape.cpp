@@ -118,12 +118,11 @@ std::vector<std::pair<int, std::size_t>> branches_cutting(const Decomposition& d
                                                           const std::vector<FilledHole>& holes,
                                                           std::size_t upright,
                                                           double overhang_deg) {
-    const double lean_cos = std::cos(overhang_deg * kPi / 180.0);
     std::vector<std::pair<int, std::size_t>> out;
     for (std::size_t c = 1; c < d.components.size(); ++c)
         for (std::size_t h = 0; h < holes.size(); ++h) {
             if (h < upright &&
-                std::abs(holes[h].axis.dot(d.components[c].build_direction)) >= lean_cos)
+                !leans_over(holes[h].axis, d.components[c].build_direction, overhang_deg))
                 continue;
             if (cuts_lengthwise(d.components[c], part, holes[h])) {
                 out.emplace_back(d.components[c].branch, h);
@@ -221,11 +220,10 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
     std::vector<FilledHole> holes;
     if (params.fill_holes_up_to_mm > 0.0) {
         const double overhang = params.layers.overhang_angle_deg;
-        const double lean_cos = std::cos(overhang * kPi / 180.0);
         for (const Eigen::Vector3d& way : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)})
             for (FilledHole& h :
                  holes_to_fill(part, way, params.fill_holes_up_to_mm, overhang, part)) {
-                const bool upright = std::abs(h.axis.z()) >= lean_cos;
+                const bool upright = !leans_over(h.axis, Eigen::Vector3d::UnitZ(), overhang);
                 const bool seen = std::any_of(holes.begin(), holes.end(), [&](const FilledHole& o) {
                     return (o.centre - h.centre).norm() <= 1e-6 * (1.0 + h.centre.norm()) &&
                            std::abs(o.axis.dot(h.axis)) >= 1.0 - 1e-9;

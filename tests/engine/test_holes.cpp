@@ -9,6 +9,7 @@
 #include <BRepFilletAPI_MakeChamfer.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
 #include <Eigen/Geometry>
 #include <TopExp.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
@@ -722,6 +723,88 @@ TEST(Holes, AnArmWhoseSplitCutsAHoleIsStillCutOffWhereKeepingItWouldLeaveMoreUns
             std::string::npos)
             ++open;
     EXPECT_EQ(open, 1);
+}
+
+namespace {
+
+// A survey elbow (seed 2, #4): a flange of radius 19.63, 4 thick; a pipe of radius 10.45 rising
+// 29.07 from it, bending 55.53 degrees towards +X round a radius of 23.32, then running 16.28
+// straight on. Its bore, of radius 7.63, starts 1 mm above the plate and runs out at the pipe's
+// end; `bend_bore` false leaves the riser's and the bend's bore out: the run's is then blind,
+// its bottom where the bend ends.
+TopoDS_Shape survey_elbow(bool bend_bore) {
+    const double r = 10.45165232520106, bend = 23.316967882719084,
+                 lean = 55.527644095763534 * kPi / 180.0, rise = 29.06748862107859,
+                 run = 16.281793749870346, flange = 19.634641275285023, bore = 7.625218880339685;
+    const Vector3d end(bend - bend * std::cos(lean), 0.0, 4.0 + rise + bend * std::sin(lean));
+    const Vector3d along(std::sin(lean), 0.0, std::cos(lean));
+    const gp_Ax2 frame(gp_Pnt(bend, 0, 4.0 + rise), gp_Dir(0, 1, 0), gp_Dir(-1, 0, 0));
+    TopoDS_Shape s = fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), flange, 4.0),
+                          occ_cylinder({0, 0, 4}, Vector3d::UnitZ(), r, rise));
+    s = fuse(s, BRepPrimAPI_MakeTorus(frame, bend, r, lean).Shape());
+    s = fuse(s, occ_cylinder(end, along, r, run));
+    if (bend_bore) {
+        s = cut(s, occ_cylinder({0, 0, 3}, Vector3d::UnitZ(), bore, rise + 1.0));
+        s = cut(s, BRepPrimAPI_MakeTorus(frame, bend, bore, lean).Shape());
+    }
+    return cut(s, occ_cylinder(end, along, bore, run + 1.0));
+}
+
+}  // namespace
+
+TEST(Holes, ALeaningBoreWhoseBendsBoreGoesOnBelowItStaysOpen) {
+    // The run's straight bore leans 55.5 degrees off +Z: a hole to fill, which a drill reaches
+    // from the pipe's end. Below it the bend's bore goes on, open (no round hole). Plugged, the
+    // run's bore ended in a disc across the bend's bore, square to the run; the layers tilt after
+    // the pipe (30 degrees), and over them the disc hung 2.5 to 7.9 mm^2 in each of 12 layers.
+    // Now the bore stays open with a note: it is built as the bend's is, every layer supported.
+    const mas::Shape elbow = from_occt(survey_elbow(true));
+    const mas::HoleFill f = mas::fill_holes(elbow, Vector3d::UnitZ(), 16.0, 45.0);
+    EXPECT_TRUE(f.holes.empty());
+    EXPECT_DOUBLE_EQ(volume(f.solid), volume(elbow));
+    ASSERT_EQ(f.notes.size(), 1u);
+    EXPECT_NE(f.notes[0].find("the hole 15.2504 mm across at (16.8307, 0, 56.8978)"),
+              std::string::npos)
+        << f.notes[0];
+    EXPECT_NE(f.notes[0].find("its lower end opens into a bore that goes on past it"),
+              std::string::npos)
+        << f.notes[0];
+    EXPECT_TRUE(mas::holes_to_fill(elbow, Vector3d::UnitZ(), 16.0, 45.0).empty());
+    // Where the bore ends there (its bottom a disc where the bend ends), it is a blind hole,
+    // filled as before.
+    const mas::Shape blind = from_occt(survey_elbow(false));
+    const mas::HoleFill g = mas::fill_holes(blind, Vector3d::UnitZ(), 16.0, 45.0);
+    ASSERT_EQ(g.holes.size(), 1u) << (g.notes.empty() ? "" : g.notes[0]);
+    EXPECT_NEAR(g.holes[0].diameter_mm, 15.250437760679370, 1e-9);
+    EXPECT_NEAR(g.holes[0].length_mm, 16.281793749870346, 1e-6);
+    EXPECT_EQ(mas::holes_to_fill(blind, Vector3d::UnitZ(), 16.0, 45.0).size(), 1u);
+    // A straight bore a split cuts across goes on past its piece's end too, but as the same hole,
+    // whose own lower end decides: a block [0,60]x[0,20]x[0,40] bored through along a line leaning
+    // 60 degrees through (30, 10, 20), the bore's lower mouth on the block's bottom face, and
+    // the piece of it above z = 20. Its piece of the bore is filled, as the whole bore is.
+    const Vector3d lean(std::sin(kPi / 3.0), 0.0, std::cos(kPi / 3.0));
+    const TopoDS_Shape block =
+        cut(occ_box(0, 0, 0, 60, 20, 40),
+            occ_cylinder(Vector3d(30, 10, 20) - 60.0 * lean, lean, 3.0, 120.0));
+    BRepAlgoAPI_Common upper(block, occ_box(-1, -1, 20, 62, 22, 21));
+    ASSERT_TRUE(upper.IsDone());
+    const mas::Shape whole = from_occt(block), piece = from_occt(upper.Shape());
+    EXPECT_EQ(mas::fill_holes(whole, Vector3d::UnitZ(), 16.0, 45.0).holes.size(), 1u);
+    const mas::HoleFill p = mas::fill_holes(piece, Vector3d::UnitZ(), 16.0, 45.0, whole);
+    ASSERT_EQ(p.holes.size(), 1u) << (p.notes.empty() ? "" : p.notes[0]);
+    EXPECT_NEAR(p.holes[0].diameter_mm, 6.0, 1e-9);
+    EXPECT_EQ(mas::holes_to_fill(piece, Vector3d::UnitZ(), 16.0, 45.0, whole).size(), 1u);
+
+    const auto [axis, params, dp] = filling_holes(elbow, mas::effective_deflection(elbow, {}));
+    mas::Decomposition d;
+    const mas::SlicedPart sliced = mas::slice_solid_part(elbow, axis, dp, params, d);
+    EXPECT_TRUE(sliced.filled_holes.empty());
+    int named = 0;
+    for (const std::string& note : sliced.notes)
+        if (note.find("opens into a bore that goes on past it") != std::string::npos) ++named;
+    EXPECT_EQ(named, 1);
+    for (const mas::Layer& l : sliced.layers)
+        EXPECT_LE(l.unsupported_area_mm2, mas::negligible_unsupported_mm2(l.area_mm2));
 }
 
 TEST(Holes, AMeshCannotHaveItsHolesFilled) {

@@ -28,8 +28,14 @@
 //   Read exactly, with one Boolean for all of a component's holes: the part in common with probe
 //   cylinders 0.01 mm (at most 1 % of the radius) inside each hole, one along its wall and one from
 //   each end out past the part, each piece of the common traced to its probe by the Boolean's
-//   history. Otherwise it stays open with a note. A pipe's straight bore up to the diameter is a
-//   hole too, and so is where a branch's bore pierces the wall of the pipe it leaves.
+//   history. Nor is one filled whose lower end along the build direction opens into a bore that
+//   goes on past it, left open (round a bend, or widening): its plug would end there in a face
+//   across that bore, hanging over it (opens_into_bore_below() in Holes.cpp: just past that end
+//   the part's material rings the hole's radius all round and none lies within it, read with
+//   OCCT's point classifier; the end of the whole part's hole where the component holds a piece
+//   of one, so that the pieces of a bore a split cuts across are filled or left open alike).
+//   Otherwise it stays open with a note. A pipe's straight bore up to the diameter is a hole too,
+//   and so is where a branch's bore pierces the wall of the pipe it leaves.
 // A hole that is a plain cylinder (its wall ends in circles square to its axis, its bottom, if any,
 // is flat) is filled by fusing that cylinder in: all such holes in one Boolean, which adds exactly
 // the cylinders (their union). So is one whose wall's other edges all lie on the wall of another

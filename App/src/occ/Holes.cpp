@@ -9,6 +9,7 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepTools.hxx>
@@ -386,6 +387,60 @@ std::vector<Access> access(const TopoDS_Shape& whole, const std::vector<Hole>& h
     return out;
 }
 
+// Whether the hole's lower end (along `direction`, the build direction; none when the hole lies
+// square to it) opens into a bore that goes on past it: just past that end the part's material
+// rings the hole's radius all round, and within it there is none. That is a bore going on round a
+// bend, or widening in a taper, left open (no round hole, or one too wide or built along). The
+// hole's plug would end there in a face across that bore, hanging over it (a pipe's leaning
+// straight bore, plugged above its bend's open bore: the layers tilt after the pipe, and the plug's
+// end hung 2.5 to 7.9 mm^2 in each of 12 layers). A blind end (its bottom), a mouth onto the
+// outside, a counterbore or a bore it pierces has no such ring. The end is the whole part's hole's
+// (its holes found as the component's are) where a component holds a piece of one: a split across
+// a lateral's straight bore leaves the bore going on past the piece's end, the same hole, which
+// its own end decides for every piece (a wye's lateral split in two kept one piece open, the
+// other plugged). Read on the BREP: points 0.05 r (at most 0.1 mm) past the end, eight on a ring
+// that much outside the radius and five within half of it, classified against the whole part.
+std::vector<char> opens_into_bore_below(const TopoDS_Shape& whole, const std::vector<Hole>& holes,
+                                        const Vector3d& direction, double max_diameter,
+                                        double overhang_rad) {
+    std::vector<char> out(holes.size(), 0);
+    if (holes.empty()) return out;
+    const std::vector<Hole> whole_holes =
+        find_holes(whole, direction, max_diameter, overhang_rad, {});
+    BRepClass3d_SolidClassifier classifier(whole);
+    const auto state = [&](const Vector3d& p) {
+        classifier.Perform(gp_Pnt(p.x(), p.y(), p.z()), Precision::Confusion());
+        return classifier.State();
+    };
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+        const Hole& piece = holes[i];
+        const Hole* h = &piece;
+        const double mid = 0.5 * (piece.lo + piece.hi);
+        for (const Hole& w : whole_holes)
+            if (w.same(piece.point, piece.axis, piece.radius, 1e-4)) {
+                // w's extent along the piece's axis (the same line, either way along it).
+                const double at = (w.point - piece.point).dot(piece.axis);
+                const double sense = w.axis.dot(piece.axis);
+                const double a = at + sense * w.lo, b = at + sense * w.hi;
+                if (std::min(a, b) <= mid + 1e-4 && std::max(a, b) >= mid - 1e-4) h = &w;
+            }
+        const double up = h->axis.dot(direction);
+        if (std::abs(up) <= 1e-9) continue;
+        const double s = std::min(0.05 * h->radius, 0.1);
+        const Vector3d centre = h->point + (up > 0.0 ? h->lo - s : h->hi + s) * h->axis;
+        const Vector3d u = h->axis.unitOrthogonal(), v = h->axis.cross(u);
+        bool ringed = state(centre) == TopAbs_OUT;
+        for (int k = 0; k < 8 && ringed; ++k) {
+            const double t = k * kPi / 4.0;
+            const Vector3d radial = std::cos(t) * u + std::sin(t) * v;
+            ringed = state(centre + (h->radius + s) * radial) == TopAbs_IN &&
+                     (k % 2 == 1 || state(centre + 0.5 * h->radius * radial) == TopAbs_OUT);
+        }
+        out[i] = ringed;
+    }
+    return out;
+}
+
 // The one solid of `shape`, when it has exactly one and OCCT's check accepts it; else null.
 TopoDS_Shape single_valid_solid(const TopoDS_Shape& shape) {
     TopoDS_Shape result;
@@ -653,9 +708,11 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
         if (found.empty()) return found;
         progress.check();
         const std::vector<Access> a = access(whole, found);
+        const std::vector<char> into_bore =
+            opens_into_bore_below(whole, found, direction, max_diameter, overhang_rad);
         std::vector<Hole> out_holes;
         for (std::size_t i = 0; i < found.size(); ++i) {
-            if (a[i] == Access::Drillable) {
+            if (a[i] == Access::Drillable && !into_bore[i]) {
                 out_holes.push_back(std::move(found[i]));
                 continue;
             }
@@ -663,8 +720,11 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
                 describe(found[i]) + " stays open: " +
                 (a[i] == Access::HoldsMaterial
                      ? "it holds material (a post or a rib in it): no drill makes it"
-                     : "no drill of its diameter reaches it along its axis from outside the "
-                       "part"));
+                 : a[i] == Access::Unreachable
+                     ? "no drill of its diameter reaches it along its axis from outside the part"
+                     : "its lower end opens into a bore that goes on past it (round a bend, or "
+                       "widening) and stays open: its plug would end there in a face across "
+                       "that bore, hanging over it"));
             kept_open.push_back(std::move(found[i]));
         }
         return out_holes;
@@ -783,14 +843,18 @@ std::vector<FilledHole> holes_to_fill(const Shape& input, const Eigen::Vector3d&
     if (max_diameter_mm == 0.0) return out;
     const Shape solid = input.single_solid("the component");
     try {
-        const std::vector<Hole> found = find_holes(occ::occt(solid), direction, max_diameter_mm,
-                                                   overhang_angle_deg * kPi / 180.0, {});
+        const double overhang_rad = overhang_angle_deg * kPi / 180.0;
+        const std::vector<Hole> found =
+            find_holes(occ::occt(solid), direction, max_diameter_mm, overhang_rad, {});
         if (found.empty()) return out;
         progress.check();
-        const std::vector<Access> a =
-            access(part.is_null() ? occ::occt(solid) : occ::occt(part), found);
+        const TopoDS_Shape whole = part.is_null() ? occ::occt(solid) : occ::occt(part);
+        const std::vector<Access> a = access(whole, found);
+        const std::vector<char> into_bore =
+            opens_into_bore_below(whole, found, direction, max_diameter_mm, overhang_rad);
         for (std::size_t i = 0; i < found.size(); ++i)
-            if (a[i] == Access::Drillable) out.push_back(filled_hole(found[i], direction));
+            if (a[i] == Access::Drillable && !into_bore[i])
+                out.push_back(filled_hole(found[i], direction));
     } catch (const Standard_Failure& f) {
         throw Error(ErrorCode::GeometryFailure,
                     occ::failure_message("OCCT failed finding the component's holes", f));

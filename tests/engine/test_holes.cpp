@@ -780,8 +780,9 @@ TEST(Holes, ALeaningBoreWhoseBendsBoreGoesOnBelowItStaysOpen) {
     EXPECT_EQ(mas::holes_to_fill(blind, Vector3d::UnitZ(), 16.0, 45.0).size(), 1u);
     // A straight bore a split cuts across goes on past its piece's end too, but as the same hole,
     // whose own lower end decides: a block [0,60]x[0,20]x[0,40] bored through along a line leaning
-    // 60 degrees through (30, 10, 20), the bore's lower mouth on the block's bottom face, and
-    // the piece of it above z = 20. Its piece of the bore is filled, as the whole bore is.
+    // 60 degrees through (30, 10, 20), its mouths on the block's sides x = 0 (at z = 2.7) and x =
+    // 60 (z = 37.3), and the piece of it above z = 20. Its piece of the bore is filled, as the
+    // whole bore is.
     const Vector3d lean(std::sin(kPi / 3.0), 0.0, std::cos(kPi / 3.0));
     const TopoDS_Shape block =
         cut(occ_box(0, 0, 0, 60, 20, 40),

@@ -308,8 +308,9 @@ TopoDS_Shape make_cylinder(const Vector3d& base, const Vector3d& axis, double ra
 // entry, a wall across it, a closed cavity's ends). Exact, with one Boolean for all the holes:
 // the whole part in common with, per hole, three probe cylinders a hair inside its radius: one
 // along its wall, one from each end out past the part. Each piece of material in common goes
-// to the probes it came from (the Boolean's history).
-enum class Access { Drillable, HoldsMaterial, Unreachable };
+// to the probes it came from (the Boolean's history). IntoOpenBore is no drill's matter: a hole a
+// drill makes whose plug would hang (fill_access()).
+enum class Access { Drillable, HoldsMaterial, Unreachable, IntoOpenBore };
 
 std::vector<Access> access(const TopoDS_Shape& whole, const std::vector<Hole>& holes) {
     struct Probe {
@@ -394,50 +395,56 @@ std::vector<Access> access(const TopoDS_Shape& whole, const std::vector<Hole>& h
 // hole's plug would end there in a face across that bore, hanging over it (a pipe's leaning
 // straight bore, plugged above its bend's open bore: the layers tilt after the pipe, and the plug's
 // end hung 2.5 to 7.9 mm^2 in each of 12 layers). A blind end (its bottom), a mouth onto the
-// outside, a counterbore or a bore it pierces has no such ring. The end is the whole part's hole's
-// (its holes found as the component's are) where a component holds a piece of one: a split across
-// a lateral's straight bore leaves the bore going on past the piece's end, the same hole, which
-// its own end decides for every piece (a wye's lateral split in two kept one piece open, the
-// other plugged). Read on the BREP: points 0.05 r (at most 0.1 mm) past the end, eight on a ring
-// that much outside the radius and five within half of it, classified against the whole part.
-std::vector<char> opens_into_bore_below(const TopoDS_Shape& whole, const std::vector<Hole>& holes,
-                                        const Vector3d& direction, double max_diameter,
-                                        double overhang_rad) {
-    std::vector<char> out(holes.size(), 0);
-    if (holes.empty()) return out;
-    const std::vector<Hole> whole_holes =
-        find_holes(whole, direction, max_diameter, overhang_rad, {});
-    BRepClass3d_SolidClassifier classifier(whole);
-    const auto state = [&](const Vector3d& p) {
-        classifier.Perform(gp_Pnt(p.x(), p.y(), p.z()), Precision::Confusion());
-        return classifier.State();
-    };
-    for (std::size_t i = 0; i < holes.size(); ++i) {
-        const Hole& piece = holes[i];
-        const Hole* h = &piece;
-        const double mid = 0.5 * (piece.lo + piece.hi);
-        for (const Hole& w : whole_holes)
-            if (w.same(piece.point, piece.axis, piece.radius, 1e-4)) {
-                // w's extent along the piece's axis (the same line, either way along it).
-                const double at = (w.point - piece.point).dot(piece.axis);
-                const double sense = w.axis.dot(piece.axis);
-                const double a = at + sense * w.lo, b = at + sense * w.hi;
-                if (std::min(a, b) <= mid + 1e-4 && std::max(a, b) >= mid - 1e-4) h = &w;
-            }
-        const double up = h->axis.dot(direction);
-        if (std::abs(up) <= 1e-9) continue;
-        const double s = std::min(0.05 * h->radius, 0.1);
-        const Vector3d centre = h->point + (up > 0.0 ? h->lo - s : h->hi + s) * h->axis;
-        const Vector3d u = h->axis.unitOrthogonal(), v = h->axis.cross(u);
-        bool ringed = state(centre) == TopAbs_OUT;
-        for (int k = 0; k < 8 && ringed; ++k) {
-            const double t = k * kPi / 4.0;
-            const Vector3d radial = std::cos(t) * u + std::sin(t) * v;
-            ringed = state(centre + (h->radius + s) * radial) == TopAbs_IN &&
-                     (k % 2 == 1 || state(centre + 0.5 * h->radius * radial) == TopAbs_OUT);
+// outside, a counterbore or a bore it pierces has no such ring. The end is that of the one of
+// `whole_holes` (the whole part's, found as the component's are) that holds the hole, where a
+// component holds a piece of one: a split across a lateral's straight bore leaves the bore going
+// on past the piece's end, the same hole, which its own end decides for every piece (a wye's
+// lateral split in two kept one piece open, the other plugged). Read on the BREP: points 0.05 r
+// (at most 0.1 mm) past the end, eight on a ring that much outside the radius and five within
+// half of it, classified against the whole part (`in_whole`).
+bool opens_into_bore_below(BRepClass3d_SolidClassifier& in_whole,
+                           const std::vector<Hole>& whole_holes, const Hole& piece,
+                           const Vector3d& direction) {
+    const Hole* h = &piece;
+    const double mid = 0.5 * (piece.lo + piece.hi);
+    for (const Hole& w : whole_holes)
+        if (w.same(piece.point, piece.axis, piece.radius, 1e-4)) {
+            // w's extent along the piece's axis (the same line, either way along it).
+            const double at = (w.point - piece.point).dot(piece.axis);
+            const double sense = w.axis.dot(piece.axis);
+            const double a = at + sense * w.lo, b = at + sense * w.hi;
+            if (std::min(a, b) <= mid + 1e-4 && std::max(a, b) >= mid - 1e-4) h = &w;
         }
-        out[i] = ringed;
+    const double up = h->axis.dot(direction);
+    if (std::abs(up) <= 1e-9) return false;
+    const auto state = [&](const Vector3d& p) {
+        in_whole.Perform(gp_Pnt(p.x(), p.y(), p.z()), Precision::Confusion());
+        return in_whole.State();
+    };
+    const double s = std::min(0.05 * h->radius, 0.1);
+    const Vector3d centre = h->point + (up > 0.0 ? h->lo - s : h->hi + s) * h->axis;
+    const Vector3d u = h->axis.unitOrthogonal(), v = h->axis.cross(u);
+    bool ringed = state(centre) == TopAbs_OUT;
+    for (int k = 0; k < 8 && ringed; ++k) {
+        const double t = k * kPi / 4.0;
+        const Vector3d radial = std::cos(t) * u + std::sin(t) * v;
+        ringed = state(centre + (h->radius + s) * radial) == TopAbs_IN &&
+                 (k % 2 == 1 || state(centre + 0.5 * h->radius * radial) == TopAbs_OUT);
     }
+    return ringed;
+}
+
+// Which of `holes` a fill takes (Drillable) and, for each other, why not: access(), then, of those
+// a drill makes, the ones whose lower end opens into a bore left open (IntoOpenBore).
+// `whole_holes` are the whole part's holes, found as the component's are.
+std::vector<Access> fill_access(const TopoDS_Shape& whole, const std::vector<Hole>& holes,
+                                const std::vector<Hole>& whole_holes, const Vector3d& direction) {
+    std::vector<Access> out = access(whole, holes);
+    BRepClass3d_SolidClassifier in_whole(whole);
+    for (std::size_t i = 0; i < holes.size(); ++i)
+        if (out[i] == Access::Drillable &&
+            opens_into_bore_below(in_whole, whole_holes, holes[i], direction))
+            out[i] = Access::IntoOpenBore;
     return out;
 }
 
@@ -702,17 +709,20 @@ FilledHole filled_hole(const Hole& hole, const Vector3d& direction) {
 void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, double overhang_rad,
               const TopoDS_Shape& whole, const Progress& progress) {
     TopoDS_Shape solid = occ::occt(out.solid);
+    std::vector<Hole> holes = find_holes(solid, direction, max_diameter, overhang_rad, {});
+    if (holes.empty()) return;
+    // The whole part's holes, read once: the component's own where it is the whole part.
+    const std::vector<Hole> whole_holes =
+        whole.IsSame(solid) ? holes : find_holes(whole, direction, max_diameter, overhang_rad, {});
     std::vector<Hole> kept_open;
-    // The holes a drill makes; for each other one a note says why, and it is kept open.
-    auto drillable = [&](std::vector<Hole> found) {
+    // The holes a fill takes; for each other one a note says why, and it is kept open.
+    auto fillable = [&](std::vector<Hole> found) {
         if (found.empty()) return found;
         progress.check();
-        const std::vector<Access> a = access(whole, found);
-        const std::vector<char> into_bore =
-            opens_into_bore_below(whole, found, direction, max_diameter, overhang_rad);
+        const std::vector<Access> a = fill_access(whole, found, whole_holes, direction);
         std::vector<Hole> out_holes;
         for (std::size_t i = 0; i < found.size(); ++i) {
-            if (a[i] == Access::Drillable && !into_bore[i]) {
+            if (a[i] == Access::Drillable) {
                 out_holes.push_back(std::move(found[i]));
                 continue;
             }
@@ -729,8 +739,7 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
         }
         return out_holes;
     };
-    std::vector<Hole> holes =
-        drillable(find_holes(solid, direction, max_diameter, overhang_rad, {}));
+    holes = fillable(std::move(holes));
     if (holes.empty()) return;
     double volume = occ::volume_of(solid);
     // Square-ended holes get their cylinders fused in, in one Boolean: far quicker than OCCT's
@@ -787,7 +796,7 @@ void fill_all(HoleFill& out, const Vector3d& direction, double max_diameter, dou
                     (h.centre() - left.front().centre()).norm() < 1e-4)
                     checked = true;
             const std::vector<Hole> one =
-                checked ? std::vector<Hole>{left.front()} : drillable({left.front()});
+                checked ? std::vector<Hole>{left.front()} : fillable({left.front()});
             if (one.empty()) continue;
             progress.check();
             const Hole& hole = one.front();
@@ -844,17 +853,20 @@ std::vector<FilledHole> holes_to_fill(const Shape& input, const Eigen::Vector3d&
     const Shape solid = input.single_solid("the component");
     try {
         const double overhang_rad = overhang_angle_deg * kPi / 180.0;
+        const TopoDS_Shape component = occ::occt(solid);
         const std::vector<Hole> found =
-            find_holes(occ::occt(solid), direction, max_diameter_mm, overhang_rad, {});
+            find_holes(component, direction, max_diameter_mm, overhang_rad, {});
         if (found.empty()) return out;
         progress.check();
-        const TopoDS_Shape whole = part.is_null() ? occ::occt(solid) : occ::occt(part);
-        const std::vector<Access> a = access(whole, found);
-        const std::vector<char> into_bore =
-            opens_into_bore_below(whole, found, direction, max_diameter_mm, overhang_rad);
+        const TopoDS_Shape whole = part.is_null() ? component : occ::occt(part);
+        const std::vector<Access> a =
+            fill_access(whole, found,
+                        whole.IsSame(component)
+                            ? found
+                            : find_holes(whole, direction, max_diameter_mm, overhang_rad, {}),
+                        direction);
         for (std::size_t i = 0; i < found.size(); ++i)
-            if (a[i] == Access::Drillable && !into_bore[i])
-                out.push_back(filled_hole(found[i], direction));
+            if (a[i] == Access::Drillable) out.push_back(filled_hole(found[i], direction));
     } catch (const Standard_Failure& f) {
         throw Error(ErrorCode::GeometryFailure,
                     occ::failure_message("OCCT failed finding the component's holes", f));

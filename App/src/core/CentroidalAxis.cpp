@@ -1273,11 +1273,13 @@ private:
                 // march it came from finds it again on its later planes, further out. (One node
                 // with a slab to the next plane took one lateral's root and lost the rest of it:
                 // 12 % of the part unswept, and the axis refused.)
-                for (const auto& region : regions)
-                    if (k0 < count && holds(region, to)) return;
+                if (k0 < count)
+                    for (const auto& region : regions)
+                        if (holds(region, to)) return;
                 for (const auto& region : regions) {
                     double present = task.start, absent = to;
-                    if (holds(region, absent)) present = absent;
+                    // Short of the last plane none holds its region there (above).
+                    if (k0 >= count && holds(region, absent)) present = absent;
                     while (absent - present > 1e-4 * p_.step_mm) {
                         const double mid = 0.5 * (present + absent);
                         (holds(region, mid) ? present : absent) = mid;

@@ -1927,15 +1927,25 @@ private:
                     held = end - root;
                     return held > limit;
                 };
-                if (reaches({da}, steep) && limb_at(steep)) return true;
+                // However far it reaches past L: past the distance threshold too (wide), where
+                // a stick-out is otherwise shared out round L, each share turning only where its
+                // centre lies far (four round arms rising 15.5 degrees off a hub, 2.1 planes'
+                // spacing a plane at a 5.6 mm step, turned a plane on, 23.6 mm out, and their
+                // roots hung 21 mm^2 in a layer of the hub's), where its root lies past L's
+                // centroid the way it leans: a rod standing on the rim of its end outgrows the
+                // sliver there past it, the section growing, no limb. A fork's limbs, within it
+                // only.
+                if (reaches({da}, steep) && limb_at(steep))
+                    return !wide || root > way.dot(frame.to_3d(c, upper_plane));
                 // A fork's limb, the cheap tests first: another stick-out, and one leaning the
                 // other way.
-                if (stick_out.size() < 2 || !reaches({da}, spacing) || !opposed(way)) return false;
+                if (wide || stick_out.size() < 2 || !reaches({da}, spacing) || !opposed(way))
+                    return false;
                 return limb_at(spacing) && fresh(held) && forked(way);
             };
             bool ledge = false, limb = false;
-            if (derived_threshold_ && !turn && !wide &&
-                ((out_of_lower > ledge_limit && (at_once() || reaches_out_at_once())) ||
+            if (derived_threshold_ && !turn &&
+                ((!wide && out_of_lower > ledge_limit && (at_once() || reaches_out_at_once())) ||
                  (limb = steep_limb())) &&
                 !spans_a_gap(da, lower)) {
                 // Out of L from E, or, centred inside L (an arm's underside round the web under

@@ -907,16 +907,15 @@ TEST(Slicing, ASolidWyesTwoLateralsLeaningApartPast45DegreesAreEachBuiltSideways
 // A round hub (radius 11.71, 23.1 tall) with four round arms (radius 6.28, 37.7 long from its
 // axis at z = 16.82) rising 15.5 degrees off horizontal along +-X and +-Y: a spider of the kind
 // CentroidalAxis.cpp's steep limbs are read for (74.5 degrees off the march). At the derived
-// 5.6 mm step an arm's underside leaves the hub's side between two planes; on the next its
-// section reaches 11.8 mm past the hub, and on the one after the arm's stick-out reaches past
-// that by more than the distance threshold (wide), so it was shared out round the section
-// instead, each share turning only where its centre lay far: the arms turned 23.6 mm out, and
-// the hub's layers held their roots, hanging 21 mm^2 in a layer. A wide steep limb turns as any
-// does, where it leaves the column (where that root lies past the centroid of the section it
-// leaves: a rod standing on the rim of its end outgrows its first sliver past that centroid, the
-// section growing, no limb, CentroidalAxis.ARodLeaningOnTheRimOfItsEndIsOneBranchUpItsLength).
-// Each arm is cut within a step of the hub's side and built sideways, and no layer hangs past the
-// deflection's strip.
+// 5.6 mm step an arm's underside leaves the hub's side between two planes; its stick-outs on the
+// next two reach 11.2 and 14.8 mm past the section below, more than the distance threshold or
+// four bumps (wide), so they were shared out round the section instead, each share turning only
+// where its centre lay far: the arms turned 23.6 mm out, and the hub's layers held their roots,
+// hanging 21 mm^2 in a layer. A wide steep limb turns as any does, where it leaves the column
+// (where that root lies past the centroid of the section it leaves: a rod standing on the rim of
+// its end outgrows its first sliver past that centroid, the section growing, no limb,
+// CentroidalAxis.ARodLeaningOnTheRimOfItsEndIsOneBranchUpItsLength). Each arm is cut within a
+// step of the hub's side and built sideways, and no layer hangs past the deflection's strip.
 TEST(Slicing, ArmsRisingGentlyOffAHubPastTheThresholdAreCutAtItsSide) {
     const double hub = 11.71, arm = 6.28, rise = 15.5 * kPi / 180.0;
     TopoDS_Shape shape = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), hub, 10.54 + 2.0 * arm);

@@ -166,12 +166,12 @@
 //   however little where L holds no more than twice the crescent's reach of the limb past its
 //   root (a limb leaning 62.6 degrees moves 1.77 mm a plane, under a 2 mm bump; an elephant's
 //   belly, 11.6 mm out past its leg in L, is the body widening, and stays). It turns so however
-//   far the crescent reaches past L, past the distance threshold too, where a stick-out is
-//   otherwise shared out round L, each share turning only where its centre lies far (four round
-//   arms rising 15.5 degrees off a hub turned 23.6 mm out, a plane late, and their roots hung
-//   21 mm^2 in a layer of the hub's), provided its root lies past L's centroid the way it leans
-//   (a rod standing on the rim of its end outgrows the sliver there past it: the section
-//   growing, no limb).
+//   far the crescent reaches past L, past the distance threshold and four bumps too, where a
+//   stick-out is otherwise shared out round L, each share turning only where its centre lies
+//   far (four round arms rising 15.5 degrees off a hub turned 23.6 mm out, a plane late, and
+//   their roots hung 21 mm^2 in a layer of the hub's), provided its root lies past L's centroid
+//   the way it leans (a rod standing on the rim of its end outgrows the sliver there past it:
+//   the section growing, no limb).
 //   Two limbs leaning apart (a fork) are steep from one spacing a plane on (45 degrees): the
 //   march's layers lean after its centroids, which move towards neither, so short of kSteepLimb
 //   each limb's underside overhung every layer (a solid wye with two laterals leaning 56.2

@@ -1927,14 +1927,14 @@ private:
                     held = end - root;
                     return held > limit;
                 };
-                // However far it reaches past L: past the distance threshold too (wide), where
-                // a stick-out is otherwise shared out round L, each share turning only where its
-                // centre lies far (four round arms rising 15.5 degrees off a hub, 2.1 planes'
-                // spacing a plane at a 5.6 mm step, turned a plane on, 23.6 mm out, and their
-                // roots hung 21 mm^2 in a layer of the hub's), where its root lies past L's
-                // centroid the way it leans: a rod standing on the rim of its end outgrows the
-                // sliver there past it, the section growing, no limb. A fork's limbs, within it
-                // only.
+                // However far it reaches past L: wide too (past the distance threshold and four
+                // bumps), where a stick-out is otherwise shared out round L, each share turning
+                // only where its centre lies far (four round arms rising 15.5 degrees off a hub,
+                // reaching 11.2 and 14.8 mm past the section below at a 5.6 mm step, turned a
+                // plane late, 23.6 mm out, and their roots hung 21 mm^2 in a layer of the hub's),
+                // where its root lies past L's centroid the way it leans: a rod standing on the
+                // rim of its end outgrows the sliver there past it, the section growing, no limb.
+                // A fork's limbs, within it only.
                 if (reaches({da}, steep) && limb_at(steep))
                     return !wide || root > way.dot(frame.to_3d(c, upper_plane));
                 // A fork's limb, the cheap tests first: another stick-out, and one leaning the

@@ -173,8 +173,11 @@
 //   a survey part (seed 206), 45 of the 54 survey parts over the deflection's strip at seeds 161 to
 //   224 were such bends. Only where the father's march past its straight run is the bend: branches
 //   leaving it other than this one lie wholly in front of the plane (a valve body going on above a
-//   port near its top is no bend: cut halfway, its top went with the port). Refused (or asked,
-//   square_branches, or turn_cuts false), the plane square to D at T.
+//   port near its top is no bend: cut halfway, its top went with the port), and past the node the
+//   branch links to, the march does not come back onto its straight run's line (a column going
+//   on past a tapered arm, whose sloping root drew its centroids aside below the junction, is no
+//   bend: cut halfway, the column kept the wedge under the arm's root, 3.3 mm^2 hanging in a
+//   layer). Refused (or asked, square_branches, or turn_cuts false), the plane square to D at T.
 // - The whole plane can cut off, on the father's side, material joined only to the child's
 //   piece: an S bracket's middle plate, cut off its lower upright's face, takes with it the top
 //   plate's tail past that face. Such a piece (wholly on the father's side, joined to exactly
@@ -291,7 +294,10 @@ double turned_plane(const CentroidalAxis& axis, std::size_t b, const Eigen::Vect
 // False (cut square to D at Eq. 4's T, as before) unless F and D are square to each other, both
 // runs are found, the father's run's last section lies wholly `clearance_mm` behind the plane
 // (its straight part is not cut), the father's march ends no further along F than b's sections
-// reach, plus a step (a column going on past the branch, a tee, is cut at T), every other branch
+// reach, plus a step (a column going on past the branch, a tee, is cut at T), no node of the
+// father's march past the one b links to lies back on its straight run's line (within step /
+// 100 along D: a column going on past the branch as high as it reaches, its centroids drawn
+// towards b only where they held b's root, such as a tapered arm's), every other branch
 // leaving the father's march past its run (and their sub-branches: the bend's own material where
 // a Z plane cuts it in two) has its centroids the clearance in front of the plane and reaches
 // no further along F than b's sections, plus a step (a valve body going on past a port near its

@@ -803,6 +803,30 @@ void leaning_branch_is_built_sideways(double degrees, const LeaningBranch& shape
     expect_invariants(s, params, "leaning branch", false);
 }
 
+// That every component but the root is a child of it built sideways along one of `ways`, each
+// way once, its base facing back, cut where it leaves the side of a round column of radius
+// `column` about the Z axis: past that side (less the deflection) by no more than a step.
+void expect_built_sideways_off_column(const Sliced& s, const std::vector<Vector3d>& ways,
+                                      double column) {
+    const auto& comps = s.decomposition.components;
+    ASSERT_EQ(comps.size(), ways.size() + 1);
+    std::vector<int> built(ways.size(), 0);
+    for (std::size_t c = 1; c < comps.size(); ++c) {
+        SCOPED_TRACE("component " + std::to_string(c));
+        EXPECT_EQ(comps[c].parent, 0);
+        const Vector3d way = comps[c].build_direction;
+        const auto w = std::find_if(ways.begin(), ways.end(),
+                                    [&](const Vector3d& x) { return way.isApprox(x, 1e-12); });
+        ASSERT_NE(w, ways.end()) << way.transpose();
+        ++built[std::size_t(w - ways.begin())];
+        EXPECT_TRUE(comps[c].base_normal.isApprox(-way, 1e-12));
+        const double cut = way.dot(comps[c].base_origin);
+        EXPECT_GE(cut, column - kDeflection);
+        EXPECT_LE(cut, column + s.axis.params.step_mm + s.axis.params.eps_mm);
+    }
+    EXPECT_EQ(built, std::vector<int>(ways.size(), 1));
+}
+
 }  // namespace
 
 // A round column (radius 10, 60 tall) with a round branch (radius 7, 30 long) leaving its side
@@ -878,24 +902,10 @@ TEST(Slicing, ASolidWyesTwoLateralsLeaningApartPast45DegreesAreEachBuiltSideways
         const auto part = from_occt(shape);
         const auto params = default_params();
         const auto s = slice(part, 0.0, params);
-        const auto& comps = s.decomposition.components;
-        ASSERT_EQ(comps.size(), 3u);
-        std::set<double> sides;
-        for (std::size_t c = 1; c < comps.size(); ++c) {
-            SCOPED_TRACE("component " + std::to_string(c));
-            EXPECT_EQ(comps[c].parent, 0);
-            const double side = comps[c].build_direction.x();
-            EXPECT_TRUE(comps[c].build_direction.isApprox(Vector3d(side, 0, 0), 1e-12));
-            EXPECT_TRUE(comps[c].base_normal.isApprox(-comps[c].build_direction, 1e-12));
-            sides.insert(side);
-            // Cut where the lateral leaves the riser's side, within a step past it.
-            const double cut = side * comps[c].base_origin.x();
-            EXPECT_GE(cut, riser - kDeflection);
-            EXPECT_LE(cut, riser + s.axis.params.step_mm + s.axis.params.eps_mm);
-        }
-        EXPECT_EQ(sides, (std::set<double>{-1.0, 1.0}));
+        // Each lateral cut where it leaves the riser's side, within a step past it.
+        expect_built_sideways_off_column(s, {Vector3d::UnitX(), -Vector3d::UnitX()}, riser);
         double volume = 0.0;
-        for (const auto& c : comps) volume += c.volume_mm3;
+        for (const auto& c : s.decomposition.components) volume += c.volume_mm3;
         // Within OCCT's integration of the volumes over faces bounded by the curves where the
         // laterals meet the riser and each other (2e-6 of it at 50 degrees).
         EXPECT_NEAR(volume, part.info().volume_mm3, 1e-5 * part.info().volume_mm3);
@@ -933,26 +943,7 @@ TEST(Slicing, ArmsRisingGentlyOffAHubPastTheThresholdAreCutAtItsSide) {
     params.paths.measure_coverage = false;
     const auto s = slice(part, 0.0, params);
     EXPECT_NEAR(s.axis.params.step_mm, 5.6, 0.05);
-    const auto& comps = s.decomposition.components;
-    ASSERT_EQ(comps.size(), 5u);
-    std::vector<Vector3d> built;
-    for (std::size_t c = 1; c < comps.size(); ++c) {
-        SCOPED_TRACE("component " + std::to_string(c));
-        EXPECT_EQ(comps[c].parent, 0);
-        const Vector3d way = comps[c].build_direction;
-        EXPECT_TRUE(std::any_of(ways.begin(), ways.end(), [&](const Vector3d& w) {
-            return way.isApprox(w, 1e-12);
-        })) << way.transpose();
-        EXPECT_TRUE(comps[c].base_normal.isApprox(-way, 1e-12));
-        built.push_back(way);
-        const double cut = way.dot(comps[c].base_origin);
-        EXPECT_GE(cut, hub - kDeflection);
-        EXPECT_LE(cut, hub + s.axis.params.step_mm + s.axis.params.eps_mm);
-    }
-    for (const Vector3d& way : ways)
-        EXPECT_EQ(std::count_if(built.begin(), built.end(),
-                                [&](const Vector3d& w) { return w.isApprox(way, 1e-12); }),
-                  1);
+    expect_built_sideways_off_column(s, ways, hub);
     EXPECT_EQ(s.result.stats.colliding_layers, 0);
     expect_invariants(s, params, "spider");
 }

@@ -948,6 +948,42 @@ TEST(Slicing, ArmsRisingGentlyOffAHubPastTheThresholdAreCutAtItsSide) {
     expect_invariants(s, params, "spider");
 }
 
+// A round hub (radius 11.62, 26.64 tall) with four round arms (radius 6.53, 43.28 long) along
+// +-X and +-Y from its axis at z = 20.11, rising 17.1 degrees (a spider of the kind tried beside
+// the survey's families). The plane over their undersides' start cuts each arm's first sliver,
+// 1.1 mm past the hub's side, whose section's sides run straight up under it; on the next, each
+// arm reaches out far (Eq. 3), and the march turns into it from the extent of the section below
+// (Eq. 4's T), past the sliver: the wedge of each arm's root under the cut hung in the hub's
+// layers, 9.6 mm^2 in one. A far turn starts where such a sliver does, as a steep limb's does
+// (CentroidalAxis.cpp): each arm is cut at the hub's side, within the deflection, and built
+// sideways, and no layer hangs past the deflection's strip.
+TEST(Slicing, ArmsRisingOffAHubFarAreCutAtItsSideNotPastTheirFirstSlivers) {
+    const double hub = 11.62, arm = 6.5265, rise = 17.1 * kPi / 180.0, axis_z = 13.585 + arm;
+    TopoDS_Shape shape = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), hub, 13.585 + 2.0 * arm);
+    const std::vector<Vector3d> ways{Vector3d::UnitX(), Vector3d::UnitY(), -Vector3d::UnitX(),
+                                     -Vector3d::UnitY()};
+    for (const Vector3d& way : ways)
+        shape = fuse(shape, occ_cylinder({0, 0, axis_z},
+                                         std::cos(rise) * way + std::sin(rise) * Vector3d::UnitZ(),
+                                         arm, 31.657 + hub));
+    const auto part = from_occt(shape);
+    const auto params = default_params();
+    const auto s = slice(part, 0.0, params);
+    EXPECT_NEAR(s.axis.params.step_mm, 5.73, 0.05);
+    expect_built_sideways_off_column(s, ways, hub);
+    // Past the side by no more than the clearance the decomposition leaves past Eq. 4's T
+    // (Decompose.cpp): eps, the part's default deflection and a hundredth of a step.
+    const double clearance = s.axis.params.eps_mm +
+                             mas::effective_deflection(part, mas::TessellationParams{}) +
+                             s.axis.params.step_mm / 100.0;
+    for (std::size_t c = 1; c < s.decomposition.components.size(); ++c) {
+        const mas::Component& comp = s.decomposition.components[c];
+        EXPECT_LE(comp.build_direction.dot(comp.base_origin), hub + clearance) << c;
+    }
+    EXPECT_EQ(s.result.stats.colliding_layers, 0);
+    expect_invariants(s, params, "spider, far");
+}
+
 // A column 17.64 mm square and 45.14 tall with an arm as wide off its +X face, 22.87 long,
 // whose top is level with the column's and whose underside slopes up 31.3 degrees from z = 25.57
 // at the column's face to a tip 5.68 thick (a tapered cantilever of the kind tried beside the

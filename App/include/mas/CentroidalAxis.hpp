@@ -54,7 +54,15 @@
 //   one side of the blade's middle plane, is centred 15 degrees round from where it leaves, and
 //   from that point a blade 30.5 degrees off +Y turned -X, whose march caught only its tip; the
 //   rest hung in the hub's layers, 7.8 mm^2.) The first plane of the new branch is at Eq. 4's
-//   location: the lower boundary's extent T along the new direction, plus eps.
+//   location: the lower boundary's extent T along the new direction, plus eps. Where L reaches
+//   past the section on the plane under it by no more than a plane's spacing, over a side of
+//   that section running straight up (as far out on the plane under that, within a hundredth of
+//   a step), what L holds past the side is the first sliver of what turns, its underside begun
+//   between the planes: T is that side's extent, as for a steep limb (below), and the march
+//   takes all of U past it that the stick-out is part of. (Four round arms rising 17.1 degrees
+//   off a hub reached out far on the plane over their first slivers, 1.1 mm past its side in L;
+//   cut past the slivers, the wedge of each root under the cut hung in the hub's layers, 10
+//   mm^2 in one.)
 // - A stick-out that is no turn by its centre (centred near L, or a bridge between lower
 //   regions) yet reaches out past L by more than `distance_threshold` and half L's size wraps
 //   round L or spans past the regions it joins: a hub lying across the neck it stands on makes

@@ -1853,25 +1853,27 @@ private:
                 }
                 return out;
             };
+            // Where `at`, regions of plane j whose extent along `side` is `t`, reaches past the
+            // regions under it by less than a plane's spacing: the extent of those below where
+            // that is a limb's first sliver over a side that runs straight up under it (the plane
+            // below that reaches out as far, within a hundredth of a step): the limb's underside
+            // began between the planes, already past 45 degrees, and the sliver is its start,
+            // not a gentler root. Otherwise `t`.
+            const auto sliver_root = [&](const Regions2& below, std::size_t j, const Vector3d& side,
+                                         double t, double t_below) {
+                const double tolerance = p_.step_mm / 100.0;
+                if (t - t_below <= tolerance || j < 2) return t;
+                const auto [under_that, t_under] = under(below, j - 2, side);
+                return !under_that.empty() && std::abs(t_below - t_under) <= tolerance ? t_below
+                                                                                       : t;
+            };
             // From L, whose extent along `side` is `t`.
             const auto limb_root = [&](const Region2& from, const Vector3d& side, double t) {
                 Regions2 at{from};
                 for (std::size_t j = k - 1; j > 0; --j) {
                     auto [below, t_below] = under(at, j - 1, side);
                     if (below.empty()) break;
-                    if (t - t_below <= spacing) {
-                        // The limb's first sliver, over a side that runs straight up under it (the
-                        // plane below that reaches out as far): the limb's underside began
-                        // between the planes, already past 45 degrees, and the sliver is its
-                        // start, not a gentler root.
-                        const double tolerance = p_.step_mm / 100.0;
-                        if (t - t_below > tolerance && j > 1) {
-                            const auto [under_that, t_under] = under(below, j - 2, side);
-                            if (!under_that.empty() && std::abs(t_below - t_under) <= tolerance)
-                                t = t_below;
-                        }
-                        break;
-                    }
+                    if (t - t_below <= spacing) return sliver_root(below, j, side, t, t_below);
                     t = t_below;
                     at = std::move(below);
                 }
@@ -2036,8 +2038,24 @@ private:
                 if (at_fin) t_max = fin.value();
                 // A steep limb's march starts at its root and takes all of U beyond it that the
                 // crescent is part of: from there the crescent is far ahead of its first plane.
-                const bool at_root = limb && side == sides.front();
-                if (at_root) t_max = root;
+                const bool limb_side = limb && side == sides.front();
+                if (limb_side) t_max = root;
+                // So does a far turn's where what L holds past the plane under it is the first
+                // sliver of what turns, over a side running straight up (sliver_root()): its
+                // march starts at that side. (Four round arms rising 17.1 degrees off a hub,
+                // reaching out far on the plane over their first slivers, 1.1 mm past its side in
+                // L, were cut there, and the wedge of each root under the cut hung in the hub's
+                // layers, 10 mm^2 in one.)
+                bool sliver = false;
+                if (turn && !ledge && !limb && !at_fin && side == sides.front() && k > 1) {
+                    auto [below, t_below] = under({*left}, k - 2, side);
+                    if (!below.empty() && t_max - t_below <= spacing) {
+                        const double t = sliver_root(below, k - 1, side, t_max, t_below);
+                        sliver = t < t_max;
+                        t_max = t;
+                    }
+                }
+                const bool at_root = limb_side || sliver;
                 auto [share, behind] = split_at(std::move(rest), frame, side, t_max);
                 rest = std::move(behind);
                 if (at_root) {
@@ -2068,7 +2086,7 @@ private:
                 // 1.2 mm further a plane, is the body widening: turned along it, its underside
                 // hung in the leg's layers, 45 mm^2 in one.)
                 const bool young =
-                    at_root &&
+                    limb_side &&
                     held <= 2.0 * reach({da}, 0.0, std::numeric_limits<double>::infinity());
                 const double out_of = ledge ? std::min(bump, laid_overhang_mm()) : bump;
                 if (!young && (ledge || at_fin ? !reaches(share, out_of) : !is_far(share, d_share)))

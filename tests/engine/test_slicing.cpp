@@ -1027,6 +1027,64 @@ TEST(Slicing, AColumnGoingOnPastATaperedArmIsNoBend) {
     }
 }
 
+// A pipe (radius 11.70, bore 8.59, 31.37 long) lying along X across a round post (radius 4.49)
+// standing on a foot, the pipe's axis 41.04 over the plate (a pipe on a stand, of the kind tried
+// beside the survey's families). The post's march turns into the pipe's ends, +-X, where its
+// underside leaves the post, then parts round the bore into the pipe's walls, going on up along
+// Z over the post, and the ends' branches are tied to the march's last node, where it parts.
+// With no node of the march past that node, the ends read as bends (Decompose.hpp's
+// bend_plane): cut at the 45-degree planes through the pipe's middle, the post's layers kept the
+// pipe's underside out to them, 50 mm^2 hanging in one at the default deflection. The walls going
+// on along Z on the post's line are the post going on, no bend: each end is cut square to X within
+// a step of the post's side, not turned, and built along its own way, each layer of it within the
+// deflection's strip, and what the post's layers leave hanging (the pipe's underside round the
+// post, where it widens past it along Y) lies within a step of the post's side along X.
+TEST(Slicing, APipeLyingAcrossAPostWhoseBorePartsItsMarchIsNoBend) {
+    const double post = 4.4851, pipe = 11.6969, bore = 8.5852, length = 31.3722,
+                 axis_z = 29.3461 + pipe;
+    TopoDS_Shape shape = fuse(occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), post + 4.0, 3.0),
+                              occ_cylinder({0, 0, 2}, Vector3d::UnitZ(), post, axis_z - 2.0));
+    shape = fuse(shape, occ_cylinder({-length / 2, 0, axis_z}, Vector3d::UnitX(), pipe, length));
+    shape = BRepAlgoAPI_Cut(shape, occ_cylinder({-length / 2 - 1, 0, axis_z}, Vector3d::UnitX(),
+                                                bore, length + 2))
+                .Shape();
+    const auto part = from_occt(shape);
+    const auto s = slice(part, 0.0);
+    const double step = s.axis.params.step_mm;
+    const auto& comps = s.decomposition.components;
+    std::vector<int> ends(2, 0);
+    for (std::size_t c = 1; c < comps.size(); ++c) {
+        const mas::Component& comp = comps[c];
+        if (std::abs(comp.build_direction.x()) < 0.5) continue;
+        SCOPED_TRACE("component " + std::to_string(c));
+        ASSERT_TRUE(comp.build_direction.isApprox(Vector3d::UnitX(), 1e-12) ||
+                    comp.build_direction.isApprox(-Vector3d::UnitX(), 1e-12))
+            << comp.build_direction.transpose();
+        ++ends[comp.build_direction.x() > 0.0 ? 0 : 1];
+        EXPECT_EQ(comp.parent, 0);
+        EXPECT_FALSE(comp.turned);
+        EXPECT_TRUE(comp.base_normal.isApprox(-comp.build_direction, 1e-12));
+        const double cut = comp.build_direction.dot(comp.base_origin);
+        EXPECT_GE(cut, post - kDeflection);
+        EXPECT_LE(cut, post + step + s.axis.params.eps_mm);
+        Vector3d point, normal;
+        EXPECT_FALSE(mas::bend_plane(s.axis, std::size_t(comp.branch), 0.1,
+                                     comp.base_origin + comp.build_direction, point, normal));
+        for (const mas::Layer& l : s.result.layers)
+            if (l.component == int(c))
+                EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * kDeflection + 1e-6);
+    }
+    EXPECT_EQ(ends, std::vector<int>(2, 1));
+    for (const mas::Layer& l : s.result.layers) {
+        if (l.component != 0) continue;
+        for (std::size_t r = 0; r < l.unsupported.size(); ++r)
+            for (const auto& loop : l.unsupported_loops_3d(r))
+                for (const Vector3d& p : loop)
+                    EXPECT_LE(std::abs(p.x()), post + step) << p.transpose();
+    }
+    EXPECT_EQ(s.result.stats.colliding_layers, 0);
+}
+
 TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections) {
     // A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 20
     // degrees round and 8 mm up from one to the next. Cut square to their own lines (those

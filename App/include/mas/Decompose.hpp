@@ -177,7 +177,10 @@
 //   branch links to, the march does not come back onto its straight run's line (a column going
 //   on past a tapered arm, whose sloping root drew its centroids aside below the junction, is no
 //   bend: cut halfway, the column kept the wedge under the arm's root, 3.3 mm^2 hanging in a
-//   layer). Refused (or asked, square_branches, or turn_cuts false), the plane square to D at T.
+//   layer), nor do the branches it parts into there going on along its direction (a pipe lying
+//   across a post, its bore parting the post's march into the pipe's walls: cut halfway, the
+//   post kept the pipe's underside out to the planes, 50 mm^2 hanging in a layer). Refused (or
+//   asked, square_branches, or turn_cuts false), the plane square to D at T.
 // - The whole plane can cut off, on the father's side, material joined only to the child's
 //   piece: an S bracket's middle plate, cut off its lower upright's face, takes with it the top
 //   plate's tail past that face. Such a piece (wholly on the father's side, joined to exactly
@@ -297,7 +300,9 @@ double turned_plane(const CentroidalAxis& axis, std::size_t b, const Eigen::Vect
 // reach, plus a step (a column going on past the branch, a tee, is cut at T), no node of the
 // father's march past the one b links to lies back on its straight run's line (within step /
 // 100 along D: a column going on past the branch as high as it reaches, its centroids drawn
-// towards b only where they held b's root, such as a tapered arm's), every other branch
+// towards b only where they held b's root, such as a tapered arm's), nor does any node of a
+// branch that the march parts into at that node going on along F (a pipe's walls over the bore
+// of a pipe lying across a post), every other branch
 // leaving the father's march past its run (and their sub-branches: the bend's own material where
 // a Z plane cuts it in two) has its centroids the clearance in front of the plane and reaches
 // no further along F than b's sections, plus a step (a valve body going on past a port near its

@@ -657,9 +657,22 @@ bool bend_plane(const CentroidalAxis& axis, std::size_t b, double clearance_mm, 
     // column's centroids below the junction, was taken for one: cut at the 45-degree plane
     // through the corner, the column kept the wedge under the arm's root, its underside leaning
     // 59 degrees off the column's layers, 3.3 mm^2 hanging in one.)
+    const auto on_line = [&](int i) {
+        return std::abs(D.dot(node(i).position) - D.dot(last_straight.position)) <= level;
+    };
     for (auto i = at + 1; i != march.end(); ++i)
-        if (std::abs(D.dot(node(*i).position) - D.dot(last_straight.position)) <= level)
-            return false;
+        if (on_line(*i)) return false;
+    // So is a march that parts at the junction into branches going on along F, back on that
+    // line: a pipe lying across a post, whose bore parts the post's march into the pipe's walls
+    // over the bore, and whose ends, turned from there, were cut at the 45-degree planes through
+    // its middle: the post kept the pipe's underside out to them (50 mm^2 hanging in a layer).
+    for (std::size_t c = 0; c < axis.branches.size(); ++c) {
+        const AxisBranch& on = axis.branches[c];
+        if (c == b || on.parent != fb || junction(axis, on) != start ||
+            on.direction.normalized().dot(F) < 1.0 - 1e-9)
+            continue;
+        if (std::any_of(on.nodes.begin(), on.nodes.end(), on_line)) return false;
+    }
     const auto leaves_bend = [&](std::size_t c) {
         for (int x = int(c); x >= 0; x = axis.branches[std::size_t(x)].parent) {
             const AxisBranch& up = axis.branches[std::size_t(x)];

@@ -79,7 +79,10 @@
 //     reaches out of the section it leaves, however thin along its own direction: its piece
 //     need only reach a thickest layer at slicing's defaults (2 mm, whatever max_layer is
 //     given), or the step if that is less (a clevis head's 3 mm margins past a rod, at a 5.5 mm
-//     step), when every branch cut at that plane turned;
+//     step), past Eq. 4's T, when every branch cut at that plane turned: past the plane, that
+//     less the clearance a plane at T is moved by (a crank's web, 2 mm wider all round than the
+//     shaft it stands on, reached 1.96 mm past the planes round the shaft, and stayed in the
+//     shaft's layers, 47 mm^2 of it hanging in one);
 //   - rests on the build plate, when the father is the root: material on the plate is built up
 //     from it (a nozzle building it sideways would meet the plate), and the root must keep its
 //     footing (a ring standing on its rim, whose axis comes round back to the plate);
@@ -324,7 +327,8 @@ struct DecomposeParams {
     // the split at the one that does is refused.
     bool section_plane_fallback = true;
     // A child must reach at least this far past its splitting plane, mm, and at least one axis
-    // step (a turned branch: a thickest layer at slicing's defaults, or the step if less); a
+    // step (a turned branch: a thickest layer at slicing's defaults, or the step if less, past
+    // Eq. 4's T, less the clearance the plane lies past T); a
     // thinner piece stays in its father. Slicing sets its min_layer here, so that no component
     // is too thin for a layer.
     double min_component_height_mm = 0.0;

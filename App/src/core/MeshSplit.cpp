@@ -750,11 +750,15 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
         const Vec3 dir = branch.direction.normalized();
         // A branch that turned is found by how far it reaches out of the section it leaves,
         // however thin along its own direction: its piece need only hold a thickest layer at
-        // slicing's defaults (Decompose.hpp).
+        // slicing's defaults past Eq. 4's T, less the clearance the cut leaves past T
+        // (Decompose.hpp).
         const bool turned = dir.dot(axis.branches[branch.parent].direction.normalized()) < 0.5;
+        // Eq. 4's T (where the branch's march began) plus the clearance the axis' loops need,
+        // not past the branch's first plane (Decompose.hpp's section plane).
+        const double clearance = axis.params.eps_mm + axis.deflection_mm + step / 100.0;
         const double min_reach =
             std::max(params.min_component_height_mm,
-                     turned ? std::min(step, LayerParams{}.max_layer_mm) : step);
+                     turned ? std::min(step, LayerParams{}.max_layer_mm) - clearance : step);
         const AxisNode& first = axis.nodes[branch.nodes.front()];
         const Vec3 inside = first.material_point();
         const auto kept = std::find_if(params.keep_branches.begin(), params.keep_branches.end(),
@@ -786,9 +790,6 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
             note("built along it, its layers would tilt past max_tilt from +Z");
             continue;
         }
-        // Eq. 4's T (where the branch's march began) plus the clearance the axis' loops need,
-        // not past the branch's first plane (Decompose.hpp's section plane).
-        const double clearance = axis.params.eps_mm + axis.deflection_mm + step / 100.0;
         const double offset =
             std::min(first.slab_start + clearance, first.offset - axis.params.eps_mm);
         ComponentMesh& from = out.components[father];

@@ -1047,8 +1047,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             // deflection inside the solid, and up to the step / 100 the axis simplifies loops by.
             const double deflection =
                 axis.deflection_mm > 0.0 ? axis.deflection_mm : default_deflection;
-            const Decomposer decomposer(
-                axis, params, axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm);
+            const double clearance = axis.params.eps_mm + deflection + 0.01 * axis.params.step_mm;
+            const Decomposer decomposer(axis, params, clearance);
             const std::size_t nb = axis.branches.size();
             // The most a branch's component may hold: four times what it and its sub-branches swept
             // (a split plane short of where the march began adds the material between), plus two
@@ -1317,7 +1317,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 // cannot resolve below. A branch that turned was found by how far its share reaches
                 // out of the section it leaves, however thin it is along its own direction (a 3 mm
                 // margin of a clevis's head past the rod under it): it need only hold a thickest
-                // layer at slicing's defaults. So when every branch cut at this plane turned.
+                // layer at slicing's defaults past Eq. 4's T, less the clearance the plane lies
+                // past T (a crank's web 2 mm wider than its shaft reached 1.96 mm past the plane).
+                // So when every branch cut at this plane turned.
                 const auto turned_off_father = [&](std::size_t c) {
                     const int father_branch = axis.branches[c].parent;
                     return father_branch >= 0 &&
@@ -1328,8 +1330,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     std::max(axis.params.step_mm, params.min_component_height_mm);
                 const double min_height =
                     std::all_of(group.begin(), group.end(), turned_off_father)
-                        ? std::max(std::min(axis.params.step_mm, LayerParams{}.max_layer_mm),
-                                   params.min_component_height_mm)
+                        ? std::max(
+                              std::min(axis.params.step_mm, LayerParams{}.max_layer_mm) - clearance,
+                              params.min_component_height_mm)
                         : step_height;
                 int joins_here = 0;
                 SplitOutcome outcome =

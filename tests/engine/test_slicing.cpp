@@ -954,9 +954,9 @@ TEST(Slicing, ArmsRisingGentlyOffAHubPastTheThresholdAreCutAtItsSide) {
 // 1.1 mm past the hub's side, whose section's sides run straight up under it; on the next, each
 // arm reaches out far (Eq. 3), and the march turns into it from the extent of the section below
 // (Eq. 4's T), past the sliver: the wedge of each arm's root under the cut hung in the hub's
-// layers, 9.6 mm^2 in one. A far turn starts where such a sliver does, as a steep limb's does
-// (CentroidalAxis.cpp): each arm is cut at the hub's side, within the deflection, and built
-// sideways, and no layer hangs past the deflection's strip.
+// layers, 10.0 mm^2 in one (9.5 at the default deflection). A far turn starts where such a sliver
+// does, as a steep limb's does (CentroidalAxis.cpp): each arm is cut at the hub's side, within the
+// deflection, and built sideways, and no layer hangs past the deflection's strip.
 TEST(Slicing, ArmsRisingOffAHubFarAreCutAtItsSideNotPastTheirFirstSlivers) {
     const double hub = 11.62, arm = 6.5265, rise = 17.1 * kPi / 180.0, axis_z = 13.585 + arm;
     TopoDS_Shape shape = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), hub, 13.585 + 2.0 * arm);

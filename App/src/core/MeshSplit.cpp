@@ -802,8 +802,10 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
                 why = "the section plane cannot split it: " + why;
                 return false;
             }
+            // Within a millionth of the part's size (a piece reaching exactly that far falls
+            // short of it by rounding).
             const double reach = highest_along(above, n) - cut;
-            if (reach < min_reach) {
+            if (reach < min_reach - 1e-6 * (1.0 + box.diagonal().norm())) {
                 std::ostringstream text;
                 text << std::setprecision(3) << "its piece reaches " << reach
                      << " mm past the cut, less than " << min_reach;

@@ -524,8 +524,10 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             if (n.dot(vec(props.CentreOfMass()) - point) <= 0.0) continue;
             // A sliver the plane cut off the father's end (the march found it on its last
             // plane) cannot be built on its own: it stays in the father, which builds it on top.
+            // (Within the split's tolerance: a crank's web reaching exactly a thickest layer past
+            // T round its shaft fell short of it by rounding.)
             const double height = height_along(pieces[piece], point, n);
-            if (height < min_height) {
+            if (height < min_height - tol) {
                 std::ostringstream why;
                 why << "its piece reaches only " << height << " mm past the splitting plane, "
                     << "less than " << min_height

@@ -1133,7 +1133,8 @@ TEST(Slicing, ACranksWebWiderThanItsShaftByAThickestLayerIsCutOffRoundIt) {
     EXPECT_EQ(s.result.stats.colliding_layers, 0);
     // What the shaft's layers leave hanging is the web's ring within the square of the planes
     // round the shaft (the lenses at its corners, where the ring is still 2 mm wide, 8.9 mm^2 in
-    // a layer); the margins' layers, each within the deflection's strip.
+    // a layer); the other components' layers (the margins', the arm's, the pin's) each hang
+    // within the deflection's strip.
     for (const mas::Layer& l : s.result.layers) {
         if (l.component == 0) {
             for (std::size_t r = 0; r < l.unsupported.size(); ++r)

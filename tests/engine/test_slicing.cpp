@@ -1070,9 +1070,11 @@ TEST(Slicing, APipeLyingAcrossAPostWhoseBorePartsItsMarchIsNoBend) {
         Vector3d point, normal;
         EXPECT_FALSE(mas::bend_plane(s.axis, std::size_t(comp.branch), 0.1,
                                      comp.base_origin + comp.build_direction, point, normal));
-        for (const mas::Layer& l : s.result.layers)
-            if (l.component == int(c))
+        for (const mas::Layer& l : s.result.layers) {
+            if (l.component == int(c)) {
                 EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * kDeflection + 1e-6);
+            }
+        }
     }
     EXPECT_EQ(ends, std::vector<int>(2, 1));
     for (const mas::Layer& l : s.result.layers) {

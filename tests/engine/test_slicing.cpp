@@ -133,6 +133,25 @@ std::string invalid_argument(const mas::Shape& part, const mas::SlicePartParams&
     return "no error";
 }
 
+// How far past a branch's Eq. 4 T the decomposition cuts (Decompose.hpp): eps, the axis'
+// deflection (the part's default where the axis records none, as for a T measured on a mesh)
+// and a hundredth of the step.
+double decomposition_clearance(const Sliced& s, const mas::Shape& part) {
+    const double deflection = s.axis.deflection_mm > 0.0
+                                  ? s.axis.deflection_mm
+                                  : mas::effective_deflection(part, mas::TessellationParams{});
+    return s.axis.params.eps_mm + deflection + 0.01 * s.axis.params.step_mm;
+}
+
+// The points of the outlines of a layer's unsupported regions, on its lower plane.
+std::vector<Vector3d> unsupported_points(const mas::Layer& l) {
+    std::vector<Vector3d> points;
+    for (std::size_t r = 0; r < l.unsupported.size(); ++r)
+        for (const auto& loop : l.unsupported_loops_3d(r))
+            points.insert(points.end(), loop.begin(), loop.end());
+    return points;
+}
+
 // The unsupported area of every layer, added up, mm^2.
 double total_unsupported(const Sliced& s) {
     double total = 0.0;
@@ -260,9 +279,8 @@ void expect_invariants(const Sliced& s, const mas::SlicePartParams& params, cons
         }
         // The unsupported regions are that area, on the plane the layer is deposited on.
         EXPECT_DOUBLE_EQ(mas::area(l.unsupported), l.unsupported_area_mm2);
-        for (std::size_t k = 0; k < l.unsupported.size(); ++k)
-            for (const auto& loop : l.unsupported_loops_3d(k))
-                for (const Vector3d& p : loop) EXPECT_NEAR(l.lower.signed_distance(p), 0.0, 1e-9);
+        for (const Vector3d& p : unsupported_points(l))
+            EXPECT_NEAR(l.lower.signed_distance(p), 0.0, 1e-9);
         // Paths: inside the region grown by one bead radius, covering all but 1 % of it, apart
         // from the corners no round bead reaches.
         const mas::LayerToolpaths& tp = r.toolpaths[i];
@@ -661,9 +679,7 @@ TEST(Slicing, BladesRoundAHubAreCutSquareToThemselvesJustPastItsSide) {
     // to half that off the blade's middle, where the side lies (spacing / 2)^2 / 24 mm short of
     // the radius.
     ASSERT_EQ(s.axis.deflection_mm, 0.0);
-    const double clearance = s.axis.params.eps_mm +
-                             mas::effective_deflection(part, mas::TessellationParams{}) +
-                             0.01 * step;
+    const double clearance = decomposition_clearance(s, part);
     const double spacing =
         std::max(0.1 * step, 2.0 * (wide + thick / std::cos(35.0 * kPi / 180.0)) / 64.0);
     const double short_of = std::pow(0.5 * spacing, 2) / (2.0 * radius);
@@ -791,12 +807,10 @@ void leaning_branch_is_built_sideways(double degrees, const LeaningBranch& shape
                 continue;
             }
             // The column's: outside its side (less the chords' deflection), short of the cut.
-            for (std::size_t r = 0; r < l.unsupported.size(); ++r)
-                for (const auto& loop : l.unsupported_loops_3d(r))
-                    for (const Vector3d& q : loop) {
-                        EXPECT_GE(q.head<2>().norm(), column - kDeflection - 1e-6);
-                        EXPECT_LE(q.x(), cut + 1e-6);
-                    }
+            for (const Vector3d& q : unsupported_points(l)) {
+                EXPECT_GE(q.head<2>().norm(), column - kDeflection - 1e-6);
+                EXPECT_LE(q.x(), cut + 1e-6);
+            }
         }
     }
     EXPECT_EQ(s.result.stats.colliding_layers, 0);
@@ -973,9 +987,7 @@ TEST(Slicing, ArmsRisingOffAHubFarAreCutAtItsSideNotPastTheirFirstSlivers) {
     expect_built_sideways_off_column(s, ways, hub);
     // Past the side by no more than the clearance the decomposition leaves past Eq. 4's T
     // (Decompose.cpp): eps, the part's default deflection and a hundredth of a step.
-    const double clearance = s.axis.params.eps_mm +
-                             mas::effective_deflection(part, mas::TessellationParams{}) +
-                             s.axis.params.step_mm / 100.0;
+    const double clearance = decomposition_clearance(s, part);
     for (std::size_t c = 1; c < s.decomposition.components.size(); ++c) {
         const mas::Component& comp = s.decomposition.components[c];
         EXPECT_LE(comp.build_direction.dot(comp.base_origin), hub + clearance) << c;
@@ -1079,10 +1091,8 @@ TEST(Slicing, APipeLyingAcrossAPostWhoseBorePartsItsMarchIsNoBend) {
     EXPECT_EQ(ends, std::vector<int>(2, 1));
     for (const mas::Layer& l : s.result.layers) {
         if (l.component != 0) continue;
-        for (std::size_t r = 0; r < l.unsupported.size(); ++r)
-            for (const auto& loop : l.unsupported_loops_3d(r))
-                for (const Vector3d& p : loop)
-                    EXPECT_LE(std::abs(p.x()), post + step) << p.transpose();
+        for (const Vector3d& p : unsupported_points(l))
+            EXPECT_LE(std::abs(p.x()), post + step) << p.transpose();
     }
     EXPECT_EQ(s.result.stats.colliding_layers, 0);
 }
@@ -1113,9 +1123,7 @@ TEST(Slicing, ACranksWebWiderThanItsShaftByAThickestLayerIsCutOffRoundIt) {
     const auto part = from_occt(shape);
     const auto params = default_params();
     const auto s = slice(part, 0.0, params);
-    const double clearance = s.axis.params.eps_mm +
-                             mas::effective_deflection(part, mas::TessellationParams{}) +
-                             s.axis.params.step_mm / 100.0;
+    const double clearance = decomposition_clearance(s, part);
     const std::vector<Vector3d> ways{-Vector3d::UnitX(), Vector3d::UnitY(), -Vector3d::UnitY()};
     std::vector<int> margins(ways.size(), 0);
     for (std::size_t c = 1; c < s.decomposition.components.size(); ++c) {
@@ -1139,12 +1147,10 @@ TEST(Slicing, ACranksWebWiderThanItsShaftByAThickestLayerIsCutOffRoundIt) {
     // within the deflection's strip.
     for (const mas::Layer& l : s.result.layers) {
         if (l.component == 0) {
-            for (std::size_t r = 0; r < l.unsupported.size(); ++r)
-                for (const auto& loop : l.unsupported_loops_3d(r))
-                    for (const Vector3d& p : loop) {
-                        EXPECT_LE(std::abs(p.x()), shaft + clearance) << p.transpose();
-                        EXPECT_LE(std::abs(p.y()), shaft + clearance) << p.transpose();
-                    }
+            for (const Vector3d& p : unsupported_points(l)) {
+                EXPECT_LE(std::abs(p.x()), shaft + clearance) << p.transpose();
+                EXPECT_LE(std::abs(p.y()), shaft + clearance) << p.transpose();
+            }
         } else {
             EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * kDeflection + 1e-6)
                 << l.component;
@@ -1432,9 +1438,7 @@ TEST(Slicing, ArmsOverGussetsOnARoundColumnAreCutPastTheColumn) {
     // The decomposition's clearance for a T measured on a mesh (Decompose.hpp), with the part's
     // default deflection (the axis here records none).
     ASSERT_EQ(s.axis.deflection_mm, 0.0);
-    const double clearance = s.axis.params.eps_mm +
-                             mas::effective_deflection(shape, mas::TessellationParams{}) +
-                             0.01 * s.axis.params.step_mm;
+    const double clearance = decomposition_clearance(s, shape);
     double cut = 0.0;
     for (std::size_t c = 1; c < 3; ++c) {
         SCOPED_TRACE("component " + std::to_string(c));
@@ -1838,9 +1842,7 @@ TEST(Slicing, ATierOverhangingTheTierAMarchTurnedUpOntoTurnsAgain) {
     EXPECT_NEAR(comps[2].base_origin.z(), 60.0, 1e-9);
     // The cut past the second tier's end, by no more than the decomposition's clearance for a
     // T measured on a mesh (Decompose.hpp).
-    const double clearance = s.axis.params.eps_mm +
-                             mas::effective_deflection(shape, mas::TessellationParams{}) +
-                             0.01 * s.axis.params.step_mm;
+    const double clearance = decomposition_clearance(s, shape);
     const double cut = comps[3].base_origin.x();
     EXPECT_GE(cut, 70.0);
     EXPECT_LE(cut, 70.0 + clearance);

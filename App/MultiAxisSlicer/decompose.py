@@ -120,8 +120,10 @@ class Component:
         bounding box); ``base_normal``: its outward unit normal (= -build_direction).
       * ``branch``: the axis branch that made it (0 for the root); ``break_link``: that branch's
         first link (the break, turn or split), -1 for the root.
-      * ``rule``: how it was cut: "root", "planar_face" (a face meeting the paper's three criteria)
-        or "section_plane" (the fallback: the plane where the branch's march started);
+      * ``rule``: how it was cut: "root", "planar_face" (a face meeting the paper's three criteria),
+        "section_plane" (the fallback: the plane where the branch's march started) or "bridge"
+        (cut at a bridge's flat underside where two tracks merge, built along the diagonal half
+        way between the march and the way across the gap: the README's bridges);
         ``turned``: True where that plane was turned square to the branch's own line, which runs
         between the six directions (a blade on a hub 33 degrees off -X), not to its direction.
       * ``volume``: mm³.

@@ -527,9 +527,9 @@ class DecompositionFeature(_EngineFeature):
     Outputs: Shape (a compound of the component solids in tree order: a
     father before its children, the root first), ComponentCount, and per component, in the same
     order, ComponentParents (index of the father, -1 for the root), BuildDirections, BaseOrigins,
-    Rules ("root", "planar_face", "section_plane"), Volumes (mm³), Turned (the cut turned square
-    to the branch's line, or halfway round a bend, the component built along the plane's
-    normal); PartVolume, UsedStep.
+    Rules ("root", "planar_face", "section_plane", "bridge"), Volumes (mm³), Turned (the cut
+    turned square to the branch's line, or halfway round a bend, the component built along the
+    plane's normal); PartVolume, UsedStep.
 
     The ``Component`` objects (``ComponentFeature``) show the solids one by one; they are created
     by ``make_decomposition()`` / ``sync_components()``, never inside a recompute (adding or
@@ -607,7 +607,7 @@ class DecompositionFeature(_EngineFeature):
         _add_property(obj, "App::PropertyVectorList", "BaseOrigins", result,
                       "Each component's base face centroid (mm)", None, _OUTPUT)
         _add_property(obj, "App::PropertyStringList", "Rules", result,
-                      "How each component was cut: root, planar_face or section_plane", None,
+                      "How each component was cut: root, planar_face, section_plane or bridge", None,
                       _OUTPUT)
         _add_property(obj, "App::PropertyFloatList", "Volumes", result,
                       "Each component's volume (mm^3)", None, _OUTPUT)
@@ -747,7 +747,7 @@ class ComponentFeature(_EngineFeature):
         _add_property(obj, "App::PropertyVector", "BaseOrigin", result,
                       "Centroid of the base face it is built from (mm)", None, _OUTPUT)
         _add_property(obj, "App::PropertyString", "Rule", result,
-                      "How it was cut: root, planar_face or section_plane", None, _OUTPUT)
+                      "How it was cut: root, planar_face, section_plane or bridge", None, _OUTPUT)
         _add_property(obj, "App::PropertyVolume", "Volume", result, "Volume", 0.0, _OUTPUT)
         _add_property(obj, "App::PropertyBool", "Turned", result,
                       "Whether its cut was turned square to its branch's line, or halfway round "

@@ -211,7 +211,15 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
         EXPECT_LE(max_tolerance(s), std::max(1e-4, 10.0 * max_tolerance(to_occt(part))));
         sum += precise_volume(s);
         EXPECT_NEAR(c.build_direction.norm(), 1.0, 1e-12);
-        EXPECT_TRUE(c.build_direction.isApprox(-c.base_normal, 1e-12));
+        if (c.rule == Rule::Bridge) {
+            // Half way between -base_normal and a direction of the frame square to it.
+            const Vector3d across = std::sqrt(2.0) * c.build_direction + c.base_normal;
+            EXPECT_NEAR(across.norm(), 1.0, 1e-12);
+            EXPECT_NEAR(across.dot(c.base_normal), 0.0, 1e-12);
+            EXPECT_NEAR(across.cwiseAbs().maxCoeff(), 1.0, 1e-12);
+        } else {
+            EXPECT_TRUE(c.build_direction.isApprox(-c.base_normal, 1e-12));
+        }
         if (i > 0) {
             // The base face lies on the component and touches its father.
             const TopoDS_Shape face = to_occt(c.base_face);
@@ -517,6 +525,84 @@ TEST(Decompose, AKeptBranchStaysInItsFatherSayingWhyAndIsListed) {
                                    " to keep in its father (the axis has 2 branches, 0 its root)");
         }
     }
+}
+
+// The axis' tracks up the two posts merge at the bar across them (branch b merged into the
+// other). Built along Z, the bar's underside between the posts, 34 x 8 mm, would hang in its
+// first layer; cut off at that underside, it is built along the diagonal from the post the march
+// went on up towards the one that merged, each face of it leaning no further than 45 degrees off
+// that way.
+TEST(Decompose, AHandlesBarIsABridgeBuiltAlongADiagonalFromOnePostTowardsTheOther) {
+    const auto part = mas::test::handle_on_plate();
+    const auto axis = axis_of(part, 2.0);
+    int b = -1;
+    for (std::size_t i = 0; i < axis.branches.size(); ++i)
+        if (axis.branches[i].merged_into >= 0) {
+            ASSERT_EQ(b, -1) << "two merges";
+            b = int(i);
+        }
+    ASSERT_GE(b, 1);
+    const double merged_x =
+        axis.nodes[std::size_t(axis.branches[std::size_t(b)].nodes.back())].position.x();
+    const double way = merged_x > 30.0 ? 1.0 : -1.0;  // towards the post that merged
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& bar = d.components[1];
+    EXPECT_EQ(bar.rule, Rule::Bridge);
+    EXPECT_EQ(std::string(mas::to_string(bar.rule)), "bridge");
+    EXPECT_EQ(bar.parent, 0);
+    EXPECT_EQ(bar.branch, b);
+    EXPECT_TRUE(near_box(bar.solid, {5, 6, 35}, {55, 14, 41}));
+    EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {60, 20, 35}));
+    EXPECT_NEAR(bar.volume_mm3, 50.0 * 8.0 * 6.0, 1e-6);
+    EXPECT_TRUE(bar.build_direction.isApprox(Vector3d(way, 0, 1).normalized(), 1e-12));
+    EXPECT_TRUE(bar.base_normal.isApprox(-Vector3d::UnitZ(), 1e-12));
+    // Slicing starts from its lowest point that way: the bar's end over the post it leaves, on
+    // the plane of its underside.
+    EXPECT_NEAR(bar.base_origin.x(), way > 0.0 ? 5.0 : 55.0, 1e-9);
+    EXPECT_NEAR(bar.base_origin.z(), 35.0, 1e-9);
+    EXPECT_TRUE(d.notes.empty());
+    expect_invariants(d, part);
+
+    // Asked to keep it, the bar stays in the root, which says so.
+    mas::DecomposeParams p;
+    p.keep_branches = {{b, "as asked"}};
+    const auto kept = mas::decompose(part, axis, p);
+    ASSERT_EQ(kept.components.size(), 1u);
+    EXPECT_EQ(kept.notes, std::vector<std::string>{"branch " + std::to_string(b) +
+                                                   " (along 0,0,1): as asked; its material stays "
+                                                   "in component 0"});
+    EXPECT_EQ(kept.kept_branches, std::vector<int>{b});
+    // Where walls may lean only 40 degrees, built along the diagonal the underside would lean 45
+    // degrees and the bar's end facing back 45 too: more than half of what hangs along Z (the
+    // underside's 272 mm^2), so it stays.
+    p.keep_branches.clear();
+    p.overhang_angle_deg = 40.0;
+    EXPECT_EQ(mas::decompose(part, axis, p).components.size(), 1u);
+    for (const double bad : {0.0, 90.0, std::nan("")}) {
+        p.overhang_angle_deg = bad;
+        EXPECT_EQ(mas::test::error_of([&] { mas::decompose(part, axis, p); }),
+                  "invalid_argument: decompose: overhang angle must be in (0, 90) degrees, got " +
+                      mas::format_number(bad));
+    }
+}
+
+// A window's ceiling: the wall's tracks either side of it merge over it, and the wall above
+// its ceiling is built along the diagonal, from the side the march went on up.
+TEST(Decompose, AWallOverAWindowIsABridgeCutAtItsCeiling) {
+    const auto part = mas::test::wall_with_window();
+    const auto axis = axis_of(part, 2.0);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& top = d.components[1];
+    EXPECT_EQ(top.rule, Rule::Bridge);
+    EXPECT_TRUE(near_box(top.solid, {0, 0, 27}, {60, 6, 45}));
+    EXPECT_NEAR(top.volume_mm3, 60.0 * 6.0 * 18.0, 1e-6);
+    EXPECT_NEAR(std::abs(top.build_direction.x()), std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(top.build_direction.z(), std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(top.base_origin.x(), top.build_direction.x() > 0.0 ? 0.0 : 60.0, 1e-9);
+    EXPECT_NEAR(top.base_origin.z(), 27.0, 1e-9);
+    expect_invariants(d, part);
 }
 
 TEST(Decompose, AnArmOverAGussetIsCutAtTheColumnsFaceWithTheWeb) {

@@ -179,6 +179,16 @@ Shape arch_with_pendant() {
     return from_occt(fuse(legs, beam));
 }
 
+Shape handle_on_plate() {
+    const TopoDS_Shape posts = fuse(occ_box(5, 6, 5, 8, 8, 30), occ_box(47, 6, 5, 8, 8, 30));
+    return from_occt(fuse(occ_box(0, 0, 0, 60, 20, 5), fuse(posts, occ_box(5, 6, 35, 50, 8, 6))));
+}
+
+Shape wall_with_window() {
+    return from_occt(
+        BRepAlgoAPI_Cut(occ_box(0, 0, 0, 60, 6, 45), occ_box(20, -1, 15, 20, 8, 12)).Shape());
+}
+
 Shape pipe_tee() {
     auto pipe = [](const gp_Ax2& axis, double r, double h) {
         return BRepPrimAPI_MakeCylinder(axis, r, h).Shape();

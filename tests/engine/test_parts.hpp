@@ -52,6 +52,13 @@ Shape two_posts();
 // beam [0,60]x[0,20]x[40,50], block [20,40]x[0,20]x[15,40]. The block first appears at z = 15, in
 // mid-air, and joins the rest only at the beam.
 Shape arch_with_pendant();
+// A handle on a plate: plate [0,60]x[0,20]x[0,5], posts [5,13]x[6,14]x[5,35] and
+// [47,55]x[6,14]x[5,35], a bar [5,55]x[6,14]x[35,41] across their tops (a closed loop, its
+// underside bridging the 34 mm between the posts).
+Shape handle_on_plate();
+// A wall [0,60]x[0,6]x[0,45] standing on its edge, a window [20,40] x [15,27] through it (its
+// ceiling bridging 20 mm).
+Shape wall_with_window();
 // A pipe tee: a pipe of radius 10 with a bore of 8, 60 tall on z = 0 along Z, and a branch of the
 // same pipe reaching +Y from its axis at z = 35, 35 long.
 Shape pipe_tee();

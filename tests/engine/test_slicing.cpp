@@ -2486,6 +2486,33 @@ TEST(Slicing, ABlockHangingUnderABridgeIsSlicedWithItsFirstLayerUnsupported) {
     expect_invariants(s, params, "arch with a pendant", false);
 }
 
+TEST(Slicing, BridgesAreBuiltAlongADiagonalWithEveryLayerSupported) {
+    // A handle's bar across two posts and the wall over a window (test_parts.hpp): built along
+    // Z, the first layer over the gap hung 272 and 120 mm^2 (the bar's underside between the
+    // posts, the window's ceiling). Cut off at the underside (Decompose.hpp), the piece is built
+    // along the diagonal: its underside and its faces towards the gap lean exactly 45 degrees
+    // off that way, and every layer rests on the one before it or on the part below.
+    const auto params = default_params();
+    for (const auto& [name, part] : {std::pair{"handle", mas::test::handle_on_plate()},
+                                     std::pair{"window", mas::test::wall_with_window()}}) {
+        SCOPED_TRACE(name);
+        const auto s = slice(part, 2.0, params);
+        ASSERT_EQ(s.decomposition.components.size(), 2u);
+        const auto& bridge = s.decomposition.components[1];
+        ASSERT_EQ(bridge.rule, mas::Component::SplitRule::Bridge);
+        int layers = 0;
+        for (const auto& l : s.result.layers) {
+            if (l.component != 1) continue;
+            ++layers;
+            EXPECT_TRUE(l.plane.normal.isApprox(bridge.build_direction, 1e-9))
+                << l.plane.normal.transpose();
+        }
+        EXPECT_GT(layers, 0);
+        EXPECT_EQ(s.result.stats.colliding_layers, 0);
+        expect_invariants(s, params, name);
+    }
+}
+
 namespace {
 
 // A wedge layer on a 10 x 10 square layer at z = 1: its footprint reaches 1 mm past the square's

@@ -266,6 +266,21 @@ class TestDecomposeApi(DecomposeTest):
             self.assertAlmostEqual(face.XMax, cut, delta=1e-7)
             self.assertAlmostEqual(d[1].volume, math.pi * 36 * (40 - cut), delta=1e-3)
 
+    def test_a_handles_bar_is_a_bridge_built_along_a_diagonal(self):
+        # Two posts on a plate, a bar across their tops: the bar is cut off at its underside and
+        # built along the diagonal between +Z and the way across the gap (either way along X).
+        handle = Part.makeBox(60, 20, 5).fuse(
+            [Part.makeBox(8, 8, 30, V(5, 6, 5)), Part.makeBox(8, 8, 30, V(47, 6, 5)),
+             Part.makeBox(50, 8, 6, V(5, 6, 35))]).removeSplitter()
+        d = mas.decompose(handle, step=2.0)
+        self.assertEqual([c.rule for c in d], ["root", "bridge"])
+        assert_box(self, d[1].shape, (5, 6, 35), (55, 14, 41))
+        direction = d[1].build_direction
+        self.assertAlmostEqual(abs(direction.x), math.sqrt(0.5), places=12)
+        self.assertAlmostEqual(direction.y, 0.0, places=12)
+        self.assertAlmostEqual(direction.z, math.sqrt(0.5), places=12)
+        self.assertEqual(d.to_dict()["components"][1]["rule"], "bridge")
+
     def test_document_object_and_file_inputs(self):
         folder = tempfile.mkdtemp(prefix="mas_dec_")
         doc = FreeCAD.newDocument("MasDecInputs")

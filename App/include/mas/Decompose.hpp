@@ -205,6 +205,34 @@
 //   split into in its direction, and another line split off its father's): a valve body's ring
 //   broken by three ports' bores at three heights. Cut where the first two tracks parted, the
 //   body's halves each held part of a bore, and neither could deposit it solid (fill_holes).
+// - Bridges (not in the paper, whose six directions cannot build one): where such a merge closes
+//   a gap with a flat underside (a handle's bar across two posts, a portal's lintel, the wall over
+//   a window), that underside hangs over the gap in the first layer along D: 272 mm^2 under a
+//   bar 8 mm wide across 34 mm, and no order of components or direction of the six avoids it
+//   (built sideways from one post, the bar's last layers close the gap against the other's, where
+//   the nozzle cannot reach). Branch b's track having merged into m's, both marching along D in
+//   one component built along D, the component is split by the plane of its lowest face facing
+//   -D within two steps past b's last node, over the gap (seen along D, the face's box meets the
+//   segment from m's node nearest that plane to b's last node), and what lies past the plane (one
+//   solid, the father left one solid and as tall as a step, as for any split) becomes b's child,
+//   SplitRule::Bridge, built along the diagonal d = (D + g) / sqrt 2, g the frame's direction
+//   square to D nearest the gap's, either way: its underside, and its faces square to g, then
+//   lean exactly 45 degrees off d, which slicing's layers lay at the default overhang angle (a
+//   layer's allowance is its thickness x tan 45), and the nozzle, along d, stays clear of the
+//   father's top beside the layer (its cone's lower side rises 15 degrees from its tip, 3.5 mm
+//   over the deposit point at the defaults). It is kept only where, built along d, at most half
+//   of the piece's surface leaning past DecomposeParams::overhang_angle_deg overhangs that
+//   leaned so built along D (meshed at the part's default deflection, its faces off the plane;
+//   on the plane, its underside less what rests on the father, an OCCT common of the two's faces
+//   there); of the two ways, the one leaving less, the way from m's track towards b's where
+//   alike. Its base plane lies square to d through its lowest point that way, on the splitting
+//   plane (base_origin; base_normal is -D, the splitting plane's). Bridges are cut the lowest
+//   first (two windows side by side: cut at the higher one first, the band under it, holding the
+//   lower one's ceiling, was thinner than a step and stayed). A bridge is not cut where b is
+//   asked to stay in its father (keep_branches), where a component already cut off the father
+//   has its base across the plane, or on a round underside (a bore's ceiling, an arch's round
+//   intrados), which no plane's face spans. The father's children whose bases lie past the plane
+//   become the bridge's. A mesh (decompose_mesh, SlicePart.hpp) has no faces: it gets no bridge.
 // - Nor does a branch in its father's direction where the father's section split and every
 //   other branch of that split ended on the plane it began on (one node, no sub-branches): a
 //   sliver beside it, thinner than a step (the far end of a port another branch took, left under
@@ -350,6 +378,9 @@ struct DecomposeParams {
     // False: no section plane is turned square to a branch's line, as every branch were in
     // square_branches (what a FreeCAD document saved before the turned cuts keeps).
     bool turn_cuts = true;
+    // Slicing's overhang angle (LayerParams::overhang_angle_deg), degrees in (0, 90): what of a
+    // bridge's piece overhangs built along a direction (bridges, above). Slicing sets its own.
+    double overhang_angle_deg = 45.0;
 };
 
 struct Component {
@@ -357,14 +388,18 @@ struct Component {
         Root,          // the part's base component (what remains after every split)
         PlanarFace,    // cut at the plane of a face meeting the three criteria
         SectionPlane,  // fallback: cut at the plane where the branch's march started
+        Bridge,        // a bridge's piece, cut at its underside, built along a diagonal (above)
     };
     Shape solid;      // one closed solid
     int parent = -1;  // index of the father component, -1 for the root
-    Eigen::Vector3d build_direction = Eigen::Vector3d::UnitZ();  // unit; reverse of base_normal
+    // Unit; the reverse of base_normal, but for a bridge's piece (SplitRule::Bridge), built along
+    // a diagonal half way between -base_normal and the way across its gap.
+    Eigen::Vector3d build_direction = Eigen::Vector3d::UnitZ();
     bool has_base_face = false;  // false for the root (it stands on the build plate)
     Shape base_face;             // the child's planar face on the splitting plane; null for root
-    // A point on the base face (its centroid) and its outward unit normal, mm. For the root: the
-    // centre of the bottom of its bounding box and -build_direction.
+    // A point on the base face (its centroid; for a bridge's piece, its lowest point along
+    // build_direction, which slicing starts from) and its outward unit normal, mm. For the root:
+    // the centre of the bottom of its bounding box and -build_direction.
     Eigen::Vector3d base_origin = Eigen::Vector3d::Zero();
     Eigen::Vector3d base_normal = -Eigen::Vector3d::UnitZ();
     int branch = -1;      // the axis branch that made this component (the root's: 0)
@@ -376,7 +411,7 @@ struct Component {
     double volume_mm3 = 0.0;
 };
 
-// "root", "planar_face", "section_plane": the names the CLI and the Python API use.
+// "root", "planar_face", "section_plane", "bridge": the names the CLI and the Python API use.
 const char* to_string(Component::SplitRule rule);
 
 struct Decomposition {

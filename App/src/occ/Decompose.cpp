@@ -5,6 +5,7 @@
 #include <BOPTools_AlgoTools.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
@@ -16,6 +17,7 @@
 #include <BRepClass_FaceClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
@@ -33,6 +35,7 @@
 #include <TopTools_ListOfShape.hxx>
 #include <TopTools_ShapeMapHasher.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
 #include <algorithm>
@@ -656,6 +659,63 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
     }
 }
 
+// `shape`'s planar faces with outward normal `n` on the plane n.x = c (within tol).
+TopoDS_Compound faces_on_plane(const TopoDS_Shape& shape, const Vector3d& n, double c, double tol) {
+    BRep_Builder builder;
+    TopoDS_Compound out;
+    builder.MakeCompound(out);
+    for (TopExp_Explorer x(shape, TopAbs_FACE); x.More(); x.Next()) {
+        PlanarFace pf;
+        if (planar(TopoDS::Face(x.Current()), pf) && pf.normal.dot(n) >= 1.0 - 1e-9 &&
+            std::abs(n.dot(pf.point) - c) <= tol)
+            builder.Add(out, pf.face);
+    }
+    return out;
+}
+
+double area_of(const TopoDS_Shape& s) {
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(s, props);
+    return props.Mass();
+}
+
+// What of a bridge's piece hangs on its splitting plane (normal D at offset s): its faces there,
+// facing -D, less what they share with its father's faces there, facing +D (an OCCT common of
+// the coplanar faces: seams removed, the piece's underside is one face with what rests on the
+// father, and a mesh of it need not part them).
+double hanging_on_plane(const TopoDS_Shape& piece, const TopoDS_Shape& father, const Vector3d& D,
+                        double s, double tol) {
+    const TopoDS_Compound under = faces_on_plane(piece, -D, -s, tol);
+    const TopoDS_Compound top = faces_on_plane(father, D, s, tol);
+    const double all = area_of(under);
+    BRepAlgoAPI_Common common(under, top);
+    if (!common.IsDone() || common.HasErrors())
+        throw Standard_Failure("the common of a bridge's underside with its father's top failed");
+    return std::max(0.0, all - area_of(common.Shape()));
+}
+
+// The area of a bridge's piece that overhangs built along the unit `d`: of its meshed surface off
+// the splitting plane (normal D at offset s), the triangles leaning out from d past
+// `overhang_deg` (outward normal n with n.d < -sin(overhang)), and `hanging` (its underside on the
+// plane that rests on nothing) where that leans so too. A face leaning exactly that far is
+// supported (slicing's allowance is thickness x tan(overhang)): a millionth of slack.
+double overhang_area(const TriangleMesh& m, const Vector3d& d, double overhang_deg,
+                     const Vector3d& D, double s, double tol, double hanging) {
+    const double limit = -std::sin(overhang_deg * kPi / 180.0) - 1e-6;
+    double area = -D.dot(d) < limit ? hanging : 0.0;
+    for (const Eigen::Vector3i& f : m.triangles) {
+        const Vector3d &a = m.vertices[std::size_t(f[0])], &b = m.vertices[std::size_t(f[1])],
+                       &c = m.vertices[std::size_t(f[2])];
+        if (std::abs(D.dot(a) - s) <= tol && std::abs(D.dot(b) - s) <= tol &&
+            std::abs(D.dot(c) - s) <= tol)
+            continue;
+        const Vector3d n = (b - a).cross(c - a);
+        const double twice = n.norm();
+        if (twice > 0.0 && n.dot(d) / twice < limit) area += 0.5 * twice;
+    }
+    return area;
+}
+
 void check_params(const DecomposeParams& p) {
     if (!(p.face_angle_deg >= 0.0 && p.face_angle_deg < 90.0))
         throw Error(ErrorCode::InvalidArgument, "decompose: face angle must be in [0, 90) degrees");
@@ -672,6 +732,10 @@ void check_params(const DecomposeParams& p) {
         throw Error(ErrorCode::InvalidArgument,
                     "decompose: max_tilt must be in [90, 180] degrees, got " +
                         format_number(p.max_tilt_deg));
+    if (!(p.overhang_angle_deg > 0.0 && p.overhang_angle_deg < 90.0))
+        throw Error(ErrorCode::InvalidArgument,
+                    "decompose: overhang angle must be in (0, 90) degrees, got " +
+                        format_number(p.overhang_angle_deg));
 }
 
 struct Work {
@@ -1420,6 +1484,207 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 }
                 if (again) --b;  // once more at the section plane (b > 0: the root never splits)
             }
+
+            // Bridges (Decompose.hpp): where branch b's track merged into m's, both marching
+            // along D in one component built along D, over a flat underside spanning the gap.
+            // The lowest first along D: a piece cut off at a higher one would leave the band
+            // under it, with the lower bridge, too thin to cut off (two windows side by side).
+            std::vector<std::size_t> merged;
+            for (std::size_t b = 1; b < nb; ++b)
+                if (axis.branches[b].merged_into >= 0 && !axis.branches[b].nodes.empty())
+                    merged.push_back(b);
+            const auto last_along = [&](std::size_t b) {
+                const AxisBranch& br = axis.branches[b];
+                return br.direction.normalized().dot(
+                    axis.nodes[std::size_t(br.nodes.back())].position);
+            };
+            std::stable_sort(merged.begin(), merged.end(), [&](std::size_t x, std::size_t y) {
+                return last_along(x) < last_along(y);
+            });
+            for (const std::size_t b : merged) {
+                const AxisBranch& br = axis.branches[b];
+                const std::size_t m = std::size_t(br.merged_into);
+                const Vector3d D = br.direction.normalized();
+                const int h = holder[b];
+                if (h < 0 || h != holder[m] || axis.branches[m].nodes.empty() ||
+                    !axis.branches[m].direction.normalized().isApprox(D, 1e-9) ||
+                    work[std::size_t(h)].c.branch == int(b) ||
+                    !work[std::size_t(h)].c.build_direction.isApprox(D, 1e-9))
+                    continue;
+                progress.check();
+                // The gap: from m's node on the plane of b's last node, or the nearest to it, to
+                // b's, square to D, along the nearest of the frame's directions square to D.
+                const Vector3d pb = axis.nodes[std::size_t(br.nodes.back())].position;
+                const double sb = D.dot(pb);
+                int pm = -1;
+                for (const int n : axis.branches[m].nodes)
+                    if (pm < 0 || std::abs(D.dot(axis.nodes[std::size_t(n)].position) - sb) <
+                                      std::abs(D.dot(axis.nodes[std::size_t(pm)].position) - sb))
+                        pm = n;
+                Vector3d v = pb - axis.nodes[std::size_t(pm)].position;
+                v -= D * D.dot(v);
+                if (!(v.norm() > axis.params.step_mm)) continue;
+                Vector3d g = Vector3d::Zero();
+                for (int axis_k = 0; axis_k < 3; ++axis_k) {
+                    const Vector3d e = Vector3d::Unit(axis_k);
+                    const Vector3d w = e - D * D.dot(e);
+                    if (w.norm() < 0.5) continue;
+                    const Vector3d way =
+                        v.dot(w) >= 0.0 ? w.normalized() : Vector3d(-w.normalized());
+                    if (g.isZero() || way.dot(v) > g.dot(v)) g = way;
+                }
+                // The splitting plane: the lowest face of the component facing -D within two steps
+                // past b's last node, flat, over the gap (its box, seen along D, meets the
+                // segment between the two nodes).
+                const TopoDS_Shape& fs = work[std::size_t(h)].solid;
+                const Vector3d pa = pb - v;
+                std::optional<double> s;
+                for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {
+                    PlanarFace pf;
+                    if (!planar(TopoDS::Face(x.Current()), pf) || pf.normal.dot(-D) < 1.0 - 1e-9)
+                        continue;
+                    const double sf = D.dot(pf.point);
+                    if (sf <= sb + plane_tol || sf > sb + 2.0 * axis.params.step_mm) continue;
+                    if (s && sf >= *s) continue;
+                    Eigen::AlignedBox3d fb = bounds_of(pf.face);
+                    fb.min().array() -= plane_tol;
+                    fb.max().array() += plane_tol;
+                    bool over = false;
+                    for (int i = 0; i <= 64 && !over; ++i) {
+                        Vector3d q = pa + (pb - pa) * (double(i) / 64.0);
+                        q += D * (sf - D.dot(q));
+                        over = fb.contains(q);
+                    }
+                    if (over) s = sf;
+                }
+                if (!s) continue;
+                // A point in the bridge's material: of the nodes marched along D on the planes
+                // past it (m's, or its sub-branches' where m split again), the nearest to the
+                // middle of the gap.
+                const Vector3d middle = 0.5 * (pa + pb) + D * (*s - sb);
+                int past = -1;
+                for (std::size_t n = 0; n < axis.nodes.size(); ++n) {
+                    const AxisNode& node = axis.nodes[n];
+                    const double sn = D.dot(node.position);
+                    if (node.branch < 0 || sn <= *s + plane_tol ||
+                        sn > *s + 2.0 * axis.params.step_mm ||
+                        !axis.branches[std::size_t(node.branch)].direction.normalized().isApprox(
+                            D, 1e-9))
+                        continue;
+                    if (past < 0 || (node.position - middle).norm() <
+                                        (axis.nodes[std::size_t(past)].position - middle).norm())
+                        past = int(n);
+                }
+                if (past < 0) continue;
+                // No component already cut off the father may straddle the plane.
+                bool straddles = false;
+                for (const Work& w : work) {
+                    if (w.c.parent != h || !w.c.has_base_face) continue;
+                    double lo, hi;
+                    range_along(bounds_of(occ::occt(w.c.base_face)), D, lo, hi);
+                    straddles = straddles || (lo < *s - plane_tol && hi > *s + plane_tol);
+                }
+                if (straddles) continue;
+                const Component& fc = work[std::size_t(h)].c;
+                Footing footing;
+                footing.root = !fc.has_base_face;
+                footing.plate_z = box.min().z();
+                if (fc.has_base_face) footing.base = TopoDS::Face(occ::occt(fc.base_face));
+                footing.normal = fc.base_normal;
+                footing.tol = std::max(plane_tol, axis.params.eps_mm);
+                const double step_height =
+                    std::max(axis.params.step_mm, params.min_component_height_mm);
+                std::vector<Child> children;
+                TopoDS_Shape father_new;
+                const Vector3d inner = axis.nodes[std::size_t(past)].material_point();
+                if (split_by_plane(fs, footing, pb + D * (*s - sb), D, {inner}, step_height,
+                                   {std::numeric_limits<double>::infinity()}, mesh, progress,
+                                   children, father_new, nullptr) != SplitOutcome::Split ||
+                    children.front().solid.IsNull())
+                    continue;
+                if (fc.has_base_face &&
+                    height_along(father_new, fc.base_origin, fc.build_direction) < step_height)
+                    continue;
+                // Built along the diagonal, D + or - g, where that leaves at most half of what
+                // overhangs built along D; the way with less, from m towards b where alike. (A
+                // piece OCCT cannot mesh closed, or whose underside it cannot compare with its
+                // father's top, stays in the father.)
+                TriangleMesh piece;
+                double hanging = 0.0;
+                const double on_plane = 10.0 * plane_tol;
+                try {
+                    piece = occ::tessellate_solid(children.front().solid, default_deflection,
+                                                  TessellationParams{}.angular_deflection_rad,
+                                                  "a bridge's piece");
+                    hanging = hanging_on_plane(children.front().solid, father_new, D, *s, on_plane);
+                } catch (const Error&) {
+                    continue;
+                } catch (const Standard_Failure&) {
+                    continue;
+                }
+                const auto overhang = [&](const Vector3d& way) {
+                    return overhang_area(piece, way, params.overhang_angle_deg, D, *s, on_plane,
+                                         hanging);
+                };
+                const double along_d = overhang(D);
+                Vector3d d = Vector3d::Zero();
+                double least = 0.5 * along_d;
+                for (const Vector3d& way : {g, Vector3d(-g)}) {
+                    const Vector3d dw = (D + way).normalized();
+                    if (tilt_from_plate_deg(to_world * dw) > params.max_tilt_deg + 1e-9) continue;
+                    const double a = overhang(dw);
+                    if (d.isZero() ? a <= least : a < least - 1e-9 * (1.0 + least)) {
+                        d = dw;
+                        least = a;
+                    }
+                }
+                if (d.isZero() || !(along_d > 0.0)) continue;
+                // Asked to stay in its father (once it would be cut): said so, as for any branch.
+                if (const KeptBranch* k = asked_to_keep(b)) {
+                    if (kept_by_caller(b)) kept_asked.insert(int(b));
+                    note(b, k->why, h);
+                    continue;
+                }
+                // Its base plane, square to d through its lowest point that way, which lies on
+                // the splitting plane (where the two planes meet) so that the base face is on it.
+                double lowest = std::numeric_limits<double>::infinity();
+                Vector3d at = Vector3d::Zero();
+                for (const Vector3d& q : piece.vertices)
+                    if (d.dot(q) < lowest) {
+                        lowest = d.dot(q);
+                        at = q;
+                    }
+                // at + a (D - w), w = sqrt(2) d - D the way along the gap: D.(..) = s, and d.(..)
+                // stays d.at.
+                const double a = *s - D.dot(at);
+                const Vector3d origin = at + a * (2.0 * D - std::sqrt(2.0) * d);
+                if (kept) kept->forget(work[std::size_t(h)].solid);
+                work[std::size_t(h)].solid = father_new;
+                Work child;
+                child.solid = children.front().solid;
+                child.c.parent = h;
+                child.c.branch = int(b);
+                child.c.break_link = br.first_link;
+                child.c.rule = Component::SplitRule::Bridge;
+                child.c.has_base_face = true;
+                child.c.base_face = occ::wrap(children.front().base);
+                child.c.base_origin = origin;
+                child.c.base_normal = -D;
+                child.c.build_direction = d;
+                // Right after its father (tree order), the father's children resting on what it
+                // took now its own.
+                const int to = h + 1;
+                for (Work& w : work)
+                    if (w.c.parent >= to) ++w.c.parent;
+                for (int& x : holder)
+                    if (x >= to) ++x;
+                work.insert(work.begin() + to, child);
+                for (std::size_t i = std::size_t(to) + 1; i < work.size(); ++i)
+                    if (work[i].c.parent == h && work[i].c.has_base_face &&
+                        D.dot(work[i].c.base_origin) > *s + plane_tol)
+                        work[i].c.parent = to;
+                holder[b] = to;
+            }
         } catch (const Standard_Failure& e) {
             throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));
         }
@@ -1446,7 +1711,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
         try {
             for (const auto& w : work) {
                 if (joins == 0) break;
-                if (!w.c.has_base_face) continue;
+                // A bridge's piece lies in front of the base plane through its lowest point.
+                if (!w.c.has_base_face || w.c.rule == Component::SplitRule::Bridge) continue;
                 double lo, hi;
                 range_along(bounds_of(w.solid), w.c.build_direction, lo, hi);
                 const double tol = 1e-6 * (1.0 + (hi - lo));
@@ -1523,6 +1789,8 @@ const char* to_string(Component::SplitRule rule) {
             return "planar_face";
         case Component::SplitRule::SectionPlane:
             return "section_plane";
+        case Component::SplitRule::Bridge:
+            return "bridge";
     }
     return "unknown";
 }

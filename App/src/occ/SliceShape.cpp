@@ -202,6 +202,7 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
     // The decomposition's parameters with the branches a round keeps and squares besides.
     const auto asked = [&](const std::vector<KeptBranch>& keep, const std::vector<int>& square) {
         DecomposeParams p = decompose_params;
+        p.overhang_angle_deg = params.layers.overhang_angle_deg;
         p.keep_branches.insert(p.keep_branches.end(), keep.begin(), keep.end());
         p.square_branches.insert(p.square_branches.end(), square.begin(), square.end());
         return p;

@@ -211,8 +211,9 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
         EXPECT_LE(max_tolerance(s), std::max(1e-4, 10.0 * max_tolerance(to_occt(part))));
         sum += precise_volume(s);
         EXPECT_NEAR(c.build_direction.norm(), 1.0, 1e-12);
-        if (c.rule == Rule::Bridge) {
-            // Half way between -base_normal and a direction of the frame square to it.
+        if (c.rule == Rule::Bridge && !c.build_direction.isApprox(-c.base_normal, 1e-12)) {
+            // Starting at its underside: half way between -base_normal and a direction of the
+            // frame square to it.
             const Vector3d across = std::sqrt(2.0) * c.build_direction + c.base_normal;
             EXPECT_NEAR(across.norm(), 1.0, 1e-12);
             EXPECT_NEAR(across.dot(c.base_normal), 0.0, 1e-12);
@@ -531,7 +532,8 @@ TEST(Decompose, AKeptBranchStaysInItsFatherSayingWhyAndIsListed) {
 // other). Built along Z, the bar's underside between the posts, 34 x 8 mm, would hang in its
 // first layer; cut off at that underside, it is built along the diagonal from the post the march
 // went on up towards the one that merged, each face of it leaning no further than 45 degrees off
-// that way.
+// that way. The wedge of the bar's end behind the plane square to the diagonal through the
+// corner of the bar's top goes to the root, on whose post it rests: the bar's layers start whole.
 TEST(Decompose, AHandlesBarIsABridgeBuiltAlongADiagonalFromOnePostTowardsTheOther) {
     const auto part = mas::test::handle_on_plate();
     const auto axis = axis_of(part, 2.0);
@@ -552,15 +554,18 @@ TEST(Decompose, AHandlesBarIsABridgeBuiltAlongADiagonalFromOnePostTowardsTheOthe
     EXPECT_EQ(std::string(mas::to_string(bar.rule)), "bridge");
     EXPECT_EQ(bar.parent, 0);
     EXPECT_EQ(bar.branch, b);
+    const Vector3d diagonal = Vector3d(way, 0, 1).normalized();
+    EXPECT_TRUE(bar.build_direction.isApprox(diagonal, 1e-12));
+    EXPECT_TRUE(bar.base_normal.isApprox(-diagonal, 1e-12));
+    // The bar less the 6 x 6 / 2 x 8 mm^3 wedge over the post it leaves, its base face the
+    // wedge's slope, from the bar's top corner down to its underside.
     EXPECT_TRUE(near_box(bar.solid, {5, 6, 35}, {55, 14, 41}));
-    EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {60, 20, 35}));
-    EXPECT_NEAR(bar.volume_mm3, 50.0 * 8.0 * 6.0, 1e-6);
-    EXPECT_TRUE(bar.build_direction.isApprox(Vector3d(way, 0, 1).normalized(), 1e-12));
-    EXPECT_TRUE(bar.base_normal.isApprox(-Vector3d::UnitZ(), 1e-12));
-    // Slicing starts from its lowest point that way: the bar's end over the post it leaves, on
-    // the plane of its underside.
-    EXPECT_NEAR(bar.base_origin.x(), way > 0.0 ? 5.0 : 55.0, 1e-9);
-    EXPECT_NEAR(bar.base_origin.z(), 35.0, 1e-9);
+    EXPECT_NEAR(bar.volume_mm3, 50.0 * 8.0 * 6.0 - 144.0, 1e-6);
+    EXPECT_TRUE(bar.base_origin.isApprox(Vector3d(way > 0.0 ? 8.0 : 52.0, 10, 38), 1e-9))
+        << bar.base_origin.transpose();
+    EXPECT_TRUE(near_box(d.components[0].solid, {0, 0, 0}, {60, 20, 41}));
+    EXPECT_NEAR(d.components[0].volume_mm3, 60.0 * 20.0 * 5.0 + 2.0 * 8.0 * 8.0 * 30.0 + 144.0,
+                1e-6);
     EXPECT_TRUE(d.notes.empty());
     expect_invariants(d, part);
 
@@ -588,7 +593,8 @@ TEST(Decompose, AHandlesBarIsABridgeBuiltAlongADiagonalFromOnePostTowardsTheOthe
 }
 
 // A window's ceiling: the wall's tracks either side of it merge over it, and the wall above
-// its ceiling is built along the diagonal, from the side the march went on up.
+// its ceiling is built along the diagonal, from the side the march went on up; the 18 x 18 / 2
+// x 6 mm^3 wedge at its start, over the jamb there, goes to the root.
 TEST(Decompose, AWallOverAWindowIsABridgeCutAtItsCeiling) {
     const auto part = mas::test::wall_with_window();
     const auto axis = axis_of(part, 2.0);
@@ -597,11 +603,14 @@ TEST(Decompose, AWallOverAWindowIsABridgeCutAtItsCeiling) {
     const auto& top = d.components[1];
     EXPECT_EQ(top.rule, Rule::Bridge);
     EXPECT_TRUE(near_box(top.solid, {0, 0, 27}, {60, 6, 45}));
-    EXPECT_NEAR(top.volume_mm3, 60.0 * 6.0 * 18.0, 1e-6);
+    EXPECT_NEAR(top.volume_mm3, 60.0 * 6.0 * 18.0 - 972.0, 1e-6);
     EXPECT_NEAR(std::abs(top.build_direction.x()), std::sqrt(0.5), 1e-12);
     EXPECT_NEAR(top.build_direction.z(), std::sqrt(0.5), 1e-12);
-    EXPECT_NEAR(top.base_origin.x(), top.build_direction.x() > 0.0 ? 0.0 : 60.0, 1e-9);
-    EXPECT_NEAR(top.base_origin.z(), 27.0, 1e-9);
+    const bool rightwards = top.build_direction.x() > 0.0;
+    EXPECT_TRUE(top.base_origin.isApprox(Vector3d(rightwards ? 9.0 : 51.0, 3, 36), 1e-9))
+        << top.base_origin.transpose();
+    EXPECT_NEAR(d.components[0].volume_mm3, 60.0 * 6.0 * 45.0 - 20.0 * 6.0 * 12.0 - 6480.0 + 972.0,
+                1e-6);
     expect_invariants(d, part);
 }
 

@@ -225,8 +225,18 @@
 //   leaned so built along D (meshed at the part's default deflection, its faces off the plane;
 //   on the plane, its underside less what rests on the father, an OCCT common of the two's faces
 //   there); of the two ways, the one leaving less, the way from m's track towards b's where
-//   alike. Its base plane lies square to d through its lowest point that way, on the splitting
-//   plane (base_origin; base_normal is -D, the splitting plane's). Bridges are cut the lowest
+//   alike. Built from its lowest point along d, its first layers would be slivers growing from an
+//   edge, far past the volumetric bound (0.01 mm^2 the first of a handle's bar): so the wedge of
+//   it behind the plane square to d through the lowest point that way of its top (its faces
+//   facing D), or of what of its underside hangs, or of a face of it leaning past the overhang
+//   angle off D, whichever comes first, goes back to the father, on whose top it rests (its face
+//   on that plane faces up, which the father's layers lay), and the piece starts there, its base
+//   face on that plane (base_normal -d). The wedge must be one solid, rest wholly on the
+//   father's top and lean nowhere past the overhang angle off D, and the father with it and the
+//   piece without it must mesh closed (a plane through another window's corner left the piece an
+//   edge four triangles shared); else the piece stays whole, its base plane square to d through
+//   its lowest point, on the splitting plane (base_origin; base_normal -D, the splitting plane's).
+//   Bridges are cut the lowest
 //   first (two windows side by side: cut at the higher one first, the band under it, holding the
 //   lower one's ceiling, was thinner than a step and stayed). A bridge is not cut where b is
 //   asked to stay in its father (keep_branches), where a component already cut off the father
@@ -392,14 +402,15 @@ struct Component {
     };
     Shape solid;      // one closed solid
     int parent = -1;  // index of the father component, -1 for the root
-    // Unit; the reverse of base_normal, but for a bridge's piece (SplitRule::Bridge), built along
-    // a diagonal half way between -base_normal and the way across its gap.
+    // Unit; the reverse of base_normal, but for a bridge's piece (SplitRule::Bridge) starting at
+    // its underside, built along a diagonal half way between -base_normal and the way across its
+    // gap.
     Eigen::Vector3d build_direction = Eigen::Vector3d::UnitZ();
     bool has_base_face = false;  // false for the root (it stands on the build plate)
     Shape base_face;             // the child's planar face on the splitting plane; null for root
-    // A point on the base face (its centroid; for a bridge's piece, its lowest point along
-    // build_direction, which slicing starts from) and its outward unit normal, mm. For the root:
-    // the centre of the bottom of its bounding box and -build_direction.
+    // A point on the base face (its centroid; for a bridge's piece starting at its underside, its
+    // lowest point along build_direction, which slicing starts from) and its outward unit normal,
+    // mm. For the root: the centre of the bottom of its bounding box and -build_direction.
     Eigen::Vector3d base_origin = Eigen::Vector3d::Zero();
     Eigen::Vector3d base_normal = -Eigen::Vector3d::UnitZ();
     int branch = -1;      // the axis branch that made this component (the root's: 0)

@@ -5,7 +5,7 @@
 #include <BOPTools_AlgoTools.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
-#include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
@@ -680,18 +680,15 @@ double area_of(const TopoDS_Shape& s) {
 }
 
 // What of a bridge's piece hangs on its splitting plane (normal D at offset s): its faces there,
-// facing -D, less what they share with its father's faces there, facing +D (an OCCT common of
-// the coplanar faces: seams removed, the piece's underside is one face with what rests on the
-// father, and a mesh of it need not part them).
-double hanging_on_plane(const TopoDS_Shape& piece, const TopoDS_Shape& father, const Vector3d& D,
-                        double s, double tol) {
-    const TopoDS_Compound under = faces_on_plane(piece, -D, -s, tol);
-    const TopoDS_Compound top = faces_on_plane(father, D, s, tol);
-    const double all = area_of(under);
-    BRepAlgoAPI_Common common(under, top);
-    if (!common.IsDone() || common.HasErrors())
-        throw Standard_Failure("the common of a bridge's underside with its father's top failed");
-    return std::max(0.0, all - area_of(common.Shape()));
+// facing -D, less its father's faces there, facing +D (an OCCT cut of the coplanar faces: seams
+// removed, the piece's underside is one face with what rests on the father, and a mesh of it need
+// not part them).
+TopoDS_Shape hanging_on_plane(const TopoDS_Shape& piece, const TopoDS_Shape& father,
+                              const Vector3d& D, double s, double tol) {
+    BRepAlgoAPI_Cut cut(faces_on_plane(piece, -D, -s, tol), faces_on_plane(father, D, s, tol));
+    if (!cut.IsDone() || cut.HasErrors())
+        throw Standard_Failure("the cut of a bridge's underside by its father's top failed");
+    return cut.Shape();
 }
 
 // The area of a bridge's piece that overhangs built along the unit `d`: of its meshed surface off
@@ -1610,13 +1607,15 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 // piece OCCT cannot mesh closed, or whose underside it cannot compare with its
                 // father's top, stays in the father.)
                 TriangleMesh piece;
+                TopoDS_Shape hangs;
                 double hanging = 0.0;
                 const double on_plane = 10.0 * plane_tol;
                 try {
                     piece = occ::tessellate_solid(children.front().solid, default_deflection,
                                                   TessellationParams{}.angular_deflection_rad,
                                                   "a bridge's piece");
-                    hanging = hanging_on_plane(children.front().solid, father_new, D, *s, on_plane);
+                    hangs = hanging_on_plane(children.front().solid, father_new, D, *s, on_plane);
+                    hanging = area_of(hangs);
                 } catch (const Error&) {
                     continue;
                 } catch (const Standard_Failure&) {
@@ -1645,21 +1644,6 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     note(b, k->why, h);
                     continue;
                 }
-                // Its base plane, square to d through its lowest point that way, which lies on
-                // the splitting plane (where the two planes meet) so that the base face is on it.
-                double lowest = std::numeric_limits<double>::infinity();
-                Vector3d at = Vector3d::Zero();
-                for (const Vector3d& q : piece.vertices)
-                    if (d.dot(q) < lowest) {
-                        lowest = d.dot(q);
-                        at = q;
-                    }
-                // at + a (D - w), w = sqrt(2) d - D the way along the gap: D.(..) = s, and d.(..)
-                // stays d.at.
-                const double a = *s - D.dot(at);
-                const Vector3d origin = at + a * (2.0 * D - std::sqrt(2.0) * d);
-                if (kept) kept->forget(work[std::size_t(h)].solid);
-                work[std::size_t(h)].solid = father_new;
                 Work child;
                 child.solid = children.front().solid;
                 child.c.parent = h;
@@ -1667,10 +1651,117 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 child.c.break_link = br.first_link;
                 child.c.rule = Component::SplitRule::Bridge;
                 child.c.has_base_face = true;
-                child.c.base_face = occ::wrap(children.front().base);
-                child.c.base_origin = origin;
-                child.c.base_normal = -D;
                 child.c.build_direction = d;
+                // The wedge between the splitting plane and the plane square to d through the
+                // lowest point that way of the piece's top (its faces facing D), or of what of
+                // its underside hangs, or of a face of it overhanging along D, where that comes
+                // first, goes to the father, on whose top it
+                // rests (built along D, its face on that plane faces up): built along d, its
+                // layers would grow from an edge, the first ones slivers far past the volumetric
+                // bound (the first of a handle's bar: 0.01 mm^2). The piece then starts on that
+                // plane, its base face there (base_normal -d). Where the wedge is not one solid
+                // resting wholly on the father, or the split or the fuse fails, the piece stays
+                // whole, its base plane square to d through its lowest point, on the splitting
+                // plane (base_normal -D).
+                const TopoDS_Shape whole = children.front().solid;
+                std::optional<double> top;
+                const auto lowest_of = [&](const TopoDS_Shape& shape) {
+                    for (TopExp_Explorer v(shape, TopAbs_VERTEX); v.More(); v.Next()) {
+                        const double dv = d.dot(vec(BRep_Tool::Pnt(TopoDS::Vertex(v.Current()))));
+                        if (!top || dv < *top) top = dv;
+                    }
+                };
+                for (TopExp_Explorer x(whole, TopAbs_FACE); x.More(); x.Next()) {
+                    PlanarFace pf;
+                    if (planar(TopoDS::Face(x.Current()), pf) && pf.normal.dot(D) >= 1.0 - 1e-9)
+                        lowest_of(pf.face);
+                }
+                lowest_of(hangs);
+                // and of the faces of it that would overhang along D off the plane (the ceiling
+                // of another window's top, where the plane passes through that window).
+                const double leans = -std::sin(params.overhang_angle_deg * kPi / 180.0) - 1e-6;
+                for (const Eigen::Vector3i& f : piece.triangles) {
+                    const Vector3d &p0 = piece.vertices[std::size_t(f[0])],
+                                   &p1 = piece.vertices[std::size_t(f[1])],
+                                   &p2 = piece.vertices[std::size_t(f[2])];
+                    const Vector3d n = (p1 - p0).cross(p2 - p0);
+                    if (!(n.norm() > 0.0) || n.dot(D) / n.norm() >= leans) continue;
+                    if (std::abs(D.dot(p0) - *s) <= on_plane &&
+                        std::abs(D.dot(p1) - *s) <= on_plane &&
+                        std::abs(D.dot(p2) - *s) <= on_plane)
+                        continue;
+                    for (const Vector3d* q : {&p0, &p1, &p2})
+                        if (!top || d.dot(*q) < *top) top = d.dot(*q);
+                }
+                double lowest = std::numeric_limits<double>::infinity();
+                Vector3d at = Vector3d::Zero();
+                for (const Vector3d& q : piece.vertices)
+                    if (d.dot(q) < lowest) {
+                        lowest = d.dot(q);
+                        at = q;
+                    }
+                bool wedged = false;
+                if (top && *top > lowest + on_plane) {
+                    // The wedge is no component: nothing it stands on is the split's to keep.
+                    Footing none;
+                    none.plate_z = -std::numeric_limits<double>::infinity();
+                    std::vector<Child> front;
+                    TopoDS_Shape wedge, fused, father_grown;
+                    const Vector3d on = at + d * (*top - lowest);
+                    // A point of the piece past the plane: its centre of mass, else the node
+                    // inside the bridge found above.
+                    GProp_GProps props;
+                    BRepGProp::VolumeProperties(whole, props);
+                    Vector3d inside = vec(props.CentreOfMass());
+                    if (!(d.dot(inside) > *top) || !contains(whole, inside)) inside = inner;
+                    if (d.dot(inside) > *top &&
+                        split_by_plane(whole, none, on, d, {inside}, 0.0,
+                                       {std::numeric_limits<double>::infinity()}, mesh, progress,
+                                       front, wedge, nullptr) == SplitOutcome::Split &&
+                        !front.front().solid.IsNull()) {
+                        TopTools_ListOfShape tool;
+                        tool.Append(wedge);
+                        try {
+                            // Nothing of it may overhang in the father's layers: its underside
+                            // on the plane rests on the father's top, and no other face of it
+                            // leans past the overhang angle off D (the ceiling of another
+                            // window's top, where the plane passes through it).
+                            const TriangleMesh w = occ::tessellate_solid(
+                                wedge, default_deflection,
+                                TessellationParams{}.angular_deflection_rad, "a bridge's wedge");
+                            const double w_hangs =
+                                area_of(hanging_on_plane(wedge, father_new, D, *s, on_plane));
+                            if (overhang_area(w, D, params.overhang_angle_deg, D, *s, on_plane,
+                                              w_hangs) <= 1e-6 * (1.0 + area_of(wedge)) &&
+                                fuse_kept(father_new, tool, fused) &&
+                                valid_solid(fused, father_grown, mesh, progress) &&
+                                // Both must mesh closed, as every component must (below): a
+                                // plane through another window's corner left the piece an
+                                // edge its mesh shared among four triangles.
+                                meshes_closed(front.front().solid, default_deflection) &&
+                                meshes_closed(father_grown, default_deflection)) {
+                                father_new = father_grown;
+                                child.solid = front.front().solid;
+                                child.c.base_face = occ::wrap(front.front().base);
+                                child.c.base_origin = front.front().base_origin;
+                                child.c.base_normal = front.front().base_normal;
+                                wedged = true;
+                            }
+                        } catch (const Standard_Failure&) {
+                        } catch (const Error&) {
+                        }
+                    }
+                }
+                if (!wedged) {
+                    // at + a (D - w), w = sqrt(2) d - D the way along the gap: D.(..) = s, and
+                    // d.(..) stays d.at.
+                    const double a = *s - D.dot(at);
+                    child.c.base_face = occ::wrap(children.front().base);
+                    child.c.base_origin = at + a * (2.0 * D - std::sqrt(2.0) * d);
+                    child.c.base_normal = -D;
+                }
+                if (kept) kept->forget(work[std::size_t(h)].solid);
+                work[std::size_t(h)].solid = father_new;
                 // Right after its father (tree order), the father's children resting on what it
                 // took now its own.
                 const int to = h + 1;

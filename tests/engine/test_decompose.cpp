@@ -592,6 +592,23 @@ TEST(Decompose, AHandlesBarIsABridgeBuiltAlongADiagonalFromOnePostTowardsTheOthe
     }
 }
 
+// A lug sticking out of the handle's bar along +Y is cut off the root before the bridge is (a
+// branch of the march); once the bar is the bridge's piece, the lug rests on it: its child, after
+// it in tree order.
+TEST(Decompose, ALugOnABridgesPieceBecomesItsChild) {
+    const auto part =
+        from_occt(fuse(to_occt(mas::test::handle_on_plate()), occ_box(25, 14, 36.5, 10, 12, 4)));
+    const auto d = mas::decompose(part, axis_of(part, 2.0));
+    ASSERT_EQ(d.components.size(), 3u);
+    EXPECT_EQ(d.components[1].rule, Rule::Bridge);
+    EXPECT_EQ(d.components[1].parent, 0);
+    const auto& lug = d.components[2];
+    EXPECT_EQ(lug.parent, 1);
+    EXPECT_TRUE(lug.build_direction.isApprox(Vector3d::UnitY(), 1e-12));
+    EXPECT_TRUE(near_box(lug.solid, {25, 14, 36.5}, {35, 26, 40.5}));
+    expect_invariants(d, part);
+}
+
 // A window's ceiling: the wall's tracks either side of it merge over it, and the wall above
 // its ceiling is built along the diagonal, from the side the march went on up; the 18 x 18 / 2
 // x 6 mm^3 wedge at its start, over the jamb there, goes to the root.

@@ -223,8 +223,8 @@
 //   over the deposit point at the defaults). It is kept only where, built along d, at most half
 //   of the piece's surface leaning past DecomposeParams::overhang_angle_deg overhangs that
 //   leaned so built along D (meshed at the part's default deflection, its faces off the plane;
-//   on the plane, its underside less what rests on the father, an OCCT common of the two's faces
-//   there); of the two ways, the one leaving less, the way from m's track towards b's where
+//   on the plane, its underside less what rests on the father: an OCCT cut of its faces there by
+//   the father's); of the two ways, the one leaving less, the way from m's track towards b's where
 //   alike. Built from its lowest point along d, its first layers would be slivers growing from an
 //   edge, far past the volumetric bound (0.01 mm^2 the first of a handle's bar): so the wedge of
 //   it behind the plane square to d through the lowest point that way of its top (its faces
@@ -236,13 +236,13 @@
 //   piece without it must mesh closed (a plane through another window's corner left the piece an
 //   edge four triangles shared); else the piece stays whole, its base plane square to d through
 //   its lowest point, on the splitting plane (base_origin; base_normal -D, the splitting plane's).
-//   Bridges are cut the lowest
-//   first (two windows side by side: cut at the higher one first, the band under it, holding the
-//   lower one's ceiling, was thinner than a step and stayed). A bridge is not cut where b is
-//   asked to stay in its father (keep_branches), where a component already cut off the father
-//   has its base across the plane, or on a round underside (a bore's ceiling, an arch's round
-//   intrados), which no plane's face spans. The father's children whose bases lie past the plane
-//   become the bridge's. A mesh (decompose_mesh, SlicePart.hpp) has no faces: it gets no bridge.
+//   Bridges are cut the lowest first (two windows side by side: cut at the higher one first, the
+//   band under it, holding the lower one's ceiling, was thinner than a step and stayed). A bridge
+//   is not cut where b is asked to stay in its father (keep_branches), where a component already
+//   cut off the father has its base across the plane, or on a round underside (a bore's ceiling, an
+//   arch's round intrados), which no plane's face spans. The father's children whose bases lie past
+//   the plane become the bridge's. A mesh (decompose_mesh, SlicePart.hpp) has no faces: it gets no
+//   bridge.
 // - Nor does a branch in its father's direction where the father's section split and every
 //   other branch of that split ended on the plane it began on (one node, no sub-branches): a
 //   sliver beside it, thinner than a step (the far end of a port another branch took, left under

@@ -1654,15 +1654,15 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 child.c.build_direction = d;
                 // The wedge between the splitting plane and the plane square to d through the
                 // lowest point that way of the piece's top (its faces facing D), or of what of
-                // its underside hangs, or of a face of it overhanging along D, where that comes
-                // first, goes to the father, on whose top it
-                // rests (built along D, its face on that plane faces up): built along d, its
-                // layers would grow from an edge, the first ones slivers far past the volumetric
-                // bound (the first of a handle's bar: 0.01 mm^2). The piece then starts on that
-                // plane, its base face there (base_normal -d). Where the wedge is not one solid
-                // resting wholly on the father, or the split or the fuse fails, the piece stays
-                // whole, its base plane square to d through its lowest point, on the splitting
-                // plane (base_normal -D).
+                // its underside hangs, or of a face of it overhanging along D, whichever comes
+                // first, goes to the father, on whose top it rests (built along D, its face on
+                // that plane faces up): built along d, its layers would grow from an edge, the
+                // first ones slivers far past the volumetric bound (the first of a handle's bar:
+                // 0.01 mm^2). The piece then starts on that plane, its base face there
+                // (base_normal -d). Where the wedge is not one solid resting wholly on the father
+                // and leaning nowhere past the overhang angle off D, where the two would not mesh
+                // closed, or where OCCT fails, the piece stays whole, its base plane square to d
+                // through its lowest point, on the splitting plane (base_normal -D).
                 const TopoDS_Shape whole = children.front().solid;
                 std::optional<double> top;
                 const auto lowest_of = [&](const TopoDS_Shape& shape) {

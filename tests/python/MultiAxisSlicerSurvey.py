@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: ten families of the parts a deposition shop builds (pipe bends, hubs
+"""Parts nobody tuned for: eleven families of the parts a deposition shop builds (pipe bends, hubs
 with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
 leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports, wye
-fittings), each part drawn at random from its family's ranges, and a survey slicing them as a user
-would (defaults, G-code).
+fittings, handles and walls with windows), each part drawn at random from its family's ranges,
+and a survey slicing them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
 drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers
@@ -215,6 +215,34 @@ def wye_fitting(rng):
     return solid, {"lean_deg": lean, "laterals": len(sides), "hollow": hollow}
 
 
+def handle(rng):
+    """A bridge: a plate with two square posts and a bar across their tops (a handle), or a wall
+    standing on its edge with a rectangular window through it; across X or, turned, across Y."""
+    if rng.random() < 0.5:
+        length, width, plate = rng.uniform(40, 80), rng.uniform(15, 30), rng.uniform(3, 6)
+        post, height, bar = rng.uniform(5, 10), rng.uniform(15, 40), rng.uniform(4, 10)
+        x0 = rng.uniform(2, 8)
+        x1 = length - x0 - post
+        y0 = (width - post) / 2
+        solid = Part.makeBox(length, width, plate).fuse(
+            [Part.makeBox(post, post, height + 0.5, V(x, y0, plate - 0.5)) for x in (x0, x1)] +
+            [Part.makeBox(x1 + post - x0, post, bar, V(x0, y0, plate + height))])
+        description = {"kind": "handle", "span": x1 - x0 - post}
+    else:
+        length, height, thick = rng.uniform(40, 80), rng.uniform(30, 60), rng.uniform(4, 10)
+        w, h = rng.uniform(6, 0.4 * length), rng.uniform(6, 0.4 * height)
+        z = rng.uniform(5, height - h - 5)
+        solid = Part.makeBox(length, thick, height).cut(
+            Part.makeBox(w, thick + 2, h, V((length - w) / 2, -1, z)))
+        description = {"kind": "window", "span": w}
+    if rng.random() < 0.5:
+        solid.rotate(V(0, 0, 0), V(0, 0, 1), 90)
+        description["across"] = "Y"
+    else:
+        description["across"] = "X"
+    return solid, description
+
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -226,6 +254,7 @@ FAMILIES = {
     "manifold": manifold,
     "valve body": valve_body,
     "wye fitting": wye_fitting,
+    "handle": handle,
 }
 
 

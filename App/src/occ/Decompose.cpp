@@ -1161,6 +1161,18 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 return -1;
             };
 
+            // What a father component stands on, which a split must leave it: the root its footing
+            // on the plate, a child its base face.
+            const auto footing_of = [&](const Component& fc) {
+                Footing footing;
+                footing.root = !fc.has_base_face;
+                footing.plate_z = box.min().z();
+                if (fc.has_base_face) footing.base = TopoDS::Face(occ::occt(fc.base_face));
+                footing.normal = fc.base_normal;
+                footing.tol = std::max(plane_tol, axis.params.eps_mm);
+                return footing;
+            };
+
             // Whether branch x has a father and marches as it does.
             const auto marches_as_father = [&](int x) {
                 const AxisBranch& bx = axis.branches[std::size_t(x)];
@@ -1367,12 +1379,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 at.check();
 
                 const Component& fc = work[std::size_t(father)].c;
-                Footing footing;
-                footing.root = !fc.has_base_face;
-                footing.plate_z = box.min().z();
-                if (fc.has_base_face) footing.base = TopoDS::Face(occ::occt(fc.base_face));
-                footing.normal = fc.base_normal;
-                footing.tol = std::max(plane_tol, axis.params.eps_mm);
+                const Footing footing = footing_of(fc);
                 std::vector<Child> children;
                 TopoDS_Shape father_new;
                 // A sliver the father's march found on its last plane (a branch born of a split,
@@ -1583,12 +1590,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 }
                 if (straddles) continue;
                 const Component& fc = work[std::size_t(h)].c;
-                Footing footing;
-                footing.root = !fc.has_base_face;
-                footing.plate_z = box.min().z();
-                if (fc.has_base_face) footing.base = TopoDS::Face(occ::occt(fc.base_face));
-                footing.normal = fc.base_normal;
-                footing.tol = std::max(plane_tol, axis.params.eps_mm);
+                const Footing footing = footing_of(fc);
                 const double step_height =
                     std::max(axis.params.step_mm, params.min_component_height_mm);
                 std::vector<Child> children;

@@ -691,25 +691,39 @@ TopoDS_Shape hanging_on_plane(const TopoDS_Shape& piece, const TopoDS_Shape& fat
     return cut.Shape();
 }
 
-// The area of a bridge's piece that overhangs built along the unit `d`: of its meshed surface off
-// the splitting plane (normal D at offset s), the triangles leaning out from d past
-// `overhang_deg` (outward normal n with n.d < -sin(overhang)), and `hanging` (its underside on the
-// plane that rests on nothing) where that leans so too. A face leaning exactly that far is
-// supported (slicing's allowance is thickness x tan(overhang)): a millionth of slack.
-double overhang_area(const TriangleMesh& m, const Vector3d& d, double overhang_deg,
-                     const Vector3d& D, double s, double tol, double hanging) {
-    const double limit = -std::sin(overhang_deg * kPi / 180.0) - 1e-6;
-    double area = -D.dot(d) < limit ? hanging : 0.0;
-    for (const Eigen::Vector3i& f : m.triangles) {
-        const Vector3d &a = m.vertices[std::size_t(f[0])], &b = m.vertices[std::size_t(f[1])],
-                       &c = m.vertices[std::size_t(f[2])];
+// Whether a face with outward unit normal n, built along the unit d, leans out from it past
+// `overhang_deg` (n.d < -sin(overhang)). A face leaning exactly that far is supported (slicing's
+// allowance is thickness x tan(overhang)): a millionth of slack.
+bool leans_past(const Vector3d& n, const Vector3d& d, double overhang_deg) {
+    return n.dot(d) < -std::sin(overhang_deg * kPi / 180.0) - 1e-6;
+}
+
+// Calls f(a, b, c, area) for each triangle of the meshed piece `m` off its splitting plane (normal
+// D at offset s, within tol) that leans past `overhang_deg` off the unit d (leans_past).
+template <class F>
+void for_each_leaning(const TriangleMesh& m, const Vector3d& d, double overhang_deg,
+                      const Vector3d& D, double s, double tol, F&& f) {
+    for (const Eigen::Vector3i& t : m.triangles) {
+        const Vector3d &a = m.vertices[std::size_t(t[0])], &b = m.vertices[std::size_t(t[1])],
+                       &c = m.vertices[std::size_t(t[2])];
         if (std::abs(D.dot(a) - s) <= tol && std::abs(D.dot(b) - s) <= tol &&
             std::abs(D.dot(c) - s) <= tol)
             continue;
         const Vector3d n = (b - a).cross(c - a);
         const double twice = n.norm();
-        if (twice > 0.0 && n.dot(d) / twice < limit) area += 0.5 * twice;
+        if (twice > 0.0 && leans_past(n / twice, d, overhang_deg)) f(a, b, c, 0.5 * twice);
     }
+}
+
+// The area of a bridge's piece that overhangs built along the unit `d`: of its meshed surface off
+// the splitting plane, the triangles leaning past `overhang_deg` off d, and `hanging` (its
+// underside on the plane that rests on nothing) where that leans so too.
+double overhang_area(const TriangleMesh& m, const Vector3d& d, double overhang_deg,
+                     const Vector3d& D, double s, double tol, double hanging) {
+    double area = leans_past(-D, d, overhang_deg) ? hanging : 0.0;
+    for_each_leaning(
+        m, d, overhang_deg, D, s, tol,
+        [&](const Vector3d&, const Vector3d&, const Vector3d&, double a) { area += a; });
     return area;
 }
 
@@ -1681,20 +1695,12 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 lowest_of(hangs);
                 // and of the faces of it that would overhang along D off the plane (the ceiling
                 // of another window's top, where the plane passes through that window).
-                const double leans = -std::sin(params.overhang_angle_deg * kPi / 180.0) - 1e-6;
-                for (const Eigen::Vector3i& f : piece.triangles) {
-                    const Vector3d &p0 = piece.vertices[std::size_t(f[0])],
-                                   &p1 = piece.vertices[std::size_t(f[1])],
-                                   &p2 = piece.vertices[std::size_t(f[2])];
-                    const Vector3d n = (p1 - p0).cross(p2 - p0);
-                    if (!(n.norm() > 0.0) || n.dot(D) / n.norm() >= leans) continue;
-                    if (std::abs(D.dot(p0) - *s) <= on_plane &&
-                        std::abs(D.dot(p1) - *s) <= on_plane &&
-                        std::abs(D.dot(p2) - *s) <= on_plane)
-                        continue;
-                    for (const Vector3d* q : {&p0, &p1, &p2})
-                        if (!top || d.dot(*q) < *top) top = d.dot(*q);
-                }
+                for_each_leaning(
+                    piece, D, params.overhang_angle_deg, D, *s, on_plane,
+                    [&](const Vector3d& p0, const Vector3d& p1, const Vector3d& p2, double) {
+                        for (const Vector3d* q : {&p0, &p1, &p2})
+                            if (!top || d.dot(*q) < *top) top = d.dot(*q);
+                    });
                 double lowest = std::numeric_limits<double>::infinity();
                 Vector3d at = Vector3d::Zero();
                 for (const Vector3d& q : piece.vertices)

@@ -105,11 +105,13 @@ def _branch_list(value, name="keep_branches"):
 
 
 class Component:
-    """One sub-component: a closed solid built from its base face along its build direction.
+    """One sub-component: a closed solid built from its base face along its build direction (the
+    root, on the build plate, may be several: a portal's two legs without its lintel).
 
     Attributes:
-      * ``shape``: the solid, a ``Part.Solid`` when FreeCAD is importable, else the engine
-        ``Shape``; ``brep``: its BREP text (``Part.Shape().importBrepFromString()`` reads it).
+      * ``shape``: the solid, a ``Part.Solid`` when FreeCAD is importable (for a root standing on
+        several feet, a ``Part.Compound`` of its solids), else the engine ``Shape``; ``brep``: its
+        BREP text (``Part.Shape().importBrepFromString()`` reads it).
       * ``parent``: index of the father component in the decomposition, -1 for the root.
       * ``build_direction``: unit vector the component is deposited along (the reverse of its base
         face's outward normal; +Z for the root).
@@ -165,7 +167,8 @@ class Component:
         if self._shape is None:
             import Part
 
-            self._shape = Part.Solid(_part_shape(self.brep))
+            shape = _part_shape(self.brep)
+            self._shape = Part.Compound(shape.Solids) if len(shape.Solids) > 1 else Part.Solid(shape)
         return self._shape
 
     @property

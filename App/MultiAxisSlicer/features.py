@@ -760,7 +760,9 @@ class ComponentFeature(_EngineFeature):
         if d is None:
             raise ValueError("{}: Decomposition is not set".format(obj.Label))
         i = obj.Index
-        solids = d.Shape.Solids
+        # One child shape per component: a solid, or a compound of the solids of a root standing
+        # on several feet.
+        solids = d.Shape.childShapes() if not d.Shape.isNull() else []
         if not (0 <= i < min(d.ComponentCount, len(solids))):
             raise ValueError("{}: '{}' now has {} component(s), this was number {}: left over "
                              "until the components are synchronised".format(

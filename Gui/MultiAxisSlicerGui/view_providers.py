@@ -312,8 +312,10 @@ class ViewProviderDecomposition(_Editable, _Stateless):
         if obj is None or "ComponentCount" not in obj.PropertiesList:
             return
         colours = []
-        for i, solid in enumerate(obj.Shape.Solids):
-            colours += [component_colour(i)] * len(solid.Faces)
+        # One child shape per component (a root on several feet: a compound of its solids).
+        shape = obj.Shape
+        for i, component in enumerate(shape.childShapes() if not shape.isNull() else []):
+            colours += [component_colour(i)] * len(component.Faces)
         if colours and not _same_colours(vobj.DiffuseColor, colours):
             vobj.DiffuseColor = colours
 

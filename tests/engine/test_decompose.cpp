@@ -99,6 +99,14 @@ Sides sides_built(const mas::Decomposition& d,
     return sides;
 }
 
+// The solids of a component, each its own Shape: one, but for a root standing on several feet.
+std::vector<mas::Shape> solids_of(const mas::Shape& s) {
+    std::vector<mas::Shape> out;
+    for (TopExp_Explorer x(to_occt(s), TopAbs_SOLID); x.More(); x.Next())
+        out.push_back(from_occt(x.Current()));
+    return out;
+}
+
 bool near_box(const mas::Shape& s, const Vector3d& lo, const Vector3d& hi, double tol = 1e-6) {
     const auto b = bounds(s);
     return (b.min() - lo).norm() < tol && (b.max() - hi).norm() < tol;
@@ -190,20 +198,26 @@ void expect_invariants(const mas::Decomposition& d, const mas::Shape& part) {
             EXPECT_EQ(c.rule, Rule::Root);
             EXPECT_FALSE(c.has_base_face);
             EXPECT_TRUE(c.base_face.is_null());
-            // The root stands on the build plate.
-            EXPECT_NEAR(bounds(c.solid).min().z(), part.info().bounds.min().z(), 1e-6);
+            // The root stands on the build plate: each of its solids, where it stands on several
+            // feet apart.
+            for (const mas::Shape& foot : solids_of(c.solid))
+                EXPECT_NEAR(bounds(foot).min().z(), part.info().bounds.min().z(), 1e-6);
         } else {
             EXPECT_GE(c.parent, 0);
             EXPECT_LT(c.parent, int(i));
             EXPECT_NE(c.rule, Rule::Root);
             EXPECT_TRUE(c.has_base_face);
             EXPECT_GE(c.branch, 1);
-            EXPECT_GE(c.break_link, 0);
+            // A bridge's branch may be a foot's, which starts at the plate: no first link.
+            EXPECT_GE(c.break_link, c.rule == Rule::Bridge ? -1 : 0);
+            EXPECT_EQ(solids_of(c.solid).size(), 1u);
         }
-        // One valid closed solid, its volume as recorded.
+        // One valid closed solid (the root: one per foot), its volume as recorded.
         const TopoDS_Shape s = to_occt(c.solid);
         EXPECT_TRUE(BRepCheck_Analyzer(s).IsValid());
-        EXPECT_NO_THROW(c.solid.single_solid("component"));
+        EXPECT_FALSE(solids_of(c.solid).empty());
+        for (const mas::Shape& solid : solids_of(c.solid))
+            EXPECT_NO_THROW(solid.single_solid("component"));
         EXPECT_NEAR(volume(s), c.volume_mm3, 1e-9 * part_volume);
         EXPECT_GT(c.volume_mm3, 0.0);
         // Its vertices and edges as tight as the part's, or a tenth of a micron: a vertex OCCT's
@@ -628,6 +642,87 @@ TEST(Decompose, AWallOverAWindowIsABridgeCutAtItsCeiling) {
         << top.base_origin.transpose();
     EXPECT_NEAR(d.components[0].volume_mm3, 60.0 * 6.0 * 45.0 - 20.0 * 6.0 * 12.0 - 6480.0 + 972.0,
                 1e-6);
+    expect_invariants(d, part);
+}
+
+// A portal on two legs with nothing joining them below: the lintel is its bridge, built along
+// the diagonal from the leg the march went on up towards the one that merged, as the handle's
+// bar; without it the root is the two legs apart, each standing on the plate, the 6 x 6 / 2 x 8
+// mm^3 wedge on the one it starts from.
+TEST(Decompose, APortalOnTwoLegsIsABridgeItsRootTheLegsApart) {
+    const auto part = mas::test::portal_on_two_legs();
+    const auto axis = axis_of(part, 2.0);
+    int b = -1;
+    for (std::size_t i = 0; i < axis.branches.size(); ++i)
+        if (axis.branches[i].merged_into >= 0) {
+            ASSERT_EQ(b, -1) << "two merges";
+            b = int(i);
+        }
+    ASSERT_GE(b, 0);
+    const int m = axis.branches[std::size_t(b)].merged_into;
+    // Both tracks start on the plate: the piece is of the one that is not the root's own.
+    EXPECT_EQ(axis.branches[std::size_t(b)].parent, -1);
+    EXPECT_EQ(axis.branches[std::size_t(m)].parent, -1);
+    const int owner = b == 0 ? m : b;
+    const double merged_x =
+        axis.nodes[std::size_t(axis.branches[std::size_t(b)].nodes.back())].position.x();
+    const double way = merged_x > 25.0 ? 1.0 : -1.0;  // towards the leg that merged
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& root = d.components[0];
+    const auto& lintel = d.components[1];
+    EXPECT_EQ(lintel.rule, Rule::Bridge);
+    EXPECT_EQ(lintel.parent, 0);
+    EXPECT_EQ(lintel.branch, owner);
+    EXPECT_EQ(lintel.break_link, axis.branches[std::size_t(owner)].first_link);
+    const Vector3d diagonal = Vector3d(way, 0, 1).normalized();
+    EXPECT_TRUE(lintel.build_direction.isApprox(diagonal, 1e-12));
+    EXPECT_TRUE(lintel.base_normal.isApprox(-diagonal, 1e-12));
+    EXPECT_TRUE(near_box(lintel.solid, {0, 0, 30}, {50, 8, 36}));
+    EXPECT_NEAR(lintel.volume_mm3, 50.0 * 8.0 * 6.0 - 144.0, 1e-6);
+    EXPECT_TRUE(lintel.base_origin.isApprox(Vector3d(way > 0.0 ? 3.0 : 47.0, 4, 33), 1e-9))
+        << lintel.base_origin.transpose();
+    const auto feet = solids_of(root.solid);
+    ASSERT_EQ(feet.size(), 2u);
+    const bool left_first = bounds(feet[0]).min().x() < 25.0;
+    const auto& left = feet[left_first ? 0 : 1];
+    const auto& right = feet[left_first ? 1 : 0];
+    EXPECT_TRUE(near_box(left, {0, 0, 0}, {8, 8, way > 0.0 ? 36.0 : 30.0}));
+    EXPECT_TRUE(near_box(right, {42, 0, 0}, {50, 8, way > 0.0 ? 30.0 : 36.0}));
+    EXPECT_NEAR(root.volume_mm3, 2.0 * 8.0 * 8.0 * 30.0 + 144.0, 1e-6);
+    EXPECT_TRUE(d.notes.empty());
+    expect_invariants(d, part);
+}
+
+// A table's top, much wider than its three legs, turns sideways off them in the axis (a branch
+// along +X whose split the legs' merge leaves nothing to cut): the top is the bridge over the
+// legs, built from its lowest edge (a wedge there would hang between the legs), and the note on
+// the sideways branch says its material is in the bridge's component, not the root's.
+TEST(Decompose, ATablesTopTurnedSidewaysOffItsLegsIsABridgeOverThem) {
+    const auto part = mas::test::table_on_three_legs();
+    const auto axis = axis_of(part, 2.0);
+    const auto d = mas::decompose(part, axis);
+    ASSERT_EQ(d.components.size(), 2u);
+    const auto& top = d.components[1];
+    EXPECT_EQ(top.rule, Rule::Bridge);
+    EXPECT_TRUE(near_box(top.solid, {0, 0, 31}, {65, 24, 38}));
+    EXPECT_NEAR(top.volume_mm3, 65.0 * 24.0 * 7.0, 1e-6);
+    EXPECT_NEAR(std::abs(top.build_direction.x()) + std::abs(top.build_direction.y()),
+                std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(top.build_direction.z(), std::sqrt(0.5), 1e-12);
+    EXPECT_TRUE(top.base_normal.isApprox(-Vector3d::UnitZ(), 1e-12));
+    EXPECT_NEAR(top.base_origin.z(), 31.0, 1e-9);
+    const auto feet = solids_of(d.components[0].solid);
+    ASSERT_EQ(feet.size(), 3u);
+    for (const auto& leg : feet) EXPECT_NEAR(leg.info().volume_mm3, 4.0 * 4.0 * 31.0, 1e-6);
+    int sideways = -1;
+    for (std::size_t i = 0; i < axis.branches.size(); ++i)
+        if (axis.branches[i].direction.z() == 0.0) sideways = int(i);
+    ASSERT_GE(sideways, 0);
+    ASSERT_EQ(d.notes.size(), 1u);
+    EXPECT_EQ(d.notes[0].rfind("branch " + std::to_string(sideways) + " (", 0), 0u) << d.notes[0];
+    EXPECT_NE(d.notes[0].find("its material stays in component 1"), std::string::npos)
+        << d.notes[0];
     expect_invariants(d, part);
 }
 

@@ -189,6 +189,17 @@ Shape wall_with_window() {
         BRepAlgoAPI_Cut(occ_box(0, 0, 0, 60, 6, 45), occ_box(20, -1, 15, 20, 8, 12)).Shape());
 }
 
+Shape portal_on_two_legs() {
+    const TopoDS_Shape legs = fuse(occ_box(0, 0, 0, 8, 8, 30), occ_box(42, 0, 0, 8, 8, 30));
+    return from_occt(fuse(legs, occ_box(0, 0, 30, 50, 8, 6)));
+}
+
+Shape table_on_three_legs() {
+    TopoDS_Shape s = fuse(occ_box(0, 0, 0, 4, 4, 31), occ_box(61, 0, 0, 4, 4, 31));
+    s = fuse(s, occ_box(30.5, 20, 0, 4, 4, 31));
+    return from_occt(fuse(s, occ_box(0, 0, 31, 65, 24, 7)));
+}
+
 Shape pipe_tee() {
     auto pipe = [](const gp_Ax2& axis, double r, double h) {
         return BRepPrimAPI_MakeCylinder(axis, r, h).Shape();

@@ -59,6 +59,12 @@ Shape handle_on_plate();
 // A wall [0,60]x[0,6]x[0,45] standing on its edge, a window [20,40] x [15,27] through it (its
 // ceiling bridging 20 mm).
 Shape wall_with_window();
+// A portal on two legs with nothing joining them below: legs [0,8]x[0,8]x[0,30] and
+// [42,50]x[0,8]x[0,30] standing on z = 0, a lintel [0,50]x[0,8]x[30,36] across their tops.
+Shape portal_on_two_legs();
+// A table on three legs, 4 x 4 x 31 at (0, 0), (61, 0) and (30.5, 20), under a top
+// [0,65]x[0,24]x[31,38] (far wider than the legs: the axis turns it sideways off them).
+Shape table_on_three_legs();
 // A pipe tee: a pipe of radius 10 with a bore of 8, 60 tall on z = 0 along Z, and a branch of the
 // same pipe reaching +Y from its axis at z = 35, 35 long.
 Shape pipe_tee();

@@ -2492,22 +2492,35 @@ TEST(Slicing, BridgesAreBuiltAlongADiagonalWithEveryLayerSupported) {
     // posts, the window's ceiling). Cut off at the underside (Decompose.hpp), the piece is built
     // along the diagonal: its underside and its faces towards the gap lean exactly 45 degrees
     // off that way, and every layer rests on the one before it or on the part below.
+    // The same with nothing joining the feet below (a portal's lintel on two legs, 240 mm^2 in
+    // its first layer along Z; a table's top on three, 947 mm^2): the root is the feet apart,
+    // each of its layers under the span (the legs' height) a region per foot.
     const auto params = default_params();
-    for (const auto& [name, part] : {std::pair{"handle", mas::test::handle_on_plate()},
-                                     std::pair{"window", mas::test::wall_with_window()}}) {
+    for (const auto& [name, part, feet, legs] :
+         {std::tuple{"handle", mas::test::handle_on_plate(), 1u, 0.0},
+          std::tuple{"window", mas::test::wall_with_window(), 1u, 0.0},
+          std::tuple{"portal", mas::test::portal_on_two_legs(), 2u, 30.0},
+          std::tuple{"table", mas::test::table_on_three_legs(), 3u, 31.0}}) {
         SCOPED_TRACE(name);
         const auto s = slice(part, 2.0, params);
         ASSERT_EQ(s.decomposition.components.size(), 2u);
         const auto& bridge = s.decomposition.components[1];
         ASSERT_EQ(bridge.rule, mas::Component::SplitRule::Bridge);
-        int layers = 0;
+        int layers = 0, root_layers = 0;
         for (const auto& l : s.result.layers) {
+            if (l.component == 0 && l.plane.origin.z() < legs) {
+                ++root_layers;
+                EXPECT_EQ(l.regions.size(), feet) << "root layer at z = " << l.plane.origin.z();
+            }
             if (l.component != 1) continue;
             ++layers;
             EXPECT_TRUE(l.plane.normal.isApprox(bridge.build_direction, 1e-9))
                 << l.plane.normal.transpose();
         }
         EXPECT_GT(layers, 0);
+        if (feet > 1) {
+            EXPECT_GT(root_layers, 0);
+        }
         EXPECT_EQ(s.result.stats.colliding_layers, 0);
         expect_invariants(s, params, name);
     }

@@ -35,6 +35,12 @@ def assert_box(test, shape, lo, hi, tol=1e-6):
         test.assertAlmostEqual(a, b, delta=tol, msg="{} != {}".format(got, (lo, hi)))
 
 
+def portal():
+    """Two legs 8 x 8 x 30 standing 34 mm apart on the plate, a lintel 50 x 8 x 6 on them."""
+    return Part.makeBox(8, 8, 30).fuse(
+        [Part.makeBox(8, 8, 30, V(42, 0, 0)), Part.makeBox(50, 8, 6, V(0, 0, 30))]).removeSplitter()
+
+
 class DecomposeTest(support.EngineTestCase):
     def check_l_block(self, d):
         """The column is the root, the arm its child built +X from the base face x = 20."""
@@ -280,6 +286,21 @@ class TestDecomposeApi(DecomposeTest):
         self.assertAlmostEqual(direction.y, 0.0, places=12)
         self.assertAlmostEqual(direction.z, math.sqrt(0.5), places=12)
         self.assertEqual(d.to_dict()["components"][1]["rule"], "bridge")
+
+    def test_a_portal_on_two_legs_is_a_bridge_its_root_the_legs_apart(self):
+        # Nothing joins the legs below: without the lintel the root is the two legs, a compound
+        # of two solids each standing on the plate.
+        d = mas.decompose(portal())
+        self.assertEqual([c.rule for c in d], ["root", "bridge"])
+        root = d[0].shape
+        self.assertEqual(root.ShapeType, "Compound")
+        self.assertEqual(len(root.Solids), 2)
+        for leg in root.Solids:
+            self.assertTrue(leg.isValid())
+            self.assertAlmostEqual(leg.BoundBox.ZMin, 0.0, delta=1e-9)
+        self.assertAlmostEqual(root.Volume, 2 * 8 * 8 * 30 + 144, delta=1e-6)
+        self.assertEqual(d[1].shape.ShapeType, "Solid")
+        assert_box(self, d[1].shape, (0, 0, 30), (50, 8, 36))
 
     def test_document_object_and_file_inputs(self):
         folder = tempfile.mkdtemp(prefix="mas_dec_")
@@ -646,6 +667,42 @@ class TestDecompositionObject(DecomposeTest):
         doc.recompute()
         self.check_l_block_objects(obj)
         doc.save()
+
+    def test_a_root_on_two_legs_is_one_component_object_of_two_solids(self):
+        # The Decomposition's compound holds one child shape per component: the root's is a
+        # compound of its legs, shown by one Component object, before and after saving.
+        part = self.doc.addObject("Part::Feature", "Portal")
+        part.Shape = portal()
+        self.doc.recompute()
+        obj = mas.make_decomposition(part)
+        self.doc.recompute()
+
+        def check(obj):
+            self.assertTrue(obj.isValid(), obj.getStatusString())
+            self.assertEqual(obj.ComponentCount, 2)
+            self.assertEqual(list(obj.Rules), ["root", "bridge"])
+            self.assertEqual(len(obj.Shape.childShapes()), 2)
+            self.assertEqual(len(obj.Shape.Solids), 3)
+            root, lintel = features.components_of(obj)
+            self.assertTrue(root.isValid(), root.getStatusString())
+            self.assertEqual(len(root.Shape.Solids), 2)
+            self.assertAlmostEqual(root.Shape.Volume, 2 * 8 * 8 * 30 + 144, delta=1e-6)
+            self.assertAlmostEqual(root.Volume.Value, 2 * 8 * 8 * 30 + 144, delta=1e-6)
+            self.assertEqual(lintel.Rule, "bridge")
+            self.assertEqual(len(lintel.Shape.Solids), 1)
+            assert_box(self, lintel.Shape, (0, 0, 30), (50, 8, 36))
+
+        check(obj)
+        name = obj.Name
+        path = os.path.join(self.folder, "portal.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        doc = FreeCAD.openDocument(path)
+        obj = doc.getObject(name)
+        check(obj)
+        obj.touch()
+        doc.recompute()
+        check(obj)
 
     def test_turned_cuts_are_listed_and_shown_on_their_components(self):
         # Six blades 60 degrees apart round a hub, the first along +X: the four between +-X and

@@ -628,8 +628,11 @@ class TestDecomposeCommand(unittest.TestCase):
             for j in range(i):
                 self.assertFalse(same_colour(colours[i], colours[j]), (i, j))
         want = []
-        for i, solid in enumerate(obj.Shape.Solids):
-            want += [view_providers.component_colour(i)] * len(solid.Faces)
+        # One child shape per component: a root on several feet is a compound of them.
+        children = obj.Shape.childShapes()
+        self.assertEqual(len(children), len(components))
+        for i, child in enumerate(children):
+            want += [view_providers.component_colour(i)] * len(child.Faces)
         got = obj.ViewObject.DiffuseColor
         self.assertEqual(len(got), len(want))
         for a, b in zip(got, want):
@@ -714,6 +717,19 @@ class TestDecomposeCommand(unittest.TestCase):
         self.assertTrue(all(o.isValid() for o in self.doc.Objects))
         self.assertEqual(components[2].Parent, 1)  # the post stands on the arm
         save_screenshot(self, self.doc, "decompose_l_block_post.png", see_through=False)
+
+        # A portal on two legs: its root is the legs apart, both in the root's colour, the
+        # lintel (the bridge) in the next; the third Component object goes.
+        self.part.Shape = Part.makeBox(8, 8, 30).fuse(
+            [Part.makeBox(8, 8, 30, FreeCAD.Vector(42, 0, 0)),
+             Part.makeBox(50, 8, 6, FreeCAD.Vector(0, 0, 30))]).removeSplitter()
+        obj.Step = 0.0
+        self.doc.recompute()
+        wait_for_components(obj, 2)
+        self.assertEqual(list(obj.Rules), ["root", "bridge"])
+        components = self.check_colours(obj)
+        self.assertEqual(len(components[0].Shape.Solids), 2)
+        save_screenshot(self, self.doc, "decompose_portal.png", see_through=False)
 
     def test_undo_removes_everything(self):
         names = [o.Name for o in self.doc.Objects]

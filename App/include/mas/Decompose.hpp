@@ -214,8 +214,11 @@
 //   one component built along D, the component is split by the plane of its lowest face facing
 //   -D within two steps past b's last node, over the gap (seen along D, the face's box meets the
 //   segment from m's node nearest that plane to b's last node), and what lies past the plane (one
-//   solid, the father left one solid and as tall as a step, as for any split) becomes b's child,
-//   SplitRule::Bridge, built along the diagonal d = (D + g) / sqrt 2, g the frame's direction
+//   solid, the father left one solid and as tall as a step, as for any split; the root may be
+//   left several solids, each standing on the plate: a portal's two legs, a table's legs) becomes
+//   b's child (m's where b is the root's own branch: a part on several feet whose first foot's
+//   track merged into another's), SplitRule::Bridge, built along the diagonal d = (D + g) /
+//   sqrt 2, g the frame's direction
 //   square to D nearest the gap's, either way: its underside, and its faces square to g, then
 //   lean exactly 45 degrees off d, which slicing's layers lay at the default overhang angle (a
 //   layer's allowance is its thickness x tan 45), and the nozzle, along d, stays clear of the
@@ -236,6 +239,9 @@
 //   piece without it must mesh closed (a plane through another window's corner left the piece an
 //   edge four triangles shared); else the piece stays whole, its base plane square to d through
 //   its lowest point, on the splitting plane (base_origin; base_normal -D, the splitting plane's).
+//   The piece is found by the node marched along D past the plane nearest the gap's middle, else
+//   by the nearest marched another way (a table's top, far wider than its legs, turned sideways
+//   off them; a note that such a branch stayed in its father then names the bridge's component).
 //   Bridges are cut the lowest first (two windows side by side: cut at the higher one first, the
 //   band under it, holding the lower one's ceiling, was thinner than a step and stayed). A bridge
 //   is not cut where b is asked to stay in its father (keep_branches), where a component already
@@ -255,7 +261,11 @@
 //   sides' first nodes then classified as on the father, not in it, and stayed in the root. A
 //   piece on which the seam removal throws (a piece of a torus: an eye bolt's ring, a hollow pipe
 //   cross's side arms) is taken as the split left it.
-// - Several roots (a part on several feet) share the one root component.
+// - Several roots (a part on several feet) share the one root component. Where a bridge's split
+//   (above) takes what joins them, the root is left in several solids apart, each standing on
+//   the build plate, as one component: built up from the plate along +Z, each of its layers holds
+//   a region per foot (a portal's lintel on two legs, 240 mm^2 in its first layer along Z, is a
+//   bridge's piece so, and nothing hangs). No other split may leave a component in pieces.
 // - An axis marched in a frame turned about Z (AxisParams::frame_deg: a part placed turned on the
 //   plate) is decomposed in that frame, where its directions are +-X, +-Y and +-Z as read above
 //   (and Eq. 5's projections and the boxes exact): the part and the axis are turned into it, and
@@ -400,7 +410,9 @@ struct Component {
         SectionPlane,  // fallback: cut at the plane where the branch's march started
         Bridge,        // a bridge's piece, cut at its underside, built along a diagonal (above)
     };
-    Shape solid;      // one closed solid
+    // One closed solid; for a root left on several feet apart by a bridge's split (above), a
+    // compound of closed solids, each standing on the build plate.
+    Shape solid;
     int parent = -1;  // index of the father component, -1 for the root
     // Unit; the reverse of base_normal, but for a bridge's piece (SplitRule::Bridge) starting at
     // its underside, built along a diagonal half way between -base_normal and the way across its

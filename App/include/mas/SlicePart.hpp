@@ -261,7 +261,8 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
                             Decomposition& decomposition, const Progress& progress = {});
 
 // The decomposition's components, their holes filled when params.fill_holes_up_to_mm asks it,
-// tessellated with params.tessellation (the first tenth of `progress`), then slice_components.
+// tessellated with params.tessellation (the first tenth of `progress`), then slice_components. A
+// root on several feet (Decompose.hpp) is filled and tessellated solid by solid, into one mesh.
 // stats.part_volume_mm3 is the exact solid's volume, before any hole is filled.
 SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
                       const Decomposition& decomposition, const SlicePartParams& params,

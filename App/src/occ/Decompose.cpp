@@ -363,9 +363,12 @@ struct Child {
 struct Footing {
     bool root = true;
     double plate_z = 0.0;  // root: the plate's height
-    TopoDS_Face base;      // child: its base face
-    Vector3d normal;       // child: the base face's outward normal
-    double tol = 1e-6;     // mm
+    // root: whether it may be left several solids apart, each standing on the plate (a bridge's
+    // split of a part on several feet: a portal's legs without its lintel)
+    bool feet = false;
+    TopoDS_Face base;   // child: its base face
+    Vector3d normal;    // child: the base face's outward normal
+    double tol = 1e-6;  // mm
 };
 
 // A point strictly inside `face` (its centroid when that is inside, else the first inside point
@@ -408,6 +411,28 @@ bool holds_footing(const TopoDS_Shape& piece, const Footing& f) {
         if (st == TopAbs_IN || st == TopAbs_ON) return true;
     }
     return false;
+}
+
+// What is left of a split `father` as a component: one valid solid (valid_solid), or, for a root
+// that may stand on several feet (Footing::feet) and falls apart, a compound of valid solids, each
+// standing on the build plate. `unified`: the father with its seams removed, when already done.
+bool valid_father(const TopoDS_Shape& father, const Footing& footing, TopoDS_Shape& out,
+                  const MeshCheck& mesh, const Progress& progress,
+                  const TopoDS_Shape& unified = TopoDS_Shape()) {
+    if (!footing.root || !footing.feet) return valid_solid(father, out, mesh, progress, unified);
+    const TopoDS_Shape u = unified.IsNull() ? occ::unify(father) : unified;
+    const auto solids = solids_of(u);
+    if (solids.size() < 2) return valid_solid(father, out, mesh, progress, u);
+    BRep_Builder builder;
+    TopoDS_Compound feet;
+    builder.MakeCompound(feet);
+    for (const TopoDS_Shape& s : solids) {
+        TopoDS_Shape foot;
+        if (!holds_footing(s, footing) || !valid_solid(s, foot, mesh, progress, s)) return false;
+        builder.Add(feet, foot);
+    }
+    out = feet;
+    return true;
 }
 
 // How far `s` reaches along the unit `n` beyond `point` (range_along: exact for an axis-aligned
@@ -592,7 +617,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
         }
         TopoDS_Shape unified = occ::unify(father_new);
         int joins = 0;
-        if (solids_of(unified).size() != 1) {
+        if (solids_of(unified).size() != 1 && !(footing.root && footing.feet)) {
             // The plane may cut off, on the father's side, material joined only to a child: an
             // S bracket's top plate, whose tail past the plane hangs from the part of it the
             // middle plate's child takes. Such a piece goes with that child (when asked), to be
@@ -650,7 +675,7 @@ SplitOutcome split_by_plane(const TopoDS_Shape& father, const Footing& footing,
             unified = main;  // a solid of `unified`: its seams are already removed
         }
         progress.check();
-        if (!valid_solid(father_new, father_out, mesh, progress, unified))
+        if (!valid_father(father_new, footing, father_out, mesh, progress, unified))
             return SplitOutcome::Invalid;
         if (joined) *joined = joins;
         return SplitOutcome::Split;
@@ -1272,12 +1297,16 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 return nullptr;
             };
 
+            // Written out at the end of the pass: a bridge's piece, inserted after its father,
+            // moves the components after it, and may take a noted branch's material.
+            struct Kept {
+                std::size_t branch;
+                std::string why;
+                int kept_in;
+            };
+            std::vector<Kept> kept_notes;
             const auto note = [&](std::size_t b, const std::string& why, int kept_in) {
-                const Vector3d d = to_world * axis.branches[b].direction;
-                std::ostringstream line;
-                line << "branch " << b << " (along " << d.x() << "," << d.y() << "," << d.z()
-                     << "): " << why << "; its material stays in component " << kept_in;
-                notes.push_back(line.str());
+                kept_notes.push_back({b, why, kept_in});
             };
             // Branches whose split at a planar face was refused (its piece took the father's
             // footing, reached other branches' material, or was no valid solid; not one too short,
@@ -1508,7 +1537,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             // The lowest first along D: a piece cut off at a higher one would leave the band
             // under it, with the lower bridge, too thin to cut off (two windows side by side).
             std::vector<std::size_t> merged;
-            for (std::size_t b = 1; b < nb; ++b)
+            for (std::size_t b = 0; b < nb; ++b)
                 if (axis.branches[b].merged_into >= 0 && !axis.branches[b].nodes.empty())
                     merged.push_back(b);
             const auto last_along = [&](std::size_t b) {
@@ -1526,9 +1555,12 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 const int h = holder[b];
                 if (h < 0 || h != holder[m] || axis.branches[m].nodes.empty() ||
                     !axis.branches[m].direction.normalized().isApprox(D, 1e-9) ||
-                    work[std::size_t(h)].c.branch == int(b) ||
                     !work[std::size_t(h)].c.build_direction.isApprox(D, 1e-9))
                     continue;
+                // The branch the piece is of: b, but m where b made the component itself (a part
+                // on several feet whose root branch, 0, merged into another foot's track).
+                const std::size_t owner = work[std::size_t(h)].c.branch == int(b) ? m : b;
+                if (work[std::size_t(h)].c.branch == int(owner)) continue;
                 progress.check();
                 // The gap: from m's node on the plane of b's last node, or the nearest to it, to
                 // b's, square to D, along the nearest of the frame's directions square to D.
@@ -1578,21 +1610,24 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (!s) continue;
                 // A point in the bridge's material: of the nodes marched along D on the planes
                 // past it (m's, or its sub-branches' where m split again), the nearest to the
-                // middle of the gap.
+                // middle of the gap; else of the nodes marched another way there (a table's top,
+                // much wider than its legs, turned sideways off them).
                 const Vector3d middle = 0.5 * (pa + pb) + D * (*s - sb);
                 int past = -1;
-                for (std::size_t n = 0; n < axis.nodes.size(); ++n) {
-                    const AxisNode& node = axis.nodes[n];
-                    const double sn = D.dot(node.position);
-                    if (node.branch < 0 || sn <= *s + plane_tol ||
-                        sn > *s + 2.0 * axis.params.step_mm ||
-                        !axis.branches[std::size_t(node.branch)].direction.normalized().isApprox(
-                            D, 1e-9))
-                        continue;
-                    if (past < 0 || (node.position - middle).norm() <
-                                        (axis.nodes[std::size_t(past)].position - middle).norm())
-                        past = int(n);
-                }
+                for (const bool along : {true, false})
+                    for (std::size_t n = 0; n < axis.nodes.size() && (along || past < 0); ++n) {
+                        const AxisNode& node = axis.nodes[n];
+                        const double sn = D.dot(node.position);
+                        if (node.branch < 0 || sn <= *s + plane_tol ||
+                            sn > *s + 2.0 * axis.params.step_mm ||
+                            axis.branches[std::size_t(node.branch)].direction.normalized().isApprox(
+                                D, 1e-9) != along)
+                            continue;
+                        if (past < 0 ||
+                            (node.position - middle).norm() <
+                                (axis.nodes[std::size_t(past)].position - middle).norm())
+                            past = int(n);
+                    }
                 if (past < 0) continue;
                 // No component already cut off the father may straddle the plane.
                 bool straddles = false;
@@ -1604,7 +1639,11 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 }
                 if (straddles) continue;
                 const Component& fc = work[std::size_t(h)].c;
-                const Footing footing = footing_of(fc);
+                // A root on several feet (a portal's legs, a table's) may be left in several
+                // solids, each standing on the plate: the span's underside hangs however they
+                // are built (Decompose.hpp).
+                Footing footing = footing_of(fc);
+                footing.feet = true;
                 const double step_height =
                     std::max(axis.params.step_mm, params.min_component_height_mm);
                 std::vector<Child> children;
@@ -1655,16 +1694,16 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 }
                 if (d.isZero() || !(along_d > 0.0)) continue;
                 // Asked to stay in its father (once it would be cut): said so, as for any branch.
-                if (const KeptBranch* k = asked_to_keep(b)) {
-                    if (kept_by_caller(b)) kept_asked.insert(int(b));
-                    note(b, k->why, h);
+                if (const KeptBranch* k = asked_to_keep(owner)) {
+                    if (kept_by_caller(owner)) kept_asked.insert(int(owner));
+                    note(owner, k->why, h);
                     continue;
                 }
                 Work child;
                 child.solid = children.front().solid;
                 child.c.parent = h;
-                child.c.branch = int(b);
-                child.c.break_link = br.first_link;
+                child.c.branch = int(owner);
+                child.c.break_link = axis.branches[owner].first_link;
                 child.c.rule = Component::SplitRule::Bridge;
                 child.c.has_base_face = true;
                 child.c.build_direction = d;
@@ -1742,7 +1781,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                             if (overhang_area(w, D, params.overhang_angle_deg, D, *s, on_plane,
                                               w_hangs) <= 1e-6 * (1.0 + area_of(wedge)) &&
                                 fuse_kept(father_new, tool, fused) &&
-                                valid_solid(fused, father_grown, mesh, progress) &&
+                                valid_father(fused, footing, father_grown, mesh, progress) &&
                                 // Both must mesh closed, as every component must (below): a
                                 // plane through another window's corner left the piece an
                                 // edge its mesh shared among four triangles.
@@ -1777,12 +1816,29 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     if (w.c.parent >= to) ++w.c.parent;
                 for (int& x : holder)
                     if (x >= to) ++x;
+                // A branch noted as kept in the father whose material the piece took (a table's
+                // top, turned sideways off its legs and left in the root) is kept in the piece.
+                for (Kept& k : kept_notes)
+                    if (k.kept_in >= to)
+                        ++k.kept_in;
+                    else if (k.kept_in == h && !axis.branches[k.branch].nodes.empty() &&
+                             contains(child.solid,
+                                      axis.nodes[std::size_t(axis.branches[k.branch].nodes.front())]
+                                          .material_point()))
+                        k.kept_in = to;
                 work.insert(work.begin() + to, child);
                 for (std::size_t i = std::size_t(to) + 1; i < work.size(); ++i)
                     if (work[i].c.parent == h && work[i].c.has_base_face &&
                         D.dot(work[i].c.base_origin) > *s + plane_tol)
                         work[i].c.parent = to;
-                holder[b] = to;
+                holder[owner] = to;
+            }
+            for (const Kept& k : kept_notes) {
+                const Vector3d d = to_world * axis.branches[k.branch].direction;
+                std::ostringstream line;
+                line << "branch " << k.branch << " (along " << d.x() << "," << d.y() << "," << d.z()
+                     << "): " << k.why << "; its material stays in component " << k.kept_in;
+                notes.push_back(line.str());
             }
         } catch (const Standard_Failure& e) {
             throw Error(ErrorCode::GeometryFailure, occ::failure_message("decompose", e));

@@ -1,6 +1,7 @@
 // Slicing a BREP part: its sub-components, holes filled when asked (Holes.hpp), tessellated with
 // the part's deflection, then sliced as meshes (see SlicePart.hpp).
 #include <BRepClass3d_SolidClassifier.hxx>
+#include <TopExp_Explorer.hxx>
 #include <algorithm>
 #include <any>
 #include <cmath>
@@ -18,6 +19,27 @@
 namespace mas {
 
 namespace {
+
+// The solids of a component: one, or a root's feet (Decompose.hpp), each its own Shape.
+std::vector<Shape> solids_of(const Shape& component) {
+    std::vector<Shape> out;
+    try {
+        for (TopExp_Explorer x(occ::occt(component), TopAbs_SOLID); x.More(); x.Next())
+            out.push_back(occ::wrap(x.Current()));
+    } catch (const Standard_Failure& e) {
+        throw Error(ErrorCode::GeometryFailure, occ::failure_message("slice: a component", e));
+    }
+    if (out.size() < 2) return {component};  // as it is (single_solid() says what is wrong)
+    return out;
+}
+
+// `more` added to `mesh` (its own vertices: the two share none).
+void append(TriangleMesh& mesh, const TriangleMesh& more) {
+    const int offset = int(mesh.vertices.size());
+    mesh.vertices.insert(mesh.vertices.end(), more.vertices.begin(), more.vertices.end());
+    for (const Eigen::Vector3i& t : more.triangles)
+        mesh.triangles.push_back(t + Eigen::Vector3i::Constant(offset));
+}
 
 // The decomposition must be of this part: its components fill the part's volume (within a
 // thousandth: they are cut from it by Booleans) and lie within its box. Returns that volume, mm^3.
@@ -163,22 +185,27 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         const Component& c = decomposition.components[i];
         tessellating(double(i) / double(decomposition.components.size()));
         const std::string what = "component " + std::to_string(i);
-        Shape solid = c.solid;
-        if (params.fill_holes_up_to_mm != 0.0) {
-            const double count = double(decomposition.components.size());
-            HoleFill f = fill_holes(c.solid, c.build_direction, params.fill_holes_up_to_mm,
-                                    params.layers.overhang_angle_deg, part,
-                                    tessellating.span(double(i) / count, double(i + 1) / count));
-            for (FilledHole& h : f.holes) {
-                h.component = int(i);
-                filled.push_back(h);
-            }
-            filled_volume += f.added_volume_mm3;
-            for (const std::string& note : f.notes) notes.push_back(what + ": " + note);
-            solid = f.solid;
-        }
         ComponentMesh m;
-        m.mesh = occ::tessellate(solid, tessellation, what);
+        // Each of its solids: one, but for a root standing on several feet (Decompose.hpp).
+        const std::vector<Shape> feet = solids_of(c.solid);
+        for (std::size_t k = 0; k < feet.size(); ++k) {
+            Shape solid = feet[k];
+            if (params.fill_holes_up_to_mm != 0.0) {
+                const double count = double(decomposition.components.size() * feet.size());
+                const double at = double(i * feet.size() + k);
+                HoleFill f = fill_holes(solid, c.build_direction, params.fill_holes_up_to_mm,
+                                        params.layers.overhang_angle_deg, part,
+                                        tessellating.span(at / count, (at + 1.0) / count));
+                for (FilledHole& h : f.holes) {
+                    h.component = int(i);
+                    filled.push_back(h);
+                }
+                filled_volume += f.added_volume_mm3;
+                for (const std::string& note : f.notes) notes.push_back(what + ": " + note);
+                solid = f.solid;
+            }
+            append(m.mesh, occ::tessellate(solid, tessellation, what));
+        }
         m.parent = c.parent;
         m.branch = c.branch < 0 ? 0 : c.branch;
         m.turned = c.turned;

@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: eleven families of the parts a deposition shop builds (pipe bends, hubs
+"""Parts nobody tuned for: twelve families of the parts a deposition shop builds (pipe bends, hubs
 with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
 leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports, wye
-fittings, handles and walls with windows), each part drawn at random from its family's ranges,
+fittings, handles and walls with windows, portals, tables and gates on feet apart), each part drawn at random from its family's ranges,
 and a survey slicing them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
@@ -243,6 +243,43 @@ def handle(rng):
     return solid, description
 
 
+def feet(rng):
+    """A bridge on feet standing apart on the plate, nothing joining them below: a portal (two
+    legs, a lintel across their tops, maybe reaching past them), a table (three or four square
+    legs under a top) or a gate (three or four posts in a row under a beam); across X or, turned,
+    across Y."""
+    kind = rng.choice(["portal", "table", "gate"])
+    if kind == "portal":
+        leg, depth, height = rng.uniform(5, 12), rng.uniform(5, 20), rng.uniform(15, 50)
+        span, lintel = rng.uniform(20, 80), rng.uniform(4, 10)
+        past = rng.choice([0.0, rng.uniform(1, 8)])
+        solid = Part.makeBox(leg, depth, height).fuse(
+            [Part.makeBox(leg, depth, height, V(leg + span, 0, 0)),
+             Part.makeBox(2 * (leg + past) + span, depth, lintel, V(-past, 0, height))])
+    elif kind == "table":
+        leg, length, width = rng.uniform(4, 8), rng.uniform(30, 70), rng.uniform(20, 50)
+        height, top, legs = rng.uniform(15, 40), rng.uniform(3, 8), rng.choice([3, 4])
+        corners = ([(0, 0), (length - leg, 0), (0, width - leg), (length - leg, width - leg)]
+                   if legs == 4 else [(0, 0), (length - leg, 0), ((length - leg) / 2, width - leg)])
+        solid = Part.makeBox(length, width, top, V(0, 0, height)).fuse(
+            [Part.makeBox(leg, leg, height, V(x, y, 0)) for x, y in corners])
+        span = length - 2 * leg
+    else:
+        posts, post, gap = rng.choice([3, 4]), rng.uniform(5, 10), rng.uniform(15, 40)
+        height, beam = rng.uniform(15, 45), rng.uniform(4, 8)
+        solid = Part.makeBox(posts * post + (posts - 1) * gap, post, beam, V(0, 0, height)).fuse(
+            [Part.makeBox(post, post, height, V(k * (post + gap), 0, 0)) for k in range(posts)])
+        span = gap
+    description = {"kind": kind, "span": span, "legs": 2 if kind == "portal" else
+                   legs if kind == "table" else posts}
+    if rng.random() < 0.5:
+        solid.rotate(V(0, 0, 0), V(0, 0, 1), 90)
+        description["across"] = "Y"
+    else:
+        description["across"] = "X"
+    return solid, description
+
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -255,6 +292,7 @@ FAMILIES = {
     "valve body": valve_body,
     "wye fitting": wye_fitting,
     "handle": handle,
+    "feet": feet,
 }
 
 
@@ -283,7 +321,8 @@ def survey_part(solid, description, fill_holes=0.0):
     """Slices `solid` at the defaults (holes up to `fill_holes` mm deposited solid), writes its
     G-code, and reports: components, layers, seconds, the axis' step, worst and summed
     unsupported area, layers over their tolerance (support_tolerance), colliding layers, travel
-    routes meeting something, layers out of the thickness bounds, holes filled and notes."""
+    routes meeting something, layers out of the thickness bounds, holes filled, notes, the
+    components' rules and how many solids the root is (its feet apart on the plate)."""
     start = time.perf_counter()
     result = mas.slice(solid, fill_holes=fill_holes)
     program = result.gcode()
@@ -309,7 +348,9 @@ def survey_part(solid, description, fill_holes=0.0):
                 unsupported_layers=over, colliding_layers=result.stats["colliding_layers"],
                 travel_collisions=len(program.stats["travel_collisions"]),
                 layers_out_of_bounds=out_of_bounds,
-                filled_holes=len(result.filled_holes), notes=list(result.notes))
+                filled_holes=len(result.filled_holes), notes=list(result.notes),
+                rules=[c.rule for c in result.decomposition],
+                feet=len(result.decomposition[0].shape.Solids))
 
 
 def survey(per_family, seed=39, fill_holes=16.0, families=None):

@@ -669,7 +669,7 @@ int decompose_mesh_part(const Args& a, const Part& part, const mas::AxisParams& 
         r.base_origin = c.base.origin;
         r.base_normal = -c.base.normal;
         r.branch = c.branch;
-        r.rule = c.parent < 0 ? "root" : "section_plane";
+        r.rule = c.parent < 0 ? "root" : c.bridge ? "bridge" : "section_plane";
         r.turned = c.turned;
         r.volume_mm3 = mas::mesh_volume(c.mesh);
         r.file = files[i];

@@ -93,6 +93,30 @@ def l_prism_stl(turn_deg=0.0):
     return "\n".join(lines + ["endsolid l"]) + "\n"
 
 
+def portal_prism_stl():
+    """ASCII STL of the portal of the engine tests (legs [0,8] and [42,50] along X, 30 tall, a
+    lintel [0,50] x [30,36] on them), as the prism of its profile in XZ swept 8 mm along Y."""
+    profile = [(0, 0), (8, 0), (8, 30), (42, 30), (42, 0), (50, 0), (50, 30), (50, 36), (0, 36),
+               (0, 30)]
+    caps = [(0, 1, 2), (0, 2, 9), (4, 5, 6), (4, 6, 3), (9, 2, 8), (2, 3, 7), (2, 7, 8),
+            (3, 6, 7)]
+    facets = []
+    for a, b, c in caps:  # y = 0 facing -Y, y = 8 facing +Y
+        facets.append([(profile[i][0], 0, profile[i][1]) for i in (a, b, c)])
+        facets.append([(profile[i][0], 8, profile[i][1]) for i in (a, c, b)])
+    for i, p in enumerate(profile):
+        q = profile[(i + 1) % len(profile)]
+        a, b = (p[0], 0, p[1]), (q[0], 0, q[1])
+        c, d = (q[0], 8, q[1]), (p[0], 8, p[1])
+        facets += [[a, d, c], [a, c, b]]
+    lines = ["solid portal"]
+    for f in facets:
+        lines.append(" facet normal 0 0 0\n  outer loop")
+        lines += ["   vertex %r %r %r" % v for v in f]
+        lines.append("  endloop\n endfacet")
+    return "\n".join(lines + ["endsolid portal"]) + "\n"
+
+
 class CliSections(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -564,6 +588,27 @@ class CliSections(unittest.TestCase):
             self.assertAlmostEqual(json.loads(r.stdout)["part_volume_mm3"], piece["volume_mm3"],
                                    delta=400 * 70 * 2.0 ** -24)
         self.assertEqual(sorted(os.listdir(folder)), ["component_001.stl", "component_002.stl"])
+
+    def test_a_meshs_bridge_on_feet_apart_is_cut_at_its_underside_and_sliced_supported(self):
+        # The portal as a mesh: the lintel is cut off at its underside (rule "bridge", built along
+        # a diagonal in XZ), the root left the two legs; sliced, no layer hangs.
+        path = self.write("portal.stl", portal_prism_stl())
+        r = run("decompose", path, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        doc = json.loads(r.stdout)
+        self.assertEqual(doc["notes"], [])
+        root, lintel = doc["components"]
+        self.assertEqual((root["parent"], root["rule"]), (-1, "root"))
+        self.assertEqual((lintel["parent"], lintel["rule"]), (0, "bridge"))
+        x, y, z = lintel["build_direction"]
+        self.assertAlmostEqual(abs(x), math.sqrt(0.5), places=12)
+        self.assertEqual(y, 0)
+        self.assertAlmostEqual(z, math.sqrt(0.5), places=12)
+        self.assertAlmostEqual(lintel["volume_mm3"], 50 * 8 * 6, places=6)
+        self.assertAlmostEqual(root["volume_mm3"], 2 * 8 * 8 * 30, places=6)
+        r = run("slice", path, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.loads(r.stdout)["stats"]["worst_unsupported_area_mm2"], 0.0)
 
     def test_a_solid_that_meshes_with_gaps_is_named_as_such(self):
         elbow = os.path.join(DATA, "faulty_elbow.step")

@@ -247,8 +247,8 @@
 //   is not cut where b is asked to stay in its father (keep_branches), where a component already
 //   cut off the father has its base across the plane, or on a round underside (a bore's ceiling, an
 //   arch's round intrados), which no plane's face spans. The father's children whose bases lie past
-//   the plane become the bridge's. A mesh (decompose_mesh, SlicePart.hpp) has no faces: it gets no
-//   bridge.
+//   the plane become the bridge's. A mesh (decompose_mesh, SlicePart.hpp) gets its bridges over
+//   flat facets, without the wedge.
 // - Nor does a branch in its father's direction where the father's section split and every
 //   other branch of that split ended on the plane it began on (one node, no sub-branches): a
 //   sliver beside it, thinner than a step (the far end of a port another branch took, left under

@@ -48,6 +48,9 @@ struct ComponentMesh {
     // Cut square to its branch's line, which runs between the six directions, or at a bend's
     // halfway plane (Decompose.hpp's Component::turned), not square to the branch's direction.
     bool turned = false;
+    // A bridge's piece (decompose_mesh, Decompose.hpp), built along a diagonal from its lowest
+    // point that way.
+    bool bridge = false;
 };
 
 struct ComponentLayers {
@@ -163,13 +166,20 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
 // branch turning off its father round a bend (bend_plane(), Decompose.hpp: a pipe's elbow) is cut
 // first at the bend's halfway plane, built along the bisector of its direction and its father's;
 // refused, or asked (square_branches), at the plane square to its direction. The root stands on
-// build_plate() and follows branch 0.
+// build_plate() and follows branch 0. Then its bridges (Decompose.hpp): where two of the axis'
+// tracks along D merge in one component built along D over flat facets facing -D, it is split at
+// their plane (kept there, the facets the piece's underside, the cap only where the two touch)
+// and the piece, ComponentMesh::bridge, is built along the diagonal from its lowest point that
+// way (no wedge), as a solid's is kept or refused; its father may be left in bodies apart, each
+// standing on its base (MeshSplit.cpp, bridges()).
 struct MeshDecomposeParams {
     double min_component_height_mm = 0.0;
     double max_tilt_deg = 100.0;
     std::vector<KeptBranch> keep_branches;  // branches not cut off, whatever they are
     // Branches cut square to their directions, never to their lines (DecomposeParams).
     std::vector<int> square_branches;
+    // Slicing's overhang angle: how far a bridge's facets may lean off its direction (degrees).
+    double overhang_angle_deg = 45.0;
 };
 struct MeshDecomposition {
     std::vector<ComponentMesh> components;  // tree order: a father before its children

@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -487,6 +488,414 @@ double highest_along(const TriangleMesh& mesh, const Vec3& n) {
     return hi;
 }
 
+// Splits the closed mesh at the plane n.x = offset through flat facets of it (a bridge's
+// underside), keeping the vertices within `tol` of the plane on it (split_mesh moves the plane off
+// them, which would leave the underside in a sheet a ten-millionth thick on one side). `above` is
+// the connected piece above the plane holding `inside`, with the facets on the plane facing -n
+// that border it (its underside, hanging over the gap); `below` is the rest. Where they touch
+// (the father's top under the piece) each is closed by the same cap on the plane, the last
+// `cap` triangles of `above`. False, with why, as split_mesh.
+bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, double tol,
+                   const Vec3& inside, TriangleMesh& above, TriangleMesh& below,
+                   std::size_t& cap_count, std::string& why) {
+    const std::size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
+    std::vector<double> d(nv);
+    for (std::size_t v = 0; v < nv; ++v) {
+        d[v] = n.dot(mesh.vertices[v]) - offset;
+        if (std::abs(d[v]) <= tol) d[v] = 0.0;
+    }
+    if (n.dot(inside) - offset <= tol) {
+        why = "its material point lies behind the cutting plane";
+        return false;
+    }
+    // Above the plane: a triangle with a vertex above it, or lying on it facing -n.
+    std::vector<char> up_side(nt, 0);
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Eigen::Vector3i& tri = mesh.triangles[t];
+        const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]],
+                   &c = mesh.vertices[tri[2]];
+        const bool flat = d[tri[0]] == 0.0 && d[tri[1]] == 0.0 && d[tri[2]] == 0.0;
+        up_side[t] = flat ? (b - a).cross(c - a).dot(n) < 0.0
+                          : d[tri[0]] > 0.0 || d[tri[1]] > 0.0 || d[tri[2]] > 0.0;
+    }
+    std::unordered_map<std::uint64_t, std::array<int, 2>> edges;
+    edges.reserve(nt * 2);
+    for (std::size_t t = 0; t < nt; ++t)
+        for (int k = 0; k < 3; ++k) {
+            auto& e =
+                edges
+                    .try_emplace(edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]),
+                                 std::array<int, 2>{-1, -1})
+                    .first->second;
+            (e[0] < 0 ? e[0] : e[1]) = int(t);
+        }
+    UnionFind classes(nt);
+    for (const auto& [key, tris] : edges)
+        if (tris[0] >= 0 && tris[1] >= 0 && up_side[std::size_t(tris[0])] &&
+            up_side[std::size_t(tris[1])])
+            classes.join(tris[0], tris[1]);
+    const PlaneFrame frame(n);
+    const Vec3 dir = (n + 1.234567e-3 * frame.u + 0.7654321e-3 * frame.v).normalized();
+    const int hit = first_hit(mesh, inside, dir);
+    if (hit < 0 || !up_side[std::size_t(hit)]) {
+        why = "its material point is not inside the mesh above the plane";
+        return false;
+    }
+    const int piece = classes.find(hit);
+    std::vector<Vec3> vertices = mesh.vertices;
+    std::unordered_map<std::uint64_t, int> crossing;
+    const auto cross_at = [&](int a, int b) {
+        const auto [it, added] = crossing.try_emplace(edge_key(a, b), int(vertices.size()));
+        if (added) {
+            const int lo = std::min(a, b), hi = std::max(a, b);
+            const double s = d[lo] / (d[lo] - d[hi]);
+            vertices.push_back(mesh.vertices[lo] + s * (mesh.vertices[hi] - mesh.vertices[lo]));
+        }
+        return it->second;
+    };
+    std::vector<Eigen::Vector3i> up, down;
+    for (std::size_t t = 0; t < nt; ++t) {
+        const Eigen::Vector3i& tri = mesh.triangles[t];
+        if (!up_side[t] || classes.find(int(t)) != piece) {
+            down.push_back(tri);
+            continue;
+        }
+        int below_count = 0, above_count = 0;
+        for (int k = 0; k < 3; ++k) {
+            below_count += d[tri[k]] < 0.0;
+            above_count += d[tri[k]] > 0.0;
+        }
+        if (below_count == 0) {
+            up.push_back(tri);
+            continue;
+        }
+        if (below_count + above_count == 3) {
+            // Two vertices on one side: i0 alone on its side, as split_mesh cuts.
+            int r = 0;
+            for (int k = 0; k < 3; ++k)
+                if ((d[tri[k]] > 0.0) == (above_count == 1)) r = k;
+            const int i0 = tri[r], i1 = tri[(r + 1) % 3], i2 = tri[(r + 2) % 3];
+            const int x01 = cross_at(i0, i1), x20 = cross_at(i2, i0);
+            std::vector<Eigen::Vector3i>& lone = above_count == 1 ? up : down;
+            std::vector<Eigen::Vector3i>& pair = above_count == 1 ? down : up;
+            lone.emplace_back(i0, x01, x20);
+            pair.emplace_back(x01, i1, i2);
+            pair.emplace_back(x01, i2, x20);
+            continue;
+        }
+        // One vertex on the plane, one above, one below: cut from the one on it.
+        int r = 0;
+        for (int k = 0; k < 3; ++k)
+            if (d[tri[k]] == 0.0) r = k;
+        const int i0 = tri[r], i1 = tri[(r + 1) % 3], i2 = tri[(r + 2) % 3];
+        const int x = cross_at(i1, i2);
+        (d[i1] > 0.0 ? up : down).emplace_back(i0, i1, x);
+        (d[i2] > 0.0 ? up : down).emplace_back(i0, x, i2);
+    }
+    // The piece's open edges (all on the plane on a closed mesh): its cap runs them the other way.
+    std::set<std::pair<int, int>> directed;
+    for (const Eigen::Vector3i& t : up)
+        for (int k = 0; k < 3; ++k) directed.emplace(t[k], t[(k + 1) % 3]);
+    std::map<int, int> cap_next;
+    for (const auto& [a, b] : directed) {
+        if (directed.count({b, a})) continue;
+        if (!cap_next.emplace(b, a).second) {
+            why = "the cut meets itself";
+            return false;
+        }
+    }
+    std::vector<Loop> loops;
+    while (!cap_next.empty()) {
+        Loop loop;
+        int v = cap_next.begin()->first;
+        while (true) {
+            const auto it = cap_next.find(v);
+            if (it == cap_next.end()) break;
+            loop.index.push_back(v);
+            loop.point.push_back(frame.to_2d(vertices[v]));
+            v = it->second;
+            cap_next.erase(it);
+        }
+        if (v != loop.index.front()) {
+            why = "the cut's outline does not close";
+            return false;
+        }
+        std::reverse(loop.index.begin(), loop.index.end());
+        std::reverse(loop.point.begin(), loop.point.end());
+        loops.push_back(std::move(loop));
+    }
+    if (loops.empty()) {
+        why = "the piece does not touch what is under the plane";
+        return false;
+    }
+    std::vector<Eigen::Vector3i> cap;
+    if (!triangulate(std::move(loops), cap)) {
+        why = "its contact with the father on the plane could not be closed";
+        return false;
+    }
+    for (const Eigen::Vector3i& t : cap) {
+        down.push_back(t);
+        up.emplace_back(t[0], t[2], t[1]);
+    }
+    cap_count = cap.size();
+    above = compacted(vertices, up);
+    below = compacted(vertices, down);
+    return true;
+}
+
+// The area of `mesh`'s triangles but its last `skip` leaning past `overhang_deg` off the unit
+// `way` (Decompose.cpp's leans_past: a face leaning exactly that far is supported).
+double overhang_of(const TriangleMesh& mesh, std::size_t skip, const Vec3& way,
+                   double overhang_deg) {
+    const double limit = -std::sin(overhang_deg * kPi / 180.0) - 1e-6;
+    double area = 0.0;
+    for (std::size_t t = 0; t + skip < mesh.triangles.size(); ++t) {
+        const Eigen::Vector3i& tri = mesh.triangles[t];
+        const Vec3 c = (mesh.vertices[tri[1]] - mesh.vertices[tri[0]])
+                           .cross(mesh.vertices[tri[2]] - mesh.vertices[tri[0]]);
+        if (c.norm() > 0.0 && c.normalized().dot(way) < limit) area += 0.5 * c.norm();
+    }
+    return area;
+}
+
+// Whether every piece of `mesh` (its vertices joined by its triangles) reaches back along the
+// unit `n` to `most` (n . point <= most).
+bool every_shell_down_to(const TriangleMesh& mesh, const Vec3& n, double most) {
+    UnionFind shells(mesh.vertices.size());
+    for (const Eigen::Vector3i& t : mesh.triangles) {
+        shells.join(t[0], t[1]);
+        shells.join(t[0], t[2]);
+    }
+    std::unordered_map<int, double> lowest;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+        const double h = n.dot(mesh.vertices[v]);
+        const auto [it, added] = lowest.try_emplace(shells.find(int(v)), h);
+        if (!added) it->second = std::min(it->second, h);
+    }
+    for (const auto& [shell, h] : lowest)
+        if (h > most) return false;
+    return true;
+}
+
+// The first component whose mesh holds `p`, -1 for none.
+int holding(const MeshDecomposition& d, const Vec3& p) {
+    for (std::size_t c = 0; c < d.components.size(); ++c)
+        if (bounding_box(d.components[c].mesh).contains(p) && inside_mesh(d.components[c].mesh, p))
+            return int(c);
+    return -1;
+}
+
+// A branch kept in a component, and why (decompose_mesh's notes).
+struct Kept {
+    std::size_t branch;
+    int component;
+    std::string why;
+};
+
+// Bridges (Decompose.hpp), on a mesh: where branch b's track merged into m's, both marching along
+// D in one component built along D, over flat facets facing -D within two steps past b's last
+// node over the gap, the component is split at their plane (split_on_face), and the piece past it
+// becomes b's child (m's where b made the component), built along the diagonal d = (D + g) /
+// sqrt 2, g the frame's direction square to D nearest the gap's, either way, where that leaves
+// at most half of the piece's facets leaning past the overhang angle that lean so along D (its cap
+// on the father excepted); the way leaving less, from m's track towards b's where alike. The
+// piece starts at its lowest point along d (no wedge goes back to the father: a mesh has no faces
+// to find the piece's top by). Refused, as any split of decompose_mesh, where the piece would not
+// reach a step past the plane, rest on the plate, leave the father thinner than a step, or either
+// piece not be a closed solid (the piece is one body: the piece of the surface holding the point
+// past the plane, and its cap); the father may be left in several bodies apart, each standing on
+// its base (the root: on the plate; a portal's legs, posts cut off a plate). Lowest first; the
+// piece goes right after its father, the father's children whose bases lie past the plane its
+// own, and the components in `notes` after it move on.
+void bridges(MeshDecomposition& out, const CentroidalAxis& axis, const MeshDecomposeParams& params,
+             const Eigen::AlignedBox3d& box, double plate_tol, std::vector<Kept>& notes,
+             const Progress& progress) {
+    const std::size_t nb = axis.branches.size();
+    const double step = axis.params.step_mm;
+    const double tol = 1e-6 * (1.0 + box.diagonal().norm());
+    const double cos_tilt = std::cos(params.max_tilt_deg * kPi / 180.0);
+    const double min_reach = std::max(params.min_component_height_mm, step);
+    const Eigen::Matrix3d frame =
+        Eigen::AngleAxisd(axis.params.frame_deg * kPi / 180.0, Vec3::UnitZ()).matrix();
+    std::vector<std::size_t> merged;
+    for (std::size_t b = 0; b < nb; ++b)
+        if (axis.branches[b].merged_into >= 0 && !axis.branches[b].nodes.empty())
+            merged.push_back(b);
+    const auto last_along = [&](std::size_t b) {
+        const AxisBranch& br = axis.branches[b];
+        return br.direction.normalized().dot(axis.nodes[std::size_t(br.nodes.back())].position);
+    };
+    std::stable_sort(merged.begin(), merged.end(),
+                     [&](std::size_t x, std::size_t y) { return last_along(x) < last_along(y); });
+    for (const std::size_t b : merged) {
+        progress.check();
+        const AxisBranch& br = axis.branches[b];
+        const std::size_t m = std::size_t(br.merged_into);
+        const Vec3 D = br.direction.normalized();
+        if (axis.branches[m].nodes.empty() ||
+            !axis.branches[m].direction.normalized().isApprox(D, 1e-9))
+            continue;
+        // The gap, from m's node nearest the plane of b's last node to that node, square to D.
+        const Vec3 pb = axis.nodes[std::size_t(br.nodes.back())].position;
+        const double sb = D.dot(pb);
+        int pm = -1;
+        for (const int n : axis.branches[m].nodes)
+            if (pm < 0 || std::abs(D.dot(axis.nodes[std::size_t(n)].position) - sb) <
+                              std::abs(D.dot(axis.nodes[std::size_t(pm)].position) - sb))
+                pm = n;
+        Vec3 v = pb - axis.nodes[std::size_t(pm)].position;
+        v -= D * D.dot(v);
+        if (!(v.norm() > step)) continue;
+        // The component holding both tracks there, found by their material (a branch whose
+        // split was refused may since have gone with its brother's piece: a window's jamb).
+        const int c = holding(out, axis.nodes[std::size_t(br.nodes.back())].material_point());
+        if (c < 0 || c != holding(out, axis.nodes[std::size_t(pm)].material_point()) ||
+            !out.components[std::size_t(c)].base.normal.isApprox(D, 1e-9))
+            continue;
+        const std::size_t owner = out.components[std::size_t(c)].branch == int(b) ? m : b;
+        if (out.components[std::size_t(c)].branch == int(owner)) continue;
+        Vec3 g = Vec3::Zero();
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 e = frame * Vec3::Unit(k);
+            const Vec3 w = e - D * D.dot(e);
+            if (w.norm() < 0.5) continue;
+            const Vec3 way = v.dot(w) >= 0.0 ? w.normalized() : Vec3(-w.normalized());
+            if (g.isZero() || way.dot(v) > g.dot(v)) g = way;
+        }
+        // The plane: the lowest of the flat facets facing -D within two steps past b's last node
+        // that span the gap: every point of the segment across it a quarter step under their plane
+        // that lies outside the mesh (the gap), seen along D, lies on one of them, and one does.
+        // (A round hole's wall has a facet facing -D too, narrower than the hole under it: a Z
+        // bracket's bolt hole, marched across, was taken for a bridge.)
+        const TriangleMesh& fm = out.components[std::size_t(c)].mesh;
+        const Vec3 pa = pb - v;
+        const PlaneFrame across(D);
+        std::map<double, std::vector<std::array<Vec2, 3>>> flats;  // by offset along D
+        for (const Eigen::Vector3i& t : fm.triangles) {
+            const Vec3 &p0 = fm.vertices[t[0]], &p1 = fm.vertices[t[1]], &p2 = fm.vertices[t[2]];
+            const Vec3 normal = (p1 - p0).cross(p2 - p0);
+            if (!(normal.norm() > 0.0) || normal.normalized().dot(-D) < 1.0 - 1e-9) continue;
+            const double sf = D.dot(p0);
+            if (std::abs(D.dot(p1) - sf) > tol || std::abs(D.dot(p2) - sf) > tol) continue;
+            if (sf <= sb + tol || sf > sb + 2.0 * step) continue;
+            auto near = flats.lower_bound(sf - tol);
+            if (near == flats.end() || near->first > sf + tol)
+                near = flats.emplace(sf, std::vector<std::array<Vec2, 3>>{}).first;
+            near->second.push_back({across.to_2d(p0), across.to_2d(p1), across.to_2d(p2)});
+        }
+        const auto on_facet = [&](const std::vector<std::array<Vec2, 3>>& facets, const Vec2& q) {
+            for (const auto& f : facets) {
+                const double a = cross2(f[0], f[1], q), b = cross2(f[1], f[2], q),
+                             e = cross2(f[2], f[0], q);
+                const double slack =
+                    tol * ((f[1] - f[0]).norm() + (f[2] - f[1]).norm() + (f[0] - f[2]).norm());
+                if ((a >= -slack && b >= -slack && e >= -slack) ||
+                    (a <= slack && b <= slack && e <= slack))
+                    return true;
+            }
+            return false;
+        };
+        std::optional<double> s;
+        for (const auto& [sf, facets] : flats) {
+            bool gap = false, spanned = true;
+            for (int i = 0; i <= 64 && spanned; ++i) {
+                Vec3 q = pa + (pb - pa) * (double(i) / 64.0);
+                q += D * (sf - 0.25 * step - D.dot(q));
+                if (inside_mesh(fm, q)) continue;
+                gap = true;
+                spanned = on_facet(facets, across.to_2d(q));
+            }
+            if (gap && spanned) {
+                s = sf;
+                break;
+            }
+        }
+        if (!s) continue;
+        // A point in the bridge's material: the node past the plane nearest the gap's middle,
+        // marched along D, else another way (a table's top turned sideways off its legs).
+        const Vec3 middle = 0.5 * (pa + pb) + D * (*s - sb);
+        int past = -1;
+        for (const bool along : {true, false})
+            for (std::size_t n = 0; n < axis.nodes.size() && (along || past < 0); ++n) {
+                const AxisNode& node = axis.nodes[n];
+                const double sn = D.dot(node.position);
+                if (node.branch < 0 || sn <= *s + tol || sn > *s + 2.0 * step ||
+                    axis.branches[std::size_t(node.branch)].direction.normalized().isApprox(
+                        D, 1e-9) != along)
+                    continue;
+                if (past < 0 || (node.position - middle).norm() <
+                                    (axis.nodes[std::size_t(past)].position - middle).norm())
+                    past = int(n);
+            }
+        if (past < 0) continue;
+        TriangleMesh above, below;
+        std::size_t cap = 0;
+        std::string why;
+        if (!split_on_face(fm, D, *s, tol, axis.nodes[std::size_t(past)].material_point(), above,
+                           below, cap, why))
+            continue;
+        const ComponentMesh& father = out.components[std::size_t(c)];
+        const double base_offset = D.dot(father.base.origin);
+        const double plate = out.components.front().base.origin.z() + std::max(plate_tol, tol);
+        if (highest_along(above, D) - *s < min_reach - tol ||
+            lowest_along(above, Vec3::UnitZ()) <= plate ||
+            highest_along(below, D) - base_offset < min_reach)
+            continue;
+        // The father may be left in pieces apart, each standing on its base (the root: on the
+        // plate): a portal's legs, or posts cut off a plate at a section plane.
+        if (!every_shell_down_to(below, D, c == 0 ? plate : base_offset + std::max(tol, 1e-6)))
+            continue;
+        const MeshReport above_report = check_mesh(above), below_report = check_mesh(below);
+        if (!above_report.closed() || !below_report.closed() || !(above_report.volume_mm3 > 0.0) ||
+            !(below_report.volume_mm3 > 0.0))
+            continue;
+        try {
+            require_one_solid(above, "piece");
+            require_one_solid(below, "piece");
+        } catch (const Error&) {
+            continue;
+        }
+        const double along_D = overhang_of(above, cap, D, params.overhang_angle_deg);
+        Vec3 d = Vec3::Zero();
+        double least = 0.5 * along_D;
+        for (const Vec3& way : {g, Vec3(-g)}) {
+            const Vec3 dw = (D + way).normalized();
+            if (dw.z() < cos_tilt - 1e-12) continue;
+            const double a = overhang_of(above, cap, dw, params.overhang_angle_deg);
+            if (d.isZero() ? a <= least : a < least - 1e-9 * (1.0 + least)) {
+                d = dw;
+                least = a;
+            }
+        }
+        if (d.isZero() || !(along_D > 0.0)) continue;
+        const auto kept = std::find_if(params.keep_branches.begin(), params.keep_branches.end(),
+                                       [&](const KeptBranch& k) { return k.branch == int(owner); });
+        if (kept != params.keep_branches.end()) {
+            notes.push_back({owner, c, kept->why});
+            continue;
+        }
+        Vec3 at = above.vertices.front();
+        for (const Vec3& q : above.vertices)
+            if (d.dot(q) < d.dot(at)) at = q;
+        ComponentMesh child;
+        child.parent = c;
+        child.base = make_plane(at, d);
+        child.branch = int(owner);
+        child.bridge = true;
+        const int to = c + 1;
+        for (ComponentMesh& o : out.components)
+            if (o.parent >= to) ++o.parent;
+        for (Kept& k : notes)
+            if (k.component >= to) ++k.component;
+        out.components[std::size_t(c)].mesh = std::move(below);
+        child.mesh = std::move(above);
+        out.components.insert(out.components.begin() + to, std::move(child));
+        for (std::size_t i = std::size_t(to) + 1; i < out.components.size(); ++i)
+            if (out.components[i].parent == c && D.dot(out.components[i].base.origin) > *s + tol)
+                out.components[i].parent = to;
+    }
+}
+
 // The node branch `br`'s first link starts at (on its father's march, where it turns or splits
 // off), -1 where the axis has none.
 int junction(const CentroidalAxis& axis, const AxisBranch& br) {
@@ -742,6 +1151,9 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
         if (axis.branches[b].parent >= 0) swept[axis.branches[b].parent] += swept[b];
     std::vector<int> component_of(nb, 0);  // where each branch's material went
     const double cos_tilt = std::cos(params.max_tilt_deg * kPi / 180.0);
+    // Written out at the end: a bridge's piece, inserted after its father, moves the components
+    // after it, and may take a noted branch's material.
+    std::vector<Kept> kept_notes;
     for (std::size_t b = 0; b < nb; ++b) {
         progress(double(b) / double(nb));
         const AxisBranch& branch = axis.branches[b];
@@ -772,10 +1184,7 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
                 if (bounding_box(m).contains(inside) && inside_mesh(m, inside)) father = int(c);
             }
         auto note = [&](const std::string& why) {
-            std::ostringstream text;
-            text << "branch " << b << " (" << direction_name(dir) << ") stays in component "
-                 << std::max(father, component_of[branch.parent]) << ": " << why;
-            out.notes.push_back(text.str());
+            kept_notes.push_back({b, std::max(father, component_of[branch.parent]), why});
         };
         if (father < 0) {
             note("its first section lies in no component");
@@ -903,6 +1312,22 @@ MeshDecomposition decompose_mesh(const TriangleMesh& mesh, const CentroidalAxis&
             continue;
         }
         if (!cut_off(dir, offset, inside, why)) note(why);
+    }
+    bridges(out, axis, params, box, plate_tol, kept_notes, progress);
+    for (Kept& k : kept_notes) {
+        // Where its material is now: a later split may have taken it (a jamb whose split was
+        // refused, taken with the wall over a window by its brother's).
+        const AxisBranch& kb = axis.branches[k.branch];
+        const int now =
+            kb.nodes.empty()
+                ? -1
+                : holding(out, axis.nodes[std::size_t(kb.nodes.front())].material_point());
+        if (now >= 0) k.component = now;
+        std::ostringstream text;
+        text << "branch " << k.branch << " ("
+             << direction_name(axis.branches[k.branch].direction.normalized())
+             << ") stays in component " << k.component << ": " << k.why;
+        out.notes.push_back(text.str());
     }
     progress(1.0);
     return out;

@@ -160,6 +160,7 @@ SlicedPart slice_mesh_part(const TriangleMesh& mesh, const CentroidalAxis& axis,
         MeshDecomposeParams split;
         split.min_component_height_mm = params.layers.min_layer_mm;
         split.max_tilt_deg = params.layers.max_tilt_deg;
+        split.overhang_angle_deg = params.layers.overhang_angle_deg;
         split.keep_branches = keep;
         split.square_branches = square;
         MeshDecomposition parts = decompose_mesh(mesh, axis, split, round.span(0.0, 0.05));

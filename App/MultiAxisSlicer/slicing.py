@@ -464,7 +464,8 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     .iges/.igs, .brep/.brp; .stl/.off too) or a closed ``Mesh.Mesh``. A mesh, which
     has no faces to split at, stands on its lowest point and is split at section planes where its
     axis turns or branches (the engine's decompose_mesh, SlicePart.hpp), each piece closed with a
-    cap. A solid is decomposed (``decompose()``) unless ``components`` are given. A mesh's piece,
+    cap, and at the flat facets under a bridge (a handle's bar, a portal's lintel: built along a
+    diagonal, as a solid's; README, bridges). A solid is decomposed (``decompose()``) unless ``components`` are given. A mesh's piece,
     or a solid's sub-component decomposed here, some of whose layers the nozzle could not reach
     (they would meet the plate or what is deposited before them) is left in its father (where
     cuts were turned square to their branches' lines, those cuts are first made square to the

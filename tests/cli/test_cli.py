@@ -69,52 +69,42 @@ def box_stl(x, y, z, drop_last=False, nan=False, at=(0, 0, 0)):
     return "\n".join(lines) + "\n"
 
 
-def l_prism_stl(turn_deg=0.0):
-    """ASCII STL of the L of the tests (a 20 x 20 x 60 column, a 50 mm arm 20 x 20 at its top,
-    along +X), as the prism of its profile in XZ swept 20 mm along Y; turned `turn_deg` about +Z
-    (placed turned on the plate)."""
-    profile = [(0, 0), (20, 0), (20, 40), (70, 40), (70, 60), (0, 60)]  # clockwise seen from -Y
-    caps = [(0, 1, 2), (0, 2, 5), (2, 3, 4), (2, 4, 5)]
+def prism_stl(name, profile, caps, depth, turn_deg=0.0):
+    """ASCII STL of the prism of `profile` (points (x, z), counter-clockwise in XZ, `caps` its
+    triangles) swept `depth` mm along Y; turned `turn_deg` about +Z (placed turned on the plate)."""
     facets = []
-    for a, b, c in caps:  # y = 0 facing -Y, y = 20 facing +Y
+    for a, b, c in caps:  # y = 0 facing -Y, y = depth facing +Y
         facets.append([(profile[i][0], 0, profile[i][1]) for i in (a, b, c)])
-        facets.append([(profile[i][0], 20, profile[i][1]) for i in (a, c, b)])
+        facets.append([(profile[i][0], depth, profile[i][1]) for i in (a, c, b)])
     for i, p in enumerate(profile):
         q = profile[(i + 1) % len(profile)]
         a, b = (p[0], 0, p[1]), (q[0], 0, q[1])
-        c, d = (q[0], 20, q[1]), (p[0], 20, p[1])
+        c, d = (q[0], depth, q[1]), (p[0], depth, p[1])
         facets += [[a, d, c], [a, c, b]]
     c, s = math.cos(math.radians(turn_deg)), math.sin(math.radians(turn_deg))
-    lines = ["solid l"]
+    lines = ["solid " + name]
     for f in facets:
         lines.append(" facet normal 0 0 0\n  outer loop")
         lines += ["   vertex %r %r %r" % (c * x - s * y, s * x + c * y, z) for x, y, z in f]
         lines.append("  endloop\n endfacet")
-    return "\n".join(lines + ["endsolid l"]) + "\n"
+    return "\n".join(lines + ["endsolid " + name]) + "\n"
+
+
+def l_prism_stl(turn_deg=0.0):
+    """ASCII STL of the L of the tests (a 20 x 20 x 60 column, a 50 mm arm 20 x 20 at its top,
+    along +X), 20 mm deep along Y; turned `turn_deg` about +Z."""
+    profile = [(0, 0), (20, 0), (20, 40), (70, 40), (70, 60), (0, 60)]
+    return prism_stl("l", profile, [(0, 1, 2), (0, 2, 5), (2, 3, 4), (2, 4, 5)], 20, turn_deg)
 
 
 def portal_prism_stl():
     """ASCII STL of the portal of the engine tests (legs [0,8] and [42,50] along X, 30 tall, a
-    lintel [0,50] x [30,36] on them), as the prism of its profile in XZ swept 8 mm along Y."""
+    lintel [0,50] x [30,36] on them), 8 mm deep along Y."""
     profile = [(0, 0), (8, 0), (8, 30), (42, 30), (42, 0), (50, 0), (50, 30), (50, 36), (0, 36),
                (0, 30)]
     caps = [(0, 1, 2), (0, 2, 9), (4, 5, 6), (4, 6, 3), (9, 2, 8), (2, 3, 7), (2, 7, 8),
             (3, 6, 7)]
-    facets = []
-    for a, b, c in caps:  # y = 0 facing -Y, y = 8 facing +Y
-        facets.append([(profile[i][0], 0, profile[i][1]) for i in (a, b, c)])
-        facets.append([(profile[i][0], 8, profile[i][1]) for i in (a, c, b)])
-    for i, p in enumerate(profile):
-        q = profile[(i + 1) % len(profile)]
-        a, b = (p[0], 0, p[1]), (q[0], 0, q[1])
-        c, d = (q[0], 8, q[1]), (p[0], 8, p[1])
-        facets += [[a, d, c], [a, c, b]]
-    lines = ["solid portal"]
-    for f in facets:
-        lines.append(" facet normal 0 0 0\n  outer loop")
-        lines += ["   vertex %r %r %r" % v for v in f]
-        lines.append("  endloop\n endfacet")
-    return "\n".join(lines + ["endsolid portal"]) + "\n"
+    return prism_stl("portal", profile, caps, 8)
 
 
 class CliSections(unittest.TestCase):

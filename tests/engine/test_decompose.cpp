@@ -542,6 +542,19 @@ TEST(Decompose, AKeptBranchStaysInItsFatherSayingWhyAndIsListed) {
     }
 }
 
+// The one branch of `axis` whose track merged into another's (a bridge's), -1 for none or for
+// several (a failure).
+int only_merge(const mas::CentroidalAxis& axis) {
+    int b = -1;
+    for (std::size_t i = 0; i < axis.branches.size(); ++i)
+        if (axis.branches[i].merged_into >= 0) {
+            EXPECT_EQ(b, -1) << "two merges";
+            if (b >= 0) return -1;
+            b = int(i);
+        }
+    return b;
+}
+
 // The axis' tracks up the two posts merge at the bar across them (branch b merged into the
 // other). Built along Z, the bar's underside between the posts, 34 x 8 mm, would hang in its
 // first layer; cut off at that underside, it is built along the diagonal from the post the march
@@ -551,12 +564,7 @@ TEST(Decompose, AKeptBranchStaysInItsFatherSayingWhyAndIsListed) {
 TEST(Decompose, AHandlesBarIsABridgeBuiltAlongADiagonalFromOnePostTowardsTheOther) {
     const auto part = mas::test::handle_on_plate();
     const auto axis = axis_of(part, 2.0);
-    int b = -1;
-    for (std::size_t i = 0; i < axis.branches.size(); ++i)
-        if (axis.branches[i].merged_into >= 0) {
-            ASSERT_EQ(b, -1) << "two merges";
-            b = int(i);
-        }
+    const int b = only_merge(axis);
     ASSERT_GE(b, 1);
     const double merged_x =
         axis.nodes[std::size_t(axis.branches[std::size_t(b)].nodes.back())].position.x();
@@ -652,12 +660,7 @@ TEST(Decompose, AWallOverAWindowIsABridgeCutAtItsCeiling) {
 TEST(Decompose, APortalOnTwoLegsIsABridgeItsRootTheLegsApart) {
     const auto part = mas::test::portal_on_two_legs();
     const auto axis = axis_of(part, 2.0);
-    int b = -1;
-    for (std::size_t i = 0; i < axis.branches.size(); ++i)
-        if (axis.branches[i].merged_into >= 0) {
-            ASSERT_EQ(b, -1) << "two merges";
-            b = int(i);
-        }
+    const int b = only_merge(axis);
     ASSERT_GE(b, 0);
     const int m = axis.branches[std::size_t(b)].merged_into;
     // Both tracks start on the plate: the piece is of the one that is not the root's own.

@@ -235,6 +235,11 @@ def handle(rng):
         solid = Part.makeBox(length, thick, height).cut(
             Part.makeBox(w, thick + 2, h, V((length - w) / 2, -1, z)))
         description = {"kind": "window", "span": w}
+    return _across(rng, solid, description)
+
+
+def _across(rng, solid, description):
+    """(solid, description) as drawn across X, or turned a quarter about Z to lie across Y."""
     if rng.random() < 0.5:
         solid.rotate(V(0, 0, 0), V(0, 0, 1), 90)
         description["across"] = "Y"
@@ -270,14 +275,8 @@ def feet(rng):
         solid = Part.makeBox(posts * post + (posts - 1) * gap, post, beam, V(0, 0, height)).fuse(
             [Part.makeBox(post, post, height, V(k * (post + gap), 0, 0)) for k in range(posts)])
         span = gap
-    description = {"kind": kind, "span": span, "legs": 2 if kind == "portal" else
-                   legs if kind == "table" else posts}
-    if rng.random() < 0.5:
-        solid.rotate(V(0, 0, 0), V(0, 0, 1), 90)
-        description["across"] = "Y"
-    else:
-        description["across"] = "X"
-    return solid, description
+    return _across(rng, solid, {"kind": kind, "span": span, "legs": 2 if kind == "portal" else
+                                legs if kind == "table" else posts})
 
 
 FAMILIES = {

@@ -486,6 +486,31 @@ double extent_along(const Region2& region, const Eigen::Vector3d& normal, double
 // projection for an axis handed over without regions (a dict built by hand).
 double reach_along(const AxisNode& node, const Eigen::Vector3d& dir);
 
+// The branches whose tracks merged into others' (AxisBranch::merged_into, with nodes), ordered by
+// how far their last nodes lie along their directions, lowest first (ties in index order): the
+// order bridges are cut in.
+std::vector<std::size_t> merged_lowest_first(const CentroidalAxis& axis);
+
+// Where branch b's track merged into m's (AxisBranch::merged_into), both along the unit D: the
+// bridge's gap (Decompose.hpp, bridges), from m's node whose plane is nearest b's last node's
+// (`from`, a node index) to that node (`to`), square to D (`across`), and the direction among the
+// frame's X, Y, Z (`frame` turns them: the axis' frame_deg about +Z) square to D nearest `across`
+// (`way`, unit).
+struct BridgeGap {
+    int from = -1, to = -1;
+    Eigen::Vector3d across = Eigen::Vector3d::Zero();
+    Eigen::Vector3d way = Eigen::Vector3d::Zero();
+};
+BridgeGap bridge_gap(const CentroidalAxis& axis, std::size_t b, std::size_t m,
+                     const Eigen::Vector3d& D, const Eigen::Matrix3d& frame);
+
+// A point in a bridge's material past its splitting plane {D . p = s}: the node within two steps
+// past it, marched along D (the merged track's, or its sub-branches'), nearest `middle` (the gap's
+// middle on the plane); else the nearest marched another way there (a table's top, far wider
+// than its legs, turned sideways off them). -1 for none.
+int bridge_node(const CentroidalAxis& axis, const Eigen::Vector3d& D, double s, double tol,
+                const Eigen::Vector3d& middle);
+
 // Distance from a point to a region in the same 2-D frame: 0 inside, else to the nearest edge of
 // the outer loop (holes count as outside: a point in a hole is at its distance to the hole edge).
 double distance_to_region(const Region2& region, const Eigen::Vector2d& point);

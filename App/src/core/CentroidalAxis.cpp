@@ -73,6 +73,63 @@ double extent_along(const Region2& region, const Eigen::Vector3d& normal, double
     return t;
 }
 
+std::vector<std::size_t> merged_lowest_first(const CentroidalAxis& axis) {
+    std::vector<std::size_t> merged;
+    for (std::size_t b = 0; b < axis.branches.size(); ++b)
+        if (axis.branches[b].merged_into >= 0 && !axis.branches[b].nodes.empty())
+            merged.push_back(b);
+    const auto last_along = [&](std::size_t b) {
+        const AxisBranch& br = axis.branches[b];
+        return br.direction.normalized().dot(axis.nodes[std::size_t(br.nodes.back())].position);
+    };
+    std::stable_sort(merged.begin(), merged.end(),
+                     [&](std::size_t x, std::size_t y) { return last_along(x) < last_along(y); });
+    return merged;
+}
+
+BridgeGap bridge_gap(const CentroidalAxis& axis, std::size_t b, std::size_t m,
+                     const Eigen::Vector3d& D, const Eigen::Matrix3d& frame) {
+    BridgeGap gap;
+    const AxisBranch &br = axis.branches[b], &into = axis.branches[m];
+    if (br.nodes.empty() || into.nodes.empty()) return gap;
+    gap.to = br.nodes.back();
+    const Eigen::Vector3d pb = axis.nodes[std::size_t(gap.to)].position;
+    const double sb = D.dot(pb);
+    for (const int n : into.nodes)
+        if (gap.from < 0 || std::abs(D.dot(axis.nodes[std::size_t(n)].position) - sb) <
+                                std::abs(D.dot(axis.nodes[std::size_t(gap.from)].position) - sb))
+            gap.from = n;
+    gap.across = pb - axis.nodes[std::size_t(gap.from)].position;
+    gap.across -= D * D.dot(gap.across);
+    for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d e = frame * Eigen::Vector3d::Unit(k);
+        const Eigen::Vector3d w = e - D * D.dot(e);
+        if (w.norm() < 0.5) continue;
+        const Eigen::Vector3d way =
+            gap.across.dot(w) >= 0.0 ? w.normalized() : Eigen::Vector3d(-w.normalized());
+        if (gap.way.isZero() || way.dot(gap.across) > gap.way.dot(gap.across)) gap.way = way;
+    }
+    return gap;
+}
+
+int bridge_node(const CentroidalAxis& axis, const Eigen::Vector3d& D, double s, double tol,
+                const Eigen::Vector3d& middle) {
+    int past = -1;
+    for (const bool along : {true, false})
+        for (std::size_t n = 0; n < axis.nodes.size() && (along || past < 0); ++n) {
+            const AxisNode& node = axis.nodes[n];
+            const double sn = D.dot(node.position);
+            if (node.branch < 0 || sn <= s + tol || sn > s + 2.0 * axis.params.step_mm ||
+                axis.branches[std::size_t(node.branch)].direction.normalized().isApprox(D, 1e-9) !=
+                    along)
+                continue;
+            if (past < 0 || (node.position - middle).norm() <
+                                (axis.nodes[std::size_t(past)].position - middle).norm())
+                past = int(n);
+        }
+    return past;
+}
+
 double reach_along(const AxisNode& node, const Eigen::Vector3d& dir) {
     if (node.region.outer.points.empty()) return dir.dot(node.position);
     return extent_along(node.region, node.normal, node.offset, dir);

@@ -318,6 +318,108 @@ TriangleMesh compacted(const std::vector<Vec3>& vertices,
     return out;
 }
 
+// Each edge of the mesh (edge_key) and the triangles on either side of it (-1 for none).
+std::unordered_map<std::uint64_t, std::array<int, 2>> edge_triangles(const TriangleMesh& mesh) {
+    std::unordered_map<std::uint64_t, std::array<int, 2>> edges;
+    edges.reserve(mesh.triangles.size() * 2);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            auto& e =
+                edges
+                    .try_emplace(edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]),
+                                 std::array<int, 2>{-1, -1})
+                    .first->second;
+            (e[0] < 0 ? e[0] : e[1]) = int(t);
+        }
+    return edges;
+}
+
+// Where the mesh's edges cross a plane (`d`: each vertex's signed distance from it), each point
+// made once and added to `vertices`, shared by the triangles on either side.
+class Crossings {
+public:
+    Crossings(const TriangleMesh& mesh, const std::vector<double>& d, std::vector<Vec3>& vertices)
+        : mesh_(mesh), d_(d), vertices_(vertices) {}
+    int at(int a, int b) {
+        const auto [it, added] = made_.try_emplace(edge_key(a, b), int(vertices_.size()));
+        if (added) {
+            const int lo = std::min(a, b), hi = std::max(a, b);
+            const double s = d_[lo] / (d_[lo] - d_[hi]);
+            vertices_.push_back(mesh_.vertices[lo] + s * (mesh_.vertices[hi] - mesh_.vertices[lo]));
+        }
+        return it->second;
+    }
+    // Cuts triangle `tri`, one vertex alone on its side of the plane and none on it (`above`:
+    // how many lie above): its pieces go to `up` and `down`. Returns the piece above's edge
+    // along the plane (from, to).
+    std::pair<int, int> cut(const Eigen::Vector3i& tri, int above, std::vector<Eigen::Vector3i>& up,
+                            std::vector<Eigen::Vector3i>& down) {
+        int r = 0;
+        for (int k = 0; k < 3; ++k)
+            if ((d_[tri[k]] > 0.0) == (above == 1)) r = k;
+        const int i0 = tri[r], i1 = tri[(r + 1) % 3], i2 = tri[(r + 2) % 3];
+        const int x01 = at(i0, i1), x20 = at(i2, i0);
+        std::vector<Eigen::Vector3i>& lone = above == 1 ? up : down;
+        std::vector<Eigen::Vector3i>& pair = above == 1 ? down : up;
+        lone.emplace_back(i0, x01, x20);
+        pair.emplace_back(x01, i1, i2);
+        pair.emplace_back(x01, i2, x20);
+        return above == 1 ? std::pair{x01, x20} : std::pair{x20, x01};
+    }
+
+private:
+    const TriangleMesh& mesh_;
+    const std::vector<double>& d_;
+    std::vector<Vec3>& vertices_;
+    std::unordered_map<std::uint64_t, int> made_;
+};
+
+// Closes the two sides of a cut with one cap on the plane (`frame`'s): `cap_next` maps each
+// vertex of the outline to the next along the cap (the piece above's edges run the other way),
+// its outer loops clockwise seen from above. The cap goes to `down` facing up and to `up` facing
+// down; `cap_count` receives its triangles. False, with why (`none`: no outline at all;
+// `open`: loops the triangulation cannot close).
+bool close_with_cap(std::map<int, int> cap_next, const std::vector<Vec3>& vertices,
+                    const PlaneFrame& frame, std::vector<Eigen::Vector3i>& up,
+                    std::vector<Eigen::Vector3i>& down, std::size_t& cap_count, const char* none,
+                    const char* open, std::string& why) {
+    std::vector<Loop> loops;
+    while (!cap_next.empty()) {
+        Loop loop;
+        int v = cap_next.begin()->first;
+        while (true) {
+            const auto it = cap_next.find(v);
+            if (it == cap_next.end()) break;
+            loop.index.push_back(v);
+            loop.point.push_back(frame.to_2d(vertices[v]));
+            v = it->second;
+            cap_next.erase(it);
+        }
+        if (v != loop.index.front()) {
+            why = "the cut's outline does not close";
+            return false;
+        }
+        std::reverse(loop.index.begin(), loop.index.end());  // counter-clockwise outer loops
+        std::reverse(loop.point.begin(), loop.point.end());
+        loops.push_back(std::move(loop));
+    }
+    if (loops.empty()) {
+        why = none;
+        return false;
+    }
+    std::vector<Eigen::Vector3i> cap;  // facing up: the below piece's
+    if (!triangulate(std::move(loops), cap)) {
+        why = open;
+        return false;
+    }
+    for (const Eigen::Vector3i& t : cap) {
+        down.push_back(t);
+        up.emplace_back(t[0], t[2], t[1]);
+    }
+    cap_count = cap.size();
+    return true;
+}
+
 }  // namespace
 
 bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vector3d& inside,
@@ -348,19 +450,8 @@ bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vecto
     }
     // The triangles above the plane (wholly or in part), joined where they share an edge with an
     // end above it: each class is one connected piece of the surface above the plane.
-    std::unordered_map<std::uint64_t, std::array<int, 2>> edges;
-    edges.reserve(nt * 2);
-    for (std::size_t t = 0; t < nt; ++t)
-        for (int k = 0; k < 3; ++k) {
-            auto& e =
-                edges
-                    .try_emplace(edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]),
-                                 std::array<int, 2>{-1, -1})
-                    .first->second;
-            (e[0] < 0 ? e[0] : e[1]) = int(t);
-        }
     UnionFind classes(nt);
-    for (const auto& [key, tris] : edges) {
+    for (const auto& [key, tris] : edge_triangles(mesh)) {
         const int a = int(key >> 32), b = int(key & 0xffffffffu);
         if ((d[a] > 0.0 || d[b] > 0.0) && tris[0] >= 0 && tris[1] >= 0)
             classes.join(tris[0], tris[1]);
@@ -377,16 +468,7 @@ bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vecto
     const int piece = classes.find(hit);
     // The piece's triangles go above, cut where they cross the plane; the rest, whole, below.
     std::vector<Vec3> vertices = mesh.vertices;
-    std::unordered_map<std::uint64_t, int> crossing;
-    auto cross_at = [&](int a, int b) {
-        const auto [it, added] = crossing.try_emplace(edge_key(a, b), int(vertices.size()));
-        if (added) {
-            const int lo = std::min(a, b), hi = std::max(a, b);
-            const double s = d[lo] / (d[lo] - d[hi]);
-            vertices.push_back(mesh.vertices[lo] + s * (mesh.vertices[hi] - mesh.vertices[lo]));
-        }
-        return it->second;
-    };
+    Crossings crossings(mesh, d, vertices);
     std::vector<Eigen::Vector3i> up, down;
     // The above piece's open edges along the plane, ordered: the loops, their first points and
     // so the cap's triangles do not depend on a hash table's order.
@@ -403,60 +485,19 @@ bool split_mesh(const TriangleMesh& mesh, const Plane& plane, const Eigen::Vecto
             up.push_back(tri);
             continue;
         }
-        // Rotate so that i0 is the lone vertex on its side.
-        int r = 0;
-        for (int k = 0; k < 3; ++k)
-            if ((d[tri[k]] > 0.0) == (ups == 1)) r = k;
-        const int i0 = tri[r], i1 = tri[(r + 1) % 3], i2 = tri[(r + 2) % 3];
-        const int x01 = cross_at(i0, i1), x20 = cross_at(i2, i0);
-        std::vector<Eigen::Vector3i>& lone = ups == 1 ? up : down;
-        std::vector<Eigen::Vector3i>& pair = ups == 1 ? down : up;
-        lone.emplace_back(i0, x01, x20);
-        pair.emplace_back(x01, i1, i2);
-        pair.emplace_back(x01, i2, x20);
-        // The above piece's edge along the plane runs x01 -> x20 when i0 is above, else x20 ->
-        // x01; its cap runs the other way.
-        const int from = ups == 1 ? x20 : x01, to = ups == 1 ? x01 : x20;
-        branching |= !cap_next.emplace(from, to).second;
+        // The cap runs the above piece's edge along the plane the other way.
+        const auto [from, to] = crossings.cut(tri, ups, up, down);
+        branching |= !cap_next.emplace(to, from).second;
     }
     if (branching) {
         why = "the cut meets itself";
         return false;
     }
-    // The cap's loops, seen from above the plane: each outer loop clockwise (it faces down).
-    std::vector<Loop> loops;
-    while (!cap_next.empty()) {
-        Loop loop;
-        int v = cap_next.begin()->first;
-        while (true) {
-            const auto it = cap_next.find(v);
-            if (it == cap_next.end()) break;
-            loop.index.push_back(v);
-            loop.point.push_back(frame.to_2d(vertices[v]));
-            v = it->second;
-            cap_next.erase(it);
-        }
-        if (v != loop.index.front()) {
-            why = "the cut's outline does not close";
-            return false;
-        }
-        std::reverse(loop.index.begin(), loop.index.end());  // counter-clockwise outer loops
-        std::reverse(loop.point.begin(), loop.point.end());
-        loops.push_back(std::move(loop));
-    }
-    if (loops.empty()) {
-        why = "the plane does not cut it";
+    std::size_t cap_count = 0;
+    if (!close_with_cap(std::move(cap_next), vertices, frame, up, down, cap_count,
+                        "the plane does not cut it", "its section on the plane could not be closed",
+                        why))
         return false;
-    }
-    std::vector<Eigen::Vector3i> cap;  // facing up: the below piece's
-    if (!triangulate(std::move(loops), cap)) {
-        why = "its section on the plane could not be closed";
-        return false;
-    }
-    for (const Eigen::Vector3i& t : cap) {
-        down.push_back(t);
-        up.emplace_back(t[0], t[2], t[1]);
-    }
     above = compacted(vertices, up);
     below = compacted(vertices, down);
     if (cut_offset) *cut_offset = offset;
@@ -518,19 +559,8 @@ bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, doubl
         up_side[t] = flat ? (b - a).cross(c - a).dot(n) < 0.0
                           : d[tri[0]] > 0.0 || d[tri[1]] > 0.0 || d[tri[2]] > 0.0;
     }
-    std::unordered_map<std::uint64_t, std::array<int, 2>> edges;
-    edges.reserve(nt * 2);
-    for (std::size_t t = 0; t < nt; ++t)
-        for (int k = 0; k < 3; ++k) {
-            auto& e =
-                edges
-                    .try_emplace(edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]),
-                                 std::array<int, 2>{-1, -1})
-                    .first->second;
-            (e[0] < 0 ? e[0] : e[1]) = int(t);
-        }
     UnionFind classes(nt);
-    for (const auto& [key, tris] : edges)
+    for (const auto& [key, tris] : edge_triangles(mesh))
         if (tris[0] >= 0 && tris[1] >= 0 && up_side[std::size_t(tris[0])] &&
             up_side[std::size_t(tris[1])])
             classes.join(tris[0], tris[1]);
@@ -543,16 +573,7 @@ bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, doubl
     }
     const int piece = classes.find(hit);
     std::vector<Vec3> vertices = mesh.vertices;
-    std::unordered_map<std::uint64_t, int> crossing;
-    const auto cross_at = [&](int a, int b) {
-        const auto [it, added] = crossing.try_emplace(edge_key(a, b), int(vertices.size()));
-        if (added) {
-            const int lo = std::min(a, b), hi = std::max(a, b);
-            const double s = d[lo] / (d[lo] - d[hi]);
-            vertices.push_back(mesh.vertices[lo] + s * (mesh.vertices[hi] - mesh.vertices[lo]));
-        }
-        return it->second;
-    };
+    Crossings crossings(mesh, d, vertices);
     std::vector<Eigen::Vector3i> up, down;
     for (std::size_t t = 0; t < nt; ++t) {
         const Eigen::Vector3i& tri = mesh.triangles[t];
@@ -570,17 +591,7 @@ bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, doubl
             continue;
         }
         if (below_count + above_count == 3) {
-            // Two vertices on one side: i0 alone on its side, as split_mesh cuts.
-            int r = 0;
-            for (int k = 0; k < 3; ++k)
-                if ((d[tri[k]] > 0.0) == (above_count == 1)) r = k;
-            const int i0 = tri[r], i1 = tri[(r + 1) % 3], i2 = tri[(r + 2) % 3];
-            const int x01 = cross_at(i0, i1), x20 = cross_at(i2, i0);
-            std::vector<Eigen::Vector3i>& lone = above_count == 1 ? up : down;
-            std::vector<Eigen::Vector3i>& pair = above_count == 1 ? down : up;
-            lone.emplace_back(i0, x01, x20);
-            pair.emplace_back(x01, i1, i2);
-            pair.emplace_back(x01, i2, x20);
+            crossings.cut(tri, above_count, up, down);  // as split_mesh cuts
             continue;
         }
         // One vertex on the plane, one above, one below: cut from the one on it.
@@ -588,7 +599,7 @@ bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, doubl
         for (int k = 0; k < 3; ++k)
             if (d[tri[k]] == 0.0) r = k;
         const int i0 = tri[r], i1 = tri[(r + 1) % 3], i2 = tri[(r + 2) % 3];
-        const int x = cross_at(i1, i2);
+        const int x = crossings.at(i1, i2);
         (d[i1] > 0.0 ? up : down).emplace_back(i0, i1, x);
         (d[i2] > 0.0 ? up : down).emplace_back(i0, x, i2);
     }
@@ -604,40 +615,10 @@ bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, doubl
             return false;
         }
     }
-    std::vector<Loop> loops;
-    while (!cap_next.empty()) {
-        Loop loop;
-        int v = cap_next.begin()->first;
-        while (true) {
-            const auto it = cap_next.find(v);
-            if (it == cap_next.end()) break;
-            loop.index.push_back(v);
-            loop.point.push_back(frame.to_2d(vertices[v]));
-            v = it->second;
-            cap_next.erase(it);
-        }
-        if (v != loop.index.front()) {
-            why = "the cut's outline does not close";
-            return false;
-        }
-        std::reverse(loop.index.begin(), loop.index.end());
-        std::reverse(loop.point.begin(), loop.point.end());
-        loops.push_back(std::move(loop));
-    }
-    if (loops.empty()) {
-        why = "the piece does not touch what is under the plane";
+    if (!close_with_cap(std::move(cap_next), vertices, frame, up, down, cap_count,
+                        "the piece does not touch what is under the plane",
+                        "its contact with the father on the plane could not be closed", why))
         return false;
-    }
-    std::vector<Eigen::Vector3i> cap;
-    if (!triangulate(std::move(loops), cap)) {
-        why = "its contact with the father on the plane could not be closed";
-        return false;
-    }
-    for (const Eigen::Vector3i& t : cap) {
-        down.push_back(t);
-        up.emplace_back(t[0], t[2], t[1]);
-    }
-    cap_count = cap.size();
     above = compacted(vertices, up);
     below = compacted(vertices, down);
     return true;
@@ -710,24 +691,13 @@ struct Kept {
 void bridges(MeshDecomposition& out, const CentroidalAxis& axis, const MeshDecomposeParams& params,
              const Eigen::AlignedBox3d& box, double plate_tol, std::vector<Kept>& notes,
              const Progress& progress) {
-    const std::size_t nb = axis.branches.size();
     const double step = axis.params.step_mm;
     const double tol = 1e-6 * (1.0 + box.diagonal().norm());
     const double cos_tilt = std::cos(params.max_tilt_deg * kPi / 180.0);
     const double min_reach = std::max(params.min_component_height_mm, step);
     const Eigen::Matrix3d frame =
         Eigen::AngleAxisd(axis.params.frame_deg * kPi / 180.0, Vec3::UnitZ()).matrix();
-    std::vector<std::size_t> merged;
-    for (std::size_t b = 0; b < nb; ++b)
-        if (axis.branches[b].merged_into >= 0 && !axis.branches[b].nodes.empty())
-            merged.push_back(b);
-    const auto last_along = [&](std::size_t b) {
-        const AxisBranch& br = axis.branches[b];
-        return br.direction.normalized().dot(axis.nodes[std::size_t(br.nodes.back())].position);
-    };
-    std::stable_sort(merged.begin(), merged.end(),
-                     [&](std::size_t x, std::size_t y) { return last_along(x) < last_along(y); });
-    for (const std::size_t b : merged) {
+    for (const std::size_t b : merged_lowest_first(axis)) {
         progress.check();
         const AxisBranch& br = axis.branches[b];
         const std::size_t m = std::size_t(br.merged_into);
@@ -735,40 +705,27 @@ void bridges(MeshDecomposition& out, const CentroidalAxis& axis, const MeshDecom
         if (axis.branches[m].nodes.empty() ||
             !axis.branches[m].direction.normalized().isApprox(D, 1e-9))
             continue;
-        // The gap, from m's node nearest the plane of b's last node to that node, square to D.
-        const Vec3 pb = axis.nodes[std::size_t(br.nodes.back())].position;
+        // The gap (bridge_gap) and the component holding both tracks there, found by their
+        // material (a branch whose split was refused may since have gone with its brother's
+        // piece: a window's jamb).
+        const BridgeGap gap = bridge_gap(axis, b, m, D, frame);
+        if (!(gap.across.norm() > step)) continue;
+        const Vec3 pb = axis.nodes[std::size_t(gap.to)].position;
         const double sb = D.dot(pb);
-        int pm = -1;
-        for (const int n : axis.branches[m].nodes)
-            if (pm < 0 || std::abs(D.dot(axis.nodes[std::size_t(n)].position) - sb) <
-                              std::abs(D.dot(axis.nodes[std::size_t(pm)].position) - sb))
-                pm = n;
-        Vec3 v = pb - axis.nodes[std::size_t(pm)].position;
-        v -= D * D.dot(v);
-        if (!(v.norm() > step)) continue;
-        // The component holding both tracks there, found by their material (a branch whose
-        // split was refused may since have gone with its brother's piece: a window's jamb).
-        const int c = holding(out, axis.nodes[std::size_t(br.nodes.back())].material_point());
-        if (c < 0 || c != holding(out, axis.nodes[std::size_t(pm)].material_point()) ||
+        const int c = holding(out, axis.nodes[std::size_t(gap.to)].material_point());
+        if (c < 0 || c != holding(out, axis.nodes[std::size_t(gap.from)].material_point()) ||
             !out.components[std::size_t(c)].base.normal.isApprox(D, 1e-9))
             continue;
         const std::size_t owner = out.components[std::size_t(c)].branch == int(b) ? m : b;
         if (out.components[std::size_t(c)].branch == int(owner)) continue;
-        Vec3 g = Vec3::Zero();
-        for (int k = 0; k < 3; ++k) {
-            const Vec3 e = frame * Vec3::Unit(k);
-            const Vec3 w = e - D * D.dot(e);
-            if (w.norm() < 0.5) continue;
-            const Vec3 way = v.dot(w) >= 0.0 ? w.normalized() : Vec3(-w.normalized());
-            if (g.isZero() || way.dot(v) > g.dot(v)) g = way;
-        }
+        const Vec3& g = gap.way;
         // The plane: the lowest of the flat facets facing -D within two steps past b's last node
         // that span the gap: every point of the segment across it a quarter step under their plane
         // that lies outside the mesh (the gap), seen along D, lies on one of them, and one does.
         // (A round hole's wall has a facet facing -D too, narrower than the hole under it: a Z
         // bracket's bolt hole, marched across, was taken for a bridge.)
         const TriangleMesh& fm = out.components[std::size_t(c)].mesh;
-        const Vec3 pa = pb - v;
+        const Vec3 pa = pb - gap.across;
         const PlaneFrame across(D);
         std::map<double, std::vector<std::array<Vec2, 3>>> flats;  // by offset along D
         for (const Eigen::Vector3i& t : fm.triangles) {
@@ -811,22 +768,7 @@ void bridges(MeshDecomposition& out, const CentroidalAxis& axis, const MeshDecom
             }
         }
         if (!s) continue;
-        // A point in the bridge's material: the node past the plane nearest the gap's middle,
-        // marched along D, else another way (a table's top turned sideways off its legs).
-        const Vec3 middle = 0.5 * (pa + pb) + D * (*s - sb);
-        int past = -1;
-        for (const bool along : {true, false})
-            for (std::size_t n = 0; n < axis.nodes.size() && (along || past < 0); ++n) {
-                const AxisNode& node = axis.nodes[n];
-                const double sn = D.dot(node.position);
-                if (node.branch < 0 || sn <= *s + tol || sn > *s + 2.0 * step ||
-                    axis.branches[std::size_t(node.branch)].direction.normalized().isApprox(
-                        D, 1e-9) != along)
-                    continue;
-                if (past < 0 || (node.position - middle).norm() <
-                                    (axis.nodes[std::size_t(past)].position - middle).norm())
-                    past = int(n);
-            }
+        const int past = bridge_node(axis, D, *s, tol, 0.5 * (pa + pb) + D * (*s - sb));
         if (past < 0) continue;
         TriangleMesh above, below;
         std::size_t cap = 0;

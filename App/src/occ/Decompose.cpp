@@ -1536,19 +1536,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
             // along D in one component built along D, over a flat underside spanning the gap.
             // The lowest first along D: a piece cut off at a higher one would leave the band
             // under it, with the lower bridge, too thin to cut off (two windows side by side).
-            std::vector<std::size_t> merged;
-            for (std::size_t b = 0; b < nb; ++b)
-                if (axis.branches[b].merged_into >= 0 && !axis.branches[b].nodes.empty())
-                    merged.push_back(b);
-            const auto last_along = [&](std::size_t b) {
-                const AxisBranch& br = axis.branches[b];
-                return br.direction.normalized().dot(
-                    axis.nodes[std::size_t(br.nodes.back())].position);
-            };
-            std::stable_sort(merged.begin(), merged.end(), [&](std::size_t x, std::size_t y) {
-                return last_along(x) < last_along(y);
-            });
-            for (const std::size_t b : merged) {
+            for (const std::size_t b : merged_lowest_first(axis)) {
                 const AxisBranch& br = axis.branches[b];
                 const std::size_t m = std::size_t(br.merged_into);
                 const Vector3d D = br.direction.normalized();
@@ -1562,27 +1550,14 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 const std::size_t owner = work[std::size_t(h)].c.branch == int(b) ? m : b;
                 if (work[std::size_t(h)].c.branch == int(owner)) continue;
                 progress.check();
-                // The gap: from m's node on the plane of b's last node, or the nearest to it, to
-                // b's, square to D, along the nearest of the frame's directions square to D.
-                const Vector3d pb = axis.nodes[std::size_t(br.nodes.back())].position;
-                const double sb = D.dot(pb);
-                int pm = -1;
-                for (const int n : axis.branches[m].nodes)
-                    if (pm < 0 || std::abs(D.dot(axis.nodes[std::size_t(n)].position) - sb) <
-                                      std::abs(D.dot(axis.nodes[std::size_t(pm)].position) - sb))
-                        pm = n;
-                Vector3d v = pb - axis.nodes[std::size_t(pm)].position;
-                v -= D * D.dot(v);
+                // The gap (bridge_gap: from m's node on the plane of b's last node, or the nearest
+                // to it, to b's, square to D) and the nearest of the frame's directions across it.
+                const BridgeGap gap = bridge_gap(axis, b, m, D, Eigen::Matrix3d::Identity());
+                const Vector3d& v = gap.across;
                 if (!(v.norm() > axis.params.step_mm)) continue;
-                Vector3d g = Vector3d::Zero();
-                for (int axis_k = 0; axis_k < 3; ++axis_k) {
-                    const Vector3d e = Vector3d::Unit(axis_k);
-                    const Vector3d w = e - D * D.dot(e);
-                    if (w.norm() < 0.5) continue;
-                    const Vector3d way =
-                        v.dot(w) >= 0.0 ? w.normalized() : Vector3d(-w.normalized());
-                    if (g.isZero() || way.dot(v) > g.dot(v)) g = way;
-                }
+                const Vector3d pb = axis.nodes[std::size_t(gap.to)].position;
+                const double sb = D.dot(pb);
+                const Vector3d& g = gap.way;
                 // The splitting plane: the lowest face of the component facing -D within two steps
                 // past b's last node, flat, over the gap (its box, seen along D, meets the
                 // segment between the two nodes).
@@ -1608,26 +1583,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     if (over) s = sf;
                 }
                 if (!s) continue;
-                // A point in the bridge's material: of the nodes marched along D on the planes
-                // past it (m's, or its sub-branches' where m split again), the nearest to the
-                // middle of the gap; else of the nodes marched another way there (a table's top,
-                // much wider than its legs, turned sideways off them).
-                const Vector3d middle = 0.5 * (pa + pb) + D * (*s - sb);
-                int past = -1;
-                for (const bool along : {true, false})
-                    for (std::size_t n = 0; n < axis.nodes.size() && (along || past < 0); ++n) {
-                        const AxisNode& node = axis.nodes[n];
-                        const double sn = D.dot(node.position);
-                        if (node.branch < 0 || sn <= *s + plane_tol ||
-                            sn > *s + 2.0 * axis.params.step_mm ||
-                            axis.branches[std::size_t(node.branch)].direction.normalized().isApprox(
-                                D, 1e-9) != along)
-                            continue;
-                        if (past < 0 ||
-                            (node.position - middle).norm() <
-                                (axis.nodes[std::size_t(past)].position - middle).norm())
-                            past = int(n);
-                    }
+                // A point in the bridge's material (bridge_node).
+                const int past =
+                    bridge_node(axis, D, *s, plane_tol, 0.5 * (pa + pb) + D * (*s - sb));
                 if (past < 0) continue;
                 // No component already cut off the father may straddle the plane.
                 bool straddles = false;

@@ -168,7 +168,8 @@ class Component:
             import Part
 
             shape = _part_shape(self.brep)
-            self._shape = Part.Compound(shape.Solids) if len(shape.Solids) > 1 else Part.Solid(shape)
+            solids = shape.Solids
+            self._shape = Part.Compound(solids) if len(solids) > 1 else Part.Solid(shape)
         return self._shape
 
     @property

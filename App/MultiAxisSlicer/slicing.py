@@ -465,14 +465,14 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     has no faces to split at, stands on its lowest point and is split at section planes where its
     axis turns or branches (the engine's decompose_mesh, SlicePart.hpp), each piece closed with a
     cap, and at the flat facets under a bridge (a handle's bar, a portal's lintel: built along a
-    diagonal, as a solid's; README, bridges). A solid is decomposed (``decompose()``) unless ``components`` are given. A mesh's piece,
-    or a solid's sub-component decomposed here, some of whose layers the nozzle could not reach
-    (they would meet the plate or what is deposited before them) is left in its father (where
-    cuts were turned square to their branches' lines, those cuts are first made square to the
-    branches' directions: all of them, or only those whose layers the nozzle could not reach
-    where that slices better), and the part is split and sliced again, up to five times; it is
-    sliced as one component when that leaves fewer layers in the nozzle's way
-    (``avoid_collisions=False``: the first split is kept, those layers listed in
+    diagonal, as a solid's; README, bridges). A solid is decomposed (``decompose()``) unless
+    ``components`` are given. A mesh's piece, or a solid's sub-component decomposed here, some of
+    whose layers the nozzle could not reach (they would meet the plate or what is deposited before
+    them) is left in its father (where cuts were turned square to their branches' lines, those
+    cuts are first made square to the branches' directions: all of them, or only those whose
+    layers the nozzle could not reach where that slices better), and the part is split and sliced
+    again, up to five times; it is sliced as one component when that leaves fewer layers in the
+    nozzle's way (``avoid_collisions=False``: the first split is kept, those layers listed in
     ``collisions``). The result's ``notes`` say which branches got no component and why; for a
     solid its ``decomposition`` is the one sliced (its ``kept_branches`` the branches so kept,
     its ``square_branches`` those so cut).

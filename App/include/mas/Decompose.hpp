@@ -218,8 +218,8 @@
 //   left several solids, each standing on the plate: a portal's two legs, a table's legs) becomes
 //   b's child (m's where b is the root's own branch: a part on several feet whose first foot's
 //   track merged into another's), SplitRule::Bridge, built along the diagonal d = (D + g) /
-//   sqrt 2, g the frame's direction
-//   square to D nearest the gap's, either way: its underside, and its faces square to g, then
+//   sqrt 2, g the frame's direction square to D nearest the gap's, either way (bridge_gap,
+//   CentroidalAxis.hpp): its underside, and its faces square to g, then
 //   lean exactly 45 degrees off d, which slicing's layers lay at the default overhang angle (a
 //   layer's allowance is its thickness x tan 45), and the nozzle, along d, stays clear of the
 //   father's top beside the layer (its cone's lower side rises 15 degrees from its tip, 3.5 mm

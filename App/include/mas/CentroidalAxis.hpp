@@ -504,6 +504,15 @@ struct BridgeGap {
 BridgeGap bridge_gap(const CentroidalAxis& axis, std::size_t b, std::size_t m,
                      const Eigen::Vector3d& D, const Eigen::Matrix3d& frame);
 
+// A bridge's build direction: of the diagonals (D + way) / sqrt 2, way = `across` then -`across`
+// (BridgeGap::way), those within `max_tilt_deg` of +Z (tilt_from_plate_deg), the one whose
+// `overhang` (the piece's area leaning past the overhang angle built that way, mm^2) is least and
+// at most half of overhang(D); the first where alike. Zero where none is, or where nothing
+// overhangs along D.
+Eigen::Vector3d bridge_direction(const Eigen::Vector3d& D, const Eigen::Vector3d& across,
+                                 double max_tilt_deg,
+                                 const std::function<double(const Eigen::Vector3d&)>& overhang);
+
 // A point in a bridge's material past its splitting plane {D . p = s}: the node within two steps
 // past it, marched along D (the merged track's, or its sub-branches'), nearest `middle` (the gap's
 // middle on the plane); else the nearest marched another way there (a table's top, far wider

@@ -126,6 +126,10 @@ double overhang_allowance(const LayerParams& params);
 // How far `direction` tilts from the build plate's normal (+Z), degrees in [0, 180]: what
 // max_tilt_deg bounds (a layer's normal here, a child's build direction in Decompose.hpp).
 double tilt_from_plate_deg(const Eigen::Vector3d& direction);
+// Whether a face with outward unit normal n, built along the unit d, leans out from it past
+// `overhang_deg` (n.d < -sin(overhang)). A face leaning exactly that far is supported (a layer's
+// allowance is its thickness x tan(overhang)): a millionth of slack.
+bool leans_past(const Eigen::Vector3d& n, const Eigen::Vector3d& d, double overhang_deg);
 
 // The largest max_layer_mm accepted (a kilometre): thicker, adding it to a plane's offset would
 // lose the part's height to rounding.

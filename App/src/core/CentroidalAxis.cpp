@@ -112,6 +112,25 @@ BridgeGap bridge_gap(const CentroidalAxis& axis, std::size_t b, std::size_t m,
     return gap;
 }
 
+Eigen::Vector3d bridge_direction(const Eigen::Vector3d& D, const Eigen::Vector3d& across,
+                                 double max_tilt_deg,
+                                 const std::function<double(const Eigen::Vector3d&)>& overhang) {
+    const double along_D = overhang(D);
+    if (!(along_D > 0.0)) return Eigen::Vector3d::Zero();
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    double least = 0.5 * along_D;
+    for (const Eigen::Vector3d& way : {across, Eigen::Vector3d(-across)}) {
+        const Eigen::Vector3d dw = (D + way).normalized();
+        if (tilt_from_plate_deg(dw) > max_tilt_deg + 1e-9) continue;
+        const double a = overhang(dw);
+        if (d.isZero() ? a <= least : a < least - 1e-9 * (1.0 + least)) {
+            d = dw;
+            least = a;
+        }
+    }
+    return d;
+}
+
 int bridge_node(const CentroidalAxis& axis, const Eigen::Vector3d& D, double s, double tol,
                 const Eigen::Vector3d& middle) {
     int past = -1;

@@ -625,16 +625,15 @@ bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, doubl
 }
 
 // The area of `mesh`'s triangles but its last `skip` leaning past `overhang_deg` off the unit
-// `way` (Decompose.cpp's leans_past: a face leaning exactly that far is supported).
+// `way` (leans_past, Slicing.hpp).
 double overhang_of(const TriangleMesh& mesh, std::size_t skip, const Vec3& way,
                    double overhang_deg) {
-    const double limit = -std::sin(overhang_deg * kPi / 180.0) - 1e-6;
     double area = 0.0;
     for (std::size_t t = 0; t + skip < mesh.triangles.size(); ++t) {
         const Eigen::Vector3i& tri = mesh.triangles[t];
         const Vec3 c = (mesh.vertices[tri[1]] - mesh.vertices[tri[0]])
                            .cross(mesh.vertices[tri[2]] - mesh.vertices[tri[0]]);
-        if (c.norm() > 0.0 && c.normalized().dot(way) < limit) area += 0.5 * c.norm();
+        if (c.norm() > 0.0 && leans_past(c.normalized(), way, overhang_deg)) area += 0.5 * c.norm();
     }
     return area;
 }
@@ -693,7 +692,6 @@ void bridges(MeshDecomposition& out, const CentroidalAxis& axis, const MeshDecom
              const Progress& progress) {
     const double step = axis.params.step_mm;
     const double tol = 1e-6 * (1.0 + box.diagonal().norm());
-    const double cos_tilt = std::cos(params.max_tilt_deg * kPi / 180.0);
     const double min_reach = std::max(params.min_component_height_mm, step);
     const Eigen::Matrix3d frame =
         Eigen::AngleAxisd(axis.params.frame_deg * kPi / 180.0, Vec3::UnitZ()).matrix();
@@ -718,7 +716,6 @@ void bridges(MeshDecomposition& out, const CentroidalAxis& axis, const MeshDecom
             continue;
         const std::size_t owner = out.components[std::size_t(c)].branch == int(b) ? m : b;
         if (out.components[std::size_t(c)].branch == int(owner)) continue;
-        const Vec3& g = gap.way;
         // The plane: the lowest of the flat facets facing -D within two steps past b's last node
         // that span the gap: every point of the segment across it a quarter step under their plane
         // that lies outside the mesh (the gap), seen along D, lies on one of them, and one does.
@@ -797,19 +794,10 @@ void bridges(MeshDecomposition& out, const CentroidalAxis& axis, const MeshDecom
         } catch (const Error&) {
             continue;
         }
-        const double along_D = overhang_of(above, cap, D, params.overhang_angle_deg);
-        Vec3 d = Vec3::Zero();
-        double least = 0.5 * along_D;
-        for (const Vec3& way : {g, Vec3(-g)}) {
-            const Vec3 dw = (D + way).normalized();
-            if (dw.z() < cos_tilt - 1e-12) continue;
-            const double a = overhang_of(above, cap, dw, params.overhang_angle_deg);
-            if (d.isZero() ? a <= least : a < least - 1e-9 * (1.0 + least)) {
-                d = dw;
-                least = a;
-            }
-        }
-        if (d.isZero() || !(along_D > 0.0)) continue;
+        const Vec3 d = bridge_direction(D, gap.way, params.max_tilt_deg, [&](const Vec3& way) {
+            return overhang_of(above, cap, way, params.overhang_angle_deg);
+        });
+        if (d.isZero()) continue;
         const auto kept = std::find_if(params.keep_branches.begin(), params.keep_branches.end(),
                                        [&](const KeptBranch& k) { return k.branch == int(owner); });
         if (kept != params.keep_branches.end()) {

@@ -789,6 +789,10 @@ double tilt_from_plate_deg(const Eigen::Vector3d& direction) {
     return std::atan2(Vector2d(direction.x(), direction.y()).norm(), direction.z()) * 180.0 / kPi;
 }
 
+bool leans_past(const Eigen::Vector3d& n, const Eigen::Vector3d& d, double overhang_deg) {
+    return n.dot(d) < -std::sin(overhang_deg * kPi / 180.0) - 1e-6;
+}
+
 void validate(const LayerParams& p, const TriangleMesh& mesh, const std::string& what) {
     validate(p);
     const Eigen::AlignedBox3d box = bounding_box(mesh);

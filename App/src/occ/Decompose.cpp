@@ -218,11 +218,7 @@ void projection_range(const TopoDS_Face& face, const Vector3d& D, double& lo, do
     range_along(bounds_of(BRepTools::OuterWire(face)), D, lo, hi);
 }
 
-std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& s) {
-    std::vector<TopoDS_Shape> out;
-    for (TopExp_Explorer x(s, TopAbs_SOLID); x.More(); x.Next()) out.push_back(x.Current());
-    return out;
-}
+using occ::solids_of;
 
 // Whether any face or edge of `s` is only C0 (a kink inside one surface or curve). OCCT's
 // Booleans expect C1 arguments; the splits of a C0 part (a tube swept along a helix, whose
@@ -714,13 +710,6 @@ TopoDS_Shape hanging_on_plane(const TopoDS_Shape& piece, const TopoDS_Shape& fat
     if (!cut.IsDone() || cut.HasErrors())
         throw Standard_Failure("the cut of a bridge's underside by its father's top failed");
     return cut.Shape();
-}
-
-// Whether a face with outward unit normal n, built along the unit d, leans out from it past
-// `overhang_deg` (n.d < -sin(overhang)). A face leaning exactly that far is supported (slicing's
-// allowance is thickness x tan(overhang)): a millionth of slack.
-bool leans_past(const Vector3d& n, const Vector3d& d, double overhang_deg) {
-    return n.dot(d) < -std::sin(overhang_deg * kPi / 180.0) - 1e-6;
 }
 
 // Calls f(a, b, c, area) for each triangle of the meshed piece `m` off its splitting plane (normal
@@ -1638,19 +1627,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     return overhang_area(piece, way, params.overhang_angle_deg, D, *s, on_plane,
                                          hanging);
                 };
-                const double along_d = overhang(D);
-                Vector3d d = Vector3d::Zero();
-                double least = 0.5 * along_d;
-                for (const Vector3d& way : {g, Vector3d(-g)}) {
-                    const Vector3d dw = (D + way).normalized();
-                    if (tilt_from_plate_deg(to_world * dw) > params.max_tilt_deg + 1e-9) continue;
-                    const double a = overhang(dw);
-                    if (d.isZero() ? a <= least : a < least - 1e-9 * (1.0 + least)) {
-                        d = dw;
-                        least = a;
-                    }
-                }
-                if (d.isZero() || !(along_d > 0.0)) continue;
+                // (The frame is turned about +Z only: a tilt from +Z is the same in the world.)
+                const Vector3d d = bridge_direction(D, g, params.max_tilt_deg, overhang);
+                if (d.isZero()) continue;
                 // Asked to stay in its father (once it would be cut): said so, as for any branch.
                 if (const KeptBranch* k = asked_to_keep(owner)) {
                     if (kept_by_caller(owner)) kept_asked.insert(int(owner));

@@ -41,6 +41,12 @@ double volume_of(const TopoDS_Shape& shape) {
     return props.Mass();
 }
 
+std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& shape) {
+    std::vector<TopoDS_Shape> out;
+    for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next()) out.push_back(x.Current());
+    return out;
+}
+
 double precise_volume_of(const TopoDS_Shape& shape, double relative) {
     GProp_GProps props;
     BRepGProp::VolumeProperties(shape, props, relative);

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <istream>
 #include <string>
+#include <vector>
 
 // OCCT turns a fatal signal into a long jump to the nearest OCC_CATCH_SIGNALS only in code built
 // with this (Debian's OCCT is): the engine's OCCT files are (CMakeLists.txt).
@@ -39,6 +40,9 @@ Eigen::AlignedBox3d tight_bounds(const TopoDS_Shape& shape);
 
 // The volume of a shape's solids, mm^3 (BRepGProp).
 double volume_of(const TopoDS_Shape& shape);
+
+// The solids of a shape, in the order TopExp_Explorer meets them.
+std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& shape);
 
 // The same integrated adaptively to within `relative` of it (slower). OCCT's default quadrature is
 // off by up to 4e-3 on pieces of a torus.

@@ -1,7 +1,6 @@
 // Slicing a BREP part: its sub-components, holes filled when asked (Holes.hpp), tessellated with
 // the part's deflection, then sliced as meshes (see SlicePart.hpp).
 #include <BRepClass3d_SolidClassifier.hxx>
-#include <TopExp_Explorer.hxx>
 #include <algorithm>
 #include <any>
 #include <cmath>
@@ -21,14 +20,10 @@ namespace mas {
 namespace {
 
 // The solids of a component: one, or a root's feet (Decompose.hpp), each its own Shape.
-std::vector<Shape> solids_of(const Shape& component) {
+std::vector<Shape> feet_of(const Shape& component) {
     std::vector<Shape> out;
-    try {
-        for (TopExp_Explorer x(occ::occt(component), TopAbs_SOLID); x.More(); x.Next())
-            out.push_back(occ::wrap(x.Current()));
-    } catch (const Standard_Failure& e) {
-        throw Error(ErrorCode::GeometryFailure, occ::failure_message("slice: a component", e));
-    }
+    for (const TopoDS_Shape& solid : occ::solids_of(occ::occt(component)))
+        out.push_back(occ::wrap(solid));
     if (out.size() < 2) return {component};  // as it is (single_solid() says what is wrong)
     return out;
 }
@@ -187,7 +182,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         const std::string what = "component " + std::to_string(i);
         ComponentMesh m;
         // Each of its solids: one, but for a root standing on several feet (Decompose.hpp).
-        const std::vector<Shape> feet = solids_of(c.solid);
+        const std::vector<Shape> feet = feet_of(c.solid);
         for (std::size_t k = 0; k < feet.size(); ++k) {
             Shape solid = feet[k];
             if (params.fill_holes_up_to_mm != 0.0) {

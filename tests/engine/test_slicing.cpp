@@ -6,7 +6,9 @@
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
+#include <BRepOffsetAPI_ThruSections.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
@@ -2628,6 +2630,78 @@ TEST(Slicing, ALayersReportedSupportIsTheSlopedCheck) {
         }
     }
     EXPECT_EQ(differ, 2);
+}
+
+// A square `side` wide on z = 0 flaring `deg` degrees off +Z on every side up to `height`: four
+// planar walls (ruled between two squares), so its mesh is exact.
+mas::TriangleMesh square_flare(double side, double height, double deg) {
+    const double grow = height * std::tan(deg * kPi / 180.0);
+    auto square = [](double lo, double hi, double z) {
+        return BRepBuilderAPI_MakePolygon(gp_Pnt(lo, lo, z), gp_Pnt(hi, lo, z), gp_Pnt(hi, hi, z),
+                                          gp_Pnt(lo, hi, z), true)
+            .Wire();
+    };
+    BRepOffsetAPI_ThruSections loft(true, true);
+    loft.AddWire(square(0.0, side, 0.0));
+    loft.AddWire(square(-grow, side + grow, height));
+    mas::TessellationParams tp;
+    tp.deflection_mm = kDeflection;
+    return mas::tessellate(from_occt(loft.Shape()), tp);
+}
+
+std::vector<mas::Layer> slice_square_flare(const mas::TriangleMesh& mesh, double side,
+                                           double height) {
+    mas::ComponentSlicingInput input;
+    input.mesh = &mesh;
+    input.base = mas::make_plane(Vector3d(side / 2, side / 2, 0), Vector3d::UnitZ());
+    input.guide = {{side / 2, side / 2, 0}, {side / 2, side / 2, height}};
+    return mas::slice_component(input, default_params().layers);
+}
+
+// Slicing.hpp's counting on the next layer. A wall flaring 30 degrees overhangs each layer by
+// t tan 30 = 0.58 t: the next layer as thick supports it, min_layer's 0.5 mm only under 0.87 mm
+// (the layers were 0.84 mm, 24 of them). Eq. 9 allows 2 mm here (the four walls' wedges,
+// 2 t tan 30 / 40 = 5.8 % of the layer at most): ten layers of max_layer, none overhanging.
+TEST(Slicing, LayersBesideAFlaringWallAreAsThickAsTheNextLayerSupports) {
+    const mas::TriangleMesh mesh = square_flare(40.0, 20.0, 30.0);
+    const std::vector<mas::Layer> layers = slice_square_flare(mesh, 40.0, 20.0);
+    const double max_layer = default_params().layers.max_layer_mm;
+    ASSERT_EQ(layers.size(), 10u);
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        const mas::Layer& l = layers[i];
+        EXPECT_TRUE(l.plane.normal.isApprox(Vector3d::UnitZ(), 1e-12));
+        EXPECT_NEAR(l.min_thickness_mm, max_layer, 1e-9);
+        EXPECT_NEAR(l.max_thickness_mm, max_layer, 1e-9);
+        EXPECT_NEAR(l.plane.origin.z(), max_layer * double(i + 1), 1e-9);
+        EXPECT_EQ(l.unsupported_area_mm2, 0.0);
+        EXPECT_TRUE(l.meets_volume_difference);
+    }
+}
+
+// The same wall flaring 40 degrees, 19 mm tall: each layer needs the next at least tan 40 = 0.84 of
+// its thickness (a negligible area aside, Slicing.hpp: here the corners, whose edges lean 50
+// degrees). Nine layers of max_layer would leave 1 mm to the top, which a 1 mm last layer cannot
+// hold up on a 2 mm one (a 0.68 mm strip all round). The layers below it are chosen again,
+// thinner, until the last rests on them: every layer supported, none thinner than the ladder's
+// 1.5 mm, and far fewer than min_layer's allowance gave (each at most 0.5 / tan 40 = 0.6 mm: at
+// least 32 layers).
+TEST(Slicing, LayersCountingOnTheNextAreChosenAgainWhereTheTopCannotKeepUp) {
+    const mas::TriangleMesh mesh = square_flare(40.0, 19.0, 40.0);
+    const std::vector<mas::Layer> layers = slice_square_flare(mesh, 40.0, 19.0);
+    const mas::LayerParams params = default_params().layers;
+    const double slope = std::tan(40.0 * kPi / 180.0);
+    ASSERT_FALSE(layers.empty());
+    EXPECT_NEAR(layers.back().plane.origin.z(), 19.0, 1e-9);
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        SCOPED_TRACE("layer " + std::to_string(i));
+        const mas::Layer& l = layers[i];
+        EXPECT_TRUE(l.plane.normal.isApprox(Vector3d::UnitZ(), 1e-12));
+        EXPECT_LE(l.unsupported_area_mm2, mas::negligible_unsupported_mm2(l.area_mm2));
+        EXPECT_GE(l.min_thickness_mm, 1.5 - 1e-9);
+        EXPECT_LE(l.max_thickness_mm, params.max_layer_mm + 1e-9);
+    }
+    EXPECT_LT(layers.size(), std::size_t(19.0 / (params.min_layer_mm / slope)));
 }
 
 TEST(Slicing, InvariantsHoldOnBranchingParts) {

@@ -33,7 +33,7 @@
 //   extended straight past both ends), direction D_upper = the guide's direction there (the link),
 //   plane through P_upper normal to D (a plane parallel to L goes exactly delta above it). Accept
 //   when Eq. 9 holds and the next layer's footprint (the component's section on U) is supported by
-//   this layer (below, with min_layer's allowance).
+//   this layer (below, with min_layer's allowance; then thickened, "counting on the next layer").
 //   Else D = normalise(D + D_lower) until the angle to D_lower is below eps_angle, then
 //   delta -= delta / 4, from max_layer down to min_layer. Where a face of the part square to L
 //   (a ceiling's underside, a floor's or a step's top) lies between min_layer and max_layer
@@ -83,6 +83,24 @@
 //   outside. The first layer of a child is checked against what was deposited before
 //   it (its father and the components built earlier, see SlicePart.hpp's build order), their
 //   sections just below the base face; the root's first layer stands on the build plate.
+// - Counting on the next layer: the search checks the next footprint with min_layer's allowance,
+//   the thinnest the next layer can be, which alone would thin every layer beside a wall leaning
+//   off the build direction (a wall flaring 30 degrees: at most 0.87 mm, where a next layer as
+//   thick would support 2 mm), whatever Eq. 9 allows. So, where the search's layer follows the
+//   guide (the guide within eps_angle of its normal at the thicker plane) and a thicker one along
+//   the same normal meets Eq. 9 and leaves the next footprint supported by a next layer no
+//   thicker than its own thinnest, the thickest such is taken instead; the next layer must then
+//   be at least as thick as the thinnest of Sec. 4.2.2's thicknesses that supports that
+//   footprint, or rest on this one all the same (by the reported sloped check). Where it cannot
+//   (the part's top, a face square to the layers, Eq. 9) and is left unsupported, this layer is
+//   chosen again below that thickness, and so back down while the layers counted on the next.
+//   Where that search steps back more than 4 x (layers + 8) times, or leaves a layer unsupported
+//   past the negligible area where counting made that layer or the one under it (a layer the
+//   search alone chose on one it alone chose overhangs by the part's own geometry, a bore's
+//   ceiling), the component is sliced again without counting on the next layer, and the slicing
+//   that leaves less unsupported in all is kept (of equals, the fewer layers). A
+//   layer turning with the guide is never thickened: the layers turn as before (a pipe bend's
+//   last layers lay 26 degrees short of its run's axis when thickened).
 #pragma once
 #include <Eigen/Core>
 #include <cstddef>

@@ -232,14 +232,29 @@ Eigen::AlignedBox2d bounds_of(const Regions2& regions) {
 
 struct Candidate {
     Plane upper;
-    double along = 0.0;  // arc length of P_upper on the guide
-    bool final = false;  // U lies on the top of the material: nothing is left above it
+    double along = 0.0;      // arc length of P_upper on the guide
+    double delta = 0.0;      // the search's thickness it was tried at
+    bool thickened = false;  // chosen over the search's own, counting on the next layer
+    bool final = false;      // U lies on the top of the material: nothing is left above it
     double min_thickness = 0.0, max_thickness = 0.0;
     double volume = 0.0, material = 0.0, difference = 0.0;
     Regions2 region;                // the lower region seen along U's normal
     PlanarRegions next;             // the section just above U: the next layer's region, on U
-    double unsupported_next = 0.0;  // of `next` outside `region` grown by the allowance
+    double unsupported_next = 0.0;  // of `next` outside `region` grown by min_layer's allowance
+    // The thickness the next layer must have to support `next`, where min_layer's does not
+    // (count_on_the_next(); 0: none).
+    double promise = 0.0;
     bool thickness_ok = false;
+};
+
+// Where the slicer stands before choosing a layer: the region it rests on (on the lower plane),
+// the lower plane's normal and the guide's arc length there, and the thickness the layer below
+// counted on this one having (0: none; see run()).
+struct Ground {
+    PlanarRegions lower;
+    Vector3d d_lower;
+    double s_lower = 0.0;
+    double promised = 0.0;
 };
 
 // What the meshes deposited before a component give its first layer to stand on: their sections
@@ -310,6 +325,17 @@ private:
         return flats_;
     }
 
+    // Sec. 4.2.2's thicknesses: max_layer, then a quarter less each time down to min_layer.
+    std::vector<double> search_thicknesses() const {
+        std::vector<double> out;
+        for (double delta = params_.max_layer_mm;;) {
+            out.push_back(delta);
+            if (delta <= params_.min_layer_mm) break;
+            delta = std::max(params_.min_layer_mm, delta - delta / 4.0);
+        }
+        return out;
+    }
+
     // The thicknesses Sec. 4.2.2 tries above `lower`, thickest first: max_layer, then a quarter
     // less each time down to min_layer (the search's own), and in between those putting a plane
     // parallel to the lower one onto a face square to it. A layer deposits the section just above
@@ -323,12 +349,7 @@ private:
     // none falls less than min_layer below it, which would leave the next layer no choice but to.
     std::vector<double> deltas(const PlanarRegions& lower) const {
         const double min_layer = params_.min_layer_mm, max_layer = params_.max_layer_mm;
-        std::vector<double> out;
-        for (double delta = max_layer;;) {
-            out.push_back(delta);
-            if (delta <= min_layer) break;
-            delta = std::max(min_layer, delta - delta / 4.0);
-        }
+        std::vector<double> out = search_thicknesses();
         const Vector3d& d = lower.plane.normal;
         const double from = d.dot(lower.plane.origin);
         const std::vector<double>& flats = flat_offsets(d);
@@ -398,8 +419,33 @@ private:
         }
     }
 
+    // One candidate plane. `count_on_next`: count_on_the_next() too.
     Candidate evaluate(const PlanarRegions& lower, const Vector3d& d, const Vector3d& p_upper,
-                       double along, double delta) const;
+                       double along, double delta, bool count_on_next) const;
+    // The layer above `at`: search()'s, among thicknesses below `cap` (none left, or no layer
+    // fits below it: nullopt), then, `counting`, thickened where it may count on the next layer
+    // (Slicing.hpp); `below` is the layer under it (null for the first), `index` its index.
+    std::optional<Candidate> choose(const Ground& at, const Layer* below, std::size_t index,
+                                    bool counting, double cap, int& tries) const;
+    // Sec. 4.2.2's search proper, with min_layer's allowance for the next layer; each candidate
+    // it evaluates is noted in `tried`.
+    struct Tried {
+        Vector3d normal;
+        double delta = 0.0;
+        bool meets_eq9 = false;  // and the thickness bounds
+    };
+    std::optional<Candidate> search(const Ground& at, std::size_t index, double cap,
+                                    std::vector<Tried>& tried, int& tries) const;
+    // The layers above `at`, `counting` on the next layer or not (Slicing.hpp); nullopt where
+    // counting stepped back too often. `counted`, when given, says of each layer whether counting
+    // made it (thickened it, chose it again thinner, or it counts on the next).
+    std::optional<std::vector<Layer>> build(const Plane& base, Ground at, bool counting,
+                                            std::vector<bool>* counted = nullptr) const;
+    // Where min_layer's allowance leaves c.next unsupported but one of c's thinnest does: the
+    // thinnest of Sec. 4.2.2's thicknesses above min_layer that supports it, c.promise (else 0).
+    void count_on_the_next(Candidate& c) const;
+    Layer make_layer(const Candidate& c, const Ground& at, const Plane& base, const Layer* below,
+                     int tries) const;
 
     const ComponentSlicingInput& input_;
     const LayerParams& params_;
@@ -413,9 +459,11 @@ private:
 };
 
 Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& d,
-                                    const Vector3d& p_upper, double along, double delta) const {
+                                    const Vector3d& p_upper, double along, double delta,
+                                    bool count_on_next) const {
     Candidate c;
     c.along = along;
+    c.delta = delta;
     if (angle_deg(d, lower.plane.normal) < 1e-9) {
         // Parallel to the lower plane: exactly delta above it (the guide may lean a little
         // against d, which must not eat into the thickness), where the guide crosses that plane.
@@ -528,8 +576,33 @@ Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& 
     if (!c.next.empty()) {
         const Regions2 grown = offset(c.region, min_layer * allowance_);
         c.unsupported_next = area(difference(project(c.next, frame), grown));
+        if (count_on_next) count_on_the_next(c);
     }
     return c;
+}
+
+void ComponentSlicer::count_on_the_next(Candidate& c) const {
+    const double min_layer = params_.min_layer_mm, tmin = c.min_thickness;
+    const double tolerance = negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+    if (c.final || c.next.empty() || c.unsupported_next <= tolerance ||
+        tmin <= min_layer + kLengthTolerance)
+        return;
+    const Regions2 next = project(c.next, PlaneFrame(c.upper.normal));
+    const auto supports = [&](double thickness) {
+        return area(difference(next, offset(c.region, thickness * allowance_))) <= tolerance;
+    };
+    if (!supports(tmin)) return;
+    c.promise = tmin;
+    std::vector<double> ladder = search_thicknesses();
+    std::reverse(ladder.begin(), ladder.end());
+    for (const double t : ladder) {
+        if (t <= min_layer + kLengthTolerance) continue;
+        if (t >= tmin - kLengthTolerance) break;
+        if (supports(t)) {
+            c.promise = t;
+            return;
+        }
+    }
 }
 
 std::vector<Layer> ComponentSlicer::run() {
@@ -558,188 +631,343 @@ std::vector<Layer> ComponentSlicer::run() {
                 " degrees from the build plate's normal, past max_tilt (" +
                 format_number(params_.max_tilt_deg) +
                 " degrees): the machine cannot reach it (decompose with the same max_tilt)");
+    // Counting on the next layer (Slicing.hpp): kept where nothing is left unsupported, else
+    // compared with the layers chosen without it.
     std::vector<Layer> layers;
-    double material = 0.0;  // of the layers so far
-    Vector3d d_lower = base.normal;
-    double s_lower = guide_.crossing(base, 0.0).value_or(0.0);
-    const double eps_angle = params_.eps_angle_deg;
-    while (!lower.empty()) {
+    const Ground ground{std::move(lower), base.normal, guide_.crossing(base, 0.0).value_or(0.0),
+                        0.0};
+    if (params_.require_support) {
+        std::vector<bool> counted;
+        if (std::optional<std::vector<Layer>> counting = build(base, ground, true, &counted)) {
+            // Left unsupported where counting made neither it nor the layer under it: the part's
+            // own overhang (a bore's ceiling), as the search alone leaves it.
+            bool own = true;
+            for (std::size_t i = 0; i < counting->size(); ++i) {
+                const Layer& l = (*counting)[i];
+                if (l.unsupported_area_mm2 > negligible_unsupported_mm2(l.area_mm2) &&
+                    (counted[i] || (i > 0 && counted[i - 1])))
+                    own = false;
+            }
+            if (own) return *counting;
+            layers = std::move(*counting);
+        }
+    }
+    std::vector<Layer> plain = *build(base, ground, false);
+    if (layers.empty()) return plain;
+    const auto unsupported = [](const std::vector<Layer>& ls) {
+        double sum = 0.0;
+        for (const Layer& l : ls) sum += l.unsupported_area_mm2;
+        return sum;
+    };
+    const double a = unsupported(layers), b = unsupported(plain);
+    if (a < b - 1e-9 * std::max(1.0, b) ||
+        (a <= b + 1e-9 * std::max(1.0, b) && layers.size() < plain.size()))
+        return layers;
+    return plain;
+}
+
+std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Ground at,
+                                                         bool counting,
+                                                         std::vector<bool>* counted) const {
+    std::vector<Layer> layers;
+    double material = 0.0;        // of the layers so far
+    std::vector<Ground> grounds;  // where each layer was chosen
+    std::vector<double> deltas;   // and the thickness its search was at
+    // How layer i is chosen again: below this thickness, or (plain) without counting on the next.
+    std::vector<double> caps;
+    std::vector<bool> plain;
+    std::size_t backtracks = 0;
+    const auto go_back = [&]() {
+        // Layer k, counting on the next in vain: where it need not rest on a thickness the layer
+        // under it counted on, as the search alone chooses it; else thinner.
+        const std::size_t k = layers.size() - 1;
+        caps.resize(k + 1, std::numeric_limits<double>::infinity());
+        plain.resize(k + 1, false);
+        if (grounds[k].promised > 0.0)
+            caps[k] = deltas[k];
+        else
+            plain[k] = true;
+        material -= layers.back().material_volume_mm3;
+        layers.pop_back();
+        deltas.pop_back();
+        at = std::move(grounds.back());
+        grounds.pop_back();
+    };
+    while (!at.lower.empty()) {
         if (layers.size() >= params_.max_layers)
             invalid("component " + std::to_string(input_.component) + " needs more than " +
                     std::to_string(params_.max_layers) + " layers");
-        std::optional<Candidate> accepted, fallback, any_fit;
-        // Of the tilted candidates that meet Eq. 9 but leave the next layer unsupported, the one
-        // leaving least per mm of height (the first, thickest, of equals).
-        std::optional<Candidate> tilted;
+        const std::size_t i = layers.size();
+        const Layer* below = layers.empty() ? nullptr : &layers.back();
+        const double cap = i < caps.size() ? caps[i] : std::numeric_limits<double>::infinity();
+        const bool count = counting && !(i < plain.size() && plain[i]);
         int tries = 0;
-        auto meets_eq9 = [&](const Candidate& c) {
-            return c.thickness_ok && c.difference <= params_.max_volume_difference;
-        };
-        // Unsupported area below this counts as none (of the next footprint).
-        auto tolerance_of = [](const Candidate& c) {
-            return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
-        };
-        // Layers of different thickness are compared by what they leave unsupported per mm of
-        // height built (over the mean thickness: the prism's volume over its region's area), so
-        // that a wedge is not judged worse than a thin parallel layer for being thicker on one
-        // side.
-        auto mean_thickness = [](const Candidate& c) {
-            return std::max(c.volume / std::max(area(c.region), 1e-12), 1e-9);
-        };
-        auto unsupported_rate = [&](const Candidate& c) {
-            return c.unsupported_next / mean_thickness(c);
-        };
-        auto rate_tolerance = [&](const Candidate& c) {
-            return tolerance_of(c) / mean_thickness(c);
-        };
-        auto supported = [&](const Candidate& c) {
-            return !params_.require_support || c.unsupported_next <= tolerance_of(c);
-        };
-        // Sec. 4.2.2: from delta = max_layer, the guide's direction at P_upper, averaged with
-        // D_lower until Eq. 9 holds (and the next layer is supported) or the two are within
-        // eps_angle, then a shorter delta.
-        const std::vector<double> thicknesses = deltas(lower);
-        for (const double delta : thicknesses) {
-            if (accepted) break;
-            const double along = s_lower + delta;
-            const Vector3d p_upper = guide_.point(along);
-            Vector3d d = guide_.direction(along);
-            // A guide doubling back, or turning by less than a tenth of eps_angle, or by so little
-            // that the plane moves less than a tenth of min_layer across the layer below (centroid
-            // noise: a disc's shares taken round its stem left its centroid 3 microns off the
-            // stem's, and the 0.2 degree tilt laid the disc's underside in two layers, both over
-            // nothing): keep the lower direction.
-            d = within_reach(d, d_lower);
-            const double turn = angle_deg(d, d_lower);
-            if (d.dot(d_lower) <= 0.0 || turn < 0.1 * eps_angle ||
-                std::sin(turn * kPi / 180.0) * reach_from(lower, p_upper) <
-                    0.1 * params_.min_layer_mm)
-                d = d_lower;
-            // Where the part is a prism along D_lower over the first thickness tried (the
-            // thickest, or up to the first face square to L), the parallel layer deposits it
-            // exactly. If the guide then runs on along D_lower (its next segment within
-            // eps_angle), its turn was a jog: the sections changed shape, not the part's
-            // direction (a pocket sunk in a plate's top moved the centroids 0.6 mm aside, and the
-            // layers tilted 1.8 degrees, the last ones wedges 0.9 mm proud of the top). Where it
-            // turns on, a bend begins above the prism, and the layers start turning as before,
-            // thinner if need be (a hollow bend's riser, ended by a thick parallel layer, left
-            // the bend's layers 6 degrees short of it and 1.9 mm^2 hanging).
-            if (delta == thicknesses.front() && angle_deg(d, d_lower) >= 1e-9 &&
-                guide_.runs_on_along(along, d_lower, eps_angle)) {
-                progress_.check();
-                ++tries;
-                Candidate c = evaluate(lower, d_lower, p_upper, along, delta);
-                if (meets_eq9(c) && supported(c) && c.difference <= kPrismDifference) {
-                    accepted = std::move(c);
-                    break;
-                }
-            }
-            for (;;) {
-                progress_.check();
-                ++tries;
-                const bool parallel = angle_deg(d, d_lower) < 1e-9;
-                Candidate c = evaluate(lower, d, p_upper, along, delta);
-                if (meets_eq9(c) && supported(c)) {
-                    accepted = std::move(c);
-                    break;
-                }
-                if (c.thickness_ok && !any_fit) any_fit = c;  // the last resort, below
-                if (!parallel && meets_eq9(c) &&
-                    (!tilted ||
-                     unsupported_rate(c) < unsupported_rate(*tilted) - rate_tolerance(c)))
-                    tilted = c;
-                if (parallel || angle_deg(d, d_lower) < eps_angle) break;
-                d = within_reach((d + d_lower).normalized(), d_lower);
-            }
-        }
-        // Nothing met both (a tilt the thickness bounds forbid, an overhang of the part's own, a
-        // dome's cap): planar adaptive along D_lower, the thickest layer that meets Eq. 9 with
-        // the next layer supported, else the thickest that meets Eq. 9, else min_layer flagged.
-        if (!accepted) {
-            std::optional<Candidate> eq9_only;
-            for (const double delta : thicknesses) {
-                progress_.check();
-                ++tries;
-                const double along = s_lower + delta;
-                Candidate c = evaluate(lower, d_lower, guide_.point(along), along, delta);
-                if (meets_eq9(c) && supported(c)) {
-                    accepted = std::move(c);
-                    break;
-                }
-                // Thick to thin: a thinner layer replaces a thicker one only when it leaves the
-                // next layer less unsupported (a wall slightly past the overhang angle is built
-                // in thin layers, as adaptive slicers do, rather than in thick ones that overhang).
-                if (meets_eq9(c) && (!eq9_only || c.unsupported_next <
-                                                      eq9_only->unsupported_next - tolerance_of(c)))
-                    eq9_only = c;
-                if (c.thickness_ok) fallback = std::move(c);
-            }
-            // A wall past the overhang angle that the guide leans along (an arm leaning 60
-            // degrees off a column): no single tilt makes the next layer supported, but tilting
-            // gets there layer by layer. A tilted layer replaces the parallel one when it leaves
-            // less unsupported per mm of height (a wedge leaves more in all than a thin parallel
-            // layer, being thicker, but the layers after it leave less).
-            if (!accepted && tilted &&
-                (!eq9_only ||
-                 unsupported_rate(*tilted) < unsupported_rate(*eq9_only) - rate_tolerance(*tilted)))
-                accepted = std::move(tilted);
-            if (!accepted && eq9_only) accepted = std::move(eq9_only);
-            // No parallel layer fits the thickness bounds at all, but a tilted one did.
-            if (!accepted && !fallback && any_fit) fallback = std::move(any_fit);
-        }
-        if (!accepted) {
-            if (!fallback)
-                invalid("component " + std::to_string(input_.component) + ": no layer between " +
-                        mm(params_.min_layer_mm) + " and " + mm(params_.max_layer_mm) +
-                        " fits above the plane through (" + format_number(lower.plane.origin.x()) +
-                        ", " + format_number(lower.plane.origin.y()) + ", " +
-                        format_number(lower.plane.origin.z()) +
-                        "); the layer thickness bounds are too narrow for this part");
-            if (params_.strict) {
-                std::ostringstream s;
-                s << "component " << input_.component << ", layer " << layers.size() + 1
-                  << ": even a " << mm(params_.min_layer_mm) << " layer differs from the part by "
-                  << fallback->difference * 100.0
-                  << " % of its volume, over max_volume_difference ("
-                  << params_.max_volume_difference * 100.0 << " %)";
-                throw Error(ErrorCode::GeometryFailure, s.str());
-            }
-            accepted = std::move(fallback);
-        }
-        Candidate& c = *accepted;
+        std::optional<Candidate> chosen = choose(at, below, i, count, cap, tries);
         Layer layer;
-        layer.component = input_.component;
-        layer.plane = c.upper;
-        layer.lower = lower.plane;
-        layer.regions = std::move(c.region);
-        layer.area_mm2 = area(layer.regions);
-        layer.min_thickness_mm = c.min_thickness;
-        layer.max_thickness_mm = c.max_thickness;
-        layer.volume_mm3 = c.volume;
-        layer.material_volume_mm3 = c.material;
-        layer.volume_difference = c.difference;
-        layer.meets_volume_difference = c.difference <= params_.max_volume_difference;
-        layer.axis_point = guide_.point(c.along);
-        layer.axis_node = guide_.node_near(c.along);
-        layer.tries = tries;
-        if (!layers.empty()) {
-            layer.unsupported = unsupported_regions_sloped(layer, layers.back(), allowance_);
-        } else if (!input_.support_meshes.empty()) {
-            // The first layer of a child rests on what was deposited before it, just below the
-            // base face.
-            layer.unsupported = unsupported_regions_sloped(
-                layer, support_below(input_.support_meshes, base, offset_), allowance_);
+        if (chosen) layer = make_layer(*chosen, at, base, below, tries);
+        if (at.promised > 0.0 &&
+            (!chosen || layer.unsupported_area_mm2 > negligible_unsupported_mm2(layer.area_mm2))) {
+            // The layer below counted on this one in vain (or this one has no thinner choice
+            // left): choose that one again (go_back). A search this long gives up counting.
+            if (++backtracks > 4 * (layers.size() + 8)) return std::nullopt;
+            go_back();
+            continue;
         }
-        layer.unsupported_area_mm2 = area(layer.unsupported);
+        if (!chosen) {
+            chosen = choose(at, below, i, false, std::numeric_limits<double>::infinity(), tries);
+            layer = make_layer(*chosen, at, base, below, tries);
+        }
+        const Candidate& c = *chosen;
         material += layer.material_volume_mm3;
         layers.push_back(std::move(layer));
+        grounds.push_back(at);
+        deltas.push_back(c.delta);
+        const bool promises = count && !c.final && c.promise > 0.0 &&
+                              c.unsupported_next > negligible_unsupported_mm2(c.next.area);
+        if (counted) {
+            counted->resize(layers.size());
+            counted->back() = c.thickened || promises || std::isfinite(cap);
+        }
         if (c.final) break;
         progress_(volume_ > 0.0 ? material / volume_ : 0.0);
-        lower = std::move(c.next);
-        d_lower = c.upper.normal;
-        s_lower = c.along;
+        at = Ground{c.next, c.upper.normal, c.along, promises ? c.promise : 0.0};
     }
     return layers;
+}
+
+Layer ComponentSlicer::make_layer(const Candidate& c, const Ground& at, const Plane& base,
+                                  const Layer* below, int tries) const {
+    Layer layer;
+    layer.component = input_.component;
+    layer.plane = c.upper;
+    layer.lower = at.lower.plane;
+    layer.regions = c.region;
+    layer.area_mm2 = area(layer.regions);
+    layer.min_thickness_mm = c.min_thickness;
+    layer.max_thickness_mm = c.max_thickness;
+    layer.volume_mm3 = c.volume;
+    layer.material_volume_mm3 = c.material;
+    layer.volume_difference = c.difference;
+    layer.meets_volume_difference = c.difference <= params_.max_volume_difference;
+    layer.axis_point = guide_.point(c.along);
+    layer.axis_node = guide_.node_near(c.along);
+    layer.tries = tries;
+    if (below) {
+        layer.unsupported = unsupported_regions_sloped(layer, *below, allowance_);
+    } else if (!input_.support_meshes.empty()) {
+        // The first layer of a child rests on what was deposited before it, just below the
+        // base face.
+        layer.unsupported = unsupported_regions_sloped(
+            layer, support_below(input_.support_meshes, base, offset_), allowance_);
+    }
+    layer.unsupported_area_mm2 = area(layer.unsupported);
+    return layer;
+}
+
+std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t index, double cap,
+                                                 std::vector<Tried>& tried, int& tries) const {
+    const double eps_angle = params_.eps_angle_deg;
+    std::optional<Candidate> accepted, fallback, any_fit;
+    // Of the tilted candidates that meet Eq. 9 but leave the next layer unsupported, the one
+    // leaving least per mm of height (the first, thickest, of equals).
+    std::optional<Candidate> tilted;
+    auto meets_eq9 = [&](const Candidate& c) {
+        return c.thickness_ok && c.difference <= params_.max_volume_difference;
+    };
+    // Unsupported area below this counts as none (of the next footprint).
+    auto tolerance_of = [](const Candidate& c) {
+        return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+    };
+    // Layers of different thickness are compared by what they leave unsupported per mm of
+    // height built (over the mean thickness: the prism's volume over its region's area), so
+    // that a wedge is not judged worse than a thin parallel layer for being thicker on one
+    // side.
+    auto mean_thickness = [](const Candidate& c) {
+        return std::max(c.volume / std::max(area(c.region), 1e-12), 1e-9);
+    };
+    auto unsupported_rate = [&](const Candidate& c) {
+        return c.unsupported_next / mean_thickness(c);
+    };
+    auto rate_tolerance = [&](const Candidate& c) { return tolerance_of(c) / mean_thickness(c); };
+    auto supported = [&](const Candidate& c) {
+        return !params_.require_support || c.unsupported_next <= tolerance_of(c);
+    };
+    auto note = [&](const Candidate& c) {
+        tried.push_back({c.upper.normal, c.delta, meets_eq9(c)});
+    };
+    // Sec. 4.2.2: from delta = max_layer, the guide's direction at P_upper, averaged with
+    // D_lower until Eq. 9 holds (and the next layer is supported) or the two are within
+    // eps_angle, then a shorter delta.
+    std::vector<double> thicknesses = deltas(at.lower);
+    thicknesses.erase(std::remove_if(thicknesses.begin(), thicknesses.end(),
+                                     [&](double t) { return t >= cap - kLengthTolerance; }),
+                      thicknesses.end());
+    if (thicknesses.empty()) return std::nullopt;
+    for (const double delta : thicknesses) {
+        if (accepted) break;
+        const double along = at.s_lower + delta;
+        const Vector3d p_upper = guide_.point(along);
+        Vector3d d = guide_.direction(along);
+        // A guide doubling back, or turning by less than a tenth of eps_angle, or by so little
+        // that the plane moves less than a tenth of min_layer across the layer below (centroid
+        // noise: a disc's shares taken round its stem left its centroid 3 microns off the
+        // stem's, and the 0.2 degree tilt laid the disc's underside in two layers, both over
+        // nothing): keep the lower direction.
+        d = within_reach(d, at.d_lower);
+        const double turn = angle_deg(d, at.d_lower);
+        if (d.dot(at.d_lower) <= 0.0 || turn < 0.1 * eps_angle ||
+            std::sin(turn * kPi / 180.0) * reach_from(at.lower, p_upper) <
+                0.1 * params_.min_layer_mm)
+            d = at.d_lower;
+        // Where the part is a prism along D_lower over the first thickness tried (the
+        // thickest, or up to the first face square to L), the parallel layer deposits it
+        // exactly. If the guide then runs on along D_lower (its next segment within
+        // eps_angle), its turn was a jog: the sections changed shape, not the part's
+        // direction (a pocket sunk in a plate's top moved the centroids 0.6 mm aside, and the
+        // layers tilted 1.8 degrees, the last ones wedges 0.9 mm proud of the top). Where it
+        // turns on, a bend begins above the prism, and the layers start turning as before,
+        // thinner if need be (a hollow bend's riser, ended by a thick parallel layer, left
+        // the bend's layers 6 degrees short of it and 1.9 mm^2 hanging).
+        if (delta == thicknesses.front() && angle_deg(d, at.d_lower) >= 1e-9 &&
+            guide_.runs_on_along(along, at.d_lower, eps_angle)) {
+            progress_.check();
+            ++tries;
+            Candidate c = evaluate(at.lower, at.d_lower, p_upper, along, delta, false);
+            note(c);
+            if (meets_eq9(c) && supported(c) && c.difference <= kPrismDifference) {
+                accepted = std::move(c);
+                break;
+            }
+        }
+        for (;;) {
+            progress_.check();
+            ++tries;
+            const bool parallel = angle_deg(d, at.d_lower) < 1e-9;
+            Candidate c = evaluate(at.lower, d, p_upper, along, delta, false);
+            note(c);
+            if (meets_eq9(c) && supported(c)) {
+                accepted = std::move(c);
+                break;
+            }
+            if (c.thickness_ok && !any_fit) any_fit = c;  // the last resort, below
+            if (!parallel && meets_eq9(c) &&
+                (!tilted || unsupported_rate(c) < unsupported_rate(*tilted) - rate_tolerance(c)))
+                tilted = c;
+            if (parallel || angle_deg(d, at.d_lower) < eps_angle) break;
+            d = within_reach((d + at.d_lower).normalized(), at.d_lower);
+        }
+    }
+    // Nothing met both (a tilt the thickness bounds forbid, an overhang of the part's own, a
+    // dome's cap): planar adaptive along D_lower, the thickest layer that meets Eq. 9 with
+    // the next layer supported, else the thickest that meets Eq. 9, else min_layer flagged.
+    if (!accepted) {
+        std::optional<Candidate> eq9_only;
+        for (const double delta : thicknesses) {
+            progress_.check();
+            ++tries;
+            const double along = at.s_lower + delta;
+            Candidate c = evaluate(at.lower, at.d_lower, guide_.point(along), along, delta, false);
+            note(c);
+            if (meets_eq9(c) && supported(c)) {
+                accepted = std::move(c);
+                break;
+            }
+            // Thick to thin: a thinner layer replaces a thicker one only when it leaves the
+            // next layer less unsupported (a wall slightly past the overhang angle is built
+            // in thin layers, as adaptive slicers do, rather than in thick ones that overhang).
+            if (meets_eq9(c) &&
+                (!eq9_only || c.unsupported_next < eq9_only->unsupported_next - tolerance_of(c)))
+                eq9_only = c;
+            if (c.thickness_ok) fallback = std::move(c);
+        }
+        // A wall past the overhang angle that the guide leans along (an arm leaning 60
+        // degrees off a column): no single tilt makes the next layer supported, but tilting
+        // gets there layer by layer. A tilted layer replaces the parallel one when it leaves
+        // less unsupported per mm of height (a wedge leaves more in all than a thin parallel
+        // layer, being thicker, but the layers after it leave less).
+        if (!accepted && tilted &&
+            (!eq9_only ||
+             unsupported_rate(*tilted) < unsupported_rate(*eq9_only) - rate_tolerance(*tilted)))
+            accepted = std::move(tilted);
+        if (!accepted && eq9_only) accepted = std::move(eq9_only);
+        // No parallel layer fits the thickness bounds at all, but a tilted one did.
+        if (!accepted && !fallback && any_fit) fallback = std::move(any_fit);
+    }
+    if (!accepted) {
+        // Below a cap (chosen again, run()), no error: the caller steps back further.
+        if (std::isfinite(cap) && (!fallback || params_.strict)) return std::nullopt;
+        if (!fallback)
+            invalid("component " + std::to_string(input_.component) + ": no layer between " +
+                    mm(params_.min_layer_mm) + " and " + mm(params_.max_layer_mm) +
+                    " fits above the plane through (" + format_number(at.lower.plane.origin.x()) +
+                    ", " + format_number(at.lower.plane.origin.y()) + ", " +
+                    format_number(at.lower.plane.origin.z()) +
+                    "); the layer thickness bounds are too narrow for this part");
+        if (params_.strict) {
+            std::ostringstream s;
+            s << "component " << input_.component << ", layer " << index + 1 << ": even a "
+              << mm(params_.min_layer_mm) << " layer differs from the part by "
+              << fallback->difference * 100.0 << " % of its volume, over max_volume_difference ("
+              << params_.max_volume_difference * 100.0 << " %)";
+            throw Error(ErrorCode::GeometryFailure, s.str());
+        }
+        accepted = std::move(fallback);
+    }
+    return accepted;
+}
+
+std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* below,
+                                                 std::size_t index, bool counting, double cap,
+                                                 int& tries) const {
+    std::vector<Tried> tried;
+    std::optional<Candidate> found = search(at, index, cap, tried, tries);
+    if (!found || (!counting && at.promised <= 0.0)) return found;
+    // The search's layer, thicker along the same normal where the next layer can be counted on
+    // to support what it leaves (see run()), and where it rests on the layer below, which may
+    // have counted on this one: the thickest such, else the search's.
+    const auto negligible = [](const Candidate& c) {
+        return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+    };
+    // Its own footprint: supported by the layer below with this one's sloped allowance (the
+    // check the layer reports), where that layer counted on it being at.promised thick.
+    auto rests = [&](const Candidate& c) {
+        if (at.promised <= 0.0 || below == nullptr ||
+            c.min_thickness >= at.promised - kLengthTolerance)
+            return true;
+        Layer layer;
+        layer.plane = c.upper;
+        layer.lower = at.lower.plane;
+        layer.regions = c.region;
+        layer.min_thickness_mm = c.min_thickness;
+        layer.max_thickness_mm = c.max_thickness;
+        return area(unsupported_regions_sloped(layer, *below, allowance_)) <=
+               negligible_unsupported_mm2(area(c.region));
+    };
+    const Vector3d d = found->upper.normal;
+    for (const double delta : deltas(at.lower)) {
+        if (delta >= cap - kLengthTolerance) continue;
+        if (delta <= found->delta + kLengthTolerance) break;
+        progress_.check();
+        ++tries;
+        const double along = at.s_lower + delta;
+        // Not where the guide turns away from d: the layers turn with it, not thicken.
+        if (angle_deg(guide_.direction(along), d) > params_.eps_angle_deg) continue;
+        // Nor where the search found this layer past the thickness or volumetric bounds.
+        if (std::any_of(tried.begin(), tried.end(), [&](const Tried& t) {
+                return !t.meets_eq9 && std::abs(t.delta - delta) <= kLengthTolerance &&
+                       (t.normal - d).norm() <= 1e-12;
+            }))
+            continue;
+        Candidate c = evaluate(at.lower, d, guide_.point(along), along, delta, counting);
+        const bool next = c.unsupported_next <= negligible(c) || c.promise > 0.0;
+        if (c.thickness_ok && c.difference <= params_.max_volume_difference && next && rests(c)) {
+            c.thickened = true;
+            return c;
+        }
+    }
+    // The search's own layer may count on the next too.
+    if (counting) count_on_the_next(*found);
+    return found;
 }
 
 }  // namespace

@@ -236,6 +236,19 @@ struct MeshBridge {
     Vector3d lo, hi;
 };
 
+// The length of a layer's outlines (outer loops and holes).
+double outline(const mas::Layer& layer) {
+    double length = 0.0;
+    for (const mas::Region2& region : layer.regions) {
+        std::vector<const mas::Polygon2*> loops{&region.outer};
+        for (const mas::Polygon2& h : region.holes) loops.push_back(&h);
+        for (const mas::Polygon2* loop : loops)
+            for (std::size_t i = 0; i < loop->points.size(); ++i)
+                length += (loop->points[i] - loop->points[(i + 1) % loop->points.size()]).norm();
+    }
+    return length;
+}
+
 std::vector<MeshBridge> mesh_bridges() {
     return {{"handle", mesh_of(mas::test::handle_on_plate()), 2, {5, 6, 35}, {55, 14, 41}},
             {"portal", mesh_of(mas::test::portal_on_two_legs()), 2, {0, 0, 30}, {50, 8, 36}},
@@ -305,6 +318,42 @@ TEST(DecomposeMesh, ASpanOverFlatFacetsWhereTwoTracksMergeIsABridgeAsOnASolid) {
     }
 }
 
+// A portal across Y whose lintel reaches 2.19 mm past its legs (survey seed 321's feet 6), meshed
+// at its deflection. The march cuts the lintel's ends off first, at section planes a
+// hundred-thousandth of a mm past the legs' sides, and the crossings leave slivers of the lintel's
+// side faces standing on edge within the tolerance of the underside's plane. Left below the
+// bridge's split, one stood alone in a loop of no area at a leg's corner, which the cap could not
+// close: the split was refused and the lintel hung in the root's layers, 800 mm^2 in one. Such a
+// sliver goes with the side most of its neighbours are on.
+TEST(DecomposeMesh, ALintelReachingPastItsLegsIsABridgeDespiteTheSliversOfItsEndsCuts) {
+    const double w = 12.6246133, leg = 7.1939893, gap = 67.3656599, h = 44.0860309;
+    const double over = 2.1908974, top = 51.3149875;
+    const mas::Shape portal = mas::test::from_occt(
+        fuse(fuse(occ_box(-w, 0, 0, w, leg, h), occ_box(-w, leg + gap, 0, w, leg, h)),
+             occ_box(-w, -over, h, w, 2 * leg + gap + 2 * over, top - h)));
+    mas::TessellationParams tp;
+    tp.deflection_mm = 0.0505;  // mas.deflection() of it
+    const mas::TriangleMesh mesh = mas::tessellate(portal, tp);
+    const auto axis = mas::centroidal_axis(mesh);
+    const mas::MeshDecomposition d = mas::decompose_mesh(mesh, axis);
+    std::size_t bridges = 0;
+    for (const mas::ComponentMesh& c : d.components) {
+        expect_solid(c.mesh, "component");
+        if (!c.bridge) continue;
+        ++bridges;
+        // The lintel between the cuts, from its underside up.
+        EXPECT_NEAR(lowest(c.mesh, Vector3d::UnitZ()), h, 1e-6);
+        EXPECT_NEAR(highest(c.mesh, Vector3d::UnitZ()), top, 1e-6);
+    }
+    EXPECT_EQ(bridges, 1u);
+    // Every layer supported, up to the strip the mesh sections can show (as wide as the
+    // deflection along the outlines).
+    const mas::SlicedPart r = mas::slice_mesh_part(mesh, axis, params());
+    for (const mas::Layer& layer : r.layers)
+        EXPECT_LE(layer.unsupported_area_mm2, outline(layer) * tp.deflection_mm + 1e-9)
+            << "layer along " << layer.plane.normal.transpose();
+}
+
 TEST(SliceMeshPart, ABridgesLayersOnAMeshEachRestOnTheOneBefore) {
     for (const MeshBridge& part : mesh_bridges()) {
         SCOPED_TRACE(part.name);
@@ -314,19 +363,9 @@ TEST(SliceMeshPart, ABridgesLayersOnAMeshEachRestOnTheOneBefore) {
         ASSERT_GT(r.layers.size(), 0u);
         // Nothing unsupported beyond the strip the mesh sections can show, as wide as the
         // deflection along the outlines.
-        for (const mas::Layer& layer : r.layers) {
-            double outline = 0.0;
-            for (const mas::Region2& region : layer.regions) {
-                std::vector<const mas::Polygon2*> loops{&region.outer};
-                for (const mas::Polygon2& h : region.holes) loops.push_back(&h);
-                for (const mas::Polygon2* loop : loops)
-                    for (std::size_t i = 0; i < loop->points.size(); ++i)
-                        outline +=
-                            (loop->points[i] - loop->points[(i + 1) % loop->points.size()]).norm();
-            }
-            EXPECT_LE(layer.unsupported_area_mm2, outline * 0.02 + 1e-9)
+        for (const mas::Layer& layer : r.layers)
+            EXPECT_LE(layer.unsupported_area_mm2, outline(layer) * 0.02 + 1e-9)
                 << "layer along " << layer.plane.normal.transpose();
-        }
     }
 }
 

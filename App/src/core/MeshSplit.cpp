@@ -549,18 +549,43 @@ bool split_on_face(const TriangleMesh& mesh, const Vec3& n, double offset, doubl
         why = "its material point lies behind the cutting plane";
         return false;
     }
-    // Above the plane: a triangle with a vertex above it, or lying on it facing -n.
+    // Above the plane: a triangle with a vertex above it, or lying on it facing -n. One within
+    // `tol` of the plane standing on its edge (a sliver of a side face an earlier cut a
+    // hundred-thousandth of a mm above the plane left: a portal's lintel reaching past its legs)
+    // goes with the side most of its neighbours are on; left below, it stood alone in a loop of
+    // no area, which the cap cannot close.
     std::vector<char> up_side(nt, 0);
+    std::vector<std::size_t> on_edge;
     for (std::size_t t = 0; t < nt; ++t) {
         const Eigen::Vector3i& tri = mesh.triangles[t];
         const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]],
                    &c = mesh.vertices[tri[2]];
         const bool flat = d[tri[0]] == 0.0 && d[tri[1]] == 0.0 && d[tri[2]] == 0.0;
-        up_side[t] = flat ? (b - a).cross(c - a).dot(n) < 0.0
-                          : d[tri[0]] > 0.0 || d[tri[1]] > 0.0 || d[tri[2]] > 0.0;
+        const Vec3 normal = (b - a).cross(c - a);
+        up_side[t] =
+            flat ? normal.dot(n) < 0.0 : d[tri[0]] > 0.0 || d[tri[1]] > 0.0 || d[tri[2]] > 0.0;
+        if (flat && std::abs(normal.dot(n)) <= 0.5 * normal.norm()) on_edge.push_back(t);
+    }
+    const auto edges = edge_triangles(mesh);
+    bool changed = !on_edge.empty();
+    for (int pass = 0; changed && pass < 8; ++pass) {
+        changed = false;
+        for (const std::size_t t : on_edge) {
+            const Eigen::Vector3i& tri = mesh.triangles[t];
+            int ups = 0;
+            for (int k = 0; k < 3; ++k) {
+                const auto& across = edges.at(edge_key(tri[k], tri[(k + 1) % 3]));
+                const int other = across[0] == int(t) ? across[1] : across[0];
+                ups += other >= 0 && up_side[std::size_t(other)];
+            }
+            if (char(ups >= 2) != up_side[t]) {
+                up_side[t] = ups >= 2;
+                changed = true;
+            }
+        }
     }
     UnionFind classes(nt);
-    for (const auto& [key, tris] : edge_triangles(mesh))
+    for (const auto& [key, tris] : edges)
         if (tris[0] >= 0 && tris[1] >= 0 && up_side[std::size_t(tris[0])] &&
             up_side[std::size_t(tris[1])])
             classes.join(tris[0], tris[1]);

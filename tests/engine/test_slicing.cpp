@@ -2660,7 +2660,7 @@ std::vector<mas::Layer> slice_square_flare(const mas::TriangleMesh& mesh, double
 
 // Slicing.hpp's counting on the next layer. A wall flaring 30 degrees overhangs each layer by
 // t tan 30 = 0.58 t: the next layer as thick supports it, min_layer's 0.5 mm only under 0.87 mm
-// (the layers were 0.84 mm, 24 of them). Eq. 9 allows 2 mm here (the four walls' wedges,
+// (22 layers, 20 of them 0.84 mm). Eq. 9 allows 2 mm here (the four walls' wedges,
 // 2 t tan 30 / 40 = 5.8 % of the layer at most): ten layers of max_layer, none overhanging.
 TEST(Slicing, LayersBesideAFlaringWallAreAsThickAsTheNextLayerSupports) {
     const mas::TriangleMesh mesh = square_flare(40.0, 20.0, 30.0);
@@ -2684,8 +2684,8 @@ TEST(Slicing, LayersBesideAFlaringWallAreAsThickAsTheNextLayerSupports) {
 // degrees). Nine layers of max_layer would leave 1 mm to the top, which a 1 mm last layer cannot
 // hold up on a 2 mm one (a 0.68 mm strip all round). The layers below it are chosen again,
 // thinner, until the last rests on them: every layer supported, none thinner than the ladder's
-// 1.5 mm, and far fewer than min_layer's allowance gave (each at most 0.5 / tan 40 = 0.6 mm: at
-// least 32 layers).
+// 1.5 mm, and far fewer than min_layer's allowance gave (each at most 0.5 / tan 40 = 0.6 mm but
+// the first and the last: 35 layers; 32 would take all 19 mm at that thickness).
 TEST(Slicing, LayersCountingOnTheNextAreChosenAgainWhereTheTopCannotKeepUp) {
     const mas::TriangleMesh mesh = square_flare(40.0, 19.0, 40.0);
     const std::vector<mas::Layer> layers = slice_square_flare(mesh, 40.0, 19.0);

@@ -91,16 +91,17 @@
 //   the same normal meets Eq. 9 and leaves the next footprint supported by a next layer no
 //   thicker than its own thinnest, the thickest such is taken instead; the next layer must then
 //   be at least as thick as the thinnest of Sec. 4.2.2's thicknesses that supports that
-//   footprint, or rest on this one all the same (by the reported sloped check). Where it cannot
-//   (the part's top, a face square to the layers, Eq. 9) and is left unsupported, this layer is
-//   chosen again below that thickness, and so back down while the layers counted on the next.
-//   Where that search steps back more than 4 x (layers + 8) times, or leaves a layer unsupported
-//   past the negligible area where counting made that layer or the one under it (a layer the
-//   search alone chose on one it alone chose overhangs by the part's own geometry, a bore's
-//   ceiling), the component is sliced again without counting on the next layer, and the slicing
-//   that leaves less unsupported in all is kept (of equals, the fewer layers). A
-//   layer turning with the guide is never thickened: the layers turn as before (a pipe bend's
-//   last layers lay 26 degrees short of its run's axis when thickened).
+//   footprint, or rest on this one all the same (by the reported sloped check). A layer turning
+//   with the guide is never thickened: the layers turn as before (a pipe bend's last layers lay
+//   26 degrees short of its run's axis when thickened). Where the next layer cannot rest on it
+//   (the part's top, a face square to the layers, Eq. 9), this layer is chosen again: as the
+//   search alone chooses it, where it need not rest on a thickness the layer under it counted on,
+//   else below its thickness (and so back down while the layers counted on the next). Where that
+//   steps back more than 4 x (layers + 8) times, or leaves a layer unsupported past the negligible
+//   area (the part's own overhangs: a bore's ceiling), the component is sliced again without
+//   counting on the next layer, and the layers counting chose are kept only where they leave no
+//   more unsupported at worst and in all (a pillow block's bore: thicker layers under its ceiling
+//   left 65 mm^2 in one layer, 44 without).
 #pragma once
 #include <Eigen/Core>
 #include <cstddef>

@@ -232,10 +232,9 @@ Eigen::AlignedBox2d bounds_of(const Regions2& regions) {
 
 struct Candidate {
     Plane upper;
-    double along = 0.0;      // arc length of P_upper on the guide
-    double delta = 0.0;      // the search's thickness it was tried at
-    bool thickened = false;  // chosen over the search's own, counting on the next layer
-    bool final = false;      // U lies on the top of the material: nothing is left above it
+    double along = 0.0;  // arc length of P_upper on the guide
+    double delta = 0.0;  // the search's thickness it was tried at
+    bool final = false;  // U lies on the top of the material: nothing is left above it
     double min_thickness = 0.0, max_thickness = 0.0;
     double volume = 0.0, material = 0.0, difference = 0.0;
     Regions2 region;                // the lower region seen along U's normal
@@ -437,10 +436,8 @@ private:
     std::optional<Candidate> search(const Ground& at, std::size_t index, double cap,
                                     std::vector<Tried>& tried, int& tries) const;
     // The layers above `at`, `counting` on the next layer or not (Slicing.hpp); nullopt where
-    // counting stepped back too often. `counted`, when given, says of each layer whether counting
-    // made it (thickened it, chose it again thinner, or it counts on the next).
-    std::optional<std::vector<Layer>> build(const Plane& base, Ground at, bool counting,
-                                            std::vector<bool>* counted = nullptr) const;
+    // counting stepped back too often.
+    std::optional<std::vector<Layer>> build(const Plane& base, Ground at, bool counting) const;
     // Where min_layer's allowance leaves c.next unsupported but one of c's thinnest does: the
     // thinnest of Sec. 4.2.2's thicknesses above min_layer that supports it, c.promise (else 0).
     void count_on_the_next(Candidate& c) const;
@@ -637,38 +634,34 @@ std::vector<Layer> ComponentSlicer::run() {
     const Ground ground{std::move(lower), base.normal, guide_.crossing(base, 0.0).value_or(0.0),
                         0.0};
     if (params_.require_support) {
-        std::vector<bool> counted;
-        if (std::optional<std::vector<Layer>> counting = build(base, ground, true, &counted)) {
-            // Left unsupported where counting made neither it nor the layer under it: the part's
-            // own overhang (a bore's ceiling), as the search alone leaves it.
-            bool own = true;
-            for (std::size_t i = 0; i < counting->size(); ++i) {
-                const Layer& l = (*counting)[i];
-                if (l.unsupported_area_mm2 > negligible_unsupported_mm2(l.area_mm2) &&
-                    (counted[i] || (i > 0 && counted[i - 1])))
-                    own = false;
-            }
-            if (own) return *counting;
+        if (std::optional<std::vector<Layer>> counting = build(base, ground, true)) {
+            if (std::none_of(counting->begin(), counting->end(), [](const Layer& l) {
+                    return l.unsupported_area_mm2 > negligible_unsupported_mm2(l.area_mm2);
+                }))
+                return *counting;
             layers = std::move(*counting);
         }
     }
     std::vector<Layer> plain = *build(base, ground, false);
     if (layers.empty()) return plain;
-    const auto unsupported = [](const std::vector<Layer>& ls) {
-        double sum = 0.0;
-        for (const Layer& l : ls) sum += l.unsupported_area_mm2;
-        return sum;
+    // Kept where it leaves no more unsupported than the layers chosen without it, at worst and in
+    // all (within rounding).
+    const auto worst_and_all = [](const std::vector<Layer>& ls) {
+        double worst = 0.0, all = 0.0;
+        for (const Layer& l : ls) {
+            worst = std::max(worst, l.unsupported_area_mm2);
+            all += l.unsupported_area_mm2;
+        }
+        return std::pair{worst, all};
     };
-    const double a = unsupported(layers), b = unsupported(plain);
-    if (a < b - 1e-9 * std::max(1.0, b) ||
-        (a <= b + 1e-9 * std::max(1.0, b) && layers.size() < plain.size()))
-        return layers;
-    return plain;
+    const auto [worst_a, all_a] = worst_and_all(layers);
+    const auto [worst_b, all_b] = worst_and_all(plain);
+    const auto within = [](double a, double b) { return a <= b + 1e-9 * std::max(1.0, b); };
+    return within(worst_a, worst_b) && within(all_a, all_b) ? layers : plain;
 }
 
 std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Ground at,
-                                                         bool counting,
-                                                         std::vector<bool>* counted) const {
+                                                         bool counting) const {
     std::vector<Layer> layers;
     double material = 0.0;        // of the layers so far
     std::vector<Ground> grounds;  // where each layer was chosen
@@ -724,10 +717,6 @@ std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Grou
         deltas.push_back(c.delta);
         const bool promises = count && !c.final && c.promise > 0.0 &&
                               c.unsupported_next > negligible_unsupported_mm2(c.next.area);
-        if (counted) {
-            counted->resize(layers.size());
-            counted->back() = c.thickened || promises || std::isfinite(cap);
-        }
         if (c.final) break;
         progress_(volume_ > 0.0 ? material / volume_ : 0.0);
         at = Ground{c.next, c.upper.normal, c.along, promises ? c.promise : 0.0};
@@ -960,10 +949,8 @@ std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* 
             continue;
         Candidate c = evaluate(at.lower, d, guide_.point(along), along, delta, counting);
         const bool next = c.unsupported_next <= negligible(c) || c.promise > 0.0;
-        if (c.thickness_ok && c.difference <= params_.max_volume_difference && next && rests(c)) {
-            c.thickened = true;
+        if (c.thickness_ok && c.difference <= params_.max_volume_difference && next && rests(c))
             return c;
-        }
     }
     // The search's own layer may count on the next too.
     if (counting) count_on_the_next(*found);

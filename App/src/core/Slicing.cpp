@@ -936,8 +936,6 @@ std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* 
     for (const double delta : deltas(at.lower)) {
         if (delta >= cap - kLengthTolerance) continue;
         if (delta <= found->delta + kLengthTolerance) break;
-        progress_.check();
-        ++tries;
         const double along = at.s_lower + delta;
         // Not where the guide turns away from d: the layers turn with it, not thicken.
         if (angle_deg(guide_.direction(along), d) > params_.eps_angle_deg) continue;
@@ -947,6 +945,8 @@ std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* 
                        (t.normal - d).norm() <= 1e-12;
             }))
             continue;
+        progress_.check();
+        ++tries;
         Candidate c = evaluate(at.lower, d, guide_.point(along), along, delta, counting);
         const bool next = c.unsupported_next <= negligible(c) || c.promise > 0.0;
         if (c.thickness_ok && c.difference <= params_.max_volume_difference && next && rests(c))

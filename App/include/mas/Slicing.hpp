@@ -98,10 +98,10 @@
 //   search alone chooses it, where it need not rest on a thickness the layer under it counted on,
 //   else below its thickness (and so back down while the layers counted on the next). Where that
 //   steps back more than 4 x (layers + 8) times, or leaves a layer unsupported past the negligible
-//   area (the part's own overhangs: a bore's ceiling), the component is sliced again without
-//   counting on the next layer, and the layers counting chose are kept only where they leave no
-//   more unsupported at worst and in all (a pillow block's bore: thicker layers under its ceiling
-//   left 65 mm^2 in one layer, 44 without).
+//   area (the part's own overhangs: a bore's ceiling) where counting changed any layer, the
+//   component is sliced again without counting on the next layer, and the layers counting chose
+//   are kept only where they leave no more unsupported at worst and in all (a pillow block's
+//   bore: thicker layers under its ceiling left 65 mm^2 in one layer, 44 without).
 #pragma once
 #include <Eigen/Core>
 #include <cstddef>

@@ -232,9 +232,10 @@ Eigen::AlignedBox2d bounds_of(const Regions2& regions) {
 
 struct Candidate {
     Plane upper;
-    double along = 0.0;  // arc length of P_upper on the guide
-    double delta = 0.0;  // the search's thickness it was tried at
-    bool final = false;  // U lies on the top of the material: nothing is left above it
+    double along = 0.0;      // arc length of P_upper on the guide
+    double delta = 0.0;      // the search's thickness it was tried at
+    bool thickened = false;  // chosen over the search's own, counting on the next layer (choose())
+    bool final = false;      // U lies on the top of the material: nothing is left above it
     double min_thickness = 0.0, max_thickness = 0.0;
     double volume = 0.0, material = 0.0, difference = 0.0;
     Regions2 region;                // the lower region seen along U's normal
@@ -436,8 +437,11 @@ private:
     std::optional<Candidate> search(const Ground& at, std::size_t index, double cap,
                                     std::vector<Tried>& tried, int& tries) const;
     // The layers above `at`, `counting` on the next layer or not (Slicing.hpp); nullopt where
-    // counting stepped back too often.
-    std::optional<std::vector<Layer>> build(const Plane& base, Ground at, bool counting) const;
+    // counting stepped back too often. `counted`, when given, is set where counting changed
+    // anything (a layer thickened, or counting on the next); where not, the layers are those
+    // chosen without counting.
+    std::optional<std::vector<Layer>> build(const Plane& base, Ground at, bool counting,
+                                            bool* counted = nullptr) const;
     // Where min_layer's allowance leaves c.next unsupported but one of c's thinnest does: the
     // thinnest of Sec. 4.2.2's thicknesses above min_layer that supports it, c.promise (else 0).
     void count_on_the_next(Candidate& c) const;
@@ -628,14 +632,15 @@ std::vector<Layer> ComponentSlicer::run() {
                 " degrees from the build plate's normal, past max_tilt (" +
                 format_number(params_.max_tilt_deg) +
                 " degrees): the machine cannot reach it (decompose with the same max_tilt)");
-    // Counting on the next layer (Slicing.hpp): kept where nothing is left unsupported, else
-    // compared with the layers chosen without it.
+    // Counting on the next layer (Slicing.hpp): kept where nothing is left unsupported or where
+    // it changed nothing, else compared with the layers chosen without it.
     std::vector<Layer> layers;
     const Ground ground{std::move(lower), base.normal, guide_.crossing(base, 0.0).value_or(0.0),
                         0.0};
     if (params_.require_support) {
-        if (std::optional<std::vector<Layer>> counting = build(base, ground, true)) {
-            if (std::none_of(counting->begin(), counting->end(), [](const Layer& l) {
+        bool counted = false;
+        if (std::optional<std::vector<Layer>> counting = build(base, ground, true, &counted)) {
+            if (!counted || std::none_of(counting->begin(), counting->end(), [](const Layer& l) {
                     return l.unsupported_area_mm2 > negligible_unsupported_mm2(l.area_mm2);
                 }))
                 return *counting;
@@ -661,7 +666,8 @@ std::vector<Layer> ComponentSlicer::run() {
 }
 
 std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Ground at,
-                                                         bool counting) const {
+                                                         bool counting, bool* counted) const {
+    if (counted) *counted = false;
     std::vector<Layer> layers;
     double material = 0.0;        // of the layers so far
     std::vector<Ground> grounds;  // where each layer was chosen
@@ -717,6 +723,7 @@ std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Grou
         deltas.push_back(c.delta);
         const bool promises = count && !c.final && c.promise > 0.0 &&
                               c.unsupported_next > negligible_unsupported_mm2(c.next.area);
+        if (counted && (c.thickened || promises)) *counted = true;
         if (c.final) break;
         progress_(volume_ > 0.0 ? material / volume_ : 0.0);
         at = Ground{c.next, c.upper.normal, c.along, promises ? c.promise : 0.0};
@@ -949,8 +956,10 @@ std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* 
         ++tries;
         Candidate c = evaluate(at.lower, d, guide_.point(along), along, delta, counting);
         const bool next = c.unsupported_next <= negligible(c) || c.promise > 0.0;
-        if (c.thickness_ok && c.difference <= params_.max_volume_difference && next && rests(c))
+        if (c.thickness_ok && c.difference <= params_.max_volume_difference && next && rests(c)) {
+            c.thickened = true;
             return c;
+        }
     }
     // The search's own layer may count on the next too.
     if (counting) count_on_the_next(*found);

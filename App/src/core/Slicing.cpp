@@ -247,12 +247,16 @@ struct Candidate {
     bool thickness_ok = false;
 };
 
-// Where the slicer stands before choosing a layer: the region it rests on (on the lower plane),
-// the lower plane's normal and the guide's arc length there, and the thickness the layer below
+// Unsupported area of c's next footprint that counts as none.
+double tolerance_of(const Candidate& c) {
+    return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+}
+
+// Where the slicer stands before choosing a layer: the region it rests on (on the lower plane,
+// whose normal is D_lower), the guide's arc length there, and the thickness the layer below
 // counted on this one having (0: none; see run()).
 struct Ground {
     PlanarRegions lower;
-    Vector3d d_lower;
     double s_lower = 0.0;
     double promised = 0.0;
 };
@@ -584,7 +588,7 @@ Candidate ComponentSlicer::evaluate(const PlanarRegions& lower, const Vector3d& 
 
 void ComponentSlicer::count_on_the_next(Candidate& c) const {
     const double min_layer = params_.min_layer_mm, tmin = c.min_thickness;
-    const double tolerance = negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+    const double tolerance = tolerance_of(c);
     if (c.final || c.next.empty() || c.unsupported_next <= tolerance ||
         tmin <= min_layer + kLengthTolerance)
         return;
@@ -635,8 +639,7 @@ std::vector<Layer> ComponentSlicer::run() {
     // Counting on the next layer (Slicing.hpp): kept where nothing is left unsupported or where
     // it changed nothing, else compared with the layers chosen without it.
     std::vector<Layer> layers;
-    const Ground ground{std::move(lower), base.normal, guide_.crossing(base, 0.0).value_or(0.0),
-                        0.0};
+    const Ground ground{std::move(lower), guide_.crossing(base, 0.0).value_or(0.0), 0.0};
     if (params_.require_support) {
         bool counted = false;
         if (std::optional<std::vector<Layer>> counting = build(base, ground, true, &counted)) {
@@ -721,12 +724,12 @@ std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Grou
         layers.push_back(std::move(layer));
         grounds.push_back(at);
         deltas.push_back(c.delta);
-        const bool promises = count && !c.final && c.promise > 0.0 &&
-                              c.unsupported_next > negligible_unsupported_mm2(c.next.area);
+        // count_on_the_next() sets a promise only where the next footprint needs one.
+        const bool promises = c.promise > 0.0;
         if (counted && (c.thickened || promises)) *counted = true;
         if (c.final) break;
         progress_(volume_ > 0.0 ? material / volume_ : 0.0);
-        at = Ground{c.next, c.upper.normal, c.along, promises ? c.promise : 0.0};
+        at = Ground{c.next, c.along, promises ? c.promise : 0.0};
     }
     return layers;
 }
@@ -763,16 +766,13 @@ Layer ComponentSlicer::make_layer(const Candidate& c, const Ground& at, const Pl
 std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t index, double cap,
                                                  std::vector<Tried>& tried, int& tries) const {
     const double eps_angle = params_.eps_angle_deg;
+    const Vector3d& d_lower = at.lower.plane.normal;
     std::optional<Candidate> accepted, fallback, any_fit;
     // Of the tilted candidates that meet Eq. 9 but leave the next layer unsupported, the one
     // leaving least per mm of height (the first, thickest, of equals).
     std::optional<Candidate> tilted;
     auto meets_eq9 = [&](const Candidate& c) {
         return c.thickness_ok && c.difference <= params_.max_volume_difference;
-    };
-    // Unsupported area below this counts as none (of the next footprint).
-    auto tolerance_of = [](const Candidate& c) {
-        return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
     };
     // Layers of different thickness are compared by what they leave unsupported per mm of
     // height built (over the mean thickness: the prism's volume over its region's area), so
@@ -809,12 +809,12 @@ std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t i
         // noise: a disc's shares taken round its stem left its centroid 3 microns off the
         // stem's, and the 0.2 degree tilt laid the disc's underside in two layers, both over
         // nothing): keep the lower direction.
-        d = within_reach(d, at.d_lower);
-        const double turn = angle_deg(d, at.d_lower);
-        if (d.dot(at.d_lower) <= 0.0 || turn < 0.1 * eps_angle ||
+        d = within_reach(d, d_lower);
+        const double turn = angle_deg(d, d_lower);
+        if (d.dot(d_lower) <= 0.0 || turn < 0.1 * eps_angle ||
             std::sin(turn * kPi / 180.0) * reach_from(at.lower, p_upper) <
                 0.1 * params_.min_layer_mm)
-            d = at.d_lower;
+            d = d_lower;
         // Where the part is a prism along D_lower over the first thickness tried (the
         // thickest, or up to the first face square to L), the parallel layer deposits it
         // exactly. If the guide then runs on along D_lower (its next segment within
@@ -824,11 +824,11 @@ std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t i
         // turns on, a bend begins above the prism, and the layers start turning as before,
         // thinner if need be (a hollow bend's riser, ended by a thick parallel layer, left
         // the bend's layers 6 degrees short of it and 1.9 mm^2 hanging).
-        if (delta == thicknesses.front() && angle_deg(d, at.d_lower) >= 1e-9 &&
-            guide_.runs_on_along(along, at.d_lower, eps_angle)) {
+        if (delta == thicknesses.front() && angle_deg(d, d_lower) >= 1e-9 &&
+            guide_.runs_on_along(along, d_lower, eps_angle)) {
             progress_.check();
             ++tries;
-            Candidate c = evaluate(at.lower, at.d_lower, p_upper, along, delta, false);
+            Candidate c = evaluate(at.lower, d_lower, p_upper, along, delta, false);
             note(c);
             if (meets_eq9(c) && supported(c) && c.difference <= kPrismDifference) {
                 accepted = std::move(c);
@@ -838,7 +838,7 @@ std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t i
         for (;;) {
             progress_.check();
             ++tries;
-            const bool parallel = angle_deg(d, at.d_lower) < 1e-9;
+            const bool parallel = angle_deg(d, d_lower) < 1e-9;
             Candidate c = evaluate(at.lower, d, p_upper, along, delta, false);
             note(c);
             if (meets_eq9(c) && supported(c)) {
@@ -849,8 +849,8 @@ std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t i
             if (!parallel && meets_eq9(c) &&
                 (!tilted || unsupported_rate(c) < unsupported_rate(*tilted) - rate_tolerance(c)))
                 tilted = c;
-            if (parallel || angle_deg(d, at.d_lower) < eps_angle) break;
-            d = within_reach((d + at.d_lower).normalized(), at.d_lower);
+            if (parallel || angle_deg(d, d_lower) < eps_angle) break;
+            d = within_reach((d + d_lower).normalized(), d_lower);
         }
     }
     // Nothing met both (a tilt the thickness bounds forbid, an overhang of the part's own, a
@@ -862,7 +862,7 @@ std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t i
             progress_.check();
             ++tries;
             const double along = at.s_lower + delta;
-            Candidate c = evaluate(at.lower, at.d_lower, guide_.point(along), along, delta, false);
+            Candidate c = evaluate(at.lower, d_lower, guide_.point(along), along, delta, false);
             note(c);
             if (meets_eq9(c) && supported(c)) {
                 accepted = std::move(c);
@@ -921,9 +921,6 @@ std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* 
     // The search's layer, thicker along the same normal where the next layer can be counted on
     // to support what it leaves (see run()), and where it rests on the layer below, which may
     // have counted on this one: the thickest such, else the search's.
-    const auto negligible = [](const Candidate& c) {
-        return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
-    };
     // Its own footprint: supported by the layer below with this one's sloped allowance (the
     // check the layer reports), where that layer counted on it being at.promised thick.
     auto rests = [&](const Candidate& c) {
@@ -955,7 +952,7 @@ std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* 
         progress_.check();
         ++tries;
         Candidate c = evaluate(at.lower, d, guide_.point(along), along, delta, counting);
-        const bool next = c.unsupported_next <= negligible(c) || c.promise > 0.0;
+        const bool next = c.unsupported_next <= tolerance_of(c) || c.promise > 0.0;
         if (c.thickness_ok && c.difference <= params_.max_volume_difference && next && rests(c)) {
             c.thickened = true;
             return c;

@@ -2528,6 +2528,44 @@ TEST(Slicing, BridgesAreBuiltAlongADiagonalWithEveryLayerSupported) {
     }
 }
 
+// tests/data/chair_back_jump.brep, a chair drawn at random (a family tried beside the survey's):
+// four legs under a top 33.24 x 36.02 x 5.96, a back 3.44 thick and 24.69 tall standing on the
+// top's far edge. The top is a bridge over the legs, built along its diagonal towards the back,
+// and the back is the same march along Z: the top's last section holds the whole top, the next
+// only the back's, and the centroid moves 16.3 mm across the top in one step up. Layers turning
+// after that jump (its direction 84.5 degrees off Z) laid the back in planes across its side,
+// 72 to 148 mm^2 hanging in each of six. The jump is no turn (Slicing.hpp): the back is laid in
+// the top's diagonal layers, none leaning further off Z, every one resting on the one below
+// within the deflection's strip. Sliced as the command line does (its deflection,
+// slice_solid_part). (The layers along the diagonal lay faces leaning exactly 45 degrees off it,
+// on the overhang angle's edge: the top's length rounded to 4 decimals, the layers happened not
+// to turn at the jump before either.)
+TEST(Slicing, AChairsBackIsLaidInItsTopsDiagonalLayersNotTurnedAcrossTheTop) {
+    const mas::Model model = mas::read_model(std::string(MAS_TEST_DATA) + "/chair_back_jump.brep");
+    mas::SlicePartParams params;
+    mas::TessellationParams tp;
+    tp.deflection_mm = mas::effective_deflection(model.shape, tp);
+    const auto axis = mas::centroidal_axis(mas::tessellate(model.shape, tp));
+    mas::DecomposeParams dp;
+    dp.min_component_height_mm = params.layers.min_layer_mm;
+    dp.max_tilt_deg = params.layers.max_tilt_deg;
+    mas::Decomposition d;
+    const auto result = mas::slice_solid_part(model.shape, axis, dp, params, d);
+    ASSERT_EQ(d.components.size(), 2u);
+    ASSERT_EQ(d.components[1].rule, mas::Component::SplitRule::Bridge);
+    EXPECT_NEAR(d.components[1].build_direction.z(), std::sqrt(0.5), 1e-12);
+    int layers = 0;
+    for (std::size_t i = 0; i < result.layers.size(); ++i) {
+        const mas::Layer& l = result.layers[i];
+        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * tp.deflection_mm + 1e-6) << i;
+        if (l.component != 1) continue;
+        ++layers;
+        EXPECT_LE(angle_deg(l.plane.normal, Vector3d::UnitZ()), 45.0 + 1e-9) << i;
+    }
+    EXPECT_GT(layers, 0);
+    EXPECT_EQ(result.stats.colliding_layers, 0);
+}
+
 namespace {
 
 // A wedge layer on a 10 x 10 square layer at z = 1: its footprint reaches 1 mm past the square's

@@ -47,6 +47,13 @@
 //   where the part is a prism along D_lower over the first delta tried: the parallel layer there,
 //   if it deposits the part exactly (VolDiff within rounding) with the next layer supported, is
 //   taken before any tilted one (a pocket in a plate's top moves the centroids, not the part).
+//   A jump of the guide, a segment running further sideways than along the segments on both
+//   sides of it, which run within eps_angle of each other, is read as running their way: the
+//   sections changed shape within a step, the part does not go across. A chair's top, a bridge
+//   built along its diagonal, ends at its back, the same march along Z, whose sections hold only
+//   the back's: the centroid moves 16 mm across the top in one step up, and layers turning after
+//   it (up to 84.5 degrees off Z) laid the back across its side, 72 to 148 mm^2 hanging in each
+//   of six (tests/data/chair_back_jump.brep); read so, the back is laid in the top's layers.
 //   Where the guide turns on, a bend begins: the layers start turning as before. Every D tilting
 //   more than max_tilt_deg from the build plate's +Z (the machine's reach) is turned back
 //   towards +Z onto it, in the plane of D and Z: where the guide turns further (a return bend's

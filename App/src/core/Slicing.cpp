@@ -38,7 +38,7 @@ double angle_deg(const Vector3d& a, const Vector3d& b) {
 
 class Guide {
 public:
-    Guide(const ComponentSlicingInput& input) {
+    Guide(const ComponentSlicingInput& input, double eps_angle_deg) {
         for (std::size_t i = 0; i < input.guide.size(); ++i) {
             const Vector3d& p = input.guide[i];
             if (!p.allFinite()) invalid("the component's axis has a non-finite point");
@@ -55,6 +55,7 @@ public:
         arc_.assign(points_.size(), 0.0);
         for (std::size_t i = 1; i < points_.size(); ++i)
             arc_[i] = arc_[i - 1] + (points_[i] - points_[i - 1]).norm();
+        find_jumps(eps_angle_deg);
     }
 
     double length() const { return arc_.back(); }
@@ -66,9 +67,10 @@ public:
         return std::min(i, points_.size() - 2);
     }
 
+    // The segment's direction; on a jump (below), its neighbours'.
     Vector3d direction(double s) const {
         const std::size_t i = segment(s);
-        return (points_[i + 1] - points_[i]).normalized();
+        return jumps_[i] ? along_[i] : (points_[i + 1] - points_[i]).normalized();
     }
 
     Vector3d point(double s) const {
@@ -112,9 +114,29 @@ public:
     }
 
 private:
+    // A jump (Slicing.hpp): a segment running further sideways than along the segments on both
+    // sides of it, which run within `eps_angle` of each other. The sections changed shape there;
+    // the part does not go that way.
+    void find_jumps(double eps_angle) {
+        const std::size_t n = points_.size() - 1;  // segments
+        jumps_.assign(n, false);
+        along_.assign(n, Vector3d::Zero());
+        const auto dir = [&](std::size_t i) { return (points_[i + 1] - points_[i]).normalized(); };
+        for (std::size_t i = 1; i + 1 < n; ++i) {
+            const Vector3d before = dir(i - 1), after = dir(i + 1);
+            if (angle_deg(before, after) >= eps_angle || angle_deg(dir(i), before) <= 45.0 ||
+                angle_deg(dir(i), after) <= 45.0)
+                continue;
+            jumps_[i] = true;
+            along_[i] = (before + after).normalized();
+        }
+    }
+
     std::vector<Vector3d> points_;
     std::vector<int> nodes_;
     std::vector<double> arc_;
+    std::vector<bool> jumps_;      // per segment
+    std::vector<Vector3d> along_;  // a jump's neighbours' direction
 };
 
 // ---- regions between frames ---------------------------------------------------------------------
@@ -281,7 +303,11 @@ class ComponentSlicer {
 public:
     ComponentSlicer(const ComponentSlicingInput& input, const LayerParams& params,
                     double volume_mm3, const Progress& progress)
-        : input_(input), params_(params), progress_(progress), volume_(volume_mm3), guide_(input) {
+        : input_(input),
+          params_(params),
+          progress_(progress),
+          volume_(volume_mm3),
+          guide_(input, params.eps_angle_deg) {
         offset_ = base_offset(params);
         allowance_ = overhang_allowance(params);
     }

@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: twelve families of the parts a deposition shop builds (pipe bends, hubs
-with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
+"""Parts nobody tuned for: seventeen families of the parts a deposition shop builds (pipe bends,
+hubs with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
 leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports, wye
-fittings, handles and walls with windows, portals, tables and gates on feet apart), each part drawn at random from its family's ranges,
-and a survey slicing them as a user would (defaults, G-code).
+fittings, handles and walls with windows, portals, tables and gates on feet apart, candelabra,
+walls with shelves, canes and hooks, chairs, cranks), each part drawn at random from its family's
+ranges, and a survey slicing them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
 drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers
@@ -279,6 +280,96 @@ def feet(rng):
                                 legs if kind == "table" else posts})
 
 
+def _bar(a, b, side):
+    """A square bar `side` across from point a to point b, which differ along one axis only."""
+    lo = V(min(a.x, b.x), min(a.y, b.y), min(a.z, b.z)) - V(side, side, side) * 0.5
+    size = V(abs(b.x - a.x), abs(b.y - a.y), abs(b.z - a.z)) + V(side, side, side)
+    return Part.makeBox(size.x, size.y, size.z, lo)
+
+
+def candelabra(rng):
+    """A round column on a round foot with 2 to 4 square arms leaving it along +-X and +-Y, each
+    at its own height, each with a post rising off its end."""
+    r, height = rng.uniform(5, 10), rng.uniform(40, 70)
+    solid = Part.makeCylinder(r + rng.uniform(4, 10), rng.uniform(3, 6)).fuse(
+        Part.makeCylinder(r, height))
+    ways = rng.sample([(1, 0), (-1, 0), (0, 1), (0, -1)], rng.randint(2, 4))
+    side = rng.uniform(4, 8)
+    for dx, dy in ways:
+        z, length, rise = rng.uniform(0.4, 0.9) * height, rng.uniform(15, 35), rng.uniform(8, 25)
+        root, end = V(0, 0, z), V(dx * (r + length), dy * (r + length), z)
+        solid = solid.fuse(_bar(root, end, side)).fuse(_bar(end, end + V(0, 0, rise), side))
+    return solid, {"arms": len(ways)}
+
+
+def shelves(rng):
+    """A wall standing on its edge with 1 to 3 shelves reaching square off one face, or off both,
+    each at its own height."""
+    width, thick, height = rng.uniform(30, 60), rng.uniform(5, 10), rng.uniform(40, 80)
+    solid = Part.makeBox(width, thick, height, V(-width / 2, -thick / 2, 0))
+    count = rng.randint(1, 3)
+    heights = sorted(rng.uniform(10, height - 6) for _ in range(count))
+    both = rng.random() < 0.4
+    for z in heights:
+        shelf, reach = rng.uniform(3, 6), rng.uniform(10, 30)
+        along = rng.uniform(0.5, 1.0) * width
+        for side in ((1, -1) if both else (1,)):
+            y0 = thick / 2 - 0.5 if side > 0 else -thick / 2 - reach
+            solid = solid.fuse(Part.makeBox(along, reach + 0.5, shelf,
+                                            V(-along / 2, y0, min(z, height - shelf))))
+    return solid, {"shelves": count, "both": both}
+
+
+def cane(rng):
+    """A round riser on a round foot bending over along +X round a 90, 135 or 180 degree bend,
+    no run after it; after a 180 degree bend (a hook), a leg hanging down from its end or not."""
+    r, height = rng.uniform(4, 8), rng.uniform(20, 50)
+    bend_radius = rng.uniform(r + 3, 3 * r)
+    foot = Part.makeCylinder(r + rng.uniform(3, 8), rng.uniform(3, 5))
+    disc = Part.Face(Part.Wire(Part.makeCircle(r, V(0, 0, height), V(0, 0, 1))))
+    angle = rng.choice([90, 135, 180])
+    solid = foot.fuse([Part.makeCylinder(r, height),
+                       disc.revolve(V(bend_radius, 0, height), V(0, 1, 0), angle)])
+    description = {"bend_deg": angle, "down": 0.0}
+    if angle == 180:
+        down = rng.uniform(0, 0.5) * height
+        if down > 1:
+            solid = solid.fuse(Part.makeCylinder(r, down, V(2 * bend_radius, 0, height - down)))
+        description["down"] = down
+    return solid, description
+
+
+def chair(rng):
+    """A table's top on four square legs with a back standing on the top's far edge; along X or,
+    turned, along Y."""
+    leg, length, width = rng.uniform(4, 8), rng.uniform(30, 50), rng.uniform(30, 50)
+    height, top = rng.uniform(20, 40), rng.uniform(3, 6)
+    back, thick = rng.uniform(15, 40), rng.uniform(3, 6)
+    solid = Part.makeBox(length, width, top, V(0, 0, height)).fuse(
+        [Part.makeBox(leg, leg, height, V(x, y, 0))
+         for x in (0, length - leg) for y in (0, width - leg)])
+    solid = solid.fuse(Part.makeBox(length, thick, back, V(0, width - thick, height + top - 0.5)))
+    turned = rng.random() < 0.5
+    if turned:
+        solid.rotate(V(0, 0, 0), V(0, 0, 1), 90)
+    return solid, {"back": back, "turned": turned}
+
+
+def crank(rng):
+    """A square bar rising off a square plate, then running three legs along the six directions
+    (+X, +Y, +Z; +X, +Z, +Y; +X, +Y, -X back beside the first; +Y, +X, +Z), 15 to 30 mm each."""
+    side = rng.uniform(5, 10)
+    points = [V(0, 0, 0), V(0, 0, rng.uniform(15, 35))]
+    legs = rng.choice([[(1, 0, 0), (0, 1, 0), (0, 0, 1)], [(1, 0, 0), (0, 0, 1), (0, 1, 0)],
+                       [(1, 0, 0), (0, 1, 0), (-1, 0, 0)], [(0, 1, 0), (1, 0, 0), (0, 0, 1)]])
+    for leg in legs:
+        points.append(points[-1] + V(*leg) * rng.uniform(15, 30))
+    solid = Part.makeBox(4 * side, 4 * side, 3, V(-2 * side, -2 * side, 0))
+    for a, b in zip(points, points[1:]):
+        solid = solid.fuse(_bar(a + V(0, 0, side / 2) if a.z == 0 else a, b, side))
+    return solid, {"legs": legs, "returns": legs[2] == (-1, 0, 0)}
+
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -292,6 +383,11 @@ FAMILIES = {
     "wye fitting": wye_fitting,
     "handle": handle,
     "feet": feet,
+    "candelabra": candelabra,
+    "shelves": shelves,
+    "cane": cane,
+    "chair": chair,
+    "crank": crank,
 }
 
 

@@ -123,6 +123,27 @@ Sliced slice(const mas::Shape& part, double step, const mas::SlicePartParams& pa
 
 Sliced slice(const mas::Shape& part, double step) { return slice(part, step, default_params()); }
 
+// A part of tests/data as the command line slices it: its axis from its tessellation at its own
+// deflection, decomposed within slicing's bounds (slice_solid_part's parameters).
+struct AsTheCliSlices {
+    mas::Model model;
+    double deflection_mm = 0.0;
+    mas::CentroidalAxis axis;
+    mas::DecomposeParams dp;
+};
+
+AsTheCliSlices as_the_cli_slices(const std::string& file, const mas::SlicePartParams& params) {
+    AsTheCliSlices cli;
+    cli.model = mas::read_model(std::string(MAS_TEST_DATA) + "/" + file);
+    mas::TessellationParams tp;
+    tp.deflection_mm = mas::effective_deflection(cli.model.shape, tp);
+    cli.deflection_mm = tp.deflection_mm;
+    cli.axis = mas::centroidal_axis(mas::tessellate(cli.model.shape, tp));
+    cli.dp.min_component_height_mm = params.layers.min_layer_mm;
+    cli.dp.max_tilt_deg = params.layers.max_tilt_deg;
+    return cli;
+}
+
 // The message of the InvalidArgument error that slicing `part` (step 2) with `params` throws, "no
 // error" when it throws none (any other error propagates).
 std::string invalid_argument(const mas::Shape& part, const mas::SlicePartParams& params) {
@@ -1238,19 +1259,12 @@ TEST(Slicing, ATurnedBladesLayersStaySquareToItsLineToItsTip) {
     // along +-X or +-Y, cut the blades' tips aslant; their centroids dropped towards each tip's
     // lowest corner, the layers tilted after them, and one blade's nozzle, leaned its 30 degrees
     // off them, met the plate: its cut was squared, and its layers tilted on (0.7 mm^2 hanging).
-    const mas::Model model =
-        mas::read_model(std::string(MAS_TEST_DATA) + "/hub_blade_near_plate.brep");
     mas::SlicePartParams params;
-    mas::TessellationParams tp;
-    tp.deflection_mm = mas::effective_deflection(model.shape, tp);
-    const auto axis = mas::centroidal_axis(mas::tessellate(model.shape, tp));
-    mas::DecomposeParams dp;
-    dp.min_component_height_mm = params.layers.min_layer_mm;
-    dp.max_tilt_deg = params.layers.max_tilt_deg;
+    const auto cli = as_the_cli_slices("hub_blade_near_plate.brep", params);
     mas::SlicePartParams as_cut = params;
     as_cut.avoid_collisions = false;
     mas::Decomposition d;
-    const auto result = mas::slice_solid_part(model.shape, axis, dp, as_cut, d);
+    const auto result = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, as_cut, d);
     EXPECT_EQ(result.stats.colliding_layers, 0);
     EXPECT_TRUE(result.notes.empty());
     ASSERT_EQ(d.components.size(), 6u);
@@ -1267,11 +1281,12 @@ TEST(Slicing, ATurnedBladesLayersStaySquareToItsLineToItsTip) {
     }
     for (std::size_t i = 0; i < result.layers.size(); ++i) {
         const auto& l = result.layers[i];
-        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * tp.deflection_mm) << "layer " << i;
+        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * cli.deflection_mm)
+            << "layer " << i;
     }
     // The rounds have nothing to do.
     mas::Decomposition again;
-    const auto rounds = mas::slice_solid_part(model.shape, axis, dp, params, again);
+    const auto rounds = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, params, again);
     EXPECT_EQ(rounds.layers.size(), result.layers.size());
     EXPECT_EQ(again.components.size(), d.components.size());
 }
@@ -2541,23 +2556,17 @@ TEST(Slicing, BridgesAreBuiltAlongADiagonalWithEveryLayerSupported) {
 // on the overhang angle's edge: the top's length rounded to 4 decimals, the layers happened not
 // to turn at the jump before either.)
 TEST(Slicing, AChairsBackIsLaidInItsTopsDiagonalLayersNotTurnedAcrossTheTop) {
-    const mas::Model model = mas::read_model(std::string(MAS_TEST_DATA) + "/chair_back_jump.brep");
     mas::SlicePartParams params;
-    mas::TessellationParams tp;
-    tp.deflection_mm = mas::effective_deflection(model.shape, tp);
-    const auto axis = mas::centroidal_axis(mas::tessellate(model.shape, tp));
-    mas::DecomposeParams dp;
-    dp.min_component_height_mm = params.layers.min_layer_mm;
-    dp.max_tilt_deg = params.layers.max_tilt_deg;
+    const auto cli = as_the_cli_slices("chair_back_jump.brep", params);
     mas::Decomposition d;
-    const auto result = mas::slice_solid_part(model.shape, axis, dp, params, d);
+    const auto result = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, params, d);
     ASSERT_EQ(d.components.size(), 2u);
     ASSERT_EQ(d.components[1].rule, mas::Component::SplitRule::Bridge);
     EXPECT_NEAR(d.components[1].build_direction.z(), std::sqrt(0.5), 1e-12);
     int layers = 0;
     for (std::size_t i = 0; i < result.layers.size(); ++i) {
         const mas::Layer& l = result.layers[i];
-        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * tp.deflection_mm + 1e-6) << i;
+        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * cli.deflection_mm + 1e-6) << i;
         if (l.component != 1) continue;
         ++layers;
         EXPECT_LE(angle_deg(l.plane.normal, Vector3d::UnitZ()), 45.0 + 1e-9) << i;

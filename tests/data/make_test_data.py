@@ -147,20 +147,10 @@ hub5.exportBrep(os.path.join(here, "hub_blade_near_plate.brep"))
 bend, _ = MultiAxisSlicerSurvey.part("pipe bend", 3, 198)
 bend.exportBrep(os.path.join(here, "pipe_bend_classifier.brep"))
 
-# chair_back_jump.brep  a chair drawn at random (a family tried beside the survey's, seed 2, part
-# 1): four legs 7.40 square and 31.99 tall under a top 33.24 x 36.02 x 5.96, a back 3.44 thick
-# and 24.69 tall standing on the top's far edge, turned a quarter about Z. The top is a bridge
-# built along its diagonal; the back's sections follow the top's along Z, their centroid 16.3 mm
-# across the top, and layers turning after that jump laid the back from its side
-leg, length = 7.399115983291197, 33.239224045942386
-width, height = 36.020569356787085, 31.99154277451476
-top, back, thick = 5.95639195600477, 24.68767065387243, 3.437855459482134
-chair = Part.makeBox(length, width, top, V(0, 0, height))
-for x in (0, length - leg):
-    for y in (0, width - leg):
-        chair = chair.fuse(Part.makeBox(leg, leg, height, V(x, y, 0)))
-chair = chair.fuse(Part.makeBox(length, thick, back, V(0, width - thick, height + top - 0.5)))
-chair.rotate(V(0, 0, 0), V(0, 0, 1), 90)
-chair = chair.removeSplitter()
-chair.translate(V(0, 0, -chair.BoundBox.ZMin))
+# chair_back_jump.brep  the survey's chair 1 (seed 2): four legs 7.40 square and 31.99 tall under
+# a top 33.24 x 36.02 x 5.96, a back 3.44 thick and 24.69 tall standing on the top's far edge,
+# turned a quarter about Z. The top is a bridge built along its diagonal; the back's sections
+# follow the top's along Z, their centroid 16.3 mm across the top, and layers turning after that
+# jump laid the back from its side
+chair, _ = MultiAxisSlicerSurvey.part("chair", 1, 2)
 chair.exportBrep(os.path.join(here, "chair_back_jump.brep"))

@@ -2543,7 +2543,7 @@ TEST(Slicing, BridgesAreBuiltAlongADiagonalWithEveryLayerSupported) {
     }
 }
 
-// tests/data/chair_back_jump.brep, a chair drawn at random (a family tried beside the survey's):
+// tests/data/chair_back_jump.brep, the survey's chair 1 at seed 2 (MultiAxisSlicerSurvey.py):
 // four legs under a top 33.24 x 36.02 x 5.96, a back 3.44 thick and 24.69 tall standing on the
 // top's far edge. The top is a bridge over the legs, built along its diagonal towards the back,
 // and the back is the same march along Z: the top's last section holds the whole top, the next
@@ -2563,6 +2563,16 @@ TEST(Slicing, AChairsBackIsLaidInItsTopsDiagonalLayersNotTurnedAcrossTheTop) {
     ASSERT_EQ(d.components.size(), 2u);
     ASSERT_EQ(d.components[1].rule, mas::Component::SplitRule::Bridge);
     EXPECT_NEAR(d.components[1].build_direction.z(), std::sqrt(0.5), 1e-12);
+    // The jump: two nodes of the march over the top's underside (z = 31.99) a step apart along
+    // Z, the centroid moving further across the top than up.
+    const auto& march = cli.axis.branches[std::size_t(d.components[1].branch)].nodes;
+    int jumps = 0;
+    for (std::size_t i = 1; i < march.size(); ++i) {
+        const Vector3d& a = cli.axis.nodes[std::size_t(march[i - 1])].position;
+        const Vector3d& b = cli.axis.nodes[std::size_t(march[i])].position;
+        if (a.z() > 32.0 && std::hypot(b.x() - a.x(), b.y() - a.y()) > b.z() - a.z()) ++jumps;
+    }
+    EXPECT_EQ(jumps, 1);
     int layers = 0;
     for (std::size_t i = 0; i < result.layers.size(); ++i) {
         const mas::Layer& l = result.layers[i];

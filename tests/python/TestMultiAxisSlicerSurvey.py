@@ -9,8 +9,10 @@ family: those that need no support leave no layer unsupported beyond what the me
 show (a strip as wide as the deflection along its outline). A failure names the part:
 MultiAxisSlicerSurvey.part(family, index) rebuilds it, tools/survey.py prints the table."""
 
+import math
 import unittest
 
+import MultiAxisSlicer as mas
 import MultiAxisSlicerSurvey as survey
 
 PER_FAMILY = 12
@@ -286,6 +288,21 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
             with self.subTest(part=self.name(r)):
                 self.assertEqual(r["components"], 2)
                 self.assert_supported(r)
+
+    def test_the_way_off_a_layer_tilted_past_90_degrees_keeps_the_nozzle_off_the_plate(self):
+        # Seed 9's cane 2, bent over 135 degrees: its last layers tilt 97.3 degrees off +Z, their
+        # tool axis 7.3 degrees below the horizontal, the nozzle's 200 mm body reaching out and
+        # down from 57 mm over the plate. Out along that axis to the sphere, the body's far end
+        # came within the margin of the plate 240 mm out (the route off the part reported). Out
+        # along the axis levelled (Gcode.hpp), it sinks no lower than where it deposited.
+        solid, description = survey.part("cane", 2, 9)
+        result = mas.slice(solid, fill_holes=FILL_HOLES)
+        last = result.layers[-1].normal
+        self.assertAlmostEqual(math.degrees(math.acos(last.z)), 97.3, delta=0.1)
+        r = survey.survey_part(solid, description, FILL_HOLES)
+        self.assertEqual(r["travel_collisions"], 0)
+        self.assertEqual(r["colliding_layers"], 0)
+        self.assert_supported(r)
 
 
 if __name__ == "__main__":

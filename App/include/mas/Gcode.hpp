@@ -45,7 +45,12 @@
 //   to a sphere round everything the program deposits (every layer's outline and path points, as
 //   deep under them as the layer reaches) plus `clearance_mm`, along that sphere's meridians over
 //   its top (G0 steps of at most 10 degrees; the steps' ends lie on a sphere 1 / cos 5 degrees
-//   larger, so that no step cuts inside), and in along the next tool axis. On the way up the table
+//   larger, so that no step cuts inside), and in along the next tool axis. A tool axis pointing
+//   below the horizontal (a layer tilted past 90 degrees) is levelled for the way out and in, its
+//   Z dropped: along it, the nozzle's body, reaching back along the axis, sank lower than where it
+//   deposited (a cane bent over 135 degrees, its last layers tilted 97 degrees, 57 mm up: the
+//   body's far end came within the margin of the plate 240 mm out); levelled, the way still
+//   moves away from the layer's plane. On the way up the table
 //   turns level (A to 0, or the nearest A within its limits, in proportion to the way), at the top
 //   C turns, on the way down A turns to the next layer's: at the top the nozzle stands along the
 //   sphere's radius, out of it (turning in proportion over the whole way, a nozzle lying on its

@@ -171,6 +171,16 @@ struct Sphere {
     }
 };
 
+// The way between a layer with tool axis `axis` (unit) and the sphere: along the axis, levelled
+// where it points below the horizontal, so that the nozzle's body, reaching back along the axis,
+// sinks no lower than where it deposits (a cane bent over 135 degrees, its last layers tilted 97
+// degrees: out along their axis, the body's far end came within the margin of the plate 240 mm
+// out). It still leaves the layer's plane: it makes sin(tilt) with the axis' own way.
+Eigen::Vector3d way_out(const Eigen::Vector3d& axis) {
+    const Eigen::Vector3d level(axis.x(), axis.y(), 0.0);
+    return axis.z() < 0.0 && level.norm() > 1e-9 ? Eigen::Vector3d(level.normalized()) : axis;
+}
+
 // Unit vectors from `from` to `to` along the great circle through them, at most kArcStepDeg
 // apart, `to` included, `from` not.
 std::vector<Eigen::Vector3d> arc(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
@@ -695,9 +705,9 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                               const Eigen::Vector3d& back, int left, const Eigen::Vector3d& s,
                               const Eigen::Vector3d& n, const TableAngles& to_angles, int next) {
         std::vector<Waypoint> way;
-        const Eigen::Vector3d out = sphere.exit(from, back);
+        const Eigen::Vector3d out = sphere.exit(from, way_out(back));
         way.push_back({out, from_angles, left});
-        round_the_top(out, from_angles, sphere.exit(s, n), to_angles, way);
+        round_the_top(out, from_angles, sphere.exit(s, way_out(n)), to_angles, way);
         way.push_back({Eigen::Vector3d(s + n * params.clearance_mm), to_angles, next});
         return way;
     };
@@ -845,7 +855,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
                     g.comment(
                         "first to the top of a sphere clear of the part: start above the part");
                     g.rapid(summit, {level_a, a.c_deg});
-                    round_the_top(summit, g.angles(), sphere.exit(s, n), a, way);
+                    round_the_top(summit, g.angles(), sphere.exit(s, way_out(n)), a, way);
                     way.push_back({approach, a, int(i)});
                 } else if (new_component) {
                     // Out along the tool axis the last layer was deposited with, round the sphere.
@@ -914,7 +924,7 @@ std::string write_gcode(const std::vector<GcodeLayer>& layers, const MachinePara
     stop_deposit();
     g.at("on the way off the part");
     std::vector<Waypoint> way;
-    const Eigen::Vector3d out = sphere.exit(g.position(), layers[used.back()].tool_axis);
+    const Eigen::Vector3d out = sphere.exit(g.position(), way_out(layers[used.back()].tool_axis));
     way.push_back({out, g.angles(), int(used.back())});
     round_the_top(out, g.angles(), summit, {level_a, g.angles().c_deg}, way);
     if (check) {

@@ -175,7 +175,7 @@ struct Sphere {
 // where it points below the horizontal, so that the nozzle's body, reaching back along the axis,
 // sinks no lower than where it deposits (a cane bent over 135 degrees, its last layers tilted 97
 // degrees: out along their axis, the body's far end came within the margin of the plate 240 mm
-// out). It still leaves the layer's plane: it makes sin(tilt) with the axis' own way.
+// out). Along it the tip still leaves the layer's plane, by sin(tilt) of each mm.
 Eigen::Vector3d way_out(const Eigen::Vector3d& axis) {
     const Eigen::Vector3d level(axis.x(), axis.y(), 0.0);
     return axis.z() < 0.0 && level.norm() > 1e-9 ? Eigen::Vector3d(level.normalized()) : axis;

@@ -55,7 +55,7 @@ public:
         arc_.assign(points_.size(), 0.0);
         for (std::size_t i = 1; i < points_.size(); ++i)
             arc_[i] = arc_[i - 1] + (points_[i] - points_[i - 1]).norm();
-        find_jumps(eps_angle_deg);
+        directions_ = segment_directions(eps_angle_deg);
     }
 
     double length() const { return arc_.back(); }
@@ -68,10 +68,7 @@ public:
     }
 
     // The segment's direction; on a jump (below), its neighbours'.
-    Vector3d direction(double s) const {
-        const std::size_t i = segment(s);
-        return jumps_[i] ? along_[i] : (points_[i + 1] - points_[i]).normalized();
-    }
+    Vector3d direction(double s) const { return directions_[segment(s)]; }
 
     Vector3d point(double s) const {
         const std::size_t i = segment(s);
@@ -114,29 +111,25 @@ public:
     }
 
 private:
-    // A jump (Slicing.hpp): a segment running further sideways than along the segments on both
-    // sides of it, which run within `eps_angle` of each other. The sections changed shape there;
-    // the part does not go that way.
-    void find_jumps(double eps_angle) {
-        const std::size_t n = points_.size() - 1;  // segments
-        jumps_.assign(n, false);
-        along_.assign(n, Vector3d::Zero());
-        const auto dir = [&](std::size_t i) { return (points_[i + 1] - points_[i]).normalized(); };
-        for (std::size_t i = 1; i + 1 < n; ++i) {
-            const Vector3d before = dir(i - 1), after = dir(i + 1);
-            if (angle_deg(before, after) >= eps_angle || angle_deg(dir(i), before) <= 45.0 ||
-                angle_deg(dir(i), after) <= 45.0)
-                continue;
-            jumps_[i] = true;
-            along_[i] = (before + after).normalized();
-        }
+    // Each segment's direction, but a jump's (Slicing.hpp): a segment running further sideways
+    // than along the segments on both sides of it, which run within `eps_angle` of each other,
+    // takes theirs. The sections changed shape there; the part does not go that way.
+    std::vector<Vector3d> segment_directions(double eps_angle) const {
+        std::vector<Vector3d> raw;
+        for (std::size_t i = 0; i + 1 < points_.size(); ++i)
+            raw.push_back((points_[i + 1] - points_[i]).normalized());
+        std::vector<Vector3d> out = raw;
+        for (std::size_t i = 1; i + 1 < raw.size(); ++i)
+            if (angle_deg(raw[i - 1], raw[i + 1]) < eps_angle &&
+                angle_deg(raw[i], raw[i - 1]) > 45.0 && angle_deg(raw[i], raw[i + 1]) > 45.0)
+                out[i] = (raw[i - 1] + raw[i + 1]).normalized();
+        return out;
     }
 
     std::vector<Vector3d> points_;
     std::vector<int> nodes_;
     std::vector<double> arc_;
-    std::vector<bool> jumps_;      // per segment
-    std::vector<Vector3d> along_;  // a jump's neighbours' direction
+    std::vector<Vector3d> directions_;  // per segment (segment_directions())
 };
 
 // ---- regions between frames ---------------------------------------------------------------------
@@ -272,6 +265,11 @@ struct Candidate {
 // Unsupported area of c's next footprint that counts as none.
 double tolerance_of(const Candidate& c) {
     return negligible_unsupported_mm2(std::max(c.next.area, 1e-9));
+}
+
+// Whether a layer leaves more of its footprint unsupported than counts as none.
+bool hangs(const Layer& l) {
+    return l.unsupported_area_mm2 > negligible_unsupported_mm2(l.area_mm2);
 }
 
 // Where the slicer stands before choosing a layer: the region it rests on (on the lower plane,
@@ -455,8 +453,8 @@ private:
     // The layer above `at`: search()'s, among thicknesses below `cap` (none left, or no layer
     // fits below it: nullopt), then, `counting`, thickened where it may count on the next layer
     // (Slicing.hpp); `below` is the layer under it (null for the first), `index` its index.
-    std::optional<Candidate> choose(const Ground& at, const Layer* below, std::size_t index,
-                                    bool counting, double cap, int& tries) const;
+    std::optional<Candidate> choose(const Ground& at, const Layer* below, const Plane& base,
+                                    std::size_t index, bool counting, double cap, int& tries) const;
     // Sec. 4.2.2's search proper, with min_layer's allowance for the next layer; each candidate
     // it evaluates is noted in `tried`.
     struct Tried {
@@ -669,9 +667,7 @@ std::vector<Layer> ComponentSlicer::run() {
     if (params_.require_support) {
         bool counted = false;
         if (std::optional<std::vector<Layer>> counting = build(base, ground, true, &counted)) {
-            if (!counted || std::none_of(counting->begin(), counting->end(), [](const Layer& l) {
-                    return l.unsupported_area_mm2 > negligible_unsupported_mm2(l.area_mm2);
-                }))
+            if (!counted || std::none_of(counting->begin(), counting->end(), hangs))
                 return *counting;
             layers = std::move(*counting);
         }
@@ -730,11 +726,10 @@ std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Grou
         const double cap = i < caps.size() ? caps[i] : std::numeric_limits<double>::infinity();
         const bool count = counting && !(i < plain.size() && plain[i]);
         int tries = 0;
-        std::optional<Candidate> chosen = choose(at, below, i, count, cap, tries);
+        std::optional<Candidate> chosen = choose(at, below, base, i, count, cap, tries);
         Layer layer;
         if (chosen) layer = make_layer(*chosen, at, base, below, tries);
-        if (at.promised > 0.0 &&
-            (!chosen || layer.unsupported_area_mm2 > negligible_unsupported_mm2(layer.area_mm2))) {
+        if (at.promised > 0.0 && (!chosen || hangs(layer))) {
             // The layer below counted on this one in vain (or this one has no thinner choice
             // left): choose that one again (go_back). A search this long gives up counting.
             if (++backtracks > 4 * (layers.size() + 8)) return std::nullopt;
@@ -742,7 +737,8 @@ std::optional<std::vector<Layer>> ComponentSlicer::build(const Plane& base, Grou
             continue;
         }
         if (!chosen) {
-            chosen = choose(at, below, i, false, std::numeric_limits<double>::infinity(), tries);
+            chosen =
+                choose(at, below, base, i, false, std::numeric_limits<double>::infinity(), tries);
             layer = make_layer(*chosen, at, base, below, tries);
         }
         const Candidate& c = *chosen;
@@ -939,8 +935,8 @@ std::optional<Candidate> ComponentSlicer::search(const Ground& at, std::size_t i
 }
 
 std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* below,
-                                                 std::size_t index, bool counting, double cap,
-                                                 int& tries) const {
+                                                 const Plane& base, std::size_t index,
+                                                 bool counting, double cap, int& tries) const {
     std::vector<Tried> tried;
     std::optional<Candidate> found = search(at, index, cap, tried, tries);
     if (!found || (!counting && at.promised <= 0.0)) return found;
@@ -950,17 +946,9 @@ std::optional<Candidate> ComponentSlicer::choose(const Ground& at, const Layer* 
     // Its own footprint: supported by the layer below with this one's sloped allowance (the
     // check the layer reports), where that layer counted on it being at.promised thick.
     auto rests = [&](const Candidate& c) {
-        if (at.promised <= 0.0 || below == nullptr ||
-            c.min_thickness >= at.promised - kLengthTolerance)
-            return true;
-        Layer layer;
-        layer.plane = c.upper;
-        layer.lower = at.lower.plane;
-        layer.regions = c.region;
-        layer.min_thickness_mm = c.min_thickness;
-        layer.max_thickness_mm = c.max_thickness;
-        return area(unsupported_regions_sloped(layer, *below, allowance_)) <=
-               negligible_unsupported_mm2(area(c.region));
+        return at.promised <= 0.0 || below == nullptr ||
+               c.min_thickness >= at.promised - kLengthTolerance ||
+               !hangs(make_layer(c, at, base, below, 0));
     };
     const Vector3d d = found->upper.normal;
     for (const double delta : deltas(at.lower)) {

@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Parts nobody tuned for: seventeen families of the parts a deposition shop builds (pipe bends,
+"""Parts nobody tuned for: twenty-one families of the parts a deposition shop builds (pipe bends,
 hubs with blades, lugs and clevises, angle brackets, the same placed turned on the plate, branches
 leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports, wye
 fittings, handles and walls with windows, portals, tables and gates on feet apart, candelabra,
-walls with shelves, canes and hooks, chairs, cranks), each part drawn at random from its family's
+walls with shelves, canes and hooks, chairs, cranks, tripods, braced frames, coat racks,
+goosenecks), each part drawn at random from its family's
 ranges, and a survey slicing them as a user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
@@ -370,6 +371,79 @@ def crank(rng):
     return solid, {"legs": legs, "returns": legs[2] == (-1, 0, 0)}
 
 
+
+def _rod(a, b, r):
+    """A round rod `r` in radius from point a to point b."""
+    return Part.makeCylinder(r, (b - a).Length, a, b - a)
+
+
+def tripod(rng):
+    """Three or four round legs from a circle on the plate leaning in 10 to 40 degrees to meet
+    at a point, a round post rising off it or not."""
+    legs, spread, height = rng.choice([3, 4]), rng.uniform(10, 40), rng.uniform(30, 60)
+    r, post = rng.uniform(3, 6), rng.choice([0.0, rng.uniform(5, 25)])
+    top = V(0, 0, height)
+    solid = Part.makeCylinder(r, post + r, V(0, 0, height - r)) if post else Part.makeSphere(r, top)
+    turn = rng.uniform(0, 90)
+    for k in range(legs):
+        a = math.radians(turn + 360.0 * k / legs)
+        solid = solid.fuse(_rod(V(spread * math.cos(a), spread * math.sin(a), -r), top, r))
+    solid = solid.common(Part.makeBox(400, 400, 400, V(-200, -200, 0)))
+    return solid, {"legs": legs, "lean_deg": math.degrees(math.atan2(spread, height)),
+                   "post": post}
+
+
+def truss(rng):
+    """A braced frame: two square posts on a plate, a beam across their tops and a round brace
+    from low on one post up to the other's top, or two crossing (the second a quarter thinner);
+    across X or, turned, across Y."""
+    post, gap, height = rng.uniform(5, 10), rng.uniform(20, 50), rng.uniform(25, 60)
+    r = rng.uniform(2, 4)
+    solid = Part.makeBox(2 * post + gap + 10, post + 6, 3, V(-5, -3, 0))
+    solid = solid.fuse([Part.makeBox(post, post, height, V(x, 0, 2.5)) for x in (0, post + gap)])
+    solid = solid.fuse(Part.makeBox(2 * post + gap, post, post, V(0, 0, height + 2)))
+    cross = rng.random() < 0.5
+    y = post / 2
+    low, high = V(post - 1, y, 3 + post), V(post + gap + 1, y, height)
+    braces = [(low, high)] + ([(V(post - 1, y, height), V(post + gap + 1, y, 3 + post))]
+                              if cross else [])
+    # (The second brace thinner: two rods alike crossing meet along curves OCCT meshes badly.)
+    solid = solid.fuse([_rod(a, b, r * (1.0 - 0.25 * k)) for k, (a, b) in enumerate(braces)])
+    return _across(rng, solid, {"braces": len(braces), "brace_deg": math.degrees(
+        math.atan2(high.z - low.z, high.x - low.x))})
+
+
+def pegs(rng):
+    """A wall standing on its edge with 1 to 4 round pegs off one face, level or rising 10 to 30
+    degrees (a coat rack), each at its own place (pegs may overlap)."""
+    width, thick, height = rng.uniform(30, 60), rng.uniform(5, 10), rng.uniform(30, 60)
+    solid = Part.makeBox(width, thick, height, V(-width / 2, -thick / 2, 0))
+    count = rng.randint(1, 4)
+    rise = rng.choice([0.0, 0.0, rng.uniform(10, 30)])
+    d = V(0, math.cos(math.radians(rise)), math.sin(math.radians(rise)))
+    for _ in range(count):
+        r, reach = rng.uniform(2, 5), rng.uniform(10, 30)
+        x = rng.uniform(-width / 2 + r + 1, width / 2 - r - 1)
+        z = rng.uniform(r + 3, height - r - 3)
+        solid = solid.fuse(Part.makeCylinder(r, reach + thick / 2, V(x, 0, z), d))
+    return solid, {"pegs": count, "rise_deg": rise}
+
+
+def gooseneck(rng):
+    """A round riser on a round foot bending over along +X, a level run or none, and bending back
+    up into a second riser."""
+    r, rise, up = rng.uniform(4, 8), rng.uniform(10, 30), rng.uniform(5, 25)
+    run, bend_radius = rng.choice([0.0, rng.uniform(5, 25)]), rng.uniform(r + 3, 3 * r)
+    z = rise + bend_radius
+    first = Part.Face(Part.Wire(Part.makeCircle(r, V(0, 0, rise), V(0, 0, 1))))
+    second = Part.Face(Part.Wire(Part.makeCircle(r, V(bend_radius + run, 0, z), V(1, 0, 0))))
+    solid = Part.makeCylinder(r + rng.uniform(3, 8), 4).fuse(
+        [Part.makeCylinder(r, rise), first.revolve(V(bend_radius, 0, rise), V(0, 1, 0), 90),
+         second.revolve(V(bend_radius + run, 0, z + bend_radius), V(0, 1, 0), -90),
+         Part.makeCylinder(r, up, V(2 * bend_radius + run, 0, z + bend_radius))] +
+        ([Part.makeCylinder(r, run, V(bend_radius, 0, z), V(1, 0, 0))] if run else []))
+    return solid, {"run": run, "bend_radius": bend_radius}
+
 FAMILIES = {
     "pipe bend": pipe_bend,
     "hub with blades": hub_with_blades,
@@ -388,6 +462,10 @@ FAMILIES = {
     "cane": cane,
     "chair": chair,
     "crank": crank,
+    "tripod": tripod,
+    "truss": truss,
+    "pegs": pegs,
+    "gooseneck": gooseneck,
 }
 
 

@@ -589,7 +589,7 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     engine_components = [{"solid": c._solid, "parent": c.parent,
                           "build_direction": tuple(c._build_direction),
                           "base_origin": tuple(c._base_origin), "branch": c.branch,
-                          "turned": c.turned}
+                          "turned": c.turned, "rule": c.rule}
                          for c in components]
     data = eng.slice_part(solid, axis._engine_dict(), engine_components, p, progress)
     return SliceResult(data, p, axis, components, kind)

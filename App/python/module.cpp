@@ -1486,7 +1486,7 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
 }
 
 // The engine's decomposition from the component dicts decompose() returned (only what slicing
-// reads: solid, parent, build direction, base origin and normal, branch, turned).
+// reads: solid, parent, build direction, base origin and normal, branch, turned, rule).
 mas::Decomposition decomposition_from_py(const bp::object& value) {
     mas::Decomposition d;
     bp::handle<> seq = fast_sequence(value, "components");
@@ -1510,6 +1510,23 @@ mas::Decomposition decomposition_from_py(const bp::object& value) {
             const bp::extract<bool> turned(item["turned"]);
             if (!turned.check()) invalid_argument(what + "['turned'] must be True or False");
             c.turned = turned();
+        }
+        // Optional: how it was cut (decompose()'s "rule"); a bridge's piece is built straight
+        // along its build direction, not after its branch's nodes.
+        if (bp::extract<bp::dict>(item).check() && bp::dict(item).has_key("rule")) {
+            const bp::extract<std::string> rule(item["rule"]);
+            bool known = false;
+            for (const auto r :
+                 {mas::Component::SplitRule::Root, mas::Component::SplitRule::PlanarFace,
+                  mas::Component::SplitRule::SectionPlane, mas::Component::SplitRule::Bridge})
+                if (rule.check() && rule() == mas::to_string(r)) {
+                    c.rule = r;
+                    known = true;
+                }
+            if (!known)
+                invalid_argument(what +
+                                 "['rule'] must be 'root', 'planar_face', 'section_plane' or "
+                                 "'bridge'");
         }
         if (!c.build_direction.allFinite() || c.build_direction.norm() < 1e-12 ||
             !c.base_origin.allFinite())

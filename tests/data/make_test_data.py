@@ -154,3 +154,11 @@ bend.exportBrep(os.path.join(here, "pipe_bend_classifier.brep"))
 # jump laid the back from its side
 chair, _ = MultiAxisSlicerSurvey.part("chair", 1, 2)
 chair.exportBrep(os.path.join(here, "chair_back_jump.brep"))
+
+# truss_braced_beam.brep  the survey's braced frame 4 (seed 3), across Y: two posts 8.47 square
+# 26.21 apart on a plate, a beam 8.47 square across their tops (underside z = 61.08) and a round
+# brace 2.83 in radius from low on one post to the other's top (59.4 degrees). The brace joins the
+# posts' tracks under the beam, and the axis crosses the beam sideways from one post's top: no
+# merged tracks, so no bridge, and built along the beam its last layers met the other post
+truss, _ = MultiAxisSlicerSurvey.part("truss", 4, 3)
+truss.exportBrep(os.path.join(here, "truss_braced_beam.brep"))

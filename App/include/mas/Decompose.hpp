@@ -243,11 +243,24 @@
 //   by the nearest marched another way (a table's top, far wider than its legs, turned sideways
 //   off them; a note that such a branch stayed in its father then names the bridge's component).
 //   Bridges are cut the lowest first (two windows side by side: cut at the higher one first, the
-//   band under it, holding the lower one's ceiling, was thinner than a step and stayed). A bridge
-//   is not cut where b is asked to stay in its father (keep_branches), where a component already
-//   cut off the father has its base across the plane, or on a round underside (a bore's ceiling, an
-//   arch's round intrados), which no plane's face spans. The father's children whose bases lie past
-//   the plane become the bridge's. A mesh (decompose_mesh, SlicePart.hpp) gets its bridges over
+//   band under it, holding the lower one's ceiling, was thinner than a step and stayed). A gap
+//   the axis crossed sideways is a bridge too: a branch asked to stay in its father
+//   (keep_branches; slicing asks where the nozzle cannot reach its own layers), marching square
+//   to the build direction D of the component holding it, is cut at the highest flat face of
+//   that component facing -D under its march (over the segment from its first node to its last,
+//   above the component's base), g its direction, the piece found by its node past the plane
+//   nearest its middle, where a gap lies under that face: the component's material reaches half
+//   a step under it on both sides of the march's middle along g (an arm off a column's side,
+//   resting on one, stays as asked). A beam across the tops of two posts braced to each other is
+//   one: the brace joins the posts' tracks under the beam, so no track merges over the gap, and the
+//   march crosses the beam along it from one post's top; built so, its last layers close the gap
+//   against the other post's top, which the nozzle cannot reach. Those bridges are cut after
+//   the merged tracks', the branch still listed as kept (Decomposition::kept_branches), so that
+//   decomposing with those gives them again. A merged tracks' bridge is not cut where b is asked
+//   to stay in its father, nor is any bridge where a component already cut off the father has
+//   its base across the plane, or on a round underside (a bore's ceiling, an arch's round
+//   intrados), which no plane's face spans. The father's children whose bases lie past the
+//   plane become the bridge's. A mesh (decompose_mesh, SlicePart.hpp) gets its bridges over
 //   flat facets, without the wedge.
 // - Nor does a branch in its father's direction where the father's section split and every
 //   other branch of that split ended on the plane it began on (one node, no sub-branches): a

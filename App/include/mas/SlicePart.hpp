@@ -48,8 +48,11 @@ struct ComponentMesh {
     // Cut square to its branch's line, which runs between the six directions, or at a bend's
     // halfway plane (Decompose.hpp's Component::turned), not square to the branch's direction.
     bool turned = false;
-    // A bridge's piece (decompose_mesh, Decompose.hpp), built along a diagonal from its lowest
-    // point that way.
+    // A bridge's piece (Decompose.hpp, decompose_mesh), built along a diagonal from its lowest
+    // point that way. Where its branch marches across its father's build direction (a beam the
+    // axis crossed sideways), its layers are not turned after the branch's nodes: built along
+    // the diagonal towards the far post, they turned after the march until they stood square to
+    // the beam, the nozzle level over that post.
     bool bridge = false;
 };
 

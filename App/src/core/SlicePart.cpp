@@ -110,10 +110,18 @@ SlicedPart slice_clear_of_collisions(
             if (only.size() < square.size()) narrow = std::move(only);
             continue;
         }
+        // A branch kept already (its bridge's layers, Decompose.hpp, out of reach too) is kept
+        // as it is: with nothing new to keep, the split stands.
+        bool more = false;
         for (int b : branches)
-            keep.push_back({b,
-                            "built on its own, its layers would meet the plate or what is "
-                            "deposited before them"});
+            if (std::none_of(keep.begin(), keep.end(),
+                             [&](const KeptBranch& k) { return k.branch == b; })) {
+                keep.push_back({b,
+                                "built on its own, its layers would meet the plate or what is "
+                                "deposited before them"});
+                more = true;
+            }
+        if (!more) break;
     }
     SlicedPart sliced = std::move(parts.sliced);
     if (avoid_collisions && parts.branches.size() > 1 && sliced.stats.colliding_layers > 0) {
@@ -370,7 +378,17 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         input.mesh = &comp.mesh;
         input.base = comp.base;
         if (comp.parent >= 0) input.support_meshes = built;
-        if (comp.branch >= 0 && comp.branch < int(axis.branches.size())) {
+        // A bridge's piece whose branch marches across its father's build direction (the axis
+        // crossed the gap sideways, Decompose.hpp) is built straight along its diagonal: its
+        // layers turned after the march stood square to the gap at its far end, the nozzle
+        // level over the far post. One whose branch marches on along it (merged tracks going on
+        // past the gap: a chair's back over its top) turns after it, as any component.
+        const bool across =
+            comp.bridge && comp.parent >= 0 && comp.branch >= 0 &&
+            comp.branch < int(axis.branches.size()) &&
+            std::abs(axis.branches[std::size_t(comp.branch)].direction.normalized().dot(
+                components[std::size_t(comp.parent)].base.normal)) < std::sqrt(0.5);
+        if (comp.branch >= 0 && comp.branch < int(axis.branches.size()) && !across) {
             for (int n : axis.branches[std::size_t(comp.branch)].nodes) {
                 if (n < 0 || n >= int(axis.nodes.size()))
                     throw Error(ErrorCode::InvalidArgument,

@@ -1521,70 +1521,24 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (again) --b;  // once more at the section plane (b > 0: the root never splits)
             }
 
-            // Bridges (Decompose.hpp): where branch b's track merged into m's, both marching
-            // along D in one component built along D, over a flat underside spanning the gap.
-            // The lowest first along D: a piece cut off at a higher one would leave the band
-            // under it, with the lower bridge, too thin to cut off (two windows side by side).
-            for (const std::size_t b : merged_lowest_first(axis)) {
-                const AxisBranch& br = axis.branches[b];
-                const std::size_t m = std::size_t(br.merged_into);
-                const Vector3d D = br.direction.normalized();
-                const int h = holder[b];
-                if (h < 0 || h != holder[m] || axis.branches[m].nodes.empty() ||
-                    !axis.branches[m].direction.normalized().isApprox(D, 1e-9) ||
-                    !work[std::size_t(h)].c.build_direction.isApprox(D, 1e-9))
-                    continue;
-                // The branch the piece is of: b, but m where b made the component itself (a part
-                // on several feet whose root branch, 0, merged into another foot's track).
-                const std::size_t owner = work[std::size_t(h)].c.branch == int(b) ? m : b;
-                if (work[std::size_t(h)].c.branch == int(owner)) continue;
-                progress.check();
-                // The gap (bridge_gap: from m's node on the plane of b's last node, or the nearest
-                // to it, to b's, square to D) and the nearest of the frame's directions across it.
-                const BridgeGap gap = bridge_gap(axis, b, m, D, Eigen::Matrix3d::Identity());
-                const Vector3d& v = gap.across;
-                if (!(v.norm() > axis.params.step_mm)) continue;
-                const Vector3d pb = axis.nodes[std::size_t(gap.to)].position;
-                const double sb = D.dot(pb);
-                const Vector3d& g = gap.way;
-                // The splitting plane: the lowest face of the component facing -D within two steps
-                // past b's last node, flat, over the gap (its box, seen along D, meets the
-                // segment between the two nodes).
+            // Cuts the bridge of branch `owner`, whose material lies in component h built along D,
+            // at the plane D.x = s (`on` a point of it) over a gap whose way across, square to D,
+            // is g; `past` is a node in the bridge's material past the plane. False where it is
+            // not cut (the reasons below), or, `asked`, where owner is asked to stay in its
+            // father.
+            const auto bridge_at = [&](const int h, const std::size_t owner, const Vector3d& D,
+                                       const Vector3d& g, const double s, const Vector3d& on,
+                                       const int past, const bool asked) -> bool {
                 const TopoDS_Shape& fs = work[std::size_t(h)].solid;
-                const Vector3d pa = pb - v;
-                std::optional<double> s;
-                for (TopExp_Explorer x(fs, TopAbs_FACE); x.More(); x.Next()) {
-                    PlanarFace pf;
-                    if (!planar(TopoDS::Face(x.Current()), pf) || pf.normal.dot(-D) < 1.0 - 1e-9)
-                        continue;
-                    const double sf = D.dot(pf.point);
-                    if (sf <= sb + plane_tol || sf > sb + 2.0 * axis.params.step_mm) continue;
-                    if (s && sf >= *s) continue;
-                    Eigen::AlignedBox3d fb = bounds_of(pf.face);
-                    fb.min().array() -= plane_tol;
-                    fb.max().array() += plane_tol;
-                    bool over = false;
-                    for (int i = 0; i <= 64 && !over; ++i) {
-                        Vector3d q = pa + (pb - pa) * (double(i) / 64.0);
-                        q += D * (sf - D.dot(q));
-                        over = fb.contains(q);
-                    }
-                    if (over) s = sf;
-                }
-                if (!s) continue;
-                // A point in the bridge's material (bridge_node).
-                const int past =
-                    bridge_node(axis, D, *s, plane_tol, 0.5 * (pa + pb) + D * (*s - sb));
-                if (past < 0) continue;
                 // No component already cut off the father may straddle the plane.
                 bool straddles = false;
                 for (const Work& w : work) {
                     if (w.c.parent != h || !w.c.has_base_face) continue;
                     double lo, hi;
                     range_along(bounds_of(occ::occt(w.c.base_face)), D, lo, hi);
-                    straddles = straddles || (lo < *s - plane_tol && hi > *s + plane_tol);
+                    straddles = straddles || (lo < s - plane_tol && hi > s + plane_tol);
                 }
-                if (straddles) continue;
+                if (straddles) return false;
                 const Component& fc = work[std::size_t(h)].c;
                 // A root on several feet (a portal's legs, a table's) may be left in several
                 // solids, each standing on the plate: the span's underside hangs however they
@@ -1596,14 +1550,14 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 std::vector<Child> children;
                 TopoDS_Shape father_new;
                 const Vector3d inner = axis.nodes[std::size_t(past)].material_point();
-                if (split_by_plane(fs, footing, pb + D * (*s - sb), D, {inner}, step_height,
+                if (split_by_plane(fs, footing, on, D, {inner}, step_height,
                                    {std::numeric_limits<double>::infinity()}, mesh, progress,
                                    children, father_new, nullptr) != SplitOutcome::Split ||
                     children.front().solid.IsNull())
-                    continue;
+                    return false;
                 if (fc.has_base_face &&
                     height_along(father_new, fc.base_origin, fc.build_direction) < step_height)
-                    continue;
+                    return false;
                 // Built along the diagonal, D + or - g, where that leaves at most half of what
                 // overhangs built along D; the way with less, from m towards b where alike. (A
                 // piece OCCT cannot mesh closed, or whose underside it cannot compare with its
@@ -1616,25 +1570,25 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     piece = occ::tessellate_solid(children.front().solid, default_deflection,
                                                   TessellationParams{}.angular_deflection_rad,
                                                   "a bridge's piece");
-                    hangs = hanging_on_plane(children.front().solid, father_new, D, *s, on_plane);
+                    hangs = hanging_on_plane(children.front().solid, father_new, D, s, on_plane);
                     hanging = area_of(hangs);
                 } catch (const Error&) {
-                    continue;
+                    return false;
                 } catch (const Standard_Failure&) {
-                    continue;
+                    return false;
                 }
                 const auto overhang = [&](const Vector3d& way) {
-                    return overhang_area(piece, way, params.overhang_angle_deg, D, *s, on_plane,
+                    return overhang_area(piece, way, params.overhang_angle_deg, D, s, on_plane,
                                          hanging);
                 };
                 // (The frame is turned about +Z only: a tilt from +Z is the same in the world.)
                 const Vector3d d = bridge_direction(D, g, params.max_tilt_deg, overhang);
-                if (d.isZero()) continue;
+                if (d.isZero()) return false;
                 // Asked to stay in its father (once it would be cut): said so, as for any branch.
-                if (const KeptBranch* k = asked_to_keep(owner)) {
+                if (const KeptBranch* k = asked ? asked_to_keep(owner) : nullptr) {
                     if (kept_by_caller(owner)) kept_asked.insert(int(owner));
                     note(owner, k->why, h);
-                    continue;
+                    return false;
                 }
                 Work child;
                 child.solid = children.front().solid;
@@ -1672,7 +1626,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 // and of the faces of it that would overhang along D off the plane (the ceiling
                 // of another window's top, where the plane passes through that window).
                 for_each_leaning(
-                    piece, D, params.overhang_angle_deg, D, *s, on_plane,
+                    piece, D, params.overhang_angle_deg, D, s, on_plane,
                     [&](const Vector3d& p0, const Vector3d& p1, const Vector3d& p2, double) {
                         for (const Vector3d* q : {&p0, &p1, &p2})
                             if (!top || d.dot(*q) < *top) top = d.dot(*q);
@@ -1714,8 +1668,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                                 wedge, default_deflection,
                                 TessellationParams{}.angular_deflection_rad, "a bridge's wedge");
                             const double w_hangs =
-                                area_of(hanging_on_plane(wedge, father_new, D, *s, on_plane));
-                            if (overhang_area(w, D, params.overhang_angle_deg, D, *s, on_plane,
+                                area_of(hanging_on_plane(wedge, father_new, D, s, on_plane));
+                            if (overhang_area(w, D, params.overhang_angle_deg, D, s, on_plane,
                                               w_hangs) <= 1e-6 * (1.0 + area_of(wedge)) &&
                                 fuse_kept(father_new, tool, fused) &&
                                 valid_father(fused, footing, father_grown, mesh, progress) &&
@@ -1739,7 +1693,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (!wedged) {
                     // at + a (D - w), w = sqrt(2) d - D the way along the gap: D.(..) = s, and
                     // d.(..) stays d.at.
-                    const double a = *s - D.dot(at);
+                    const double a = s - D.dot(at);
                     child.c.base_face = occ::wrap(children.front().base);
                     child.c.base_origin = at + a * (2.0 * D - std::sqrt(2.0) * d);
                     child.c.base_normal = -D;
@@ -1766,9 +1720,133 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 work.insert(work.begin() + to, child);
                 for (std::size_t i = std::size_t(to) + 1; i < work.size(); ++i)
                     if (work[i].c.parent == h && work[i].c.has_base_face &&
-                        D.dot(work[i].c.base_origin) > *s + plane_tol)
+                        D.dot(work[i].c.base_origin) > s + plane_tol)
                         work[i].c.parent = to;
                 holder[owner] = to;
+                return true;
+            };
+            // The level along D of a flat face of component h facing -D over the segment from pa
+            // to pb (its box, seen along D, meets it), past lo and at most hi: the lowest such
+            // face, or the highest.
+            const auto underside = [&](int h, const Vector3d& D, double lo, double hi,
+                                       const Vector3d& pa, const Vector3d& pb,
+                                       bool lowest) -> std::optional<double> {
+                std::optional<double> s;
+                for (TopExp_Explorer x(work[std::size_t(h)].solid, TopAbs_FACE); x.More();
+                     x.Next()) {
+                    PlanarFace pf;
+                    if (!planar(TopoDS::Face(x.Current()), pf) || pf.normal.dot(-D) < 1.0 - 1e-9)
+                        continue;
+                    const double sf = D.dot(pf.point);
+                    if (sf <= lo || sf > hi || (s && (lowest ? sf >= *s : sf <= *s))) continue;
+                    Eigen::AlignedBox3d fb = bounds_of(pf.face);
+                    fb.min().array() -= plane_tol;
+                    fb.max().array() += plane_tol;
+                    bool over = false;
+                    for (int i = 0; i <= 64 && !over; ++i) {
+                        Vector3d q = pa + (pb - pa) * (double(i) / 64.0);
+                        q += D * (sf - D.dot(q));
+                        over = fb.contains(q);
+                    }
+                    if (over) s = sf;
+                }
+                return s;
+            };
+            // Bridges (Decompose.hpp): where branch b's track merged into m's, both marching
+            // along D in one component built along D, over a flat underside spanning the gap.
+            // The lowest first along D: a piece cut off at a higher one would leave the band
+            // under it, with the lower bridge, too thin to cut off (two windows side by side).
+            for (const std::size_t b : merged_lowest_first(axis)) {
+                const AxisBranch& br = axis.branches[b];
+                const std::size_t m = std::size_t(br.merged_into);
+                const Vector3d D = br.direction.normalized();
+                const int h = holder[b];
+                if (h < 0 || h != holder[m] || axis.branches[m].nodes.empty() ||
+                    !axis.branches[m].direction.normalized().isApprox(D, 1e-9) ||
+                    !work[std::size_t(h)].c.build_direction.isApprox(D, 1e-9))
+                    continue;
+                // The branch the piece is of: b, but m where b made the component itself (a part
+                // on several feet whose root branch, 0, merged into another foot's track).
+                const std::size_t owner = work[std::size_t(h)].c.branch == int(b) ? m : b;
+                if (work[std::size_t(h)].c.branch == int(owner)) continue;
+                progress.check();
+                // The gap (bridge_gap: from m's node on the plane of b's last node, or the nearest
+                // to it, to b's, square to D) and the nearest of the frame's directions across it.
+                const BridgeGap gap = bridge_gap(axis, b, m, D, Eigen::Matrix3d::Identity());
+                const Vector3d& v = gap.across;
+                if (!(v.norm() > axis.params.step_mm)) continue;
+                const Vector3d pb = axis.nodes[std::size_t(gap.to)].position;
+                const double sb = D.dot(pb);
+                const Vector3d& g = gap.way;
+                // The splitting plane: the lowest flat underside within two steps past b's last
+                // node.
+                const Vector3d pa = pb - v;
+                const std::optional<double> s =
+                    underside(h, D, sb + plane_tol, sb + 2.0 * axis.params.step_mm, pa, pb, true);
+                if (!s) continue;
+                // A point in the bridge's material (bridge_node).
+                const int past =
+                    bridge_node(axis, D, *s, plane_tol, 0.5 * (pa + pb) + D * (*s - sb));
+                if (past < 0) continue;
+                bridge_at(h, owner, D, g, *s, pb + D * (*s - sb), past, true);
+            }
+            // Bridges the axis marched across sideways (Decompose.hpp): branch b, asked to stay
+            // in its father (slicing asks where the nozzle cannot reach its own component's
+            // layers: they close a gap against what is deposited), marching square to the build
+            // direction D of the component holding it, over a flat underside facing -D under its
+            // march (the highest such face below its nodes and above the component's base), cut
+            // there as a bridge across the gap along b's direction, where the component's
+            // material reaches under that face on both sides of the march. A beam across two posts
+            // braced to each other: the brace joins the posts' tracks below the beam, and the
+            // march goes on from one post's top across the beam. (Still kept as asked: decomposed
+            // with keep_branches, the same branches give the same bridges.)
+            for (std::size_t b = 1; b < nb; ++b) {
+                const KeptBranch* k = kept_by_caller(b);
+                const int h = holder[b];
+                const AxisBranch& br = axis.branches[b];
+                if (!k || h < 0 || br.nodes.size() < 2) continue;
+                const Vector3d D = work[std::size_t(h)].c.build_direction;
+                const Vector3d g = br.direction.normalized();
+                const Vector3d pa = axis.nodes[std::size_t(br.nodes.front())].position;
+                const Vector3d pb = axis.nodes[std::size_t(br.nodes.back())].position;
+                if (std::abs(g.dot(D)) > 1e-9 || !(g.dot(pb - pa) > axis.params.step_mm)) continue;
+                progress.check();
+                double base, top;
+                range_along(bounds_of(work[std::size_t(h)].solid), D, base, top);
+                const std::optional<double> s =
+                    underside(h, D, base + plane_tol, std::min(D.dot(pa), D.dot(pb)) - plane_tol,
+                              pa, pb, false);
+                if (!s) continue;
+                // A gap: the component's material reaches under the plane (half a step under it)
+                // on both sides of the march's middle along g, where a span rests; an arm off a
+                // column's side, resting on one, is no bridge.
+                const Vector3d middle = 0.5 * (pa + pb);
+                double from, to;
+                range_along(bounds_of(work[std::size_t(h)].solid), g, from, to);
+                const Vector3d under =
+                    middle + D * (*s - 0.5 * axis.params.step_mm - D.dot(middle));
+                const auto rests = [&](double end) {
+                    for (int i = 1; i <= 64; ++i)
+                        if (contains(work[std::size_t(h)].solid,
+                                     under + g * ((end - g.dot(middle)) * double(i) / 64.0)))
+                            return true;
+                    return false;
+                };
+                if (!rests(from) || !rests(to)) continue;
+                // The piece: b's node past the plane nearest the gap's middle.
+                int past = -1;
+                for (const int n : br.nodes) {
+                    const Vector3d& q = axis.nodes[std::size_t(n)].position;
+                    if (D.dot(q) > *s + plane_tol &&
+                        (past < 0 || (q - middle).norm() <
+                                         (axis.nodes[std::size_t(past)].position - middle).norm()))
+                        past = n;
+                }
+                if (past < 0 || !bridge_at(h, b, D, g, *s, pa + D * (*s - D.dot(pa)), past, false))
+                    continue;
+                kept_notes.erase(std::remove_if(kept_notes.begin(), kept_notes.end(),
+                                                [&](const Kept& x) { return x.branch == b; }),
+                                 kept_notes.end());
             }
             for (const Kept& k : kept_notes) {
                 const Vector3d d = to_world * axis.branches[k.branch].direction;

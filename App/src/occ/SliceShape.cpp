@@ -204,6 +204,7 @@ SlicedPart slice_part(const Shape& solid, const CentroidalAxis& axis,
         m.parent = c.parent;
         m.branch = c.branch < 0 ? 0 : c.branch;
         m.turned = c.turned;
+        m.bridge = c.rule == Component::SplitRule::Bridge;
         // The root stands on the build plate; a child on its base face.
         m.base = c.parent < 0 ? build_plate(m.mesh) : make_plane(c.base_origin, c.build_direction);
         meshes.push_back(std::move(m));

@@ -162,3 +162,11 @@ chair.exportBrep(os.path.join(here, "chair_back_jump.brep"))
 # merged tracks, so no bridge, and built along the beam its last layers met the other post
 truss, _ = MultiAxisSlicerSurvey.part("truss", 4, 3)
 truss.exportBrep(os.path.join(here, "truss_braced_beam.brep"))
+
+# truss_beam_off_brace.brep  the survey's braced frame 6 (seed 2), across X: two posts 9.56 square
+# 26.15 apart on a plate, a beam 9.56 square across their tops (underside z = 40.28) and a round
+# brace 2.88 in radius from low on one post to the other's top (42.4 degrees). The axis reaches
+# the beam along the brace and marches up through it along Z from over the gap: built on its own
+# along Z its first layer hung, and kept in the posts' layers it hung 201 mm^2
+truss, _ = MultiAxisSlicerSurvey.part("truss", 6, 2)
+truss.exportBrep(os.path.join(here, "truss_beam_off_brace.brep"))

@@ -2585,51 +2585,66 @@ TEST(Slicing, AChairsBackIsLaidInItsTopsDiagonalLayersNotTurnedAcrossTheTop) {
     EXPECT_EQ(result.stats.colliding_layers, 0);
 }
 
-// tests/data/truss_braced_beam.brep, the survey's braced frame 4 at seed 3
-// (MultiAxisSlicerSurvey.py, across Y): two posts 8.47 square 26.21 apart on a plate, a beam 8.47
-// square across their tops (its underside at z = 61.08) and a round brace from low on one post up
-// to the other's top. The brace joins the posts' tracks under the beam, so no track merges over the
-// gap (no bridge there), and the axis crosses the beam sideways from one post's top. Cut along it,
-// the beam's last layers met the other post; kept in the posts' Z layers, its underside hung 182
-// mm^2 in one layer. Kept so, it is a bridge (Decompose.hpp): cut at its underside, built straight
-// along the diagonal across the gap, nothing hanging past the deflection's strip and no layer in
-// the nozzle's way; decomposing with the kept branches gives the same bridge.
-TEST(Slicing, ABeamTheAxisCrossedSidewaysOverBracedPostsIsBuiltAsABridge) {
-    mas::SlicePartParams params;
-    const auto cli = as_the_cli_slices("truss_braced_beam.brep", params);
-    mas::Decomposition d;
-    const auto result = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, params, d);
-    std::vector<std::size_t> bridges;
-    for (std::size_t c = 0; c < d.components.size(); ++c)
-        if (d.components[c].rule == mas::Component::SplitRule::Bridge) bridges.push_back(c);
-    ASSERT_EQ(bridges.size(), 1u);
-    const mas::Component& bridge = d.components[bridges[0]];
-    // Its branch marches across the beam (along Y), is listed as kept, and the bridge is built
-    // along the diagonal between Z and Y.
-    const Vector3d march = cli.axis.branches[std::size_t(bridge.branch)].direction.normalized();
-    EXPECT_NEAR(std::abs(march.y()), 1.0, 1e-12);
-    EXPECT_NE(std::find(d.kept_branches.begin(), d.kept_branches.end(), bridge.branch),
-              d.kept_branches.end());
-    EXPECT_NEAR(bridge.build_direction.x(), 0.0, 1e-12);
-    EXPECT_NEAR(std::abs(bridge.build_direction.y()), std::sqrt(0.5), 1e-12);
-    EXPECT_NEAR(bridge.build_direction.z(), std::sqrt(0.5), 1e-12);
-    int layers = 0;
-    for (std::size_t i = 0; i < result.layers.size(); ++i) {
-        const mas::Layer& l = result.layers[i];
-        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * cli.deflection_mm + 1e-6) << i;
-        if (l.component != int(bridges[0])) continue;
-        ++layers;
-        EXPECT_LT(angle_deg(l.plane.normal, bridge.build_direction), 1e-9) << i;
+// Braced frames (MultiAxisSlicerSurvey.py's truss): two posts on a plate, a beam across their tops
+// and a round brace from low on one post up to the other's top. The brace joins the posts' tracks
+// under the beam, so no track merges over the gap (no bridge there). Cut along its own march, the
+// beam's layers met the other post or hung over the gap; kept in the posts' Z layers, its
+// underside hung in one layer. Kept so, it is a bridge (Decompose.hpp): cut at its underside,
+// built straight along the diagonal across the gap, nothing hanging past the deflection's strip
+// and no layer in the nozzle's way; decomposing with the kept branches gives the same bridge.
+// - tests/data/truss_braced_beam.brep, the survey's frame 4 at seed 3, across Y (posts 8.47
+//   square 26.21 apart, the beam's underside at z = 61.08): the axis crosses the beam sideways,
+//   along Y, from one post's top (182 mm^2 hanging before).
+// - tests/data/truss_beam_off_brace.brep, its frame 6 at seed 2, across X (posts 9.56 square
+//   26.15 apart, the underside at z = 40.28): the axis reaches the beam along the brace and
+//   marches up through it along Z from over the gap (201 mm^2 before).
+TEST(Slicing, ABeamOverBracedPostsIsBuiltAsABridge) {
+    struct Case {
+        const char* file;
+        Vector3d march, across;  // the kept branch's direction (up to sign), the gap's way
+    };
+    for (const Case& t :
+         {Case{"truss_braced_beam.brep", Vector3d::UnitY(), Vector3d::UnitY()},
+          Case{"truss_beam_off_brace.brep", Vector3d::UnitZ(), Vector3d::UnitX()}}) {
+        SCOPED_TRACE(t.file);
+        mas::SlicePartParams params;
+        const auto cli = as_the_cli_slices(t.file, params);
+        mas::Decomposition d;
+        const auto result = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, params, d);
+        std::vector<std::size_t> bridges;
+        for (std::size_t c = 0; c < d.components.size(); ++c)
+            if (d.components[c].rule == mas::Component::SplitRule::Bridge) bridges.push_back(c);
+        ASSERT_EQ(bridges.size(), 1u);
+        const mas::Component& bridge = d.components[bridges[0]];
+        // Its branch, listed as kept, marches as said; the bridge is built along the diagonal
+        // between Z and the gap's way.
+        const Vector3d march = cli.axis.branches[std::size_t(bridge.branch)].direction.normalized();
+        EXPECT_NEAR(std::abs(march.dot(t.march)), 1.0, 1e-12);
+        EXPECT_NE(std::find(d.kept_branches.begin(), d.kept_branches.end(), bridge.branch),
+                  d.kept_branches.end());
+        EXPECT_NEAR(std::abs(bridge.build_direction.dot(t.across)), std::sqrt(0.5), 1e-12);
+        EXPECT_NEAR(bridge.build_direction.z(), std::sqrt(0.5), 1e-12);
+        int layers = 0;
+        for (std::size_t i = 0; i < result.layers.size(); ++i) {
+            const mas::Layer& l = result.layers[i];
+            EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * cli.deflection_mm + 1e-6) << i;
+            if (l.component != int(bridges[0])) continue;
+            ++layers;
+            // Straight along the diagonal where the march crosses the gap.
+            if (std::abs(march.z()) < 1e-9) {
+                EXPECT_LT(angle_deg(l.plane.normal, bridge.build_direction), 1e-9) << i;
+            }
+        }
+        EXPECT_GT(layers, 0);
+        EXPECT_EQ(result.stats.colliding_layers, 0);
+        mas::DecomposeParams again = cli.dp;
+        for (const int b : d.kept_branches) again.keep_branches.push_back({b, "as asked"});
+        const mas::Decomposition same = mas::decompose(cli.model.shape, cli.axis, again);
+        ASSERT_EQ(same.components.size(), d.components.size());
+        EXPECT_EQ(same.components[bridges[0]].rule, mas::Component::SplitRule::Bridge);
+        EXPECT_TRUE(
+            same.components[bridges[0]].build_direction.isApprox(bridge.build_direction, 1e-12));
     }
-    EXPECT_GT(layers, 0);
-    EXPECT_EQ(result.stats.colliding_layers, 0);
-    mas::DecomposeParams again = cli.dp;
-    for (const int b : d.kept_branches) again.keep_branches.push_back({b, "as asked"});
-    const mas::Decomposition same = mas::decompose(cli.model.shape, cli.axis, again);
-    ASSERT_EQ(same.components.size(), d.components.size());
-    EXPECT_EQ(same.components[bridges[0]].rule, mas::Component::SplitRule::Bridge);
-    EXPECT_TRUE(
-        same.components[bridges[0]].build_direction.isApprox(bridge.build_direction, 1e-12));
 }
 
 namespace {

@@ -251,11 +251,14 @@
 //   above the component's base), g its direction, the piece found by its node past the plane
 //   nearest its middle, where a gap lies under that face: the component's material reaches half
 //   a step under it on both sides of the march's middle along g (an arm off a column's side,
-//   resting on one, stays as asked). A beam across the tops of two posts braced to each other is
-//   one: the brace joins the posts' tracks under the beam, so no track merges over the gap, and the
-//   march crosses the beam along it from one post's top; built so, its last layers close the gap
-//   against the other post's top, which the nozzle cannot reach. Those bridges are cut after
-//   the merged tracks', the branch still listed as kept (Decomposition::kept_branches), so that
+//   resting on one, stays as asked). So is one marching along D whose first node lies within two
+//   steps over such a face, g the first of the frame's directions square to D along which a gap
+//   lies under its first node. Beams across the tops of two posts braced to each other: the
+//   brace joins the posts' tracks under the beam, so no track merges over the gap; the march
+//   crosses the beam along it from one post's top, or reaches it along the brace and rises
+//   through it from over the gap. Built along its march, the beam's last layers close the gap
+//   against the other post, or its first hangs over the gap. Those bridges are cut after the
+//   merged tracks', the branch still listed as kept (Decomposition::kept_branches), so that
 //   decomposing with those gives them again. A merged tracks' bridge is not cut where b is asked
 //   to stay in its father, nor is any bridge where a component already cut off the father has
 //   its base across the plane, or on a round underside (a bore's ceiling, an arch's round

@@ -1804,35 +1804,51 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 const KeptBranch* k = kept_by_caller(b);
                 const int h = holder[b];
                 const AxisBranch& br = axis.branches[b];
-                if (!k || h < 0 || br.nodes.size() < 2) continue;
+                if (!k || h < 0 || br.nodes.empty()) continue;
                 const Vector3d D = work[std::size_t(h)].c.build_direction;
-                const Vector3d g = br.direction.normalized();
+                const Vector3d m = br.direction.normalized();
+                const bool along = m.isApprox(D, 1e-9);
                 const Vector3d pa = axis.nodes[std::size_t(br.nodes.front())].position;
-                const Vector3d pb = axis.nodes[std::size_t(br.nodes.back())].position;
-                if (std::abs(g.dot(D)) > 1e-9 || !(g.dot(pb - pa) > axis.params.step_mm)) continue;
+                const Vector3d pb = along ? pa : axis.nodes[std::size_t(br.nodes.back())].position;
+                if (!along &&
+                    (std::abs(m.dot(D)) > 1e-9 || !(m.dot(pb - pa) > axis.params.step_mm)))
+                    continue;
                 progress.check();
                 double base, top;
                 range_along(bounds_of(work[std::size_t(h)].solid), D, base, top);
                 const std::optional<double> s =
                     underside(h, D, base + plane_tol, std::min(D.dot(pa), D.dot(pb)) - plane_tol,
                               pa, pb, false);
-                if (!s) continue;
+                if (!s || (along && *s < D.dot(pa) - 2.0 * axis.params.step_mm)) continue;
                 // A gap: the component's material reaches under the plane (half a step under it)
                 // on both sides of the march's middle along g, where a span rests; an arm off a
-                // column's side, resting on one, is no bridge.
+                // column's side, resting on one, is no bridge. g: the march's direction; for a
+                // march along D, the first of the frame's directions square to D along which
+                // the span rests on both sides.
                 const Vector3d middle = 0.5 * (pa + pb);
-                double from, to;
-                range_along(bounds_of(work[std::size_t(h)].solid), g, from, to);
                 const Vector3d under =
                     middle + D * (*s - 0.5 * axis.params.step_mm - D.dot(middle));
-                const auto rests = [&](double end) {
-                    for (int i = 1; i <= 64; ++i)
-                        if (contains(work[std::size_t(h)].solid,
-                                     under + g * ((end - g.dot(middle)) * double(i) / 64.0)))
-                            return true;
-                    return false;
+                const auto spans = [&](const Vector3d& way) {
+                    double from, to;
+                    range_along(bounds_of(work[std::size_t(h)].solid), way, from, to);
+                    const auto rests = [&](double end) {
+                        for (int i = 1; i <= 64; ++i)
+                            if (contains(
+                                    work[std::size_t(h)].solid,
+                                    under + way * ((end - way.dot(middle)) * double(i) / 64.0)))
+                                return true;
+                        return false;
+                    };
+                    return rests(from) && rests(to);
                 };
-                if (!rests(from) || !rests(to)) continue;
+                Vector3d g = Vector3d::Zero();
+                if (!along)
+                    g = spans(m) ? m : g;
+                else
+                    for (int e = 0; e < 3 && g.isZero(); ++e)
+                        if (std::abs(D[e]) < 1e-9 && spans(Vector3d::Unit(e)))
+                            g = Vector3d::Unit(e);
+                if (g.isZero()) continue;
                 // The piece: b's node past the plane nearest the gap's middle.
                 int past = -1;
                 for (const int n : br.nodes) {

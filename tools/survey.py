@@ -1,5 +1,6 @@
 # Parts nobody tuned for (tests/python/MultiAxisSlicerSurvey.py): slices N random parts of each
-# of seventeen families at the defaults, with their G-code, and prints a line per part and a summary.
+# of twenty-one families at the defaults, with their G-code, and prints a line per part and a
+# summary.
 # Run by freecadcmd with the workbench installed (tools/setup.sh install):
 #   MAS_SURVEY="12 39 16" freecadcmd tools/survey.py   # 12 parts a family, seed 39, fill_holes 16
 # MAS_SURVEY_JSON=FILE also writes the reports as JSON.

@@ -4,8 +4,8 @@ hubs with blades, lugs and clevises, angle brackets, the same placed turned on t
 leaning off columns, Z brackets, manifold blocks with ports, round valve bodies with ports, wye
 fittings, handles and walls with windows, portals, tables and gates on feet apart, candelabra,
 walls with shelves, canes and hooks, chairs, cranks, tripods, braced frames, coat racks,
-goosenecks), each part drawn at random from its family's
-ranges, and a survey slicing them as a user would (defaults, G-code).
+goosenecks), each part drawn at random from its family's ranges, and a survey slicing them as a
+user would (defaults, G-code).
 
 ``part(family, index, seed)`` gives the same solid for the same arguments, whatever else is
 drawn; ``survey()`` slices parts and reports, per part, what the measure of success is: layers

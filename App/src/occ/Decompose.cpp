@@ -1790,16 +1790,32 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (past < 0) continue;
                 bridge_at(h, owner, D, g, *s, pb + D * (*s - sb), past, true);
             }
-            // Bridges the axis marched across sideways (Decompose.hpp): branch b, asked to stay
-            // in its father (slicing asks where the nozzle cannot reach its own component's
-            // layers: they close a gap against what is deposited), marching square to the build
-            // direction D of the component holding it, over a flat underside facing -D under its
-            // march (the highest such face below its nodes and above the component's base), cut
-            // there as a bridge across the gap along b's direction, where the component's
-            // material reaches under that face on both sides of the march. A beam across two posts
-            // braced to each other: the brace joins the posts' tracks below the beam, and the
-            // march goes on from one post's top across the beam. (Still kept as asked: decomposed
-            // with keep_branches, the same branches give the same bridges.)
+            // Whether `solid` holds points on both sides of `under` along `way` (sampled in 64
+            // steps to its box's ends): a span over a gap at `under` rests there.
+            const auto spans_gap = [&](const TopoDS_Shape& solid, const Vector3d& under,
+                                       const Vector3d& way) {
+                double from, to;
+                range_along(bounds_of(solid), way, from, to);
+                const auto rests = [&](double end) {
+                    for (int i = 1; i <= 64; ++i)
+                        if (contains(solid,
+                                     under + way * ((end - way.dot(under)) * double(i) / 64.0)))
+                            return true;
+                    return false;
+                };
+                return rests(from) && rests(to);
+            };
+            // Bridges the axis marched across sideways, or into from over the gap (Decompose.hpp):
+            // branch b, asked to stay in its father (slicing asks where the nozzle cannot reach
+            // its own component's layers: they close a gap against what is deposited, or start
+            // over it), marching square to the build direction D of the component holding it
+            // over a flat underside facing -D under its march (the highest such face below its
+            // nodes and above the component's base), or along D from within two steps over one,
+            // cut there as a bridge across the gap, where the component's material reaches under
+            // that face on both sides of the march. Beams across two posts braced to each other:
+            // the brace joins the posts' tracks below the beam, and the march goes on from one
+            // post's top across the beam, or up through it from the brace. (Still kept as asked:
+            // decomposed with keep_branches, the same branches give the same bridges.)
             for (std::size_t b = 1; b < nb; ++b) {
                 const KeptBranch* k = kept_by_caller(b);
                 const int h = holder[b];
@@ -1829,17 +1845,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 const Vector3d under =
                     middle + D * (*s - 0.5 * axis.params.step_mm - D.dot(middle));
                 const auto spans = [&](const Vector3d& way) {
-                    double from, to;
-                    range_along(bounds_of(work[std::size_t(h)].solid), way, from, to);
-                    const auto rests = [&](double end) {
-                        for (int i = 1; i <= 64; ++i)
-                            if (contains(
-                                    work[std::size_t(h)].solid,
-                                    under + way * ((end - way.dot(middle)) * double(i) / 64.0)))
-                                return true;
-                        return false;
-                    };
-                    return rests(from) && rests(to);
+                    return spans_gap(work[std::size_t(h)].solid, under, way);
                 };
                 Vector3d g = Vector3d::Zero();
                 if (!along)

@@ -170,3 +170,10 @@ truss.exportBrep(os.path.join(here, "truss_braced_beam.brep"))
 # along Z its first layer hung, and kept in the posts' layers it hung 201 mm^2
 truss, _ = MultiAxisSlicerSurvey.part("truss", 6, 2)
 truss.exportBrep(os.path.join(here, "truss_beam_off_brace.brep"))
+
+# truss_crossed_braces.brep  the survey's braced frame 7 (seed 2), across X: two posts 9.85
+# square 49.33 apart on a plate, a beam 9.85 square across their tops (underside z = 51.49) and
+# two round braces crossing under it, each from low on one post to the other's top. The beam is
+# cut off at its underside and built along Z: its first layer hung 441 mm^2 between the posts
+truss, _ = MultiAxisSlicerSurvey.part("truss", 7, 2)
+truss.exportBrep(os.path.join(here, "truss_crossed_braces.brep"))

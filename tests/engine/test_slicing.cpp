@@ -2647,6 +2647,37 @@ TEST(Slicing, ABeamOverBracedPostsIsBuiltAsABridge) {
     }
 }
 
+// tests/data/truss_crossed_braces.brep, the survey's braced frame 7 at seed 2, across X: two posts
+// 9.85 square 49.33 apart, a beam 9.85 square across their tops (its underside at z = 51.49) and
+// two braces crossing under it. The axis rises through the beam from over the crossing, and the
+// beam is cut off at its underside and built along Z, like the root under it: its first layer
+// hung 441 mm^2 between the posts. A piece built on along its father's direction whose base hangs
+// over a gap is built along the diagonal as a bridge's piece (Decompose.hpp): nothing hangs past
+// the deflection's strip, no layer is in the nozzle's way.
+TEST(Slicing, ABeamCutOffOverCrossedBracesIsBuiltAlongTheDiagonal) {
+    mas::SlicePartParams params;
+    const auto cli = as_the_cli_slices("truss_crossed_braces.brep", params);
+    mas::Decomposition d;
+    const auto result = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, params, d);
+    ASSERT_EQ(d.components.size(), 2u);
+    const mas::Component& beam = d.components[1];
+    EXPECT_EQ(beam.rule, mas::Component::SplitRule::Bridge);
+    EXPECT_TRUE(d.components[0].build_direction.isApprox(Vector3d::UnitZ(), 1e-12));
+    EXPECT_NEAR(std::abs(beam.build_direction.x()), std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(beam.build_direction.z(), std::sqrt(0.5), 1e-12);
+    // Cut at the beam's underside: its base there, the face the root's top holds.
+    EXPECT_TRUE(beam.base_normal.isApprox(-Vector3d::UnitZ(), 1e-12));
+    EXPECT_NEAR(beam.base_origin.z(), 51.48701566758929, 1e-6);
+    int layers = 0;
+    for (std::size_t i = 0; i < result.layers.size(); ++i) {
+        const mas::Layer& l = result.layers[i];
+        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * cli.deflection_mm + 1e-6) << i;
+        layers += l.component == 1;
+    }
+    EXPECT_GT(layers, 0);
+    EXPECT_EQ(result.stats.colliding_layers, 0);
+}
+
 namespace {
 
 // A wedge layer on a 10 x 10 square layer at z = 1: its footprint reaches 1 mm past the square's

@@ -407,8 +407,17 @@ def truss(rng):
     low, high = V(post - 1, y, 3 + post), V(post + gap + 1, y, height)
     braces = [(low, high)] + ([(V(post - 1, y, height), V(post + gap + 1, y, 3 + post))]
                               if cross else [])
-    # (The second brace thinner: two rods alike crossing meet along curves OCCT meshes badly.)
-    solid = solid.fuse([_rod(a, b, r * (1.0 - 0.25 * k)) for k, (a, b) in enumerate(braces)])
+    # (The second brace thinner: two rods alike crossing meet along curves OCCT meshes badly. A
+    # brace's end disc grazing the beam's underside does too: its end is lowered 0.2 mm where its
+    # top edge comes within 0.1 mm of that plane.)
+    rods = []
+    for k, (a, b) in enumerate(braces):
+        radius = r * (1.0 - 0.25 * k)
+        u = (b - a).normalize()
+        if abs(b.z + radius * math.sqrt(1.0 - u.z * u.z) - (height + 2)) < 0.1:
+            b = b - V(0, 0, 0.2)
+        rods.append(_rod(a, b, radius))
+    solid = solid.fuse(rods)
     return _across(rng, solid, {"braces": len(braces), "brace_deg": math.degrees(
         math.atan2(high.z - low.z, high.x - low.x))})
 

@@ -259,7 +259,15 @@
 //   through it from over the gap. Built along its march, the beam's last layers close the gap
 //   against the other post, or its first hangs over the gap. Those bridges are cut after the
 //   merged tracks', the branch still listed as kept (Decomposition::kept_branches), so that
-//   decomposing with those gives them again. A merged tracks' bridge is not cut where b is asked
+//   decomposing with those gives them again. Last, a piece cut off across its father's build
+//   direction D and built on along D whose base hangs over a gap (more than half of its base
+//   face resting on nothing, nothing of the father half a step under the face's centroid,
+//   something on both sides of that point along the first of the frame's directions g square to
+//   D; a pipe's end, its centroid in the bore, rests whole) is built along D + or - g as a
+//   bridge's piece, where that leaves at most half of what overhangs along D, without the wedge
+//   (its base plane square to the diagonal through its lowest point, on its base plane, as a
+//   mesh's): a beam over two braces crossing under it, cut off at its underside along Z, its
+//   first layer hanging between the posts. A merged tracks' bridge is not cut where b is asked
 //   to stay in its father, nor is any bridge where a component already cut off the father has
 //   its base across the plane, or on a round underside (a bore's ceiling, an arch's round
 //   intrados), which no plane's face spans. The father's children whose bases lie past the

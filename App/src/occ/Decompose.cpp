@@ -1870,6 +1870,68 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                                                 [&](const Kept& x) { return x.branch == b; }),
                                  kept_notes.end());
             }
+            // Pieces whose base hangs over a gap (Decompose.hpp): a piece cut off across its
+            // father's build direction D and built on along it, more than half of its base face
+            // resting on nothing, nothing of the father half a step under the face's centroid and
+            // something on both sides of that point along one of the frame's directions g square
+            // to D (the first), is built along the diagonal D + or - g as a bridge's piece, where
+            // that leaves at most half of what overhangs along D: a beam cut off at its underside
+            // over two braces crossing under it, its first layer along D hanging between the
+            // posts. Without the wedge, its base plane square to the diagonal through its lowest
+            // point, on its base plane (as a mesh's).
+            for (std::size_t c = 1; c < work.size(); ++c) {
+                Work& w = work[c];
+                if (w.c.parent < 0 || w.c.rule == Component::SplitRule::Bridge || w.c.turned ||
+                    !w.c.has_base_face)
+                    continue;
+                const TopoDS_Shape& father = work[std::size_t(w.c.parent)].solid;
+                const Vector3d D = w.c.build_direction;
+                if (!work[std::size_t(w.c.parent)].c.build_direction.isApprox(D, 1e-9) ||
+                    !(-w.c.base_normal).isApprox(D, 1e-9))
+                    continue;
+                progress.check();
+                const double s = D.dot(w.c.base_origin);
+                const Vector3d under = w.c.base_origin - 0.5 * axis.params.step_mm * D;
+                if (contains(father, under)) continue;
+                Vector3d g = Vector3d::Zero();
+                for (int e = 0; e < 3 && g.isZero(); ++e)
+                    if (std::abs(D[e]) < 1e-9 && spans_gap(father, under, Vector3d::Unit(e)))
+                        g = Vector3d::Unit(e);
+                if (g.isZero()) continue;
+                const double on_plane = 10.0 * plane_tol;
+                TriangleMesh piece;
+                double hanging = 0.0;
+                try {
+                    piece = occ::tessellate_solid(w.solid, default_deflection,
+                                                  TessellationParams{}.angular_deflection_rad,
+                                                  "a bridge's piece");
+                    hanging = area_of(hanging_on_plane(w.solid, father, D, s, on_plane));
+                } catch (const Error&) {
+                    continue;
+                } catch (const Standard_Failure&) {
+                    continue;
+                }
+                // Its base hangs mostly (a pipe's end rests whole on its father, its centroid in
+                // the bore between its walls).
+                if (!(hanging > 0.5 * area_of(occ::occt(w.c.base_face)))) continue;
+                const Vector3d d =
+                    bridge_direction(D, g, params.max_tilt_deg, [&](const Vector3d& way) {
+                        return overhang_area(piece, way, params.overhang_angle_deg, D, s, on_plane,
+                                             hanging);
+                    });
+                if (d.isZero()) continue;
+                double lowest = std::numeric_limits<double>::infinity();
+                Vector3d at = Vector3d::Zero();
+                for (const Vector3d& q : piece.vertices)
+                    if (d.dot(q) < lowest) {
+                        lowest = d.dot(q);
+                        at = q;
+                    }
+                // at + a (D - w), w = sqrt(2) d - D the way along the gap (bridge_at).
+                w.c.base_origin = at + (s - D.dot(at)) * (2.0 * D - std::sqrt(2.0) * d);
+                w.c.rule = Component::SplitRule::Bridge;
+                w.c.build_direction = d;
+            }
             for (const Kept& k : kept_notes) {
                 const Vector3d d = to_world * axis.branches[k.branch].direction;
                 std::ostringstream line;

@@ -694,6 +694,18 @@ TopoDS_Compound faces_on_plane(const TopoDS_Shape& shape, const Vector3d& n, dou
     return out;
 }
 
+// The vertex of the mesh lowest along d (the first of them).
+Vector3d lowest_along(const TriangleMesh& m, const Vector3d& d) {
+    double lowest = std::numeric_limits<double>::infinity();
+    Vector3d at = Vector3d::Zero();
+    for (const Vector3d& q : m.vertices)
+        if (d.dot(q) < lowest) {
+            lowest = d.dot(q);
+            at = q;
+        }
+    return at;
+}
+
 double area_of(const TopoDS_Shape& s) {
     GProp_GProps props;
     BRepGProp::SurfaceProperties(s, props);
@@ -1631,13 +1643,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                         for (const Vector3d* q : {&p0, &p1, &p2})
                             if (!top || d.dot(*q) < *top) top = d.dot(*q);
                     });
-                double lowest = std::numeric_limits<double>::infinity();
-                Vector3d at = Vector3d::Zero();
-                for (const Vector3d& q : piece.vertices)
-                    if (d.dot(q) < lowest) {
-                        lowest = d.dot(q);
-                        at = q;
-                    }
+                const Vector3d at = lowest_along(piece, d);
+                const double lowest = d.dot(at);
                 bool wedged = false;
                 if (top && *top > lowest + on_plane) {
                     // The wedge is no component: nothing it stands on is the split's to keep.
@@ -1920,13 +1927,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                                              hanging);
                     });
                 if (d.isZero()) continue;
-                double lowest = std::numeric_limits<double>::infinity();
-                Vector3d at = Vector3d::Zero();
-                for (const Vector3d& q : piece.vertices)
-                    if (d.dot(q) < lowest) {
-                        lowest = d.dot(q);
-                        at = q;
-                    }
+                const Vector3d at = lowest_along(piece, d);
                 // at + a (D - w), w = sqrt(2) d - D the way along the gap (bridge_at).
                 w.c.base_origin = at + (s - D.dot(at)) * (2.0 * D - std::sqrt(2.0) * d);
                 w.c.rule = Component::SplitRule::Bridge;

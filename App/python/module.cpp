@@ -1511,8 +1511,8 @@ mas::Decomposition decomposition_from_py(const bp::object& value) {
             if (!turned.check()) invalid_argument(what + "['turned'] must be True or False");
             c.turned = turned();
         }
-        // Optional: how it was cut (decompose()'s "rule"); a bridge's piece is built straight
-        // along its build direction, not after its branch's nodes.
+        // Optional: how it was cut (decompose()'s "rule"); a bridge's piece whose branch crosses
+        // its gap is sliced straight along its diagonal (SlicePart.hpp's ComponentMesh::bridge).
         if (bp::extract<bp::dict>(item).check() && bp::dict(item).has_key("rule")) {
             const bp::extract<std::string> rule(item["rule"]);
             bool known = false;

@@ -383,13 +383,14 @@ SlicedPart slice_components(const std::vector<ComponentMesh>& components,
         // layers turned after the march stood square to the gap at its far end, the nozzle
         // level over the far post. One whose branch marches on along it (merged tracks going on
         // past the gap: a chair's back over its top) turns after it, as any component.
-        const bool across =
-            comp.bridge && comp.parent >= 0 && comp.branch >= 0 &&
-            comp.branch < int(axis.branches.size()) &&
-            std::abs(axis.branches[std::size_t(comp.branch)].direction.normalized().dot(
-                components[std::size_t(comp.parent)].base.normal)) < std::sqrt(0.5);
-        if (comp.branch >= 0 && comp.branch < int(axis.branches.size()) && !across) {
-            for (int n : axis.branches[std::size_t(comp.branch)].nodes) {
+        const AxisBranch* branch = comp.branch >= 0 && comp.branch < int(axis.branches.size())
+                                       ? &axis.branches[std::size_t(comp.branch)]
+                                       : nullptr;
+        const bool across = branch && comp.bridge && comp.parent >= 0 &&
+                            std::abs(branch->direction.normalized().dot(
+                                components[std::size_t(comp.parent)].base.normal)) < std::sqrt(0.5);
+        if (branch && !across) {
+            for (int n : branch->nodes) {
                 if (n < 0 || n >= int(axis.nodes.size()))
                     throw Error(ErrorCode::InvalidArgument,
                                 "the axis' branch " + std::to_string(comp.branch) + " names node " +

@@ -706,6 +706,13 @@ Vector3d lowest_along(const TriangleMesh& m, const Vector3d& d) {
     return at;
 }
 
+// The origin of the base plane of a bridge's piece built along d from its lowest point `at` that
+// way, its base on the plane D.x = s (D its father's build direction): at + a (D - w), w =
+// sqrt(2) d - D the way along the gap, so that D.(..) = s and d.(..) stays d.at.
+Vector3d diagonal_base_origin(const Vector3d& at, const Vector3d& D, const Vector3d& d, double s) {
+    return at + (s - D.dot(at)) * (2.0 * D - std::sqrt(2.0) * d);
+}
+
 double area_of(const TopoDS_Shape& s) {
     GProp_GProps props;
     BRepGProp::SurfaceProperties(s, props);
@@ -1533,6 +1540,41 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (again) --b;  // once more at the section plane (b > 0: the root never splits)
             }
 
+            // Faces within this of a bridge's splitting plane lie on it.
+            const double on_plane = 10.0 * plane_tol;
+            // A bridge's piece resting on `father` at the plane D.x = s: its mesh and what of its
+            // underside hangs there; nullopt where OCCT cannot mesh it closed or compare its
+            // underside with the father's top.
+            struct Resting {
+                TriangleMesh mesh;
+                TopoDS_Shape hangs;
+                double hanging = 0.0;  // the area of `hangs`
+            };
+            const auto resting = [&](const TopoDS_Shape& piece, const TopoDS_Shape& father,
+                                     const Vector3d& D, double s) -> std::optional<Resting> {
+                try {
+                    Resting r;
+                    r.mesh = occ::tessellate_solid(piece, default_deflection,
+                                                   TessellationParams{}.angular_deflection_rad,
+                                                   "a bridge's piece");
+                    r.hangs = hanging_on_plane(piece, father, D, s, on_plane);
+                    r.hanging = area_of(r.hangs);
+                    return r;
+                } catch (const Error&) {
+                } catch (const Standard_Failure&) {
+                }
+                return std::nullopt;
+            };
+            // The diagonal such a piece is built along: D + or - g, where that leaves at most half
+            // of what overhangs built along D, the way with less (bridge_direction); zero for
+            // none. (The frame is turned about +Z only: a tilt from +Z is the same in the world.)
+            const auto diagonal = [&](const Resting& r, const Vector3d& D, const Vector3d& g,
+                                      double s) {
+                return bridge_direction(D, g, params.max_tilt_deg, [&](const Vector3d& way) {
+                    return overhang_area(r.mesh, way, params.overhang_angle_deg, D, s, on_plane,
+                                         r.hanging);
+                });
+            };
             // Cuts the bridge of branch `owner`, whose material lies in component h built along D,
             // at the plane D.x = s (`on` a point of it) over a gap whose way across, square to D,
             // is g; `past` is a node in the bridge's material past the plane. False where it is
@@ -1570,31 +1612,14 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (fc.has_base_face &&
                     height_along(father_new, fc.base_origin, fc.build_direction) < step_height)
                     return false;
-                // Built along the diagonal, D + or - g, where that leaves at most half of what
-                // overhangs built along D; the way with less, from m towards b where alike. (A
-                // piece OCCT cannot mesh closed, or whose underside it cannot compare with its
-                // father's top, stays in the father.)
-                TriangleMesh piece;
-                TopoDS_Shape hangs;
-                double hanging = 0.0;
-                const double on_plane = 10.0 * plane_tol;
-                try {
-                    piece = occ::tessellate_solid(children.front().solid, default_deflection,
-                                                  TessellationParams{}.angular_deflection_rad,
-                                                  "a bridge's piece");
-                    hangs = hanging_on_plane(children.front().solid, father_new, D, s, on_plane);
-                    hanging = area_of(hangs);
-                } catch (const Error&) {
-                    return false;
-                } catch (const Standard_Failure&) {
-                    return false;
-                }
-                const auto overhang = [&](const Vector3d& way) {
-                    return overhang_area(piece, way, params.overhang_angle_deg, D, s, on_plane,
-                                         hanging);
-                };
-                // (The frame is turned about +Z only: a tilt from +Z is the same in the world.)
-                const Vector3d d = bridge_direction(D, g, params.max_tilt_deg, overhang);
+                // Built along the diagonal (diagonal()), from m towards b where alike. (A piece
+                // OCCT cannot mesh closed, or whose underside it cannot compare with its father's
+                // top, stays in the father.)
+                const std::optional<Resting> rest =
+                    resting(children.front().solid, father_new, D, s);
+                if (!rest) return false;
+                const TriangleMesh& piece = rest->mesh;
+                const Vector3d d = diagonal(*rest, D, g, s);
                 if (d.isZero()) return false;
                 // Asked to stay in its father (once it would be cut): said so, as for any branch.
                 if (const KeptBranch* k = asked ? asked_to_keep(owner) : nullptr) {
@@ -1634,7 +1659,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     if (planar(TopoDS::Face(x.Current()), pf) && pf.normal.dot(D) >= 1.0 - 1e-9)
                         lowest_of(pf.face);
                 }
-                lowest_of(hangs);
+                lowest_of(rest->hangs);
                 // and of the faces of it that would overhang along D off the plane (the ceiling
                 // of another window's top, where the plane passes through that window).
                 for_each_leaning(
@@ -1698,11 +1723,8 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     }
                 }
                 if (!wedged) {
-                    // at + a (D - w), w = sqrt(2) d - D the way along the gap: D.(..) = s, and
-                    // d.(..) stays d.at.
-                    const double a = s - D.dot(at);
                     child.c.base_face = occ::wrap(children.front().base);
-                    child.c.base_origin = at + a * (2.0 * D - std::sqrt(2.0) * d);
+                    child.c.base_origin = diagonal_base_origin(at, D, d, s);
                     child.c.base_normal = -D;
                 }
                 if (kept) kept->forget(work[std::size_t(h)].solid);
@@ -1905,31 +1927,14 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     if (std::abs(D[e]) < 1e-9 && spans_gap(father, under, Vector3d::Unit(e)))
                         g = Vector3d::Unit(e);
                 if (g.isZero()) continue;
-                const double on_plane = 10.0 * plane_tol;
-                TriangleMesh piece;
-                double hanging = 0.0;
-                try {
-                    piece = occ::tessellate_solid(w.solid, default_deflection,
-                                                  TessellationParams{}.angular_deflection_rad,
-                                                  "a bridge's piece");
-                    hanging = area_of(hanging_on_plane(w.solid, father, D, s, on_plane));
-                } catch (const Error&) {
-                    continue;
-                } catch (const Standard_Failure&) {
-                    continue;
-                }
+                const std::optional<Resting> rest = resting(w.solid, father, D, s);
                 // Its base hangs mostly (a pipe's end rests whole on its father, its centroid in
                 // the bore between its walls).
-                if (!(hanging > 0.5 * area_of(occ::occt(w.c.base_face)))) continue;
-                const Vector3d d =
-                    bridge_direction(D, g, params.max_tilt_deg, [&](const Vector3d& way) {
-                        return overhang_area(piece, way, params.overhang_angle_deg, D, s, on_plane,
-                                             hanging);
-                    });
+                if (!rest || !(rest->hanging > 0.5 * area_of(occ::occt(w.c.base_face)))) continue;
+                const Vector3d d = diagonal(*rest, D, g, s);
                 if (d.isZero()) continue;
-                const Vector3d at = lowest_along(piece, d);
-                // at + a (D - w), w = sqrt(2) d - D the way along the gap (bridge_at).
-                w.c.base_origin = at + (s - D.dot(at)) * (2.0 * D - std::sqrt(2.0) * d);
+                const Vector3d at = lowest_along(rest->mesh, d);
+                w.c.base_origin = diagonal_base_origin(at, D, d, s);
                 w.c.rule = Component::SplitRule::Bridge;
                 w.c.build_direction = d;
             }

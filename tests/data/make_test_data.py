@@ -177,3 +177,18 @@ truss.exportBrep(os.path.join(here, "truss_beam_off_brace.brep"))
 # cut off at its underside and built along Z: its first layer hung 441 mm^2 between the posts
 truss, _ = MultiAxisSlicerSurvey.part("truss", 7, 2)
 truss.exportBrep(os.path.join(here, "truss_crossed_braces.brep"))
+
+# truss_brace_under_beam.brep  the survey's braced frame 6 (seed 3), across X: two posts 7.84
+# square 44.17 apart on a plate, a beam 7.84 square across their tops (underside z = 33.13) and a
+# round brace from low on one post to the other's top (23.7 degrees). The axis marches the brace
+# along X into the far post and rises into the beam from the brace: the beam, cut off at its
+# underside and built along Z off the brace's component, hung 305 mm^2 in its first layer
+truss, _ = MultiAxisSlicerSurvey.part("truss", 6, 3)
+truss.exportBrep(os.path.join(here, "truss_brace_under_beam.brep"))
+
+# truss_shallow_brace.brep  the survey's braced frame 5 (seed 323), across X: two posts 8.65 wide
+# 36.27 apart on a plate, a beam across their tops (underside z = 34.19) and a round brace from
+# low on one post to the other's top (28.2 degrees). The beam, cut off at its underside and built
+# along Z, hung 138 mm^2 in its first layer, and slicing kept it in the posts' layers
+truss, _ = MultiAxisSlicerSurvey.part("truss", 5, 323)
+truss.exportBrep(os.path.join(here, "truss_shallow_brace.brep"))

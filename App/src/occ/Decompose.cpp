@@ -1900,14 +1900,18 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                                  kept_notes.end());
             }
             // Pieces whose base hangs over a gap (Decompose.hpp): a piece cut off across its
-            // father's build direction D and built on along it, more than half of its base face
-            // resting on nothing, nothing of the father half a step under the face's centroid and
-            // something on both sides of that point along one of the frame's directions g square
-            // to D (the first), is built along the diagonal D + or - g as a bridge's piece, where
-            // that leaves at most half of what overhangs along D: a beam cut off at its underside
-            // over two braces crossing under it, its first layer along D hanging between the
-            // posts. Without the wedge, its base plane square to the diagonal through its lowest
-            // point, on its base plane (as a mesh's).
+            // build direction D, more than half of its base face resting on nothing of its father,
+            // nothing half a step under the face's centroid and something on both sides of that
+            // point along one of the frame's directions g square to D (the first), is built along
+            // the diagonal D + or - g as a bridge's piece, where that leaves at most half of what
+            // overhangs along D. Two kinds: a piece built on along its father's D, "nothing" and
+            // "something" being its father's material (a beam cut off at its underside over two
+            // braces crossing under it, its first layer along D hanging between the posts); and a
+            // piece built up along +Z off a father built otherwise, they being the part's (a beam
+            // the axis rose into from a brace leaning under it, the brace and the far post built
+            // along the brace: the near post, beside the beam's end, is no father of it). Without
+            // the wedge, its base plane square to the diagonal through its lowest point, on its
+            // base plane (as a mesh's).
             for (std::size_t c = 1; c < work.size(); ++c) {
                 Work& w = work[c];
                 if (w.c.parent < 0 || w.c.rule == Component::SplitRule::Bridge || w.c.turned ||
@@ -1915,16 +1919,19 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     continue;
                 const TopoDS_Shape& father = work[std::size_t(w.c.parent)].solid;
                 const Vector3d D = w.c.build_direction;
-                if (!work[std::size_t(w.c.parent)].c.build_direction.isApprox(D, 1e-9) ||
-                    !(-w.c.base_normal).isApprox(D, 1e-9))
+                const bool on_father =
+                    work[std::size_t(w.c.parent)].c.build_direction.isApprox(D, 1e-9);
+                if (!(-w.c.base_normal).isApprox(D, 1e-9) ||
+                    !(on_father || D.isApprox(Vector3d::UnitZ(), 1e-9)))
                     continue;
+                const TopoDS_Shape& around = on_father ? father : solid;
                 progress.check();
                 const double s = D.dot(w.c.base_origin);
                 const Vector3d under = w.c.base_origin - 0.5 * axis.params.step_mm * D;
-                if (contains(father, under)) continue;
+                if (contains(around, under)) continue;
                 Vector3d g = Vector3d::Zero();
                 for (int e = 0; e < 3 && g.isZero(); ++e)
-                    if (std::abs(D[e]) < 1e-9 && spans_gap(father, under, Vector3d::Unit(e)))
+                    if (std::abs(D[e]) < 1e-9 && spans_gap(around, under, Vector3d::Unit(e)))
                         g = Vector3d::Unit(e);
                 if (g.isZero()) continue;
                 const std::optional<Resting> rest = resting(w.solid, father, D, s);

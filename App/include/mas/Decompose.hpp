@@ -267,11 +267,14 @@
 //   bridge's piece, where that leaves at most half of what overhangs along D, without the wedge
 //   (its base plane square to the diagonal through its lowest point, on its base plane, as a
 //   mesh's): a beam over two braces crossing under it, cut off at its underside along Z, its
-//   first layer hanging between the posts. So is a piece built up along +Z off a father built
-//   along another direction, the part's material (not only the father's) being what lies under
-//   the centroid or on both sides of it: a beam the axis rose into from a brace leaning under it
+//   first layer hanging between the posts. So is a piece built up along +Z (off a father built
+//   along Z or not) whose flat faces facing -Z that hang along Z (its base's part resting on
+//   nothing of the father, its faces off the base plane) have more than half its base face's
+//   area, where nothing of the part lies half a step under their centroid and something does on
+//   both sides of that point along g: a beam the axis rose into from a brace leaning under it
 //   at less than 45 degrees, the brace and the far post built along the brace, the near post
-//   beside the beam's end no father of it. A merged tracks' bridge is not cut where b is asked
+//   beside the beam's end no father of it; a beam's middle slab cut off just under its underside
+//   over the far post's top. A merged tracks' bridge is not cut where b is asked
 //   to stay in its father, nor is any bridge where a component already cut off the father has
 //   its base across the plane, or on a round underside (a bore's ceiling, an arch's round
 //   intrados), which no plane's face spans. The father's children whose bases lie past the

@@ -1900,18 +1900,25 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                                  kept_notes.end());
             }
             // Pieces whose base hangs over a gap (Decompose.hpp): a piece cut off across its
-            // build direction D, more than half of its base face resting on nothing of its father,
-            // nothing half a step under the face's centroid and something on both sides of that
-            // point along one of the frame's directions g square to D (the first), is built along
-            // the diagonal D + or - g as a bridge's piece, where that leaves at most half of what
-            // overhangs along D. Two kinds: a piece built on along its father's D, "nothing" and
-            // "something" being its father's material (a beam cut off at its underside over two
-            // braces crossing under it, its first layer along D hanging between the posts); and a
-            // piece built up along +Z off a father built otherwise, they being the part's (a beam
-            // the axis rose into from a brace leaning under it, the brace and the far post built
-            // along the brace: the near post, beside the beam's end, is no father of it). Without
-            // the wedge, its base plane square to the diagonal through its lowest point, on its
-            // base plane (as a mesh's).
+            // build direction D that hangs over a gap is built along the diagonal D + or - g as a
+            // bridge's piece, g the first of the frame's directions square to D along which the
+            // gap lies, where that leaves at most half of what overhangs along D. Without the
+            // wedge, its base plane square to the diagonal through its lowest point, on its base
+            // plane (as a mesh's). It hangs over a gap:
+            // - built on along its father's D, where more than half of its base face rests on
+            //   nothing of the father, nothing of the father lies half a step under its base
+            //   origin and something does on both sides of that point along g: a beam cut off at
+            //   its underside over two braces crossing under it, its first layer along D hanging
+            //   between the posts;
+            // - else, built up along +Z (off a father built along Z or not), where its flat faces
+            //   facing -Z that hang along Z (its base's part resting on nothing of the father, and
+            //   its faces off the base plane) have more than half its base face's area, nothing
+            //   of the part lies half a step under their centroid and something does on both
+            //   sides of that point along g. A beam the axis rose into from a brace leaning under
+            //   it, the brace and the far post built along the brace (the near post, beside the
+            //   beam's end, is no father of it); a beam's middle slab cut off above the far
+            //   post's top, the posts' side slabs cut off along +-Y, its underside hanging just
+            //   over the base plane. (Not the round underside of a brace, which no span rests.)
             for (std::size_t c = 1; c < work.size(); ++c) {
                 Work& w = work[c];
                 if (w.c.parent < 0 || w.c.rule == Component::SplitRule::Bridge || w.c.turned ||
@@ -1924,20 +1931,51 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 if (!(-w.c.base_normal).isApprox(D, 1e-9) ||
                     !(on_father || D.isApprox(Vector3d::UnitZ(), 1e-9)))
                     continue;
-                const TopoDS_Shape& around = on_father ? father : solid;
                 progress.check();
                 const double s = D.dot(w.c.base_origin);
-                const Vector3d under = w.c.base_origin - 0.5 * axis.params.step_mm * D;
-                if (contains(around, under)) continue;
+                const double base_area = area_of(occ::occt(w.c.base_face));
+                // The first of the frame's directions square to D along which `around` holds
+                // material on both sides of `under`, zero for none.
+                const auto gap_at = [&](const TopoDS_Shape& around, const Vector3d& under) {
+                    if (contains(around, under)) return Vector3d::Zero().eval();
+                    for (int e = 0; e < 3; ++e)
+                        if (std::abs(D[e]) < 1e-9 && spans_gap(around, under, Vector3d::Unit(e)))
+                            return Vector3d::Unit(e).eval();
+                    return Vector3d::Zero().eval();
+                };
+                std::optional<Resting> rest;
                 Vector3d g = Vector3d::Zero();
-                for (int e = 0; e < 3 && g.isZero(); ++e)
-                    if (std::abs(D[e]) < 1e-9 && spans_gap(around, under, Vector3d::Unit(e)))
-                        g = Vector3d::Unit(e);
+                if (on_father) {
+                    g = gap_at(father, w.c.base_origin - 0.5 * axis.params.step_mm * D);
+                    if (!g.isZero()) rest = resting(w.solid, father, D, s);
+                    // Its base hangs mostly (a pipe's end rests whole on its father, its centroid
+                    // in the bore between its walls).
+                    if (!rest || !(rest->hanging > 0.5 * base_area)) g = Vector3d::Zero();
+                }
+                if (g.isZero() && D.isApprox(Vector3d::UnitZ(), 1e-9)) {
+                    rest = resting(w.solid, father, D, s);
+                    if (!rest) continue;
+                    // What overhangs built along D: its area and centroid.
+                    double area = 0.0;
+                    Vector3d moment = Vector3d::Zero();
+                    if (rest->hanging > 0.0) {
+                        GProp_GProps hp;
+                        BRepGProp::SurfaceProperties(rest->hangs, hp);
+                        area += hp.Mass();
+                        moment += hp.Mass() * vec(hp.CentreOfMass());
+                    }
+                    for_each_leaning(
+                        rest->mesh, D, params.overhang_angle_deg, D, s, on_plane,
+                        [&](const Vector3d& p0, const Vector3d& p1, const Vector3d& p2, double a) {
+                            if (!((p1 - p0).cross(p2 - p0).normalized().dot(-D) > 1.0 - 1e-9))
+                                return;
+                            area += a;
+                            moment += a * (p0 + p1 + p2) / 3.0;
+                        });
+                    if (!(area > 0.5 * base_area)) continue;
+                    g = gap_at(solid, moment / area - 0.5 * axis.params.step_mm * D);
+                }
                 if (g.isZero()) continue;
-                const std::optional<Resting> rest = resting(w.solid, father, D, s);
-                // Its base hangs mostly (a pipe's end rests whole on its father, its centroid in
-                // the bore between its walls).
-                if (!rest || !(rest->hanging > 0.5 * area_of(occ::occt(w.c.base_face)))) continue;
                 const Vector3d d = diagonal(*rest, D, g, s);
                 if (d.isZero()) continue;
                 const Vector3d at = lowest_along(rest->mesh, d);

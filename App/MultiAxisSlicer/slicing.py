@@ -471,9 +471,12 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     them) is left in its father (where cuts were turned square to their branches' lines, those
     cuts are first made square to the branches' directions: all of them, or only those whose
     layers the nozzle could not reach where that slices better), and the part is split and sliced
-    again, up to five times; it is sliced as one component when that leaves fewer layers in the
-    nozzle's way (``avoid_collisions=False``: the first split is kept, those layers listed in
-    ``collisions``). The result's ``notes`` say which branches got no component and why; for a
+    again, up to five times. A solid's sub-component with a layer hanging past a strip as wide
+    as the deflection along its outline is then left in its father where that leaves fewer such
+    layers or as many, the worst hanging less, and none more in the nozzle's way (up to three
+    times, one at a time; README, *Sequence*). It is sliced as one component when that leaves
+    fewer layers in the nozzle's way (``avoid_collisions=False``: the first split is kept, those
+    layers listed in ``collisions``). The result's ``notes`` say which branches got no component and why; for a
     solid its ``decomposition`` is the one sliced (its ``kept_branches`` the branches so kept,
     its ``square_branches`` those so cut).
 
@@ -504,8 +507,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         ``measure_coverage`` (also measure the area each layer's beads leave uncovered; False).
       * ``split_mesh``: a mesh is split as above (True); False slices it as one component, along
         its axis' first branch. A solid is always decomposed (``components`` gives the split).
-      * ``avoid_collisions``: branches whose own layers the nozzle cannot reach stay in their
-        fathers, as above (True); False keeps the first split. Given ``components`` are sliced
+      * ``avoid_collisions``: branches whose own layers the nozzle cannot reach, or a solid's
+        whose layers hang where their fathers' would not, stay in their fathers, as above
+        (True); False keeps the first split. Given ``components`` are sliced
         as they are.
       * ``fill_holes``: round holes up to this diameter whose axis leans past ``overhang_angle``
         off their sub-component's build direction, which a drill reaches from outside the part,

@@ -14,6 +14,8 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <any>
 #include <cmath>
 #include <gp_Trsf.hxx>
 #include <limits>
@@ -2675,21 +2677,22 @@ TEST(Slicing, ABeamOverBracedPostsIsBuiltAsABridge) {
 
 // Braced frames whose brace leans under 45 degrees, where the axis rises into the beam from the
 // brace. The beam, cut off at its underside and built along Z, hung over the gap between the posts
-// in its first layer; a piece built up along Z whose base hangs over a gap of the part is a
-// bridge's piece (Decompose.hpp), built along the diagonal from the near post's side, none of its
+// in its first layer; a piece built up along Z whose flat underside hangs over a gap of the part is
+// a bridge's piece (Decompose.hpp), built along the diagonal from the near post's side, none of its
 // layers past the deflection's strip and none in the nozzle's way.
 // - tests/data/truss_brace_under_beam.brep, the survey's frame 6 at seed 3, across X (posts 7.84
 //   square 44.17 apart, the underside at z = 33.13, the brace at 23.7 degrees): the axis marches
 //   the brace along X into the far post, and the beam is cut off that component (305 mm^2 before).
-//   The far post, built in the brace's layers, still hangs a strip of its side past the
-//   deflection's in some of them (README): only that component's layers may.
+//   The brace's component, built along X with the far post, hung a strip of the post's side past
+//   the deflection's in 20 layers; slicing's rounds for hanging layers (slice_clear_of_collisions)
+//   keep the brace in the posts' layers, where nothing does, with a note saying why.
 // - tests/data/truss_shallow_brace.brep, its frame 5 at seed 323, across X (posts 8.65 wide 36.27
 //   apart, the underside at z = 34.19, the brace at 28.2 degrees): the beam, cut off the posts'
-//   component, hung 138 mm^2; nothing hangs past the strip now.
+//   component, hung 138 mm^2.
 TEST(Slicing, ABeamOverAShallowBraceIsBuiltAsABridge) {
     struct Case {
         const char* file;
-        bool father_hangs;  // whether the bridge's father may hang past the strip
+        bool brace_kept_for_hanging;
     };
     for (const Case& t :
          {Case{"truss_brace_under_beam.brep", true}, Case{"truss_shallow_brace.brep", false}}) {
@@ -2711,11 +2714,109 @@ TEST(Slicing, ABeamOverAShallowBraceIsBuiltAsABridge) {
         for (std::size_t i = 0; i < result.layers.size(); ++i) {
             const mas::Layer& l = result.layers[i];
             layers += l.component == int(bridges[0]);
-            if (t.father_hangs && l.component == bridge.parent) continue;
             EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * cli.deflection_mm + 1e-6) << i;
         }
         EXPECT_GT(layers, 0);
         EXPECT_EQ(result.stats.colliding_layers, 0);
+        if (!t.brace_kept_for_hanging) continue;
+        // The brace (the bridge's branch's father, marching along X) kept for hanging, saying so.
+        const int brace = cli.axis.branches[std::size_t(bridge.branch)].parent;
+        EXPECT_TRUE(cli.axis.branches[std::size_t(brace)].direction.normalized().isApprox(
+            Vector3d::UnitX(), 1e-12));
+        int said = 0;
+        for (const std::string& n : d.notes)
+            said += n.rfind("branch " + std::to_string(brace) + " ", 0) == 0 &&
+                    n.find("a layer of it would hang") != std::string::npos;
+        EXPECT_EQ(said, 1);
+        EXPECT_EQ(std::count(d.kept_branches.begin(), d.kept_branches.end(), brace), 1);
+    }
+}
+
+// slice_clear_of_collisions' rounds for hanging layers, on splits made up for the test: three
+// components (branches 0, 1, 2), each layer a 10 mm square (its strip 0.4 mm^2 at 0.01 mm), the
+// unsupported areas and colliding layers set by which branches are kept.
+namespace {
+mas::Layer square_layer(int component, double unsupported) {
+    mas::Layer l;
+    l.component = component;
+    mas::Region2 r;
+    r.outer.points = {{0.0, 0.0}, {10.0, 0.0}, {10.0, 10.0}, {0.0, 10.0}};
+    l.regions = {r};
+    l.area_mm2 = 100.0;
+    l.unsupported_area_mm2 = unsupported;
+    return l;
+}
+
+// One component per branch not kept (the root's first), a layer each hanging as `hang` says for
+// that set of kept branches, `colliding` layers in the nozzle's way; `made` holds the kept
+// branches, so that the outcome tells which split was taken.
+mas::SplitSliced made_up(const std::vector<mas::KeptBranch>& keep,
+                         const std::map<std::set<int>, std::vector<double>>& hang,
+                         const std::map<std::set<int>, int>& colliding) {
+    std::set<int> kept;
+    for (const mas::KeptBranch& k : keep) kept.insert(k.branch);
+    mas::SplitSliced out;
+    const std::vector<double>& h = hang.at(kept);
+    for (int b = 0; b < 3; ++b)
+        if (!kept.count(b)) out.branches.push_back(b);
+    out.turned.assign(out.branches.size(), 0);
+    for (std::size_t c = 0; c < out.branches.size(); ++c)
+        out.sliced.layers.push_back(square_layer(int(c), h[c]));
+    const auto it = colliding.find(kept);
+    out.sliced.stats.colliding_layers = it == colliding.end() ? 0 : it->second;
+    out.made = kept;
+    return out;
+}
+}  // namespace
+
+TEST(SlicePart, AHangingComponentsBranchIsKeptWhereLessHangs) {
+    const double strip = 0.01;  // 0.4 mm^2 along a layer's 40 mm outline
+    // Branch 1's layer hangs furthest (4.6 past the strip); kept, the root's hangs 0.6 past it and
+    // branch 2's 1.6: taken. Then branch 2's, the worst: kept, the root's hangs 2.6: not taken.
+    const std::map<std::set<int>, std::vector<double>> hang = {
+        {{}, {0.0, 5.0, 2.0}}, {{1}, {1.0, 2.0}}, {{1, 2}, {3.0}}};
+    std::vector<std::set<int>> asked;
+    const auto split = [&](const std::vector<mas::KeptBranch>& keep, const std::vector<int>&,
+                           const mas::Progress&) {
+        std::set<int> k;
+        for (const mas::KeptBranch& b : keep) k.insert(b.branch);
+        asked.push_back(k);
+        return made_up(keep, hang, {});
+    };
+    const auto whole = [](const mas::Progress&) { return mas::SlicedPart{}; };
+    mas::SplitOutcome outcome;
+    const mas::SlicedPart s =
+        mas::slice_clear_of_collisions(split, whole, true, {}, &outcome, strip);
+    EXPECT_EQ(asked, (std::vector<std::set<int>>{{}, {1}, {1, 2}}));
+    EXPECT_EQ(std::any_cast<std::set<int>>(outcome.made), (std::set<int>{1}));
+    ASSERT_EQ(s.layers.size(), 2u);
+    EXPECT_EQ(s.layers[0].unsupported_area_mm2, 1.0);
+    EXPECT_EQ(s.layers[1].unsupported_area_mm2, 2.0);
+
+    // A split that hangs less but puts a layer in the nozzle's way is not taken, nor one with
+    // more layers past the strip.
+    asked.clear();
+    const auto colliding = [&](const std::vector<mas::KeptBranch>& keep, const std::vector<int>&,
+                               const mas::Progress&) {
+        return made_up(keep, hang, {{{1}, 1}});
+    };
+    mas::SplitOutcome refused;
+    mas::slice_clear_of_collisions(colliding, whole, true, {}, &refused, strip);
+    EXPECT_EQ(std::any_cast<std::set<int>>(refused.made), std::set<int>{});
+    const std::map<std::set<int>, std::vector<double>> more = {{{}, {0.0, 5.0, 0.0}},
+                                                               {{1}, {1.0, 2.0}}};
+    const auto spreading = [&](const std::vector<mas::KeptBranch>& keep, const std::vector<int>&,
+                               const mas::Progress&) { return made_up(keep, more, {}); };
+    mas::SplitOutcome spread;
+    mas::slice_clear_of_collisions(spreading, whole, true, {}, &spread, strip);
+    EXPECT_EQ(std::any_cast<std::set<int>>(spread.made), std::set<int>{});
+
+    // Without a strip (a mesh), or with avoid_collisions off, no such rounds.
+    for (const bool avoid : {true, false}) {
+        asked.clear();
+        mas::SplitOutcome none;
+        mas::slice_clear_of_collisions(split, whole, avoid, {}, &none, avoid ? 0.0 : strip);
+        EXPECT_EQ(asked, (std::vector<std::set<int>>{{}}));
     }
 }
 

@@ -231,10 +231,16 @@ struct SplitSliced {
 // turned square to its branch's line (Component::turned), every component so cut is cut square to
 // its branch's direction next; where only some of them hold such layers, squaring those alone is
 // tried too, and taken where it slices better (sliced_better). Else their branches are kept too,
-// each saying so. The part is split and sliced again, up to five times in all (the next 20 %);
-// with layers still in the way, `whole` slices it as one component (the last 10 %), kept when
-// fewer of its layers are, with a note. The decomposition's notes come first in the result's,
-// each "decomposition: ...".
+// each saying so. The part is split and sliced again, up to five times in all (the next 20 %).
+// Then, given `strip_mm` (a solid's deflection; a mesh, sliced as it is, gets 0 and none of this),
+// where a layer hangs past a strip that wide along its outlines (what sections of a mesh that far
+// off the surface can show on a part with nothing hanging), the branch of the component holding
+// the one hanging furthest past it is kept in its father, saying so, and that split taken where
+// no more of its layers are in the nozzle's way, no more hang past the strip and the worst hangs
+// past it by less (by more than a hundredth of a mm^2); up to three times, one branch at a time,
+// stopping at the first split not taken (the next 5 %). With layers still in the way, `whole`
+// slices it as one component (the last 5 %), kept when fewer of its layers are, with a note. The
+// decomposition's notes come first in the result's, each "decomposition: ...".
 struct SplitOutcome {
     bool took_whole = false;         // the part sliced as one component was kept
     std::vector<std::string> notes;  // the decomposition's notes, without the "decomposition: "
@@ -249,7 +255,7 @@ SlicedPart slice_clear_of_collisions(
                                     const std::vector<int>& square, const Progress& progress)>&
         split,
     const std::function<SlicedPart(const Progress& progress)>& whole, bool avoid_collisions,
-    const Progress& progress, SplitOutcome* outcome = nullptr);
+    const Progress& progress, SplitOutcome* outcome = nullptr, double strip_mm = 0.0);
 
 // A solid decomposed (decompose() with `decompose_params`, its kept branches among those kept;
 // the first fifth of each round) and sliced (slice_part), in the rounds of

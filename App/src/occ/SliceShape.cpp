@@ -337,7 +337,8 @@ SlicedPart slice_solid_part(const Shape& solid, const CentroidalAxis& axis,
     };
     SplitOutcome outcome;
     SlicedPart out =
-        slice_clear_of_collisions(split, whole, params.avoid_collisions, progress, &outcome);
+        slice_clear_of_collisions(split, whole, params.avoid_collisions, progress, &outcome,
+                                  effective_deflection(part, params.tessellation));
     decomposition = outcome.took_whole ? std::move(whole_one)
                                        : std::any_cast<Decomposition&&>(std::move(outcome.made));
     // The notes said with the result's (the split's, and why the part is sliced whole).

@@ -1094,18 +1094,33 @@ def slice_result(obj, computed=False):
     return result
 
 
+def hangs_past_strip(result, deflection):
+    """Whether some layer of a ``slice()`` result hangs past a strip ``deflection`` mm wide along
+    its outlines (what the mesh sections can show on a part with nothing hanging): where one does,
+    ``slice()`` decomposing a solid itself keeps its component's branch in its father if less
+    hangs so."""
+    for layer in result.layers:
+        length = sum((loop[i] - loop[i - 1]).Length for loop in layer.loops()
+                     for i in range(len(loop)))
+        if layer.unsupported_area > length * deflection:
+            return True
+    return False
+
+
 def keep_unreachable_branches(layers):
     """Where some layers of a Layers object slicing a Decomposition object would meet the plate or
-    what is deposited before them (its CollidingLayers), keeps their components' branches in
-    their fathers, as ``MultiAxisSlicer.slice()`` does when it decomposes a solid itself (first
-    cutting square to their directions the branches whose cuts were turned square to their
-    lines: all of them, or only the colliding ones where that slices better): the part is
-    decomposed (with the Decomposition's parameters) and sliced (with the Layers') again, up to
-    five rounds, and as one component if that leaves fewer such layers. The branches kept go to
-    the Decomposition's KeepBranches, those cut square to its SquareBranches;
+    what is deposited before them (its CollidingLayers), or hang past the deflection's strip
+    (``hangs_past_strip``), keeps their components' branches in their fathers, as
+    ``MultiAxisSlicer.slice()`` does when it decomposes a solid itself (first cutting square to
+    their directions the branches whose cuts were turned square to their lines: all of them, or
+    only the colliding ones where that slices better; a hanging one where less hangs so): the
+    part is decomposed (with the Decomposition's parameters) and sliced (with the Layers') again,
+    up to five rounds and three more for hanging layers, and as one component if that leaves
+    fewer layers in the nozzle's way. The branches kept go to the Decomposition's KeepBranches,
+    those cut square to its SquareBranches;
     both objects are recomputed from that result (remembered, not computed once more) and the
     Component objects follow. Returns the branches added to either, in increasing order: [] when
-    no layer collides or neither clears any, and nothing is changed then. Raises
+    no layer collides or hangs so, or none is kept, and nothing is changed then. Raises
     TypeError for a Layers object slicing a mesh (AvoidCollisions does this for a mesh) and as
     ``slice()`` (``Cancelled`` too). Call it outside a recompute."""
     decomposition_obj, _mesh, params, deflection = slice_inputs(layers)
@@ -1113,10 +1128,10 @@ def keep_unreachable_branches(layers):
         raise TypeError("keep_unreachable_branches(): '{}' slices a mesh, which its "
                         "AvoidCollisions keeps clear of collisions".format(layers.Label))
     result = slice_result(layers)
-    if not result.collisions:
+    source, values = decomposition_inputs(decomposition_obj)
+    if not result.collisions and not hangs_past_strip(result, mas.deflection(source, deflection)):
         return []
     decomposition = decomposition_result(decomposition_obj)
-    source, values = decomposition_inputs(decomposition_obj)
     names = ("face_angle", "concave_angle", "section_plane_fallback", "min_component_height",
              "max_tilt", "keep_branches", "square_branches", "turn_cuts")
     checked = _checked_params(**{k: values[k] for k in names})

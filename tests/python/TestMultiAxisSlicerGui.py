@@ -1389,6 +1389,28 @@ class TestSliceCommand(unittest.TestCase):
         self.assertGreater(layers.CollidingLayers, 0)
         self.assertIsNone(features.failure(toolpath))
 
+    def test_command_on_a_solid_builds_a_hanging_branch_in_its_father(self):
+        # The survey's braced frame 6 at seed 3: decomposed, its brace is built along X with the
+        # far post, whose side hangs past the deflection's strip in some layers, none in the
+        # nozzle's way. The command keeps the brace in the posts' layers, as slice() does.
+        import MultiAxisSlicer.features as features
+        import MultiAxisSlicerSurvey
+
+        self.part.Shape = MultiAxisSlicerSurvey.part("truss", 6, 3)[0]
+        self.doc.recompute()
+        layers, toolpath = self.run_command(self.part)
+        self.assertEqual(error_boxes(), [])
+        decomposition = layers.Decomposition
+        for obj in (decomposition, layers, toolpath):
+            self.assertIsNone(features.failure(obj))
+        self.assertEqual(list(decomposition.KeepBranches), [3])
+        self.assertEqual(layers.CollidingLayers, 0)
+        expected = mas.slice(self.part.Shape)
+        self.assertEqual(expected.decomposition.kept_branches, [3])
+        self.assertEqual(list(layers.LayerOrigins), [layer.origin for layer in expected.layers])
+        self.assertFalse(features.hangs_past_strip(features.slice_result(layers),
+                                                   mas.deflection(self.part.Shape)))
+
     def test_command_on_a_face_shows_the_engine_message(self):
         self.part.Shape = Part.makePlane(10, 10)
         self.doc.recompute()

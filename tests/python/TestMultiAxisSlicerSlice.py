@@ -1163,6 +1163,30 @@ class TestKeepingUnreachableBranches(SliceObjectTest):
             self.assertLess((got - expected).Length, deflection)
         self.assertEqual(layers.CollidingLayers, 0)
 
+    def test_a_hanging_brace_goes_into_the_posts_layers(self):
+        # The survey's braced frame 6 at seed 3 (the engine's truss_brace_under_beam.brep): the
+        # Decomposition builds the brace along X with the far post, whose side hangs past the
+        # deflection's strip in some layers, none in the nozzle's way. Kept in the posts' layers,
+        # as slice() keeps it, nothing hangs so.
+        part = self.doc.addObject("Part::Feature", "Truss")
+        part.Shape = survey.part("truss", 6, 3)[0]
+        self.doc.recompute()
+        decomposition, layers, toolpath = self.make(part)
+        deflection = mas.deflection(part.Shape)
+        self.assertEqual(layers.CollidingLayers, 0)
+        self.assertTrue(features.hangs_past_strip(features.slice_result(layers), deflection))
+        self.assertEqual(features.keep_unreachable_branches(layers), [3])
+        self.assertEqual(list(decomposition.KeepBranches), [3])
+        self.assertEqual(len([n for n in decomposition.Notes if n.startswith("branch 3 ") and
+                              "a layer of it would hang" in n]), 1)
+        for obj in (decomposition, layers, toolpath):
+            self.assertIsNone(features.failure(obj))
+        self.assertFalse(features.hangs_past_strip(features.slice_result(layers), deflection))
+        self.assertEqual(layers.CollidingLayers, 0)
+        expected = mas.slice(part.Shape)
+        self.assertEqual(list(layers.LayerOrigins), [v.origin for v in expected.layers])
+        self.assertEqual(features.keep_unreachable_branches(layers), [])
+
     def test_nothing_changes_where_the_nozzle_reaches_every_layer(self):
         decomposition, layers, _ = self.make()
         self.assertEqual(features.keep_unreachable_branches(layers), [])

@@ -2587,6 +2587,25 @@ TEST(Slicing, AChairsBackIsLaidInItsTopsDiagonalLayersNotTurnedAcrossTheTop) {
     EXPECT_EQ(result.stats.colliding_layers, 0);
 }
 
+// A braced frame of tests/data sliced as the command line slices it, at the defaults: the
+// decomposition taken, the slicing, and the indices of the bridges' components.
+struct SlicedFrame {
+    AsTheCliSlices cli;
+    mas::Decomposition d;
+    mas::SlicedPart result;
+    std::vector<std::size_t> bridges;
+};
+
+SlicedFrame sliced_frame(const char* file) {
+    SlicedFrame f;
+    const mas::SlicePartParams params;
+    f.cli = as_the_cli_slices(file, params);
+    f.result = mas::slice_solid_part(f.cli.model.shape, f.cli.axis, f.cli.dp, params, f.d);
+    for (std::size_t c = 0; c < f.d.components.size(); ++c)
+        if (f.d.components[c].rule == mas::Component::SplitRule::Bridge) f.bridges.push_back(c);
+    return f;
+}
+
 // Braced frames (MultiAxisSlicerSurvey.py's truss): two posts on a plate, a beam across their tops
 // and a round brace from low on one post up to the other's top. The brace joins the posts' tracks
 // under the beam, so no track merges over the gap (no bridge there). Cut along its own march, the
@@ -2613,13 +2632,8 @@ TEST(Slicing, ABeamOverBracedPostsIsBuiltAsABridge) {
          {Case{"truss_braced_beam.brep", Vector3d::UnitY(), Vector3d::UnitY(), true},
           Case{"truss_beam_off_brace.brep", Vector3d::UnitZ(), Vector3d::UnitX(), false}}) {
         SCOPED_TRACE(t.file);
-        mas::SlicePartParams params;
-        const auto cli = as_the_cli_slices(t.file, params);
-        mas::Decomposition d;
-        const auto result = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, params, d);
-        std::vector<std::size_t> bridges;
-        for (std::size_t c = 0; c < d.components.size(); ++c)
-            if (d.components[c].rule == mas::Component::SplitRule::Bridge) bridges.push_back(c);
+        const SlicedFrame f = sliced_frame(t.file);
+        const auto& [cli, d, result, bridges] = f;
         ASSERT_EQ(bridges.size(), 1u);
         const mas::Component& bridge = d.components[bridges[0]];
         // Its branch, listed as kept or not, marches as said; the bridge is built along the
@@ -2697,13 +2711,8 @@ TEST(Slicing, ABeamOverAShallowBraceIsBuiltAsABridge) {
     for (const Case& t :
          {Case{"truss_brace_under_beam.brep", true}, Case{"truss_shallow_brace.brep", false}}) {
         SCOPED_TRACE(t.file);
-        mas::SlicePartParams params;
-        const auto cli = as_the_cli_slices(t.file, params);
-        mas::Decomposition d;
-        const auto result = mas::slice_solid_part(cli.model.shape, cli.axis, cli.dp, params, d);
-        std::vector<std::size_t> bridges;
-        for (std::size_t c = 0; c < d.components.size(); ++c)
-            if (d.components[c].rule == mas::Component::SplitRule::Bridge) bridges.push_back(c);
+        const SlicedFrame f = sliced_frame(t.file);
+        const auto& [cli, d, result, bridges] = f;
         ASSERT_EQ(bridges.size(), 1u);
         const mas::Component& bridge = d.components[bridges[0]];
         // Its branch rises into the beam; built along (1, 0, 1) / sqrt 2, from the near post.

@@ -476,9 +476,9 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
     layers or as many, the worst hanging less, and none more in the nozzle's way (up to three
     times, one at a time; README, *Sequence*). It is sliced as one component when that leaves
     fewer layers in the nozzle's way (``avoid_collisions=False``: the first split is kept, those
-    layers listed in ``collisions``). The result's ``notes`` say which branches got no component and why; for a
-    solid its ``decomposition`` is the one sliced (its ``kept_branches`` the branches so kept,
-    its ``square_branches`` those so cut).
+    layers listed in ``collisions``). The result's ``notes`` say which branches got no component
+    and why; for a solid its ``decomposition`` is the one sliced (its ``kept_branches`` the
+    branches so kept, its ``square_branches`` those so cut).
 
     ``axis``: the part's ``CentroidalAxis``; None: computed here (with ``step``,
     ``distance_threshold``, ``eps``, ``break_angle``, ``base_z``, ``frame`` from ``params`` when

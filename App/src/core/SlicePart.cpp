@@ -93,6 +93,10 @@ SlicedPart slice_clear_of_collisions(
     const Progress& progress, SplitOutcome* outcome, double strip_mm) {
     const int rounds = avoid_collisions ? 5 : 1;
     std::vector<KeptBranch> keep;
+    const auto kept = [&](int b) {
+        return std::any_of(keep.begin(), keep.end(),
+                           [&](const KeptBranch& k) { return k.branch == b; });
+    };
     std::vector<int> square;
     std::vector<int> narrow;  // `square` with the colliding turned cuts only, tried besides
     SplitSliced parts;
@@ -155,8 +159,7 @@ SlicedPart slice_clear_of_collisions(
         // as it is: with nothing new to keep, the split stands.
         bool more = false;
         for (int b : branches)
-            if (std::none_of(keep.begin(), keep.end(),
-                             [&](const KeptBranch& k) { return k.branch == b; })) {
+            if (!kept(b)) {
                 keep.push_back({b,
                                 "built on its own, its layers would meet the plate or what is "
                                 "deposited before them"});
@@ -177,9 +180,7 @@ SlicedPart slice_clear_of_collisions(
         const int component = parts.sliced.layers[std::size_t(now.worst)].component;
         if (component <= 0) break;
         const int b = parts.branches[std::size_t(component)];
-        if (std::any_of(keep.begin(), keep.end(),
-                        [&](const KeptBranch& k) { return k.branch == b; }))
-            break;
+        if (kept(b)) break;
         std::vector<KeptBranch> more = keep;
         std::ostringstream why;
         why << "built on its own, a layer of it would hang " << now.excess

@@ -1834,6 +1834,15 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 };
                 return rests(from) && rests(to);
             };
+            // The first of the frame's directions square to D along which `solid` spans a gap at
+            // `under` (spans_gap), zero for none.
+            const auto gap_way = [&](const TopoDS_Shape& solid, const Vector3d& under,
+                                     const Vector3d& D) -> Vector3d {
+                for (int e = 0; e < 3; ++e)
+                    if (std::abs(D[e]) < 1e-9 && spans_gap(solid, under, Vector3d::Unit(e)))
+                        return Vector3d::Unit(e);
+                return Vector3d::Zero();
+            };
             // Bridges the axis marched across sideways, or into from over the gap (Decompose.hpp):
             // branch b, asked to stay in its father (slicing asks where the nozzle cannot reach
             // its own component's layers: they close a gap against what is deposited, or start
@@ -1873,16 +1882,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 const Vector3d middle = 0.5 * (pa + pb);
                 const Vector3d under =
                     middle + D * (*s - 0.5 * axis.params.step_mm - D.dot(middle));
-                const auto spans = [&](const Vector3d& way) {
-                    return spans_gap(work[std::size_t(h)].solid, under, way);
-                };
-                Vector3d g = Vector3d::Zero();
-                if (!along)
-                    g = spans(m) ? m : g;
-                else
-                    for (int e = 0; e < 3 && g.isZero(); ++e)
-                        if (std::abs(D[e]) < 1e-9 && spans(Vector3d::Unit(e)))
-                            g = Vector3d::Unit(e);
+                const TopoDS_Shape& hs = work[std::size_t(h)].solid;
+                const Vector3d g = !along ? (spans_gap(hs, under, m) ? m : Vector3d::Zero())
+                                          : gap_way(hs, under, D);
                 if (g.isZero()) continue;
                 // The piece: b's node past the plane nearest the gap's middle.
                 int past = -1;
@@ -1934,14 +1936,9 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                 progress.check();
                 const double s = D.dot(w.c.base_origin);
                 const double base_area = area_of(occ::occt(w.c.base_face));
-                // The first of the frame's directions square to D along which `around` holds
-                // material on both sides of `under`, zero for none.
+                // gap_way() where `around` holds nothing at `under` itself.
                 const auto gap_at = [&](const TopoDS_Shape& around, const Vector3d& under) {
-                    if (contains(around, under)) return Vector3d::Zero().eval();
-                    for (int e = 0; e < 3; ++e)
-                        if (std::abs(D[e]) < 1e-9 && spans_gap(around, under, Vector3d::Unit(e)))
-                            return Vector3d::Unit(e).eval();
-                    return Vector3d::Zero().eval();
+                    return contains(around, under) ? Vector3d::Zero() : gap_way(around, under, D);
                 };
                 std::optional<Resting> rest;
                 Vector3d g = Vector3d::Zero();
@@ -1953,7 +1950,7 @@ Decomposition decompose(const Shape& input, const CentroidalAxis& world_axis,
                     if (!rest || !(rest->hanging > 0.5 * base_area)) g = Vector3d::Zero();
                 }
                 if (g.isZero() && D.isApprox(Vector3d::UnitZ(), 1e-9)) {
-                    rest = resting(w.solid, father, D, s);
+                    if (!rest) rest = resting(w.solid, father, D, s);
                     if (!rest) continue;
                     // What overhangs built along D: its area and centroid.
                     double area = 0.0;

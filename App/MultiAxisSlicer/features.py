@@ -1107,6 +1107,16 @@ def hangs_past_strip(result, deflection):
     return False
 
 
+def has_unreachable_or_hanging(layers):
+    """Whether a Layers object slicing a Decomposition object has layers in the nozzle's way or
+    hanging past the deflection's strip (``hangs_past_strip``): what keep_unreachable_branches()
+    acts on."""
+    decomposition_obj, _mesh, _params, deflection = slice_inputs(layers)
+    result = slice_result(layers)
+    return bool(result.collisions) or hangs_past_strip(
+        result, mas.deflection(decomposition_inputs(decomposition_obj)[0], deflection))
+
+
 def keep_unreachable_branches(layers):
     """Where some layers of a Layers object slicing a Decomposition object would meet the plate or
     what is deposited before them (its CollidingLayers), or hang past the deflection's strip
@@ -1127,11 +1137,10 @@ def keep_unreachable_branches(layers):
     if decomposition_obj is None:
         raise TypeError("keep_unreachable_branches(): '{}' slices a mesh, which its "
                         "AvoidCollisions keeps clear of collisions".format(layers.Label))
-    result = slice_result(layers)
-    source, values = decomposition_inputs(decomposition_obj)
-    if not result.collisions and not hangs_past_strip(result, mas.deflection(source, deflection)):
+    if not has_unreachable_or_hanging(layers):
         return []
     decomposition = decomposition_result(decomposition_obj)
+    source, values = decomposition_inputs(decomposition_obj)
     names = ("face_angle", "concave_angle", "section_plane_fallback", "min_component_height",
              "max_tilt", "keep_branches", "square_branches", "turn_cuts")
     checked = _checked_params(**{k: values[k] for k in names})

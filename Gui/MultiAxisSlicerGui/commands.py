@@ -404,10 +404,8 @@ class SliceCommand(_PartCommand):
             sliced, part = decomposition, features.decomposition_inputs(decomposition)[0]
         layers, toolpath = features.make_slice(sliced, doc=doc)
         doc.recompute([layers])  # one stage at a time, for the feedback
-        if decomposed_here and features.failure(layers) is None and (
-                layers.CollidingLayers or features.hangs_past_strip(
-                    features.slice_result(layers),
-                    mas.deflection(part, features.slice_inputs(layers)[3]))):
+        if (decomposed_here and features.failure(layers) is None and
+                features.has_unreachable_or_hanging(layers)):
             # As slice() does: the branches whose own layers the nozzle cannot reach are built
             # in their fathers (the decomposition's KeepBranches), or first cut square to their
             # directions (its SquareBranches), and those whose layers hang where less would

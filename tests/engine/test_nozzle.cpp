@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -799,6 +800,68 @@ TEST(Nozzle, ALeanIsRefusedOnlyWhereTheNozzleItselfComesNear) {
     EXPECT_EQ(t.collisions[0].layer, 1);
     EXPECT_EQ(t.collisions[0].obstacle_layer, -1);
     EXPECT_EQ(t.tool_axes[1], n);
+}
+
+// Where every lean up is refused, the nozzle leans round n as well: a sideways layer (+X, deposited
+// at (5, 5, 20)) whose coaxial nozzle's body reaches under the plate, and a block 1 mm across
+// deposited before it, 20 mm out, 12 mm to its +Y side and 6 mm up, beside the cone of every
+// nozzle leaned up off the plate (as a crank's last leg, built back past its riser, has the
+// riser there). Of the leans tried, 5, 10, ... degrees, each up, then half way between up and -Y
+// or +Y, then -Y or +Y (none below the horizontal), the first that clears the plate and the block
+// is taken: 15 degrees half way between up and -Y, away from the block. Without the block it
+// leans up, the least lean, as before.
+TEST(Nozzle, ALayerWhoseLeanUpIsBlockedLeansRoundTheNormal) {
+    const mas::NozzleParams p;
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), y = Vector3d::UnitY();
+    const Vector3d at(5, 5, 20), c = at + Vector3d(20, 12, 6);
+    Built b;
+    add_layer(b, 0, up,
+              {{c.x() - 0.5, c.y() - 0.5, c.z() + 0.5},
+               {c.x() + 0.5, c.y() - 0.5, c.z() + 0.5},
+               {c.x() + 0.5, c.y() + 0.5, c.z() + 0.5},
+               {c.x() - 0.5, c.y() + 0.5, c.z() + 0.5}},
+              1.0, {{c.x(), c.y(), c.z() + 0.5}});
+    add_layer(b, 1, n, {{5, 0, 15}, {5, 10, 15}, {5, 10, 25}, {5, 0, 25}}, 1.0, {at});
+    // The block's least clearance from the nozzle along axis `a`, on a 0.1 mm grid.
+    auto least = [&](const Vector3d& a) {
+        double best = INFINITY;
+        for (double dx = -0.5; dx <= 0.5 + 1e-9; dx += 0.1)
+            for (double dy = -0.5; dy <= 0.5 + 1e-9; dy += 0.1)
+                for (double dz = -0.5; dz <= 0.5 + 1e-9; dz += 0.1)
+                    best = std::min(
+                        best, mas::test::nozzle_clearance(p, at, a, c + Vector3d(dx, dy, dz)));
+        return best;
+    };
+    // The expectation, from the leans in the order tried.
+    EXPECT_LT(lowest_above(p, at, n, up), p.margin_mm);
+    std::optional<Vector3d> expected;
+    for (double theta = 5.0; theta <= 30.0 && !expected; theta += 5.0) {
+        EXPECT_TRUE(lowest_above(p, at, leaned(n, up, theta), up) < p.margin_mm ||
+                    least(leaned(n, up, theta)) < 2.0 * p.margin_mm)
+            << theta;  // no lean up clears both
+        const std::vector<Vector3d> ways = {up, up - y, up + y, -y, y};
+        for (const Vector3d& d : ways) {
+            const Vector3d a = leaned(n, d, theta);
+            if (lowest_above(p, at, a, up) >= p.margin_mm && least(a) > 2.1 * p.margin_mm) {
+                expected = a;
+                break;
+            }
+        }
+    }
+    ASSERT_TRUE(expected);
+    ASSERT_NEAR((*expected - leaned(n, up - y, 15.0)).norm(), 0.0, 1e-12);
+    const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0}, {0, 1}), p);
+    EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
+    EXPECT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.leaned_layers, 1);
+    EXPECT_NEAR((s.tool_axes[1] - *expected).norm(), 0.0, 1e-12);
+    // Without the block: up, by the least lean that clears the plate (10 degrees).
+    b.layers.erase(b.layers.begin());
+    b.paths.erase(b.paths.begin());
+    b.layers[0].component = 0;
+    EXPECT_GE(lowest_above(p, at, leaned(n, up, 10.0), up), p.margin_mm);
+    const mas::BuildSequence t = mas::plan_build_sequence(input(b, {-1}, {0}), p);
+    EXPECT_NEAR((t.tool_axes[0] - leaned(n, up, 10.0)).norm(), 0.0, 1e-12);
 }
 
 // The order leaves a layer that meets the plate the lean that clears it: the slab and the sideways

@@ -51,9 +51,12 @@
 //   order. The layer stays as it is, and its paths; only the tool axis a leans from the layer's
 //   normal n by an angle theta, one axis for the whole layer, where that clears what the coaxial
 //   nozzle met. Tried for each colliding layer once the order is set: theta = 5, 10, ... degrees up
-//   to max_lean_deg (and max_lean_deg itself), each towards the plate's normal and away from the
-//   reported obstacle (across n, from the obstacle towards the deposit point); the first that
-//   clears is taken: the least lean, towards the plate's normal before away from the obstacle; a
+//   to max_lean_deg (and max_lean_deg itself), each towards the plate's normal, away from the
+//   reported obstacle (across n, from the obstacle towards the deposit point), then the other ways
+//   round n every 45 degrees from the first of those, nearest it first (a crank's last leg built
+//   back along -X past its riser: leaned up off the plate, the cone passes the riser's top, and
+//   it leans half way between up and away from the riser); the first that clears is taken: the
+//   least lean, towards the plate's normal before away from the obstacle before the others; a
 //   lean turning the axis further from the plate's normal than the layer's normal is, past the
 //   horizontal, is not taken (a machine reaching the normal might not reach it). A lean clears when
 //   along every deposit path the nozzle keeps margin_mm from the plate (exact) and from every layer

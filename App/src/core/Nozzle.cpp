@@ -822,19 +822,33 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         if (theta >= params.max_lean_deg) break;
     }
     // The axes x's nozzle may lean to, in the order tried: by each lean from its layer's normal n,
-    // towards the plate's normal, then across n towards `away` (from an obstacle to the nozzle);
-    // none further from the plate's normal than n is, past the horizontal: the machine may not
-    // reach it where it reached the normal.
-    auto lean_axes = [&](std::size_t x, const std::optional<Vector3d>& away) {
+    // towards the plate's normal, then across n towards `away` (from an obstacle to the nozzle),
+    // then, `all_round`, the other ways round n every 45 degrees from the first of those, nearest
+    // it first (on `away`'s side first among equals); none further from the plate's normal than n
+    // is, past the horizontal: the machine may not reach it where it reached the normal.
+    auto lean_axes = [&](std::size_t x, const std::optional<Vector3d>& away, bool all_round) {
         const Vector3d n = (*in.toolpaths)[x].tool_axis.normalized();
         std::vector<Vector3d> towards;  // across n
         std::vector<Vector3d> from = {up};
         if (away) from.push_back(*away);
+        auto add = [&](const Vector3d& d) {
+            for (const Vector3d& t : towards)
+                if (t.dot(d) > 1.0 - 1e-9) return;
+            towards.push_back(d);
+        };
         for (const Vector3d& v : from) {
             const Vector3d across = v - n.dot(v) * n;
-            if (across.norm() < 1e-9) continue;
-            const Vector3d d = across.normalized();
-            if (towards.empty() || towards.front().dot(d) < 1.0 - 1e-9) towards.push_back(d);
+            if (across.norm() >= 1e-9) add(across.normalized());
+        }
+        if (all_round && !towards.empty()) {
+            const Vector3d d0 = towards.front();
+            Vector3d side = n.cross(d0).normalized();
+            if (towards.size() > 1 && towards[1].dot(side) < 0.0) side = -side;
+            for (int k = 1; k <= 4; ++k) {
+                const double phi = k * kPi / 4.0;
+                add((std::cos(phi) * d0 + std::sin(phi) * side).normalized());
+                if (k < 4) add((std::cos(phi) * d0 - std::sin(phi) * side).normalized());
+            }
         }
         const double steepest = std::max(std::acos(std::clamp(n.dot(up), -1.0, 1.0)), kPi / 2.0);
         std::vector<Vector3d> axes;
@@ -967,7 +981,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         for (std::size_t x = 0; x < count && !leans.empty(); ++x) {
             if (!worst[x]) continue;
             leaning(double(x) / double(count));
-            for (const Vector3d& axis : lean_axes(x, worst[x]->at - worst[x]->obstacle)) {
+            for (const Vector3d& axis : lean_axes(x, worst[x]->at - worst[x]->obstacle, true)) {
                 if (!clears(x, axis)) continue;
                 out.tool_axes[x] = axis;
                 worst[x].reset();
@@ -995,7 +1009,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
         for (std::size_t x = 0; x < count; ++x) {
             if (blocks[x].empty()) continue;
             std::vector<Sweep> leaned;  // x's nozzle at each lean that keeps off the plate
-            for (const Vector3d& axis : lean_axes(x, std::nullopt)) {
+            for (const Vector3d& axis : lean_axes(x, std::nullopt, false)) {
                 Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
                 if (!params.check_plate || !plate_meets(sweep, x))
                     leaned.push_back(std::move(sweep));
@@ -1031,7 +1045,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             if (!plate[x]) continue;
             const int cx = layers[x].component;
             std::optional<std::vector<int>> fewest;
-            for (const Vector3d& axis : lean_axes(x, std::nullopt)) {
+            for (const Vector3d& axis : lean_axes(x, std::nullopt, false)) {
                 const Sweep sweep((*in.toolpaths)[x], layers[x], reach, axis, m);
                 if (params.check_plate && plate_meets(sweep, x)) continue;
                 const Eigen::AlignedBox3d reachable = reach_box(sweep, shape);

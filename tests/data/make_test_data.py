@@ -192,3 +192,12 @@ truss.exportBrep(os.path.join(here, "truss_brace_under_beam.brep"))
 # along Z, hung 138 mm^2 in its first layer, and slicing kept it in the posts' layers
 truss, _ = MultiAxisSlicerSurvey.part("truss", 5, 323)
 truss.exportBrep(os.path.join(here, "truss_shallow_brace.brep"))
+
+# crank_returning_leg.brep  the survey's crank 3 (seed 4): a riser 6.56 square on a plate 26.24
+# square and 3 thick, then legs 6.56 square at z 26.47 to 33.03 along +X (to x = 27.17), +Y (to
+# y = 19.92) and -X back beside the first, its end (x = -4.79) past the riser, 10.08 from it. The
+# axis marched the first leg and the last one's section beside it along +X from the riser's face,
+# the last leg's end behind that face stayed in the riser, every split was refused as leaving the
+# riser in pieces, and the legs, in the riser's Z layers, hung 410 mm^2 in one
+crank, _ = MultiAxisSlicerSurvey.part("crank", 3, 4)
+crank.exportBrep(os.path.join(here, "crank_returning_leg.brep"))

@@ -2741,6 +2741,47 @@ TEST(Slicing, ABeamOverAShallowBraceIsBuiltAsABridge) {
     }
 }
 
+// A crank whose three legs run round a gap, the last back beside the first past the riser's face
+// (tests/data/crank_returning_leg.brep, the survey's crank 3 at seed 4: a riser 6.56 square, legs
+// at z 26.47 to 33.03 along +X to x = 27.17, +Y to y = 19.92 and -X back to x = -4.79, 10.08 mm
+// beside the riser). The axis turns from the riser into the first leg, from it into the second,
+// and from that into the last, which it marches to its end past the riser; each leg is a
+// component built along its own march, nothing hangs past the deflection's strip, and nothing is
+// in the nozzle's way. (The march along the first leg took the last one's section beside it on its
+// first plane too, the last leg's end behind the riser's face stayed in the riser, every split
+// left the riser in pieces, and the legs hung 410 mm^2 in one of the riser's Z layers.)
+TEST(Slicing, ACranksLegsRunningBackPastItsRiserAreEachBuiltAlongTheirOwnMarch) {
+    const SlicedFrame f = sliced_frame("crank_returning_leg.brep");
+    const auto& [cli, d, result, bridges] = f;
+    const mas::CentroidalAxis& axis = cli.axis;
+    // The chain of marches: Z (the root), +X, +Y, -X, each the only child of the one before.
+    const std::vector<Vector3d> ways = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
+                                        -Vector3d::UnitX()};
+    ASSERT_EQ(axis.branches.size(), ways.size());
+    for (std::size_t b = 0; b < ways.size(); ++b) {
+        EXPECT_TRUE(axis.branches[b].direction.isApprox(ways[b], 1e-12)) << b;
+        EXPECT_EQ(axis.branches[b].parent, int(b) - 1) << b;
+    }
+    // The last leg's march reaches its end, 4.79 past the riser's axis, within a step.
+    const Eigen::Vector3d end = axis.nodes[std::size_t(axis.branches[3].nodes.back())].position;
+    EXPECT_LT(end.x(), -3.28);
+    EXPECT_LT(end.x() - -4.79, axis.params.step_mm);
+    EXPECT_NEAR(end.y(), 0.5 * (13.36 + 19.92), 0.005);  // on the leg's line (figures to 0.01)
+    // A component a march, each built along its march.
+    ASSERT_EQ(d.components.size(), ways.size());
+    EXPECT_TRUE(d.kept_branches.empty());
+    for (const mas::Component& c : d.components) {
+        ASSERT_GE(c.branch, 0);
+        EXPECT_TRUE(c.build_direction.isApprox(ways[std::size_t(c.branch)], 1e-12)) << c.branch;
+    }
+    for (std::size_t i = 0; i < result.layers.size(); ++i) {
+        const mas::Layer& l = result.layers[i];
+        EXPECT_LE(l.unsupported_area_mm2, perimeter(l.regions) * cli.deflection_mm + 1e-6) << i;
+    }
+    EXPECT_EQ(result.stats.colliding_layers, 0);
+    EXPECT_TRUE(bridges.empty());
+}
+
 // slice_clear_of_collisions' rounds for hanging layers, on splits made up for the test: three
 // components (branches 0, 1, 2), each layer a 10 mm square (its strip 0.4 mm^2 at 0.01 mm), the
 // unsupported areas and colliding layers set by which branches are kept.

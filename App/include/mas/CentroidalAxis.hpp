@@ -62,7 +62,15 @@
 //   takes all of U past it that the stick-out is part of. (Four round arms rising 17.1 degrees
 //   off a hub reached out far on the plane over their first slivers, 1.1 mm past its side in L;
 //   cut past the slivers, the wedge of each root under the cut hung in the hub's layers, 10
-//   mm^2 in one.)
+//   mm^2 in one.) The new march's first section is what of U meets its share there, less the
+//   pieces of the share within a step past T that U joins to L only further on (no piece of U
+//   up to that step past T meets both the piece and L) while another piece is joined to L:
+//   such a piece is no part of the march leaving L. (A crank's three legs round a gap, the last
+//   running back beside the first past the riser's face: the march along the first leg took the
+//   last one's section too and marched it towards its root, its end behind T stayed in the
+//   riser, and the legs hung 410 to 654 mm^2 in the riser's layers. Left out, the march turns
+//   into the second leg where it reaches it, and that one into the last, marched to its end. A
+//   blade leaving a round hub aslant is joined to the hub behind T, and keeps its march.)
 // - A stick-out that is no turn by its centre (centred near L, or a bridge between lower
 //   regions) yet reaches out past L by more than `distance_threshold` and half L's size wraps
 //   round L or spans past the regions it joins: a hub lying across the neck it stands on makes

@@ -2185,12 +2185,38 @@ private:
                 // The new march keeps the regions of its first section that meet its share
                 // swept from the lower plane to one step above the upper one: a strip one plane
                 // thick could miss a region that starts a hair above the plane on a faceted
-                // surface.
-                for (auto& r : share) {
-                    child.constraints.push_back(
-                        Slab{n, lower_offset, upper_offset + p_.step_mm, r, {}});
-                    far.push_back(std::move(r));
+                // surface. Not where the share, within a step past T, parts into pieces some of
+                // which U joins to L only further on (U up to the band's end holds no piece
+                // meeting both): those are no part of the march leaving L. (A crank's three legs
+                // round a gap, the last running back past the riser's face beside it: the march
+                // along the first leg took the last one's section on its first plane too and
+                // marched it towards its root, its end behind the riser's face left in the riser,
+                // and the legs stayed in the riser's layers, 654 mm^2 hanging in one. Left out,
+                // the march turns into the second leg where it reaches it, and that one into the
+                // last. A piece U joins to L behind T, a blade leaving a round hub aslant, stays:
+                // judged on its distance from L instead, the blade lost its march.)
+                Regions2 first_share = share;
+                if (!at_fin && !limb_side && !sliver) {
+                    const double band_end = t_max + p_.eps_mm + 1.01 * p_.step_mm;
+                    Regions2 band = split_at(share, frame, side, band_end).second;
+                    if (band.size() > 1) {
+                        const Regions2 from = around ? lower : Regions2{*left};
+                        Regions2 joined;  // the pieces of U up to the band's end meeting L
+                        for (auto& r : split_at({upper}, frame, side, band_end).second)
+                            if (area(intersection({r}, from)) > p_.min_region_area_mm2)
+                                joined.push_back(std::move(r));
+                        Regions2 apart;
+                        for (auto& piece : band)
+                            if (area(intersection({piece}, joined)) <= p_.min_region_area_mm2)
+                                apart.push_back(std::move(piece));
+                        if (!apart.empty() && apart.size() < band.size())
+                            first_share = difference(share, apart);
+                    }
                 }
+                for (auto& r : first_share)
+                    child.constraints.push_back(
+                        Slab{n, lower_offset, upper_offset + p_.step_mm, std::move(r), {}});
+                for (auto& r : share) far.push_back(std::move(r));
                 if (side == sides.front()) front_child = children.size();
                 children.push_back(std::move(child));
             }

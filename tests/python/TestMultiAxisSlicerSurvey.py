@@ -266,9 +266,9 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
 
     def test_a_crank_not_running_back_beside_itself_needs_no_support(self):
         # Each leg is cut off the last at its face and built along its own way. (Running back
-        # beside its first leg, a crank's legs lie in one plane round a gap, and the march along
-        # its first leg meets the last one's free end: README, 6 of 15 such cranks over seeds 1
-        # to 6 and 39 hang 150 to 654 mm^2 in a layer.)
+        # beside its first leg, a crank's legs lie in one plane round a gap: README, 1 of 12 such
+        # cranks over seeds 1 to 6 and 39 hangs 231 mm^2 in a layer, its last leg's first layer
+        # finding no lean clear of the plate and what is deposited.)
         claimed = [r for r in self.parts("crank") if not r["returns"]]
         self.assertGreater(len(claimed), 0)
         for r in claimed:

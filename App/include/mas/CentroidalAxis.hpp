@@ -68,7 +68,7 @@
 //   such a piece is no part of the march leaving L. (A crank's three legs round a gap, the last
 //   running back beside the first past the riser's face: the march along the first leg took the
 //   last one's section too and marched it towards its root, its end behind T stayed in the
-//   riser, and the legs hung 410 to 654 mm^2 in the riser's layers. Left out, the march turns
+//   riser, and the legs hung 410 to 693 mm^2 in the riser's layers. Left out, the march turns
 //   into the second leg where it reaches it, and that one into the last, marched to its end. A
 //   blade leaving a round hub aslant is joined to the hub behind T, and keeps its march.)
 // - A stick-out that is no turn by its centre (centred near L, or a bridge between lower

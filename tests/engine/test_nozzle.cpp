@@ -623,6 +623,19 @@ double lowest_above(const mas::NozzleParams& n, const Vector3d& p, const Vector3
     return lowest;
 }
 
+// The least clearance from the nozzle standing at `p` along unit `axis` of the cube `half` either
+// side of `centre`, sampled on a grid of `step`.
+double least_clearance_of_cube(const mas::NozzleParams& n, const Vector3d& p, const Vector3d& axis,
+                               const Vector3d& centre, double half, double step) {
+    double best = INFINITY;
+    for (double dx = -half; dx <= half + 1e-9; dx += step)
+        for (double dy = -half; dy <= half + 1e-9; dy += step)
+            for (double dz = -half; dz <= half + 1e-9; dz += step)
+                best = std::min(
+                    best, mas::test::nozzle_clearance(n, p, axis, centre + Vector3d(dx, dy, dz)));
+    return best;
+}
+
 // Leaned by `degrees` from unit `n` towards `towards` (across n).
 Vector3d leaned(const Vector3d& n, const Vector3d& towards, double degrees) {
     const double t = degrees * kPi / 180.0;
@@ -770,13 +783,7 @@ TEST(Nozzle, ALeanIsRefusedOnlyWhereTheNozzleItselfComesNear) {
     };
     // The least clearance of the block's prism from the nozzle at `a`, on a 0.05 mm grid.
     auto least = [&](const Vector3d& c, const Vector3d& a) {
-        double best = INFINITY;
-        for (double dx = -0.25; dx <= 0.25 + 1e-9; dx += 0.05)
-            for (double dy = -0.25; dy <= 0.25 + 1e-9; dy += 0.05)
-                for (double dz = -0.25; dz <= 0.25 + 1e-9; dz += 0.05)
-                    best = std::min(
-                        best, mas::test::nozzle_clearance(p, at, a, c + Vector3d(dx, dy, dz)));
-        return best;
+        return least_clearance_of_cube(p, at, a, c, 0.25, 0.05);
     };
     const double tip = 5.0, grown_tip = tip + 2.0 * p.margin_mm / std::cos(kPi / 6.0);
     const Vector3d far = at + 7.0 * axis + 8.7 * off;
@@ -823,15 +830,7 @@ TEST(Nozzle, ALayerWhoseLeanUpIsBlockedLeansRoundTheNormal) {
               1.0, {{c.x(), c.y(), c.z() + 0.5}});
     add_layer(b, 1, n, {{5, 0, 15}, {5, 10, 15}, {5, 10, 25}, {5, 0, 25}}, 1.0, {at});
     // The block's least clearance from the nozzle along axis `a`, on a 0.1 mm grid.
-    auto least = [&](const Vector3d& a) {
-        double best = INFINITY;
-        for (double dx = -0.5; dx <= 0.5 + 1e-9; dx += 0.1)
-            for (double dy = -0.5; dy <= 0.5 + 1e-9; dy += 0.1)
-                for (double dz = -0.5; dz <= 0.5 + 1e-9; dz += 0.1)
-                    best = std::min(
-                        best, mas::test::nozzle_clearance(p, at, a, c + Vector3d(dx, dy, dz)));
-        return best;
-    };
+    auto least = [&](const Vector3d& a) { return least_clearance_of_cube(p, at, a, c, 0.5, 0.1); };
     // The expectation, from the leans in the order tried.
     EXPECT_LT(lowest_above(p, at, n, up), p.margin_mm);
     std::optional<Vector3d> expected;

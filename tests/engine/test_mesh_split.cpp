@@ -487,7 +487,7 @@ TEST(DecomposeMesh, APipeBendIsCutAtItsBendsHalfwayPlaneAsASolidIs) {
     EXPECT_EQ(sliced.components.size(), 2u);
     EXPECT_EQ(sliced.stats.colliding_layers, 0);
     for (const auto& layer : sliced.layers)
-        EXPECT_LE(layer.unsupported_area_mm2, mas::test::perimeter(layer.regions) * 0.02 + 1e-6);
+        EXPECT_LE(layer.unsupported_area_mm2, mas::perimeter(layer.regions) * 0.02 + 1e-6);
 }
 
 TEST(DecomposeMesh, WhatCannotBeBuiltOnItsOwnStaysWithANote) {
@@ -689,7 +689,6 @@ TEST(DecomposeMesh, ATurnedBladesLayersStaySquareToItsLineToItsTip) {
     EXPECT_EQ(sliced.components.size(), 6u);
     for (std::size_t i = 0; i < sliced.layers.size(); ++i) {
         const auto& l = sliced.layers[i];
-        EXPECT_LE(l.unsupported_area_mm2, mas::test::perimeter(l.regions) * deflection)
-            << "layer " << i;
+        EXPECT_LE(l.unsupported_area_mm2, mas::perimeter(l.regions) * deflection) << "layer " << i;
     }
 }

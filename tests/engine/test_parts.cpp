@@ -323,17 +323,4 @@ TriangleMesh data_mesh(const std::string& name, double* deflection) {
     return tessellate(model.shape, tp);
 }
 
-double perimeter(const Regions2& regions) {
-    double p = 0.0;
-    for (const auto& r : regions) {
-        auto loop = [&](const Polygon2& poly) {
-            for (std::size_t i = 0, j = poly.points.size() - 1; i < poly.points.size(); j = i++)
-                p += (poly.points[i] - poly.points[j]).norm();
-        };
-        loop(r.outer);
-        for (const auto& h : r.holes) loop(h);
-    }
-    return p;
-}
-
 }  // namespace mas::test

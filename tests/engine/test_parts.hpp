@@ -132,8 +132,4 @@ ValveBody survey_valve_body_44_2();
 // `deflection` when given.
 TriangleMesh data_mesh(const std::string& name, double* deflection = nullptr);
 
-// The length of the regions' outlines, holes included, mm: times the deflection, the strip along
-// them that a layer's unsupported area may show on a part with none.
-double perimeter(const Regions2& regions);
-
 }  // namespace mas::test

@@ -40,6 +40,22 @@ TEST(Polygon, RegionCentroidAccountsForHoles) {
     EXPECT_TRUE(mas::contains(r, {2, 5}));
 }
 
+TEST(Polygon, PerimeterCountsTheClosingEdgeAndEveryHole) {
+    // A 3-4-5 triangle: the closing edge is the hypotenuse. Orientation does not matter.
+    mas::Polygon2 t{{{0, 0}, {4, 0}, {0, 3}}};
+    EXPECT_DOUBLE_EQ(mas::perimeter(t), 12.0);
+    std::reverse(t.points.begin(), t.points.end());
+    EXPECT_DOUBLE_EQ(mas::perimeter(t), 12.0);
+    EXPECT_EQ(mas::perimeter(mas::Polygon2{}), 0.0);
+    EXPECT_EQ(mas::perimeter(mas::Polygon2{{{1, 2}}}), 0.0);
+    // A 10 x 10 square with two 2 x 1 holes (6 each), and a second region, the triangle.
+    mas::Region2 r{rect(0, 0, 10, 10), {rect(1, 1, 3, 2), rect(5, 5, 7, 6)}};
+    for (auto& h : r.holes) std::reverse(h.points.begin(), h.points.end());
+    EXPECT_DOUBLE_EQ(mas::perimeter(r), 40.0 + 6.0 + 6.0);
+    EXPECT_DOUBLE_EQ(mas::perimeter(mas::Regions2{r, mas::Region2{t, {}}}), 52.0 + 12.0);
+    EXPECT_EQ(mas::perimeter(mas::Regions2{}), 0.0);
+}
+
 TEST(Polygon, InteriorPointLiesInTheMaterialNotInTheBore) {
     // A square ring [0,10]^2 less [2,8]^2: the centroid (5, 5) is in the bore; the widest span of
     // the line y = 5 is either wall, 2 wide, and the first one found is kept: x = 1.

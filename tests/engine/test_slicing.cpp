@@ -230,7 +230,7 @@ double corner_residue(const mas::Regions2& regions, double w) {
     return total;
 }
 
-using mas::test::perimeter;
+using mas::perimeter;
 
 // What every sliced part must satisfy (the invariants); `name` labels failures. A part
 // with overhangs of its own (the saddle of a tee's junction in Z layers) passes

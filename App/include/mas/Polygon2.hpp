@@ -36,6 +36,12 @@ Eigen::Vector2d centroid(const Region2& region);
 Eigen::Vector2d centroid(const Regions2& regions);
 Eigen::AlignedBox2d bounds(const Region2& region);
 
+// The length of a closed polygon's outline, its closing edge included (mm; 0 below two points);
+// of a region's loops, its holes' included; of every loop of a set of regions.
+double perimeter(const Polygon2& polygon);
+double perimeter(const Region2& region);
+double perimeter(const Regions2& regions);
+
 // True if the point lies inside the region (inside the outer loop and outside every hole).
 bool contains(const Region2& region, const Eigen::Vector2d& point);
 

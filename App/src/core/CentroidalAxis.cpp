@@ -182,13 +182,6 @@ Vector3d closest_axis(const Vector3d& v) {
     return axis_vector(a, v[a] >= 0.0 ? 1.0 : -1.0);
 }
 
-double perimeter(const Polygon2& p) {
-    double len = 0.0;
-    for (std::size_t i = 0, j = p.points.size() - 1; i < p.points.size(); j = i++)
-        len += (p.points[i] - p.points[j]).norm();
-    return len;
-}
-
 // The four directions of +-X, +-Y, +-Z perpendicular to the march n, `first` first.
 std::vector<Vector3d> sides_from(const Vector3d& first, const Vector3d& n) {
     std::vector<Vector3d> out{first};
@@ -409,15 +402,8 @@ Regions2 slab_cut(const Slab& s, const Vector3d& n, double c, const PlaneFrame& 
     return {oriented(std::move(r))};
 }
 
-// A region's perimeter, holes included, mm.
-double outline_of(const Region2& r) {
-    double length = perimeter(r.outer);
-    for (const auto& h : r.holes) length += perimeter(h);
-    return length;
-}
-
 // A region's width on average, mm: twice its area over its outline (a long strip's width).
-double mean_width(const Region2& r) { return 2.0 * area(r) / outline_of(r); }
+double mean_width(const Region2& r) { return 2.0 * area(r) / perimeter(r); }
 
 // The regions larger than min_area, largest first (ties in their given order).
 Regions2 keep_larger(Regions2 regions, double min_area) {
@@ -771,7 +757,7 @@ private:
     // wedge whose faces are within 11.3 degrees of the vertical (21.8 for one face, the other
     // upright).
     bool speck(const Region2& r) const {
-        return area(r) <= std::max(p_.min_region_area_mm2, 2.0 * kHairline * outline_of(r)) ||
+        return area(r) <= std::max(p_.min_region_area_mm2, 2.0 * kHairline * perimeter(r)) ||
                bounds(r).diagonal().norm() < p_.step_mm / 20.0;
     }
 
@@ -1256,7 +1242,7 @@ private:
         const std::size_t queued = children.size(), released = releases_.size();
         // The children hang from b (the piece kept first, the largest; connect_turned_branches
         // ties each to b's nearest node, since father_node is the father march's).
-        const Track track{b, father_node, {region}, box, outline_of(region)};
+        const Track track{b, father_node, {region}, box, perimeter(region)};
         Regions2 pieces = keep_larger(classify(region, out, below, track, g, k0, children),
                                       p_.min_region_area_mm2);
         // Nothing left to march on, or a fin's arm to give back from a node of another
@@ -1325,7 +1311,7 @@ private:
                 double a = 0.0, outline = 0.0;
                 for (const auto& c : task.constraints) {
                     a += area(c.region);
-                    outline += outline_of(c.region);
+                    outline += perimeter(c.region);
                 }
                 if (!task.whole || !(2.0 * a > p_.step_mm / 10.0 * outline)) return;
                 // The slab ends where the stick-out does: the highest offset, short of that next
@@ -1461,8 +1447,7 @@ private:
                     i == 0 ? b : new_branch(n, task.parent_branch, task.father_node);
                 const int node = add_node(pieces[i], n, offset_of(k0), task.slab_start,
                                           slab_end(k0), piece_branch);
-                tracks.push_back(
-                    {piece_branch, node, {}, bounds(pieces[i]), outline_of(pieces[i])});
+                tracks.push_back({piece_branch, node, {}, bounds(pieces[i]), perimeter(pieces[i])});
                 tracks.back().region.push_back(std::move(pieces[i]));
             }
         }
@@ -1491,7 +1476,7 @@ private:
                 // far pieces' edges are off U's by a grid unit) would otherwise carry a march to
                 // whatever they touch (a blade's unswept tip, which the decomposition then cut
                 // off lengthwise).
-                const double outline = outline_of(upper[j].front());
+                const double outline = perimeter(upper[j].front());
                 double best = p_.min_region_area_mm2;
                 const Eigen::AlignedBox2d box = bounds(upper[j].front());
                 const double upper_area = area(upper[j]);
@@ -1546,7 +1531,7 @@ private:
                     const int link = add_link(lower_node, node, AxisLink::Kind::Step);
                     if (branches_[b].first_link < 0 && branches_[b].nodes.size() == 1)
                         branches_[b].first_link = link;
-                    next.push_back({b, node, {}, bounds(pieces[i]), outline_of(pieces[i])});
+                    next.push_back({b, node, {}, bounds(pieces[i]), perimeter(pieces[i])});
                     next.back().region.push_back(std::move(pieces[i]));
                 }
             }
@@ -2239,7 +2224,7 @@ private:
         Regions2 kept = difference({upper}, far);
         kept.erase(std::remove_if(kept.begin(), kept.end(),
                                   [&](const Region2& r) {
-                                      return 2.0 * area(r) < p_.step_mm / 100.0 * outline_of(r);
+                                      return 2.0 * area(r) < p_.step_mm / 100.0 * perimeter(r);
                                   }),
                    kept.end());
         return kept;
@@ -2348,7 +2333,7 @@ double derive_axis_step(const TriangleMesh& mesh) {
         grids.push_back(std::make_unique<SectionGrid>(mesh, std::move(planes)));
         for (const auto& s : grids.back()->cut(0, 16))
             for (const auto& r : s.regions) {
-                const double per = outline_of(r.shape);
+                const double per = perimeter(r.shape);
                 if (!(per > 0.0 && r.area > 0.0)) continue;
                 const double width = 2.0 * r.area / per;
                 // P^2 / A is 4 pi for a disc, 16 for a square, 21.3 for a 3:1 rectangle.
@@ -2379,7 +2364,7 @@ double derive_axis_step(const TriangleMesh& mesh) {
         for (const double side : {-1.0, 1.0})
             for (const auto& r :
                  grids[std::size_t(s.axis)]->cut_at(s.offset + side * further).regions) {
-                const double per = outline_of(r.shape);
+                const double per = perimeter(r.shape);
                 if (!(per > 0.0 && bounds(r.shape).intersects(s.box))) continue;
                 const double width = 2.0 * r.area / per;
                 if (width <= 1.5 * s.width && 1.5 * width >= s.width) return true;

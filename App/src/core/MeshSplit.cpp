@@ -946,10 +946,8 @@ double turned_plane(const CentroidalAxis& axis, std::size_t b, const Vec3& along
     const AxisNode& junction = axis.nodes[std::size_t(start)];
     const PlaneFrame frame(first.normal);
     const std::size_t count = outline.size();
-    double perimeter = 0.0;
-    for (std::size_t i = 0; i < count; ++i)
-        perimeter += (outline[(i + 1) % count] - outline[i]).norm();
-    const double spacing = std::max(0.1 * axis.params.step_mm, perimeter / 64.0);
+    const double spacing =
+        std::max(0.1 * axis.params.step_mm, perimeter(first.region.outer) / 64.0);
     double furthest = -std::numeric_limits<double>::infinity();
     std::vector<RayHit> hits;
     for (std::size_t i = 0; i < count; ++i) {

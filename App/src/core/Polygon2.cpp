@@ -61,6 +61,27 @@ double area(const Regions2& regions) {
     return a;
 }
 
+double perimeter(const Polygon2& polygon) {
+    const auto& p = polygon.points;
+    if (p.size() < 2) return 0.0;
+    // The closing edge first, then the rest in order (the sum the axis' figures were taken with).
+    double length = 0.0;
+    for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) length += (p[i] - p[j]).norm();
+    return length;
+}
+
+double perimeter(const Region2& region) {
+    double length = perimeter(region.outer);
+    for (const auto& h : region.holes) length += perimeter(h);
+    return length;
+}
+
+double perimeter(const Regions2& regions) {
+    double length = 0.0;
+    for (const auto& r : regions) length += perimeter(r);
+    return length;
+}
+
 Eigen::Vector2d centroid(const Regions2& regions) {
     double a = 0.0;
     Eigen::Vector2d moment = Eigen::Vector2d::Zero();

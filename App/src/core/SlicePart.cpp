@@ -46,20 +46,6 @@ bool sliced_better(const SlicedPart& b, const SlicedPart& a) {
 
 namespace {
 
-// The length of every loop of `regions` (mm).
-double perimeter(const Regions2& regions) {
-    double length = 0.0;
-    const auto add = [&](const Polygon2& loop) {
-        for (std::size_t i = 0, n = loop.points.size(); i < n; ++i)
-            length += (loop.points[i] - loop.points[(i + 1) % n]).norm();
-    };
-    for (const Region2& r : regions) {
-        add(r.outer);
-        for (const Polygon2& h : r.holes) add(h);
-    }
-    return length;
-}
-
 // The layers of a slicing that hang past a strip `strip_mm` wide along their outlines (what the
 // sections of a mesh `strip_mm` off the surface can show on a part with nothing hanging): how
 // many, and the one hanging furthest past it (-1 for none) and by how much (mm^2).

@@ -156,16 +156,12 @@ Section section_by(const TopoDS_Shape& solid, BRepClass3d_SolidClassifier& insid
     for (const TopoDS_Face& face : cells) {
         SectionRegion region;
         const TopoDS_Wire outer = BRepTools::OuterWire(face);
-        double perimeter = 0.0;  // of the discretised loops
         for (TopoDS_Iterator w(face); w.More(); w.Next()) {
             if (w.Value().ShapeType() != TopAbs_WIRE) continue;
             const TopoDS_Wire& wire = TopoDS::Wire(w.Value());
             Polygon2 loop = discretise(wire, face, frame, deflection);
             const bool is_outer = wire.IsSame(outer);
             orient(loop, is_outer);
-            const auto& q = loop.points;
-            for (std::size_t i = 0, j = q.size() - 1; i < q.size(); j = i++)
-                perimeter += (q[i] - q[j]).norm();
             if (is_outer)
                 region.shape.outer = std::move(loop);
             else
@@ -180,7 +176,7 @@ Section section_by(const TopoDS_Shape& solid, BRepClass3d_SolidClassifier& insid
         GProp_GProps props;
         BRepGProp::SurfaceProperties(face, props);
         const double loops_area = area(region.shape);
-        if (std::abs(std::abs(props.Mass()) - loops_area) <= perimeter * deflection) {
+        if (std::abs(std::abs(props.Mass()) - loops_area) <= perimeter(region.shape) * deflection) {
             region.area = std::abs(props.Mass());
             region.centroid = to_eigen(props.CentreOfMass());
         } else {

@@ -1099,12 +1099,8 @@ def hangs_past_strip(result, deflection):
     its outlines (what the mesh sections can show on a part with nothing hanging): where one does,
     ``slice()`` decomposing a solid itself keeps its component's branch in its father if less
     hangs so."""
-    for layer in result.layers:
-        length = sum((loop[i] - loop[i - 1]).Length for loop in layer.loops()
-                     for i in range(len(loop)))
-        if layer.unsupported_area > length * deflection:
-            return True
-    return False
+    return any(layer.unsupported_area > layer.outline_length * deflection
+               for layer in result.layers)
 
 
 def has_unreachable_or_hanging(layers):

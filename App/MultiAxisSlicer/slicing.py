@@ -125,7 +125,9 @@ class Layer:
     deposited volume, Eq. 9's VolDiff), ``meets_volume_difference``, ``unsupported_area`` (mm² of
     its footprint outside the layer below grown by the overhang allowance), ``unsupported_regions``
     (where that is: regions like ``regions``, on the lower plane, empty when the layer is
-    supported), ``axis_node`` (the centroidal-axis node it follows) and ``axis_point``. Vectors are
+    supported), ``outline_length`` (mm, every loop of ``regions``: times the deflection, the strip
+    along them that a layer's mesh sections can show unsupported on a part with nothing hanging),
+    ``axis_node`` (the centroidal-axis node it follows) and ``axis_point``. Vectors are
     FreeCAD.Vector when FreeCAD is importable, else tuples.
     """
 
@@ -140,6 +142,7 @@ class Layer:
         self.volume_difference = data["volume_difference"]
         self.meets_volume_difference = data["meets_volume_difference"]
         self.unsupported_area = data["unsupported_area_mm2"]
+        self.outline_length = data["outline_length_mm"]
         self.axis_node = data["axis_node"]
 
     origin = property(lambda self: _as_vector(self._data["origin"]))
@@ -182,6 +185,7 @@ class Layer:
             "meets_volume_difference": d["meets_volume_difference"],
             "unsupported_area_mm2": d["unsupported_area_mm2"],
             "unsupported_regions": _regions_as_lists(d["unsupported_regions"]),
+            "outline_length_mm": d["outline_length_mm"],
             "axis_node": d["axis_node"],
             "axis_point": _as_list(d["axis_point"]),
         }

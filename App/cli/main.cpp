@@ -25,6 +25,7 @@
 #include "mas/Decompose.hpp"
 #include "mas/Error.hpp"
 #include "mas/Gcode.hpp"
+#include "mas/Polygon2.hpp"
 #include "mas/Progress.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
@@ -1088,6 +1089,7 @@ int run_slice(const std::vector<std::string>& args) {
                 write_region(out, l.unsupported_loops_3d(k));
             }
             out << "]"
+                << ", \"outline_length_mm\": " << num(mas::perimeter(l.regions))
                 << ", \"axis_node\": " << l.axis_node << ", \"axis_point\": " << vec(l.axis_point)
                 << ", \"tool_axis\": " << vec(tp.tool_axis) << ", \"paths\": [";
             for (std::size_t k = 0; k < tp.paths.size(); ++k) {

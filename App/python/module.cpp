@@ -6,6 +6,7 @@
 #include "mas/Error.hpp"
 #include "mas/Gcode.hpp"
 #include "mas/Mesh.hpp"
+#include "mas/Polygon2.hpp"
 #include "mas/Section.hpp"
 #include "mas/Shape.hpp"
 #include "mas/SlicePart.hpp"
@@ -1387,6 +1388,7 @@ bp::dict sliced_to_py(const mas::SlicedPart& r) {
         d["volume_difference"] = l.volume_difference;
         d["meets_volume_difference"] = l.meets_volume_difference;
         d["unsupported_area_mm2"] = l.unsupported_area_mm2;
+        d["outline_length_mm"] = mas::perimeter(l.regions);
         d["axis_node"] = l.axis_node;
         d["axis_point"] = to_py(l.axis_point);
         const mas::LayerToolpaths& t = r.toolpaths[i];
@@ -1590,7 +1592,8 @@ void bind_slice() {
         "layers [{component, origin, normal, lower_origin, lower_normal, regions [{outer, "
         "holes}] as 3-D points, area_mm2, min_thickness_mm, max_thickness_mm, volume_mm3, "
         "material_volume_mm3, volume_difference, meets_volume_difference, unsupported_area_mm2, "
-        "unsupported_regions [{outer, holes}] on the lower plane, axis_node, axis_point, "
+        "unsupported_regions [{outer, holes}] on the lower plane, outline_length_mm (every loop of "
+        "regions), axis_node, axis_point, "
         "tool_axis, paths [{kind, region, points, thickness_mm}], "
         "centre_line_regions, unfilled [{region, area_mm2, centroid}], deposit_length_mm, "
         "travel_length_mm, uncovered_area_mm2}], components [{component, first_layer, "

@@ -493,10 +493,7 @@ def part(family, index, seed=39):
 def support_tolerance(layer, deflection):
     """The unsupported area (mm²) that a layer's mesh sections can show on a part with none: a
     strip as wide as the deflection along its outlines."""
-    length = 0.0
-    for loop in layer.loops():
-        length += sum((loop[i] - loop[i - 1]).Length for i in range(len(loop)))
-    return length * deflection
+    return layer.outline_length * deflection
 
 
 def survey_part(solid, description, fill_holes=0.0):

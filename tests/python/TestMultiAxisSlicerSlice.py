@@ -90,6 +90,18 @@ class TestSliceApi(SliceTest):
             self.assertAlmostEqual(max(ys), 10.0, places=3)
         self.assertGreater(result.stats["deposit_length_mm"], 0.0)
 
+    def test_a_layers_outline_length_counts_every_loop_holes_too(self):
+        """``outline_length``: every loop of a layer, its holes' too (times the deflection, the
+        strip hangs_past_strip() allows). A 20 x 10 block with a 6 x 4 square bore: 60 + 20 mm.
+        The sections' corners sit on the 1e-5 mm grid: each of the 8 moves two edges by at most
+        that much."""
+        result = mas.slice(Part.makeBox(20, 10, 6).cut(Part.makeBox(6, 4, 8, V(7, 3, -1))))
+        self.assertEqual(len(result.layers), 3)
+        for layer in result.layers:
+            self.assertEqual([len(r["holes"]) for r in layer.regions], [1])
+            self.assertAlmostEqual(layer.outline_length, 80.0, delta=8 * 2 * 1e-5)
+            self.assertEqual(layer.to_dict()["outline_length_mm"], layer.outline_length)
+
     def test_l_block_column_layers_go_up_and_arm_layers_go_out(self):
         result = mas.slice(l_block())
         self.assertEqual(len(result.components), 2)

@@ -160,8 +160,9 @@ SlicedPart slice_clear_of_collisions(
     // the brace, built on its own along -Y and never in the nozzle's way, hung 11 mm^2 in its
     // first layers, and a slab of the far post cut off along -Y 71 mm^2; kept in the posts'
     // layers, at most 1.8.)
+    PastStrip now;
+    if (avoid_collisions && strip_mm > 0.0) now = past_strip(parts.sliced, strip_mm);
     for (int round = 0; avoid_collisions && strip_mm > 0.0 && round < 3; ++round) {
-        const PastStrip now = past_strip(parts.sliced, strip_mm);
         if (now.worst < 0 || parts.branches.size() == 1) break;
         const int component = parts.sliced.layers[std::size_t(now.worst)].component;
         if (component <= 0) break;
@@ -181,6 +182,7 @@ SlicedPart slice_clear_of_collisions(
             break;
         parts = std::move(tried);
         keep = std::move(more);
+        now = then;
     }
     SlicedPart sliced = std::move(parts.sliced);
     if (avoid_collisions && parts.branches.size() > 1 && sliced.stats.colliding_layers > 0) {

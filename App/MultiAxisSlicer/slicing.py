@@ -531,7 +531,7 @@ def slice(shape, axis=None, components=None, deflection=None, progress=None,  # 
         is an obstacle too (True). ``nozzle_max_lean`` (30): where a layer's coaxial nozzle
         would still meet the plate or what is deposited, its tool axis may lean this far from
         the layer's normal, by the least of 5, 10, ... degrees that clears, towards the plate's
-        normal, away from the obstacle, or any other way round the normal every 45 degrees (0:
+        normal, away from the obstacle, or any other way round the normal every 22.5 degrees (0:
         always coaxial, as the paper).
 
     ``progress``: None or ``progress(fraction, stage)``, called now and then with the fraction of

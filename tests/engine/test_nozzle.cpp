@@ -809,44 +809,64 @@ TEST(Nozzle, ALeanIsRefusedOnlyWhereTheNozzleItselfComesNear) {
     EXPECT_EQ(t.tool_axes[1], n);
 }
 
-// Where every lean up is refused, the nozzle leans round n as well: a sideways layer (+X, deposited
-// at (5, 5, 20)) whose coaxial nozzle's body reaches under the plate, and a block 1 mm across
-// deposited before it, 20 mm out, 12 mm to its +Y side and 6 mm up, beside the cone of every
-// nozzle leaned up off the plate (as a crank's last leg, built back past its riser, has the
-// riser there). Of the leans tried, 5, 10, ... degrees, each up, then half way between up and -Y
-// or +Y, then -Y or +Y (none below the horizontal), the first that clears the plate and the block
-// is taken: 15 degrees half way between up and -Y, away from the block. Without the block it
-// leans up, the least lean, as before.
-TEST(Nozzle, ALayerWhoseLeanUpIsBlockedLeansRoundTheNormal) {
-    const mas::NozzleParams p;
-    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), y = Vector3d::UnitY();
-    const Vector3d at(5, 5, 20), c = at + Vector3d(20, 12, 6);
+// A sideways layer (+X, deposited at (5, 5, 20)) whose coaxial nozzle's body reaches under the
+// plate, and a block 1 mm across deposited before it at `offset` from that point, beside the cone
+// of every nozzle leaned up off the plate (as a crank's last leg, built back past its riser, has
+// the riser there).
+Built sideways_layer_beside_block(const Vector3d& offset) {
+    const Vector3d at(5, 5, 20), c = at + offset;
     Built b;
-    add_layer(b, 0, up,
+    add_layer(b, 0, Vector3d::UnitZ(),
               {{c.x() - 0.5, c.y() - 0.5, c.z() + 0.5},
                {c.x() + 0.5, c.y() - 0.5, c.z() + 0.5},
                {c.x() + 0.5, c.y() + 0.5, c.z() + 0.5},
                {c.x() - 0.5, c.y() + 0.5, c.z() + 0.5}},
               1.0, {{c.x(), c.y(), c.z() + 0.5}});
-    add_layer(b, 1, n, {{5, 0, 15}, {5, 10, 15}, {5, 10, 25}, {5, 0, 25}}, 1.0, {at});
-    // The block's least clearance from the nozzle along axis `a`, on a 0.1 mm grid.
-    auto least = [&](const Vector3d& a) { return least_clearance_of_cube(p, at, a, c, 0.5, 0.1); };
-    // The expectation, from the leans in the order tried.
-    EXPECT_LT(lowest_above(p, at, n, up), p.margin_mm);
-    std::optional<Vector3d> expected;
-    for (double theta = 5.0; theta <= 30.0 && !expected; theta += 5.0) {
-        EXPECT_TRUE(lowest_above(p, at, leaned(n, up, theta), up) < p.margin_mm ||
-                    least(leaned(n, up, theta)) < 2.0 * p.margin_mm)
-            << theta;  // no lean up clears both
-        const std::vector<Vector3d> ways = {up, up - y, up + y, -y, y};
-        for (const Vector3d& d : ways) {
-            const Vector3d a = leaned(n, d, theta);
-            if (lowest_above(p, at, a, up) >= p.margin_mm && least(a) > 2.1 * p.margin_mm) {
-                expected = a;
-                break;
-            }
+    add_layer(b, 1, Vector3d::UnitX(), {{5, 0, 15}, {5, 10, 15}, {5, 10, 25}, {5, 0, 25}}, 1.0,
+              {at});
+    return b;
+}
+
+// For sideways_layer_beside_block(offset), the block on +Y's side: the first lean, in the order
+// tried, that clears the plate and the block, by the nozzle's rims and the block's clearance on a
+// 0.1 mm grid: 5, 10, ... degrees, each up, then every 22.5 degrees round n from up, -Y's side
+// (away from the block) first, as far as -Y and +Y (none below the horizontal). `ways`, when
+// given, replaces those directions (up first).
+std::optional<Vector3d> first_lean_clearing_block(const mas::NozzleParams& p,
+                                                  const Vector3d& offset,
+                                                  std::vector<Vector3d> ways = {}) {
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), y = Vector3d::UnitY();
+    const Vector3d at(5, 5, 20);
+    if (ways.empty()) {
+        ways = {up};
+        for (int k = 1; k <= 4; ++k) {
+            const double phi = k * kPi / 8.0;
+            ways.push_back(std::cos(phi) * up - std::sin(phi) * y);
+            ways.push_back(std::cos(phi) * up + std::sin(phi) * y);
         }
     }
+    for (double theta = 5.0; theta <= p.max_lean_deg; theta += 5.0)
+        for (const Vector3d& d : ways) {
+            const Vector3d a = leaned(n, d, theta);
+            if (lowest_above(p, at, a, up) >= p.margin_mm &&
+                least_clearance_of_cube(p, at, a, at + offset, 0.5, 0.1) > 2.1 * p.margin_mm)
+                return a;
+        }
+    return std::nullopt;
+}
+
+// Where every lean up is refused, the nozzle leans round n as well: the block 20 mm out, 12 mm to
+// the layer's +Y side and 6 mm up. No lean up clears both the plate and the block; the first lean
+// that does, in the order tried, is 15 degrees half way between up and -Y, away from the block,
+// and the engine takes exactly that. Without the block it leans up, the least lean, as before.
+TEST(Nozzle, ALayerWhoseLeanUpIsBlockedLeansRoundTheNormal) {
+    const mas::NozzleParams p;
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), y = Vector3d::UnitY();
+    const Vector3d at(5, 5, 20), offset(20, 12, 6);
+    Built b = sideways_layer_beside_block(offset);
+    EXPECT_LT(lowest_above(p, at, n, up), p.margin_mm);
+    EXPECT_FALSE(first_lean_clearing_block(p, offset, {up}));  // no lean up clears both
+    const std::optional<Vector3d> expected = first_lean_clearing_block(p, offset);
     ASSERT_TRUE(expected);
     ASSERT_NEAR((*expected - leaned(n, up - y, 15.0)).norm(), 0.0, 1e-12);
     const mas::BuildSequence s = mas::plan_build_sequence(input(b, {-1, 0}, {0, 1}), p);
@@ -861,6 +881,29 @@ TEST(Nozzle, ALayerWhoseLeanUpIsBlockedLeansRoundTheNormal) {
     EXPECT_GE(lowest_above(p, at, leaned(n, up, 10.0), up), p.margin_mm);
     const mas::BuildSequence t = mas::plan_build_sequence(input(b, {-1}, {0}), p);
     EXPECT_NEAR((t.tool_axes[0] - leaned(n, up, 10.0)).norm(), 0.0, 1e-12);
+}
+
+// The ways round the normal are tried every 22.5 degrees, not only every 45: the block 15 mm out,
+// 6 mm to +Y and 6 mm up, closer beside the layer than above. No lean up to 30 degrees up, half way
+// between up and -Y or +Y, or towards -Y or +Y clears both the plate and the block (a crank's last
+// leg beside its riser kept its collision so, and the leg hung 210 mm^2 in its father's layers);
+// 25 degrees, 67.5 degrees round from up towards -Y, does, and the engine takes exactly that.
+TEST(Nozzle, ALeanBetweenTheFortyFiveDegreeWaysClearsABlockCloseBeside) {
+    const mas::NozzleParams p;
+    const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), y = Vector3d::UnitY();
+    const Vector3d offset(15, 6, 6);
+    EXPECT_FALSE(first_lean_clearing_block(p, offset, {up, up - y, up + y, -y, y}));
+    const std::optional<Vector3d> expected = first_lean_clearing_block(p, offset);
+    ASSERT_TRUE(expected);
+    const double phi = 3.0 * kPi / 8.0;
+    ASSERT_NEAR((*expected - leaned(n, std::cos(phi) * up - std::sin(phi) * y, 25.0)).norm(), 0.0,
+                1e-12);
+    const mas::BuildSequence s =
+        mas::plan_build_sequence(input(sideways_layer_beside_block(offset), {-1, 0}, {0, 1}), p);
+    EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
+    EXPECT_TRUE(s.collisions.empty());
+    EXPECT_EQ(s.leaned_layers, 1);
+    EXPECT_NEAR((s.tool_axes[1] - *expected).norm(), 0.0, 1e-12);
 }
 
 // The order leaves a layer that meets the plate the lean that clears it: the slab and the sideways

@@ -53,27 +53,28 @@
 //   nozzle met. Tried for each colliding layer once the order is set: theta = 5, 10, ... degrees up
 //   to max_lean_deg (and max_lean_deg itself), each towards the plate's normal, away from the
 //   reported obstacle (across n, from the obstacle towards the deposit point), then the other ways
-//   round n every 45 degrees from the first of those, nearest it first (a crank's last leg built
+//   round n every 22.5 degrees from the first of those, nearest it first (a crank's last leg built
 //   back along -X past its riser: leaned up off the plate, the nozzle still comes within the margin
-//   of what is deposited, and it leans half way between up and away from the riser); the first that
-//   clears is taken: the least lean, towards the plate's normal before away from the obstacle
-//   before the others; a lean turning the axis further from the plate's normal than the layer's
-//   normal is, past the horizontal, is not taken (a machine reaching the normal might not reach
-//   it). A lean clears when along every deposit path the nozzle keeps margin_mm from the plate
-//   (exact) and from every layer deposited before it: those lying wholly under the layer's plane
-//   cannot come near, since only leans keeping the whole nozzle margin_mm above that plane are
-//   tried (standoff cos theta - tip sin theta >= margin, and theta + cone_angle < 90 degrees, so
-//   that the cone's lower side still rises); the others are tested as above, with the deposit moves
-//   cut into pieces whose heights along a differ by at most margin_mm and each piece given the
-//   grown radius at its lowest point, and, as the travel check below, a sample the grown nozzle may
-//   hold counts only when the nozzle itself, its tip taken every 0.05 margin_mm along the moves,
-//   comes within 2.05 margin_mm of it (so no lean is taken that comes within the margin, and one is
-//   refused only when it comes within 2.05 margin_mm: the grown nozzle alone reached 9.3 mm at the
-//   defaults, beside the tip, where a blade's first layer leaned off the plate refused every lean
-//   beside a neighbouring blade's root and was kept in the hub). A lean changes no other layer's
-//   check: a later layer's nozzle meets this one's prism, whatever its axis. Where no lean clears,
-//   the layer keeps its normal and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the
-//   paper's.
+//   of what is deposited, and it leans half way between up and away from the riser; one 6.3 mm
+//   beside its riser found no lean clear every 45 degrees, and leans 67.5 degrees round from up,
+//   away from the riser, by 25); the first that clears is taken: the least lean, towards the
+//   plate's normal before away from the obstacle before the others; a lean turning the axis further
+//   from the plate's normal than the layer's normal is, past the horizontal, is not taken (a
+//   machine reaching the normal might not reach it). A lean clears when along every deposit path
+//   the nozzle keeps margin_mm from the plate (exact) and from every layer deposited before it:
+//   those lying wholly under the layer's plane cannot come near, since only leans keeping the whole
+//   nozzle margin_mm above that plane are tried (standoff cos theta - tip sin theta >= margin, and
+//   theta + cone_angle < 90 degrees, so that the cone's lower side still rises); the others are
+//   tested as above, with the deposit moves cut into pieces whose heights along a differ by at most
+//   margin_mm and each piece given the grown radius at its lowest point, and, as the travel check
+//   below, a sample the grown nozzle may hold counts only when the nozzle itself, its tip taken
+//   every 0.05 margin_mm along the moves, comes within 2.05 margin_mm of it (so no lean is taken
+//   that comes within the margin, and one is refused only when it comes within 2.05 margin_mm: the
+//   grown nozzle alone reached 9.3 mm at the defaults, beside the tip, where a blade's first layer
+//   leaned off the plate refused every lean beside a neighbouring blade's root and was kept in the
+//   hub). A lean changes no other layer's check: a later layer's nozzle meets this one's prism,
+//   whatever its axis. Where no lean clears, the layer keeps its normal and its collision.
+//   max_lean_deg = 0 keeps the nozzle coaxial, as the paper's.
 // - The order is found with coaxial nozzles, and the leans after it; it can leave a lean no way (a
 //   rod built sideways under a bar: leaned up off the plate, the rod's nozzle meets the bar where
 //   the bar's layers came first). Where layers still collide, the layers are ordered again (the

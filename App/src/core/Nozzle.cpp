@@ -823,7 +823,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     }
     // The axes x's nozzle may lean to, in the order tried: by each lean from its layer's normal n,
     // towards the plate's normal, then across n towards `away` (from an obstacle to the nozzle),
-    // then, `all_round`, the other ways round n every 45 degrees from the first of those, nearest
+    // then, `all_round`, the other ways round n every 22.5 degrees from the first of those, nearest
     // it first (on `away`'s side first among equals); none further from the plate's normal than n
     // is, past the horizontal: the machine may not reach it where it reached the normal.
     auto lean_axes = [&](std::size_t x, const std::optional<Vector3d>& away, bool all_round) {
@@ -844,10 +844,14 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             const Vector3d d0 = towards.front();
             Vector3d side = n.cross(d0).normalized();
             if (towards.size() > 1 && towards[1].dot(side) < 0.0) side = -side;
-            for (int k = 1; k <= 4; ++k) {
-                const double phi = k * kPi / 4.0;
+            // Every 22.5 degrees: at a 30-degree lean, neighbouring axes 11 degrees apart, near the
+            // leans' own 5-degree steps (every 45, 22 apart, and a crank's last leg close beside
+            // its riser found none clear that one between two would).
+            constexpr int kHalfRound = 8;
+            for (int k = 1; k <= kHalfRound; ++k) {
+                const double phi = k * kPi / kHalfRound;
                 add((std::cos(phi) * d0 + std::sin(phi) * side).normalized());
-                if (k < 4) add((std::cos(phi) * d0 - std::sin(phi) * side).normalized());
+                if (k < kHalfRound) add((std::cos(phi) * d0 - std::sin(phi) * side).normalized());
             }
         }
         const double steepest = std::max(std::acos(std::clamp(n.dot(up), -1.0, 1.0)), kPi / 2.0);

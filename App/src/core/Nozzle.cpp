@@ -844,9 +844,9 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             const Vector3d d0 = towards.front();
             Vector3d side = n.cross(d0).normalized();
             if (towards.size() > 1 && towards[1].dot(side) < 0.0) side = -side;
-            // Every 22.5 degrees: at a 30-degree lean, neighbouring axes 11 degrees apart, near the
-            // leans' own 5-degree steps (every 45, 22 apart, and a crank's last leg close beside
-            // its riser found none clear that one between two would).
+            // Every 22.5 degrees: at a 30-degree lean, neighbouring axes 11 degrees apart, nearer
+            // the leans' own 5-degree steps (every 45, 22 apart: a crank's last leg close beside
+            // its riser found none of those clear, and one between two is).
             constexpr int kHalfRound = 8;
             for (int k = 1; k <= kHalfRound; ++k) {
                 const double phi = k * kPi / kHalfRound;

@@ -307,7 +307,7 @@ class TestPartsNobodyTunedFor(unittest.TestCase):
         # reaching past the one under it by a fifth of its thickness at most beyond the overhang
         # angle, within the strip. A gooseneck's riser turns into its first bend, the rest cut off
         # at section planes and built along +X and back up along +Z, as a pipe bend's. (Braced
-        # frames and coat racks are no claim: README, 16 of 24 frames and 6 of 24 racks over
+        # frames and coat racks are no claim: README, 3 of 24 frames and 4 of 24 racks over
         # seeds 1 to 3 hang more than the strip.)
         for r in self.parts("tripod"):
             with self.subTest(part=self.name(r)):

@@ -160,9 +160,10 @@ SlicedPart slice_clear_of_collisions(
     // the brace, built on its own along -Y and never in the nozzle's way, hung 11 mm^2 in its
     // first layers, and a slab of the far post cut off along -Y 71 mm^2; kept in the posts'
     // layers, at most 1.8.)
+    const bool hang_rounds = avoid_collisions && strip_mm > 0.0;
     PastStrip now;
-    if (avoid_collisions && strip_mm > 0.0) now = past_strip(parts.sliced, strip_mm);
-    for (int round = 0; avoid_collisions && strip_mm > 0.0 && round < 3; ++round) {
+    if (hang_rounds) now = past_strip(parts.sliced, strip_mm);
+    for (int round = 0; hang_rounds && round < 3; ++round) {
         if (now.worst < 0 || parts.branches.size() == 1) break;
         const int component = parts.sliced.layers[std::size_t(now.worst)].component;
         if (component <= 0) break;

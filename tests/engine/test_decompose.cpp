@@ -2117,6 +2117,23 @@ TEST(DecomposeErrors, AnAxisOfAnotherPartIsRejected) {
     }
 }
 
+TEST(Decompose, APartsOwnAxisPassesWhereABlocksLastSlabReachesAHigherPostsTop) {
+    // A 30 x 20 block 15.5 mm tall with a bar off its side and a post on the bar's end rising to
+    // 19.5, at a 5 mm step: the planes along Z are at 0.001 + 5k, the block's last at 15.001, and
+    // the next, 20.001, lies past the part, so the block's last slab is cut at the part's top,
+    // 4 mm above its own. The axis sweeps 2400 mm^3 more than the part's 9972, and the
+    // decomposition took the part's own axis for another part's (as a coat rack at seed 405,
+    // whose peg rises past its wall's top: 1042 mm^3 over 20763).
+    TopoDS_Shape s = occ_box(0, 0, 0, 30, 20, 15.5);
+    s = fuse(s, occ_box(30, 6, 10, 10, 8, 4));
+    s = fuse(s, occ_box(32, 6, 14, 8, 8, 5.5));
+    const mas::Shape part = from_occt(s);
+    const double volume = 30.0 * 20.0 * 15.5 + 10.0 * 8.0 * 4.0 + 8.0 * 8.0 * 5.5;
+    const auto axis = axis_of(part, 5.0);
+    EXPECT_NEAR(axis.searched_volume_mm3, volume + 4.0 * 600.0, 1e-6 * volume);
+    EXPECT_NO_THROW(mas::decompose(part, axis));
+}
+
 TEST(DecomposeErrors, BadParametersAndCancellationAreReported) {
     const auto part = mas::test::l_block();
     const auto axis = axis_of(part, 2.5);

@@ -460,16 +460,25 @@ std::vector<char> root_starts(std::size_t node_count, const std::vector<AxisBran
     return out;
 }
 
-// How far the slabs' volume (the sum of area x thickness) may stray from the part's: a slab takes
-// the section at its lower plane over one step, so it is off by at most the section's change to
-// the next node, and a branch's last slab (unless cut short at the part's extent) by at most its
-// own volume. A root's first slab also reaches down from its plane to where it starts (the base)
-// with its node's section: off by up to that much more (a sphere at a step of 7 of its 20 mm
-// sweeps 5536 mm^3 of 4183). Plus 5 % of the volume.
-double sweep_slack(const std::vector<AxisNode>& nodes, const std::vector<AxisLink>& links,
-                   const std::vector<AxisBranch>& branches, double step, double volume) {
+// How far the slabs' volume (the sum of area x thickness) may stray from the part's, below it
+// (`short_of`) and above it (`over`). A slab takes the section at its lower plane over one step,
+// so it is off by at most the section's change to the next node, and a branch's last slab by at
+// most its own volume. A root's first slab also reaches down from its plane to where it starts
+// (the base) with its node's section: off by up to that much more (a sphere at a step of 7 of its
+// 20 mm sweeps 5536 mm^3 of 4183). Plus 5 % of the volume. A last slab cut short at the part's
+// extent along its march is taken as exact below the part: it ends where the part does, unless its
+// own material ends lower, where it can only sweep too much, by up to all of it (a wall whose peg
+// rises past its top: the wall's last slab reaches the peg's top; that was 1008 mm^3 over a part
+// of 20763, and the decomposition refused the part's own axis as another part's).
+struct SweepSlack {
+    double short_of = 0.0;
+    double over = 0.0;
+};
+
+SweepSlack sweep_slack(const std::vector<AxisNode>& nodes, const std::vector<AxisLink>& links,
+                       const std::vector<AxisBranch>& branches, double step, double volume) {
     const std::vector<char> root_start = root_starts(nodes.size(), branches);
-    double slack = 0.05 * volume;
+    double slack = 0.05 * volume, cut_short = 0.0;
     std::vector<char> continues(nodes.size(), 0);
     for (const auto& l : links) {
         if (l.kind != AxisLink::Kind::Step) continue;
@@ -478,10 +487,10 @@ double sweep_slack(const std::vector<AxisNode>& nodes, const std::vector<AxisLin
     }
     for (std::size_t i = 0; i < nodes.size(); ++i) {
         const AxisNode& n = nodes[i];
-        if (!continues[i] && n.thickness >= step - 1e-9) slack += n.area * n.thickness;
+        if (!continues[i]) (n.thickness >= step - 1e-9 ? slack : cut_short) += n.area * n.thickness;
         if (root_start[i]) slack += n.area * std::max(n.offset - n.slab_start, 0.0);
     }
-    return slack;
+    return {slack, slack + cut_short};
 }
 
 class Search {
@@ -531,7 +540,8 @@ private:
     // branches into 342, and took three times as long: a hanging piece within the slabs' error,
     // such as a small hopper's cone under the ring its legs carry, stays unsearched.)
     void search_unreached() {
-        if (volume_ - searched_ <= sweep_slack(nodes_, links_, branches_, p_.step_mm, volume_))
+        if (volume_ - searched_ <=
+            sweep_slack(nodes_, links_, branches_, p_.step_mm, volume_).short_of)
             return;
         Grid& g = grid(Vector3d::UnitZ());
         for (std::size_t k = 1; k < g.count; ++k) {
@@ -2647,7 +2657,8 @@ CentroidalAxis compute_axis_in_frame(const TriangleMesh& mesh, const AxisParams&
     // degrees under a 10 mm block, at a 10 mm step, was swept 3 % of it), is named here with the
     // remedy, where the decomposition would refuse the axis as another part's (check_axis_belongs,
     // the same slack). A march that sweeps too much (a region searched twice) is left to that.
-    const double slack = sweep_slack(axis.nodes, axis.links, axis.branches, p.step_mm, volume);
+    const double slack =
+        sweep_slack(axis.nodes, axis.links, axis.branches, p.step_mm, volume).short_of;
     if (axis.searched_volume_mm3 < volume - slack) {
         std::ostringstream msg;
         msg << "centroidal axis: the march at a step of " << format_number(p.step_mm)
@@ -2741,9 +2752,10 @@ void check_axis_belongs(const CentroidalAxis& axis, const Eigen::AlignedBox3d& b
             throw Error(ErrorCode::InvalidArgument,
                         what + " (a node lies outside the part's bounding box)");
     // The slabs approximate the part's volume (sweep_slack).
-    const double slack =
+    const SweepSlack slack =
         sweep_slack(axis.nodes, axis.links, axis.branches, axis.params.step_mm, volume);
-    if (std::abs(axis.searched_volume_mm3 - volume) > slack)
+    if (axis.searched_volume_mm3 < volume - slack.short_of ||
+        axis.searched_volume_mm3 > volume + slack.over)
         throw Error(ErrorCode::InvalidArgument,
                     what + " (it sweeps " + format_number(axis.searched_volume_mm3, 10) +
                         " mm^3, the part has " + format_number(volume, 10) + " mm^3)");

@@ -201,3 +201,12 @@ truss.exportBrep(os.path.join(here, "truss_shallow_brace.brep"))
 # riser in pieces, and the legs, in the riser's Z layers, hung 410 mm^2 in one
 crank, _ = MultiAxisSlicerSurvey.part("crank", 3, 4)
 crank.exportBrep(os.path.join(here, "crank_returning_leg.brep"))
+
+# truss_beam_unreached.brep  the survey's braced frame 1 (seed 403), across X: two posts 9.26
+# square 23.39 apart on a plate, a beam 9.26 square across their tops (underside z = 56.59) and
+# two round braces 2.38 in radius crossing under it, each from low on one post to just under the
+# other's top, clear of the beam. At the derived step the march went up a brace, down the other
+# into the far post and along X through both posts and the beam over them from inside; the beam's
+# middle, between them, was never reached, and the axis was refused (89 % of the part swept)
+truss, _ = MultiAxisSlicerSurvey.part("truss", 1, 403)
+truss.exportBrep(os.path.join(here, "truss_beam_unreached.brep"))

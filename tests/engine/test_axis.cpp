@@ -1687,6 +1687,44 @@ TEST(CentroidalAxis, AStripTheBladesOnlyTaperToIsNoWall) {
     expect_invariants(a, mesh, false);  // the hub's bore holds its centroids
 }
 
+TEST(CentroidalAxis, WhatAMarchRoundALoopLeavesUnreachedIsSearchedFromItsUnderside) {
+    // tests/data/truss_beam_unreached.brep: two posts 9.26 square 23.39 apart on a plate, a beam
+    // across their tops and two braces crossing under it, clear of the beam. At the derived step
+    // the march goes up one brace, down the other into the far post, and through both posts (and
+    // the beam over them) along X from inside; no march reaches the beam's middle, whose
+    // underside rests on the posts' material, not on air, so the search for what hangs in mid-air
+    // did not take it either, and the axis was refused: 89 % of the part swept. Where material
+    // is still lost, what is left unswept is searched upward from its own underside: the beam's
+    // middle is a root along +Z from the first plane over its underside to its top.
+    const auto mesh = mas::test::data_mesh("truss_beam_unreached.brep");
+    const double post = 9.255708650256704, gap = 23.39282870169506;
+    const double underside = 54.59013471380901 + 2.0, top = underside + post;
+    const auto a = mas::centroidal_axis(mesh);
+    const double step = a.params.step_mm;
+    const double volume = mas::mesh_volume(mesh);
+    EXPECT_GT(a.searched_volume_mm3, 0.95 * volume);
+    int beam = -1;
+    for (std::size_t b = 1; b < a.branches.size(); ++b) {
+        const auto& br = a.branches[b];
+        const auto& first = a.nodes[std::size_t(br.nodes.front())];
+        if (br.parent < 0 && first.position.z() > underside && first.position.x() > post &&
+            first.position.x() < post + gap)
+            beam = int(b);
+    }
+    ASSERT_GE(beam, 0);
+    const auto& br = a.branches[std::size_t(beam)];
+    EXPECT_TRUE(br.direction.isApprox(Vector3d::UnitZ(), 1e-12));
+    const auto& first = a.nodes[std::size_t(br.nodes.front())];
+    EXPECT_LE(first.position.z(), underside + step);
+    EXPECT_NEAR(first.position.y(), post / 2.0, 1e-6);
+    EXPECT_GE(first.area, (gap - 2.0 * step) * post);
+    EXPECT_LE(first.area, (gap + 2.0 * step) * post);
+    const auto& last = a.nodes[std::size_t(br.nodes.back())];
+    EXPECT_GE(last.position.z(), top - step);
+    EXPECT_LT(last.position.z(), top);
+    expect_invariants(a, mesh);
+}
+
 TEST(CentroidalAxisErrors, BadParametersAndPlacementAreNamed) {
     const auto mesh = mas::test::box_mesh(0, 0, 5, 10, 10, 10);
     auto expect_error_on = [&](const mas::TriangleMesh& m, const std::string& word,

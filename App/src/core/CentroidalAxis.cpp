@@ -540,40 +540,83 @@ private:
     // branches into 342, and took three times as long: a hanging piece within the slabs' error,
     // such as a small hopper's cone under the ring its legs carry, stays unsearched.)
     void search_unreached() {
-        if (volume_ - searched_ <=
-            sweep_slack(nodes_, links_, branches_, p_.step_mm, volume_).short_of)
-            return;
+        for (const bool of_unswept : {false, true}) {
+            if (volume_ - searched_ <=
+                sweep_slack(nodes_, links_, branches_, p_.step_mm, volume_).short_of)
+                return;
+            search_unreached(of_unswept);
+        }
+    }
+
+    // One pass of it. `of_unswept`: the bottoms are those of the material left unswept, not of
+    // the part's sections: a piece of a +Z grid plane's B - Bs that overlaps none of the plane
+    // below's. Taken only where the first pass leaves material lost: a march round a closed loop
+    // (a braced frame's brace up from one post, down the other's, which it then sweeps sideways
+    // from inside, and the beam's middle with it, resting on the posts, which no march reaches)
+    // left 11 % of a part unsearched, and the axis was refused. Parts the first pass covers keep
+    // their axes. A piece must be wider than two steps: the staircase a march's slabs leave along
+    // a slanting side is left unswept in wedges up to a step wide (that brace's left 164 of them).
+    void search_unreached(bool of_unswept) {
         Grid& g = grid(Vector3d::UnitZ());
+        Regions2 left_below;  // of_unswept: B - Bs on plane k - 1
+        if (of_unswept) {
+            cut_chunk(g, 0);
+            left_below = unswept(g, 0, nullptr);
+        }
         for (std::size_t k = 1; k < g.count; ++k) {
             checkpoint_(searched_);
             cut_chunk(g, k - 1);
             cut_chunk(g, k);
             std::vector<Eigen::AlignedBox2d> bottoms;  // of the regions in mid-air
-            for (std::size_t i = 0; i < g.regions[k].size(); ++i) {
-                const Eigen::AlignedBox2d& box = g.bounds2[k][i];
-                const Regions2 below = regions_near(g, k - 1, box);
-                if (below.empty() ||
-                    area(intersection({g.regions[k][i]}, below)) <= p_.min_region_area_mm2)
-                    bottoms.push_back(box);
+            Regions2 left;
+            if (of_unswept) {
+                left = unswept(g, k, nullptr);
+                for (const auto& r : left) {
+                    const Eigen::AlignedBox2d box = bounds(r);
+                    Regions2 below;
+                    for (const auto& l : left_below)
+                        if (bounds(l).intersects(box)) below.push_back(l);
+                    if (below.empty() || area(intersection({r}, below)) <= p_.min_region_area_mm2)
+                        bottoms.push_back(box);
+                }
+            } else {
+                for (std::size_t i = 0; i < g.regions[k].size(); ++i) {
+                    const Eigen::AlignedBox2d& box = g.bounds2[k][i];
+                    const Regions2 below = regions_near(g, k - 1, box);
+                    if (below.empty() ||
+                        area(intersection({g.regions[k][i]}, below)) <= p_.min_region_area_mm2)
+                        bottoms.push_back(box);
+                }
             }
-            if (bottoms.empty()) continue;
+            if (bottoms.empty()) {
+                left_below = std::move(left);
+                continue;
+            }
             Task task;
             task.direction = Vector3d::UnitZ();
             task.start = offset(g, k);
             task.slab_start = offset(g, k - 1);
             for (Region2& r : unswept(g, k, &bottoms))
-                if (!speck(r) && mean_width(r) > p_.step_mm / 10.0)
+                if (!speck(r) && mean_width(r) > (of_unswept ? 2.0 : 0.1) * p_.step_mm)
                     task.constraints.push_back(Slab{task.direction,
                                                     offset(g, k - 1),
                                                     offset(g, k) + p_.step_mm,
                                                     std::move(r),
                                                     {}});
-            if (task.constraints.empty()) continue;
+            if (task.constraints.empty()) {
+                left_below = std::move(left);
+                continue;
+            }
             const std::size_t before = nodes_.size();
             search(task, 0);
             // Its first nodes sweep those pieces from plane k - 1 to k + 1: plane k once more,
             // for what the march left of it.
-            if (nodes_.size() > before) --k;
+            if (nodes_.size() > before) {
+                --k;
+                if (of_unswept) left_below = unswept(g, k - 1, nullptr);
+            } else {
+                left_below = std::move(left);
+            }
         }
     }
 

@@ -71,8 +71,8 @@
 //   that meets something on its own cut into pieces turning 20 times less (an allowance of at
 //   most margin / 20, Nozzle.hpp; the others keep the margin already, and refining only those
 //   costs the coil's program 2.4 times less): a route is taken round the part or
-//   reported only where the nozzle comes within 2.15 margins of a deposited layer's surface (4.3
-//   mm at the defaults), or within the margin of the plate where the table keeps still and at
+//   reported only where the nozzle comes within 1.275 margins of a deposited layer's surface
+//   (2.55 mm at the defaults), or within the margin of the plate where the table keeps still and at
 //   both ends of a piece along which it turns, within 1.0001 margins between them (each turning
 //   piece judged from both its ends, NozzleMove::to_axis: a route turning down onto a layer that
 //   the sequence passed a margin and 2.5 % over the plate was reported as meeting it; and a

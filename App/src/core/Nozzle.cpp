@@ -4,10 +4,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 
 #include "mas/Angles.hpp"
 #include "mas/Error.hpp"
@@ -21,6 +23,8 @@ using Eigen::Vector3d;
 
 // The travel check's step along a move where it measures a near sample's clearance, in margins.
 constexpr double kTravelStep = 0.05;
+// The travel check's finer samples, where a sample counts: every margin / kFineSamples.
+constexpr double kFineSamples = 8.0;
 
 // The nozzle's shape in numbers, worked out once.
 struct Shape {
@@ -1092,11 +1096,76 @@ struct TravelCheck::Impl {
     std::vector<int> done;  // the layers deposited, in order
     std::vector<char> is_done;
     mutable PrismSamples samples;  // of the deposited layers, as plan_build_sequence's
+    // Every margin / kFineSamples, binned in cubes a margin wide, made for a layer when one of
+    // its samples first counts, and kept while they fit a budget, as PrismSamples' are.
+    struct Fine {
+        std::vector<Vector3d> points;
+        std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
+    };
+    mutable std::vector<std::unique_ptr<Fine>> fine;
+    mutable std::size_t fine_kept = 0;
+    static constexpr std::size_t kFineBudget = 4000000;  // fine samples kept at once
 
     Impl(const std::vector<Layer>& l, const NozzleParams& p, const Plane& pl)
-        : layers(l), params(p), plate(pl), shape(p), is_done(l.size(), 0), samples(l, p.margin_mm) {
+        : layers(l),
+          params(p),
+          plate(pl),
+          shape(p),
+          is_done(l.size(), 0),
+          samples(l, p.margin_mm),
+          fine(l.size()) {
         bounds.reserve(layers.size());
         for (const Layer& layer : layers) bounds.push_back(layer_bounds(layer));
+    }
+
+    std::int64_t cell_of(const Vector3d& q) const {
+        const Eigen::Array3d c = (q / params.margin_mm).array().floor();
+        const auto wrap = [](double v) { return std::int64_t(v) & 0x1FFFFF; };
+        return (wrap(c.x()) << 42) | (wrap(c.y()) << 21) | wrap(c.z());
+    }
+
+    const Fine& fine_of(std::size_t y) const {
+        if (!fine[y]) {
+            if (fine_kept > kFineBudget) {
+                for (auto& kept : fine) kept.reset();
+                fine_kept = 0;
+            }
+            auto f = std::make_unique<Fine>();
+            f->points = prism_samples(layers[y], params.margin_mm / kFineSamples);
+            for (std::size_t i = 0; i < f->points.size(); ++i)
+                f->cells[cell_of(f->points[i])].push_back(i);
+            fine_kept += f->points.size();
+            fine[y] = std::move(f);
+        }
+        return *fine[y];
+    }
+
+    // A fine sample of layer y within a margin and a fine spacing of `q` (a sample that counts)
+    // that the nozzle along `moves` comes within `counts` of, and where the tip is then. Every
+    // point of y's surface within a margin of the nozzle lies within a margin of a sample, which
+    // counts, and within a fine spacing of a fine sample near it, which comes within a margin and
+    // a fine spacing (and the step along the moves, and the allowance) of the nozzle.
+    std::optional<std::pair<Vector3d, Vector3d>> fine_hit(
+        std::size_t y, const Vector3d& q, const std::vector<std::pair<Vector3d, Vector3d>>& moves,
+        const Vector3d& a, double counts) const {
+        const Fine& f = fine_of(y);
+        const double m = params.margin_mm, r = m * (1.0 + 1.0 / kFineSamples);
+        const Eigen::Array3d c = (q / m).array().floor();
+        for (int i = -2; i <= 2; ++i)
+            for (int j = -2; j <= 2; ++j)
+                for (int k = -2; k <= 2; ++k) {
+                    const auto cell =
+                        f.cells.find(cell_of(m * (c + Eigen::Array3d(i, j, k) + 0.5).matrix()));
+                    if (cell == f.cells.end()) continue;
+                    for (const std::size_t s : cell->second) {
+                        const Vector3d& p = f.points[s];
+                        if ((p - q).squaredNorm() > r * r) continue;
+                        Vector3d at = Vector3d::Zero();
+                        if (least_clearance(shape, m, moves, a, p, counts, at, counts) < counts)
+                            return std::pair{at, p};
+                    }
+                }
+        return std::nullopt;
     }
 
     // The farthest any point of the nozzle lies from its deposit point: the body's end's rim. A
@@ -1145,12 +1214,14 @@ struct TravelCheck::Impl {
                             [&](const Vector3d& c) { return a.dot(c) - sweep.lowest() < low; }))
                 return false;
             const double counts = (2.0 + kTravelStep) * m + allowance;
+            const double fine_counts = (1.0 + 1.0 / kFineSamples + kTravelStep) * m + allowance;
             for (const Vector3d& q : samples.of(y)) {
                 const Vector2d q2 = sweep.frame().to_2d(q);
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
                 Vector3d at = Vector3d::Zero();
-                if (least_clearance(shape, m, moves, a, q, counts, at) < counts) {
-                    found = TravelHit{yi, at, q};
+                if (least_clearance(shape, m, moves, a, q, counts, at) >= counts) continue;
+                if (const auto hit = fine_hit(y, q, moves, a, fine_counts)) {
+                    found = TravelHit{yi, hit->first, hit->second};
                     return true;
                 }
             }

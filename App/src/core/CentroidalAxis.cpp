@@ -613,7 +613,7 @@ private:
             // for what the march left of it.
             if (nodes_.size() > before) {
                 --k;
-                if (of_unswept) left_below = unswept(g, k - 1, nullptr);
+                if (of_unswept) left_below = unswept(g, k, nullptr);  // plane k once more next
             } else {
                 left_below = std::move(left);
             }

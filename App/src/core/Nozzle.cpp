@@ -405,6 +405,78 @@ double least_clearance(const Shape& shape, double margin,
     return best;
 }
 
+// Each layer's samples every margin / kFineSamples, binned in cubes a margin wide: made for a
+// layer when one of its samples (PrismSamples, every margin) first counts, and kept while they fit
+// a budget, as PrismSamples' are. Every point of a layer's surface within the margin of the nozzle
+// lies within a margin of a sample, which counts (within 2 margins and the step), and within an
+// eighth of a margin of a fine sample near it, which comes within a margin and an eighth (and the
+// step) of the nozzle: only where such a fine sample does is a sample's count kept.
+class FineSamples {
+public:
+    FineSamples(const std::vector<Layer>& layers, double margin)
+        : layers_(layers), margin_(margin), fine_(layers.size()) {}
+
+    // A fine sample of layer y within a margin and an eighth of `q` that the nozzle `shape` along
+    // `moves` (tool axis `axis`) comes within `counts` of, and where the tip is then.
+    std::optional<std::pair<Vector3d, Vector3d>> hit(
+        std::size_t y, const Vector3d& q, const Shape& shape,
+        const std::vector<std::pair<Vector3d, Vector3d>>& moves, const Vector3d& axis,
+        double counts) {
+        const Fine& f = of(y);
+        const double m = margin_, r = m * (1.0 + 1.0 / kFineSamples);
+        const Eigen::Array3d c = (q / m).array().floor();
+        for (int i = -2; i <= 2; ++i)
+            for (int j = -2; j <= 2; ++j)
+                for (int k = -2; k <= 2; ++k) {
+                    const auto cell =
+                        f.cells.find(cell_of(m * (c + Eigen::Array3d(i, j, k) + 0.5).matrix()));
+                    if (cell == f.cells.end()) continue;
+                    for (const std::size_t s : cell->second) {
+                        const Vector3d& p = f.points[s];
+                        if ((p - q).squaredNorm() > r * r) continue;
+                        Vector3d at = Vector3d::Zero();
+                        if (least_clearance(shape, m, moves, axis, p, counts, at, counts) < counts)
+                            return std::pair{at, p};
+                    }
+                }
+        return std::nullopt;
+    }
+
+private:
+    struct Fine {
+        std::vector<Vector3d> points;
+        std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
+    };
+    static constexpr std::size_t kBudget = 4000000;  // fine samples kept at once
+
+    std::int64_t cell_of(const Vector3d& q) const {
+        const Eigen::Array3d c = (q / margin_).array().floor();
+        const auto wrap = [](double v) { return std::int64_t(v) & 0x1FFFFF; };
+        return (wrap(c.x()) << 42) | (wrap(c.y()) << 21) | wrap(c.z());
+    }
+
+    const Fine& of(std::size_t y) {
+        if (!fine_[y]) {
+            if (kept_ > kBudget) {
+                for (auto& kept : fine_) kept.reset();
+                kept_ = 0;
+            }
+            auto f = std::make_unique<Fine>();
+            f->points = prism_samples(layers_[y], margin_ / kFineSamples);
+            for (std::size_t i = 0; i < f->points.size(); ++i)
+                f->cells[cell_of(f->points[i])].push_back(i);
+            kept_ += f->points.size();
+            fine_[y] = std::move(f);
+        }
+        return *fine_[y];
+    }
+
+    const std::vector<Layer>& layers_;
+    double margin_;
+    std::vector<std::unique_ptr<Fine>> fine_;
+    std::size_t kept_ = 0;
+};
+
 // The box holding the nozzle anywhere along the sweep's moves, and everything within `shape.grow`
 // of it: the hull of the grown nozzle's rims at its lowest height, where the cone meets the body
 // and at its top holds the nozzle grown (both are convex, and at each of those heights the rims
@@ -1096,15 +1168,7 @@ struct TravelCheck::Impl {
     std::vector<int> done;  // the layers deposited, in order
     std::vector<char> is_done;
     mutable PrismSamples samples;  // of the deposited layers, as plan_build_sequence's
-    // Every margin / kFineSamples, binned in cubes a margin wide, made for a layer when one of
-    // its samples first counts, and kept while they fit a budget, as PrismSamples' are.
-    struct Fine {
-        std::vector<Vector3d> points;
-        std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
-    };
-    mutable std::vector<std::unique_ptr<Fine>> fine;
-    mutable std::size_t fine_kept = 0;
-    static constexpr std::size_t kFineBudget = 4000000;  // fine samples kept at once
+    mutable FineSamples fine;      // where a sample counts
 
     Impl(const std::vector<Layer>& l, const NozzleParams& p, const Plane& pl)
         : layers(l),
@@ -1113,59 +1177,9 @@ struct TravelCheck::Impl {
           shape(p),
           is_done(l.size(), 0),
           samples(l, p.margin_mm),
-          fine(l.size()) {
+          fine(l, p.margin_mm) {
         bounds.reserve(layers.size());
         for (const Layer& layer : layers) bounds.push_back(layer_bounds(layer));
-    }
-
-    std::int64_t cell_of(const Vector3d& q) const {
-        const Eigen::Array3d c = (q / params.margin_mm).array().floor();
-        const auto wrap = [](double v) { return std::int64_t(v) & 0x1FFFFF; };
-        return (wrap(c.x()) << 42) | (wrap(c.y()) << 21) | wrap(c.z());
-    }
-
-    const Fine& fine_of(std::size_t y) const {
-        if (!fine[y]) {
-            if (fine_kept > kFineBudget) {
-                for (auto& kept : fine) kept.reset();
-                fine_kept = 0;
-            }
-            auto f = std::make_unique<Fine>();
-            f->points = prism_samples(layers[y], params.margin_mm / kFineSamples);
-            for (std::size_t i = 0; i < f->points.size(); ++i)
-                f->cells[cell_of(f->points[i])].push_back(i);
-            fine_kept += f->points.size();
-            fine[y] = std::move(f);
-        }
-        return *fine[y];
-    }
-
-    // A fine sample of layer y within a margin and a fine spacing of `q` (a sample that counts)
-    // that the nozzle along `moves` comes within `counts` of, and where the tip is then. Every
-    // point of y's surface within a margin of the nozzle lies within a margin of a sample, which
-    // counts, and within a fine spacing of a fine sample near it, which comes within a margin and
-    // a fine spacing (and the step along the moves, and the allowance) of the nozzle.
-    std::optional<std::pair<Vector3d, Vector3d>> fine_hit(
-        std::size_t y, const Vector3d& q, const std::vector<std::pair<Vector3d, Vector3d>>& moves,
-        const Vector3d& a, double counts) const {
-        const Fine& f = fine_of(y);
-        const double m = params.margin_mm, r = m * (1.0 + 1.0 / kFineSamples);
-        const Eigen::Array3d c = (q / m).array().floor();
-        for (int i = -2; i <= 2; ++i)
-            for (int j = -2; j <= 2; ++j)
-                for (int k = -2; k <= 2; ++k) {
-                    const auto cell =
-                        f.cells.find(cell_of(m * (c + Eigen::Array3d(i, j, k) + 0.5).matrix()));
-                    if (cell == f.cells.end()) continue;
-                    for (const std::size_t s : cell->second) {
-                        const Vector3d& p = f.points[s];
-                        if ((p - q).squaredNorm() > r * r) continue;
-                        Vector3d at = Vector3d::Zero();
-                        if (least_clearance(shape, m, moves, a, p, counts, at, counts) < counts)
-                            return std::pair{at, p};
-                    }
-                }
-        return std::nullopt;
     }
 
     // The farthest any point of the nozzle lies from its deposit point: the body's end's rim. A
@@ -1220,7 +1234,7 @@ struct TravelCheck::Impl {
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
                 Vector3d at = Vector3d::Zero();
                 if (least_clearance(shape, m, moves, a, q, counts, at) >= counts) continue;
-                if (const auto hit = fine_hit(y, q, moves, a, fine_counts)) {
+                if (const auto hit = fine.hit(y, q, shape, moves, a, fine_counts)) {
                     found = TravelHit{yi, hit->first, hit->second};
                     return true;
                 }

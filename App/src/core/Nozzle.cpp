@@ -424,12 +424,11 @@ public:
         double counts) {
         const Fine& f = of(y);
         const double m = margin_, r = m * (1.0 + 1.0 / kFineSamples);
-        const Eigen::Array3d c = (q / m).array().floor();
+        const Eigen::Array3d c = cube_of(q);
         for (int i = -2; i <= 2; ++i)
             for (int j = -2; j <= 2; ++j)
                 for (int k = -2; k <= 2; ++k) {
-                    const auto cell =
-                        f.cells.find(cell_of(m * (c + Eigen::Array3d(i, j, k) + 0.5).matrix()));
+                    const auto cell = f.cells.find(key(c + Eigen::Array3d(i, j, k)));
                     if (cell == f.cells.end()) continue;
                     for (const std::size_t s : cell->second) {
                         const Vector3d& p = f.points[s];
@@ -449,10 +448,11 @@ private:
     };
     static constexpr std::size_t kBudget = 4000000;  // fine samples kept at once
 
-    std::int64_t cell_of(const Vector3d& q) const {
-        const Eigen::Array3d c = (q / margin_).array().floor();
+    // The cube a margin wide holding q, as whole numbers, and its key in `cells`.
+    Eigen::Array3d cube_of(const Vector3d& q) const { return (q / margin_).array().floor(); }
+    static std::int64_t key(const Eigen::Array3d& cube) {
         const auto wrap = [](double v) { return std::int64_t(v) & 0x1FFFFF; };
-        return (wrap(c.x()) << 42) | (wrap(c.y()) << 21) | wrap(c.z());
+        return (wrap(cube.x()) << 42) | (wrap(cube.y()) << 21) | wrap(cube.z());
     }
 
     const Fine& of(std::size_t y) {
@@ -464,7 +464,7 @@ private:
             auto f = std::make_unique<Fine>();
             f->points = prism_samples(layers_[y], margin_ / kFineSamples);
             for (std::size_t i = 0; i < f->points.size(); ++i)
-                f->cells[cell_of(f->points[i])].push_back(i);
+                f->cells[key(cube_of(f->points[i]))].push_back(i);
             kept_ += f->points.size();
             fine_[y] = std::move(f);
         }
@@ -1232,8 +1232,9 @@ struct TravelCheck::Impl {
             for (const Vector3d& q : samples.of(y)) {
                 const Vector2d q2 = sweep.frame().to_2d(q);
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
+                // Whether it counts (the finer samples say where the nozzle is).
                 Vector3d at = Vector3d::Zero();
-                if (least_clearance(shape, m, moves, a, q, counts, at) >= counts) continue;
+                if (least_clearance(shape, m, moves, a, q, counts, at, counts) >= counts) continue;
                 if (const auto hit = fine.hit(y, q, shape, moves, a, fine_counts)) {
                     found = TravelHit{yi, hit->first, hit->second};
                     return true;

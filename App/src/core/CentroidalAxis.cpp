@@ -588,32 +588,12 @@ private:
                         bottoms.push_back(box);
                 }
             }
-            if (bottoms.empty()) {
-                left_below = std::move(left);
-                continue;
-            }
-            Task task;
-            task.direction = Vector3d::UnitZ();
-            task.start = offset(g, k);
-            task.slab_start = offset(g, k - 1);
-            for (Region2& r : unswept(g, k, &bottoms))
-                if (!speck(r) && mean_width(r) > (of_unswept ? 2.0 : 0.1) * p_.step_mm)
-                    task.constraints.push_back(Slab{task.direction,
-                                                    offset(g, k - 1),
-                                                    offset(g, k) + p_.step_mm,
-                                                    std::move(r),
-                                                    {}});
-            if (task.constraints.empty()) {
-                left_below = std::move(left);
-                continue;
-            }
-            const std::size_t before = nodes_.size();
-            search(task, 0);
-            // Its first nodes sweep those pieces from plane k - 1 to k + 1: plane k once more,
-            // for what the march left of it.
-            if (nodes_.size() > before) {
+            // A search's first nodes sweep its pieces from plane k - 1 to k + 1: plane k once
+            // more, for what the march left of it.
+            if (!bottoms.empty() &&
+                search_upward(g, k, bottoms, (of_unswept ? 2.0 : 0.1) * p_.step_mm)) {
                 --k;
-                if (of_unswept) left_below = unswept(g, k, nullptr);  // plane k once more next
+                if (of_unswept) left_below = unswept(g, k, nullptr);
             } else {
                 left_below = std::move(left);
             }
@@ -1306,6 +1286,24 @@ private:
             return {region};
         }
         return pieces;
+    }
+
+    // Searches upward, as a root, from the pieces of +Z grid plane k's B - Bs that meet `bottoms`
+    // and are wider than `width` (2 x area / outline) and no speck: whether a node came of it.
+    bool search_upward(Grid& g, std::size_t k, const std::vector<Eigen::AlignedBox2d>& bottoms,
+                       double width) {
+        Task task;
+        task.direction = Vector3d::UnitZ();
+        task.start = offset(g, k);
+        task.slab_start = offset(g, k - 1);
+        for (Region2& r : unswept(g, k, &bottoms))
+            if (!speck(r) && mean_width(r) > width)
+                task.constraints.push_back(Slab{
+                    task.direction, offset(g, k - 1), offset(g, k) + p_.step_mm, std::move(r), {}});
+        if (task.constraints.empty()) return false;
+        const std::size_t before = nodes_.size();
+        search(task, 0);
+        return nodes_.size() > before;
     }
 
     void search(const Task& task, int depth) {

@@ -758,19 +758,21 @@ TEST(Nozzle, ALeanIsRefusedWhereTheLeanedNozzleMeetsADepositedLayer) {
 }
 
 // A lean is refused only where the leaned nozzle itself comes near a deposited layer, not wherever
-// the nozzle grown by two margins might: a block 0.5 mm across beside the tip of the sideways
-// layer's nozzle leaned 25 degrees (the least that clears the plate), 7 mm along its axis and
-// 8.7 mm off it, lies in the grown nozzle (from 2 margins under the tip's face, the tip's radius
-// plus 2 margins / cos 30 across) but more than (2 + 0.05) margins from the nozzle (4.76 mm from
-// the tip's rim at its centre): the layer leans 25 degrees. Moved 1 mm nearer the rim, it
-// refuses 25 (and 30, which brings the rim nearer still), and the layer keeps its collision.
+// the nozzle grown by two margins might, nor wherever a sample every margin might stand for: a
+// block 0.5 mm across beside the tip of the sideways layer's nozzle leaned 25 degrees (the least
+// that clears the plate), 7 mm along its axis and 7.7 mm off it, lies in the grown nozzle (from 2
+// margins under the tip's face, the tip's radius plus 2 margins / cos 30 across) and within (2 +
+// 0.05) margins of the nozzle (4.04 mm from the tip's rim at its centre), which refused the lean
+// before the finer samples, but more than (1 + 1/8 + 0.05) margins from it: the layer leans 25
+// degrees. Moved to 8.5 mm along the axis and 6 mm off it, within the margin of the nozzle leaned
+// 25 and 30 degrees, it refuses both, and the layer keeps its collision.
 TEST(Nozzle, ALeanIsRefusedOnlyWhereTheNozzleItselfComesNear) {
     const mas::NozzleParams p;
     const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), at(5, 5, 6);
     const Vector3d axis = leaned(n, up, 25.0), off = leaned(up, -n, 25.0);  // across the axis
     ASSERT_NEAR(axis.dot(off), 0.0, 1e-12);
-    auto with_block = [&](double across) {
-        const Vector3d c = at + 7.0 * axis + across * off;
+    auto centre = [&](double along, double across) { return at + along * axis + across * off; };
+    auto with_block = [&](const Vector3d& c) {
         Built b;
         add_layer(b, 0, up,
                   {{c.x() - 0.25, 4.75, c.z() + 0.25},
@@ -786,23 +788,24 @@ TEST(Nozzle, ALeanIsRefusedOnlyWhereTheNozzleItselfComesNear) {
         return least_clearance_of_cube(p, at, a, c, 0.25, 0.05);
     };
     const double tip = 5.0, grown_tip = tip + 2.0 * p.margin_mm / std::cos(kPi / 6.0);
-    const Vector3d far = at + 7.0 * axis + 8.7 * off;
+    const double counted = (1.0 + 1.0 / 8.0 + 0.05) * p.margin_mm;
+    const Vector3d far = centre(7.0, 7.7);
     EXPECT_GE(7.0, p.standoff_mm - 2.0 * p.margin_mm);
-    EXPECT_LE(8.7, grown_tip);
-    EXPECT_NEAR(mas::test::nozzle_clearance(p, at, axis, far), std::hypot(3.7, 3.0), 1e-9);
-    EXPECT_GT(least(far, axis), 2.05 * p.margin_mm);
+    EXPECT_LE(7.7, grown_tip);
+    EXPECT_NEAR(mas::test::nozzle_clearance(p, at, axis, far), std::hypot(2.7, 3.0), 1e-9);
+    EXPECT_LT(least(far, axis), 2.05 * p.margin_mm);
+    EXPECT_GT(least(far, axis), counted);
     const mas::BuildSequence s =
-        mas::plan_build_sequence(input(with_block(8.7), {-1, 0}, {0, 1}), p);
+        mas::plan_build_sequence(input(with_block(far), {-1, 0}, {0, 1}), p);
     EXPECT_EQ(s.layers, (std::vector<int>{0, 1}));
     EXPECT_TRUE(s.collisions.empty());
     EXPECT_EQ(s.leaned_layers, 1);
     EXPECT_NEAR((s.tool_axes[1] - axis).norm(), 0.0, 1e-12);
-    // 1 mm nearer: within 4.1 mm of the rim at 25 degrees, and at 30.
-    const Vector3d near = at + 7.0 * axis + 7.7 * off;
-    EXPECT_LT(least(near, axis), 2.05 * p.margin_mm);
-    EXPECT_LT(least(near, leaned(n, up, 30.0)), 2.05 * p.margin_mm);
+    const Vector3d near = centre(8.5, 6.0);
+    EXPECT_LT(least(near, axis), p.margin_mm);
+    EXPECT_LT(least(near, leaned(n, up, 30.0)), p.margin_mm);
     const mas::BuildSequence t =
-        mas::plan_build_sequence(input(with_block(7.7), {-1, 0}, {0, 1}), p);
+        mas::plan_build_sequence(input(with_block(near), {-1, 0}, {0, 1}), p);
     ASSERT_EQ(t.collisions.size(), 1u);
     EXPECT_EQ(t.collisions[0].layer, 1);
     EXPECT_EQ(t.collisions[0].obstacle_layer, -1);
@@ -828,10 +831,11 @@ Built sideways_layer_beside_block(const Vector3d& offset) {
 }
 
 // For sideways_layer_beside_block(offset), the block on +Y's side: the first lean, in the order
-// tried, that clears the plate and the block, by the nozzle's rims and the block's clearance on a
-// 0.1 mm grid: 5, 10, ... degrees, each up, then every 22.5 degrees round n from up, -Y's side
-// (away from the block) first, as far as -Y and +Y (none below the horizontal). `ways`, when
-// given, replaces those directions (up first).
+// tried, that clears the plate and the block (more than 1.2 margins from it, where the engine
+// refuses within (1 + 1/8 + 0.05) margins of a sample every eighth of a margin), by the nozzle's
+// rims and the block's clearance on a 0.1 mm grid: 5, 10, ... degrees, each up, then every 22.5
+// degrees round n from up, -Y's side (away from the block) first, as far as -Y and +Y (none below
+// the horizontal). `ways`, when given, replaces those directions (up first).
 std::optional<Vector3d> first_lean_clearing_block(const mas::NozzleParams& p,
                                                   const Vector3d& offset,
                                                   std::vector<Vector3d> ways = {}) {
@@ -849,20 +853,20 @@ std::optional<Vector3d> first_lean_clearing_block(const mas::NozzleParams& p,
         for (const Vector3d& d : ways) {
             const Vector3d a = leaned(n, d, theta);
             if (lowest_above(p, at, a, up) >= p.margin_mm &&
-                least_clearance_of_cube(p, at, a, at + offset, 0.5, 0.1) > 2.1 * p.margin_mm)
+                least_clearance_of_cube(p, at, a, at + offset, 0.5, 0.1) > 1.2 * p.margin_mm)
                 return a;
         }
     return std::nullopt;
 }
 
-// Where every lean up is refused, the nozzle leans round n as well: the block 20 mm out, 12 mm to
-// the layer's +Y side and 6 mm up. No lean up clears both the plate and the block; the first lean
+// Where every lean up is refused, the nozzle leans round n as well: the block 12 mm out, 8 mm to
+// the layer's +Y side and 4 mm up. No lean up clears both the plate and the block; the first lean
 // that does, in the order tried, is 15 degrees half way between up and -Y, away from the block,
 // and the engine takes exactly that. Without the block it leans up, the least lean, as before.
 TEST(Nozzle, ALayerWhoseLeanUpIsBlockedLeansRoundTheNormal) {
     const mas::NozzleParams p;
     const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), y = Vector3d::UnitY();
-    const Vector3d at(5, 5, 20), offset(20, 12, 6);
+    const Vector3d at(5, 5, 20), offset(12, 8, 4);
     Built b = sideways_layer_beside_block(offset);
     EXPECT_LT(lowest_above(p, at, n, up), p.margin_mm);
     EXPECT_FALSE(first_lean_clearing_block(p, offset, {up}));  // no lean up clears both
@@ -884,14 +888,14 @@ TEST(Nozzle, ALayerWhoseLeanUpIsBlockedLeansRoundTheNormal) {
 }
 
 // The ways round the normal are tried every 22.5 degrees, not only every 45: the block 15 mm out,
-// 6 mm to +Y and 6 mm up, closer beside the layer than above. No lean up to 30 degrees up, half way
+// 4 mm to +Y and 6 mm up, closer beside the layer than above. No lean up to 30 degrees up, half way
 // between up and -Y or +Y, or towards -Y or +Y clears both the plate and the block (a crank's last
 // leg beside its riser kept its collision so, and the leg hung 210 mm^2 in its father's layers);
 // 25 degrees, 67.5 degrees round from up towards -Y, does, and the engine takes exactly that.
 TEST(Nozzle, ALeanBetweenTheFortyFiveDegreeWaysClearsABlockCloseBeside) {
     const mas::NozzleParams p;
     const Vector3d n = Vector3d::UnitX(), up = Vector3d::UnitZ(), y = Vector3d::UnitY();
-    const Vector3d offset(15, 6, 6);
+    const Vector3d offset(15, 4, 6);
     EXPECT_FALSE(first_lean_clearing_block(p, offset, {up, up - y, up + y, -y, y}));
     const std::optional<Vector3d> expected = first_lean_clearing_block(p, offset);
     ASSERT_TRUE(expected);

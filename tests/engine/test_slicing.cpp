@@ -1183,16 +1183,14 @@ TEST(Slicing, ACranksWebWiderThanItsShaftByAThickestLayerIsCutOffRoundIt) {
     }
 }
 
-TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections) {
+TEST(Slicing, ASpiralStairsTreadsAreBuiltAlongTheirLinesTheNozzleLeanedOffTheTreadBelow) {
     // A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 20
     // degrees round and 8 mm up from one to the next. Cut square to their own lines (those
     // between +-X and +-Y), a tread's root lies 4 mm over the one before it, which runs under
-    // it near the column: the nozzle at the root, built along the tread's line, meets it. Such
-    // a cut is then made square to its branch's direction (SlicePart.hpp), where the nozzle
-    // clears the tread below. Without that, the treads it met were kept in the column, hanging.
-    // Squaring every turned cut cuts the others across their roots, and more layers meet
-    // something: only those whose layers met something are squared, where that slices better.
-    // (30 degrees apart, the treads' layers, square to their lines to their tips, meet nothing.)
+    // it near the column: the nozzle at the root, coaxial and built along the tread's line,
+    // meets it. Leaned (Nozzle.hpp), it clears it, and every tread is built along its own line,
+    // none squared to its branch's direction (slice_clear_of_collisions squares turned cuts only
+    // where layers still meet something: SlicePart.TurnedCutsWhoseLayersTheNozzleMeets...).
     const int treads = 6;
     TopoDS_Shape stair = occ_cylinder({0, 0, 0}, Vector3d::UnitZ(), 10.0, 8.0 * treads + 10.0);
     for (int i = 0; i < treads; ++i) {
@@ -1209,28 +1207,33 @@ TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirect
     mas::DecomposeParams dp;
     dp.min_component_height_mm = params.layers.min_layer_mm;
     dp.max_tilt_deg = params.layers.max_tilt_deg;
-    // Decomposed once, the five treads between the directions (20, 40, 60, 80 and 100 degrees
-    // round) are cut square to their lines; sliced so, some of their layers meet something.
+    // The five treads between the directions (20, 40, 60, 80 and 100 degrees round) are cut
+    // square to their lines. Sliced so with the nozzle coaxial, as the paper's, some of their
+    // layers meet something; leaned, none does.
     const auto first = mas::decompose(part, s.axis, dp);
     const auto turned_first =
         std::count_if(first.components.begin(), first.components.end(),
                       [](const auto& c) { return c.turned && c.volume_mm3 > 2000.0; });
     EXPECT_EQ(turned_first, 5);
-    EXPECT_GT(mas::slice_part(part, s.axis, first, params).stats.colliding_layers, 0);
+    auto coaxial = params;
+    coaxial.nozzle.max_lean_deg = 0.0;
+    EXPECT_GT(mas::slice_part(part, s.axis, first, coaxial).stats.colliding_layers, 0);
+    const mas::SlicedPart leaned = mas::slice_part(part, s.axis, first, params);
+    EXPECT_EQ(leaned.stats.colliding_layers, 0);
+    EXPECT_GT(leaned.stats.leaned_layers, 0);
     s.result = mas::slice_solid_part(part, s.axis, dp, params, s.decomposition);
     EXPECT_EQ(s.result.stats.colliding_layers, 0);
     for (const auto& note : s.result.notes)
         EXPECT_EQ(note.find("would meet the plate or what is deposited"), std::string::npos)
             << note;
-    // Each tread is built sideways from the column, along its own line or along +-X or +-Y, and
-    // each tread's body (over 2000 mm^3 past its cut) is a component of its own. Some turned
-    // cuts are squared, not all.
+    // Each tread is built sideways from the column, along its own line or along +-X, and each
+    // tread's body (over 2000 mm^3 past its cut) is a component of its own.
     int bodies = 0, turned = 0;
     for (std::size_t k = 1; k < s.decomposition.components.size(); ++k) {
         const auto& c = s.decomposition.components[k];
         EXPECT_NEAR(c.build_direction.z(), 0.0, 1e-12) << k;
         if (c.turned) {
-            ++turned;
+            if (c.volume_mm3 > 2000.0) ++turned;
         } else {
             EXPECT_NEAR(std::abs(c.build_direction.x()) + std::abs(c.build_direction.y()), 1.0,
                         1e-12)
@@ -1239,16 +1242,8 @@ TEST(Slicing, TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirect
         if (c.volume_mm3 > 2000.0) ++bodies;
     }
     EXPECT_EQ(bodies, treads);
-    EXPECT_GT(turned, 0);
-    EXPECT_LT(turned, turned_first);
-    // Every turned cut squared, as the rounds did before, slices worse: more layers meet
-    // something.
-    mas::DecomposeParams squared = dp;
-    for (const auto& c : first.components)
-        if (c.turned) squared.square_branches.push_back(c.branch);
-    const auto all = mas::slice_part(part, s.axis, mas::decompose(part, s.axis, squared), params);
-    EXPECT_GT(all.stats.colliding_layers, 0);
-    EXPECT_TRUE(mas::sliced_better(s.result, all));
+    EXPECT_EQ(turned, turned_first);
+    EXPECT_EQ(s.result.stats.leaned_layers, leaned.stats.leaned_layers);
 }
 
 TEST(Slicing, ATurnedBladesLayersStaySquareToItsLineToItsTip) {
@@ -2868,6 +2863,80 @@ TEST(SlicePart, AHangingComponentsBranchIsKeptWhereLessHangs) {
         mas::slice_clear_of_collisions(split, whole, avoid, {}, &none, avoid ? 0.0 : strip);
         EXPECT_EQ(asked, (std::vector<std::set<int>>{{}}));
     }
+}
+
+// slice_clear_of_collisions' rounds for layers in the nozzle's way, on splits made up for the
+// test: the root (branch 0), branches 1 and 2 cut turned square to their lines and branch 3 not,
+// a component and a layer each; a branch squared (cut square to its direction) is not turned.
+// Which components' layers collide is set by which branches are squared and kept.
+namespace {
+mas::SplitSliced made_up_turned(const std::vector<mas::KeptBranch>& keep,
+                                const std::vector<int>& square,
+                                const std::map<std::set<int>, std::vector<int>>& colliding) {
+    std::set<int> kept, squared(square.begin(), square.end());
+    for (const mas::KeptBranch& k : keep) kept.insert(k.branch);
+    mas::SplitSliced out;
+    for (int b = 0; b < 4; ++b) {
+        if (kept.count(b)) continue;
+        out.turned.push_back((b == 1 || b == 2) && !squared.count(b));
+        out.branches.push_back(b);
+        out.sliced.layers.push_back(square_layer(int(out.branches.size()) - 1, 0.0));
+    }
+    const auto it = colliding.find(squared);
+    for (const int b : it == colliding.end() ? std::vector<int>{} : it->second) {
+        const auto c = std::find(out.branches.begin(), out.branches.end(), b);
+        if (c == out.branches.end()) continue;  // kept in the root
+        mas::NozzleCollision hit;
+        hit.layer = int(c - out.branches.begin());  // component c's layer
+        out.sliced.sequence.collisions.push_back(hit);
+    }
+    out.sliced.stats.colliding_layers = int(out.sliced.sequence.collisions.size());
+    out.made = std::pair{kept, squared};
+    return out;
+}
+}  // namespace
+
+TEST(SlicePart, TurnedCutsWhoseLayersTheNozzleMeetsAreSquaredAloneWhereThatSlicesBetter) {
+    using Made = std::pair<std::set<int>, std::set<int>>;  // kept, squared
+    std::vector<Made> asked;
+    const auto run = [&](const std::map<std::set<int>, std::vector<int>>& colliding,
+                         mas::SplitOutcome& outcome) {
+        asked.clear();
+        const auto split = [&](const std::vector<mas::KeptBranch>& keep,
+                               const std::vector<int>& square, const mas::Progress&) {
+            mas::SplitSliced out = made_up_turned(keep, square, colliding);
+            asked.push_back(std::any_cast<Made>(out.made));
+            return out;
+        };
+        const auto whole = [](const mas::Progress&) { return mas::SlicedPart{}; };
+        return mas::slice_clear_of_collisions(split, whole, true, {}, &outcome);
+    };
+    // Branch 1's layer collides: every turned cut (1 and 2) is squared, and 1 alone besides;
+    // squared together, 2's layer collides (cut across its neighbour), squared alone nothing
+    // does: 1 alone is taken.
+    mas::SplitOutcome alone;
+    const mas::SlicedPart a = run({{{}, {1}}, {{1, 2}, {2}}}, alone);
+    EXPECT_EQ(asked, (std::vector<Made>{{{}, {}}, {{}, {1}}, {{}, {1, 2}}}));
+    EXPECT_EQ(std::any_cast<Made>(alone.made), (Made{{}, {1}}));
+    EXPECT_EQ(a.stats.colliding_layers, 0);
+    // Where 1 squared alone leaves 2's layer colliding and both squared leave nothing, both are.
+    mas::SplitOutcome both;
+    const mas::SlicedPart b = run({{{}, {1}}, {{1}, {2}}}, both);
+    EXPECT_EQ(asked, (std::vector<Made>{{{}, {}}, {{}, {1}}, {{}, {1, 2}}}));
+    EXPECT_EQ(std::any_cast<Made>(both.made), (Made{{}, {1, 2}}));
+    EXPECT_EQ(b.stats.colliding_layers, 0);
+    // Where both turned cuts' layers collide, both are squared, with nothing else tried; where
+    // they still do, their branches are kept (the root's layers).
+    mas::SplitOutcome kept;
+    const mas::SlicedPart k = run({{{}, {1, 2}}, {{1, 2}, {1, 2}}}, kept);
+    EXPECT_EQ(asked, (std::vector<Made>{{{}, {}}, {{}, {1, 2}}, {{1, 2}, {1, 2}}}));
+    EXPECT_EQ(std::any_cast<Made>(kept.made), (Made{{1, 2}, {1, 2}}));
+    EXPECT_EQ(k.stats.colliding_layers, 0);
+    // A colliding component cut along its direction (branch 3) is kept, nothing squared.
+    mas::SplitOutcome plain;
+    run({{{}, {3}}}, plain);
+    EXPECT_EQ(asked, (std::vector<Made>{{{}, {}}, {{3}, {}}}));
+    EXPECT_EQ(std::any_cast<Made>(plain.made), (Made{{3}, {}}));
 }
 
 // tests/data/truss_crossed_braces.brep, the survey's braced frame 7 at seed 2, across X: two posts

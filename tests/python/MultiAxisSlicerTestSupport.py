@@ -55,9 +55,9 @@ def hub_with_six_blades():
 def spiral_stair(treads=6):
     """A spiral stair: treads 45 long, 18 wide and 4 thick off a round column (radius 10), 20
     degrees round and 8 mm up from one to the next, the first along +X at z = 6 (the engine's
-    Slicing.TreadsTheNozzleCannotBuildAlongTheirLinesAreCutSquareToTheirDirections). Cut square
-    to their own lines, some treads between +-X and +-Y leave the nozzle no way to their
-    roots."""
+    Slicing.ASpiralStairsTreadsAreBuiltAlongTheirLinesTheNozzleLeanedOffTheTreadBelow). Cut
+    square to their own lines, the treads between +-X and +-Y leave a coaxial nozzle no way to
+    their roots; leaned, it reaches them."""
     solid = Part.makeCylinder(10, 8.0 * treads + 10.0)
     for i in range(treads):
         tread = Part.makeBox(45, 18, 4, V(0, -9, 8.0 * i + 6))

@@ -677,39 +677,36 @@ class TestSliceSequence(SliceTest):
             self.assertLessEqual(layer.unsupported_area,
                                  survey.support_tolerance(layer, deflection), i)
 
-    def test_turned_cuts_the_nozzle_cannot_build_are_made_square_to_their_directions(self):
-        # A spiral stair (support.spiral_stair): its treads between +-X and +-Y are first cut
-        # square to their own lines, where the nozzle at a tread's root meets the tread under it;
-        # such cuts are then made square to their branches' directions (decomposition.
-        # square_branches): only those whose layers met something, which leaves less unsupported
-        # than squaring every turned cut, and a tread whose layers the nozzle still cannot reach
-        # is kept.
+    def test_a_spiral_stairs_treads_are_built_along_their_lines_the_nozzle_leaned(self):
+        # A spiral stair (support.spiral_stair): its treads between +-X and +-Y are cut square to
+        # their own lines, where the nozzle at a tread's root, coaxial, meets the tread under it
+        # (the engine's Slicing.ASpiralStairsTreads...); leaned, it clears it, and no cut is made
+        # square to its branch's direction instead (decomposition.square_branches).
         stair = support.spiral_stair()
         result = mas.slice(stair)
         self.assertEqual(result.stats["colliding_layers"], 0)
+        self.assertGreater(result.stats["leaned_layers"], 0)
         d = result.decomposition
         first = mas.decompose(stair, axis=result.axis, min_component_height=0.5)
         turned = sorted(c.branch for c in first if c.turned)
-        self.assertGreater(len(turned), 0)
-        self.assertGreater(len(d.square_branches), 0)
-        self.assertLess(len(d.square_branches), len(turned))
-        self.assertTrue(set(d.square_branches) <= set(turned))
-        self.assertEqual(d.params["square_branches"], tuple(d.square_branches))
-        self.assertEqual(sorted(c.branch for c in d if c.turned),
-                         sorted(set(turned) - set(d.square_branches) - set(d.kept_branches)))
-        every = mas.slice(stair, components=mas.decompose(
-            stair, axis=result.axis, min_component_height=0.5, keep_branches=d.kept_branches,
-            square_branches=turned))
-        # Sliced as it is, that split leaves a layer in the nozzle's way (the next round would
-        # keep its branch) and more hanging at worst.
-        self.assertGreater(every.stats["colliding_layers"], 0)
-        self.assertLess(result.stats["worst_unsupported_area_mm2"],
-                        every.stats["worst_unsupported_area_mm2"] - 0.01)
-        # decompose() with its kept and squared branches gives the same decomposition.
-        again = mas.decompose(stair, axis=result.axis, min_component_height=0.5,
-                              keep_branches=d.kept_branches, square_branches=d.square_branches)
-        self.assertEqual([c.to_dict() for c in again], [c.to_dict() for c in d])
-        self.assertEqual(again.params, d.params)
+        self.assertEqual(len(turned), 5)
+        self.assertEqual(d.square_branches, [])
+        self.assertEqual(d.kept_branches, [])
+        self.assertEqual(sorted(c.branch for c in d if c.turned), turned)
+        # Asked to (square_branches), decompose() cuts them square to their directions, along
+        # +-X or +-Y, and says so in its parameters; slice() slices that decomposition.
+        squared = mas.decompose(stair, axis=result.axis, min_component_height=0.5,
+                                square_branches=turned)
+        self.assertEqual(squared.square_branches, turned)
+        self.assertEqual(squared.params["square_branches"], tuple(turned))
+        for c in squared:
+            self.assertFalse(c.turned, c.branch)
+            if c.branch in turned:
+                v = c.build_direction
+                self.assertAlmostEqual(abs(v.x) + abs(v.y), 1.0, places=12)
+                self.assertAlmostEqual(v.z, 0.0, places=12)
+        again = mas.slice(stair, components=squared)
+        self.assertEqual(again.decomposition.square_branches, turned)
 
     def test_an_order_leaving_a_leaning_nozzle_its_way_is_found(self):
         # The rod under the bar, both built sideways along +X: coaxial, the rod's nozzle meets the
@@ -1145,10 +1142,14 @@ class TestKeepingUnreachableBranches(SliceObjectTest):
         self.assertEqual(layers.CollidingLayers, 0)
 
     def test_turned_cuts_the_nozzle_cannot_reach_are_made_square_and_saved(self):
+        # The spiral stair with a nozzle whose tip is 16 mm across (10 by default): leaned as far
+        # as it may (30 degrees), it still meets the tread under some treads' roots where they
+        # are cut square to their lines. Those cuts are made square to their branches'
+        # directions, and where the nozzle still meets something their branches are kept.
         part = self.doc.addObject("Part::Feature", "Stair")
         part.Shape = support.spiral_stair()
         self.doc.recompute()
-        decomposition, layers, toolpath = self.make(part)
+        decomposition, layers, toolpath = self.make(part, nozzle_tip_diameter=16.0)
         self.assertGreater(layers.CollidingLayers, 0)
         added = features.keep_unreachable_branches(layers)
         square, kept = list(decomposition.SquareBranches), list(decomposition.KeepBranches)

@@ -159,7 +159,8 @@
 //   along D, no ray meets the father, its first node carries no region or would not lie the
 //   clearance in front of the turned plane, the turned plane's split is refused, or
 //   DecomposeParams::square_branches lists it (as slicing does where the nozzle cannot build the
-//   turned cuts' layers: a spiral stair's treads, SlicePart.hpp); its component says which
+//   turned cuts' layers: a spiral stair's treads under a nozzle whose tip is 16 mm across,
+//   SlicePart.hpp); its component says which
 //   (Component::turned).
 // - A branch turning off its father round a bend (a pipe's elbow: the father marches up a straight
 //   riser, its centroids then drifting along D through the bend, and the branch marches along the

@@ -67,14 +67,17 @@
 //   theta + cone_angle < 90 degrees, so that the cone's lower side still rises); the others are
 //   tested as above, with the deposit moves cut into pieces whose heights along a differ by at most
 //   margin_mm and each piece given the grown radius at its lowest point, and, as the travel check
-//   below (without its finer samples), a sample the grown nozzle may hold counts only when the
-//   nozzle itself, its tip taken every 0.05 margin_mm along the moves, comes within 2.05 margin_mm
-//   of it (so no lean is taken that comes within the margin, and one is refused only when it comes
-//   within 2.05 margin_mm: the grown nozzle alone reached 9.3 mm at the defaults, beside the tip,
-//   where a blade's first layer leaned off the plate refused every lean beside a neighbouring
-//   blade's root and was kept in the hub). A lean changes no other layer's check: a later layer's
-//   nozzle meets this one's prism, whatever its axis. Where no lean clears, the layer keeps its
-//   normal and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the paper's.
+//   below, a sample the grown nozzle may hold counts only when the nozzle itself, its tip taken
+//   every 0.05 margin_mm along the moves, comes within 2.05 margin_mm of it, and then only where
+//   it, or one of the layer's finer samples within 1.125 margin_mm of it, comes within 1.175
+//   margin_mm (so no lean is taken that comes within the margin, and one is refused only when it
+//   comes within 1.175 margin_mm: the grown nozzle alone reached 9.3 mm at the defaults, beside the
+//   tip, where a blade's first layer leaned off the plate refused every lean beside a neighbouring
+//   blade's root and was kept in the hub; a sample's count alone refused the leans a crank's last
+//   leg needed beside its riser, 231 mm^2 of it hanging in its father's layers, and those that
+//   built a spiral stair's treads along their lines). A lean changes no other layer's check: a
+//   later layer's nozzle meets this one's prism, whatever its axis. Where no lean clears, the layer
+//   keeps its normal and its collision. max_lean_deg = 0 keeps the nozzle coaxial, as the paper's.
 // - The order is found with coaxial nozzles, and the leans after it; it can leave a lean no way (a
 //   rod built sideways under a bar: leaned up off the plate, the rod's nozzle meets the bar where
 //   the bar's layers came first). Where layers still collide, the layers are ordered again (the
@@ -115,14 +118,14 @@
 //   sequence had passed 2.05 mm over the plate, a margin and 2.5 %, was reported as meeting the
 //   plate on the way.) A sample in the grown nozzle counts only when the nozzle along the
 //   first axis, its tip taken every 0.05 margin_mm along the move, comes within 2.05 margin_mm + a
-//   of it, and then only where one of the layer's finer samples, every margin_mm / 8, within
-//   1.125 margin_mm of it comes within 1.175 margin_mm + a (every point of the surface within
-//   the margin of the nozzle lies within a margin of a sample, and within an eighth of one of a
-//   finer sample near it). So no move is passed that comes within the margin, and one is reported
-//   only when it comes within 1.175 margin_mm + 2a of a deposited layer's surface (2.35 mm at the
-//   defaults with the table still, at most 6.35 turning; 4.1 and 8.1 before the finer samples: a
-//   wall's two shelves 1.9 mm apart, the upper built out first, had 44 routes onto its first
-//   layers reported, the nozzle's face 4 mm from the lower shelf, twice the margin).
+//   of it, and then only where it, or one of the layer's finer samples, every margin_mm / 8,
+//   within 1.125 margin_mm of it, comes within 1.175 margin_mm + a (every point of the surface
+//   within the margin of the nozzle lies within a margin of a sample, and within an eighth of one
+//   of a finer sample near it). So no move is passed that comes within the margin, and one is
+//   reported only when it comes within 1.175 margin_mm + 2a of a deposited layer's surface (2.35 mm
+//   at the defaults with the table still, at most 6.35 turning; 4.1 and 8.1 before the finer
+//   samples: a wall's two shelves 1.9 mm apart, the upper built out first, had 44 routes onto its
+//   first layers reported, the nozzle's face 4 mm from the lower shelf, twice the margin).
 #pragma once
 #include <Eigen/Core>
 #include <memory>

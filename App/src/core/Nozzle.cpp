@@ -359,17 +359,22 @@ LayerBounds layer_bounds(const Layer& layer) {
     return b;
 }
 
-// The least clearance (Shape::clearance) of `q` from the nozzle `shape` (its real outline) along
-// `moves` (one tool axis, the table still), the tip taken every kTravelStep margins along each:
-// within half that step of the least over the whole moves, since the nozzle moves rigidly. Only
-// the stretches of the moves whose tip lies within the body's radius and `below` of q across the
-// axis are walked (the least is sought under `below`); the walk stops once it finds one under
-// `enough`. `at`: the tip where the least was found.
-double least_clearance(const Shape& shape, double margin,
-                       const std::vector<std::pair<Vector3d, Vector3d>>& moves,
-                       const Vector3d& axis, const Vector3d& q, double below, Vector3d& at,
-                       double enough = -std::numeric_limits<double>::infinity()) {
-    double best = std::numeric_limits<double>::infinity();
+// What walk_tips' visitor returns to end the walk.
+constexpr double kStopWalk = -1.0;
+
+// Walks the tips along `moves` (one tool axis, the table still), taken every kTravelStep margins
+// along each, whose nozzle `shape` may come within `below` of `q`: only the stretches of the moves
+// whose tip lies within the body's radius and `below` of q across the axis (the tips of a stretch
+// lie in a line, evenly spaced). `visit(tip, c, spacing, starts)` is given each with q's
+// clearance c (Shape::clearance) from the nozzle there, the distance between the stretch's tips
+// and whether the tip does not follow the last one visited in its stretch, and returns how far
+// past it the tips of its stretch are passed over (0: none; kStopWalk ends the walk). A point's
+// clearance changes no faster than the nozzle moves: where only clearances under some value
+// count, none can within (c - that value) of the tip.
+template <typename Visit>
+void walk_tips(const Shape& shape, double margin,
+               const std::vector<std::pair<Vector3d, Vector3d>>& moves, const Vector3d& axis,
+               const Vector3d& q, double below, Visit&& visit) {
     const double step = kTravelStep * margin;
     const double r = shape.body + below;
     auto across = [&](const Vector3d& v) { return Vector3d(v - axis.dot(v) * axis); };
@@ -390,19 +395,43 @@ double least_clearance(const Shape& shape, double margin,
         }
         const Vector3d from = a + t0 * (b - a), to = a + t1 * (b - a);
         const int pieces = std::max(1, int(std::ceil((to - from).norm() / step)));
-        for (int i = 0; i <= pieces; ++i) {
+        const double spacing = (to - from).norm() / pieces;
+        bool starts = true;
+        for (int i = 0; i <= pieces;) {
             const Vector3d tip = from + (to - from) * (double(i) / pieces);
             const Vector3d d = q - tip;
             const double h = axis.dot(d);
-            const double c = shape.clearance((d - h * axis).norm(), h);
-            if (c < best) {
-                best = c;
-                at = tip;
-                if (best < enough) return best;
-            }
+            const double pass =
+                visit(tip, shape.clearance((d - h * axis).norm(), h), spacing, starts);
+            if (pass < 0.0) return;
+            const double skipped = spacing > 0.0 ? pass / spacing : double(pieces);  // tips
+            starts = skipped >= 1.0;
+            i = skipped < double(pieces - i) ? i + int(skipped) + 1 : pieces + 1;
         }
     }
-    return best;
+}
+
+// How near the nozzle `shape` (its real outline) along `moves` comes to a sample `q` of a prism,
+// the tip taken every kTravelStep margins along each (walk_tips): within half that step of the
+// least clearance over the whole moves, since the nozzle moves rigidly. Within `counts` of it the
+// sample counts; within `near` (< counts), q itself, a point of the prism, is met, and `tip` is
+// where the tip is then.
+enum class Nearness { apart, counts, near };
+Nearness how_near(const Shape& shape, double margin,
+                  const std::vector<std::pair<Vector3d, Vector3d>>& moves, const Vector3d& axis,
+                  const Vector3d& q, double counts, double near, Vector3d& tip) {
+    Nearness out = Nearness::apart;
+    walk_tips(shape, margin, moves, axis, q, counts,
+              [&](const Vector3d& at, double c, double, bool) {
+                  if (c < near) {
+                      out = Nearness::near;
+                      tip = at;
+                      return kStopWalk;
+                  }
+                  if (c < counts) out = Nearness::counts;
+                  return c - (out == Nearness::counts ? near : counts);
+              });
+    return out;
 }
 
 // Each layer's samples every margin / kFineSamples, binned in cubes a margin wide: made for a
@@ -417,13 +446,48 @@ public:
         : layers_(layers), margin_(margin), fine_(layers.size()) {}
 
     // A fine sample of layer y within a margin and an eighth of `q` that the nozzle `shape` along
-    // `moves` (tool axis `axis`) comes within `counts` of, and where the tip is then.
+    // `moves` (tool axis `axis`) comes within `counts` of, and where the tip is then. `cleared`
+    // marks the fine samples found clear of those moves, for the next sample of y asked with the
+    // same moves and counts (empty at first): the tips walked for q take in every tip within the
+    // body's radius and counts of them across the axis, the only ones that can come so near.
+    // The moves are walked once, for q, keeping the tips where q comes within counts and a
+    // margin and an eighth. A point's clearance changes no faster than the point moves, or the
+    // nozzle: a fine sample's is at least q's less their distance apart, and along a stretch of
+    // tips it cannot come under `counts` within (its clearance - counts) of a tip; only the tips
+    // left are tried.
     std::optional<std::pair<Vector3d, Vector3d>> hit(
         std::size_t y, const Vector3d& q, const Shape& shape,
         const std::vector<std::pair<Vector3d, Vector3d>>& moves, const Vector3d& axis,
-        double counts) {
-        const Fine& f = of(y);
+        double counts, std::vector<char>& cleared) {
         const double m = margin_, r = m * (1.0 + 1.0 / kFineSamples);
+        struct Tip {
+            Vector3d at;
+            double clearance;  // q's
+        };
+        struct Stretch {
+            std::size_t begin = 0, end = 0;
+            double spacing = 0.0, least = std::numeric_limits<double>::infinity();  // q's
+        };
+        std::vector<Tip> tips;
+        std::vector<Stretch> stretches;  // runs of tips where q's clearance is under counts + r
+        const double wanted = counts + r;
+        bool open = false;
+        walk_tips(shape, m, moves, axis, q, wanted,
+                  [&](const Vector3d& tip, double c, double spacing, bool starts) {
+                      if (c >= wanted) {
+                          open = false;
+                          return c - wanted;
+                      }
+                      if (starts || !open) stretches.push_back({tips.size(), tips.size(), spacing});
+                      open = true;
+                      tips.push_back({tip, c});
+                      stretches.back().end = tips.size();
+                      stretches.back().least = std::min(stretches.back().least, c);
+                      return 0.0;
+                  });
+        if (stretches.empty()) return std::nullopt;
+        const Fine& f = of(y);
+        cleared.resize(f.points.size(), 0);
         const Eigen::Array3d c = cube_of(q);
         for (int i = -2; i <= 2; ++i)
             for (int j = -2; j <= 2; ++j)
@@ -432,10 +496,24 @@ public:
                     if (cell == f.cells.end()) continue;
                     for (const std::size_t s : cell->second) {
                         const Vector3d& p = f.points[s];
-                        if ((p - q).squaredNorm() > r * r) continue;
-                        Vector3d at = Vector3d::Zero();
-                        if (least_clearance(shape, m, moves, axis, p, counts, at, counts) < counts)
-                            return std::pair{at, p};
+                        const double apart = (p - q).norm();
+                        if (apart > r || cleared[s]) continue;
+                        for (const Stretch& stretch : stretches) {
+                            if (stretch.least - apart >= counts) continue;
+                            for (std::size_t u = stretch.begin; u < stretch.end;) {
+                                double least = tips[u].clearance - apart;  // p's is no less
+                                if (least < counts) {
+                                    const Vector3d d = p - tips[u].at;
+                                    const double h = axis.dot(d);
+                                    least = shape.clearance((d - h * axis).norm(), h);
+                                    if (least < counts) return std::pair{tips[u].at, p};
+                                }
+                                const double clear = (least - counts) / stretch.spacing;  // tips
+                                u = clear < double(stretch.end - u) ? u + std::size_t(clear) + 1
+                                                                    : stretch.end;
+                            }
+                        }
+                        cleared[s] = 1;
                     }
                 }
         return std::nullopt;
@@ -750,6 +828,7 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
     const double m = params.margin_mm;
     const double reach = shape.grown(shape.top);  // of the grown nozzle, sideways
     PrismSamples samples(layers, m);
+    FineSamples fine(layers, m);  // where a sample counts for a lean
     // Where layer y's prism lies seen from x's paths (`sweep` is x's): its corners' lowest and
     // highest heights above x's plane along the tool axis, and how far across the axis its
     // corners' box lies from the paths' (the prism lies within its corners' hull).
@@ -961,12 +1040,21 @@ BuildSequence plan_build_sequence(const SequenceInput& in, const NozzleParams& p
             centre - b.radius - sweep.highest() > shape.top + shape.grow)
             return false;
         const double counts = (2.0 + kTravelStep) * m;
+        const double fine_counts = (1.0 + 1.0 / kFineSamples + kTravelStep) * m;
+        // A sample met itself refuses the lean at once; the finer samples round those that
+        // count are looked at only when none is.
+        std::vector<Vector3d> counted;
         for (const Vector3d& q : samples.of(y)) {
             if (!sweep.may_hold(sweep.frame().to_2d(q), axis.dot(q), shape)) continue;
-            Vector3d at = Vector3d::Zero();
-            if (least_clearance(shape, m, moves, axis, q, counts, at, counts) < counts) return true;
+            Vector3d tip;
+            const Nearness r = how_near(shape, m, moves, axis, q, counts, fine_counts, tip);
+            if (r == Nearness::near) return true;
+            if (r == Nearness::counts) counted.push_back(q);
         }
-        return false;
+        std::vector<char> cleared;  // y's fine samples clear of the moves
+        return std::any_of(counted.begin(), counted.end(), [&](const Vector3d& q) {
+            return fine.hit(y, q, shape, moves, axis, fine_counts, cleared).has_value();
+        });
     };
     // The sequence, ordered by `order_by` (x -> the layers y to come after it: `blocks`, or some
     // of them): the order, the collisions it leaves (every layer of `blocks[x]` put before x) and
@@ -1229,13 +1317,19 @@ struct TravelCheck::Impl {
                 return false;
             const double counts = (2.0 + kTravelStep) * m + allowance;
             const double fine_counts = (1.0 + 1.0 / kFineSamples + kTravelStep) * m + allowance;
+            std::vector<char> cleared;  // y's fine samples clear of the moves
             for (const Vector3d& q : samples.of(y)) {
                 const Vector2d q2 = sweep.frame().to_2d(q);
                 if (!sweep.may_hold(q2, a.dot(q), grown)) continue;
-                // Whether it counts (the finer samples say where the nozzle is).
-                Vector3d at = Vector3d::Zero();
-                if (least_clearance(shape, m, moves, a, q, counts, at, counts) >= counts) continue;
-                if (const auto hit = fine.hit(y, q, shape, moves, a, fine_counts)) {
+                // Whether it counts (the finer samples say where the nozzle is), or is met itself.
+                Vector3d tip;
+                const Nearness r = how_near(shape, m, moves, a, q, counts, fine_counts, tip);
+                if (r == Nearness::apart) continue;
+                if (r == Nearness::near) {
+                    found = TravelHit{yi, tip, q};
+                    return true;
+                }
+                if (const auto hit = fine.hit(y, q, shape, moves, a, fine_counts, cleared)) {
                     found = TravelHit{yi, hit->first, hit->second};
                     return true;
                 }

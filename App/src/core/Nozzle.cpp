@@ -74,6 +74,12 @@ struct Shape {
         const bool inside = h >= standoff && h <= top && rho <= radius(h);
         return inside ? -edge : edge;
     }
+    // clearance() of point `p` from the nozzle with its tip at `tip` along the unit `axis`.
+    double clearance(const Vector3d& p, const Vector3d& tip, const Vector3d& axis) const {
+        const Vector3d d = p - tip;
+        const double h = axis.dot(d);
+        return clearance((d - h * axis).norm(), h);
+    }
 };
 
 // Points every point of a layer's prism lies within `spacing` of (see Nozzle.hpp).
@@ -399,10 +405,7 @@ void walk_tips(const Shape& shape, double margin,
         bool starts = true;
         for (int i = 0; i <= pieces;) {
             const Vector3d tip = from + (to - from) * (double(i) / pieces);
-            const Vector3d d = q - tip;
-            const double h = axis.dot(d);
-            const double pass =
-                visit(tip, shape.clearance((d - h * axis).norm(), h), spacing, starts);
+            const double pass = visit(tip, shape.clearance(q, tip, axis), spacing, starts);
             if (pass < 0.0) return;
             const double skipped = spacing > 0.0 ? pass / spacing : double(pieces);  // tips
             starts = skipped >= 1.0;
@@ -503,9 +506,7 @@ public:
                             for (std::size_t u = stretch.begin; u < stretch.end;) {
                                 double least = tips[u].clearance - apart;  // p's is no less
                                 if (least < counts) {
-                                    const Vector3d d = p - tips[u].at;
-                                    const double h = axis.dot(d);
-                                    least = shape.clearance((d - h * axis).norm(), h);
+                                    least = shape.clearance(p, tips[u].at, axis);
                                     if (least < counts) return std::pair{tips[u].at, p};
                                 }
                                 const double clear = (least - counts) / stretch.spacing;  // tips
